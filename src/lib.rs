@@ -1,0 +1,22 @@
+//! cityspec: a versioned TOML spec in, a synthetic city dataset out.
+//!
+//! The crate is a compiler in stages (see `ARCHITECTURE.md`). Each stage is a pure function
+//! from one named type to the next; only [`build`] knows their order, touches the file
+//! system and keeps the content-addressed cache.
+//!
+//! | stage | module | consumes | produces |
+//! |---|---|---|---|
+//! | spec | [`spec`] | TOML text | validated [`spec::Spec`] |
+//! | layout | [`layout`] | `spec.layout`, seed | layout image (generated or the user's) |
+//! | mirror | [`mirror`] | layout image, `spec.layout.mirror` | mirrored layout image |
+//! | parse | [`parse`] | layout image, palette | [`model::ParsedLayout`]: blocks and roads |
+//! | lamps | [`lamps`] | layout image, roads, `spec.lamps` | [`model::Lamp`]s |
+//! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
+//! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
+//! | preview | [`preview`] | layout image, plan | `plan.png` |
+//!
+//! Shared types live in [`model`]; stages depend on them, never on each other.
+
+pub mod model;
+pub mod rng;
+pub mod spec;

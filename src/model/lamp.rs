@@ -1,0 +1,16 @@
+//! A street lamp site on a lamp strip beside a road.
+
+use serde::{Deserialize, Serialize};
+
+/// A lamp site in layout pixels (continuous coordinates).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Lamp {
+    /// Index in the lamp list, in the order the lamps stage emits them.
+    pub id: u32,
+    /// Image `(x, y)` of the lamp's foot: mid-strip beside the road.
+    pub position: [f64; 2],
+    /// The road the lamp lights.
+    pub road: u32,
+    /// Unit image-space vector from the lamp towards its road.
+    pub facing: [f64; 2],
+}

@@ -1,0 +1,20 @@
+//! Shared types the stages hand on to each other: blocks, roads, lamps, buildings and the
+//! assembled city plan.
+//!
+//! Pixel geometry uses continuous image coordinates: pixel `(i, j)` covers
+//! `[i, i + 1) × [j, j + 1)`, x to the right, y down. [`CityPlan`] is the same geometry in
+//! metres, with x east (= image x) and z south (= image y).
+
+mod block;
+mod building;
+mod city_plan;
+mod lamp;
+mod parsed_layout;
+mod road;
+
+pub use block::{Band, Block, PxRect};
+pub use building::Building;
+pub use city_plan::{CityPlan, PlanBlock, PlanBuilding, PlanLamp, PlanRoad};
+pub use lamp::Lamp;
+pub use parsed_layout::ParsedLayout;
+pub use road::{Axis, Road};

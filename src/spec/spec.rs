@@ -1,0 +1,294 @@
+//! The spec's Rust types: what a `cityspec` TOML file may say, with defaults and ranges.
+//!
+//! These types are the single source of truth: `schemas/cityspec.schema.json` is generated
+//! from them (and a test keeps the committed copy in sync). Every table denies unknown keys.
+//! Lengths on the layout image are in pixels; lengths in the world are in metres.
+
+use std::borrow::Cow;
+use std::fmt;
+
+use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// The spec format version this build of cityspec reads.
+pub const SPEC_VERSION: u32 = 1;
+
+/// A cityspec spec: one city, one dataset.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(title = "cityspec spec")]
+pub struct Spec {
+    /// Spec format version. This cityspec reads version 1.
+    #[schemars(range(min = 1, max = 1))]
+    pub version: u32,
+    /// Name of the city; the build writes to `out/<name>/` by default.
+    #[schemars(regex(pattern = r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$"))]
+    pub name: String,
+    /// Seed of every random choice. The same seed gives the same bytes.
+    #[serde(default)]
+    pub seed: u64,
+    /// Where the layout image comes from and how it is read.
+    pub layout: LayoutSpec,
+    /// Building sizes for placement (paper Algorithm 1).
+    #[serde(default)]
+    pub buildings: BuildingsSpec,
+    /// Street lamp sites along the roads.
+    #[serde(default)]
+    pub lamps: LampsSpec,
+}
+
+/// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LayoutSpec {
+    /// Generate a layout at random from the seed. Give either `generate` or `image`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub generate: Option<GenerateSpec>,
+    /// A layout image drawn with the palette (PNG or JPEG), relative to the spec's folder.
+    /// Give either `generate` or `image`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(length(min = 1))]
+    pub image: Option<String>,
+    /// Mirror operations applied in order, each appending a flipped copy:
+    /// 1 flips vertically (copy below), 2 horizontally (copy to the right), 3 both (2 then 1).
+    /// `[2, 1]` turns one layout into a 2×2 city.
+    #[serde(default)]
+    #[schemars(inner(range(min = 1, max = 3)), length(max = 8))]
+    pub mirror: Vec<u8>,
+    /// Colours the layout is drawn with.
+    #[serde(default)]
+    pub palette: Palette,
+    /// Metres per layout pixel.
+    #[serde(default = "default_metres_per_pixel")]
+    #[schemars(range(min = 0.05, max = 100.0))]
+    pub metres_per_pixel: f64,
+}
+
+/// Parameters of the random layout generator (paper 3.1). Lengths in pixels.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GenerateSpec {
+    /// Image width.
+    #[serde(default = "default_size")]
+    #[schemars(range(min = 64, max = 8192))]
+    pub width: u32,
+    /// Image height.
+    #[serde(default = "default_size")]
+    #[schemars(range(min = 64, max = 8192))]
+    pub height: u32,
+    /// Width of every road.
+    #[serde(default = "default_road_width")]
+    #[schemars(range(min = 4, max = 256))]
+    pub road_width: u32,
+    /// Width of the lamp strip ringing every block.
+    #[serde(default = "default_strip_width")]
+    #[schemars(range(min = 2, max = 64))]
+    pub strip_width: u32,
+    /// Number of roads running left to right.
+    #[serde(default = "default_roads")]
+    #[schemars(range(max = 64))]
+    pub horizontal_roads: u32,
+    /// Number of roads running top to bottom.
+    #[serde(default = "default_roads")]
+    #[schemars(range(max = 64))]
+    pub vertical_roads: u32,
+    /// Smallest side of a block's blue area.
+    #[serde(default = "default_min_block")]
+    #[schemars(range(min = 8, max = 4096))]
+    pub min_block: u32,
+}
+
+impl Default for GenerateSpec {
+    fn default() -> Self {
+        GenerateSpec {
+            width: default_size(),
+            height: default_size(),
+            road_width: default_road_width(),
+            strip_width: default_strip_width(),
+            horizontal_roads: default_roads(),
+            vertical_roads: default_roads(),
+            min_block: default_min_block(),
+        }
+    }
+}
+
+/// The layout's colours. Parsing maps every pixel to the nearest palette colour within
+/// `tolerance`, so anti-aliased or JPEG-saved drawings still parse.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Palette {
+    /// Road surface.
+    #[serde(default = "default_road")]
+    pub road: Color,
+    /// One-pixel centre line of each road.
+    #[serde(default = "default_line")]
+    pub line: Color,
+    /// Building blocks.
+    #[serde(default = "default_block")]
+    pub block: Color,
+    /// Lamp strips around the blocks.
+    #[serde(default = "default_strip")]
+    pub strip: Color,
+    /// Largest RGB distance (Euclidean, 0–441) at which a pixel still takes a palette colour.
+    #[serde(default = "default_tolerance")]
+    #[schemars(range(min = 0, max = 441))]
+    pub tolerance: u32,
+}
+
+impl Default for Palette {
+    fn default() -> Self {
+        Palette {
+            road: default_road(),
+            line: default_line(),
+            block: default_block(),
+            strip: default_strip(),
+            tolerance: default_tolerance(),
+        }
+    }
+}
+
+/// Buildings for paper Algorithm 1. Lengths in metres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BuildingsSpec {
+    /// Footprint widths (square footprints) to choose from.
+    #[serde(default = "default_widths")]
+    #[schemars(length(min = 1, max = 256), inner(range(min = 1.0, max = 500.0)))]
+    pub widths: Vec<f64>,
+    /// Gap between neighbouring buildings.
+    #[serde(default = "default_gap")]
+    #[schemars(range(min = 0.0, max = 100.0))]
+    pub gap: f64,
+}
+
+impl Default for BuildingsSpec {
+    fn default() -> Self {
+        BuildingsSpec {
+            widths: default_widths(),
+            gap: default_gap(),
+        }
+    }
+}
+
+/// Street lamp sites. Lengths in metres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LampsSpec {
+    /// Distance between lamps along a road (paper: 100).
+    #[serde(default = "default_spacing")]
+    #[schemars(range(min = 1.0, max = 10000.0))]
+    pub spacing: f64,
+    /// Of two lamps closer than this, one is removed.
+    #[serde(default = "default_min_distance")]
+    #[schemars(range(min = 0.0, max = 10000.0))]
+    pub min_distance: f64,
+}
+
+impl Default for LampsSpec {
+    fn default() -> Self {
+        LampsSpec {
+            spacing: default_spacing(),
+            min_distance: default_min_distance(),
+        }
+    }
+}
+
+/// An sRGB colour, written `"#rrggbb"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Color(pub [u8; 3]);
+
+impl Color {
+    /// Parses `#rrggbb` (either case).
+    pub fn parse(text: &str) -> Option<Color> {
+        let hex = text.strip_prefix('#')?;
+        if hex.len() != 6 || !hex.bytes().all(|b| b.is_ascii_hexdigit()) {
+            return None;
+        }
+        let channel = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+        Some(Color([channel(0)?, channel(2)?, channel(4)?]))
+    }
+}
+
+impl fmt::Display for Color {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let [r, g, b] = self.0;
+        write!(f, "#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+impl Serialize for Color {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
+impl<'de> Deserialize<'de> for Color {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(deserializer)?;
+        Color::parse(&text).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "expected a colour like \"#80a0ff\", found {text:?}"
+            ))
+        })
+    }
+}
+
+impl JsonSchema for Color {
+    fn schema_name() -> Cow<'static, str> {
+        "Color".into()
+    }
+
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "An sRGB colour written \"#rrggbb\".",
+            "type": "string",
+            "pattern": "^#[0-9a-fA-F]{6}$"
+        })
+    }
+}
+
+fn default_metres_per_pixel() -> f64 {
+    1.0
+}
+fn default_size() -> u32 {
+    768
+}
+fn default_road_width() -> u32 {
+    32
+}
+fn default_strip_width() -> u32 {
+    8
+}
+fn default_roads() -> u32 {
+    3
+}
+fn default_min_block() -> u32 {
+    64
+}
+fn default_road() -> Color {
+    Color([128, 128, 128])
+}
+fn default_line() -> Color {
+    Color([255, 220, 0])
+}
+fn default_block() -> Color {
+    Color([40, 80, 220])
+}
+fn default_strip() -> Color {
+    Color([40, 170, 60])
+}
+fn default_tolerance() -> u32 {
+    80
+}
+fn default_widths() -> Vec<f64> {
+    vec![12.0, 16.0, 20.0, 24.0, 30.0]
+}
+fn default_gap() -> f64 {
+    2.0
+}
+fn default_spacing() -> f64 {
+    100.0
+}
+fn default_min_distance() -> f64 {
+    20.0
+}
