@@ -43,11 +43,12 @@ pub struct Spec {
 pub struct LayoutSpec {
     /// Generate a layout at random from the seed. Give either `generate` or `image`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "GenerateSpec")]
     pub generate: Option<GenerateSpec>,
     /// A layout image drawn with the palette (PNG or JPEG), relative to the spec's folder.
     /// Give either `generate` or `image`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schemars(length(min = 1))]
+    #[schemars(with = "String", length(min = 1))]
     pub image: Option<String>,
     /// Mirror operations applied in order, each appending a flipped copy:
     /// 1 flips vertically (copy below), 2 horizontally (copy to the right), 3 both (2 then 1).

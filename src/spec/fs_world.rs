@@ -1,0 +1,69 @@
+//! FsWorld: the build driver's [`SpecWorld`] — image paths → sizes read from file headers.
+
+use std::fs::File;
+use std::io::{ErrorKind, Read};
+use std::path::Path;
+
+use image::ImageReader;
+
+use super::SpecWorld;
+
+/// The real file system: reads only the header of each image.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FsWorld;
+
+impl SpecWorld for FsWorld {
+    fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
+        if path.is_dir() {
+            return Err("a directory".to_string());
+        }
+        let unreadable = |e: std::io::Error| match e.kind() {
+            ErrorKind::NotFound => "no such file".to_string(),
+            ErrorKind::PermissionDenied => "a file it may not read".to_string(),
+            _ => format!("an unreadable file ({e})"),
+        };
+        // Judge by content, not by name: `with_guessed_format` would fall back to the
+        // extension and blame a garbage `.png` on the PNG decoder.
+        let mut head = Vec::with_capacity(32);
+        File::open(path)
+            .and_then(|f| f.take(32).read_to_end(&mut head))
+            .map_err(unreadable)?;
+        if image::guess_format(&head).is_err() {
+            return Err("a file that is not a PNG or JPEG image".to_string());
+        }
+        ImageReader::open(path)
+            .map_err(unreadable)?
+            .with_guessed_format()
+            .map_err(unreadable)?
+            .into_dimensions()
+            .map_err(|e| format!("an unreadable image ({e})"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_sizes_and_explains_failures() {
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("a.png");
+        image::RgbImage::new(5, 3).save(&png).unwrap();
+        let garbage = dir.path().join("b.png");
+        std::fs::write(&garbage, b"this is not an image at all").unwrap();
+        let world = FsWorld;
+        assert_eq!(world.image_dimensions(&png), Ok((5, 3)));
+        assert_eq!(
+            world.image_dimensions(&garbage),
+            Err("a file that is not a PNG or JPEG image".to_string())
+        );
+        assert_eq!(
+            world.image_dimensions(&dir.path().join("missing.png")),
+            Err("no such file".to_string())
+        );
+        assert_eq!(
+            world.image_dimensions(dir.path()),
+            Err("a directory".to_string())
+        );
+    }
+}

@@ -1,0 +1,314 @@
+//! Layout checks: a schema-valid [`LayoutSpec`] + the world's image headers → the problems
+//! the schema cannot see (one layout source, roads that fit, a readable image of sane size,
+//! a mirrored city that is not absurdly large).
+
+use std::path::Path;
+
+use super::findings::Findings;
+use super::spec::{GenerateSpec, LayoutSpec};
+use super::{SpecWorld, resolve};
+
+/// Largest side of a layout image, drawn, generated or mirrored, in pixels.
+pub const MAX_LAYOUT_SIDE: u64 = 16384;
+/// Largest layout image area in pixels (64 Mpx).
+pub const MAX_LAYOUT_PIXELS: u64 = 64 * 1024 * 1024;
+
+/// Checks `layout`; `spec_path` is the spec's path as given, against which the image resolves.
+pub(crate) fn check_layout(
+    layout: &LayoutSpec,
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) {
+    let mut base = None;
+    match (&layout.generate, &layout.image) {
+        (None, None) => findings.error(
+            "layout",
+            "expected a layout source, `[layout.generate]` or `layout.image = \"….png\"`, \
+             found neither",
+        ),
+        (Some(_), Some(_)) => {
+            let line = findings.line_of("layout.generate");
+            findings.error(
+                "layout.image",
+                format!(
+                    "expected either `layout.generate` or `layout.image`, found both \
+                     (`layout.generate` is on line {line})"
+                ),
+            );
+        }
+        (Some(generate), None) => {
+            if check_generate(generate, findings) {
+                base = Some((u64::from(generate.width), u64::from(generate.height)));
+            }
+        }
+        (None, Some(_)) => {}
+    }
+    if let Some(image) = &layout.image {
+        let dims = check_image(image, spec_path, world, findings);
+        if layout.generate.is_none() {
+            base = dims;
+        }
+    }
+    if let Some((width, height)) = base {
+        check_mirror(&layout.mirror, width, height, findings);
+    }
+}
+
+/// Checks the generator's roads fit its image; true when it is sound.
+fn check_generate(g: &GenerateSpec, findings: &mut Findings<'_, '_>) -> bool {
+    let (w, h) = (u64::from(g.width), u64::from(g.height));
+    let road = u64::from(g.road_width);
+    let smaller = w.min(h);
+    if road >= smaller {
+        findings.error(
+            "layout.generate.road_width",
+            format!(
+                "a road wider than the layout: expected a road_width below {smaller} px \
+                 (the layout is {w}×{h} px), found {}",
+                findings.shown("layout.generate.road_width", road)
+            ),
+        );
+        return false;
+    }
+    let cell = u64::from(g.min_block) + 2 * u64::from(g.strip_width);
+    if cell > smaller {
+        findings.error(
+            "layout.generate.min_block",
+            format!(
+                "blocks do not fit: expected min_block + 2 × strip_width at most {smaller} px \
+                 (the layout is {w}×{h} px), found {} + 2 × {} = {cell}",
+                g.min_block, g.strip_width
+            ),
+        );
+        return false;
+    }
+    let mut sound = true;
+    let directions = [
+        ("horizontal_roads", g.horizontal_roads, h, "high"),
+        ("vertical_roads", g.vertical_roads, w, "wide"),
+    ];
+    for (name, count, size, adjective) in directions {
+        let n = u64::from(count);
+        if n * road + (n + 1) * cell > size {
+            let fit = (size - cell) / (road + cell);
+            let key = format!("layout.generate.{name}");
+            let what = name.replace('_', " ");
+            let what = if fit == 1 {
+                what.trim_end_matches('s')
+            } else {
+                &what
+            };
+            findings.error(
+                &key,
+                format!(
+                    "too many roads: expected at most {fit} {what} in a layout {size} px \
+                     {adjective} (each road takes {road} px, each block at least {cell} px with \
+                     its strips), found {}",
+                    findings.shown(&key, n)
+                ),
+            );
+            sound = false;
+        }
+    }
+    if g.horizontal_roads == 0 && g.vertical_roads == 0 {
+        let key = if findings.written("layout.generate.vertical_roads") {
+            "layout.generate.vertical_roads"
+        } else {
+            "layout.generate.horizontal_roads"
+        };
+        findings.error(
+            key,
+            "a layout without roads: expected at least one road (horizontal_roads or \
+             vertical_roads), found none; lamps stand along roads and cameras drive on them",
+        );
+    }
+    sound
+}
+
+/// Checks the image exists, is an image, and is not too large; its size when sound.
+fn check_image(
+    image: &str,
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) -> Option<(u64, u64)> {
+    let resolved = resolve(spec_path, image);
+    match world.image_dimensions(&resolved) {
+        Err(problem) => {
+            findings.error(
+                "layout.image",
+                format!(
+                    "expected a PNG or JPEG layout image at {}, found {problem}",
+                    resolved.display()
+                ),
+            );
+            None
+        }
+        Ok((w, h)) => {
+            let (w, h) = (u64::from(w), u64::from(h));
+            if too_large(w, h) {
+                findings.error(
+                    "layout.image",
+                    format!(
+                        "the image is too large: expected at most {MAX_LAYOUT_SIDE} px a side \
+                         and {} Mpx, found {w}×{h} px in {}",
+                        MAX_LAYOUT_PIXELS >> 20,
+                        resolved.display()
+                    ),
+                );
+                return None;
+            }
+            Some((w, h))
+        }
+    }
+}
+
+/// Checks the mirrored city stays within the size limits.
+fn check_mirror(ops: &[u8], width: u64, height: u64, findings: &mut Findings<'_, '_>) {
+    let (mut w, mut h) = (width, height);
+    for op in ops {
+        match op {
+            1 => h *= 2,
+            2 => w *= 2,
+            3 => (w, h) = (w * 2, h * 2),
+            _ => {}
+        }
+    }
+    if too_large(w, h) {
+        findings.error(
+            "layout.mirror",
+            format!(
+                "the mirrored layout is too large: expected at most {MAX_LAYOUT_SIDE} px a side \
+                 and {} Mpx, found {w}×{h} px ({width}×{height} mirrored by {ops:?}); \
+                 drop some mirror operations",
+                MAX_LAYOUT_PIXELS >> 20
+            ),
+        );
+    }
+}
+
+fn too_large(w: u64, h: u64) -> bool {
+    w > MAX_LAYOUT_SIDE || h > MAX_LAYOUT_SIDE || w * h > MAX_LAYOUT_PIXELS
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use crate::spec::{SpecSource, SpecWorld, load};
+
+    /// Images `a.png` (640×480) and `big.png` (9000×9000) beside `specs/city.toml`.
+    struct World;
+
+    impl SpecWorld for World {
+        fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
+            match path.to_str() {
+                Some("specs/a.png") => Ok((640, 480)),
+                Some("specs/big.png") => Ok((9000, 9000)),
+                _ => Err("no such file".to_string()),
+            }
+        }
+    }
+
+    fn problems(body: &str) -> Vec<String> {
+        let source = SpecSource {
+            path: PathBuf::from("specs/city.toml"),
+            text: format!("version = 1\nname = \"c\"\n{body}"),
+        };
+        match load(&source, &World) {
+            Ok(_) => Vec::new(),
+            Err(e) => e
+                .diagnostics
+                .iter()
+                .map(|d| format!("{}: {}", d.key, d.message))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn layout_problems_name_the_responsible_key() {
+        let cases: &[(&str, &[&str])] = &[
+            ("[layout.generate]\n", &[]),
+            ("[layout]\nimage = \"a.png\"\nmirror = [3, 3, 3]\n", &[]),
+            ("[layout]\n", &["layout: expected a layout source"]),
+            (
+                "[layout]\nimage = \"a.png\"\n[layout.generate]\n",
+                &[
+                    "layout.image: expected either `layout.generate` or `layout.image`, found both (`layout.generate` is on line 5)",
+                ],
+            ),
+            (
+                "[layout]\nimage = \"b.png\"\n",
+                &[
+                    "layout.image: expected a PNG or JPEG layout image at specs/b.png, found no such file",
+                ],
+            ),
+            (
+                "[layout]\nimage = \"big.png\"\n",
+                &[
+                    "layout.image: the image is too large: expected at most 16384 px a side and 64 Mpx, found 9000×9000 px in specs/big.png",
+                ],
+            ),
+            (
+                "[layout]\nimage = \"a.png\"\nmirror = [3, 3, 3, 3, 3]\n",
+                &[
+                    "layout.mirror: the mirrored layout is too large: expected at most 16384 px a side and 64 Mpx, found 20480×15360 px (640×480 mirrored by [3, 3, 3, 3, 3])",
+                ],
+            ),
+            (
+                "[layout]\nimage = \"a.png\"\nmirror = [2, 2, 2, 2, 2]\n",
+                &[
+                    "layout.mirror: the mirrored layout is too large: expected at most 16384 px a side and 64 Mpx, found 20480×480 px",
+                ],
+            ),
+            (
+                "[layout.generate]\nwidth = 64\nheight = 100\nroad_width = 64\n",
+                &[
+                    "layout.generate.road_width: a road wider than the layout: expected a road_width below 64 px (the layout is 64×100 px), found 64",
+                ],
+            ),
+            (
+                "[layout.generate]\nwidth = 64\nheight = 64\n",
+                &[
+                    "layout.generate.min_block: blocks do not fit: expected min_block + 2 × strip_width at most 64 px (the layout is 64×64 px), found 64 + 2 × 8 = 80",
+                ],
+            ),
+            (
+                "[layout.generate]\nmin_block = 800\n",
+                &[
+                    "layout.generate.min_block: blocks do not fit: expected min_block + 2 × strip_width at most 768 px (the layout is 768×768 px), found 800 + 2 × 8 = 816",
+                ],
+            ),
+            // 10 × 32 + 11 × 80 = 1200: exactly fits.
+            (
+                "[layout.generate]\nwidth = 1200\nvertical_roads = 10\n",
+                &[],
+            ),
+            (
+                "[layout.generate]\nwidth = 1199\nvertical_roads = 10\n",
+                &[
+                    "layout.generate.vertical_roads: too many roads: expected at most 9 vertical roads in a layout 1199 px wide",
+                ],
+            ),
+            (
+                "[layout.generate]\nwidth = 1000\nvertical_roads = 10\n",
+                &[
+                    "layout.generate.vertical_roads: too many roads: expected at most 8 vertical roads in a layout 1000 px wide (each road takes 32 px, each block at least 80 px with its strips), found 10",
+                ],
+            ),
+            (
+                "[layout.generate]\nhorizontal_roads = 0\nvertical_roads = 0\n",
+                &["layout.generate.vertical_roads: a layout without roads"],
+            ),
+            ("[layout.generate]\nhorizontal_roads = 0\n", &[]),
+        ];
+        for (body, want) in cases {
+            let got = problems(body);
+            assert_eq!(got.len(), want.len(), "{body}\n{got:#?}");
+            for (g, w) in got.iter().zip(want.iter()) {
+                assert!(g.starts_with(w), "{body}\ngot  {g}\nwant {w}…");
+            }
+        }
+    }
+}
