@@ -17,6 +17,10 @@
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
+pub mod lamps;
 pub mod model;
+pub mod place;
+pub mod plan;
+pub mod preview;
 pub mod rng;
 pub mod spec;
