@@ -17,6 +17,9 @@
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
+pub mod layout;
+pub mod mirror;
 pub mod model;
+pub mod parse;
 pub mod rng;
 pub mod spec;
