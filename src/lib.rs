@@ -18,7 +18,10 @@
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
 pub mod lamps;
+pub mod layout;
+pub mod mirror;
 pub mod model;
+pub mod parse;
 pub mod place;
 pub mod plan;
 pub mod preview;
