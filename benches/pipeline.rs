@@ -1,1 +1,148 @@
-fn main() {}
+//! Benchmarks of the compiler core, printing medians: `cargo bench --bench pipeline`.
+//!
+//! - layout generation, parsing, lamp siting and building placement, for the default
+//!   768 × 768 layout and for a 4 × 4 mirrored one (3072 × 3072);
+//! - a no-op rebuild (everything cached), through the library and as a whole process.
+//!
+//! Targets on the 2-core machine (issue 2): layout + parse + place for 768 × 768 under
+//! 50 ms; a no-op rebuild under 30 ms. Timings are printed, never asserted: a busy machine
+//! must not fail a build.
+
+use std::hint::black_box;
+use std::path::Path;
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use cityspec::build::{self, BuildOptions, widths_px};
+use cityspec::spec::{GenerateSpec, Palette, Spec};
+use cityspec::{lamps, layout, mirror, parse, place, rng};
+
+fn main() {
+    let runs: usize = std::env::var("BENCH_RUNS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(21);
+    println!(
+        "cityspec pipeline benchmarks, {runs} runs each, rayon threads: {}",
+        rayon::current_num_threads()
+    );
+    println!(
+        "{:<44} {:>10} {:>10} {:>10}",
+        "case", "median", "min", "max"
+    );
+    stages("768x768", &[], runs);
+    stages("4x4 mirrored (3072x3072)", &[2, 1, 2, 1], runs);
+    noop_rebuild(runs);
+}
+
+fn stages(label: &str, ops: &[u8], runs: usize) {
+    let spec: Spec = build::load_spec(&repo().join("specs/day.toml")).unwrap();
+    let generate: GenerateSpec = spec.layout.generate.clone().unwrap();
+    let palette = Palette::default();
+    let widths = widths_px(&spec.buildings.widths, 1.0);
+    let gap = spec.buildings.gap.round() as u32;
+
+    let mut t_layout = Vec::new();
+    let mut t_parse = Vec::new();
+    let mut t_lamps = Vec::new();
+    let mut t_place = Vec::new();
+    let mut t_total = Vec::new();
+    let mut counts = (0, 0, 0, 0);
+    for _ in 0..runs {
+        let start = Instant::now();
+        let mut stream = rng::stream(spec.seed, "layout", 0);
+        let image = mirror::mirror(
+            &layout::generate(&generate, &palette, &mut stream).image,
+            ops,
+        );
+        let a = Instant::now();
+        let parsed = parse::parse(&image, &palette);
+        let b = Instant::now();
+        let sites = lamps::site_lamps(
+            &image,
+            &parsed,
+            &palette,
+            spec.lamps.spacing,
+            spec.lamps.min_distance,
+        );
+        let c = Instant::now();
+        let buildings = place::place(&parsed.blocks, &widths, gap, spec.seed);
+        let d = Instant::now();
+        t_layout.push(a - start);
+        t_parse.push(b - a);
+        t_lamps.push(c - b);
+        t_place.push(d - c);
+        t_total.push(d - start);
+        counts = (
+            parsed.blocks.len(),
+            parsed.roads.len(),
+            sites.len(),
+            buildings.len(),
+        );
+        black_box((parsed, sites, buildings));
+    }
+    println!(
+        "{label}: {} blocks, {} roads, {} lamps, {} buildings",
+        counts.0, counts.1, counts.2, counts.3
+    );
+    row(&format!("  {label}: layout (+mirror)"), &mut t_layout);
+    row(&format!("  {label}: parse"), &mut t_parse);
+    row(&format!("  {label}: lamps"), &mut t_lamps);
+    row(&format!("  {label}: place"), &mut t_place);
+    row(
+        &format!("  {label}: layout + parse + lamps + place"),
+        &mut t_total,
+    );
+}
+
+fn noop_rebuild(runs: usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("day.toml");
+    std::fs::copy(repo().join("specs/day.toml"), &spec).unwrap();
+    let options = BuildOptions {
+        out_root: dir.path().join("out"),
+        cache_dir: dir.path().join("cache"),
+    };
+    let cold = Instant::now();
+    build::build(&spec, &options).unwrap();
+    let mut cold_times = vec![cold.elapsed()];
+    let mut lib = Vec::new();
+    for _ in 0..runs {
+        let start = Instant::now();
+        let report = build::build(&spec, &options).unwrap();
+        lib.push(start.elapsed());
+        assert!(report.up_to_date());
+    }
+    let mut process = Vec::new();
+    for _ in 0..runs {
+        let start = Instant::now();
+        let status = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+            .args(["build", "-q", "--out"])
+            .arg(&options.out_root)
+            .arg("--cache")
+            .arg(&options.cache_dir)
+            .arg(&spec)
+            .status()
+            .unwrap();
+        process.push(start.elapsed());
+        assert!(status.success());
+    }
+    row("day.toml cold build (library, once)", &mut cold_times);
+    row("day.toml no-op rebuild (library)", &mut lib);
+    row("day.toml no-op rebuild (whole process)", &mut process);
+}
+
+fn row(label: &str, times: &mut [Duration]) {
+    times.sort();
+    let ms = |d: Duration| format!("{:.2} ms", d.as_secs_f64() * 1e3);
+    println!(
+        "{label:<44} {:>10} {:>10} {:>10}",
+        ms(times[times.len() / 2]),
+        ms(times[0]),
+        ms(times[times.len() - 1])
+    );
+}
+
+fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}

@@ -2,7 +2,7 @@
 //!
 //! The crate is a compiler in stages (see `ARCHITECTURE.md`). Each stage is a pure function
 //! from one named type to the next; only [`build`] knows their order, touches the file
-//! system and keeps the content-addressed cache.
+//! system and keeps the content-addressed cache; only [`cli`] prints.
 //!
 //! | stage | module | consumes | produces |
 //! |---|---|---|---|
@@ -17,6 +17,9 @@
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
+pub mod build;
+pub mod cli;
+pub mod hash;
 pub mod lamps;
 pub mod layout;
 pub mod mirror;

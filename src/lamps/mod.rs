@@ -17,6 +17,9 @@
 //! `facing` is the unit vector from the lamp to the road's centre line. Roads are probed in
 //! parallel; results are collected in road order, so any thread count gives the same list.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 mod pixel_class;
 mod road_side;
 

@@ -8,6 +8,9 @@
 //! the image border). [`GeneratedLayout`] carries, beside the image, the roads and blue
 //! rectangles it drew: exactly what the parse stage must read back.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 mod decode;
 mod generated_layout;
 mod layout_error;

@@ -6,6 +6,9 @@
 //! 2 then 1. Ops apply in order, so `[2, 1]` turns one layout into a 2×2 city whose roads run
 //! on across the seams.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 use image::RgbImage;
 
 /// Applies the mirror `ops` in order; each one doubles the height (1), the width (2) or both

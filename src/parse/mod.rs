@@ -16,6 +16,9 @@
 //! Blocks and roads are found in parallel; every parallel step writes to index-addressed
 //! slots, so the result is the same with any number of threads.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 mod blocks;
 mod class_map;
 mod roads;

@@ -10,6 +10,9 @@
 //! pixel with the other; that is, they are at least `gap_px` pixels apart along x or along
 //! y. Buildings of different blocks never meet because they stand on block pixels only.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 mod block_mask;
 mod filler;
 

@@ -5,6 +5,9 @@
 //! areas) so `plan.json` prints short, stable numbers; `-0` becomes `0`. Block outlines are pixel indices in the model, so their corners become
 //! pixel centres: `(i + 0.5) · m`.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 use crate::model::{
     Axis, Block, Building, CityPlan, Lamp, ParsedLayout, PlanBlock, PlanBuilding, PlanLamp,
     PlanRoad, Road,

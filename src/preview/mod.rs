@@ -6,6 +6,9 @@
 //! and lamps as 3×3 magenta dots, drawn in that order. Direct pixel writes, clipped to the
 //! image, so anything outside it is simply not drawn.
 
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
 use image::{Rgb, RgbImage};
 
 use crate::model::{Axis, Building, Lamp, ParsedLayout};

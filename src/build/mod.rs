@@ -1,0 +1,190 @@
+//! Build driver: spec files → output folders of content-hashed artifacts, through the cache.
+//!
+//! The only code that knows the stage order, reads and writes files and keeps the cache.
+//! For each spec it reads the TOML, validates it ([`crate::spec::load`]), computes every
+//! stage key, pulls the artifacts through the cache ([`pipeline`]) and writes them into
+//! `<out>/<name>/` atomically, `manifest.json` last. Files that already hold the right bytes
+//! are left alone, so a rebuild with nothing changed writes nothing.
+
+mod atomic;
+mod cache;
+mod codec;
+mod error;
+mod manifest;
+mod pipeline;
+mod report;
+mod stage_key;
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::io;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
+pub use cache::{Cache, Miss};
+pub use error::BuildError;
+pub use manifest::{Artifact, Manifest};
+pub use pipeline::widths_px;
+pub use report::{BuildReport, StageRun, StageStatus};
+
+use crate::spec::{self, FsWorld, Spec, SpecSource};
+use pipeline::{LayoutSource, Pipeline};
+
+/// Where a build writes.
+#[derive(Clone, Debug)]
+pub struct BuildOptions {
+    /// Each spec writes to `<out_root>/<name>/`.
+    pub out_root: PathBuf,
+    /// The stage cache.
+    pub cache_dir: PathBuf,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        BuildOptions {
+            out_root: PathBuf::from("out"),
+            cache_dir: PathBuf::from(".cityspec-cache"),
+        }
+    }
+}
+
+/// Reads and validates one spec file.
+pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
+    let text = fs::read_to_string(path).map_err(|source| BuildError::ReadSpec {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let source = SpecSource {
+        path: path.to_path_buf(),
+        text,
+    };
+    spec::load(&source, &FsWorld).map_err(BuildError::Spec)
+}
+
+/// Validates every spec first (so all their errors show at once), then builds each in turn.
+/// Stops at the first spec whose build fails.
+pub fn build_all(
+    paths: &[PathBuf],
+    options: &BuildOptions,
+) -> Result<Vec<BuildReport>, Vec<BuildError>> {
+    let mut specs = Vec::new();
+    let mut errors = Vec::new();
+    let mut names: BTreeMap<String, PathBuf> = BTreeMap::new();
+    for path in paths {
+        match load_spec(path) {
+            Ok(spec) => {
+                if let Some(first) = names.insert(spec.name.clone(), path.clone()) {
+                    errors.push(BuildError::DuplicateName {
+                        name: spec.name.clone(),
+                        first,
+                        second: path.clone(),
+                    });
+                }
+                specs.push((path, spec));
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    specs
+        .iter()
+        .map(|(path, spec)| build_spec(path, spec, options).map_err(|e| vec![e]))
+        .collect()
+}
+
+/// Builds one spec file.
+pub fn build(path: &Path, options: &BuildOptions) -> Result<BuildReport, BuildError> {
+    let spec = load_spec(path)?;
+    build_spec(path, &spec, options)
+}
+
+/// Builds an already validated spec read from `path`.
+pub fn build_spec(
+    path: &Path,
+    spec: &Spec,
+    options: &BuildOptions,
+) -> Result<BuildReport, BuildError> {
+    let start = Instant::now();
+    let source = match &spec.layout.image {
+        Some(relative) => {
+            let file = spec::resolve(path, relative);
+            let bytes = fs::read(&file).map_err(|e| BuildError::Input {
+                spec: path.to_path_buf(),
+                key: "layout.image",
+                file: file.clone(),
+                message: e.to_string(),
+            })?;
+            LayoutSource::Image { path: file, bytes }
+        }
+        None => LayoutSource::Generate,
+    };
+    let cache = Cache::new(&options.cache_dir);
+    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), source, &cache);
+    let artifacts = pipeline.artifacts()?;
+    let out_dir = options.out_root.join(&spec.name);
+    let output = |source: io::Error, file: &Path| BuildError::Output {
+        path: file.to_path_buf(),
+        source,
+    };
+    sweep_temporaries(&out_dir).map_err(|e| output(e, &out_dir))?;
+
+    let old = fs::read(out_dir.join("manifest.json"))
+        .ok()
+        .and_then(|b| Manifest::from_bytes(&b));
+    let mut written = Vec::new();
+    let mut unchanged = Vec::new();
+    let mut manifest = Manifest {
+        name: spec.name.clone(),
+        artifacts: Vec::new(),
+    };
+    for artifact in &artifacts {
+        let file = out_dir.join(artifact.path);
+        if fs::read(&file).is_ok_and(|old| old == *artifact.bytes) {
+            unchanged.push(artifact.path.to_owned());
+        } else {
+            write_atomic(&file, &artifact.bytes).map_err(|e| output(e, &file))?;
+            written.push(artifact.path.to_owned());
+        }
+        manifest.artifacts.push(Artifact {
+            path: artifact.path.to_owned(),
+            sha256: crate::hash::sha256_hex(&artifact.bytes),
+            bytes: artifact.bytes.len() as u64,
+            stage: artifact.stage.to_owned(),
+            key: artifact.key.clone(),
+        });
+    }
+    manifest.artifacts.sort_by(|a, b| a.path.cmp(&b.path));
+
+    // Files an earlier build wrote that this one no longer produces would be stale.
+    let mut removed = Vec::new();
+    for stale in old.iter().flat_map(|m| &m.artifacts) {
+        let still = manifest.artifacts.iter().any(|a| a.path == stale.path);
+        let file = out_dir.join(&stale.path);
+        if !still && !stale.path.contains("..") && file.is_file() {
+            fs::remove_file(&file).map_err(|e| output(e, &file))?;
+            removed.push(stale.path.clone());
+        }
+    }
+
+    let manifest_file = out_dir.join("manifest.json");
+    let bytes = manifest.to_bytes();
+    if fs::read(&manifest_file).is_ok_and(|old| old == bytes) {
+        unchanged.push("manifest.json".to_owned());
+    } else {
+        write_atomic(&manifest_file, &bytes).map_err(|e| output(e, &manifest_file))?;
+        written.push("manifest.json".to_owned());
+    }
+
+    Ok(BuildReport {
+        name: spec.name.clone(),
+        out_dir,
+        stages: pipeline.runs,
+        written,
+        unchanged,
+        removed,
+        elapsed: start.elapsed(),
+    })
+}

@@ -1,0 +1,437 @@
+//! One spec's stage graph: every key computed up front from the spec alone, then the
+//! artifacts pulled through the cache, running a stage only when its key misses.
+//!
+//! Evaluation is demand-driven: a stage's inputs are fetched (from the cache or by running
+//! their stages) only when the stage itself must run. So a no-op rebuild touches only the
+//! artifact stages' cache entries, and changing `[lamps]` reruns `lamps`, `plan` and
+//! `preview` while `place` and `parse` stay cached.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use image::RgbImage;
+
+use super::BuildError;
+use super::cache::{Cache, Miss, Outputs};
+use super::codec;
+use super::report::{StageRun, StageStatus};
+use super::stage_key::StageKey;
+use crate::model::{Building, Lamp, ParsedLayout};
+use crate::spec::Spec;
+use crate::{lamps, layout, mirror, parse, place, plan, preview, rng};
+
+/// Where the layout comes from.
+pub enum LayoutSource {
+    Generate,
+    /// The user's image: its path (for messages) and bytes.
+    Image {
+        path: PathBuf,
+        bytes: Vec<u8>,
+    },
+}
+
+/// An artifact a build writes: name in the output folder, bytes, producing stage and key.
+pub struct ArtifactOut {
+    pub path: &'static str,
+    pub bytes: Arc<Vec<u8>>,
+    pub stage: &'static str,
+    pub key: String,
+}
+
+struct Keys {
+    layout: String,
+    mirror: String,
+    parse: String,
+    lamps: String,
+    place: String,
+    plan: String,
+    preview: String,
+}
+
+/// A stage's outputs, and its typed value once computed or decoded.
+struct Slot<T> {
+    outputs: Outputs,
+    value: Option<Arc<T>>,
+}
+
+pub struct Pipeline<'a> {
+    spec: &'a Spec,
+    spec_path: PathBuf,
+    source: LayoutSource,
+    cache: &'a Cache,
+    keys: Keys,
+    pub runs: Vec<StageRun>,
+    layout: Option<Slot<RgbImage>>,
+    mirror: Option<Slot<RgbImage>>,
+    parse: Option<Slot<ParsedLayout>>,
+    lamps: Option<Slot<Vec<Lamp>>>,
+    place: Option<Slot<Vec<Building>>>,
+    plan: Option<Slot<()>>,
+    preview: Option<Slot<()>>,
+}
+
+impl<'a> Pipeline<'a> {
+    pub fn new(spec: &'a Spec, spec_path: PathBuf, source: LayoutSource, cache: &'a Cache) -> Self {
+        let keys = keys(spec, &source);
+        Pipeline {
+            spec,
+            spec_path,
+            source,
+            cache,
+            keys,
+            runs: Vec::new(),
+            layout: None,
+            mirror: None,
+            parse: None,
+            lamps: None,
+            place: None,
+            plan: None,
+            preview: None,
+        }
+    }
+
+    /// Every artifact of the spec, from the cache where possible.
+    pub fn artifacts(&mut self) -> Result<Vec<ArtifactOut>, BuildError> {
+        self.need_mirror()?;
+        self.need_plan()?;
+        self.need_preview()?;
+        Ok(vec![
+            ArtifactOut {
+                path: "layout.png",
+                bytes: output(&self.mirror, "layout.png"),
+                stage: "mirror",
+                key: self.keys.mirror.clone(),
+            },
+            ArtifactOut {
+                path: "plan.json",
+                bytes: output(&self.plan, "plan.json"),
+                stage: "plan",
+                key: self.keys.plan.clone(),
+            },
+            ArtifactOut {
+                path: "plan.png",
+                bytes: output(&self.preview, "plan.png"),
+                stage: "preview",
+                key: self.keys.preview.clone(),
+            },
+        ])
+    }
+
+    fn need_layout(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.layout.clone();
+        self.stage(
+            "layout",
+            key,
+            |p| &mut p.layout,
+            |_| Ok(()),
+            |p, ()| {
+                let image = match &p.source {
+                    LayoutSource::Generate => {
+                        let generate = p.spec.layout.generate.clone().unwrap_or_default();
+                        let mut stream = rng::stream(p.spec.seed, "layout", 0);
+                        layout::generate(&generate, &p.spec.layout.palette, &mut stream).image
+                    }
+                    LayoutSource::Image { path, bytes } => {
+                        layout::decode(bytes).map_err(|e| BuildError::Input {
+                            spec: p.spec_path.clone(),
+                            key: "layout.image",
+                            file: path.clone(),
+                            message: e.to_string(),
+                        })?
+                    }
+                };
+                let png = codec::encode_png(&image);
+                Ok((image, one("layout.png", png)))
+            },
+        )
+    }
+
+    fn layout_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
+        self.need_layout()?;
+        value(&mut self.layout, "layout", |o| {
+            codec::decode_png(&o["layout.png"])
+        })
+    }
+
+    fn need_mirror(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.mirror.clone();
+        self.stage(
+            "mirror",
+            key,
+            |p| &mut p.mirror,
+            |p| p.layout_image(),
+            |p, layout| {
+                let image = mirror::mirror(&layout, &p.spec.layout.mirror);
+                let png = codec::encode_png(&image);
+                Ok((image, one("layout.png", png)))
+            },
+        )
+    }
+
+    fn mirrored_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
+        self.need_mirror()?;
+        value(&mut self.mirror, "mirror", |o| {
+            codec::decode_png(&o["layout.png"])
+        })
+    }
+
+    fn need_parse(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.parse.clone();
+        self.stage(
+            "parse",
+            key,
+            |p| &mut p.parse,
+            |p| p.mirrored_image(),
+            |p, image| {
+                let parsed = parse::parse(&image, &p.spec.layout.palette);
+                let json = codec::to_json(&parsed);
+                Ok((parsed, one("parsed.json", json)))
+            },
+        )
+    }
+
+    fn parsed(&mut self) -> Result<Arc<ParsedLayout>, BuildError> {
+        self.need_parse()?;
+        value(&mut self.parse, "parse", |o| {
+            codec::from_json(&o["parsed.json"])
+        })
+    }
+
+    fn need_lamps(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.lamps.clone();
+        let gather = |p: &mut Self| Ok((p.mirrored_image()?, p.parsed()?));
+        self.stage(
+            "lamps",
+            key,
+            |p| &mut p.lamps,
+            gather,
+            |p, (image, parsed)| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                let lamps = &p.spec.lamps;
+                let sites = lamps::site_lamps(
+                    &image,
+                    &parsed,
+                    &p.spec.layout.palette,
+                    lamps.spacing / mpp,
+                    lamps.min_distance / mpp,
+                );
+                let json = codec::to_json(&sites);
+                Ok((sites, one("lamps.json", json)))
+            },
+        )
+    }
+
+    fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
+        self.need_lamps()?;
+        value(&mut self.lamps, "lamps", |o| {
+            codec::from_json(&o["lamps.json"])
+        })
+    }
+
+    fn need_place(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.place.clone();
+        self.stage(
+            "place",
+            key,
+            |p| &mut p.place,
+            |p| p.parsed(),
+            |p, parsed| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                let widths = widths_px(&p.spec.buildings.widths, mpp);
+                let gap = (p.spec.buildings.gap / mpp).round() as u32;
+                let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
+                let json = codec::to_json(&buildings);
+                Ok((buildings, one("buildings.json", json)))
+            },
+        )
+    }
+
+    fn buildings(&mut self) -> Result<Arc<Vec<Building>>, BuildError> {
+        self.need_place()?;
+        value(&mut self.place, "place", |o| {
+            codec::from_json(&o["buildings.json"])
+        })
+    }
+
+    fn need_plan(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.plan.clone();
+        let gather = |p: &mut Self| Ok((p.parsed()?, p.lamp_sites()?, p.buildings()?));
+        self.stage(
+            "plan",
+            key,
+            |p| &mut p.plan,
+            gather,
+            |p, (parsed, lamps, buildings)| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                let city = plan::assemble(&parsed, &lamps, &buildings, mpp);
+                Ok(((), one("plan.json", codec::to_pretty_json(&city))))
+            },
+        )
+    }
+
+    fn need_preview(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.preview.clone();
+        let gather = |p: &mut Self| {
+            Ok((
+                p.mirrored_image()?,
+                p.parsed()?,
+                p.lamp_sites()?,
+                p.buildings()?,
+            ))
+        };
+        self.stage(
+            "preview",
+            key,
+            |p| &mut p.preview,
+            gather,
+            |_, (image, parsed, lamps, buildings)| {
+                let picture = preview::draw(&image, &parsed, &lamps, &buildings);
+                Ok(((), one("plan.png", codec::encode_png(&picture))))
+            },
+        )
+    }
+
+    /// Fills `slot` from the cache, or gathers the inputs and runs the stage.
+    fn stage<I, T>(
+        &mut self,
+        name: &'static str,
+        key: String,
+        slot: fn(&mut Self) -> &mut Option<Slot<T>>,
+        gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
+        run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
+    ) -> Result<(), BuildError> {
+        if slot(self).is_some() {
+            return Ok(());
+        }
+        let lookup = Instant::now();
+        let (filled, status, repaired, time) = match self.cache.get(&key) {
+            Ok(outputs) => (
+                Slot {
+                    outputs,
+                    value: None,
+                },
+                StageStatus::Cached,
+                None,
+                lookup.elapsed(),
+            ),
+            Err(miss) => {
+                let repaired = match miss {
+                    Miss::Absent => None,
+                    Miss::Corrupt(why) => Some(why),
+                };
+                let inputs = gather(self)?;
+                let start = Instant::now();
+                let (value, outputs) = run(self, inputs)?;
+                self.cache
+                    .put(name, &key, &outputs)
+                    .map_err(|source| BuildError::Cache {
+                        path: self.cache.root().to_path_buf(),
+                        source,
+                    })?;
+                let slot = Slot {
+                    outputs,
+                    value: Some(Arc::new(value)),
+                };
+                (slot, StageStatus::Ran, repaired, start.elapsed())
+            }
+        };
+        self.runs.push(StageRun {
+            stage: name,
+            key,
+            status,
+            time,
+            repaired,
+        });
+        *slot(self) = Some(filled);
+        Ok(())
+    }
+}
+
+/// The slot's typed value, decoding its cached outputs on first use.
+fn value<T>(
+    slot: &mut Option<Slot<T>>,
+    stage: &'static str,
+    decode: impl FnOnce(&Outputs) -> Result<T, String>,
+) -> Result<Arc<T>, BuildError> {
+    let slot = slot.as_mut().expect("stage was evaluated");
+    if slot.value.is_none() {
+        let value =
+            decode(&slot.outputs).map_err(|message| BuildError::Decode { stage, message })?;
+        slot.value = Some(Arc::new(value));
+    }
+    Ok(Arc::clone(slot.value.as_ref().expect("just set")))
+}
+
+fn output<T>(slot: &Option<Slot<T>>, name: &str) -> Arc<Vec<u8>> {
+    Arc::clone(&slot.as_ref().expect("stage was evaluated").outputs[name])
+}
+
+fn one(name: &str, bytes: Vec<u8>) -> Outputs {
+    Outputs::from([(name.to_owned(), Arc::new(bytes))])
+}
+
+/// Building widths in layout pixels (at least one pixel each).
+pub fn widths_px(widths_m: &[f64], metres_per_pixel: f64) -> Vec<u32> {
+    widths_m
+        .iter()
+        .map(|w| (w / metres_per_pixel).round().max(1.0) as u32)
+        .collect()
+}
+
+/// Every stage's key, from the spec (and the layout image's hash) alone.
+fn keys(spec: &Spec, source: &LayoutSource) -> Keys {
+    let l = &spec.layout;
+    let layout = match source {
+        LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
+            .spec("generate", &l.generate.clone().unwrap_or_default())
+            .spec("palette", &l.palette)
+            .spec("seed", &spec.seed),
+        LayoutSource::Image { bytes, .. } => {
+            StageKey::new("layout", layout::VERSION).input("image", &crate::hash::sha256_hex(bytes))
+        }
+    }
+    .finish();
+    let mirror = StageKey::new("mirror", mirror::VERSION)
+        .spec("mirror", &l.mirror)
+        .input("layout", &layout)
+        .finish();
+    let parse = StageKey::new("parse", parse::VERSION)
+        .spec("palette", &l.palette)
+        .input("mirror", &mirror)
+        .finish();
+    let lamps = StageKey::new("lamps", lamps::VERSION)
+        .spec("lamps", &spec.lamps)
+        .spec("palette", &l.palette)
+        .spec("metres_per_pixel", &l.metres_per_pixel)
+        .input("mirror", &mirror)
+        .input("parse", &parse)
+        .finish();
+    let place = StageKey::new("place", place::VERSION)
+        .spec("buildings", &spec.buildings)
+        .spec("metres_per_pixel", &l.metres_per_pixel)
+        .spec("seed", &spec.seed)
+        .input("parse", &parse)
+        .finish();
+    let plan = StageKey::new("plan", plan::VERSION)
+        .spec("metres_per_pixel", &l.metres_per_pixel)
+        .input("parse", &parse)
+        .input("lamps", &lamps)
+        .input("place", &place)
+        .finish();
+    let preview = StageKey::new("preview", preview::VERSION)
+        .input("mirror", &mirror)
+        .input("parse", &parse)
+        .input("lamps", &lamps)
+        .input("place", &place)
+        .finish();
+    Keys {
+        layout,
+        mirror,
+        parse,
+        lamps,
+        place,
+        plan,
+        preview,
+    }
+}

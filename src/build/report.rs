@@ -1,0 +1,51 @@
+//! What a build did: which stages ran or came from the cache, what it wrote.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// Whether a stage's outputs were computed or taken from the cache.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum StageStatus {
+    Ran,
+    Cached,
+}
+
+/// One stage of one build.
+#[derive(Clone, Debug)]
+pub struct StageRun {
+    pub stage: &'static str,
+    pub key: String,
+    pub status: StageStatus,
+    /// Time spent on the stage (lookup and verification when cached).
+    pub time: Duration,
+    /// Set when a cache entry existed but was damaged and the stage was rebuilt.
+    pub repaired: Option<String>,
+}
+
+/// The result of building one spec.
+#[derive(Clone, Debug)]
+pub struct BuildReport {
+    pub name: String,
+    pub out_dir: PathBuf,
+    /// Stages in the order they finished. Stages whose outputs were not needed (because
+    /// everything downstream came from the cache) do not appear.
+    pub stages: Vec<StageRun>,
+    /// Artifacts (and `manifest.json`) written because they were new or changed.
+    pub written: Vec<String>,
+    /// Artifacts already present with the right bytes.
+    pub unchanged: Vec<String>,
+    /// Files of an earlier build that this build no longer produces, now removed.
+    pub removed: Vec<String>,
+    pub elapsed: Duration,
+}
+
+impl BuildReport {
+    pub fn ran(&self) -> impl Iterator<Item = &StageRun> {
+        self.stages.iter().filter(|s| s.status == StageStatus::Ran)
+    }
+
+    /// Nothing ran and nothing was written.
+    pub fn up_to_date(&self) -> bool {
+        self.ran().next().is_none() && self.written.is_empty() && self.removed.is_empty()
+    }
+}

@@ -1,0 +1,106 @@
+//! Stage cache keys: (stage name, code version, the spec part it reads, its input keys) → SHA-256.
+//!
+//! The key's inputs, as in cargo's fingerprints:
+//!
+//! | input | why |
+//! |---|---|
+//! | stage name | two stages reading the same things still differ |
+//! | cityspec version and the stage's own `VERSION` | new code, new results |
+//! | the canonical JSON of the spec part the stage reads | a spec change reruns exactly its readers |
+//! | the keys of the stages it consumes (or an input file's SHA-256) | changes propagate downstream |
+//!
+//! Never an absolute path, a timestamp, a host name or a thread count.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::hash::sha256_hex;
+
+/// What a stage key is the hash of.
+#[derive(Debug, Serialize)]
+pub struct StageKey {
+    stage: &'static str,
+    cityspec: &'static str,
+    stage_version: u32,
+    spec: serde_json::Value,
+    inputs: BTreeMap<&'static str, String>,
+}
+
+impl StageKey {
+    pub fn new(stage: &'static str, stage_version: u32) -> StageKey {
+        StageKey {
+            stage,
+            cityspec: env!("CARGO_PKG_VERSION"),
+            stage_version,
+            spec: serde_json::Value::Object(Default::default()),
+            inputs: BTreeMap::new(),
+        }
+    }
+
+    /// Adds a part of the spec the stage reads, under `name`.
+    pub fn spec(mut self, name: &str, part: &impl Serialize) -> StageKey {
+        let value = serde_json::to_value(part).expect("spec parts serialize to JSON");
+        if let serde_json::Value::Object(map) = &mut self.spec {
+            map.insert(name.to_owned(), value);
+        }
+        self
+    }
+
+    /// Adds the key of a consumed stage, or the hash of an input file.
+    pub fn input(mut self, name: &'static str, key: &str) -> StageKey {
+        self.inputs.insert(name, key.to_owned());
+        self
+    }
+
+    /// The key: SHA-256 of the canonical JSON of all of the above.
+    pub fn finish(&self) -> String {
+        let text = serde_json::to_vec(self).expect("keys serialize to JSON");
+        sha256_hex(&text)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn key_depends_on_every_input() {
+        let base = || {
+            StageKey::new("parse", 1)
+                .spec("palette", &[1, 2, 3])
+                .input("mirror", "abc")
+        };
+        let k = base().finish();
+        assert_eq!(k, base().finish());
+        assert_ne!(
+            k,
+            StageKey::new("lamps", 1)
+                .spec("palette", &[1, 2, 3])
+                .input("mirror", "abc")
+                .finish()
+        );
+        assert_ne!(
+            k,
+            StageKey::new("parse", 2)
+                .spec("palette", &[1, 2, 3])
+                .input("mirror", "abc")
+                .finish()
+        );
+        assert_ne!(
+            k,
+            StageKey::new("parse", 1)
+                .spec("palette", &[1, 2, 4])
+                .input("mirror", "abc")
+                .finish()
+        );
+        assert_ne!(
+            k,
+            StageKey::new("parse", 1)
+                .spec("palette", &[1, 2, 3])
+                .input("mirror", "abd")
+                .finish()
+        );
+        assert_eq!(k.len(), 64);
+    }
+}

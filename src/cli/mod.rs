@@ -1,0 +1,100 @@
+//! Command line: arguments → build driver calls → terminal output and exit codes.
+//!
+//! Exit codes: 0 ok, 1 the build failed, 2 an invalid spec, input or usage. This is the only
+//! module that prints; the library returns typed errors and reports.
+
+mod args;
+mod print;
+
+use std::io::IsTerminal;
+use std::process::ExitCode;
+
+use clap::Parser;
+
+use crate::build::{self, BuildError, BuildOptions};
+use args::{Args, Command};
+
+/// Runs the command line and returns the process exit code.
+pub fn run() -> ExitCode {
+    let args = match Args::try_parse() {
+        Ok(args) => args,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let out = print::Printer {
+        quiet: args.quiet,
+        verbose: args.verbose,
+        color,
+    };
+    match args.command {
+        Command::Build {
+            specs,
+            out: out_root,
+            cache,
+            jobs,
+        } => {
+            let options = BuildOptions {
+                out_root,
+                cache_dir: cache,
+            };
+            let pool = match rayon::ThreadPoolBuilder::new()
+                .num_threads(jobs.map_or(0, usize::from))
+                .build()
+            {
+                Ok(pool) => pool,
+                Err(e) => {
+                    eprintln!(
+                        "error: cannot start {} worker threads: {e}",
+                        jobs.map_or(0, usize::from)
+                    );
+                    return ExitCode::from(1);
+                }
+            };
+            match pool.install(|| build::build_all(&specs, &options)) {
+                Ok(reports) => {
+                    for report in &reports {
+                        out.report(report);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
+            }
+        }
+        Command::Validate { specs } => {
+            let mut errors = Vec::new();
+            for path in &specs {
+                match build::load_spec(path) {
+                    Ok(spec) => out.info(&format!("{}: ok ({})", path.display(), spec.name)),
+                    Err(e) => errors.push(e),
+                }
+            }
+            if errors.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                exit_for(&errors, &out)
+            }
+        }
+        Command::Schema => {
+            print!("{}", crate::spec::schema_json());
+            ExitCode::SUCCESS
+        }
+    }
+}
+
+fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {
+    for error in errors {
+        out.error(error);
+    }
+    if errors.iter().all(BuildError::is_input_error) {
+        ExitCode::from(2)
+    } else {
+        ExitCode::from(1)
+    }
+}

@@ -1,0 +1,73 @@
+//! Terminal output: build summaries, per-stage lines and rendered errors, on stderr.
+
+use crate::build::{BuildError, BuildReport, StageStatus};
+
+pub struct Printer {
+    pub quiet: bool,
+    pub verbose: bool,
+    pub color: bool,
+}
+
+impl Printer {
+    pub fn info(&self, line: &str) {
+        if !self.quiet {
+            eprintln!("{line}");
+        }
+    }
+
+    pub fn report(&self, report: &BuildReport) {
+        for run in &report.stages {
+            if let Some(why) = &run.repaired {
+                eprintln!("warning: {}: damaged cache entry rebuilt: {why}", run.stage);
+            }
+        }
+        if self.quiet {
+            return;
+        }
+        if self.verbose {
+            for run in &report.stages {
+                let status = match run.status {
+                    StageStatus::Ran => "ran",
+                    StageStatus::Cached => "cached",
+                };
+                eprintln!(
+                    "  {status:<6} {:<8} {:>9.2} ms  key {}",
+                    run.stage,
+                    run.time.as_secs_f64() * 1e3,
+                    &run.key[..12]
+                );
+            }
+            for path in &report.written {
+                eprintln!("  wrote  {}", report.out_dir.join(path).display());
+            }
+            for path in &report.removed {
+                eprintln!("  removed stale {}", report.out_dir.join(path).display());
+            }
+        }
+        let ms = report.elapsed.as_secs_f64() * 1e3;
+        let ran = report.ran().count();
+        let cached = report.stages.len() - ran;
+        if report.up_to_date() {
+            eprintln!(
+                "{}: up to date in {}, nothing to do ({cached} stages cached, nothing written) [{ms:.1} ms]",
+                report.name,
+                report.out_dir.display()
+            );
+        } else {
+            eprintln!(
+                "{}: built {} ({ran} stages ran, {cached} cached; {} files written, {} unchanged) [{ms:.1} ms]",
+                report.name,
+                report.out_dir.display(),
+                report.written.len(),
+                report.unchanged.len()
+            );
+        }
+    }
+
+    pub fn error(&self, error: &BuildError) {
+        match error {
+            BuildError::Spec(errors) => eprint!("{}", crate::spec::render(errors, self.color)),
+            other => eprintln!("error: {other}"),
+        }
+    }
+}

@@ -1,0 +1,239 @@
+//! The build driver and its cache, through the library API: determinism across cold and
+//! warm caches and thread counts, minimal rebuilds, damaged caches.
+
+mod common;
+
+use std::fs;
+
+use cityspec::build::{self, StageStatus};
+use common::{Workspace, tree};
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn statuses(report: &build::BuildReport) -> Vec<(&'static str, StageStatus)> {
+    let mut s: Vec<_> = report.stages.iter().map(|r| (r.stage, r.status)).collect();
+    s.sort();
+    s
+}
+
+#[test]
+fn cold_warm_one_and_eight_threads_give_identical_bytes() {
+    let ws = Workspace::with_spec("day");
+    let spec = ws.spec("day");
+    let cold = in_pool(1, || build::build(&spec, &ws.options())).unwrap();
+    assert_eq!(cold.ran().count(), 7, "a cold build runs every stage");
+    let first = tree(&ws.out());
+    assert_eq!(
+        first.keys().map(String::as_str).collect::<Vec<_>>(),
+        [
+            "day/layout.png",
+            "day/manifest.json",
+            "day/plan.json",
+            "day/plan.png"
+        ]
+    );
+
+    let warm = in_pool(8, || build::build(&spec, &ws.options())).unwrap();
+    assert!(warm.up_to_date());
+    assert_eq!(tree(&ws.out()), first);
+
+    // A second, independent cache and output folder, eight threads.
+    let other = Workspace::with_spec("day");
+    in_pool(8, || build::build(&other.spec("day"), &other.options())).unwrap();
+    assert_eq!(tree(&other.out()), first);
+    // The caches hold the same objects too.
+    assert_eq!(tree(&other.cache()), tree(&ws.cache()));
+}
+
+#[test]
+fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let stamp = |p: &str| {
+        fs::metadata(ws.out().join("day").join(p))
+            .unwrap()
+            .modified()
+            .unwrap()
+    };
+    let names = ["layout.png", "plan.json", "plan.png", "manifest.json"];
+    let before: Vec<_> = names.iter().map(|n| stamp(n)).collect();
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert!(report.up_to_date());
+    assert!(
+        report
+            .stages
+            .iter()
+            .all(|s| s.status == StageStatus::Cached)
+    );
+    assert!(report.written.is_empty());
+    assert_eq!(report.unchanged.len(), 4);
+    let after: Vec<_> = names.iter().map(|n| stamp(n)).collect();
+    assert_eq!(
+        before, after,
+        "a no-op rebuild must not rewrite any artifact"
+    );
+}
+
+#[test]
+fn changing_only_lamps_reruns_only_what_reads_lamps() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let plan_before = fs::read(ws.out().join("day/plan.json")).unwrap();
+    ws.edit_spec("day", "spacing = 100", "spacing = 60");
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    use StageStatus::{Cached, Ran};
+    assert_eq!(
+        statuses(&report),
+        [
+            ("lamps", Ran),
+            ("mirror", Cached),
+            ("parse", Cached),
+            ("place", Cached),
+            ("plan", Ran),
+            ("preview", Ran)
+        ]
+    );
+    assert_eq!(report.written, ["plan.json", "plan.png", "manifest.json"]);
+    assert_eq!(report.unchanged, ["layout.png"]);
+    let plan_after: serde_json::Value =
+        serde_json::from_slice(&fs::read(ws.out().join("day/plan.json")).unwrap()).unwrap();
+    let plan_before: serde_json::Value = serde_json::from_slice(&plan_before).unwrap();
+    assert_eq!(
+        plan_after["buildings"], plan_before["buildings"],
+        "buildings must not move"
+    );
+    assert!(
+        plan_after["lamps"].as_array().unwrap().len()
+            > plan_before["lamps"].as_array().unwrap().len(),
+        "closer spacing gives more lamps"
+    );
+}
+
+#[test]
+fn changing_buildings_leaves_lamps_and_layout_cached() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    ws.edit_spec("day", "gap = 2", "gap = 4");
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    use StageStatus::{Cached, Ran};
+    assert_eq!(
+        statuses(&report),
+        [
+            ("lamps", Cached),
+            ("mirror", Cached),
+            ("parse", Cached),
+            ("place", Ran),
+            ("plan", Ran),
+            ("preview", Ran)
+        ]
+    );
+}
+
+#[test]
+fn damaged_cache_objects_are_detected_and_rebuilt() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let good = tree(&ws.out());
+    // Flip one byte in every cached object, and drop the outputs.
+    for (rel, mut bytes) in tree(&ws.cache().join("objects")) {
+        bytes[0] ^= 0xff;
+        fs::write(ws.cache().join("objects").join(rel), bytes).unwrap();
+    }
+    fs::remove_dir_all(ws.out()).unwrap();
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert_eq!(report.ran().count(), 7, "no damaged object may be used");
+    assert!(report.stages.iter().all(|s| s.repaired.is_some()));
+    assert_eq!(tree(&ws.out()), good);
+    // The repaired cache now serves a no-op build.
+    assert!(
+        build::build(&ws.spec("day"), &ws.options())
+            .unwrap()
+            .up_to_date()
+    );
+}
+
+#[test]
+fn tampered_artifact_is_restored_and_stale_temporaries_swept() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let good = tree(&ws.out());
+    fs::write(ws.out().join("day/plan.json"), b"{}").unwrap();
+    fs::write(
+        ws.out().join("day/.plan.png.cityspec-tmp-999-0"),
+        b"half a png",
+    )
+    .unwrap();
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert_eq!(report.ran().count(), 0);
+    assert_eq!(report.written, ["plan.json"]);
+    assert_eq!(tree(&ws.out()), good);
+}
+
+#[test]
+fn manifest_lists_every_artifact_with_its_hash() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let files = tree(&ws.out().join("day"));
+    let manifest = build::Manifest::from_bytes(&files["manifest.json"]).unwrap();
+    assert_eq!(manifest.name, "day");
+    assert_eq!(manifest.artifacts.len(), files.len() - 1);
+    for artifact in &manifest.artifacts {
+        let bytes = &files[&artifact.path];
+        assert_eq!(
+            artifact.sha256,
+            cityspec::hash::sha256_hex(bytes),
+            "{}",
+            artifact.path
+        );
+        assert_eq!(artifact.bytes, bytes.len() as u64);
+        assert_eq!(artifact.key.len(), 64);
+    }
+    let stages: Vec<_> = manifest
+        .artifacts
+        .iter()
+        .map(|a| (a.path.as_str(), a.stage.as_str()))
+        .collect();
+    assert_eq!(
+        stages,
+        [
+            ("layout.png", "mirror"),
+            ("plan.json", "plan"),
+            ("plan.png", "preview")
+        ]
+    );
+}
+
+#[test]
+fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
+    let ws = Workspace::with_spec("drawn");
+    let report = build::build(&ws.spec("drawn"), &ws.options()).unwrap();
+    assert_eq!(report.ran().count(), 7);
+    let plan: serde_json::Value =
+        serde_json::from_slice(&fs::read(ws.out().join("drawn/plan.json")).unwrap()).unwrap();
+    assert_eq!(
+        plan["roads"].as_array().unwrap().len(),
+        4,
+        "{:#}",
+        plan["roads"]
+    );
+    assert!(!plan["buildings"].as_array().unwrap().is_empty());
+    // The key holds the image's hash, not its path: a moved image is still cached.
+    fs::rename(
+        ws.path().join("assets/layouts/drawn.png"),
+        ws.path().join("specs/drawn.png"),
+    )
+    .unwrap();
+    ws.edit_spec("drawn", "../assets/layouts/drawn.png", "drawn.png");
+    assert!(
+        build::build(&ws.spec("drawn"), &ws.options())
+            .unwrap()
+            .up_to_date()
+    );
+}

@@ -1,0 +1,98 @@
+//! Helpers shared by the integration tests: temp workspaces with a copy of an example spec.
+
+#![allow(dead_code)]
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// A temp folder holding `specs/<name>.toml` copied from the repo, plus `out/` and
+/// `cache/` paths inside it.
+pub struct Workspace {
+    pub dir: tempfile::TempDir,
+}
+
+impl Workspace {
+    pub fn with_spec(name: &str) -> Workspace {
+        let dir = tempfile::tempdir().unwrap();
+        fs::create_dir_all(dir.path().join("specs")).unwrap();
+        let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+        for entry in fs::read_dir(repo.join("specs")).unwrap() {
+            let entry = entry.unwrap();
+            fs::copy(
+                entry.path(),
+                dir.path().join("specs").join(entry.file_name()),
+            )
+            .unwrap();
+        }
+        // Specs may name layout images under assets/layouts, relative to their folder.
+        fs::create_dir_all(dir.path().join("assets/layouts")).unwrap();
+        for entry in fs::read_dir(repo.join("assets/layouts")).unwrap() {
+            let entry = entry.unwrap();
+            fs::copy(
+                entry.path(),
+                dir.path().join("assets/layouts").join(entry.file_name()),
+            )
+            .unwrap();
+        }
+        assert!(
+            dir.path()
+                .join("specs")
+                .join(format!("{name}.toml"))
+                .exists()
+        );
+        Workspace { dir }
+    }
+
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+
+    pub fn spec(&self, name: &str) -> PathBuf {
+        self.path().join("specs").join(format!("{name}.toml"))
+    }
+
+    pub fn out(&self) -> PathBuf {
+        self.path().join("out")
+    }
+
+    pub fn cache(&self) -> PathBuf {
+        self.path().join("cache")
+    }
+
+    pub fn options(&self) -> cityspec::build::BuildOptions {
+        cityspec::build::BuildOptions {
+            out_root: self.out(),
+            cache_dir: self.cache(),
+        }
+    }
+
+    /// Replaces `from` with `to` in a spec file (panics if `from` is absent).
+    pub fn edit_spec(&self, name: &str, from: &str, to: &str) {
+        let path = self.spec(name);
+        let text = fs::read_to_string(&path).unwrap();
+        assert!(text.contains(from), "{from:?} not in {}", path.display());
+        fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    }
+}
+
+/// Every file below `dir` (relative path → bytes), sorted.
+pub fn tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    let mut files = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                let rel = path
+                    .strip_prefix(dir)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/");
+                files.insert(rel, fs::read(&path).unwrap());
+            }
+        }
+    }
+    files
+}
