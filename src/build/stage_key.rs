@@ -5,7 +5,7 @@
 //! | input | why |
 //! |---|---|
 //! | stage name | two stages reading the same things still differ |
-//! | cityspec version and the stage's own `VERSION` | new code, new results |
+//! | cityspec version, the stage's own `VERSION` and the driver's `codec::VERSION` | new code or new encodings, new results |
 //! | the canonical JSON of the spec part the stage reads | a spec change reruns exactly its readers |
 //! | the keys of the stages it consumes (or an input file's SHA-256) | changes propagate downstream |
 //!
@@ -23,6 +23,7 @@ pub struct StageKey {
     stage: &'static str,
     cityspec: &'static str,
     stage_version: u32,
+    codec_version: u32,
     spec: serde_json::Value,
     inputs: BTreeMap<&'static str, String>,
 }
@@ -33,6 +34,7 @@ impl StageKey {
             stage,
             cityspec: env!("CARGO_PKG_VERSION"),
             stage_version,
+            codec_version: super::codec::VERSION,
             spec: serde_json::Value::Object(Default::default()),
             inputs: BTreeMap::new(),
         }
