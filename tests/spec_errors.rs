@@ -174,6 +174,14 @@ struct FakeWorld {
 }
 
 impl SpecWorld for FakeWorld {
+    fn folder(&self, path: &Path) -> Result<(), String> {
+        Err(format!("no folder {} in this fake world", path.display()))
+    }
+
+    fn file(&self, path: &Path) -> Result<(), String> {
+        Err(format!("no file {} in this fake world", path.display()))
+    }
+
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
         self.asked.borrow_mut().push(path.to_path_buf());
         self.images

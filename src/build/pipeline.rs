@@ -238,7 +238,7 @@ impl<'a> Pipeline<'a> {
             |p| p.parsed(),
             |p, parsed| {
                 let mpp = p.spec.layout.metres_per_pixel;
-                let widths = widths_px(&p.spec.buildings.widths, mpp);
+                let widths = widths_px(p.spec.buildings.widths.as_deref().unwrap_or(&[]), mpp);
                 let gap = (p.spec.buildings.gap / mpp).round() as u32;
                 let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
                 let json = codec::to_json(&buildings);

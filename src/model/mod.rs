@@ -1,5 +1,5 @@
-//! Shared types the stages hand on to each other: blocks, roads, lamps, buildings and the
-//! assembled city plan.
+//! Shared types the stages hand on to each other: blocks, roads, lamps, buildings, the
+//! assembled city plan, facade sets and the 3D scene.
 //!
 //! Pixel geometry uses continuous image coordinates: pixel `(i, j)` covers
 //! `[i, i + 1) × [j, j + 1)`, x to the right, y down. [`CityPlan`] is the same geometry in
@@ -8,13 +8,19 @@
 mod block;
 mod building;
 mod city_plan;
+mod facade_set;
 mod lamp;
 mod parsed_layout;
 mod road;
+mod scene;
+mod texture;
 
 pub use block::{Band, Block, PxRect};
 pub use building::Building;
 pub use city_plan::{CityPlan, PlanBlock, PlanBuilding, PlanLamp, PlanRoad};
+pub use facade_set::{Facade, FacadeSet, Roof};
 pub use lamp::Lamp;
 pub use parsed_layout::ParsedLayout;
 pub use road::{Axis, Road};
+pub use scene::{Material, Mesh, Scene, SceneObject};
+pub use texture::Texture;

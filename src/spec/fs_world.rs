@@ -13,6 +13,24 @@ use super::SpecWorld;
 pub struct FsWorld;
 
 impl SpecWorld for FsWorld {
+    fn folder(&self, path: &Path) -> Result<(), String> {
+        match std::fs::metadata(path) {
+            Ok(meta) if meta.is_dir() => Ok(()),
+            Ok(_) => Err("a file, not a folder".to_string()),
+            Err(e) if e.kind() == ErrorKind::NotFound => Err("no such folder".to_string()),
+            Err(e) => Err(format!("an unreadable folder ({e})")),
+        }
+    }
+
+    fn file(&self, path: &Path) -> Result<(), String> {
+        match File::open(path) {
+            Ok(_) if path.is_dir() => Err("a folder, not a file".to_string()),
+            Ok(_) => Ok(()),
+            Err(e) if e.kind() == ErrorKind::NotFound => Err("no such file".to_string()),
+            Err(e) => Err(format!("an unreadable file ({e})")),
+        }
+    }
+
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
         if path.is_dir() {
             return Err("a directory".to_string());

@@ -202,6 +202,14 @@ mod tests {
     struct World;
 
     impl SpecWorld for World {
+        fn folder(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no folder {} in this fake world", path.display()))
+        }
+
+        fn file(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no file {} in this fake world", path.display()))
+        }
+
         fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
             match path.to_str() {
                 Some("specs/a.png") => Ok((640, 480)),

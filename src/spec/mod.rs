@@ -38,7 +38,8 @@ pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use render::render;
 pub use spec::{
-    BuildingsSpec, Color, GenerateSpec, LampsSpec, LayoutSpec, Palette, SPEC_VERSION, Spec,
+    BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
+    OnError, Palette, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
 
@@ -59,6 +60,10 @@ pub trait SpecWorld {
     /// folder), read from its header only; Err(message) if missing/unreadable/not an image.
     /// The message completes "expected a PNG or JPEG layout image at …, found {message}".
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String>;
+    /// Whether `path` (already resolved) is a folder; Err(message) when it is not.
+    fn folder(&self, path: &Path) -> Result<(), String>;
+    /// Whether `path` (already resolved) is a readable file; Err(message) when it is not.
+    fn file(&self, path: &Path) -> Result<(), String>;
 }
 
 /// Syntax → version → schema → serde → semantic; every error of the file at once.
@@ -104,6 +109,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     layout_checks::check_layout(&spec.layout, &source.path, world, &mut findings);
     value_checks::check_palette(&spec.layout.palette, &mut findings);
     value_checks::check_buildings(&spec.buildings, &mut findings);
+    value_checks::check_facades(&spec.facades, &source.path, world, &mut findings);
     value_checks::check_lamps(&spec.lamps, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
@@ -209,6 +215,14 @@ mod tests {
     struct NoImages;
 
     impl SpecWorld for NoImages {
+        fn folder(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no folder {} in this fake world", path.display()))
+        }
+
+        fn file(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no file {} in this fake world", path.display()))
+        }
+
         fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
             Err("no such file".to_string())
         }

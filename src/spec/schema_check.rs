@@ -168,7 +168,15 @@ fn diagnose(
             found()
         )),
         ValidationErrorKind::Enum { options } => {
-            at_value(format!("expected one of {options}, found {}", found()))
+            let listed = match options.as_array() {
+                Some(items) => items
+                    .iter()
+                    .map(|o| o.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                None => options.to_string(),
+            };
+            at_value(format!("expected one of {listed}, found {}", found()))
         }
         ValidationErrorKind::Constant { expected_value } => {
             at_value(format!("expected {expected_value}, found {}", found()))

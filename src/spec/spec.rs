@@ -29,7 +29,10 @@ pub struct Spec {
     pub seed: u64,
     /// Where the layout image comes from and how it is read.
     pub layout: LayoutSpec,
-    /// Building sizes for placement (paper Algorithm 1).
+    /// Facades that clad the buildings and set their size (paper 3.2).
+    #[serde(default)]
+    pub facades: FacadesSpec,
+    /// Building placement (paper Algorithm 1).
     #[serde(default)]
     pub buildings: BuildingsSpec,
     /// Street lamp sites along the roads.
@@ -152,10 +155,16 @@ impl Default for Palette {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BuildingsSpec {
-    /// Footprint widths (square footprints) to choose from.
-    #[serde(default = "default_widths")]
-    #[schemars(length(min = 1, max = 256), inner(range(min = 1.0, max = 500.0)))]
-    pub widths: Vec<f64>,
+    /// Footprint widths (square footprints) to choose from. When absent, as in the paper,
+    /// every facade of the facade set is one building size: its metric width. When given,
+    /// buildings take these sizes and a seeded choice of facade, tiled along the wall.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        with = "Vec<f64>",
+        length(min = 1, max = 256),
+        inner(range(min = 1.0, max = 500.0))
+    )]
+    pub widths: Option<Vec<f64>>,
     /// Gap between neighbouring buildings.
     #[serde(default = "default_gap")]
     #[schemars(range(min = 0.0, max = 100.0))]
@@ -165,10 +174,62 @@ pub struct BuildingsSpec {
 impl Default for BuildingsSpec {
     fn default() -> Self {
         BuildingsSpec {
-            widths: default_widths(),
+            widths: None,
             gap: default_gap(),
         }
     }
+}
+
+/// The `facades.source` that names cityspec's own generated facade set.
+pub const BUILTIN_FACADES: &str = "builtin";
+
+/// Facades (paper 3.2): cityspec's generated set, or a folder in the CMP Facade Database
+/// layout (`<name>.jpg` photo + `<name>.xml` boxes, optional `<name>.png` label mask).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FacadesSpec {
+    /// `"builtin"`, or a folder in the CMP layout, relative to the spec's folder.
+    #[serde(default = "default_facade_source")]
+    #[schemars(length(min = 1))]
+    pub source: String,
+    /// Height of one floor in metres: a facade of h floors makes a building h × this tall.
+    #[serde(default = "default_floor_height")]
+    #[schemars(range(min = 2.0, max = 10.0))]
+    pub floor_height: f64,
+    /// A side file in the facade folder giving each facade's floors, one `name floors` per
+    /// line (the paper counted floors by hand). Facades it does not list get their floors
+    /// estimated from the rows of their window boxes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "String", length(min = 1))]
+    pub floors: Option<String>,
+    /// A facade with bad data (no XML, no window boxes, an unreadable image): `"error"`
+    /// stops the build naming the file; `"skip"` warns and leaves the facade out.
+    #[serde(default)]
+    pub on_error: OnError,
+}
+
+impl Default for FacadesSpec {
+    fn default() -> Self {
+        FacadesSpec {
+            source: default_facade_source(),
+            floor_height: default_floor_height(),
+            floors: None,
+            on_error: OnError::Error,
+        }
+    }
+}
+
+/// What to do with bad input data.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OnError {
+    // Plain comments, not doc comments: so the schema is a simple `enum` and a wrong value
+    // reads "expected one of …".
+    // Stop with an error naming the file.
+    #[default]
+    Error,
+    // Warn, and leave the item out.
+    Skip,
 }
 
 /// Street lamp sites. Lengths in metres.
@@ -281,8 +342,11 @@ fn default_strip() -> Color {
 fn default_tolerance() -> u32 {
     80
 }
-fn default_widths() -> Vec<f64> {
-    vec![12.0, 16.0, 20.0, 24.0, 30.0]
+fn default_facade_source() -> String {
+    BUILTIN_FACADES.to_owned()
+}
+fn default_floor_height() -> f64 {
+    3.0
 }
 fn default_gap() -> f64 {
     2.0

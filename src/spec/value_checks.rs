@@ -2,8 +2,11 @@
 //! (colours parsing would confuse, duplicate widths, a gap no building fits beside, lamp
 //! spacing that removes every lamp).
 
+use std::path::Path;
+
 use super::findings::Findings;
-use super::spec::{BuildingsSpec, LampsSpec, Palette};
+use super::spec::{BUILTIN_FACADES, BuildingsSpec, FacadesSpec, LampsSpec, Palette};
+use super::{SpecWorld, resolve};
 
 /// Two palette colours within `tolerance` of each other cannot be told apart by parsing.
 pub(crate) fn check_palette(palette: &Palette, findings: &mut Findings<'_, '_>) {
@@ -69,8 +72,12 @@ pub(crate) fn check_palette(palette: &Palette, findings: &mut Findings<'_, '_>) 
 
 /// Building widths must differ, and the gap must leave room for the smallest building.
 pub(crate) fn check_buildings(buildings: &BuildingsSpec, findings: &mut Findings<'_, '_>) {
-    for (j, width) in buildings.widths.iter().enumerate() {
-        if let Some(i) = buildings.widths[..j].iter().position(|w| w == width) {
+    // Without explicit widths the facades set the sizes; the facades stage checks them.
+    let Some(widths) = &buildings.widths else {
+        return;
+    };
+    for (j, width) in widths.iter().enumerate() {
+        if let Some(i) = widths[..j].iter().position(|w| w == width) {
             findings.error(
                 &format!("buildings.widths[{j}]"),
                 format!(
@@ -79,11 +86,7 @@ pub(crate) fn check_buildings(buildings: &BuildingsSpec, findings: &mut Findings
             );
         }
     }
-    let smallest = buildings
-        .widths
-        .iter()
-        .copied()
-        .fold(f64::INFINITY, f64::min);
+    let smallest = widths.iter().copied().fold(f64::INFINITY, f64::min);
     if buildings.gap >= smallest {
         findings.error(
             "buildings.gap",
@@ -93,6 +96,48 @@ pub(crate) fn check_buildings(buildings: &BuildingsSpec, findings: &mut Findings
                 findings.shown("buildings.gap", buildings.gap),
             ),
         );
+    }
+}
+
+/// A facade folder must exist, and so must its floors file.
+pub(crate) fn check_facades(
+    facades: &FacadesSpec,
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) {
+    if facades.source == BUILTIN_FACADES {
+        if facades.floors.is_some() {
+            findings.error(
+                "facades.floors",
+                "expected no floors file with the builtin facades (they know their floors), \
+                 found one; name a facade folder in facades.source to use it",
+            );
+        }
+        return;
+    }
+    let folder = resolve(spec_path, &facades.source);
+    if let Err(problem) = world.folder(&folder) {
+        findings.error(
+            "facades.source",
+            format!(
+                "expected \"builtin\" or a facade folder in the CMP layout at {}, found {problem}",
+                folder.display()
+            ),
+        );
+        return;
+    }
+    if let Some(floors) = &facades.floors {
+        let file = folder.join(floors);
+        if let Err(problem) = world.file(&file) {
+            findings.error(
+                "facades.floors",
+                format!(
+                    "expected a floors file at {}, found {problem}",
+                    file.display()
+                ),
+            );
+        }
     }
 }
 
@@ -121,6 +166,14 @@ mod tests {
     struct NoImages;
 
     impl SpecWorld for NoImages {
+        fn folder(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no folder {} in this fake world", path.display()))
+        }
+
+        fn file(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no file {} in this fake world", path.display()))
+        }
+
         fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
             Err("no such file".to_string())
         }
@@ -188,10 +241,18 @@ mod tests {
                     "buildings.gap: expected a gap smaller than the smallest building width (1.5 m), found the default 2",
                 ],
             ),
+            // Without widths the facades size the buildings: the gap is theirs to check.
+            ("[buildings]\ngap = 12\n", &[]),
             (
-                "[buildings]\ngap = 12\n",
+                "[facades]\nsource = \"no/such/folder\"\n",
                 &[
-                    "buildings.gap: expected a gap smaller than the smallest building width (the default 12 m), found 12",
+                    "facades.source: expected \"builtin\" or a facade folder in the CMP layout at no/such/folder, found no folder no/such/folder in this fake world",
+                ],
+            ),
+            (
+                "[facades]\nfloors = \"floors.txt\"\n",
+                &[
+                    "facades.floors: expected no floors file with the builtin facades (they know their floors), found one; name a facade folder in facades.source to use it",
                 ],
             ),
             (

@@ -1,0 +1,66 @@
+//! The 3D city: named, labelled objects made of triangle meshes, with materials and textures.
+//!
+//! World coordinates in metres: x east (= layout x), y up, z south (= layout y). Triangles
+//! wind counter-clockwise seen from their front (outside) face; normals point out.
+
+use serde::{Deserialize, Serialize};
+
+use super::Texture;
+
+/// Everything the exporter writes and the renderer draws.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Scene {
+    pub textures: Vec<Texture>,
+    pub materials: Vec<Material>,
+    /// Objects in a stable order: ground, blocks, roads, markings, sidewalks, buildings,
+    /// lamps (and, later, inserted objects).
+    pub objects: Vec<SceneObject>,
+}
+
+/// A surface description both OBJ/MTL and glTF can express.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    /// Unique, file-name-safe (`facade_builtin_07`, `asphalt`, `lamp_head`).
+    pub name: String,
+    /// Base colour (linear RGB, 0–1), multiplied with the texture when there is one.
+    pub colour: [f32; 3],
+    /// Index into [`Scene::textures`].
+    pub texture: Option<u32>,
+    /// Emitted light (linear RGB, 0–1); zero for ordinary surfaces.
+    pub emissive: [f32; 3],
+}
+
+/// One named, labelled object.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SceneObject {
+    /// Stable name: `building_0042`, `road_0003`, `lamp_0017`, …
+    pub name: String,
+    /// Class label, kept for annotations: `building`, `road`, `lamp`, `ground`, …
+    pub class: String,
+    pub meshes: Vec<Mesh>,
+}
+
+/// Triangles of one material.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Mesh {
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates, v down from the image's top edge (as OBJ `vt` with v flipped
+    /// and as glTF `TEXCOORD_0` directly). May exceed 0–1: textures repeat.
+    pub uvs: Vec<[f32; 2]>,
+    /// Three per triangle, counter-clockwise from the front.
+    pub indices: Vec<u32>,
+}
+
+impl Scene {
+    /// Triangles in the whole scene.
+    pub fn triangle_count(&self) -> usize {
+        self.objects
+            .iter()
+            .flat_map(|o| &o.meshes)
+            .map(|m| m.indices.len() / 3)
+            .sum()
+    }
+}

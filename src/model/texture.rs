@@ -1,0 +1,65 @@
+//! A texture as the stages hand it on: an encoded PNG with its name and size.
+//!
+//! Textures travel encoded: the exporter embeds the bytes as they are, the cache stores
+//! them as they are, and only a stage that samples pixels (the renderer) decodes them.
+
+use std::sync::Arc;
+
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ImageEncoder, RgbImage};
+use serde::{Deserialize, Serialize};
+
+/// A PNG texture.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Texture {
+    /// Stable, file-name-safe name (e.g. `facade_builtin_07`, `asphalt`).
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    /// The PNG bytes. Not serialized: the build driver stores them beside the JSON, as
+    /// `<name>.png`, and puts them back when it reads a cached value.
+    #[serde(skip)]
+    pub png: Arc<Vec<u8>>,
+}
+
+impl Texture {
+    /// Encodes `image` as a PNG with fixed settings, so the same pixels give the same bytes.
+    pub fn from_rgb(name: impl Into<String>, image: &RgbImage) -> Texture {
+        let mut png = Vec::new();
+        PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
+            .write_image(
+                image.as_raw(),
+                image.width(),
+                image.height(),
+                image::ExtendedColorType::Rgb8,
+            )
+            .expect("encoding a PNG into memory cannot fail");
+        Texture {
+            name: name.into(),
+            width: image.width(),
+            height: image.height(),
+            png: Arc::new(png),
+        }
+    }
+
+    /// Decodes the PNG (for stages that sample pixels).
+    pub fn decode(&self) -> Result<RgbImage, image::ImageError> {
+        image::load_from_memory_with_format(&self.png, image::ImageFormat::Png).map(|i| i.to_rgb8())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encodes_deterministically_and_round_trips() {
+        let image = RgbImage::from_fn(9, 4, |x, y| image::Rgb([x as u8 * 20, y as u8 * 50, 7]));
+        let a = Texture::from_rgb("t", &image);
+        let b = Texture::from_rgb("t", &image);
+        assert_eq!(a, b);
+        assert_eq!(a.png, b.png);
+        assert_eq!((a.width, a.height), (9, 4));
+        assert_eq!(a.decode().unwrap(), image);
+    }
+}
