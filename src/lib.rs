@@ -14,6 +14,7 @@
 //! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
+//! | scene | [`scene`] | blocks, roads, lamps, buildings, facades | [`model::Scene`]: the 3D city |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
@@ -29,4 +30,5 @@ pub mod place;
 pub mod plan;
 pub mod preview;
 pub mod rng;
+pub mod scene;
 pub mod spec;

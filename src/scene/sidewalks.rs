@@ -1,0 +1,234 @@
+//! Blocks + roads → `sidewalk_NNNN` objects: the lamp strip around each block as a raised
+//! slab ([`KERB_Y`] high) with vertical curb faces.
+//!
+//! The strip's width is measured from the layout ([`strip_width_px`]). A block's sidewalk
+//! is its pixels grown by that width (square corners), clipped to the image, minus every
+//! pixel already claimed: all blocks, all road rectangles, and the sidewalks of blocks with
+//! lower ids. So no sidewalk overlaps a road, a block or another sidewalk.
+
+use super::mesh_builder::MeshBuilder;
+use super::road_rect::RoadRect;
+use super::row_region::{RowRegion, subtract};
+use super::{KERB_Y, object, procedural};
+use crate::model::{Band, Block, ParsedLayout, SceneObject};
+
+/// Strip width when the layout gives nothing to measure (the paper's 8 px).
+pub const DEFAULT_STRIP_PX: u32 = 8;
+
+/// The lamp strip's width in pixels, measured: for each block, the distance from its
+/// bounding box to the nearest road edge that runs alongside it (a road parallel to one of
+/// the box's sides, on the outside of it, overlapping it lengthwise); the lower median of
+/// those distances over all blocks, rounded. [`DEFAULT_STRIP_PX`] when no block has a road
+/// beside it.
+pub fn strip_width_px(layout: &ParsedLayout) -> u32 {
+    let mut gaps: Vec<f64> = layout
+        .blocks
+        .iter()
+        .filter_map(|block| nearest_road_gap(block, layout))
+        .collect();
+    if gaps.is_empty() {
+        return DEFAULT_STRIP_PX;
+    }
+    gaps.sort_by(f64::total_cmp);
+    let median = gaps[(gaps.len() - 1) / 2];
+    // Non-negative and finite by construction; the cast saturates for absurd layouts.
+    median.round() as u32
+}
+
+fn nearest_road_gap(block: &Block, layout: &ParsedLayout) -> Option<f64> {
+    let b = block.bbox;
+    let (bx, by) = (
+        [f64::from(b.x0), f64::from(b.x1)],
+        [f64::from(b.y0), f64::from(b.y1)],
+    );
+    let overlaps = |a: [f64; 2], c: [f64; 2]| a[0] < c[1] && c[0] < a[1];
+    layout
+        .roads
+        .iter()
+        .filter_map(|road| {
+            let r = RoadRect::of(road);
+            let gap = if overlaps(r.x, bx) && r.y[1] <= by[0] {
+                by[0] - r.y[1]
+            } else if overlaps(r.x, bx) && r.y[0] >= by[1] {
+                r.y[0] - by[1]
+            } else if overlaps(r.y, by) && r.x[1] <= bx[0] {
+                bx[0] - r.x[1]
+            } else if overlaps(r.y, by) && r.x[0] >= bx[1] {
+                r.x[0] - bx[1]
+            } else {
+                return None;
+            };
+            gap.is_finite().then_some(gap)
+        })
+        .min_by(f64::total_cmp)
+}
+
+pub fn sidewalk_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
+    let (w, h) = (layout.width, layout.height);
+    let strip = strip_width_px(layout);
+    let mut claimed = RowRegion::new(w, h);
+    for block in &layout.blocks {
+        claimed.add_bands(&block.bands);
+    }
+    for road in &layout.roads {
+        let r = RoadRect::of(road);
+        claimed.add_rect(pixels(r.x), pixels(r.y));
+    }
+    let mut objects = Vec::new();
+    for block in &layout.blocks {
+        let ring = RowRegion::grown(w, h, &block.bands, strip).minus(&claimed);
+        if ring.is_empty() {
+            continue;
+        }
+        claimed.add_region(&ring);
+        let mut top = MeshBuilder::new(material);
+        slab(&mut top, &ring.bands(), mpp);
+        objects.push(object(
+            format!("sidewalk_{:04}", block.id),
+            "sidewalk",
+            vec![top],
+        ));
+    }
+    objects
+}
+
+/// The pixels a continuous `[a, b]` touches: `floor(a)..ceil(b)`, clamped at 0.
+fn pixels(range: [f64; 2]) -> [u32; 2] {
+    // `as` saturates: NaN → 0, beyond u32 → u32::MAX; the region clips to the image.
+    [range[0].floor() as u32, range[1].ceil() as u32]
+}
+
+/// Top faces of `bands` at kerb height, and a curb face on every outside edge.
+fn slab(mesh: &mut MeshBuilder, bands: &[Band], mpp: f64) {
+    let tile = procedural::CONCRETE_TILE;
+    let m = |v: u32| f64::from(v) * mpp;
+    let ys = [0.0, KERB_Y];
+    let v_span = [0.0, KERB_Y / tile];
+    for (i, band) in bands.iter().enumerate() {
+        let z = [m(band.y0), m(band.y1)];
+        for &[x0, x1] in &band.spans {
+            mesh.floor([m(x0), m(x1)], z, KERB_Y, tile);
+            // Spans in a row never touch, so both ends are outside edges.
+            let depth = [0.0, (z[1] - z[0]) / tile];
+            mesh.wall(
+                [m(x0), z[0]],
+                [m(x0), z[1]],
+                ys,
+                [-1.0, 0.0, 0.0],
+                depth,
+                v_span,
+            );
+            mesh.wall(
+                [m(x1), z[0]],
+                [m(x1), z[1]],
+                ys,
+                [1.0, 0.0, 0.0],
+                depth,
+                v_span,
+            );
+        }
+        let above = i
+            .checked_sub(1)
+            .map(|p| &bands[p])
+            .filter(|p| p.y1 == band.y0)
+            .map_or(&[][..], |p| &p.spans[..]);
+        let below = bands
+            .get(i + 1)
+            .filter(|n| n.y0 == band.y1)
+            .map_or(&[][..], |n| &n.spans[..]);
+        for (neighbour, zz, nz) in [(above, z[0], -1.0), (below, z[1], 1.0)] {
+            for [x0, x1] in subtract(&band.spans, neighbour) {
+                let u = [0.0, (m(x1) - m(x0)) / tile];
+                mesh.wall([m(x0), zz], [m(x1), zz], ys, [0.0, 0.0, nz], u, v_span);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::generate;
+    use crate::parse::parse;
+    use crate::rng::stream;
+    use crate::scene::mesh_builder::{cross, dot, sub};
+    use crate::spec::{GenerateSpec, Palette};
+
+    #[test]
+    fn strip_width_is_measured_from_generated_layouts() {
+        for strip in [4, 8, 13] {
+            let spec = GenerateSpec {
+                strip_width: strip,
+                ..GenerateSpec::default()
+            };
+            let palette = Palette::default();
+            let image = generate(&spec, &palette, &mut stream(5, "layout", 0)).image;
+            let layout = parse(&image, &palette);
+            assert_eq!(strip_width_px(&layout), strip);
+        }
+    }
+
+    #[test]
+    fn strip_width_defaults_without_roads() {
+        let layout = ParsedLayout {
+            width: 10,
+            height: 10,
+            blocks: Vec::new(),
+            roads: Vec::new(),
+        };
+        assert_eq!(strip_width_px(&layout), DEFAULT_STRIP_PX);
+    }
+
+    #[test]
+    fn a_ring_slab_has_a_top_and_curbs_on_both_rims() {
+        // A 10 × 10 px ring around a 4 × 4 hole: three bands.
+        let bands = vec![
+            Band {
+                y0: 0,
+                y1: 3,
+                spans: vec![[0, 10]],
+            },
+            Band {
+                y0: 3,
+                y1: 7,
+                spans: vec![[0, 3], [7, 10]],
+            },
+            Band {
+                y0: 7,
+                y1: 10,
+                spans: vec![[0, 10]],
+            },
+        ];
+        let mut mesh = MeshBuilder::new(0);
+        slab(&mut mesh, &bands, 1.0);
+        let mesh = mesh.finish();
+        let (mut top, mut outer, mut inner) = (0.0, 0.0, 0.0);
+        for t in 0..mesh.indices.len() / 3 {
+            let p = |k: usize| mesh.positions[mesh.indices[3 * t + k] as usize].map(f64::from);
+            let n = cross(sub(p(1), p(0)), sub(p(2), p(0)));
+            let area = dot(n, n).sqrt() / 2.0;
+            if n[1] > 0.0 {
+                top += area;
+                continue;
+            }
+            assert_eq!(n[1], 0.0);
+            // Outward from the ring: away from the centre on the rim, towards it in the hole.
+            let c = [
+                (p(0)[0] + p(1)[0] + p(2)[0]) / 3.0,
+                (p(0)[2] + p(1)[2] + p(2)[2]) / 3.0,
+            ];
+            let out = n[0] * (c[0] - 5.0) + n[2] * (c[1] - 5.0);
+            let on_rim = c[0] <= 0.0 || c[0] >= 10.0 || c[1] <= 0.0 || c[1] >= 10.0;
+            if on_rim {
+                assert!(out > 0.0, "triangle {t}");
+                outer += area;
+            } else {
+                assert!(out < 0.0, "triangle {t}");
+                inner += area;
+            }
+        }
+        assert!((top - 84.0).abs() < 1e-4, "{top}");
+        assert!((outer - 40.0 * KERB_Y).abs() < 1e-4, "{outer}");
+        assert!((inner - 16.0 * KERB_Y).abs() < 1e-4, "{inner}");
+    }
+}
