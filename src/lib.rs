@@ -10,6 +10,7 @@
 //! | layout | [`layout`] | `spec.layout`, seed | layout image (generated or the user's) |
 //! | mirror | [`mirror`] | layout image, `spec.layout.mirror` | mirrored layout image |
 //! | parse | [`parse`] | layout image, palette | [`model::ParsedLayout`]: blocks and roads |
+//! | facades | [`facades`] | CMP-layout files (a folder, or [`facades::builtin`]) | [`model::FacadeSet`] |
 //! | lamps | [`lamps`] | layout image, roads, `spec.lamps` | [`model::Lamp`]s |
 //! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
@@ -20,6 +21,7 @@
 
 pub mod build;
 pub mod cli;
+pub mod facades;
 pub mod hash;
 pub mod lamps;
 pub mod layout;

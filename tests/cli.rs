@@ -218,3 +218,19 @@ fn killed_build_leaves_no_partial_artifact() {
         "the next build completes and sweeps temporaries"
     );
 }
+
+#[test]
+fn facades_export_writes_the_builtin_set_in_the_cmp_layout() {
+    let ws = Workspace::with_spec("day");
+    let out = cityspec(&ws, &["facades", "export", "facades"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let written = tree(&ws.path().join("facades"));
+    let expected: std::collections::BTreeMap<String, Vec<u8>> = cityspec::facades::builtin()
+        .to_files()
+        .into_iter()
+        .collect();
+    assert_eq!(written, expected);
+    for ext in ["jpg", "xml", "png"] {
+        assert!(written.contains_key(&format!("builtin_00.{ext}")), "{ext}");
+    }
+}

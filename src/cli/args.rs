@@ -62,4 +62,21 @@ pub enum Command {
     /// specs with it.
     #[command(after_help = "Example:\n  cityspec schema > schemas/cityspec.schema.json")]
     Schema,
+    /// Facade sets (paper 3.2).
+    Facades {
+        #[command(subcommand)]
+        command: FacadesCommand,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum FacadesCommand {
+    /// Write cityspec's builtin facade set to DIR in the CMP Facade Database layout:
+    /// <name>.jpg photo, <name>.xml boxes, <name>.png label mask (values 1–12).
+    #[command(after_help = "Example:\n  cityspec facades export facades/")]
+    Export {
+        /// Folder to write to (created if missing; files of the same name are replaced).
+        #[arg(value_name = "DIR")]
+        dir: PathBuf,
+    },
 }

@@ -12,7 +12,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::build::{self, BuildError, BuildOptions};
-use args::{Args, Command};
+use args::{Args, Command, FacadesCommand};
 
 /// Runs the command line and returns the process exit code.
 pub fn run() -> ExitCode {
@@ -83,6 +83,24 @@ pub fn run() -> ExitCode {
         }
         Command::Schema => {
             print!("{}", crate::spec::schema_json());
+            ExitCode::SUCCESS
+        }
+        Command::Facades {
+            command: FacadesCommand::Export { dir },
+        } => {
+            let files = crate::facades::builtin().to_files();
+            for (name, bytes) in &files {
+                let path = dir.join(name);
+                if let Err(e) = build::write_atomic(&path, bytes) {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    return ExitCode::from(1);
+                }
+            }
+            out.info(&format!(
+                "wrote the builtin facade set ({} files) to {}",
+                files.len(),
+                dir.display()
+            ));
             ExitCode::SUCCESS
         }
     }

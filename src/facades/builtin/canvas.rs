@@ -1,0 +1,159 @@
+//! Canvas: the generator's drawing surface → a photo, its CMP label mask and XML boxes.
+//!
+//! Every labelled part is drawn through [`Canvas::part`], which records its box for the XML
+//! and paints its class into the mask, so the annotations cannot drift from the pixels.
+
+use image::{GrayImage, Luma, Rgb, RgbImage};
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
+use crate::model::PxRect;
+
+use super::super::cmp_box::CmpBox;
+use super::super::cmp_label::CmpLabel;
+
+/// An sRGB colour.
+pub type Colour = [u8; 3];
+
+/// A photo being drawn, with its label mask and boxes.
+pub struct Canvas {
+    pub photo: RgbImage,
+    pub mask: GrayImage,
+    pub boxes: Vec<CmpBox>,
+}
+
+impl Canvas {
+    /// A `width × height` canvas, all facade (mask value 2), black.
+    pub fn new(width: u32, height: u32) -> Canvas {
+        Canvas {
+            photo: RgbImage::new(width, height),
+            mask: GrayImage::from_pixel(width, height, Luma([CmpLabel::Facade.mask_value()])),
+            boxes: Vec::new(),
+        }
+    }
+
+    /// Records `rect` as a `label` box and paints it into the mask (no pixels drawn).
+    pub fn part(&mut self, label: CmpLabel, rect: PxRect) {
+        let rect = self.clip(rect);
+        if rect.x0 >= rect.x1 || rect.y0 >= rect.y1 {
+            return;
+        }
+        self.label_only(label, rect);
+        self.boxes.push(CmpBox { label, rect });
+    }
+
+    /// Paints `label` into the mask over `rect` without recording a box (for classes CMP
+    /// annotates as regions, such as background).
+    pub fn label_only(&mut self, label: CmpLabel, rect: PxRect) {
+        let rect = self.clip(rect);
+        for y in rect.y0..rect.y1 {
+            for x in rect.x0..rect.x1 {
+                self.mask.put_pixel(x, y, Luma([label.mask_value()]));
+            }
+        }
+    }
+
+    /// Fills `rect` with `colour`.
+    pub fn fill(&mut self, rect: PxRect, colour: Colour) {
+        self.each(rect, |_, _, _| colour);
+    }
+
+    /// Fills `rect` with `colour` plus per-pixel grain of ±`grain`.
+    pub fn fill_grain(&mut self, rect: PxRect, colour: Colour, grain: i32, rng: &mut Pcg64) {
+        self.each(rect, |_, _, _| {
+            let g = rng.random_range(-grain..=grain);
+            colour.map(|c| add(c, g))
+        });
+    }
+
+    /// Fills `rect` with a vertical gradient from `top` to `bottom`.
+    pub fn gradient(&mut self, rect: PxRect, top: Colour, bottom: Colour) {
+        let span = rect.height().max(2) - 1;
+        self.each(rect, |_, y, _| {
+            let t = f64::from(y - rect.y0) / f64::from(span);
+            mix(top, bottom, t)
+        });
+    }
+
+    /// Multiplies the pixels of `rect` by `factor` (below 1 darkens, above 1 lightens).
+    pub fn shade(&mut self, rect: PxRect, factor: f64) {
+        self.each(rect, |_, _, p| {
+            p.map(|c| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8)
+        });
+    }
+
+    /// Calls `f(x, y, current)` for every pixel of `rect` (clipped) and stores its result.
+    pub fn each(&mut self, rect: PxRect, mut f: impl FnMut(u32, u32, Colour) -> Colour) {
+        let rect = self.clip(rect);
+        for y in rect.y0..rect.y1 {
+            for x in rect.x0..rect.x1 {
+                let p = self.photo.get_pixel(x, y).0;
+                self.photo.put_pixel(x, y, Rgb(f(x, y, p)));
+            }
+        }
+    }
+
+    fn clip(&self, r: PxRect) -> PxRect {
+        let (w, h) = self.photo.dimensions();
+        PxRect {
+            x0: r.x0.min(w),
+            y0: r.y0.min(h),
+            x1: r.x1.min(w),
+            y1: r.y1.min(h),
+        }
+    }
+}
+
+/// `[x0, x1) × [y0, y1)`, with an empty rectangle when the ends cross.
+pub fn rect(x0: u32, y0: u32, x1: u32, y1: u32) -> PxRect {
+    PxRect {
+        x0,
+        y0,
+        x1: x1.max(x0),
+        y1: y1.max(y0),
+    }
+}
+
+/// `colour` with `delta` added to each channel, clamped.
+pub fn add(c: u8, delta: i32) -> u8 {
+    (i32::from(c) + delta).clamp(0, 255) as u8
+}
+
+/// `colour` scaled by `factor`, clamped.
+pub fn scale(colour: Colour, factor: f64) -> Colour {
+    colour.map(|c| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8)
+}
+
+/// Linear mix of two colours, `t` in 0–1.
+pub fn mix(a: Colour, b: Colour, t: f64) -> Colour {
+    let mut out = [0u8; 3];
+    for c in 0..3 {
+        out[c] = (f64::from(a[c]) * (1.0 - t) + f64::from(b[c]) * t).round() as u8;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parts_are_clipped_recorded_and_painted_into_the_mask() {
+        let mut canvas = Canvas::new(10, 8);
+        canvas.part(CmpLabel::Window, rect(6, 2, 14, 5));
+        canvas.part(CmpLabel::Door, rect(20, 2, 30, 5)); // wholly outside: not recorded
+        assert_eq!(
+            canvas.boxes,
+            vec![CmpBox {
+                label: CmpLabel::Window,
+                rect: rect(6, 2, 10, 5)
+            }]
+        );
+        assert_eq!(canvas.mask.get_pixel(7, 3).0, [3]);
+        assert_eq!(canvas.mask.get_pixel(5, 3).0, [2]);
+        canvas.fill(rect(0, 0, 2, 2), [10, 20, 30]);
+        canvas.shade(rect(0, 0, 1, 1), 0.5);
+        assert_eq!(canvas.photo.get_pixel(0, 0).0, [5, 10, 15]);
+        assert_eq!(canvas.photo.get_pixel(1, 1).0, [10, 20, 30]);
+    }
+}

@@ -1,0 +1,72 @@
+//! Builtin facade set: fixed seeds → cityspec's own facades as CMP-layout files (photo JPEG,
+//! XML boxes, label PNG), loaded by the same code as a user's CMP folder.
+//!
+//! Facade `i` is designed from `crate::rng::stream(0, "builtin-facades", i)` (see
+//! `design`) and painted with noise from `stream(0, "builtin-facades-paint", i)` (see
+//! `painter`); it never depends on a spec's seed. Styles cycle:
+//! brick grids, plaster with shutters, shopfronts with awnings, balconies, townhouses with
+//! pilasters and a front door, and plain modern blocks over shops.
+
+mod canvas;
+mod design;
+mod painter;
+mod parts;
+mod wall;
+
+use image::codecs::jpeg::JpegEncoder;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
+use rayon::prelude::*;
+
+use super::cmp_box::write_cmp_xml;
+use super::{FacadeFile, FacadeSource};
+
+pub use design::Design;
+
+/// How many facades the builtin set has.
+pub const COUNT: usize = 30;
+/// JPEG quality of the photos.
+const QUALITY: u8 = 90;
+
+/// cityspec's own facade set, as CMP-layout files. The same bytes on every call.
+pub fn builtin() -> FacadeSource {
+    let files = (0..COUNT).into_par_iter().map(facade_file).collect();
+    FacadeSource {
+        origin: "builtin".to_string(),
+        files,
+        floors: None,
+    }
+}
+
+/// The row where the loader crops every builtin facade (the top molding's bottom edge).
+#[cfg(test)]
+pub fn crop_top() -> u32 {
+    painter::CROP_TOP
+}
+
+/// The name of builtin facade `i`.
+pub fn name(i: usize) -> String {
+    format!("builtin_{i:02}")
+}
+
+/// Designs, paints and encodes builtin facade `i`.
+fn facade_file(i: usize) -> FacadeFile {
+    let design = Design::new(i);
+    let mut rng = crate::rng::stream(0, "builtin-facades-paint", i as u64);
+    let canvas = painter::paint(&design, &mut rng);
+    let (w, h) = canvas.photo.dimensions();
+    let mut photo = Vec::new();
+    JpegEncoder::new_with_quality(&mut photo, QUALITY)
+        .write_image(canvas.photo.as_raw(), w, h, ExtendedColorType::Rgb8)
+        .expect("encoding a JPEG into memory cannot fail");
+    let mut labels = Vec::new();
+    PngEncoder::new_with_quality(&mut labels, CompressionType::Best, FilterType::Adaptive)
+        .write_image(canvas.mask.as_raw(), w, h, ExtendedColorType::L8)
+        .expect("encoding a PNG into memory cannot fail");
+    FacadeFile {
+        name: name(i),
+        photo,
+        xml: Some(write_cmp_xml(&canvas.boxes, w, h)),
+        labels: Some(labels),
+    }
+}
