@@ -14,10 +14,14 @@
 //! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
+//! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
+//! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
+pub mod annotate;
 pub mod build;
+pub mod cameras;
 pub mod cli;
 pub mod hash;
 pub mod lamps;
