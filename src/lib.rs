@@ -16,10 +16,15 @@
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
 //! | scene | [`scene`] | blocks, roads, lamps, buildings, facades | [`model::Scene`]: the 3D city |
+//! | export | [`export`] | scene | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
+//! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
+//! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
+pub mod annotate;
 pub mod build;
+pub mod cameras;
 pub mod cli;
 pub mod facades;
 pub mod hash;

@@ -1,0 +1,289 @@
+//! Frames of one camera path → COCO JSON bytes that pycocotools loads.
+
+use serde_json::{Value, json};
+
+use super::frame_input::{FrameInput, Thresholds};
+use super::object_label::{Category, ObjectLabel};
+use super::round;
+use super::shown_object::shown;
+
+/// COCO JSON bytes for one camera path.
+///
+/// - `images`: `id` (frame index + 1), `file_name`, `width`, `height`, and the extra keys
+///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target}` (metres, x east,
+///   y up, z south; up is +y).
+/// - `categories`: `id`, `name`, in the order given.
+/// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
+///   every labelled object whose category is listed and that passes `thresholds`: `id`,
+///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels,
+///   `area` = visible pixel count, `iscrowd` 0, `segmentation` = compressed RLE
+///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
+///   then the extra keys `instance_id` (the value in the instance image), `name`,
+///   `full_bbox` (projected box ignoring occlusion, or `null`), `visible_fraction` (or
+///   `null`) and, for text objects, `text`.
+///
+/// Keys are written in that order, one image, category or annotation per line. Intrinsics
+/// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
+/// non-finite number becomes `null`.
+pub fn coco(
+    categories: &[Category],
+    labels: &[ObjectLabel],
+    frames: &[FrameInput],
+    thresholds: &Thresholds,
+) -> Vec<u8> {
+    let mut images = Vec::with_capacity(frames.len());
+    let mut annotations = Vec::new();
+    for (index, frame) in frames.iter().enumerate() {
+        let image_id = index as u64 + 1;
+        let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
+        let (width, height) = frame.instance.dimensions();
+        images.push(json!({
+            "id": image_id,
+            "file_name": frame.file_name,
+            "width": width,
+            "height": height,
+            "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
+            "pose": {
+                "eye": frame.pose.eye.map(|v| round(v, 1e3)),
+                "target": frame.pose.target.map(|v| round(v, 1e3)),
+            },
+        }));
+        for object in shown(labels, frame, thresholds) {
+            let Some(category) = object.label.category else {
+                continue;
+            };
+            if !object.passes || !categories.iter().any(|c| c.id == category) {
+                continue;
+            }
+            let v = &object.visible;
+            let mut annotation = json!({
+                "id": annotations.len() + 1,
+                "image_id": image_id,
+                "category_id": category,
+                "bbox": v.bbox(),
+                "area": v.pixels,
+                "iscrowd": 0,
+                "segmentation": {"size": v.rle.size, "counts": v.rle.to_compressed()},
+                "instance_id": v.id,
+                "name": object.label.name,
+                "full_bbox": object.full_box.map(|b| b.map(|x| round(x, 1e3))),
+                "visible_fraction": object.fraction.and_then(|f| round(f, 1e6)),
+            });
+            if let (Some(text), Value::Object(map)) = (&object.label.text, &mut annotation) {
+                map.insert("text".into(), Value::String(text.clone()));
+            }
+            annotations.push(annotation);
+        }
+    }
+    let categories: Vec<Value> = categories
+        .iter()
+        .map(|c| json!({"id": c.id, "name": c.name}))
+        .collect();
+    let mut out = String::new();
+    out.push_str("{\"info\":");
+    out.push_str(
+        &json!({"description": "cityspec annotations", "version": super::VERSION}).to_string(),
+    );
+    out.push_str(",\n\"licenses\":[]");
+    for (key, list) in [
+        ("images", &images),
+        ("categories", &categories),
+        ("annotations", &annotations),
+    ] {
+        out.push_str(",\n\"");
+        out.push_str(key);
+        out.push_str("\":[");
+        for (i, item) in list.iter().enumerate() {
+            out.push_str(if i == 0 { "\n" } else { ",\n" });
+            out.push_str(&item.to_string());
+        }
+        out.push(']');
+    }
+    out.push_str("}\n");
+    out.into_bytes()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::annotate::{Rle, test_image};
+    use crate::cameras::CameraPose;
+
+    fn categories() -> Vec<Category> {
+        ["building", "sign", "text"]
+            .iter()
+            .zip(1..)
+            .map(|(name, id)| Category {
+                id,
+                name: name.to_string(),
+            })
+            .collect()
+    }
+
+    fn labels() -> Vec<ObjectLabel> {
+        let label = |name: &str, category, text: Option<&str>| ObjectLabel {
+            name: name.into(),
+            category,
+            text: text.map(String::from),
+        };
+        vec![
+            label("building_0", Some(1), None),
+            label("sign_0", Some(2), None),
+            label("sign_1", Some(2), None),
+            label("ground", None, None),
+            label("text_0", Some(3), Some("OPEN")),
+        ]
+    }
+
+    /// 8 × 5: building 1 partly behind sign 2 (2 px, too few) and text 5 (no projected
+    /// count known); sign 3 shows 4 of its 40 px; ground 4 along the bottom.
+    fn frame_image() -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+        test_image(&[
+            &[1, 1, 1, 1, 1, 0, 3, 3],
+            &[1, 2, 2, 1, 1, 0, 3, 3],
+            &[1, 1, 5, 5, 1, 0, 0, 0],
+            &[1, 1, 5, 5, 1, 0, 0, 0],
+            &[4, 4, 4, 4, 4, 4, 4, 4],
+        ])
+    }
+
+    fn frame<'a>(
+        name: &str,
+        img: &'a image::ImageBuffer<image::Luma<u16>, Vec<u16>>,
+    ) -> FrameInput<'a> {
+        FrameInput {
+            file_name: name.into(),
+            instance: img,
+            intrinsics: [400.0, 400.0, 4.0, 2.5],
+            pose: CameraPose {
+                eye: [1.0, 1.6, -0.0],
+                target: [11.0, 0.6, 0.1234567],
+            },
+            full: BTreeMap::from([
+                (1, ([0.0, 0.0, 5.0, 4.0], 24)),
+                (2, ([1.0, 1.0, 2.0, 1.0], 2)),
+                (3, ([6.0, -3.5, 8.0, 5.0], 40)),
+            ]),
+            quads: BTreeMap::new(),
+        }
+    }
+
+    const THRESHOLDS: Thresholds = Thresholds {
+        min_pixels: 3,
+        min_fraction: 0.25,
+    };
+
+    #[test]
+    fn annotates_visible_pixels_and_drops_small_or_hidden_objects() {
+        let (a, b) = (
+            frame_image(),
+            test_image(&[&[0, 0, 0], &[0, 3, 3], &[0, 3, 0]]),
+        );
+        let mut f1 = frame("f1.png", &b);
+        f1.full.clear();
+        let frames = [frame("f0.png", &a), f1];
+        let bytes = coco(&categories(), &labels(), &frames, &THRESHOLDS);
+        let doc: Value = serde_json::from_slice(&bytes).unwrap();
+
+        let images = doc["images"].as_array().unwrap();
+        assert_eq!(images.len(), 2);
+        assert_eq!(
+            images[0].to_string(),
+            r#"{"id":1,"file_name":"f0.png","width":8,"height":5,"intrinsics":{"fx":400.0,"fy":400.0,"cx":4.0,"cy":2.5},"pose":{"eye":[1.0,1.6,0.0],"target":[11.0,0.6,0.123]}}"#
+        );
+        assert_eq!(
+            doc["categories"][2].to_string(),
+            r#"{"id":3,"name":"text"}"#
+        );
+
+        let anns = doc["annotations"].as_array().unwrap();
+        let summary: Vec<(u64, u64, u64, String)> = anns
+            .iter()
+            .map(|a| {
+                let n = |k: &str| a[k].as_u64().unwrap();
+                (
+                    n("id"),
+                    n("image_id"),
+                    n("instance_id"),
+                    a["bbox"].to_string(),
+                )
+            })
+            .collect();
+        // Sign 2 (2 px) and sign 3 in frame 0 (10 %) are dropped, the ground has no
+        // category; sign 3 in frame 1 has no projected count, so only its pixels count.
+        assert_eq!(
+            summary,
+            [
+                (1, 1, 1, "[0,0,5,4]".to_string()),
+                (2, 1, 5, "[2,2,2,2]".to_string()),
+                (3, 2, 3, "[1,1,2,2]".to_string()),
+            ]
+        );
+        let building = &anns[0];
+        assert_eq!(building["area"], 14);
+        assert_eq!(building["iscrowd"], 0);
+        assert_eq!(building["category_id"], 1);
+        assert_eq!(building["name"], "building_0");
+        assert_eq!(building["full_bbox"].to_string(), "[0.0,0.0,5.0,4.0]");
+        // 14 of 24 projected pixels, to 6 decimals.
+        assert_eq!(building["visible_fraction"], 0.583333);
+        assert!(building.get("text").is_none());
+        let text = &anns[1];
+        assert_eq!(text["text"], "OPEN");
+        assert_eq!(text["full_bbox"], Value::Null);
+        assert_eq!(text["visible_fraction"], Value::Null);
+
+        // The segmentation decodes to exactly the visible pixels.
+        for (ann, img) in [(&anns[0], &a), (&anns[1], &a), (&anns[2], &b)] {
+            let seg = &ann["segmentation"];
+            let [h, w] = [0, 1].map(|i| seg["size"][i].as_u64().unwrap() as u32);
+            assert_eq!((w, h), img.dimensions());
+            let rle = Rle::from_compressed(seg["counts"].as_str().unwrap(), h, w).unwrap();
+            let id = ann["instance_id"].as_u64().unwrap() as u16;
+            let mask: Vec<bool> = img.pixels().map(|p| p.0[0] == id).collect();
+            assert_eq!(rle.to_row_major(), mask);
+            assert_eq!(rle.area(), ann["area"].as_u64().unwrap());
+        }
+    }
+
+    #[test]
+    fn output_is_stable_and_one_entry_per_line() {
+        let a = frame_image();
+        let frames = [frame("f0.png", &a)];
+        let first = coco(&categories(), &labels(), &frames, &THRESHOLDS);
+        assert_eq!(first, coco(&categories(), &labels(), &frames, &THRESHOLDS));
+        let text = String::from_utf8(first).unwrap();
+        // info, licenses, images + 1, categories + 3, annotations + 2.
+        assert_eq!(text.lines().count(), 2 + 2 + 4 + 3);
+        assert!(
+            text.lines()
+                .nth(5)
+                .unwrap()
+                .starts_with(r#"{"id":1,"name":"building"}"#)
+        );
+    }
+
+    #[test]
+    fn no_frames_still_give_a_loadable_document() {
+        let bytes = coco(&categories(), &labels(), &[], &THRESHOLDS);
+        let doc: Value = serde_json::from_slice(&bytes).unwrap();
+        assert_eq!(doc["images"], json!([]));
+        assert_eq!(doc["annotations"], json!([]));
+        assert_eq!(doc["categories"].as_array().unwrap().len(), 3);
+    }
+
+    #[test]
+    fn unlisted_categories_and_unlabelled_ids_are_not_annotated() {
+        let img = test_image(&[&[1, 1, 9, 9]]);
+        let frames = [frame("f.png", &img)];
+        let only_signs = [Category {
+            id: 2,
+            name: "sign".into(),
+        }];
+        let doc: Value =
+            serde_json::from_slice(&coco(&only_signs, &labels(), &frames, &THRESHOLDS)).unwrap();
+        assert_eq!(doc["annotations"], json!([]));
+    }
+}

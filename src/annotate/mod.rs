@@ -1,0 +1,56 @@
+//! Annotate stage: instance-id images + scene labels + camera data → COCO JSON, YOLO txt
+//! and ICDAR 2015 text lines.
+//!
+//! Every label comes from the instance image, which already resolved occlusion: a pixel
+//! shows the one object the renderer drew there. One column-major pass per frame gives each
+//! id's visible box, pixel count and COCO RLE ([`VisibleObject`]); the renderer's projected
+//! box and pixel count (ignoring occlusion) give the visible fraction. An object is
+//! annotated when it has a category, shows at least `min_pixels` pixels and, where its
+//! fraction is known, at least `min_fraction` of itself.
+//!
+//! | output | function | per |
+//! |---|---|---|
+//! | COCO JSON (pycocotools loads it) | [`coco`] | camera path |
+//! | YOLO `class cx cy w h` | [`yolo`] | frame |
+//! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
+//!
+//! Output is deterministic: objects in instance-id order, JSON keys in a fixed order, and
+//! floats rounded to fixed decimals before printing.
+
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
+mod coco;
+#[cfg(test)]
+mod fixture_tests;
+mod frame_input;
+mod icdar;
+mod object_label;
+mod rle;
+mod shown_object;
+mod visible_object;
+mod yolo;
+
+pub use coco::coco;
+pub use frame_input::{FrameInput, Thresholds};
+pub use icdar::icdar;
+pub use object_label::{Category, ObjectLabel};
+pub use rle::{Rle, RleError};
+pub use shown_object::{ShownObject, shown};
+pub use visible_object::{VisibleObject, scan};
+pub use yolo::yolo;
+
+/// `v` rounded to a multiple of `1 / scale` (`scale` a power of ten; `-0` made `0`), or
+/// `None` when it is not finite.
+fn round(v: f64, scale: f64) -> Option<f64> {
+    let r = (v * scale).round() / scale;
+    r.is_finite().then_some(if r == 0.0 { 0.0 } else { r })
+}
+
+/// An instance image from rows of ids.
+#[cfg(test)]
+pub(crate) fn test_image(rows: &[&[u16]]) -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+    image::ImageBuffer::from_fn(rows[0].len() as u32, rows.len() as u32, |x, y| {
+        image::Luma([rows[y as usize][x as usize]])
+    })
+}

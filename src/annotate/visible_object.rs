@@ -1,0 +1,165 @@
+//! One pass over an instance-id image → every instance's visible pixels: box, count, RLE.
+
+use image::{ImageBuffer, Luma};
+
+use super::rle::Rle;
+
+/// What one instance shows in a frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VisibleObject {
+    /// The value in the instance image (object index + 1).
+    pub id: u16,
+    /// Tight box of the visible pixels, inclusive: columns `x0..=x1`, rows `y0..=y1`.
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+    /// Visible pixel count.
+    pub pixels: u64,
+    /// The visible pixels as a COCO RLE.
+    pub rle: Rle,
+}
+
+impl VisibleObject {
+    /// COCO `bbox` `[x, y, w, h]` of the visible pixels (pixel edges, so `w = x1 − x0 + 1`).
+    pub fn bbox(&self) -> [u32; 4] {
+        [
+            self.x0,
+            self.y0,
+            self.x1 - self.x0 + 1,
+            self.y1 - self.y0 + 1,
+        ]
+    }
+}
+
+/// Every non-zero id of `image`, in id order, with its visible box, count and RLE.
+///
+/// Occlusion is handled by construction: a pixel belongs to the one instance the renderer
+/// wrote there, so a partly covered object keeps only the pixels it shows. The image is
+/// walked once, column by column (the order COCO's RLE runs in), extending each id's
+/// current run or opening a new one.
+pub fn scan(image: &ImageBuffer<Luma<u16>, Vec<u16>>) -> Vec<VisibleObject> {
+    let (w, h) = image.dimensions();
+    let raw = image.as_raw();
+    let mut found: Vec<Option<Acc>> = Vec::new();
+    for x in 0..w {
+        for y in 0..h {
+            let id = raw[y as usize * w as usize + x as usize];
+            if id == 0 {
+                continue;
+            }
+            let t = u64::from(x) * u64::from(h) + u64::from(y);
+            if found.len() <= usize::from(id) {
+                found.resize_with(usize::from(id) + 1, || None);
+            }
+            let acc = found[usize::from(id)].get_or_insert_with(|| Acc::new(x, y));
+            acc.add(x, y, t);
+        }
+    }
+    let total = u64::from(w) * u64::from(h);
+    found
+        .into_iter()
+        .enumerate()
+        .filter_map(|(id, acc)| acc.map(|a| a.finish(id as u16, [h, w], total)))
+        .collect()
+}
+
+/// Per-id state of the scan.
+struct Acc {
+    x0: u32,
+    y0: u32,
+    x1: u32,
+    y1: u32,
+    pixels: u64,
+    counts: Vec<u64>,
+    /// Column-major index just past the last pixel seen.
+    end: u64,
+}
+
+impl Acc {
+    fn new(x: u32, y: u32) -> Acc {
+        Acc {
+            x0: x,
+            y0: y,
+            x1: x,
+            y1: y,
+            pixels: 0,
+            counts: Vec::new(),
+            end: 0,
+        }
+    }
+
+    fn add(&mut self, x: u32, y: u32, t: u64) {
+        self.x0 = self.x0.min(x);
+        self.y0 = self.y0.min(y);
+        self.x1 = self.x1.max(x);
+        self.y1 = self.y1.max(y);
+        self.pixels += 1;
+        match self.counts.last_mut() {
+            Some(run) if self.end == t => *run += 1,
+            _ => {
+                self.counts.push(t - self.end);
+                self.counts.push(1);
+            }
+        }
+        self.end = t + 1;
+    }
+
+    fn finish(mut self, id: u16, size: [u32; 2], total: u64) -> VisibleObject {
+        if total > self.end {
+            self.counts.push(total - self.end);
+        }
+        VisibleObject {
+            id,
+            x0: self.x0,
+            y0: self.y0,
+            x1: self.x1,
+            y1: self.y1,
+            pixels: self.pixels,
+            rle: Rle {
+                size,
+                counts: self.counts,
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::annotate::test_image as image;
+
+    #[test]
+    fn occluded_object_keeps_only_its_visible_pixels() {
+        // Object 1 is a 4 × 3 rectangle; object 2 stands in front of its right half and
+        // its bottom row, so 1 shows only a 2 × 2 square.
+        let img = image(&[
+            &[0, 0, 0, 0, 0, 0],
+            &[0, 1, 1, 2, 2, 0],
+            &[0, 1, 1, 2, 2, 0],
+            &[0, 2, 2, 2, 2, 0],
+            &[0, 0, 0, 0, 0, 3],
+        ]);
+        let found = scan(&img);
+        assert_eq!(found.iter().map(|o| o.id).collect::<Vec<_>>(), [1, 2, 3]);
+        let [one, two, three] = [&found[0], &found[1], &found[2]];
+        assert_eq!((one.bbox(), one.pixels), ([1, 1, 2, 2], 4));
+        assert_eq!((two.bbox(), two.pixels), ([1, 1, 4, 3], 8));
+        assert_eq!((three.bbox(), three.pixels), ([5, 4, 1, 1], 1));
+        // Column-major, 5 rows: object 1 fills rows 1–2 of columns 1 and 2.
+        assert_eq!(one.rle.counts, [6, 2, 3, 2, 17]);
+        // The last pixel is set: no trailing run of 0s.
+        assert_eq!(three.rle.counts, [29, 1]);
+        for o in &found {
+            let mask: Vec<bool> = img.pixels().map(|p| p.0[0] == o.id).collect();
+            assert_eq!(o.rle, Rle::from_row_major(&mask, 5, 6), "id {}", o.id);
+            assert_eq!(o.rle.area(), o.pixels);
+        }
+    }
+
+    #[test]
+    fn empty_image_has_no_objects() {
+        assert!(scan(&image(&[&[0, 0], &[0, 0]])).is_empty());
+        assert!(scan(&ImageBuffer::new(0, 0)).is_empty());
+    }
+}

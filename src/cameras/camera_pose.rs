@@ -1,0 +1,12 @@
+//! A camera pose: where the camera stands and the point it looks at, in world metres.
+
+use serde::{Deserialize, Serialize};
+
+/// One frame's camera: eye and look-at target in metres (x east, y up, z south).
+///
+/// The camera's up direction is world +y; roll is always zero.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CameraPose {
+    pub eye: [f64; 3],
+    pub target: [f64; 3],
+}

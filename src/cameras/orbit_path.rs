@@ -1,0 +1,109 @@
+//! The overview orbit: points around the city on a circle, found without trigonometry.
+
+use super::{CameraPose, mm};
+use crate::model::ParsedLayout;
+
+/// An overview: `frames` poses around the city at `height` metres, all looking at the
+/// city centre on the ground.
+///
+/// The eyes lie on the circle through the layout's corners (radius half its diagonal).
+/// Without trigonometry: frame `i` takes the point at `i/frames` of the way around the
+/// perimeter of a square centred on the city, starting due north and turning clockwise
+/// seen from above (north → east → south → west), and pushes it out radially onto the
+/// circle. Spacing is even along the square, so the angular step varies smoothly (by up to
+/// a factor of two between the square's edge middles and its corners).
+///
+/// No poses when `frames` is 0, the layout is empty, or `metres_per_pixel` is not a
+/// positive finite number or `height` is not finite.
+pub fn orbit_path(
+    layout: &ParsedLayout,
+    metres_per_pixel: f64,
+    frames: u32,
+    height: f64,
+) -> Vec<CameraPose> {
+    let m = metres_per_pixel;
+    if frames == 0 || !(m.is_finite() && m > 0.0) || !height.is_finite() {
+        return Vec::new();
+    }
+    let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
+    let radius = (w * w + h * h).sqrt() / 2.0;
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Vec::new();
+    }
+    let centre = [w / 2.0, h / 2.0];
+    (0..frames)
+        .map(|i| {
+            let [u, v] = square_point(f64::from(i) / f64::from(frames));
+            let r = radius / (u * u + v * v).sqrt();
+            CameraPose {
+                eye: [mm(centre[0] + u * r), mm(height), mm(centre[1] + v * r)],
+                target: [mm(centre[0]), 0.0, mm(centre[1])],
+            }
+        })
+        .collect()
+}
+
+/// The point at fraction `t ∈ [0, 1)` of the way around the square `[-1, 1]²` (x east,
+/// z south), starting at north `(0, -1)` and going clockwise seen from above.
+fn square_point(t: f64) -> [f64; 2] {
+    // Perimeter 8, measured from the north-west corner; north is 1 along the top edge.
+    let q = (t * 8.0 + 1.0) % 8.0;
+    match q {
+        q if q < 2.0 => [-1.0 + q, -1.0],
+        q if q < 4.0 => [1.0, -1.0 + (q - 2.0)],
+        q if q < 6.0 => [1.0 - (q - 4.0), 1.0],
+        q => [-1.0, 1.0 - (q - 6.0)],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layout(width: u32, height: u32) -> ParsedLayout {
+        ParsedLayout {
+            width,
+            height,
+            blocks: Vec::new(),
+            roads: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn looks_at_the_centre_from_the_circle_through_the_corners() {
+        let poses = orbit_path(&layout(300, 400), 0.5, 12, 80.0);
+        assert_eq!(poses.len(), 12);
+        // 150 m × 200 m: centre (75, 100), radius 125.
+        for p in &poses {
+            assert_eq!(p.target, [75.0, 0.0, 100.0]);
+            assert_eq!(p.eye[1], 80.0);
+            let (dx, dz) = (p.eye[0] - 75.0, p.eye[2] - 100.0);
+            assert!(((dx * dx + dz * dz).sqrt() - 125.0).abs() < 2e-3, "{p:?}");
+        }
+        // Starts due north and turns clockwise seen from above: north, east, south, west.
+        assert_eq!(poses[0].eye, [75.0, 80.0, -25.0]);
+        assert_eq!(poses[3].eye, [200.0, 80.0, 100.0]);
+        assert_eq!(poses[6].eye, [75.0, 80.0, 225.0]);
+        assert_eq!(poses[9].eye, [-50.0, 80.0, 100.0]);
+        assert_eq!(poses, orbit_path(&layout(300, 400), 0.5, 12, 80.0));
+    }
+
+    #[test]
+    fn square_walk_is_continuous_and_even() {
+        let n = 64;
+        let points: Vec<[f64; 2]> = (0..n).map(|i| square_point(i as f64 / n as f64)).collect();
+        for i in 0..n {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            let d = (b[0] - a[0]).abs() + (b[1] - a[1]).abs();
+            assert!((d - 8.0 / n as f64).abs() < 1e-12, "{a:?} → {b:?}");
+        }
+    }
+
+    #[test]
+    fn degenerate_inputs_give_no_poses() {
+        assert!(orbit_path(&layout(10, 10), 1.0, 0, 5.0).is_empty());
+        assert!(orbit_path(&layout(0, 0), 1.0, 4, 5.0).is_empty());
+        assert!(orbit_path(&layout(10, 10), f64::NAN, 4, 5.0).is_empty());
+        assert!(orbit_path(&layout(10, 10), 1.0, 4, f64::NAN).is_empty());
+    }
+}

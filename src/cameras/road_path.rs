@@ -1,0 +1,340 @@
+//! The road tour: roads in id order, on the right-hand lane, frames evenly spaced by arc length.
+
+use rand::Rng;
+use serde::{Deserialize, Serialize};
+
+use super::{CameraPose, mm};
+use crate::model::{Axis, ParsedLayout, Road};
+use crate::rng;
+
+/// Metres the target drops per metre of look-ahead: a slight downward pitch (about 5.7°).
+pub const PITCH_DROP: f64 = 0.1;
+
+/// How a camera drives along the roads.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RoadPath {
+    /// Frames over the whole tour.
+    pub frames: u32,
+    /// Eye height above the ground, metres.
+    pub height: f64,
+    /// How far ahead along the road the camera looks, metres (must be positive).
+    pub look_ahead: f64,
+    /// Largest target offset across the road and up or down, metres: the yaw/pitch jitter.
+    pub jitter: f64,
+    /// Distance of the lane from the centre line, right of the driving direction, metres
+    /// (clamped to the road surface).
+    pub lane_offset: f64,
+}
+
+/// Drives along the roads: the path visits roads in id order, driving on the right-hand
+/// lane (offset from the centre line by `lane_offset`, right of the driving direction, but
+/// never off the road surface), from start to end, continuing through crossings; frames are
+/// evenly spaced by arc length over the whole tour, frame `i` at `(i + ½)·L/frames`. The
+/// target is `look_ahead` metres ahead along the road, [`PITCH_DROP`]` · look_ahead` below
+/// eye height, plus a seeded jitter (`rng::stream(seed, "cameras", frame)`) of up to
+/// `jitter` metres across the road and up or down.
+///
+/// Driving "start to end" is east on horizontal roads (right = south, +z) and south on
+/// vertical ones (right = west, −x). Between roads the camera jumps; the jump does not count
+/// as arc length. No poses when `frames` is 0, there is no road of positive length, or a
+/// parameter is out of range (`metres_per_pixel` and `look_ahead` must be positive and
+/// finite, `jitter` non-negative and finite, `height` and `lane_offset` finite).
+pub fn road_path(
+    layout: &ParsedLayout,
+    metres_per_pixel: f64,
+    path: &RoadPath,
+    seed: u64,
+) -> Vec<CameraPose> {
+    let valid = metres_per_pixel.is_finite()
+        && metres_per_pixel > 0.0
+        && path.look_ahead.is_finite()
+        && path.look_ahead > 0.0
+        && path.jitter.is_finite()
+        && path.jitter >= 0.0
+        && path.height.is_finite()
+        && path.lane_offset.is_finite();
+    if !valid || path.frames == 0 {
+        return Vec::new();
+    }
+    let legs = legs(layout, metres_per_pixel, path.lane_offset);
+    let total: f64 = legs.iter().map(|l| l.length).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return Vec::new();
+    }
+    let n = f64::from(path.frames);
+    let mut poses = Vec::with_capacity(path.frames as usize);
+    let mut leg = 0;
+    let mut leg_start = 0.0;
+    for i in 0..path.frames {
+        let s = (f64::from(i) + 0.5) * total / n;
+        while leg + 1 < legs.len() && s >= leg_start + legs[leg].length {
+            leg_start += legs[leg].length;
+            leg += 1;
+        }
+        let l = &legs[leg];
+        let along = (s - leg_start).clamp(0.0, l.length);
+        let eye = [
+            l.origin[0] + l.dir[0] * along,
+            l.origin[1] + l.dir[1] * along,
+        ];
+        let right = [-l.dir[1], l.dir[0]];
+        let mut stream = rng::stream(seed, "cameras", u64::from(i));
+        let yaw = signed_unit(stream.next_u64()) * path.jitter;
+        let pitch = signed_unit(stream.next_u64()) * path.jitter;
+        let target = [
+            eye[0] + l.dir[0] * path.look_ahead + right[0] * yaw,
+            eye[1] + l.dir[1] * path.look_ahead + right[1] * yaw,
+        ];
+        poses.push(CameraPose {
+            eye: [mm(eye[0]), mm(path.height), mm(eye[1])],
+            target: [
+                mm(target[0]),
+                mm(path.height - PITCH_DROP * path.look_ahead + pitch),
+                mm(target[1]),
+            ],
+        });
+    }
+    poses
+}
+
+/// Length in metres of the tour [`road_path`] drives: the sum of the roads' lengths. A
+/// driver that wants frames every `d` metres asks for `ceil(tour_length / d)` frames.
+pub fn tour_length(layout: &ParsedLayout, metres_per_pixel: f64) -> f64 {
+    if !(metres_per_pixel.is_finite() && metres_per_pixel > 0.0) {
+        return 0.0;
+    }
+    legs(layout, metres_per_pixel, 0.0)
+        .iter()
+        .map(|l| l.length)
+        .sum()
+}
+
+/// One road as driven: lane start `[x, z]` in metres, unit direction, length in metres.
+struct Leg {
+    origin: [f64; 2],
+    dir: [f64; 2],
+    length: f64,
+}
+
+/// The roads of `layout` in id order as legs on their right-hand lanes. Roads with
+/// non-finite coordinates or no length are left out.
+fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64) -> Vec<Leg> {
+    let mut roads: Vec<&Road> = layout.roads.iter().collect();
+    roads.sort_by_key(|r| r.id);
+    roads
+        .into_iter()
+        .filter_map(|road| {
+            let coords = [
+                road.start,
+                road.end,
+                road.line,
+                road.edges[0],
+                road.edges[1],
+            ];
+            if !coords.iter().all(|v| v.is_finite()) || road.end <= road.start {
+                return None;
+            }
+            let lo = road.edges[0].min(road.edges[1]).min(road.line);
+            let hi = road.edges[0].max(road.edges[1]).max(road.line);
+            // Right of the driving direction: +y (south) when driving east, −x (west) when
+            // driving south.
+            let (origin, dir) = match road.axis {
+                Axis::Horizontal => {
+                    let across = (road.line + lane_offset / m).clamp(lo, hi);
+                    ([road.start * m, across * m], [1.0, 0.0])
+                }
+                Axis::Vertical => {
+                    let across = (road.line - lane_offset / m).clamp(lo, hi);
+                    ([across * m, road.start * m], [0.0, 1.0])
+                }
+            };
+            Some(Leg {
+                origin,
+                dir,
+                length: (road.end - road.start) * m,
+            })
+        })
+        .collect()
+}
+
+/// A uniform number in `[-1, 1)` from 53 random bits, computed the same on every platform.
+fn signed_unit(bits: u64) -> f64 {
+    ((bits >> 11) as f64) * (1.0 / (1u64 << 52) as f64) - 1.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Road;
+
+    const M: f64 = 0.5;
+
+    /// A 200 × 160 px layout: one horizontal road across (line at y 100.5, surface 85–116),
+    /// one vertical road down (line at x 60.5, surface 45–76) crossing it.
+    fn layout() -> ParsedLayout {
+        ParsedLayout {
+            width: 200,
+            height: 160,
+            blocks: Vec::new(),
+            roads: vec![
+                Road {
+                    id: 1,
+                    axis: Axis::Vertical,
+                    start: 0.0,
+                    end: 160.0,
+                    line: 60.5,
+                    edges: [45.0, 76.0],
+                },
+                Road {
+                    id: 0,
+                    axis: Axis::Horizontal,
+                    start: 0.0,
+                    end: 200.0,
+                    line: 100.5,
+                    edges: [85.0, 116.0],
+                },
+            ],
+        }
+    }
+
+    fn path(frames: u32) -> RoadPath {
+        RoadPath {
+            frames,
+            height: 1.6,
+            look_ahead: 10.0,
+            jitter: 0.5,
+            lane_offset: 3.0,
+        }
+    }
+
+    #[test]
+    fn stays_on_the_right_lane_inside_the_layout() {
+        let poses = road_path(&layout(), M, &path(40), 7);
+        assert_eq!(poses.len(), 40);
+        // Horizontal road 0 first (id order), 100 m long, then vertical road 1, 80 m long.
+        let (mut east, mut south) = (0, 0);
+        for p in &poses {
+            assert!((0.0..=100.0).contains(&p.eye[0]) && (0.0..=80.0).contains(&p.eye[2]));
+            assert_eq!(p.eye[1], 1.6);
+            if p.eye[2] == 100.5 * M + 3.0 {
+                // Driving east: the lane is south of the centre line, the target ahead.
+                assert!((p.target[0] - p.eye[0] - 10.0).abs() < 1e-9, "{p:?}");
+                assert!((p.target[2] - p.eye[2]).abs() <= 0.5 + 1e-9);
+                east += 1;
+            } else {
+                // Driving south: the lane is west of the centre line.
+                assert_eq!(p.eye[0], 60.5 * M - 3.0, "{p:?}");
+                assert!((p.target[2] - p.eye[2] - 10.0).abs() < 1e-9, "{p:?}");
+                assert!((p.target[0] - p.eye[0]).abs() <= 0.5 + 1e-9);
+                south += 1;
+            }
+            let drop = p.eye[1] - p.target[1];
+            assert!(
+                (PITCH_DROP * 10.0 - 0.5 - 1e-9..=PITCH_DROP * 10.0 + 0.5 + 1e-9).contains(&drop)
+            );
+        }
+        // 180 m over 40 frames: 4.5 m apart, so 100 m of road 0 hold frames 0..22.
+        assert_eq!((east, south), (22, 18));
+        assert!(poses[..22].iter().all(|p| p.eye[2] == 53.25));
+    }
+
+    #[test]
+    fn frames_are_evenly_spaced_by_arc_length() {
+        let poses = road_path(&layout(), M, &path(40), 7);
+        let step = 180.0 / 40.0;
+        assert_eq!(poses[0].eye[0], step / 2.0);
+        for pair in poses.windows(2) {
+            let (a, b) = (pair[0].eye, pair[1].eye);
+            if a[2] == b[2] || a[0] == b[0] {
+                let d = (b[0] - a[0]).abs() + (b[2] - a[2]).abs();
+                assert!((d - step).abs() < 2e-3, "{a:?} → {b:?}");
+            }
+        }
+        // The jump between roads adds no arc length: frame 22 sits at s = 22.5 · 4.5 =
+        // 101.25 m, which is 1.25 m into road 1.
+        assert_eq!(poses[22].eye[2], 1.25);
+    }
+
+    #[test]
+    fn poses_are_reproducible_per_seed() {
+        let a = road_path(&layout(), M, &path(25), 11);
+        assert_eq!(a, road_path(&layout(), M, &path(25), 11));
+        let b = road_path(&layout(), M, &path(25), 12);
+        assert_ne!(a, b);
+        // The seed moves only the target, never the eye.
+        assert!(a.iter().zip(&b).all(|(p, q)| p.eye == q.eye));
+        let still = RoadPath {
+            jitter: 0.0,
+            ..path(25)
+        };
+        let calm = road_path(&layout(), M, &still, 11);
+        assert_eq!(calm, road_path(&layout(), M, &still, 12));
+        assert!(calm.iter().all(|p| p.target[1] == 0.6));
+    }
+
+    #[test]
+    fn lane_offset_is_clamped_to_the_road_surface() {
+        let wide = RoadPath {
+            lane_offset: 100.0,
+            ..path(40)
+        };
+        let poses = road_path(&layout(), M, &wide, 1);
+        assert_eq!(poses[0].eye[2], 116.0 * M);
+        assert_eq!(poses[39].eye[0], 45.0 * M);
+    }
+
+    #[test]
+    fn bad_parameters_give_no_poses() {
+        let cases: [(&str, f64, RoadPath); 7] = [
+            ("no frames", M, path(0)),
+            ("zero scale", 0.0, path(5)),
+            ("NaN scale", f64::NAN, path(5)),
+            (
+                "no look-ahead",
+                M,
+                RoadPath {
+                    look_ahead: 0.0,
+                    ..path(5)
+                },
+            ),
+            (
+                "negative jitter",
+                M,
+                RoadPath {
+                    jitter: -1.0,
+                    ..path(5)
+                },
+            ),
+            (
+                "infinite height",
+                M,
+                RoadPath {
+                    height: f64::INFINITY,
+                    ..path(5)
+                },
+            ),
+            (
+                "NaN lane",
+                M,
+                RoadPath {
+                    lane_offset: f64::NAN,
+                    ..path(5)
+                },
+            ),
+        ];
+        for (name, m, p) in cases {
+            assert!(road_path(&layout(), m, &p, 1).is_empty(), "{name}");
+        }
+        let no_roads = ParsedLayout {
+            roads: Vec::new(),
+            ..layout()
+        };
+        assert!(road_path(&no_roads, M, &path(5), 1).is_empty());
+    }
+
+    #[test]
+    fn tour_length_sums_the_roads() {
+        assert_eq!(tour_length(&layout(), M), 180.0);
+        assert_eq!(tour_length(&layout(), -1.0), 0.0);
+    }
+}
