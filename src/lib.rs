@@ -14,11 +14,13 @@
 //! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
+//! | export | [`export`] | [`model::Scene`] | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
 pub mod build;
 pub mod cli;
+pub mod export;
 pub mod hash;
 pub mod lamps;
 pub mod layout;
