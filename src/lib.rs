@@ -26,6 +26,7 @@ pub mod annotate;
 pub mod build;
 pub mod cameras;
 pub mod cli;
+pub mod export;
 pub mod facades;
 pub mod hash;
 pub mod lamps;

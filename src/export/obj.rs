@@ -1,0 +1,369 @@
+//! Scene → `city.obj` text: one `o` per scene object, its vertices, and `usemtl` + faces
+//! per mesh, referring to the materials of `city.mtl`.
+//!
+//! Positions print with 4 decimals (0.1 mm), texture coordinates and normals with 5, via
+//! [`super::fixed`], so the bytes are the same on every platform. OBJ's `vt` has v up, the
+//! scene's v is down from the image top: `vt u (1 - v)`. Indices are global and 1-based.
+//! A mesh without triangles writes nothing; a mesh whose uvs or normals do not match its
+//! positions in number writes faces without them (`a//c`, `a/b`, `a`).
+
+use super::fixed::{push_fixed, push_u64};
+use super::texture_files::TextureFiles;
+use crate::model::{Mesh, Scene};
+
+const POSITION_DECIMALS: usize = 4;
+const UNIT_DECIMALS: usize = 5;
+
+/// The OBJ text of `scene`; names its materials' library `city.mtl`. A mesh without uvs
+/// whose material has a texture gets `vt 0 1` for each vertex (the texture's top-left
+/// texel), so that every textured face has texture coordinates, as in the GLB.
+pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
+    let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
+    let vertices: usize = meshes().map(|m| m.positions.len()).sum();
+    let triangles = scene.triangle_count();
+    // About 30 bytes per `v`, 20 per `vt`, 30 per `vn`, 40 per face line.
+    let mut out = Vec::with_capacity(vertices * 80 + triangles * 40 + 64 * scene.objects.len());
+    out.extend_from_slice(b"# city.obj written by cityspec (");
+    out.extend_from_slice(env!("CARGO_PKG_NAME").as_bytes());
+    out.push(b' ');
+    out.extend_from_slice(env!("CARGO_PKG_VERSION").as_bytes());
+    out.extend_from_slice(b")\n# objects ");
+    push_u64(&mut out, scene.objects.len() as u64);
+    out.extend_from_slice(b", vertices ");
+    push_u64(&mut out, vertices as u64);
+    out.extend_from_slice(b", triangles ");
+    push_u64(&mut out, triangles as u64);
+    out.extend_from_slice(b"\nmtllib city.mtl\n");
+
+    // Next 1-based index of each vertex kind.
+    let mut next = Bases { v: 1, vt: 1, vn: 1 };
+    for object in &scene.objects {
+        out.extend_from_slice(b"o ");
+        push_name(&mut out, &object.name);
+        out.push(b'\n');
+        for mesh in &object.meshes {
+            let material = scene.materials.get(mesh.material as usize);
+            let textured = material.is_some_and(|m| textures.file(m.texture).is_some());
+            let name = material.map(|m| &m.name[..]);
+            write_mesh(&mut out, mesh, name, textured, &mut next);
+        }
+    }
+    out
+}
+
+struct Bases {
+    v: u64,
+    vt: u64,
+    vn: u64,
+}
+
+fn write_mesh(
+    out: &mut Vec<u8>,
+    mesh: &Mesh,
+    material: Option<&str>,
+    textured: bool,
+    next: &mut Bases,
+) {
+    let triangles = mesh.indices.len() / 3;
+    if triangles == 0 || mesh.positions.is_empty() {
+        return;
+    }
+    let own_uvs = mesh.uvs.len() == mesh.positions.len();
+    let has_uv = own_uvs || textured;
+    let has_normal = mesh.normals.len() == mesh.positions.len();
+    for p in &mesh.positions {
+        out.push(b'v');
+        for &c in p {
+            out.push(b' ');
+            push_fixed(out, c, POSITION_DECIMALS);
+        }
+        out.push(b'\n');
+    }
+    if own_uvs {
+        for &[u, v] in &mesh.uvs {
+            out.extend_from_slice(b"vt ");
+            push_fixed(out, u, UNIT_DECIMALS);
+            out.push(b' ');
+            push_fixed(out, 1.0 - v, UNIT_DECIMALS);
+            out.push(b'\n');
+        }
+    } else if has_uv {
+        for _ in &mesh.positions {
+            out.extend_from_slice(b"vt 0.00000 1.00000\n");
+        }
+    }
+    if has_normal {
+        for n in &mesh.normals {
+            out.extend_from_slice(b"vn");
+            for &c in n {
+                out.push(b' ');
+                push_fixed(out, c, UNIT_DECIMALS);
+            }
+            out.push(b'\n');
+        }
+    }
+    if let Some(name) = material {
+        out.extend_from_slice(b"usemtl ");
+        push_name(out, name);
+        out.push(b'\n');
+    }
+    for tri in mesh.indices[..triangles * 3].chunks_exact(3) {
+        out.push(b'f');
+        for &i in tri {
+            let i = u64::from(i);
+            out.push(b' ');
+            push_u64(out, next.v + i);
+            if has_uv || has_normal {
+                out.push(b'/');
+            }
+            if has_uv {
+                push_u64(out, next.vt + i);
+            }
+            if has_normal {
+                out.push(b'/');
+                push_u64(out, next.vn + i);
+            }
+        }
+        out.push(b'\n');
+    }
+    let count = mesh.positions.len() as u64;
+    next.v += count;
+    next.vt += if has_uv { count } else { 0 };
+    next.vn += if has_normal { count } else { 0 };
+}
+
+/// Appends a name as OBJ and MTL can hold it: one token, so whitespace and control
+/// characters become `_` (scene names are file-name-safe already; this only guards).
+pub fn push_name(out: &mut Vec<u8>, name: &str) {
+    if name.is_empty() {
+        out.push(b'_');
+    } else if name.bytes().all(|b| b.is_ascii_graphic()) {
+        out.extend_from_slice(name.as_bytes());
+    } else {
+        let mut buf = [0u8; 4];
+        for c in name.chars() {
+            let c = if c.is_whitespace() || c.is_control() {
+                '_'
+            } else {
+                c
+            };
+            out.extend_from_slice(c.encode_utf8(&mut buf).as_bytes());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+    use std::io::Cursor;
+
+    use super::*;
+    use crate::export::mtl::write_mtl;
+    use crate::export::sample_scene::sample_scene;
+
+    fn load(scene: &Scene) -> (Vec<tobj::Model>, Vec<tobj::Material>) {
+        let obj = write_obj(scene, &TextureFiles::collect(scene));
+        let mtl = write_mtl(scene, &TextureFiles::collect(scene));
+        let options = tobj::LoadOptions {
+            triangulate: false,
+            single_index: false,
+            ..Default::default()
+        };
+        let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(obj), &options, |path| {
+            assert_eq!(path, std::path::Path::new("city.mtl"));
+            tobj::load_mtl_buf(&mut Cursor::new(&mtl[..]))
+        })
+        .expect("tobj reads the OBJ");
+        (models, materials.expect("tobj reads the MTL"))
+    }
+
+    /// What tobj makes of the scene: per object, consecutive meshes of one material merged.
+    fn groups(scene: &Scene) -> Vec<(String, Mesh)> {
+        let mut out: Vec<(String, Mesh)> = Vec::new();
+        for object in &scene.objects {
+            for (k, mesh) in object.meshes.iter().enumerate() {
+                match out.last_mut() {
+                    Some((_, last)) if k > 0 && last.material == mesh.material => {
+                        let base = last.positions.len() as u32;
+                        last.positions.extend(&mesh.positions);
+                        last.normals.extend(&mesh.normals);
+                        last.uvs.extend(&mesh.uvs);
+                        last.indices.extend(mesh.indices.iter().map(|i| i + base));
+                    }
+                    _ => out.push((object.name.clone(), mesh.clone())),
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn tobj_reads_back_objects_faces_and_materials() {
+        let scene = sample_scene();
+        let (models, materials) = load(&scene);
+
+        // tobj starts a model per object and per change of material inside one.
+        let names: BTreeSet<&str> = models.iter().map(|m| &m.name[..]).collect();
+        let want: BTreeSet<&str> = scene.objects.iter().map(|o| &o.name[..]).collect();
+        assert_eq!(names, want);
+        assert_eq!(models.len(), groups(&scene).len());
+        let faces: usize = models.iter().map(|m| m.mesh.indices.len() / 3).sum();
+        assert_eq!(faces, scene.triangle_count());
+        assert_eq!(materials.len(), scene.materials.len());
+
+        let exported: BTreeSet<String> = TextureFiles::collect(&scene)
+            .files()
+            .iter()
+            .map(|f| f.path.clone())
+            .collect();
+        for (want, got) in scene.materials.iter().zip(&materials) {
+            assert_eq!(got.name, want.name);
+            assert_eq!(got.diffuse, Some(want.colour));
+            match (&want.texture, &got.diffuse_texture) {
+                (Some(_), Some(path)) => assert!(exported.contains(path), "{path}"),
+                (None, None) => {}
+                other => panic!("{}: texture mismatch {other:?}", want.name),
+            }
+        }
+        // Each model has its object's name and its meshes' material.
+        let got: Vec<(&str, usize)> = models
+            .iter()
+            .map(|m| (&m.name[..], m.mesh.material_id.unwrap()))
+            .collect();
+        let groups = groups(&scene);
+        let want: Vec<(&str, usize)> = groups
+            .iter()
+            .map(|(name, mesh)| (&name[..], mesh.material as usize))
+            .collect();
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn vertices_round_trip_with_v_flipped() {
+        let scene = sample_scene();
+        let (models, _) = load(&scene);
+        let groups = groups(&scene);
+        assert_eq!(models.len(), groups.len());
+        for (model, (_, mesh)) in models.iter().zip(&groups) {
+            let m = &model.mesh;
+            assert_eq!(m.positions.len(), mesh.positions.len() * 3);
+            for (k, &i) in m.indices.iter().enumerate() {
+                // tobj's indices are per model; the scene's are per mesh: same order here.
+                let src = mesh.indices[k] as usize;
+                for c in 0..3 {
+                    let p = m.positions[i as usize * 3 + c];
+                    assert!((p - mesh.positions[src][c]).abs() <= 5e-5);
+                }
+                let t = m.texcoord_indices[k] as usize;
+                assert!((m.texcoords[t * 2] - mesh.uvs[src][0]).abs() <= 5e-6);
+                assert!((m.texcoords[t * 2 + 1] - (1.0 - mesh.uvs[src][1])).abs() <= 5e-6);
+                let n = m.normal_indices[k] as usize;
+                assert_eq!(m.normals[n * 3 + 1], mesh.normals[src][1]);
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_text_without_negative_zero() {
+        let obj = String::from_utf8(write_obj(
+            &sample_scene(),
+            &TextureFiles::collect(&sample_scene()),
+        ))
+        .unwrap();
+        assert!(obj.starts_with("# city.obj written by cityspec"));
+        assert!(obj.contains("\nmtllib city.mtl\no ground\nv -50.0000 0.0000 50.0000\n"));
+        assert!(
+            obj.contains("\nvn 0.00000 1.00000 0.00000\n"),
+            "ground normal"
+        );
+        assert!(!obj.contains("-0.0000"), "negative zero");
+        assert!(obj.contains("\nusemtl facade_a\nf 5/5/5 6/6/6 7/7/7\n"));
+        assert!(obj.ends_with('\n'));
+    }
+
+    #[test]
+    fn missing_uvs_or_normals_and_odd_meshes() {
+        let mesh = |material: u32, uvs: usize, normals: usize, indices: &[u32]| Mesh {
+            material,
+            positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]],
+            normals: vec![[0.0, 1.0, 0.0]; normals],
+            uvs: vec![[0.25, 0.5]; uvs],
+            indices: indices.to_vec(),
+        };
+        // (material, uvs, normals, indices, face lines, vt lines); material 0 (facade_a)
+        // is textured, 2 (roof) is not.
+        type Case<'a> = (u32, usize, usize, &'a [u32], &'a str, &'a str);
+        let cases: &[Case] = &[
+            (
+                2,
+                3,
+                3,
+                &[0, 1, 2],
+                "f 1/1/1 2/2/2 3/3/3\n",
+                "vt 0.25000 0.50000\n",
+            ),
+            (2, 0, 3, &[0, 1, 2], "f 1//1 2//2 3//3\n", ""),
+            (
+                2,
+                3,
+                0,
+                &[0, 1, 2],
+                "f 1/1 2/2 3/3\n",
+                "vt 0.25000 0.50000\n",
+            ),
+            (2, 0, 0, &[0, 1, 2], "f 1 2 3\n", ""),
+            (2, 2, 1, &[0, 1, 2, 0], "f 1 2 3\n", ""),
+            (
+                0,
+                0,
+                3,
+                &[0, 1, 2],
+                "f 1/1/1 2/2/2 3/3/3\n",
+                "vt 0.00000 1.00000\n",
+            ),
+            (
+                0,
+                2,
+                0,
+                &[0, 1, 2],
+                "f 1/1 2/2 3/3\n",
+                "vt 0.00000 1.00000\n",
+            ),
+            (2, 3, 3, &[0, 1], "", ""),
+        ];
+        for &(material, uvs, normals, indices, faces, vt) in cases {
+            let mut scene = sample_scene();
+            scene.objects.truncate(1);
+            scene.objects[0].meshes = vec![mesh(material, uvs, normals, indices)];
+            let obj = write_obj(&scene, &TextureFiles::collect(&scene));
+            let obj = String::from_utf8(obj).unwrap();
+            let tail = obj.split_once("o ground\n").unwrap().1;
+            let case = format!("material {material}, {uvs} uvs, {normals} normals:\n{tail}");
+            if faces.is_empty() {
+                assert_eq!(tail, "", "a mesh without a triangle writes nothing");
+                continue;
+            }
+            let name = &scene.materials[material as usize].name;
+            assert!(tail.ends_with(&format!("usemtl {name}\n{faces}")), "{case}");
+            let vts: Vec<&str> = tail.lines().filter(|l| l.starts_with("vt ")).collect();
+            if vt.is_empty() {
+                assert!(vts.is_empty(), "{case}");
+            } else {
+                assert_eq!(vts, [vt.trim_end(); 3], "{case}");
+            }
+        }
+    }
+
+    #[test]
+    fn names_stay_one_token() {
+        let mut out = Vec::new();
+        for name in ["building_0001", "two words", "tab\there", "", "façade 2"] {
+            push_name(&mut out, name);
+            out.push(b'|');
+        }
+        assert_eq!(
+            out,
+            "building_0001|two_words|tab_here|_|façade_2|".as_bytes()
+        );
+    }
+}
