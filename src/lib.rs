@@ -14,6 +14,7 @@
 //! | place | [`place`] | blocks, `spec.buildings`, seed | [`model::Building`]s |
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
+//! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
@@ -28,5 +29,6 @@ pub mod parse;
 pub mod place;
 pub mod plan;
 pub mod preview;
+pub mod render;
 pub mod rng;
 pub mod spec;
