@@ -19,6 +19,7 @@
 //! | export | [`export`] | scene | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
 //! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
+//! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
@@ -37,6 +38,7 @@ pub mod parse;
 pub mod place;
 pub mod plan;
 pub mod preview;
+pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spec;

@@ -1,0 +1,97 @@
+//! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward).
+
+use serde::{Deserialize, Serialize};
+
+/// A pinhole camera without trigonometry: eye, a point it looks at, and up (y).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CameraPose {
+    pub eye: [f64; 3],
+    pub target: [f64; 3],
+}
+
+/// The camera's axes in world coordinates, right-handed: `right = forward × up`,
+/// `up = right × forward`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CameraBasis {
+    pub right: [f64; 3],
+    pub up: [f64; 3],
+    pub forward: [f64; 3],
+}
+
+impl CameraPose {
+    /// The look-at basis with world up = +y. A camera looking straight up or down uses
+    /// −z (north) as its up instead, so the top of the image is north. `None` when eye and
+    /// target coincide or are not finite.
+    pub(crate) fn basis(&self) -> Option<CameraBasis> {
+        let forward = normalize(sub(self.target, self.eye))?;
+        let right = normalize(cross(forward, [0.0, 1.0, 0.0]))
+            .or_else(|| normalize(cross(forward, [0.0, 0.0, -1.0])))?;
+        let up = cross(right, forward);
+        Some(CameraBasis { right, up, forward })
+    }
+}
+
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The unit vector along `a`, or `None` if it is (nearly) zero or not finite.
+pub(crate) fn normalize(a: [f64; 3]) -> Option<[f64; 3]> {
+    let len2 = dot(a, a);
+    if !len2.is_finite() || len2 <= 1e-24 {
+        return None;
+    }
+    let len = len2.sqrt();
+    Some([a[0] / len, a[1] / len, a[2] / len])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn looking_north_has_east_on_the_right() {
+        let pose = CameraPose {
+            eye: [0.0, 2.0, 0.0],
+            target: [0.0, 2.0, -5.0],
+        };
+        let b = pose.basis().unwrap();
+        assert_eq!(b.forward, [0.0, 0.0, -1.0]);
+        assert_eq!(b.right, [1.0, 0.0, 0.0]);
+        assert_eq!(b.up, [0.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn looking_down_uses_north_as_up_and_degenerate_poses_have_no_basis() {
+        let down = CameraPose {
+            eye: [0.0, 100.0, 0.0],
+            target: [0.0, 0.0, 0.0],
+        };
+        let b = down.basis().unwrap();
+        assert_eq!(b.forward, [0.0, -1.0, 0.0]);
+        assert_eq!(b.up, [0.0, 0.0, -1.0]);
+        assert_eq!(b.right, [1.0, 0.0, 0.0]);
+        let nowhere = CameraPose {
+            eye: [1.0, 1.0, 1.0],
+            target: [1.0, 1.0, 1.0],
+        };
+        assert!(nowhere.basis().is_none());
+        let nan = CameraPose {
+            eye: [f64::NAN, 0.0, 0.0],
+            target: [0.0; 3],
+        };
+        assert!(nan.basis().is_none());
+    }
+}

@@ -1,0 +1,232 @@
+//! Decoded RGB texture → mip chain, sampled trilinearly with wrap = repeat.
+//!
+//! Level 0 keeps the texture's own sRGB bytes. Each further level halves width and height
+//! (rounding down, at least 1) and averages 2 × 2 texels in linear light, stored again as
+//! 8-bit sRGB through the fixed table. Sampling converts texels to linear through the
+//! 256-entry table and blends in linear.
+
+use image::RgbImage;
+
+use super::srgb::{Srgb, srgb};
+
+/// A texture with its mip levels, finest first.
+pub(crate) struct MipTexture {
+    levels: Vec<Level>,
+}
+
+struct Level {
+    width: u32,
+    height: u32,
+    /// sRGB bytes, RGB, row-major.
+    texels: Vec<u8>,
+}
+
+impl MipTexture {
+    /// The mip chain of `image` (an empty image samples as black).
+    pub(crate) fn new(image: &RgbImage) -> MipTexture {
+        let table = srgb();
+        let mut levels = vec![Level {
+            width: image.width().max(1),
+            height: image.height().max(1),
+            texels: if image.width() == 0 || image.height() == 0 {
+                vec![0; 3]
+            } else {
+                image.as_raw().clone()
+            },
+        }];
+        loop {
+            let last = levels.last().expect("level 0 exists");
+            if last.width == 1 && last.height == 1 {
+                break;
+            }
+            let next = last.halve(table);
+            levels.push(next);
+        }
+        MipTexture { levels }
+    }
+
+    /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), with the
+    /// mip level chosen from the uv derivatives per screen pixel:
+    /// `d = [du/dx, dv/dx, du/dy, dv/dy]`.
+    pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4]) -> [f32; 3] {
+        let table = srgb();
+        let (w, h) = (
+            f64::from(self.levels[0].width),
+            f64::from(self.levels[0].height),
+        );
+        let x2 = (d[0] * w) * (d[0] * w) + (d[1] * h) * (d[1] * h);
+        let y2 = (d[2] * w) * (d[2] * w) + (d[3] * h) * (d[3] * h);
+        // The level of detail: log2 of the longer footprint side in level-0 texels.
+        let lod = 0.5 * log2_approx(x2.max(y2));
+        let top = (self.levels.len() - 1) as f64;
+        if lod.is_nan() || lod <= 0.0 {
+            return self.levels[0].bilinear(u, v, table);
+        }
+        if lod >= top {
+            return self.levels[self.levels.len() - 1].bilinear(u, v, table);
+        }
+        let base = lod.floor();
+        let t = (lod - base) as f32;
+        let i = base as usize;
+        let a = self.levels[i].bilinear(u, v, table);
+        let b = self.levels[i + 1].bilinear(u, v, table);
+        [
+            a[0] + (b[0] - a[0]) * t,
+            a[1] + (b[1] - a[1]) * t,
+            a[2] + (b[2] - a[2]) * t,
+        ]
+    }
+
+    #[cfg(test)]
+    pub(crate) fn level_count(&self) -> usize {
+        self.levels.len()
+    }
+}
+
+impl Level {
+    fn halve(&self, table: &Srgb) -> Level {
+        let width = (self.width / 2).max(1);
+        let height = (self.height / 2).max(1);
+        let mut texels = Vec::with_capacity((width * height * 3) as usize);
+        for y in 0..height {
+            let y0 = (2 * y).min(self.height - 1);
+            let y1 = (2 * y + 1).min(self.height - 1);
+            for x in 0..width {
+                let x0 = (2 * x).min(self.width - 1);
+                let x1 = (2 * x + 1).min(self.width - 1);
+                for c in 0..3 {
+                    let sum = table.to_linear(self.texel(x0, y0, c))
+                        + table.to_linear(self.texel(x1, y0, c))
+                        + table.to_linear(self.texel(x0, y1, c))
+                        + table.to_linear(self.texel(x1, y1, c));
+                    texels.push(table.to_srgb8(sum * 0.25));
+                }
+            }
+        }
+        Level {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    #[inline]
+    fn texel(&self, x: u32, y: u32, c: usize) -> u8 {
+        self.texels[(y * self.width + x) as usize * 3 + c]
+    }
+
+    /// Bilinear sample at texel centres `+0.5`, wrapping at both edges.
+    #[inline]
+    fn bilinear(&self, u: f64, v: f64, table: &Srgb) -> [f32; 3] {
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        let tx = u * w as f64 - 0.5;
+        let ty = v * h as f64 - 0.5;
+        let (fx0, fy0) = (tx.floor(), ty.floor());
+        let (ax, ay) = ((tx - fx0) as f32, (ty - fy0) as f32);
+        // `as i64` saturates; rem_euclid then wraps into the texture.
+        let x0 = (fx0 as i64).rem_euclid(w);
+        let y0 = (fy0 as i64).rem_euclid(h);
+        let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
+        let y1 = if y0 + 1 == h { 0 } else { y0 + 1 };
+        let row0 = (y0 * w) as usize;
+        let row1 = (y1 * w) as usize;
+        let at = |row: usize, x: i64| -> [f32; 3] {
+            let i = (row + x as usize) * 3;
+            [
+                table.to_linear(self.texels[i]),
+                table.to_linear(self.texels[i + 1]),
+                table.to_linear(self.texels[i + 2]),
+            ]
+        };
+        let (p00, p10, p01, p11) = (at(row0, x0), at(row0, x1), at(row1, x0), at(row1, x1));
+        let mut out = [0f32; 3];
+        for c in 0..3 {
+            let top = p00[c] + (p10[c] - p00[c]) * ax;
+            let bottom = p01[c] + (p11[c] - p01[c]) * ax;
+            out[c] = top + (bottom - top) * ay;
+        }
+        out
+    }
+}
+
+/// log2 of a positive number from its exponent bits and a quadratic in the mantissa
+/// (exact at powers of two, continuous, within 0.03 elsewhere); −∞-like for 0 and below.
+pub(crate) fn log2_approx(x: f64) -> f64 {
+    if x.is_nan() || x <= 0.0 {
+        return -1.0e9;
+    }
+    if x.is_infinite() {
+        return 1.0e9;
+    }
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let mantissa = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let t = mantissa - 1.0;
+    exponent as f64 + t * (4.0 / 3.0 - t / 3.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use image::Rgb;
+
+    fn checker(size: u32, cell: u32) -> RgbImage {
+        RgbImage::from_fn(size, size, |x, y| {
+            if (x / cell + y / cell) % 2 == 0 {
+                Rgb([255, 255, 255])
+            } else {
+                Rgb([0, 0, 0])
+            }
+        })
+    }
+
+    #[test]
+    fn log2_is_exact_at_powers_of_two_and_close_between() {
+        for (x, expected) in [(1.0, 0.0), (2.0, 1.0), (0.25, -2.0), (1024.0, 10.0)] {
+            assert_eq!(log2_approx(x), expected);
+        }
+        for x in [1.5f64, 3.0, 0.7, 100.0] {
+            assert!((log2_approx(x) - x.log2()).abs() < 0.03, "{x}");
+        }
+        assert!(log2_approx(0.0) < -1.0e8);
+    }
+
+    #[test]
+    fn chain_halves_down_to_one_texel_and_averages_in_linear() {
+        let t = MipTexture::new(&checker(4, 1));
+        assert_eq!(t.level_count(), 3);
+        // Half white, half black in linear light is sRGB 188, not 128.
+        assert_eq!(t.levels[2].texels, vec![188, 188, 188]);
+        let odd = MipTexture::new(&RgbImage::new(5, 3));
+        let sizes: Vec<_> = odd.levels.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, vec![(5, 3), (2, 1), (1, 1)]);
+    }
+
+    #[test]
+    fn magnified_samples_hit_texels_and_repeat() {
+        let t = MipTexture::new(&checker(2, 1));
+        let still = [0.0; 4];
+        // Texel centres of the 2 × 2 checker, also one repeat away and below zero.
+        for (u, v, white) in [
+            (0.25, 0.25, true),
+            (0.75, 0.25, false),
+            (1.25, 0.25, true),
+            (-0.25, 0.25, false),
+            (0.75, -1.25, true),
+        ] {
+            let c = t.sample(u, v, still);
+            assert_eq!(c, if white { [1.0; 3] } else { [0.0; 3] }, "({u}, {v})");
+        }
+    }
+
+    #[test]
+    fn large_footprints_read_coarse_levels() {
+        let t = MipTexture::new(&checker(64, 1));
+        // One screen pixel spans 64 texels: the 1 × 1 level, grey.
+        let c = t.sample(0.3, 0.6, [1.0, 0.0, 0.0, 1.0]);
+        assert!((c[0] - srgb().to_linear(188)).abs() < 1e-6, "{c:?}");
+        // Half a texel per pixel: level 0, a pure texel at its centre.
+        let c = t.sample(0.5 / 64.0, 0.5 / 64.0, [0.5 / 64.0, 0.0, 0.0, 0.5 / 64.0]);
+        assert_eq!(c, [1.0; 3]);
+    }
+}

@@ -1,0 +1,237 @@
+//! Render stage: prepared scene + camera pose + intrinsics + lighting → [`Frame`] (RGB,
+//! instance ids, depth), on the CPU, deterministically.
+//!
+//! # Conventions
+//!
+//! - **World → camera**: right-handed look-at. `forward = normalize(target − eye)`,
+//!   `right = normalize(forward × up)` with `up = +y` (a camera looking straight up or down
+//!   takes north, −z, as its up), `true up = right × forward`. For `d = p − eye`:
+//!   `x_pixel = cx + fx · (right·d)/(forward·d)`, `y_pixel = cy − fy · (up·d)/(forward·d)`
+//!   (y down in the image). Pixel `(i, j)` covers `[i, i+1) × [j, j+1)`; it is sampled at
+//!   its centre `(i + 0.5, j + 0.5)`.
+//! - **Depth** is `forward·d` in metres (not the distance to the eye). The depth image holds
+//!   `round(depth · 1000)` millimetres in a 16-bit PNG, clamped to 1–65535; 0 means sky.
+//! - **Instance ids**: object index in [`crate::model::Scene::objects`] + 1, 16-bit; 0 = sky.
+//! - **Colour**: `albedo · (ambient + sun_colour · max(0, n·sun) + Σ lights colour ·
+//!   (1 − (d/r)²)² · max(0, n·l)) + emissive · emission`, plus a glow on lit windows, in
+//!   linear light; `albedo = base colour · texture`. Written as 8-bit sRGB through a fixed
+//!   table. (The lamp term is multiplied by the albedo like the sun: a red wall under a
+//!   white lamp looks red.)
+//!
+//! # Pipeline of one frame
+//!
+//! 1. Objects whose bounding box is outside the view frustum are skipped.
+//! 2. Triangles facing away are culled (counter-clockwise is the front; where vertex
+//!    normals contradict the winding, [`prepare`] turns the triangle to follow them).
+//! 3. Triangles are clipped against the near plane (Sutherland–Hodgman; and, rarely,
+//!    against a guard band 4096 px beyond the image edges), projected, and snapped to
+//!    1/256 px for exact integer edge functions with a top-left fill rule.
+//! 4. They are binned into 32 × 32-pixel tiles in scene order. Tiles render in parallel
+//!    (rayon), each owning its pixels: depth test on interpolated 1/w, then each visible
+//!    sample is shaded once, with perspective-correct uv and trilinear mipmapped texture
+//!    sampling whose level comes from the per-pixel screen-space derivatives of u/w, v/w and
+//!    1/w. Textures repeat.
+//! 5. With supersampling `s`, each pixel holds `s × s` samples: colour is their mean,
+//!    instance id and depth come from the sample nearest the centre, so ids stay exact.
+//!
+//! Floating-point work uses only + − × ÷, sqrt, floor/ceil/round, min/max: the bytes are
+//! the same on every machine and for any number of threads.
+
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
+mod camera_pose;
+mod frame;
+mod intrinsics;
+mod lighting;
+mod lit_windows;
+mod mip_texture;
+mod prepared_scene;
+mod render_error;
+mod screen_triangle;
+mod srgb;
+mod tile;
+mod view;
+
+#[cfg(test)]
+mod tests;
+
+pub use camera_pose::CameraPose;
+pub use frame::{Frame, FramePngs};
+pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
+pub use lighting::{Light, Lighting};
+pub use lit_windows::LitWindows;
+pub use prepared_scene::{PreparedScene, prepare};
+pub use render_error::RenderError;
+
+use image::{ImageBuffer, Luma, Rgb, RgbImage};
+use rayon::prelude::*;
+
+use lit_windows::WindowLookup;
+use screen_triangle::ScreenTri;
+use tile::{FrameContext, FrameLight, TILE, TileOut};
+use view::View;
+
+/// Largest supersampling factor; larger requests are clamped to it.
+pub const MAX_SUPERSAMPLE: u32 = 4;
+
+/// Renders one frame. `supersample` 1 = none, 2 = 2×2 per pixel (colour averaged; instance
+/// and depth from the sample nearest the pixel centre, so ids stay exact); 0 counts as 1,
+/// more than [`MAX_SUPERSAMPLE`] as that. Unusable intrinsics (non-positive focal length
+/// or near distance, far ≤ near) or a pose whose eye is its target give a frame of sky.
+pub fn render(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    lighting: &Lighting,
+    supersample: u32,
+) -> Frame {
+    let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
+    let (width, height) = (intrinsics.width, intrinsics.height);
+    let Some(view) = View::new(pose, intrinsics, samples) else {
+        return sky_frame(width, height, lighting);
+    };
+
+    let per_object: Vec<Vec<ScreenTri>> = scene
+        .objects
+        .par_iter()
+        .map(|object| {
+            let mut out = Vec::new();
+            if view.may_see_box(object.min, object.max) {
+                for i in object.first..object.end {
+                    screen_triangle::setup(&scene.triangles[i], i as u32, &view, &mut out);
+                }
+            }
+            out
+        })
+        .collect();
+    let tris: Vec<ScreenTri> = per_object.into_iter().flatten().collect();
+
+    let tiles_x = width.div_ceil(TILE);
+    let tiles_y = height.div_ceil(TILE);
+    let bins = bin(&tris, tiles_x, tiles_y, TILE * samples);
+    let lights = frame_lights(lighting, &view);
+    let windows = lighting
+        .windows
+        .as_ref()
+        .map(|w| WindowLookup::new(w, scene.textures.len()));
+    let ctx = FrameContext {
+        scene,
+        view: &view,
+        lighting,
+        tris: &tris,
+        bins: &bins,
+        lights: &lights,
+        windows: windows.as_ref(),
+        samples,
+        width,
+        height,
+        tiles_x,
+    };
+    let tiles: Vec<TileOut> = (0..bins.len())
+        .into_par_iter()
+        .map(|t| tile::render_tile(&ctx, t))
+        .collect();
+    assemble(width, height, &tiles)
+}
+
+/// Triangle indices per tile, in scene order.
+fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<u32>> {
+    let mut bins = vec![Vec::new(); (tiles_x * tiles_y) as usize];
+    for (i, t) in tris.iter().enumerate() {
+        let [x0, y0, x1, y1] = t.bounds;
+        for ty in y0 / tile_px..=(y1 - 1) / tile_px {
+            for tx in x0 / tile_px..=(x1 - 1) / tile_px {
+                bins[(ty * tiles_x + tx) as usize].push(i as u32);
+            }
+        }
+    }
+    bins
+}
+
+/// The frame's point lights with the internal-pixel rectangles they may light; lights
+/// wholly off screen or behind the camera are dropped.
+fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
+    let (w, h) = (view.width, view.height);
+    lighting
+        .lights
+        .iter()
+        .filter_map(|l| {
+            let r = f64::from(l.range);
+            let position = l.position.map(f64::from);
+            if !r.is_finite() || r <= 0.0 || !position.iter().all(|v| v.is_finite()) {
+                return None;
+            }
+            let c = view.to_camera(position);
+            if c[2] + r < view.near {
+                return None;
+            }
+            let rect = if c[2] - r <= view.near {
+                [0, 0, w, h]
+            } else {
+                // The sphere lies in the box c ± r, with depth > 0: its projection lies
+                // between the extreme projections of the box's corners.
+                let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+                for dx in [-r, r] {
+                    for dy in [-r, r] {
+                        for dz in [-r, r] {
+                            let [x, y] = view.project([c[0] + dx, c[1] + dy, c[2] + dz]);
+                            (x0, x1) = (x0.min(x), x1.max(x));
+                            (y0, y1) = (y0.min(y), y1.max(y));
+                        }
+                    }
+                }
+                let clamp = |v: f64, max: u32| v.clamp(0.0, f64::from(max)) as u32;
+                [
+                    clamp(x0.floor(), w),
+                    clamp(y0.floor(), h),
+                    clamp(x1.ceil() + 1.0, w),
+                    clamp(y1.ceil() + 1.0, h),
+                ]
+            };
+            (rect[0] < rect[2] && rect[1] < rect[3]).then_some(FrameLight {
+                position,
+                colour: l.colour,
+                range2: r * r,
+                rect,
+            })
+        })
+        .collect()
+}
+
+fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
+    let mut rgb = RgbImage::new(width, height);
+    let mut instance = ImageBuffer::new(width, height);
+    let mut depth_mm = ImageBuffer::new(width, height);
+    for t in tiles {
+        let tw = t.rect[2] - t.rect[0];
+        for (k, (x, y)) in (t.rect[1]..t.rect[3])
+            .flat_map(|y| (t.rect[0]..t.rect[2]).map(move |x| (x, y)))
+            .enumerate()
+        {
+            debug_assert_eq!(k, ((y - t.rect[1]) * tw + (x - t.rect[0])) as usize);
+            rgb.put_pixel(
+                x,
+                y,
+                Rgb([t.rgb[3 * k], t.rgb[3 * k + 1], t.rgb[3 * k + 2]]),
+            );
+            instance.put_pixel(x, y, Luma([t.instance[k]]));
+            depth_mm.put_pixel(x, y, Luma([t.depth_mm[k]]));
+        }
+    }
+    Frame {
+        rgb,
+        instance,
+        depth_mm,
+    }
+}
+
+fn sky_frame(width: u32, height: u32, lighting: &Lighting) -> Frame {
+    let table = srgb::srgb();
+    let sky = Rgb(lighting.sky.map(|c| table.to_srgb8(c)));
+    Frame {
+        rgb: RgbImage::from_pixel(width, height, sky),
+        instance: ImageBuffer::new(width, height),
+        depth_mm: ImageBuffer::new(width, height),
+    }
+}

@@ -1,0 +1,176 @@
+//! Scene → [`PreparedScene`]: decoded mip-mapped textures, flattened triangles with their
+//! instance ids and face normals, and per-object bounding boxes for frustum culling.
+
+use rayon::prelude::*;
+
+use super::RenderError;
+use super::camera_pose::{cross, dot, normalize};
+use super::mip_texture::MipTexture;
+use crate::model::Scene;
+
+/// A scene ready to render many frames: decoded textures with mip chains, flattened
+/// triangles, per-object instance ids (object index + 1; 0 = sky) and bounding boxes.
+pub struct PreparedScene {
+    pub(crate) textures: Vec<MipTexture>,
+    pub(crate) materials: Vec<ShadeMaterial>,
+    pub(crate) objects: Vec<ObjectBounds>,
+    pub(crate) triangles: Vec<Triangle>,
+}
+
+/// What shading needs of a material.
+pub(crate) struct ShadeMaterial {
+    pub colour: [f32; 3],
+    pub texture: Option<u32>,
+    pub emissive: [f32; 3],
+}
+
+/// An object's box and its run of triangles.
+pub(crate) struct ObjectBounds {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+    pub first: usize,
+    pub end: usize,
+}
+
+/// One triangle, wound counter-clockwise around `normal` (its front).
+pub(crate) struct Triangle {
+    pub p: [[f32; 3]; 3],
+    pub uv: [[f32; 2]; 3],
+    /// Unit face normal, pointing to the front.
+    pub normal: [f32; 3],
+    pub material: u32,
+    pub instance: u16,
+}
+
+impl PreparedScene {
+    /// Number of objects (instance ids run 1..=this).
+    pub fn object_count(&self) -> usize {
+        self.objects.len()
+    }
+
+    /// Number of drawable triangles (degenerate and non-finite ones are dropped).
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+/// Decodes textures (in parallel) and flattens the meshes.
+///
+/// The winding decides the front face, except where a mesh's vertex normals disagree
+/// with it: then the normals win and the triangle is turned round, so a wall wound the
+/// wrong way still shows its outside. Degenerate triangles and those with non-finite
+/// coordinates are dropped; missing uvs read as (0, 0).
+pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
+    if scene.objects.len() > usize::from(u16::MAX) {
+        return Err(RenderError::TooManyObjects {
+            count: scene.objects.len(),
+        });
+    }
+    let mut materials = Vec::with_capacity(scene.materials.len());
+    for m in &scene.materials {
+        if let Some(t) = m.texture
+            && t as usize >= scene.textures.len()
+        {
+            return Err(RenderError::MissingTexture {
+                material: m.name.clone(),
+                texture: t,
+                count: scene.textures.len(),
+            });
+        }
+        materials.push(ShadeMaterial {
+            colour: m.colour,
+            texture: m.texture,
+            emissive: m.emissive,
+        });
+    }
+    let textures = scene
+        .textures
+        .par_iter()
+        .map(|t| {
+            t.decode()
+                .map(|image| MipTexture::new(&image))
+                .map_err(|source| RenderError::Texture {
+                    name: t.name.clone(),
+                    source,
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let mut objects = Vec::with_capacity(scene.objects.len());
+    let mut triangles = Vec::with_capacity(scene.triangle_count());
+    for (index, object) in scene.objects.iter().enumerate() {
+        let instance = (index + 1) as u16;
+        let first = triangles.len();
+        for mesh in &object.meshes {
+            if mesh.material as usize >= materials.len() {
+                return Err(RenderError::MissingMaterial {
+                    object: object.name.clone(),
+                    material: mesh.material,
+                    count: materials.len(),
+                });
+            }
+            for tri in mesh.indices.chunks_exact(3) {
+                let mut ids = [tri[0], tri[1], tri[2]];
+                if let Some(&bad) = ids.iter().find(|&&i| i as usize >= mesh.positions.len()) {
+                    return Err(RenderError::BadIndex {
+                        object: object.name.clone(),
+                        index: bad,
+                        count: mesh.positions.len(),
+                    });
+                }
+                let pos = |i: u32| mesh.positions[i as usize].map(f64::from);
+                if !ids.iter().all(|&i| pos(i).iter().all(|v| v.is_finite())) {
+                    continue;
+                }
+                let (a, b, c) = (pos(ids[0]), pos(ids[1]), pos(ids[2]));
+                let face = cross(
+                    [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                    [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+                );
+                let Some(mut normal) = normalize(face) else {
+                    continue;
+                };
+                if ids.iter().all(|&i| (i as usize) < mesh.normals.len()) {
+                    let n = ids.iter().fold([0.0; 3], |s, &i| {
+                        let n = mesh.normals[i as usize].map(f64::from);
+                        [s[0] + n[0], s[1] + n[1], s[2] + n[2]]
+                    });
+                    if dot(n, normal) < 0.0 {
+                        ids.swap(1, 2);
+                        normal = normal.map(|v| -v);
+                    }
+                }
+                let uv = |i: u32| mesh.uvs.get(i as usize).copied().unwrap_or([0.0, 0.0]);
+                triangles.push(Triangle {
+                    p: ids.map(|i| mesh.positions[i as usize]),
+                    uv: ids.map(uv),
+                    normal: normal.map(|v| v as f32),
+                    material: mesh.material,
+                    instance,
+                });
+            }
+        }
+        let mut min = [f64::INFINITY; 3];
+        let mut max = [f64::NEG_INFINITY; 3];
+        for t in &triangles[first..] {
+            for p in t.p {
+                for k in 0..3 {
+                    min[k] = min[k].min(f64::from(p[k]));
+                    max[k] = max[k].max(f64::from(p[k]));
+                }
+            }
+        }
+        objects.push(ObjectBounds {
+            min,
+            max,
+            first,
+            end: triangles.len(),
+        });
+    }
+    Ok(PreparedScene {
+        textures,
+        materials,
+        objects,
+        triangles,
+    })
+}

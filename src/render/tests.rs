@@ -1,0 +1,833 @@
+//! Whole-frame tests on small hand-built scenes.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use image::{Rgb, RgbImage};
+
+use super::prepared_scene::Triangle;
+use super::screen_triangle::{self, ScreenTri};
+use super::view::View;
+use super::*;
+use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
+
+fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
+    Material {
+        name: format!("m{}", texture.map_or(-1, i64::from)),
+        colour,
+        texture,
+        emissive,
+    }
+}
+
+fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A quad through corners `c` (in order around it), wound counter-clockwise around
+/// `normal`, with vertex normals `normal`.
+fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) -> Mesh {
+    let g = cross(sub(c[1], c[0]), sub(c[2], c[0]));
+    let indices = if dot(g, normal) >= 0.0 {
+        vec![0, 1, 2, 0, 2, 3]
+    } else {
+        vec![0, 2, 1, 0, 3, 2]
+    };
+    Mesh {
+        material,
+        positions: c.to_vec(),
+        normals: vec![normal; 4],
+        uvs: uv.to_vec(),
+        indices,
+    }
+}
+
+const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+
+/// A closed box, every face wound counter-clockwise seen from outside.
+fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
+    let [x0, y0, z0] = lo;
+    let [x1, y1, z1] = hi;
+    let faces = [
+        (
+            [[x1, y0, z0], [x1, y1, z0], [x1, y1, z1], [x1, y0, z1]],
+            [1.0, 0.0, 0.0],
+        ),
+        (
+            [[x0, y0, z0], [x0, y1, z0], [x0, y1, z1], [x0, y0, z1]],
+            [-1.0, 0.0, 0.0],
+        ),
+        (
+            [[x0, y1, z0], [x1, y1, z0], [x1, y1, z1], [x0, y1, z1]],
+            [0.0, 1.0, 0.0],
+        ),
+        (
+            [[x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1]],
+            [0.0, -1.0, 0.0],
+        ),
+        (
+            [[x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]],
+            [0.0, 0.0, 1.0],
+        ),
+        (
+            [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0]],
+            [0.0, 0.0, -1.0],
+        ),
+    ];
+    faces
+        .into_iter()
+        .map(|(c, n)| quad(material, c, UNIT_UV, n))
+        .collect()
+}
+
+fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
+    SceneObject {
+        name: name.into(),
+        class: "test".into(),
+        meshes,
+    }
+}
+
+fn checker_texture(size: u32, cell: u32) -> Texture {
+    let image = RgbImage::from_fn(size, size, |x, y| {
+        if (x / cell + y / cell) % 2 == 0 {
+            Rgb([255, 255, 255])
+        } else {
+            Rgb([0, 0, 0])
+        }
+    });
+    Texture::from_rgb(format!("checker_{size}_{cell}"), &image)
+}
+
+fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
+    CameraPose { eye, target }
+}
+
+/// Colour = albedo: black sky, white ambient, no sun, no emission.
+fn flat() -> Lighting {
+    Lighting {
+        sky: [0.0; 3],
+        ambient: [1.0; 3],
+        sun_direction: [0.0, 1.0, 0.0],
+        sun_colour: [0.0; 3],
+        lights: Vec::new(),
+        emission: 0.0,
+        windows: None,
+    }
+}
+
+fn count(frame: &Frame, id: u16) -> usize {
+    frame.instance.pixels().filter(|p| p.0[0] == id).count()
+}
+
+// ---- coverage and the fill rule -------------------------------------------------------
+
+/// A 64 × 64 view looking at −z from the origin, 16 px per metre at depth 1.
+fn coverage_view() -> View {
+    let k = Intrinsics {
+        width: 64,
+        height: 64,
+        fx: 16.0,
+        fy: 16.0,
+        cx: 32.0,
+        cy: 32.0,
+        near: 0.1,
+        far: 100.0,
+    };
+    View::new(&pose([0.0; 3], [0.0, 0.0, -1.0]), &k, 1).unwrap()
+}
+
+/// Coverage count per pixel of triangles given in pixel coordinates on the plane z = −1.
+fn coverage(tris: &[[[f64; 2]; 3]]) -> Vec<u8> {
+    let view = coverage_view();
+    let mut screen: Vec<ScreenTri> = Vec::new();
+    for t in tris {
+        let mut p = t.map(|[x, y]| [((x - 32.0) / 16.0) as f32, ((32.0 - y) / 16.0) as f32, -1.0]);
+        if cross(sub(p[1], p[0]), sub(p[2], p[0]))[2] < 0.0 {
+            p.swap(1, 2);
+        }
+        let tri = Triangle {
+            p,
+            uv: [[0.0; 2]; 3],
+            normal: [0.0, 0.0, 1.0],
+            material: 0,
+            instance: 1,
+        };
+        screen_triangle::setup(&tri, 0, &view, &mut screen);
+    }
+    let mut counts = vec![0u8; 64 * 64];
+    for s in &screen {
+        s.rasterize([0, 0, 64, 64], |x, y, _| counts[(y * 64 + x) as usize] += 1);
+    }
+    counts
+}
+
+fn fan(centre: [f64; 2], ring: &[[f64; 2]]) -> Vec<[[f64; 2]; 3]> {
+    (0..ring.len())
+        .map(|i| [centre, ring[i], ring[(i + 1) % ring.len()]])
+        .collect()
+}
+
+#[test]
+fn shared_edges_cover_every_pixel_exactly_once() {
+    // Square with edges through pixel centres (16.5 and 48.5): the top-left rule takes
+    // columns and rows 16–47.
+    let (a, b, c, d) = ([16.5, 16.5], [48.5, 16.5], [48.5, 48.5], [16.5, 48.5]);
+    let octagon = [
+        [20.0, 10.5],
+        [40.5, 10.5],
+        [55.5, 25.0],
+        [55.5, 40.0],
+        [40.0, 55.5],
+        [20.25, 55.5],
+        [8.5, 40.0],
+        [8.5, 25.5],
+    ];
+    type Tris = Vec<[[f64; 2]; 3]>;
+    let cases: Vec<(&str, Tris, Tris)> = vec![
+        (
+            "square, both diagonals",
+            vec![[a, b, c], [a, c, d]],
+            vec![[a, b, d], [b, c, d]],
+        ),
+        (
+            "square, fan from its centre on a pixel centre",
+            fan([32.5, 32.5], &[a, b, c, d]),
+            vec![[a, b, c], [a, c, d]],
+        ),
+        (
+            "octagon, fans from two centres",
+            fan([32.5, 32.5], &octagon),
+            fan([30.3, 36.7], &octagon),
+        ),
+    ];
+    for (name, first, second) in cases {
+        let one = coverage(&first);
+        let two = coverage(&second);
+        assert!(one.iter().all(|&c| c <= 1), "{name}: a pixel covered twice");
+        assert!(
+            two.iter().all(|&c| c <= 1),
+            "{name}: a pixel covered twice (2nd)"
+        );
+        assert_eq!(one, two, "{name}: triangulations disagree (a gap)");
+        assert!(one.iter().filter(|&&c| c == 1).count() > 500, "{name}");
+    }
+    let square = coverage(&[[a, b, c], [a, c, d]]);
+    for y in 0..64 {
+        for x in 0..64 {
+            let inside = (16..48).contains(&x) && (16..48).contains(&y);
+            assert_eq!(square[y * 64 + x], u8::from(inside), "({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn a_quad_in_front_of_the_camera_covers_the_expected_pixels() {
+    // Two triangles as two objects; together exactly the 32 × 32 pixels of the square.
+    let (a, b, c, d) = (
+        [-31.0 / 32.0, 31.0 / 32.0, -1.0],
+        [33.0 / 32.0, 31.0 / 32.0, -1.0],
+        [33.0 / 32.0, -33.0 / 32.0, -1.0],
+        [-31.0 / 32.0, -33.0 / 32.0, -1.0],
+    );
+    let tri = |p: [[f32; 3]; 3]| Mesh {
+        material: 0,
+        positions: p.to_vec(),
+        normals: vec![[0.0, 0.0, 1.0]; 3],
+        uvs: Vec::new(),
+        indices: vec![0, 1, 2],
+    };
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([1.0; 3], None, [0.0; 3])],
+        objects: vec![
+            object("upper", vec![tri([a, d, b])]),
+            object("lower", vec![tri([b, d, c])]),
+        ],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = coverage_view_intrinsics();
+    let frame = render(&prepared, &pose([0.0; 3], [0.0, 0.0, -1.0]), &k, &flat(), 1);
+    for (x, y, p) in frame.instance.enumerate_pixels() {
+        let inside = (16..48).contains(&x) && (16..48).contains(&y);
+        assert_eq!(p.0[0] != 0, inside, "({x}, {y})");
+        if inside {
+            // The diagonal runs through the centres of pixels with x + y = 64; they go to
+            // the triangle for which it is a top-left edge: the lower one.
+            let upper = x + y < 64;
+            assert_eq!(p.0[0], if upper { 1 } else { 2 }, "({x}, {y})");
+            assert_eq!(frame.depth_mm.get_pixel(x, y).0[0], 1000);
+            assert_eq!(frame.rgb.get_pixel(x, y).0, [255; 3]);
+        } else {
+            assert_eq!(frame.rgb.get_pixel(x, y).0, [0; 3]);
+        }
+    }
+    assert_eq!(count(&frame, 1) + count(&frame, 2), 32 * 32);
+}
+
+fn coverage_view_intrinsics() -> Intrinsics {
+    Intrinsics {
+        width: 64,
+        height: 64,
+        fx: 16.0,
+        fy: 16.0,
+        cx: 32.0,
+        cy: 32.0,
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
+// ---- depth, occlusion, back faces ------------------------------------------------------
+
+fn wall(z: f32, half: f32) -> Mesh {
+    quad(
+        0,
+        [
+            [-half, -half, z],
+            [half, -half, z],
+            [half, half, z],
+            [-half, half, z],
+        ],
+        UNIT_UV,
+        [0.0, 0.0, 1.0],
+    )
+}
+
+#[test]
+fn depth_of_a_wall_is_its_distance_in_millimetres() {
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects: vec![object("wall", vec![wall(-10.0, 100.0)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(64, 48, 1.0);
+    let frame = render(&prepared, &pose([0.0; 3], [0.0, 0.0, -1.0]), &k, &flat(), 1);
+    // A wall square to the view axis: the same depth in every pixel, corners included.
+    assert!(frame.depth_mm.pixels().all(|p| p.0[0] == 10_000));
+    assert!(frame.instance.pixels().all(|p| p.0[0] == 1));
+    // Seen from 2.5 m further back and off to the side, still forward·d.
+    let frame = render(
+        &prepared,
+        &pose([3.0, 1.0, 2.5], [3.0, 1.0, 0.0]),
+        &k,
+        &flat(),
+        1,
+    );
+    assert!(frame.depth_mm.pixels().all(|p| p.0[0] == 12_500));
+}
+
+#[test]
+fn the_nearer_box_owns_the_pixels_where_boxes_overlap() {
+    let near_box = cuboid(0, [-1.0, -1.0, -6.0], [1.0, 1.0, -5.0]);
+    let far_box = cuboid(0, [0.0, -2.0, -12.0], [3.0, 2.0, -10.0]);
+    let k = Intrinsics::from_fov(64, 48, 0.5);
+    let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
+    let alone = |meshes: Vec<Mesh>| {
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![material([0.5; 3], None, [0.0; 3])],
+            objects: vec![object("box", meshes)],
+        };
+        render(&prepare(&scene).unwrap(), &eye, &k, &flat(), 1)
+    };
+    let near_alone = alone(near_box.clone());
+    let far_alone = alone(far_box.clone());
+    for near_first in [true, false] {
+        let objects = if near_first {
+            vec![
+                object("near", near_box.clone()),
+                object("far", far_box.clone()),
+            ]
+        } else {
+            vec![
+                object("far", far_box.clone()),
+                object("near", near_box.clone()),
+            ]
+        };
+        let (near_id, far_id) = if near_first { (1, 2) } else { (2, 1) };
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![material([0.5; 3], None, [0.0; 3])],
+            objects,
+        };
+        let frame = render(&prepare(&scene).unwrap(), &eye, &k, &flat(), 1);
+        let mut overlap = 0;
+        for (x, y, p) in frame.instance.enumerate_pixels() {
+            let n = near_alone.instance.get_pixel(x, y).0[0] != 0;
+            let f = far_alone.instance.get_pixel(x, y).0[0] != 0;
+            let expected = if n {
+                near_id
+            } else if f {
+                far_id
+            } else {
+                0
+            };
+            assert_eq!(p.0[0], expected, "({x}, {y}), near first: {near_first}");
+            if n {
+                assert_eq!(frame.depth_mm.get_pixel(x, y).0[0], 5000);
+            }
+            overlap += usize::from(n && f);
+        }
+        assert!(overlap > 20, "the boxes overlap in {overlap} pixels");
+    }
+}
+
+#[test]
+fn closed_boxes_show_from_every_side_and_single_walls_only_from_the_front() {
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects: vec![object("box", cuboid(0, [-1.0; 3], [1.0; 3]))],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(32, 32, 1.0);
+    for eye in [
+        [5.0, 0.0, 0.0],
+        [-5.0, 0.0, 0.0],
+        [0.0, 5.0, 0.0],
+        [0.0, -5.0, 0.0],
+        [0.0, 0.0, 5.0],
+        [0.0, 0.0, -5.0],
+        [3.0, 4.0, -2.0],
+    ] {
+        let frame = render(&prepared, &pose(eye, [0.0; 3]), &k, &flat(), 1);
+        assert_eq!(frame.instance.get_pixel(16, 16).0[0], 1, "from {eye:?}");
+        assert!(count(&frame, 1) > 50, "from {eye:?}");
+    }
+
+    // One wall facing +z; then the same wall wound the wrong way round but with outward
+    // normals: the normals decide, so it still shows from the front.
+    let mut reversed = wall(0.0, 1.0);
+    reversed.indices = vec![0, 2, 1, 0, 3, 2];
+    for (name, mesh) in [("wound right", wall(0.0, 1.0)), ("wound wrong", reversed)] {
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![material([0.5; 3], None, [0.0; 3])],
+            objects: vec![object("wall", vec![mesh])],
+        };
+        let prepared = prepare(&scene).unwrap();
+        let front = render(&prepared, &pose([0.0, 0.0, 5.0], [0.0; 3]), &k, &flat(), 1);
+        let back = render(&prepared, &pose([0.0, 0.0, -5.0], [0.0; 3]), &k, &flat(), 1);
+        // ±3.2 px around the centre.
+        assert!(count(&front, 1) >= 36, "{name}: front");
+        assert_eq!(count(&back, 1), 0, "{name}: back");
+    }
+}
+
+// ---- near-plane clipping and perspective ----------------------------------------------
+
+#[test]
+fn a_ground_plane_reaching_behind_the_camera_clips_cleanly() {
+    let ground = quad(
+        0,
+        [
+            [-100.0, 0.0, -100.0],
+            [100.0, 0.0, -100.0],
+            [100.0, 0.0, 100.0],
+            [-100.0, 0.0, 100.0],
+        ],
+        UNIT_UV,
+        [0.0, 1.0, 0.0],
+    );
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects: vec![object("ground", vec![ground])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    // fy = 24, cy = 24: the horizon is the line y = 24.
+    let k = Intrinsics::from_fov(64, 48, 1.0);
+    let frame = render(
+        &prepared,
+        &pose([0.0, 1.5, 0.0], [0.0, 1.5, -10.0]),
+        &k,
+        &flat(),
+        1,
+    );
+    for (x, y, p) in frame.instance.enumerate_pixels() {
+        // The far edge (100 m) is at y = 24.36: rows 0–23 are sky, rows 24–47 all ground.
+        assert_eq!(p.0[0], u16::from(y >= 24), "({x}, {y})");
+        if y >= 24 {
+            let depth = 1.5 * 24.0 / (f64::from(y) + 0.5 - 24.0);
+            let mm = f64::from(frame.depth_mm.get_pixel(x, y).0[0]);
+            let expected = (depth * 1000.0).min(65535.0);
+            assert!((mm - expected).abs() <= 1.0, "({x}, {y}): {mm} vs {depth}");
+        }
+    }
+}
+
+#[test]
+fn a_checker_floor_is_textured_perspective_correctly() {
+    // 4 m per texture repeat, 2 m per checker cell.
+    let floor = quad(
+        0,
+        [
+            [-60.0, 0.0, -100.0],
+            [60.0, 0.0, -100.0],
+            [60.0, 0.0, 20.0],
+            [-60.0, 0.0, 20.0],
+        ],
+        [[-15.0, -25.0], [15.0, -25.0], [15.0, 5.0], [-15.0, 5.0]],
+        [0.0, 1.0, 0.0],
+    );
+    let scene = Scene {
+        textures: vec![checker_texture(64, 32)],
+        materials: vec![material([1.0; 3], Some(0), [0.0; 3])],
+        objects: vec![object("floor", vec![floor])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics {
+        width: 200,
+        height: 150,
+        fx: 100.0,
+        fy: 100.0,
+        cx: 100.0,
+        cy: 75.0,
+        near: 0.1,
+        far: 1000.0,
+    };
+    let frame = render(
+        &prepared,
+        &pose([0.0, 2.0, 0.0], [0.0, 2.0, -1.0]),
+        &k,
+        &flat(),
+        1,
+    );
+    let mut checked = 0;
+    for py in 76..150u32 {
+        let t = 2.0 * 100.0 / (f64::from(py) + 0.5 - 75.0);
+        if t > 6.0 {
+            continue;
+        }
+        for px in 0..200u32 {
+            let x = t * (f64::from(px) + 0.5 - 100.0) / 100.0;
+            let z = -t;
+            let margin = |v: f64| {
+                let f = v / 2.0 - (v / 2.0).floor();
+                2.0 * f.min(1.0 - f)
+            };
+            if margin(x) < 0.6 || margin(z) < 0.6 {
+                continue;
+            }
+            let white = ((x / 2.0).floor() + (z / 2.0).floor()).rem_euclid(2.0) == 0.0;
+            let expected = if white { [255; 3] } else { [0; 3] };
+            assert_eq!(
+                frame.rgb.get_pixel(px, py).0,
+                expected,
+                "({px}, {py}) at x {x:.2}, z {z:.2}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "only {checked} pixels checked");
+}
+
+// ---- determinism and supersampling ------------------------------------------------------
+
+fn street_scene() -> Scene {
+    let ground = quad(
+        0,
+        [
+            [-200.0, 0.0, -200.0],
+            [200.0, 0.0, -200.0],
+            [200.0, 0.0, 200.0],
+            [-200.0, 0.0, 200.0],
+        ],
+        [[-50.0, -50.0], [50.0, -50.0], [50.0, 50.0], [-50.0, 50.0]],
+        [0.0, 1.0, 0.0],
+    );
+    let mut objects = vec![object("ground", vec![ground])];
+    for i in 0..10 {
+        let x = -30.0 + 7.0 * i as f32;
+        let z = -15.0 - 3.0 * (i % 3) as f32;
+        objects.push(object(
+            &format!("building_{i}"),
+            cuboid(1 + (i % 2), [x, 0.0, z - 5.0], [x + 5.0, 6.0 + i as f32, z]),
+        ));
+    }
+    objects.push(object(
+        "lamp",
+        cuboid(3, [2.0, 4.0, -8.0], [2.4, 4.3, -7.6]),
+    ));
+    Scene {
+        textures: vec![checker_texture(16, 2), checker_texture(64, 8)],
+        materials: vec![
+            material([0.4, 0.4, 0.45], Some(0), [0.0; 3]),
+            material([0.9, 0.8, 0.7], Some(1), [0.0; 3]),
+            material([0.6, 0.7, 0.9], Some(0), [0.0; 3]),
+            material([0.1; 3], None, [4.0, 3.5, 2.5]),
+        ],
+        objects,
+    }
+}
+
+fn street_night() -> Lighting {
+    Lighting::night(
+        vec![Light {
+            position: [2.2, 3.9, -7.8],
+            colour: [3.0, 2.6, 2.0],
+            range: 15.0,
+        }],
+        Some(LitWindows {
+            boxes: BTreeMap::from([(1, vec![[0.1, 0.1, 0.4, 0.4]])]),
+            share: 0.5,
+            seed: 3,
+            colour: [1.0, 0.8, 0.4],
+        }),
+    )
+}
+
+#[test]
+fn output_bytes_do_not_depend_on_the_thread_count() {
+    let prepared = prepare(&street_scene()).unwrap();
+    let k = Intrinsics::from_fov(96, 64, 0.6);
+    let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
+    for lighting in [Lighting::day(), street_night()] {
+        for samples in [1, 2] {
+            let run = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap()
+                    .install(|| render(&prepared, &eye, &k, &lighting, samples))
+            };
+            let one = run(1);
+            let four = run(4);
+            assert_eq!(one.encode_png(), four.encode_png(), "samples {samples}");
+            assert_eq!(one, four);
+            // Several objects are in view, and every id is a real object's.
+            let ids: std::collections::BTreeSet<u16> =
+                one.instance.pixels().map(|p| p.0[0]).collect();
+            assert!(ids.len() > 5, "{ids:?}");
+            assert!(
+                ids.iter()
+                    .all(|&id| usize::from(id) <= prepared.object_count())
+            );
+        }
+    }
+}
+
+#[test]
+fn supersampling_smooths_colour_but_keeps_ids_exact() {
+    let prepared = prepare(&street_scene()).unwrap();
+    let k = Intrinsics::from_fov(96, 64, 0.6);
+    let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
+    let plain = render(&prepared, &eye, &k, &Lighting::day(), 1);
+    let smooth = render(&prepared, &eye, &k, &Lighting::day(), 2);
+    assert_eq!(smooth.rgb.dimensions(), (96, 64));
+    assert_ne!(plain.rgb, smooth.rgb);
+    // Ids of the supersampled frame come from single samples: each is an object's id,
+    // and they mostly agree with the plain frame.
+    let same = plain
+        .instance
+        .pixels()
+        .zip(smooth.instance.pixels())
+        .filter(|(a, b)| a == b)
+        .count();
+    assert!(same * 10 > 96 * 64 * 9, "{same}");
+    let plain_ids: std::collections::BTreeSet<u16> =
+        plain.instance.pixels().map(|p| p.0[0]).collect();
+    assert!(
+        smooth
+            .instance
+            .pixels()
+            .all(|p| plain_ids.contains(&p.0[0]))
+    );
+
+    // A white square on black, with edges off the pixel grid: supersampled edges are grey.
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([1.0; 3], None, [0.0; 3])],
+        objects: vec![object("square", vec![wall(-3.0, 0.77)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(32, 32, 0.5);
+    let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
+    let grey = |f: &Frame| {
+        f.rgb
+            .pixels()
+            .filter(|p| p.0[0] > 0 && p.0[0] < 255)
+            .count()
+    };
+    assert_eq!(grey(&render(&prepared, &eye, &k, &flat(), 1)), 0);
+    assert!(grey(&render(&prepared, &eye, &k, &flat(), 2)) > 10);
+}
+
+// ---- night ------------------------------------------------------------------------------
+
+#[test]
+fn a_point_light_brightens_near_pixels_only() {
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects: vec![object("wall", vec![wall(-10.0, 50.0)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(64, 48, 1.0);
+    let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
+    let dark = render(&prepared, &eye, &k, &Lighting::night(Vec::new(), None), 1);
+    let lamp = Light {
+        position: [-5.0, 0.0, -9.0],
+        colour: [2.0, 2.0, 2.0],
+        range: 4.0,
+    };
+    let lit = render(&prepared, &eye, &k, &Lighting::night(vec![lamp], None), 1);
+    // The light is 1 m in front of the wall at x = −5: pixel x = 32 − 24 · 0.5 = 20.
+    let near = |f: &Frame| f.rgb.get_pixel(20, 24).0[0];
+    assert!(
+        near(&lit) > near(&dark) + 50,
+        "{} vs {}",
+        near(&lit),
+        near(&dark)
+    );
+    // Beyond the range (x ≥ −1 on the wall): unchanged, to the byte.
+    for x in 32..64 {
+        for y in 0..48 {
+            assert_eq!(
+                lit.rgb.get_pixel(x, y),
+                dark.rgb.get_pixel(x, y),
+                "({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn emissive_surfaces_glow_without_any_light() {
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.0; 3], None, [1.0, 0.5, 0.0])],
+        objects: vec![object("lamp_head", cuboid(0, [-1.0; 3], [1.0; 3]))],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(16, 16, 1.0);
+    let eye = pose([0.0, 0.0, 5.0], [0.0; 3]);
+    let mut none = flat();
+    none.ambient = [0.0; 3];
+    let off = render(&prepared, &eye, &k, &none, 1);
+    none.emission = 1.0;
+    let on = render(&prepared, &eye, &k, &none, 1);
+    assert_eq!(off.rgb.get_pixel(8, 8).0, [0, 0, 0]);
+    assert_eq!(on.rgb.get_pixel(8, 8).0, [255, 188, 0]);
+}
+
+#[test]
+fn lit_windows_glow_inside_their_boxes_only() {
+    let facade = Texture::from_rgb("facade_a", &RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
+    let scene = Scene {
+        textures: vec![facade],
+        materials: vec![material([1.0; 3], Some(0), [0.0; 3])],
+        objects: vec![object("building", vec![wall(-5.0, 2.0)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(32, 32, 0.5);
+    let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
+    let windows = |share| LitWindows {
+        boxes: BTreeMap::from([(0, vec![[0.25, 0.25, 0.75, 0.75]])]),
+        share,
+        seed: 1,
+        colour: [1.0, 0.8, 0.4],
+    };
+    let off = render(
+        &prepared,
+        &eye,
+        &k,
+        &Lighting::night(Vec::new(), Some(windows(0.0))),
+        1,
+    );
+    let on = render(
+        &prepared,
+        &eye,
+        &k,
+        &Lighting::night(Vec::new(), Some(windows(1.0))),
+        1,
+    );
+    // The wall spans pixels 4–27; its middle half (the window) is pixels 10–21.
+    assert!(on.rgb.get_pixel(16, 16).0[0] > off.rgb.get_pixel(16, 16).0[0] + 100);
+    assert_eq!(on.rgb.get_pixel(6, 16), off.rgb.get_pixel(6, 16));
+    assert_eq!(on.rgb.get_pixel(16, 25), off.rgb.get_pixel(16, 25));
+}
+
+// ---- preparing -------------------------------------------------------------------------
+
+#[test]
+fn bad_scenes_are_errors_not_panics() {
+    let good = || Scene {
+        textures: vec![checker_texture(4, 1)],
+        materials: vec![material([1.0; 3], Some(0), [0.0; 3])],
+        objects: vec![object("wall", vec![wall(0.0, 1.0)])],
+    };
+    let mut broken_png = good();
+    broken_png.textures[0].png = Arc::new(vec![1, 2, 3]);
+    let mut missing_texture = good();
+    missing_texture.materials[0].texture = Some(5);
+    let mut missing_material = good();
+    missing_material.objects[0].meshes[0].material = 2;
+    let mut bad_index = good();
+    bad_index.objects[0].meshes[0].indices[4] = 9;
+    let mut too_many = good();
+    too_many.objects = (0..65_536)
+        .map(|i| object(&format!("o{i}"), Vec::new()))
+        .collect();
+    type Check = fn(&RenderError) -> bool;
+    let cases: Vec<(Scene, Check)> = vec![
+        (broken_png, |e| matches!(e, RenderError::Texture { .. })),
+        (missing_texture, |e| {
+            matches!(e, RenderError::MissingTexture { texture: 5, .. })
+        }),
+        (missing_material, |e| {
+            matches!(e, RenderError::MissingMaterial { material: 2, .. })
+        }),
+        (bad_index, |e| {
+            matches!(e, RenderError::BadIndex { index: 9, .. })
+        }),
+        (too_many, |e| {
+            matches!(e, RenderError::TooManyObjects { count: 65_536 })
+        }),
+    ];
+    for (scene, expected) in cases {
+        let err = prepare(&scene).err().expect("an error");
+        assert!(expected(&err), "{err}");
+    }
+    let ok = prepare(&good()).unwrap();
+    assert_eq!((ok.object_count(), ok.triangle_count()), (1, 2));
+    // Just below the limit is fine.
+    let mut most = good();
+    most.objects = (0..65_535)
+        .map(|i| object(&format!("o{i}"), Vec::new()))
+        .collect();
+    assert_eq!(prepare(&most).unwrap().object_count(), 65_535);
+}
+
+#[test]
+fn unusable_cameras_render_sky() {
+    let prepared = prepare(&street_scene()).unwrap();
+    let k = Intrinsics::from_fov(8, 6, 1.0);
+    let same = pose([1.0; 3], [1.0; 3]);
+    let frame = render(&prepared, &same, &k, &Lighting::day(), 1);
+    assert!(frame.instance.pixels().all(|p| p.0[0] == 0));
+    let bad = Intrinsics { fx: -1.0, ..k };
+    let frame = render(
+        &prepared,
+        &pose([0.0; 3], [0.0, 0.0, -1.0]),
+        &bad,
+        &Lighting::day(),
+        0,
+    );
+    assert_eq!(frame.rgb.dimensions(), (8, 6));
+    assert!(frame.depth_mm.pixels().all(|p| p.0[0] == 0));
+}
