@@ -27,16 +27,29 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let ws = Workspace::with_spec("day");
     let spec = ws.spec("day");
     let cold = in_pool(1, || build::build(&spec, &ws.options())).unwrap();
-    assert_eq!(cold.ran().count(), 7, "a cold build runs every stage");
+    assert_eq!(cold.ran().count(), 10, "a cold build runs every stage");
     let first = tree(&ws.out());
+    let names: Vec<&str> = first.keys().map(String::as_str).collect();
+    let named: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| !n.starts_with("day/textures/"))
+        .collect();
     assert_eq!(
-        first.keys().map(String::as_str).collect::<Vec<_>>(),
+        named,
         [
+            "day/city.glb",
+            "day/city.mtl",
+            "day/city.obj",
             "day/layout.png",
             "day/manifest.json",
             "day/plan.json",
             "day/plan.png"
         ]
+    );
+    assert!(
+        names.len() > named.len() + 10,
+        "the facade and roof textures: {names:?}"
     );
 
     let warm = in_pool(8, || build::build(&spec, &ws.options())).unwrap();
@@ -61,7 +74,7 @@ fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
             .modified()
             .unwrap()
     };
-    let names = ["layout.png", "plan.json", "plan.png", "manifest.json"];
+    let names: Vec<String> = tree(&ws.out().join("day")).into_keys().collect();
     let before: Vec<_> = names.iter().map(|n| stamp(n)).collect();
     std::thread::sleep(std::time::Duration::from_millis(20));
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
@@ -73,7 +86,7 @@ fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
             .all(|s| s.status == StageStatus::Cached)
     );
     assert!(report.written.is_empty());
-    assert_eq!(report.unchanged.len(), 4);
+    assert_eq!(report.unchanged.len(), names.len());
     let after: Vec<_> = names.iter().map(|n| stamp(n)).collect();
     assert_eq!(
         before, after,
@@ -92,16 +105,32 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
     assert_eq!(
         statuses(&report),
         [
+            ("export", Ran),
+            ("facades", Cached),
             ("lamps", Ran),
             ("mirror", Cached),
             ("parse", Cached),
             ("place", Cached),
             ("plan", Ran),
-            ("preview", Ran)
+            ("preview", Ran),
+            ("scene", Ran)
         ]
     );
-    assert_eq!(report.written, ["plan.json", "plan.png", "manifest.json"]);
-    assert_eq!(report.unchanged, ["layout.png"]);
+    assert_eq!(
+        report.written,
+        [
+            "city.glb",
+            "city.obj",
+            "plan.json",
+            "plan.png",
+            "manifest.json"
+        ]
+    );
+    assert!(report.unchanged.contains(&"layout.png".to_owned()));
+    assert!(
+        report.unchanged.contains(&"city.mtl".to_owned()),
+        "same materials"
+    );
     let plan_after: serde_json::Value =
         serde_json::from_slice(&fs::read(ws.out().join("day/plan.json")).unwrap()).unwrap();
     let plan_before: serde_json::Value = serde_json::from_slice(&plan_before).unwrap();
@@ -126,12 +155,15 @@ fn changing_buildings_leaves_lamps_and_layout_cached() {
     assert_eq!(
         statuses(&report),
         [
+            ("export", Ran),
+            ("facades", Cached),
             ("lamps", Cached),
             ("mirror", Cached),
             ("parse", Cached),
             ("place", Ran),
             ("plan", Ran),
-            ("preview", Ran)
+            ("preview", Ran),
+            ("scene", Ran)
         ]
     );
 }
@@ -148,8 +180,15 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
     }
     fs::remove_dir_all(ws.out()).unwrap();
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 7, "no damaged object may be used");
-    assert!(report.stages.iter().all(|s| s.repaired.is_some()));
+    assert_eq!(report.ran().count(), 10, "no damaged object may be used");
+    // Every cached stage found its entry damaged (the scene is never cached).
+    assert!(
+        report
+            .stages
+            .iter()
+            .filter(|s| s.stage != "scene")
+            .all(|s| s.repaired.is_some())
+    );
     assert_eq!(tree(&ws.out()), good);
     // The repaired cache now serves a no-op build.
     assert!(
@@ -198,15 +237,26 @@ fn manifest_lists_every_artifact_with_its_hash() {
     let stages: Vec<_> = manifest
         .artifacts
         .iter()
+        .filter(|a| !a.path.starts_with("textures/"))
         .map(|a| (a.path.as_str(), a.stage.as_str()))
         .collect();
     assert_eq!(
         stages,
         [
+            ("city.glb", "export"),
+            ("city.mtl", "export"),
+            ("city.obj", "export"),
             ("layout.png", "mirror"),
             ("plan.json", "plan"),
             ("plan.png", "preview")
         ]
+    );
+    assert!(
+        manifest
+            .artifacts
+            .iter()
+            .filter(|a| a.path.starts_with("textures/"))
+            .all(|a| a.stage == "export")
     );
 }
 
@@ -214,7 +264,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
 fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
     let ws = Workspace::with_spec("drawn");
     let report = build::build(&ws.spec("drawn"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 7);
+    assert_eq!(report.ran().count(), 10);
     let plan: serde_json::Value =
         serde_json::from_slice(&fs::read(ws.out().join("drawn/plan.json")).unwrap()).unwrap();
     assert_eq!(

@@ -5,6 +5,10 @@ use image::{ImageEncoder, RgbImage};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
+use std::sync::Arc;
+
+use super::cache::Outputs;
+use crate::model::FacadeSet;
 
 /// Bump when any encoding here changes its bytes: it is part of every stage key.
 pub const VERSION: u32 = 2;
@@ -28,6 +32,40 @@ pub fn decode_png(bytes: &[u8]) -> Result<RgbImage, String> {
     image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
         .map(|image| image.to_rgb8())
         .map_err(|e| e.to_string())
+}
+
+/// A facade set as cache outputs: `facades.json` (without pixels) and every texture as
+/// `textures/<name>.png`.
+pub fn facade_set_outputs(set: &FacadeSet) -> Outputs {
+    let mut outputs = Outputs::new();
+    outputs.insert("facades.json".to_owned(), Arc::new(to_json(set)));
+    let textures = set
+        .facades
+        .iter()
+        .map(|f| &f.texture)
+        .chain(set.roofs.iter().map(|r| &r.texture));
+    for texture in textures {
+        outputs.insert(
+            format!("textures/{}.png", texture.name),
+            Arc::clone(&texture.png),
+        );
+    }
+    outputs
+}
+
+/// The facade set back from [`facade_set_outputs`].
+pub fn facade_set_from_outputs(outputs: &Outputs) -> Result<FacadeSet, String> {
+    let mut set: FacadeSet = from_json(outputs.get("facades.json").ok_or("facades.json missing")?)?;
+    let textures = set.facades.iter_mut().map(|f| &mut f.texture);
+    for texture in textures.chain(set.roofs.iter_mut().map(|r| &mut r.texture)) {
+        let name = format!("textures/{}.png", texture.name);
+        texture.png = Arc::clone(
+            outputs
+                .get(&name)
+                .ok_or_else(|| format!("{name} missing"))?,
+        );
+    }
+    Ok(set)
 }
 
 /// Compact JSON for values only the cache reads.

@@ -23,6 +23,9 @@ pub enum BuildError {
         file: PathBuf,
         message: String,
     },
+    /// The facade set is unusable (the message names the file).
+    #[error("{}: facades: {message}", spec.display())]
+    Facades { spec: PathBuf, message: String },
     /// Two specs of one build share a name and so an output folder.
     #[error("{} and {} are both named {name:?}: they would write the same output folder", first.display(), second.display())]
     DuplicateName {
@@ -52,6 +55,7 @@ impl BuildError {
             BuildError::ReadSpec { .. }
                 | BuildError::Spec(_)
                 | BuildError::Input { .. }
+                | BuildError::Facades { .. }
                 | BuildError::DuplicateName { .. }
         )
     }

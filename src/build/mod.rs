@@ -10,6 +10,7 @@ mod atomic;
 mod cache;
 mod codec;
 mod error;
+mod inputs;
 mod manifest;
 mod pipeline;
 mod report;
@@ -29,7 +30,7 @@ pub use pipeline::widths_px;
 pub use report::{BuildReport, StageRun, StageStatus};
 
 use crate::spec::{self, FsWorld, Spec, SpecSource};
-use pipeline::{LayoutSource, Pipeline};
+use pipeline::Pipeline;
 
 /// Where a build writes.
 #[derive(Clone, Debug)]
@@ -108,28 +109,26 @@ pub fn build_spec(
     options: &BuildOptions,
 ) -> Result<BuildReport, BuildError> {
     let start = Instant::now();
-    let source = match &spec.layout.image {
-        Some(relative) => {
-            let file = spec::resolve(path, relative);
-            let bytes = fs::read(&file).map_err(|e| BuildError::Input {
-                spec: path.to_path_buf(),
-                key: "layout.image",
-                file: file.clone(),
-                message: e.to_string(),
-            })?;
-            LayoutSource::Image { path: file, bytes }
-        }
-        None => LayoutSource::Generate,
-    };
+    let source = inputs::layout_source(path, spec)?;
+    let facade_input = inputs::facade_input(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
-    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), source, &cache);
+    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), source, facade_input, &cache);
     let artifacts = pipeline.artifacts()?;
     let out_dir = options.out_root.join(&spec.name);
     let output = |source: io::Error, file: &Path| BuildError::Output {
         path: file.to_path_buf(),
         source,
     };
-    sweep_temporaries(&out_dir).map_err(|e| output(e, &out_dir))?;
+    let mut folders: Vec<PathBuf> = artifacts
+        .iter()
+        .filter_map(|a| out_dir.join(&a.path).parent().map(Path::to_path_buf))
+        .collect();
+    folders.push(out_dir.clone());
+    folders.sort();
+    folders.dedup();
+    for folder in &folders {
+        sweep_temporaries(folder).map_err(|e| output(e, folder))?;
+    }
 
     let old = fs::read(out_dir.join("manifest.json"))
         .ok()
@@ -141,15 +140,15 @@ pub fn build_spec(
         artifacts: Vec::new(),
     };
     for artifact in &artifacts {
-        let file = out_dir.join(artifact.path);
+        let file = out_dir.join(&artifact.path);
         if fs::read(&file).is_ok_and(|old| old == *artifact.bytes) {
-            unchanged.push(artifact.path.to_owned());
+            unchanged.push(artifact.path.clone());
         } else {
             write_atomic(&file, &artifact.bytes).map_err(|e| output(e, &file))?;
-            written.push(artifact.path.to_owned());
+            written.push(artifact.path.clone());
         }
         manifest.artifacts.push(Artifact {
-            path: artifact.path.to_owned(),
+            path: artifact.path.clone(),
             sha256: crate::hash::sha256_hex(&artifact.bytes),
             bytes: artifact.bytes.len() as u64,
             stage: artifact.stage.to_owned(),
@@ -185,6 +184,18 @@ pub fn build_spec(
         written,
         unchanged,
         removed,
+        warnings: pipeline.warnings,
+        triangles: pipeline.triangles,
         elapsed: start.elapsed(),
     })
+}
+
+/// Writes cityspec's built-in facade set to `dir` in the CMP layout; returns how many facades.
+pub fn export_builtin_facades(dir: &Path) -> Result<usize, BuildError> {
+    let source = crate::facades::builtin();
+    for (name, bytes) in source.to_files() {
+        let path = dir.join(name);
+        write_atomic(&path, &bytes).map_err(|source| BuildError::Output { path, source })?;
+    }
+    Ok(source.files.len())
 }

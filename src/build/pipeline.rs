@@ -15,25 +15,16 @@ use image::RgbImage;
 use super::BuildError;
 use super::cache::{Cache, Miss, Outputs};
 use super::codec;
+use super::inputs::{FacadeInput, LayoutSource};
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
-use crate::model::{Building, Lamp, ParsedLayout};
+use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::Spec;
-use crate::{lamps, layout, mirror, parse, place, plan, preview, rng};
-
-/// Where the layout comes from.
-pub enum LayoutSource {
-    Generate,
-    /// The user's image: its path (for messages) and bytes.
-    Image {
-        path: PathBuf,
-        bytes: Vec<u8>,
-    },
-}
+use crate::{export, facades, lamps, layout, mirror, parse, place, plan, preview, rng, scene};
 
 /// An artifact a build writes: name in the output folder, bytes, producing stage and key.
 pub struct ArtifactOut {
-    pub path: &'static str,
+    pub path: String,
     pub bytes: Arc<Vec<u8>>,
     pub stage: &'static str,
     pub key: String,
@@ -47,6 +38,8 @@ struct Keys {
     place: String,
     plan: String,
     preview: String,
+    facades: String,
+    export: String,
 }
 
 /// A stage's outputs, and its typed value once computed or decoded.
@@ -59,9 +52,17 @@ pub struct Pipeline<'a> {
     spec: &'a Spec,
     spec_path: PathBuf,
     source: LayoutSource,
+    facade_input: FacadeInput,
     cache: &'a Cache,
     keys: Keys,
     pub runs: Vec<StageRun>,
+    /// Warnings of stages that ran (skipped facades, …).
+    pub warnings: Vec<String>,
+    /// Triangles in the scene, when the scene was built.
+    pub triangles: Option<usize>,
+    scene: Option<Arc<Scene>>,
+    facades: Option<Slot<FacadeSet>>,
+    export: Option<Slot<()>>,
     layout: Option<Slot<RgbImage>>,
     mirror: Option<Slot<RgbImage>>,
     parse: Option<Slot<ParsedLayout>>,
@@ -72,15 +73,27 @@ pub struct Pipeline<'a> {
 }
 
 impl<'a> Pipeline<'a> {
-    pub fn new(spec: &'a Spec, spec_path: PathBuf, source: LayoutSource, cache: &'a Cache) -> Self {
-        let keys = keys(spec, &source);
+    pub fn new(
+        spec: &'a Spec,
+        spec_path: PathBuf,
+        source: LayoutSource,
+        facade_input: FacadeInput,
+        cache: &'a Cache,
+    ) -> Self {
+        let keys = keys(spec, &source, &facade_input);
         Pipeline {
             spec,
             spec_path,
             source,
+            facade_input,
             cache,
             keys,
             runs: Vec::new(),
+            warnings: Vec::new(),
+            triangles: None,
+            scene: None,
+            facades: None,
+            export: None,
             layout: None,
             mirror: None,
             parse: None,
@@ -96,26 +109,36 @@ impl<'a> Pipeline<'a> {
         self.need_mirror()?;
         self.need_plan()?;
         self.need_preview()?;
-        Ok(vec![
-            ArtifactOut {
-                path: "layout.png",
-                bytes: output(&self.mirror, "layout.png"),
-                stage: "mirror",
-                key: self.keys.mirror.clone(),
-            },
-            ArtifactOut {
-                path: "plan.json",
-                bytes: output(&self.plan, "plan.json"),
-                stage: "plan",
-                key: self.keys.plan.clone(),
-            },
-            ArtifactOut {
-                path: "plan.png",
-                bytes: output(&self.preview, "plan.png"),
-                stage: "preview",
-                key: self.keys.preview.clone(),
-            },
-        ])
+        self.need_export()?;
+        let mut artifacts = Vec::new();
+        let mut add = |slot_outputs: &Outputs, stage: &'static str, key: &str| {
+            for (path, bytes) in slot_outputs {
+                artifacts.push(ArtifactOut {
+                    path: path.clone(),
+                    bytes: Arc::clone(bytes),
+                    stage,
+                    key: key.to_owned(),
+                });
+            }
+        };
+        add(
+            &evaluated(&self.mirror).outputs,
+            "mirror",
+            &self.keys.mirror,
+        );
+        add(&evaluated(&self.plan).outputs, "plan", &self.keys.plan);
+        add(
+            &evaluated(&self.preview).outputs,
+            "preview",
+            &self.keys.preview,
+        );
+        add(
+            &evaluated(&self.export).outputs,
+            "export",
+            &self.keys.export,
+        );
+        artifacts.sort_by(|a, b| a.path.cmp(&b.path));
+        Ok(artifacts)
     }
 
     fn need_layout(&mut self) -> Result<(), BuildError> {
@@ -231,14 +254,27 @@ impl<'a> Pipeline<'a> {
 
     fn need_place(&mut self) -> Result<(), BuildError> {
         let key = self.keys.place.clone();
+        let gather = |p: &mut Self| {
+            let facades = match p.spec.buildings.widths {
+                Some(_) => None,
+                None => Some(p.facade_set()?),
+            };
+            Ok((p.parsed()?, facades))
+        };
         self.stage(
             "place",
             key,
             |p| &mut p.place,
-            |p| p.parsed(),
-            |p, parsed| {
+            gather,
+            |p, (parsed, facades)| {
                 let mpp = p.spec.layout.metres_per_pixel;
-                let widths = widths_px(p.spec.buildings.widths.as_deref().unwrap_or(&[]), mpp);
+                // Paper 3.2: without explicit widths, every facade is one building size.
+                let widths_m: Vec<f64> = match (&p.spec.buildings.widths, &facades) {
+                    (Some(widths), _) => widths.clone(),
+                    (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
+                    (None, None) => Vec::new(),
+                };
+                let widths = widths_px(&widths_m, mpp);
                 let gap = (p.spec.buildings.gap / mpp).round() as u32;
                 let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
                 let json = codec::to_json(&buildings);
@@ -288,6 +324,104 @@ impl<'a> Pipeline<'a> {
             |_, (image, parsed, lamps, buildings)| {
                 let picture = preview::draw(&image, &parsed, &lamps, &buildings);
                 Ok(((), one("plan.png", codec::encode_png(&picture))))
+            },
+        )
+    }
+
+    fn need_facades(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.facades.clone();
+        let before = self.runs.len();
+        self.stage(
+            "facades",
+            key,
+            |p| &mut p.facades,
+            |_| Ok(()),
+            |p, ()| {
+                let generated;
+                let source = match &p.facade_input {
+                    FacadeInput::Builtin => {
+                        generated = facades::builtin();
+                        &generated
+                    }
+                    FacadeInput::Folder { source, .. } => source,
+                };
+                let f = &p.spec.facades;
+                let (set, warnings) = facades::process(source, f.floor_height, f.on_error)
+                    .map_err(|e| BuildError::Facades {
+                        spec: p.spec_path.clone(),
+                        message: e.to_string(),
+                    })?;
+                let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+                let mut outputs = codec::facade_set_outputs(&set);
+                outputs.insert(
+                    "warnings.json".to_owned(),
+                    Arc::new(codec::to_json(&warnings)),
+                );
+                Ok((set, outputs))
+            },
+        )?;
+        // Warnings are told when the facades are processed, not on every cached build.
+        if self.runs.len() > before && self.runs[before].status == StageStatus::Ran {
+            let outputs = &evaluated(&self.facades).outputs;
+            let warnings: Vec<String> =
+                codec::from_json(&outputs["warnings.json"]).unwrap_or_default();
+            self.warnings.extend(warnings);
+        }
+        Ok(())
+    }
+
+    fn facade_set(&mut self) -> Result<Arc<FacadeSet>, BuildError> {
+        self.need_facades()?;
+        value(&mut self.facades, "facades", codec::facade_set_from_outputs)
+    }
+
+    /// The 3D scene. Not cached: it is a fast function of cached values, and only the
+    /// export (and later the renderer) reads it.
+    fn scene(&mut self) -> Result<Arc<Scene>, BuildError> {
+        if let Some(scene) = &self.scene {
+            return Ok(Arc::clone(scene));
+        }
+        let parsed = self.parsed()?;
+        let lamps = self.lamp_sites()?;
+        let buildings = self.buildings()?;
+        let facades = self.facade_set()?;
+        let start = Instant::now();
+        let built = scene::build(&scene::SceneInput {
+            layout: &parsed,
+            lamps: &lamps,
+            buildings: &buildings,
+            facades: &facades,
+            widths: self.spec.buildings.widths.as_deref(),
+            metres_per_pixel: self.spec.layout.metres_per_pixel,
+            seed: self.spec.seed,
+        });
+        self.triangles = Some(built.triangle_count());
+        self.runs.push(StageRun {
+            stage: "scene",
+            key: String::new(),
+            status: StageStatus::Ran,
+            time: start.elapsed(),
+            repaired: None,
+        });
+        let built = Arc::new(built);
+        self.scene = Some(Arc::clone(&built));
+        Ok(built)
+    }
+
+    fn need_export(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.export.clone();
+        self.stage(
+            "export",
+            key,
+            |p| &mut p.export,
+            |p| p.scene(),
+            |_, scene| {
+                let files = export::export(&scene);
+                let outputs = files
+                    .into_iter()
+                    .map(|(path, bytes)| (path, Arc::new(bytes)))
+                    .collect();
+                Ok(((), outputs))
             },
         )
     }
@@ -363,8 +497,8 @@ fn value<T>(
     Ok(Arc::clone(slot.value.as_ref().expect("just set")))
 }
 
-fn output<T>(slot: &Option<Slot<T>>, name: &str) -> Arc<Vec<u8>> {
-    Arc::clone(&slot.as_ref().expect("stage was evaluated").outputs[name])
+fn evaluated<T>(slot: &Option<Slot<T>>) -> &Slot<T> {
+    slot.as_ref().expect("stage was evaluated")
 }
 
 fn one(name: &str, bytes: Vec<u8>) -> Outputs {
@@ -379,8 +513,8 @@ pub fn widths_px(widths_m: &[f64], metres_per_pixel: f64) -> Vec<u32> {
         .collect()
 }
 
-/// Every stage's key, from the spec (and the layout image's hash) alone.
-fn keys(spec: &Spec, source: &LayoutSource) -> Keys {
+/// Every stage's key, from the spec and the input files' hashes alone.
+fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys {
     let l = &spec.layout;
     let layout = match source {
         LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
@@ -407,12 +541,23 @@ fn keys(spec: &Spec, source: &LayoutSource) -> Keys {
         .input("mirror", &mirror)
         .input("parse", &parse)
         .finish();
-    let place = StageKey::new("place", place::VERSION)
+    let facades = StageKey::new("facades", facades::VERSION)
+        .spec("floor_height", &spec.facades.floor_height)
+        .spec("on_error", &spec.facades.on_error);
+    let facades = match facade_input {
+        FacadeInput::Builtin => facades.input("builtin", &facades::BUILTIN_VERSION.to_string()),
+        FacadeInput::Folder { digest, .. } => facades.input("folder", digest),
+    }
+    .finish();
+    let mut place = StageKey::new("place", place::VERSION)
         .spec("buildings", &spec.buildings)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .spec("seed", &spec.seed)
-        .input("parse", &parse)
-        .finish();
+        .input("parse", &parse);
+    if spec.buildings.widths.is_none() {
+        place = place.input("facades", &facades);
+    }
+    let place = place.finish();
     let plan = StageKey::new("plan", plan::VERSION)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .input("parse", &parse)
@@ -425,6 +570,17 @@ fn keys(spec: &Spec, source: &LayoutSource) -> Keys {
         .input("lamps", &lamps)
         .input("place", &place)
         .finish();
+    // The scene is not cached: the export key holds everything the scene reads.
+    let export = StageKey::new("export", export::VERSION)
+        .spec("scene_version", &scene::VERSION)
+        .spec("widths", &spec.buildings.widths)
+        .spec("metres_per_pixel", &l.metres_per_pixel)
+        .spec("seed", &spec.seed)
+        .input("parse", &parse)
+        .input("lamps", &lamps)
+        .input("place", &place)
+        .input("facades", &facades)
+        .finish();
     Keys {
         layout,
         mirror,
@@ -433,5 +589,7 @@ fn keys(spec: &Spec, source: &LayoutSource) -> Keys {
         place,
         plan,
         preview,
+        facades,
+        export,
     }
 }

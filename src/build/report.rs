@@ -36,6 +36,10 @@ pub struct BuildReport {
     pub unchanged: Vec<String>,
     /// Files of an earlier build that this build no longer produces, now removed.
     pub removed: Vec<String>,
+    /// Warnings of stages that ran (facades skipped for bad data, …).
+    pub warnings: Vec<String>,
+    /// Triangles in the 3D scene, when this build made the scene.
+    pub triangles: Option<usize>,
     pub elapsed: Duration,
 }
 

@@ -56,26 +56,27 @@ pub enum Command {
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
     },
+    /// Work with facade sets (paper 3.2).
+    #[command(subcommand)]
+    Facades(FacadesCommand),
     /// Print the spec's JSON schema (Draft 2020-12), as committed in schemas/.
     ///
     /// Editors that read `#:schema` comments (Taplo, Even Better TOML) complete and check
     /// specs with it.
     #[command(after_help = "Example:\n  cityspec schema > schemas/cityspec.schema.json")]
     Schema,
-    /// Facade sets (paper 3.2).
-    Facades {
-        #[command(subcommand)]
-        command: FacadesCommand,
-    },
 }
 
 #[derive(Debug, Subcommand)]
 pub enum FacadesCommand {
-    /// Write cityspec's builtin facade set to DIR in the CMP Facade Database layout:
-    /// <name>.jpg photo, <name>.xml boxes, <name>.png label mask (values 1–12).
-    #[command(after_help = "Example:\n  cityspec facades export facades/")]
+    /// Write cityspec's built-in facade set to DIR in the CMP Facade Database layout
+    /// (`<name>.jpg` photo, `<name>.xml` boxes, `<name>.png` label mask), to look at or to
+    /// start a set of your own from.
+    #[command(
+        after_help = "Example:\n  cityspec facades export builtin-facades/\n  # then in a spec: [facades] source = \"builtin-facades\""
+    )]
     Export {
-        /// Folder to write to (created if missing; files of the same name are replaced).
+        /// Folder to write (created if missing).
         #[arg(value_name = "DIR")]
         dir: PathBuf,
     },

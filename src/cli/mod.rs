@@ -81,26 +81,20 @@ pub fn run() -> ExitCode {
                 exit_for(&errors, &out)
             }
         }
+        Command::Facades(FacadesCommand::Export { dir }) => {
+            match build::export_builtin_facades(&dir) {
+                Ok(count) => {
+                    out.info(&format!(
+                        "wrote {count} built-in facades to {}",
+                        dir.display()
+                    ));
+                    ExitCode::SUCCESS
+                }
+                Err(e) => exit_for(&[e], &out),
+            }
+        }
         Command::Schema => {
             print!("{}", crate::spec::schema_json());
-            ExitCode::SUCCESS
-        }
-        Command::Facades {
-            command: FacadesCommand::Export { dir },
-        } => {
-            let files = crate::facades::builtin().to_files();
-            for (name, bytes) in &files {
-                let path = dir.join(name);
-                if let Err(e) = build::write_atomic(&path, bytes) {
-                    eprintln!("error: cannot write {}: {e}", path.display());
-                    return ExitCode::from(1);
-                }
-            }
-            out.info(&format!(
-                "wrote the builtin facade set ({} files) to {}",
-                files.len(),
-                dir.display()
-            ));
             ExitCode::SUCCESS
         }
     }

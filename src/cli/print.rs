@@ -21,6 +21,9 @@ impl Printer {
                 eprintln!("warning: {}: damaged cache entry rebuilt: {why}", run.stage);
             }
         }
+        for warning in &report.warnings {
+            eprintln!("warning: {}: {warning}", report.name);
+        }
         if self.quiet {
             return;
         }
@@ -30,11 +33,14 @@ impl Printer {
                     StageStatus::Ran => "ran",
                     StageStatus::Cached => "cached",
                 };
+                let key = match run.key.get(..12) {
+                    Some(short) => format!("key {short}"),
+                    None => "(not cached)".to_owned(),
+                };
                 eprintln!(
-                    "  {status:<6} {:<8} {:>9.2} ms  key {}",
+                    "  {status:<6} {:<8} {:>9.2} ms  {key}",
                     run.stage,
                     run.time.as_secs_f64() * 1e3,
-                    &run.key[..12]
                 );
             }
             for path in &report.written {
@@ -42,6 +48,11 @@ impl Printer {
             }
             for path in &report.removed {
                 eprintln!("  removed stale {}", report.out_dir.join(path).display());
+            }
+        }
+        if let Some(triangles) = report.triangles {
+            if self.verbose {
+                eprintln!("  scene: {triangles} triangles");
             }
         }
         let ms = report.elapsed.as_secs_f64() * 1e3;

@@ -1,0 +1,297 @@
+//! City-scale benchmark: `cargo bench --bench city`.
+//!
+//! For the default 768 × 768 city and 2 × 2 and 4 × 4 mirrored ones, each cold build
+//! (spec to OBJ + MTL + textures + GLB, with the built-in facades already cached, as the
+//! issue asks) runs in its own process so its peak memory can be read. Prints, per case,
+//! triangles, the median time of every stage, the median total and the peak resident
+//! memory (Linux `VmHWM`), and draws build time against triangles into
+//! `target/bench/city_scaling.png` (the paper's Fig. 10, left).
+//!
+//! Targets on the 2-core machine (issue 3): default city under 0.5 s, 4 × 4 under 10 s and
+//! 2 GiB, cost close to linear in polygons. Figures are printed, never asserted.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use ab_glyph::FontRef;
+use cityspec::build::{self, BuildOptions};
+use image::{Rgb, RgbImage};
+use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut, draw_text_mut};
+
+const CASES: [(&str, &str); 3] = [
+    ("768x768", "[]"),
+    ("2x2 mirrored", "[2, 1]"),
+    ("4x4 mirrored", "[2, 1, 2, 1]"),
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--child") {
+        child(
+            Path::new(&args[i + 1]),
+            Path::new(&args[i + 2]),
+            Path::new(&args[i + 3]),
+        );
+        return;
+    }
+    let runs: usize = std::env::var("BENCH_RUNS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(5);
+    let dir = tempfile::tempdir().unwrap();
+    let day = fs::read_to_string(repo().join("specs/day.toml")).unwrap();
+
+    // The built-in facades, cached once, seed every cold build's cache.
+    let seed_cache = dir.path().join("seed-cache");
+    let warm_spec = write_spec(dir.path(), "warm", &day, "[]");
+    build::build(
+        &warm_spec,
+        &BuildOptions {
+            out_root: dir.path().join("warm-out"),
+            cache_dir: seed_cache.clone(),
+        },
+    )
+    .unwrap();
+
+    println!("cityspec city benchmark: {runs} cold builds per case, built-in facades cached");
+    let mut points = Vec::new();
+    for (label, mirror) in CASES {
+        let spec = write_spec(dir.path(), &label.replace(' ', "_"), &day, mirror);
+        let mut results = Vec::new();
+        for run in 0..runs {
+            let cache = dir
+                .path()
+                .join(format!("cache-{}-{run}", label.replace(' ', "_")));
+            copy_facade_entries(&seed_cache, &cache);
+            let out = dir.path().join(format!("out-{run}"));
+            let output = Command::new(std::env::current_exe().unwrap())
+                .args(["--child"])
+                .arg(&spec)
+                .arg(&cache)
+                .arg(&out)
+                .output()
+                .unwrap();
+            assert!(
+                output.status.success(),
+                "{}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            results.push(Sample::parse(&String::from_utf8(output.stdout).unwrap()));
+            let _ = fs::remove_dir_all(&cache);
+            let _ = fs::remove_dir_all(&out);
+        }
+        let triangles = results[0].triangles;
+        let total = median(results.iter().map(|r| r.total_ms).collect());
+        let peak = results.iter().map(|r| r.peak_kib).max().unwrap();
+        println!(
+            "\n{label}: {triangles} triangles; cold build median {total:.1} ms; peak memory {:.1} MiB",
+            peak as f64 / 1024.0
+        );
+        let stages: Vec<String> = results[0].stages.keys().cloned().collect();
+        for stage in stages {
+            let times: Vec<f64> = results
+                .iter()
+                .filter_map(|r| r.stages.get(&stage).copied())
+                .collect();
+            println!("  {stage:<8} {:>9.2} ms", median(times));
+        }
+        points.push((label, triangles as f64, total));
+    }
+    let plot = repo().join("target/bench/city_scaling.png");
+    draw_plot(&points, &plot);
+    println!("\nplot: {}", plot.display());
+}
+
+/// One cold build in this process; prints `triangles`, stage times, total and peak memory.
+fn child(spec: &Path, cache: &Path, out: &Path) {
+    let start = Instant::now();
+    let report = build::build(
+        spec,
+        &BuildOptions {
+            out_root: out.to_path_buf(),
+            cache_dir: cache.to_path_buf(),
+        },
+    )
+    .unwrap();
+    let total = start.elapsed().as_secs_f64() * 1e3;
+    println!("triangles {}", report.triangles.unwrap_or(0));
+    for run in &report.stages {
+        println!("stage {} {:.3}", run.stage, run.time.as_secs_f64() * 1e3);
+    }
+    println!("total {total:.3}");
+    println!("peak_kib {}", peak_kib());
+}
+
+struct Sample {
+    triangles: usize,
+    stages: BTreeMap<String, f64>,
+    total_ms: f64,
+    peak_kib: u64,
+}
+
+impl Sample {
+    fn parse(text: &str) -> Sample {
+        let mut sample = Sample {
+            triangles: 0,
+            stages: BTreeMap::new(),
+            total_ms: 0.0,
+            peak_kib: 0,
+        };
+        for line in text.lines() {
+            let parts: Vec<&str> = line.split_whitespace().collect();
+            match parts.as_slice() {
+                ["triangles", n] => sample.triangles = n.parse().unwrap(),
+                ["stage", name, ms] => {
+                    *sample.stages.entry((*name).to_owned()).or_default() +=
+                        ms.parse::<f64>().unwrap()
+                }
+                ["total", ms] => sample.total_ms = ms.parse().unwrap(),
+                ["peak_kib", kib] => sample.peak_kib = kib.parse().unwrap(),
+                _ => {}
+            }
+        }
+        sample
+    }
+}
+
+fn peak_kib() -> u64 {
+    let status = fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap_or(0)
+}
+
+fn write_spec(dir: &Path, name: &str, day: &str, mirror: &str) -> PathBuf {
+    let text = day
+        .replace("name = \"day\"", &format!("name = \"{name}\""))
+        .replace(
+            "[layout.generate]",
+            &format!("[layout]\nmirror = {mirror}\n\n[layout.generate]"),
+        );
+    let path = dir.join(format!("{name}.toml"));
+    fs::write(&path, text).unwrap();
+    path
+}
+
+/// Copies the facades stage's cache entries and their objects into a fresh cache.
+fn copy_facade_entries(from: &Path, to: &Path) {
+    for entry in fs::read_dir(from.join("entries")).unwrap() {
+        let path = entry.unwrap().path();
+        let text = fs::read_to_string(&path).unwrap();
+        let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        if json["stage"] != "facades" {
+            continue;
+        }
+        fs::create_dir_all(to.join("entries")).unwrap();
+        fs::copy(&path, to.join("entries").join(path.file_name().unwrap())).unwrap();
+        for object in json["outputs"].as_object().unwrap().values() {
+            let sha = object["sha256"].as_str().unwrap();
+            let rel = Path::new("objects").join(&sha[..2]).join(sha);
+            fs::create_dir_all(to.join(rel.parent().unwrap())).unwrap();
+            fs::copy(from.join(&rel), to.join(&rel)).unwrap();
+        }
+    }
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+/// Build time (ms) against triangles, with a least-squares line through the origin.
+fn draw_plot(points: &[(&str, f64, f64)], path: &Path) {
+    let (w, h) = (720u32, 480u32);
+    let (left, right, top, bottom) = (90.0f32, 30.0f32, 40.0f32, 70.0f32);
+    let mut img = RgbImage::from_pixel(w, h, Rgb([255, 255, 255]));
+    let font = FontRef::try_from_slice(notosans::REGULAR_TTF).unwrap();
+    let black = Rgb([30, 30, 30]);
+    let max_x = points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.1;
+    let max_y = points.iter().map(|p| p.2).fold(0.0, f64::max) * 1.2;
+    let px = |x: f64| left + (x / max_x) as f32 * (w as f32 - left - right);
+    let py = |y: f64| h as f32 - bottom - (y / max_y) as f32 * (h as f32 - top - bottom);
+    draw_line_segment_mut(
+        &mut img,
+        (left, py(0.0)),
+        (w as f32 - right, py(0.0)),
+        black,
+    );
+    draw_line_segment_mut(&mut img, (left, py(0.0)), (left, top), black);
+    for i in 0..=4 {
+        let (x, y) = (max_x * i as f64 / 4.0, max_y * i as f64 / 4.0);
+        draw_line_segment_mut(&mut img, (px(x), py(0.0)), (px(x), py(0.0) + 6.0), black);
+        draw_text_mut(
+            &mut img,
+            black,
+            px(x) as i32 - 20,
+            py(0.0) as i32 + 10,
+            16.0,
+            &font,
+            &format!("{:.0}k", x / 1000.0),
+        );
+        draw_line_segment_mut(&mut img, (left - 6.0, py(y)), (left, py(y)), black);
+        draw_text_mut(
+            &mut img,
+            black,
+            8,
+            py(y) as i32 - 9,
+            16.0,
+            &font,
+            &format!("{y:.0} ms"),
+        );
+    }
+    draw_text_mut(
+        &mut img,
+        black,
+        (w / 2 - 60) as i32,
+        (h - 30) as i32,
+        18.0,
+        &font,
+        "triangles in the city",
+    );
+    draw_text_mut(
+        &mut img,
+        black,
+        left as i32,
+        10,
+        18.0,
+        &font,
+        "cold build time (built-in facades cached), median",
+    );
+    // Least squares through the origin: time = k · triangles.
+    let k = points.iter().map(|p| p.1 * p.2).sum::<f64>()
+        / points.iter().map(|p| p.1 * p.1).sum::<f64>();
+    draw_line_segment_mut(
+        &mut img,
+        (px(0.0), py(0.0)),
+        (px(max_x), py(k * max_x)),
+        Rgb([160, 160, 220]),
+    );
+    for (label, x, y) in points {
+        draw_filled_circle_mut(
+            &mut img,
+            (px(*x) as i32, py(*y) as i32),
+            5,
+            Rgb([200, 40, 40]),
+        );
+        draw_text_mut(
+            &mut img,
+            black,
+            px(*x) as i32 + 8,
+            py(*y) as i32 - 22,
+            15.0,
+            &font,
+            label,
+        );
+    }
+    fs::create_dir_all(path.parent().unwrap()).unwrap();
+    img.save(path).unwrap();
+}
+
+fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}

@@ -1,0 +1,145 @@
+//! The build driver's reading of a spec's input files: layout image, facade folder.
+//!
+//! Stages never touch files; the driver reads what a spec names here, hashes it for the
+//! stage keys and hands the bytes on.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use sha2::{Digest, Sha256};
+
+use super::BuildError;
+use crate::facades::{FacadeFile, FacadeSource};
+use crate::hash::hex;
+use crate::spec::{self, BUILTIN_FACADES, Spec};
+
+/// Where the layout comes from.
+pub enum LayoutSource {
+    Generate,
+    /// The user's image: its path (for messages) and bytes.
+    Image {
+        path: PathBuf,
+        bytes: Vec<u8>,
+    },
+}
+
+/// Where the facades come from.
+pub enum FacadeInput {
+    /// cityspec's own set, generated when the facades stage runs.
+    Builtin,
+    /// A CMP-layout folder, read whole; `digest` covers every file's name and bytes.
+    Folder {
+        source: FacadeSource,
+        digest: String,
+    },
+}
+
+/// Reads the layout image a spec names, if any.
+pub fn layout_source(spec_path: &Path, spec: &Spec) -> Result<LayoutSource, BuildError> {
+    let Some(relative) = &spec.layout.image else {
+        return Ok(LayoutSource::Generate);
+    };
+    let file = spec::resolve(spec_path, relative);
+    let bytes = fs::read(&file).map_err(|e| BuildError::Input {
+        spec: spec_path.to_path_buf(),
+        key: "layout.image",
+        file: file.clone(),
+        message: e.to_string(),
+    })?;
+    Ok(LayoutSource::Image { path: file, bytes })
+}
+
+/// Reads a CMP-layout facade folder: every `<name>.jpg` with its `<name>.xml` and
+/// `<name>.png` when present, sorted by name, and the floors side file.
+pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildError> {
+    let facades = &spec.facades;
+    if facades.source == BUILTIN_FACADES {
+        return Ok(FacadeInput::Builtin);
+    }
+    let folder = spec::resolve(spec_path, &facades.source);
+    let input_error = |file: &Path, message: String| BuildError::Input {
+        spec: spec_path.to_path_buf(),
+        key: "facades.source",
+        file: file.to_path_buf(),
+        message,
+    };
+    let mut names: Vec<String> = fs::read_dir(&folder)
+        .map_err(|e| input_error(&folder, e.to_string()))?
+        .filter_map(|entry| entry.ok())
+        .filter_map(|entry| {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let stem = name
+                .strip_suffix(".jpg")
+                .or_else(|| name.strip_suffix(".jpeg"))?;
+            Some(stem.to_owned())
+        })
+        .collect();
+    names.sort();
+    names.dedup();
+    if names.is_empty() {
+        return Err(input_error(
+            &folder,
+            "expected facade photos (<name>.jpg), found none".into(),
+        ));
+    }
+    let mut digest = Sha256::new();
+    let mut files = Vec::with_capacity(names.len());
+    for name in names {
+        let photo_path = ["jpg", "jpeg"]
+            .iter()
+            .map(|ext| folder.join(format!("{name}.{ext}")))
+            .find(|p| p.is_file())
+            .unwrap_or_else(|| folder.join(format!("{name}.jpg")));
+        let photo = fs::read(&photo_path).map_err(|e| input_error(&photo_path, e.to_string()))?;
+        let xml = read_optional(&folder.join(format!("{name}.xml")))
+            .map(|bytes| String::from_utf8_lossy(&bytes).into_owned());
+        let labels = read_optional(&folder.join(format!("{name}.png")));
+        for part in [
+            Some(name.as_bytes()),
+            Some(&photo[..]),
+            xml.as_ref().map(|x| x.as_bytes()),
+            labels.as_deref(),
+        ] {
+            match part {
+                Some(bytes) => {
+                    digest.update((bytes.len() as u64 + 1).to_le_bytes());
+                    digest.update(bytes);
+                }
+                None => digest.update(0u64.to_le_bytes()),
+            }
+        }
+        files.push(FacadeFile {
+            name,
+            photo,
+            xml,
+            labels,
+        });
+    }
+    let floors = match &facades.floors {
+        Some(relative) => {
+            let file = folder.join(relative);
+            let text = fs::read_to_string(&file).map_err(|e| BuildError::Input {
+                spec: spec_path.to_path_buf(),
+                key: "facades.floors",
+                file: file.clone(),
+                message: e.to_string(),
+            })?;
+            digest.update(text.as_bytes());
+            Some(text)
+        }
+        None => None,
+    };
+    let source = FacadeSource {
+        origin: facades.source.clone(),
+        files,
+        floors,
+    };
+    Ok(FacadeInput::Folder {
+        source,
+        digest: hex(&digest.finalize()),
+    })
+}
+
+fn read_optional(path: &Path) -> Option<Vec<u8>> {
+    fs::read(path).ok()
+}
