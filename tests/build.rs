@@ -27,7 +27,7 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let ws = Workspace::with_spec("day");
     let spec = ws.spec("day");
     let cold = in_pool(1, || build::build(&spec, &ws.options())).unwrap();
-    assert_eq!(cold.ran().count(), 10, "a cold build runs every stage");
+    assert_eq!(cold.ran().count(), 11, "a cold build runs every stage");
     let first = tree(&ws.out());
     let names: Vec<&str> = first.keys().map(String::as_str).collect();
     let named: Vec<&str> = names
@@ -43,6 +43,7 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
             "day/city.obj",
             "day/layout.png",
             "day/manifest.json",
+            "day/overview.png",
             "day/plan.json",
             "day/plan.png"
         ]
@@ -109,6 +110,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
             ("facades", Cached),
             ("lamps", Ran),
             ("mirror", Cached),
+            ("overview", Ran),
             ("parse", Cached),
             ("place", Cached),
             ("plan", Ran),
@@ -121,6 +123,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
         [
             "city.glb",
             "city.obj",
+            "overview.png",
             "plan.json",
             "plan.png",
             "manifest.json"
@@ -159,6 +162,7 @@ fn changing_buildings_leaves_lamps_and_layout_cached() {
             ("facades", Cached),
             ("lamps", Cached),
             ("mirror", Cached),
+            ("overview", Ran),
             ("parse", Cached),
             ("place", Ran),
             ("plan", Ran),
@@ -180,7 +184,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
     }
     fs::remove_dir_all(ws.out()).unwrap();
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 10, "no damaged object may be used");
+    assert_eq!(report.ran().count(), 11, "no damaged object may be used");
     // Every cached stage found its entry damaged (the scene is never cached).
     assert!(
         report
@@ -247,6 +251,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
             ("city.mtl", "export"),
             ("city.obj", "export"),
             ("layout.png", "mirror"),
+            ("overview.png", "overview"),
             ("plan.json", "plan"),
             ("plan.png", "preview")
         ]
@@ -264,7 +269,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
 fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
     let ws = Workspace::with_spec("drawn");
     let report = build::build(&ws.spec("drawn"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 10);
+    assert_eq!(report.ran().count(), 11);
     let plan: serde_json::Value =
         serde_json::from_slice(&fs::read(ws.out().join("drawn/plan.json")).unwrap()).unwrap();
     assert_eq!(
@@ -286,4 +291,35 @@ fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
             .unwrap()
             .up_to_date()
     );
+}
+
+#[test]
+fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says() {
+    let ws = Workspace::with_spec("cmp");
+    let report = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    let obj = String::from_utf8(fs::read(ws.out().join("cmp/city.obj")).unwrap()).unwrap();
+    assert!(
+        obj.contains("usemtl facade_street_04"),
+        "the folder's facades clad the city"
+    );
+
+    // Break one facade's boxes: with on_error = "skip" it is left out with a warning…
+    let xml = ws.path().join("assets/facades/sample/street_04.xml");
+    fs::write(&xml, "<object><points><x>oops</x></points>").unwrap();
+    let report = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    assert!(
+        report.warnings[0].contains("street_04.xml"),
+        "{}",
+        report.warnings[0]
+    );
+    let obj = String::from_utf8(fs::read(ws.out().join("cmp/city.obj")).unwrap()).unwrap();
+    assert!(!obj.contains("facade_street_04"));
+
+    // …and with on_error = "error" the build stops, naming the file, as bad input.
+    ws.edit_spec("cmp", "on_error = \"skip\"", "on_error = \"error\"");
+    let err = build::build(&ws.spec("cmp"), &ws.options()).unwrap_err();
+    assert!(err.is_input_error());
+    assert!(err.to_string().contains("street_04.xml"), "{err}");
 }

@@ -24,16 +24,8 @@ impl Workspace {
             )
             .unwrap();
         }
-        // Specs may name layout images under assets/layouts, relative to their folder.
-        fs::create_dir_all(dir.path().join("assets/layouts")).unwrap();
-        for entry in fs::read_dir(repo.join("assets/layouts")).unwrap() {
-            let entry = entry.unwrap();
-            fs::copy(
-                entry.path(),
-                dir.path().join("assets/layouts").join(entry.file_name()),
-            )
-            .unwrap();
-        }
+        // Specs name layout images and facade folders under assets/, relative to their folder.
+        copy_tree(&repo.join("assets"), &dir.path().join("assets"));
         assert!(
             dir.path()
                 .join("specs")
@@ -72,6 +64,20 @@ impl Workspace {
         let text = fs::read_to_string(&path).unwrap();
         assert!(text.contains(from), "{from:?} not in {}", path.display());
         fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    }
+}
+
+/// Copies every file below `from` into `to`, creating folders.
+pub fn copy_tree(from: &Path, to: &Path) {
+    fs::create_dir_all(to).unwrap();
+    for entry in fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.path().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            fs::copy(entry.path(), target).unwrap();
+        }
     }
 }
 

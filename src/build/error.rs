@@ -26,6 +26,9 @@ pub enum BuildError {
     /// The facade set is unusable (the message names the file).
     #[error("{}: facades: {message}", spec.display())]
     Facades { spec: PathBuf, message: String },
+    /// The renderer refused the scene (a cityspec bug or an unusable texture).
+    #[error("{}: render: {message}", spec.display())]
+    Render { spec: PathBuf, message: String },
     /// Two specs of one build share a name and so an output folder.
     #[error("{} and {} are both named {name:?}: they would write the same output folder", first.display(), second.display())]
     DuplicateName {

@@ -20,7 +20,10 @@ use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::Spec;
-use crate::{export, facades, lamps, layout, mirror, parse, place, plan, preview, rng, scene};
+use crate::{
+    cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
+    scene,
+};
 
 /// An artifact a build writes: name in the output folder, bytes, producing stage and key.
 pub struct ArtifactOut {
@@ -40,6 +43,7 @@ struct Keys {
     preview: String,
     facades: String,
     export: String,
+    overview: String,
 }
 
 /// A stage's outputs, and its typed value once computed or decoded.
@@ -63,6 +67,7 @@ pub struct Pipeline<'a> {
     scene: Option<Arc<Scene>>,
     facades: Option<Slot<FacadeSet>>,
     export: Option<Slot<()>>,
+    overview: Option<Slot<()>>,
     layout: Option<Slot<RgbImage>>,
     mirror: Option<Slot<RgbImage>>,
     parse: Option<Slot<ParsedLayout>>,
@@ -94,6 +99,7 @@ impl<'a> Pipeline<'a> {
             scene: None,
             facades: None,
             export: None,
+            overview: None,
             layout: None,
             mirror: None,
             parse: None,
@@ -110,33 +116,41 @@ impl<'a> Pipeline<'a> {
         self.need_plan()?;
         self.need_preview()?;
         self.need_export()?;
-        let mut artifacts = Vec::new();
-        let mut add = |slot_outputs: &Outputs, stage: &'static str, key: &str| {
-            for (path, bytes) in slot_outputs {
-                artifacts.push(ArtifactOut {
+        self.need_overview()?;
+        let stages: [(&Outputs, &'static str, &String); 5] = [
+            (
+                &evaluated(&self.mirror).outputs,
+                "mirror",
+                &self.keys.mirror,
+            ),
+            (&evaluated(&self.plan).outputs, "plan", &self.keys.plan),
+            (
+                &evaluated(&self.preview).outputs,
+                "preview",
+                &self.keys.preview,
+            ),
+            (
+                &evaluated(&self.export).outputs,
+                "export",
+                &self.keys.export,
+            ),
+            (
+                &evaluated(&self.overview).outputs,
+                "overview",
+                &self.keys.overview,
+            ),
+        ];
+        let mut artifacts: Vec<ArtifactOut> = stages
+            .into_iter()
+            .flat_map(|(outputs, stage, key)| {
+                outputs.iter().map(move |(path, bytes)| ArtifactOut {
                     path: path.clone(),
                     bytes: Arc::clone(bytes),
                     stage,
-                    key: key.to_owned(),
-                });
-            }
-        };
-        add(
-            &evaluated(&self.mirror).outputs,
-            "mirror",
-            &self.keys.mirror,
-        );
-        add(&evaluated(&self.plan).outputs, "plan", &self.keys.plan);
-        add(
-            &evaluated(&self.preview).outputs,
-            "preview",
-            &self.keys.preview,
-        );
-        add(
-            &evaluated(&self.export).outputs,
-            "export",
-            &self.keys.export,
-        );
+                    key: key.clone(),
+                })
+            })
+            .collect();
         artifacts.sort_by(|a, b| a.path.cmp(&b.path));
         Ok(artifacts)
     }
@@ -426,6 +440,40 @@ impl<'a> Pipeline<'a> {
         )
     }
 
+    /// `overview.png`: the textured city from the air, rendered by cityspec's renderer.
+    fn need_overview(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.overview.clone();
+        let gather = |p: &mut Self| Ok((p.scene()?, p.parsed()?));
+        self.stage(
+            "overview",
+            key,
+            |p| &mut p.overview,
+            gather,
+            |p, (scene, parsed)| {
+                let prepared = render::prepare(&scene).map_err(|e| BuildError::Render {
+                    spec: p.spec_path.clone(),
+                    message: e.to_string(),
+                })?;
+                let (w, h) = (f64::from(parsed.width), f64::from(parsed.height));
+                let span = (w * w + h * h).sqrt() * p.spec.layout.metres_per_pixel;
+                // The north-east corner of an orbit, 0.6 of the city's diagonal up: the whole
+                // city in one oblique view.
+                let poses =
+                    cameras::orbit_path(&parsed, p.spec.layout.metres_per_pixel, 8, span * 0.6);
+                let frame = match poses.get(1) {
+                    Some(pose) => {
+                        let mut intrinsics = render::Intrinsics::from_fov(1280, 960, 0.5);
+                        intrinsics.far = span * 4.0;
+                        render::render(&prepared, pose, &intrinsics, &render::Lighting::day(), 2)
+                            .rgb
+                    }
+                    None => image::RgbImage::new(1280, 960),
+                };
+                Ok(((), one("overview.png", codec::encode_png(&frame))))
+            },
+        )
+    }
+
     /// Fills `slot` from the cache, or gathers the inputs and runs the stage.
     fn stage<I, T>(
         &mut self,
@@ -581,7 +629,12 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys 
         .input("place", &place)
         .input("facades", &facades)
         .finish();
+    let overview = StageKey::new("overview", render::VERSION)
+        .spec("cameras_version", &cameras::VERSION)
+        .input("export", &export)
+        .finish();
     Keys {
+        overview,
         layout,
         mirror,
         parse,

@@ -9,16 +9,15 @@
 //!
 //! Poses are in world metres (x east = layout x, y up, z south = layout y), rounded to the
 //! millimetre so that written poses print short, stable numbers; `-0` becomes `0`.
-//! [`CameraPose`] is defined here; the renderer consumes it.
+//! [`CameraPose`] lives in [`crate::model`]; the renderer consumes it.
 
 /// Bump when this stage's output changes: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
-mod camera_pose;
 mod orbit_path;
 mod road_path;
 
-pub use camera_pose::CameraPose;
+pub use crate::model::CameraPose;
 pub use orbit_path::orbit_path;
 pub use road_path::{RoadPath, road_path, tour_length};
 

@@ -7,6 +7,7 @@
 
 mod block;
 mod building;
+mod camera_pose;
 mod city_plan;
 mod facade_set;
 mod lamp;
@@ -17,6 +18,7 @@ mod texture;
 
 pub use block::{Band, Block, PxRect};
 pub use building::Building;
+pub use camera_pose::CameraPose;
 pub use city_plan::{CityPlan, PlanBlock, PlanBuilding, PlanLamp, PlanRoad};
 pub use facade_set::{Facade, FacadeSet, Roof};
 pub use lamp::Lamp;

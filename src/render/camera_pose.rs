@@ -1,13 +1,6 @@
 //! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward).
 
-use serde::{Deserialize, Serialize};
-
-/// A pinhole camera without trigonometry: eye, a point it looks at, and up (y).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CameraPose {
-    pub eye: [f64; 3],
-    pub target: [f64; 3],
-}
+pub use crate::model::CameraPose;
 
 /// The camera's axes in world coordinates, right-handed: `right = forward × up`,
 /// `up = right × forward`.

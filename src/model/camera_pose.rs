@@ -1,4 +1,4 @@
-//! A camera pose: where the camera stands and the point it looks at, in world metres.
+//! A camera pose: eye and look-at target, shared by the cameras stage and the renderer.
 
 use serde::{Deserialize, Serialize};
 
