@@ -101,6 +101,7 @@ fn noop_rebuild(runs: usize) {
     let spec = dir.path().join("day.toml");
     std::fs::copy(repo().join("specs/day.toml"), &spec).unwrap();
     let options = BuildOptions {
+        progress: None,
         out_root: dir.path().join("out"),
         cache_dir: dir.path().join("cache"),
     };

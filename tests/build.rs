@@ -27,13 +27,13 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let ws = Workspace::with_spec("day");
     let spec = ws.spec("day");
     let cold = in_pool(1, || build::build(&spec, &ws.options())).unwrap();
-    assert_eq!(cold.ran().count(), 11, "a cold build runs every stage");
+    assert_eq!(cold.ran().count(), 13, "a cold build runs every stage");
     let first = tree(&ws.out());
     let names: Vec<&str> = first.keys().map(String::as_str).collect();
     let named: Vec<&str> = names
         .iter()
         .copied()
-        .filter(|n| !n.starts_with("day/textures/"))
+        .filter(|n| !n.starts_with("day/textures/") && !n.starts_with("day/frames/"))
         .collect();
     assert_eq!(
         named,
@@ -108,6 +108,8 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
         [
             ("export", Ran),
             ("facades", Cached),
+            ("frames", Ran),
+            ("frames", Ran),
             ("lamps", Ran),
             ("mirror", Cached),
             ("overview", Ran),
@@ -118,8 +120,14 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
             ("scene", Ran)
         ]
     );
+    let written: Vec<&str> = report
+        .written
+        .iter()
+        .map(String::as_str)
+        .filter(|p| !p.starts_with("frames/"))
+        .collect();
     assert_eq!(
-        report.written,
+        written,
         [
             "city.glb",
             "city.obj",
@@ -128,6 +136,13 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
             "plan.png",
             "manifest.json"
         ]
+    );
+    assert!(
+        report
+            .written
+            .iter()
+            .any(|p| p.starts_with("frames/street/rgb/")),
+        "lamps show in the frames"
     );
     assert!(report.unchanged.contains(&"layout.png".to_owned()));
     assert!(
@@ -160,6 +175,8 @@ fn changing_buildings_leaves_lamps_and_layout_cached() {
         [
             ("export", Ran),
             ("facades", Cached),
+            ("frames", Ran),
+            ("frames", Ran),
             ("lamps", Cached),
             ("mirror", Cached),
             ("overview", Ran),
@@ -184,7 +201,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
     }
     fs::remove_dir_all(ws.out()).unwrap();
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 11, "no damaged object may be used");
+    assert_eq!(report.ran().count(), 13, "no damaged object may be used");
     // Every cached stage found its entry damaged (the scene is never cached).
     assert!(
         report
@@ -241,7 +258,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
     let stages: Vec<_> = manifest
         .artifacts
         .iter()
-        .filter(|a| !a.path.starts_with("textures/"))
+        .filter(|a| !a.path.starts_with("textures/") && !a.path.starts_with("frames/"))
         .map(|a| (a.path.as_str(), a.stage.as_str()))
         .collect();
     assert_eq!(

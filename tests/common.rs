@@ -24,6 +24,15 @@ impl Workspace {
             )
             .unwrap();
         }
+        // Fewer frames than the examples render, so the suite stays quick in debug builds.
+        for entry in fs::read_dir(dir.path().join("specs")).unwrap() {
+            let path = entry.unwrap().path();
+            let text = fs::read_to_string(&path).unwrap();
+            let text = text
+                .replace("frames = 100", "frames = 4")
+                .replace("frames = 12", "frames = 2");
+            fs::write(&path, text).unwrap();
+        }
         // Specs name layout images and facade folders under assets/, relative to their folder.
         copy_tree(&repo.join("assets"), &dir.path().join("assets"));
         assert!(
@@ -53,6 +62,7 @@ impl Workspace {
 
     pub fn options(&self) -> cityspec::build::BuildOptions {
         cityspec::build::BuildOptions {
+            progress: None,
             out_root: self.out(),
             cache_dir: self.cache(),
         }

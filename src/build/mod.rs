@@ -10,6 +10,7 @@ mod atomic;
 mod cache;
 mod codec;
 mod error;
+mod frames;
 mod inputs;
 mod manifest;
 mod pipeline;
@@ -32,13 +33,18 @@ pub use report::{BuildReport, StageRun, StageStatus};
 use crate::spec::{self, FsWorld, Spec, SpecSource};
 use pipeline::Pipeline;
 
+/// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
+pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
+
 /// Where a build writes.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct BuildOptions {
     /// Each spec writes to `<out_root>/<name>/`.
     pub out_root: PathBuf,
     /// The stage cache.
     pub cache_dir: PathBuf,
+    /// Called as frames are rendered (the CLI draws a progress bar).
+    pub progress: Option<Progress>,
 }
 
 impl Default for BuildOptions {
@@ -46,6 +52,7 @@ impl Default for BuildOptions {
         BuildOptions {
             out_root: PathBuf::from("out"),
             cache_dir: PathBuf::from(".cityspec-cache"),
+            progress: None,
         }
     }
 }
@@ -112,7 +119,19 @@ pub fn build_spec(
     let source = inputs::layout_source(path, spec)?;
     let facade_input = inputs::facade_input(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
-    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), source, facade_input, &cache);
+    let progress = |camera: &str, done: usize, total: usize| {
+        if let Some(report) = &options.progress {
+            report(&spec.name, camera, done, total);
+        }
+    };
+    let mut pipeline = Pipeline::new(
+        spec,
+        path.to_path_buf(),
+        source,
+        facade_input,
+        &cache,
+        &progress,
+    );
     let artifacts = pipeline.artifacts()?;
     let out_dir = options.out_root.join(&spec.name);
     let output = |source: io::Error, file: &Path| BuildError::Output {

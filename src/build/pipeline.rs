@@ -15,15 +15,17 @@ use image::RgbImage;
 use super::BuildError;
 use super::cache::{Cache, Miss, Outputs};
 use super::codec;
+use super::frames;
 use super::inputs::{FacadeInput, LayoutSource};
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::Spec;
+use crate::spec::{CameraPath, Spec, TimeOfDay};
 use crate::{
-    cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
-    scene,
+    annotate, cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render,
+    rng, scene,
 };
+use rand::Rng;
 
 /// An artifact a build writes: name in the output folder, bytes, producing stage and key.
 pub struct ArtifactOut {
@@ -44,6 +46,8 @@ struct Keys {
     facades: String,
     export: String,
     overview: String,
+    /// One per `[[cameras]]` entry.
+    frames: Vec<String>,
 }
 
 /// A stage's outputs, and its typed value once computed or decoded.
@@ -68,6 +72,10 @@ pub struct Pipeline<'a> {
     facades: Option<Slot<FacadeSet>>,
     export: Option<Slot<()>>,
     overview: Option<Slot<()>>,
+    frames: Vec<Option<Slot<()>>>,
+    prepared: Option<Arc<render::PreparedScene>>,
+    /// Reports frames rendered: (camera name, frames done, frames in the path).
+    progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     layout: Option<Slot<RgbImage>>,
     mirror: Option<Slot<RgbImage>>,
     parse: Option<Slot<ParsedLayout>>,
@@ -84,6 +92,7 @@ impl<'a> Pipeline<'a> {
         source: LayoutSource,
         facade_input: FacadeInput,
         cache: &'a Cache,
+        progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     ) -> Self {
         let keys = keys(spec, &source, &facade_input);
         Pipeline {
@@ -100,6 +109,12 @@ impl<'a> Pipeline<'a> {
             facades: None,
             export: None,
             overview: None,
+            frames: vec![None; spec.cameras.len()]
+                .into_iter()
+                .map(|_: Option<()>| None)
+                .collect(),
+            prepared: None,
+            progress,
             layout: None,
             mirror: None,
             parse: None,
@@ -117,6 +132,9 @@ impl<'a> Pipeline<'a> {
         self.need_preview()?;
         self.need_export()?;
         self.need_overview()?;
+        for camera in 0..self.spec.cameras.len() {
+            self.need_frames(camera)?;
+        }
         let stages: [(&Outputs, &'static str, &String); 5] = [
             (
                 &evaluated(&self.mirror).outputs,
@@ -140,8 +158,14 @@ impl<'a> Pipeline<'a> {
                 &self.keys.overview,
             ),
         ];
+        let frames = self
+            .frames
+            .iter()
+            .zip(&self.keys.frames)
+            .map(|(slot, key)| (&evaluated(slot).outputs, "frames", key));
         let mut artifacts: Vec<ArtifactOut> = stages
             .into_iter()
+            .chain(frames)
             .flat_map(|(outputs, stage, key)| {
                 outputs.iter().map(move |(path, bytes)| ArtifactOut {
                     path: path.clone(),
@@ -474,12 +498,89 @@ impl<'a> Pipeline<'a> {
         )
     }
 
+    fn prepared_scene(&mut self) -> Result<Arc<render::PreparedScene>, BuildError> {
+        if let Some(prepared) = &self.prepared {
+            return Ok(Arc::clone(prepared));
+        }
+        let scene = self.scene()?;
+        let prepared = render::prepare(&scene).map_err(|e| BuildError::Render {
+            spec: self.spec_path.clone(),
+            message: e.to_string(),
+        })?;
+        let prepared = Arc::new(prepared);
+        self.prepared = Some(Arc::clone(&prepared));
+        Ok(prepared)
+    }
+
+    /// Frames and annotations of `[[cameras]]` entry `index`.
+    fn need_frames(&mut self, index: usize) -> Result<(), BuildError> {
+        let key = self.keys.frames[index].clone();
+        let gather = |p: &mut Self| {
+            Ok((
+                p.prepared_scene()?,
+                p.scene()?,
+                p.parsed()?,
+                p.lamp_sites()?,
+                p.facade_set()?,
+            ))
+        };
+        self.stage(
+            "frames",
+            key,
+            move |p| &mut p.frames[index],
+            gather,
+            |p, (prepared, scene, parsed, lamps, facades)| {
+                let spec = p.spec;
+                let camera = &spec.cameras[index];
+                let mpp = spec.layout.metres_per_pixel;
+                let camera_seed = rng::stream(spec.seed, "camera", index as u64).next_u64();
+                let poses = match camera.path {
+                    CameraPath::Roads => cameras::road_path(
+                        &parsed,
+                        mpp,
+                        &cameras::RoadPath {
+                            frames: camera.frames,
+                            height: camera.height,
+                            look_ahead: camera.look_ahead,
+                            jitter: camera.jitter,
+                            lane_offset: camera.lane_offset,
+                        },
+                        camera_seed,
+                    ),
+                    CameraPath::Orbit => {
+                        cameras::orbit_path(&parsed, mpp, camera.frames, camera.height)
+                    }
+                };
+                let lighting = lighting(spec, &scene, &lamps, &facades);
+                let (categories, labels) = labels(spec, &scene);
+                let thresholds = annotate::Thresholds {
+                    min_pixels: spec.annotations.min_pixels,
+                    min_fraction: spec.annotations.min_fraction,
+                };
+                let input = frames::PathInput {
+                    camera,
+                    scene: &prepared,
+                    lighting: &lighting,
+                    categories: &categories,
+                    labels: &labels,
+                    thresholds: &thresholds,
+                    yolo: spec.annotations.yolo,
+                };
+                let total = poses.len();
+                let outputs = frames::render_path(&input, &poses, |done| {
+                    (p.progress)(&camera.name, done, total)
+                });
+                Ok(((), outputs))
+            },
+        )
+    }
+
     /// Fills `slot` from the cache, or gathers the inputs and runs the stage.
     fn stage<I, T>(
         &mut self,
         name: &'static str,
         key: String,
-        slot: fn(&mut Self) -> &mut Option<Slot<T>>,
+        slot: impl for<'x> Fn(&'x mut Self) -> &'x mut Option<Slot<T>>,
         gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
         run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
     ) -> Result<(), BuildError> {
@@ -633,7 +734,22 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys 
         .spec("cameras_version", &cameras::VERSION)
         .input("export", &export)
         .finish();
+    let frames = spec
+        .cameras
+        .iter()
+        .map(|camera| {
+            StageKey::new("frames", render::VERSION)
+                .spec("versions", &[cameras::VERSION, annotate::VERSION])
+                .spec("camera", camera)
+                .spec("lighting", &spec.lighting)
+                .spec("annotations", &spec.annotations)
+                .spec("seed", &spec.seed)
+                .input("export", &export)
+                .finish()
+        })
+        .collect();
     Keys {
+        frames,
         overview,
         layout,
         mirror,
@@ -645,4 +761,65 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys 
         facades,
         export,
     }
+}
+
+/// The spec's lighting: day, or night with a light at every lamp head and lit windows.
+fn lighting(spec: &Spec, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) -> render::Lighting {
+    match spec.lighting.time {
+        TimeOfDay::Day => render::Lighting::day(),
+        TimeOfDay::Night => {
+            let mpp = spec.layout.metres_per_pixel;
+            let range = spec.lighting.lamp_range as f32;
+            let lights = lamps
+                .iter()
+                .map(|lamp| render::Light {
+                    position: [
+                        (lamp.position[0] * mpp) as f32,
+                        5.8,
+                        (lamp.position[1] * mpp) as f32,
+                    ],
+                    colour: [1.6, 1.25, 0.8],
+                    range,
+                })
+                .collect();
+            let windows = render::LitWindows::from_facades(
+                scene,
+                facades,
+                spec.lighting.lit_windows as f32,
+                spec.seed,
+                [1.0, 0.82, 0.5],
+            );
+            render::Lighting::night(lights, Some(windows))
+        }
+    }
+}
+
+/// COCO categories (the annotated classes, ids from 1) and a label per scene object.
+fn labels(spec: &Spec, scene: &Scene) -> (Vec<annotate::Category>, Vec<annotate::ObjectLabel>) {
+    let classes: Vec<String> = if spec.annotations.classes.is_empty() {
+        vec!["lamp".to_owned()]
+    } else {
+        spec.annotations.classes.clone()
+    };
+    let categories: Vec<annotate::Category> = classes
+        .iter()
+        .enumerate()
+        .map(|(i, name)| annotate::Category {
+            id: i as u32 + 1,
+            name: name.clone(),
+        })
+        .collect();
+    let labels = scene
+        .objects
+        .iter()
+        .map(|object| annotate::ObjectLabel {
+            name: object.name.clone(),
+            category: categories
+                .iter()
+                .find(|c| c.name == object.class)
+                .map(|c| c.id),
+            text: None,
+        })
+        .collect();
+    (categories, labels)
 }

@@ -40,9 +40,11 @@ pub fn run() -> ExitCode {
             cache,
             jobs,
         } => {
+            let progress = (!args.quiet).then(|| print::progress_line(color));
             let options = BuildOptions {
                 out_root,
                 cache_dir: cache,
+                progress,
             };
             let pool = match rayon::ThreadPoolBuilder::new()
                 .num_threads(jobs.map_or(0, usize::from))

@@ -82,3 +82,34 @@ impl Printer {
         }
     }
 }
+
+/// A one-line progress report of rendered frames, with frames per second, redrawn in place
+/// on a terminal (at most ten times a second) and printed once per path otherwise.
+pub fn progress_line(terminal: bool) -> crate::build::Progress {
+    use std::sync::Mutex;
+    use std::time::{Duration, Instant};
+    let state: Mutex<Option<(String, Instant, Instant)>> = Mutex::new(None);
+    std::sync::Arc::new(move |spec: &str, camera: &str, done: usize, total: usize| {
+        let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
+        let path = format!("{spec}/{camera}");
+        let now = Instant::now();
+        let (started, last) = match &*state {
+            Some((p, started, last)) if *p == path => (*started, *last),
+            _ => (now, now - Duration::from_secs(1)),
+        };
+        let finished = done == total;
+        let rate = done as f64 / now.duration_since(started).as_secs_f64().max(1e-9);
+        if terminal && (finished || now.duration_since(last) >= Duration::from_millis(100)) {
+            eprint!("\r  rendering {path}: {done}/{total} frames, {rate:.1} frames/s   ");
+            if finished {
+                eprintln!();
+            }
+            *state = Some((path, started, now));
+        } else {
+            if !terminal && finished {
+                eprintln!("  rendered {path}: {total} frames, {rate:.1} frames/s");
+            }
+            *state = Some((path, started, last));
+        }
+    })
+}

@@ -14,6 +14,7 @@
 //! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world the build
 //! driver passes in. Relative paths in a spec resolve against the spec's own folder.
 
+mod camera_spec;
 mod closest;
 mod diagnostic;
 mod findings;
@@ -33,6 +34,7 @@ use std::path::{Path, PathBuf};
 
 use toml::de::{DeTable, DeValue};
 
+pub use camera_spec::{AnnotationsSpec, CameraPath, CameraSpec, LightingSpec, TimeOfDay};
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};

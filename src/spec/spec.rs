@@ -10,6 +10,8 @@ use std::fmt;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
+
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
 
@@ -38,6 +40,16 @@ pub struct Spec {
     /// Street lamp sites along the roads.
     #[serde(default)]
     pub lamps: LampsSpec,
+    /// Camera paths: each renders frames with annotations into `frames/<name>/`.
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub cameras: Vec<CameraSpec>,
+    /// Day or night.
+    #[serde(default)]
+    pub lighting: LightingSpec,
+    /// What the annotations keep.
+    #[serde(default)]
+    pub annotations: AnnotationsSpec,
 }
 
 /// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).

@@ -1,0 +1,224 @@
+//! One camera path's dataset: scene + poses + lighting → frames (RGB, instance ids, depth),
+//! COCO, optional YOLO, ICDAR for text, poses, and a `preview.png` contact sheet.
+//!
+//! Glue between the cameras, render and annotate stages; pure (the driver stores and
+//! writes what it returns). File names are relative to the output folder.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use ab_glyph::FontRef;
+use image::{Rgb, RgbImage, imageops};
+use imageproc::drawing::{draw_hollow_rect_mut, draw_text_mut};
+use imageproc::rect::Rect;
+use serde_json::json;
+
+use super::cache::Outputs;
+use super::codec;
+use crate::annotate::{self, Category, FrameInput, ObjectLabel, Thresholds};
+use crate::model::CameraPose;
+use crate::render::{self, Intrinsics, Lighting, PreparedScene};
+use crate::spec::CameraSpec;
+
+/// Everything one camera path needs besides its poses.
+pub struct PathInput<'a> {
+    pub camera: &'a CameraSpec,
+    pub scene: &'a PreparedScene,
+    pub lighting: &'a Lighting,
+    pub categories: &'a [Category],
+    pub labels: &'a [ObjectLabel],
+    pub thresholds: &'a Thresholds,
+    pub yolo: bool,
+}
+
+/// Renders every pose and annotates the frames.
+pub fn render_path(
+    input: &PathInput,
+    poses: &[CameraPose],
+    mut progress: impl FnMut(usize),
+) -> Outputs {
+    let camera = input.camera;
+    let (width, height) = (camera.resolution[0], camera.resolution[1]);
+    let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
+    let dir = format!("frames/{}", camera.name);
+    let mut outputs = Outputs::new();
+    let mut instances = Vec::with_capacity(poses.len());
+    let mut rgbs = Vec::new();
+    let picks = contact_sheet_picks(poses.len());
+    for (i, pose) in poses.iter().enumerate() {
+        let frame = render::render(
+            input.scene,
+            pose,
+            &intrinsics,
+            input.lighting,
+            camera.supersample,
+        );
+        let pngs = frame.encode_png();
+        outputs.insert(format!("{dir}/rgb/{i:06}.png"), Arc::new(pngs.rgb));
+        outputs.insert(format!("{dir}/ids/{i:06}.png"), Arc::new(pngs.instance));
+        outputs.insert(format!("{dir}/depth/{i:06}.png"), Arc::new(pngs.depth_mm));
+        if picks.contains(&i) {
+            rgbs.push((i, frame.rgb));
+        }
+        instances.push(frame.instance);
+        progress(i + 1);
+    }
+    let frames: Vec<FrameInput> = instances
+        .iter()
+        .zip(poses)
+        .enumerate()
+        .map(|(i, (instance, pose))| FrameInput {
+            file_name: format!("rgb/{i:06}.png"),
+            instance,
+            intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
+            pose: *pose,
+            full: BTreeMap::new(),
+            quads: BTreeMap::new(),
+        })
+        .collect();
+    let coco = annotate::coco(input.categories, input.labels, &frames, input.thresholds);
+    outputs.insert(format!("{dir}/coco.json"), Arc::new(coco));
+    let has_text = input
+        .labels
+        .iter()
+        .any(|l| l.text.is_some() && l.category.is_some());
+    for (i, frame) in frames.iter().enumerate() {
+        if input.yolo {
+            let text = annotate::yolo(input.categories, input.labels, frame, input.thresholds);
+            outputs.insert(
+                format!("{dir}/yolo/{i:06}.txt"),
+                Arc::new(text.into_bytes()),
+            );
+        }
+        if has_text {
+            let text = annotate::icdar(input.labels, frame, input.thresholds);
+            outputs.insert(
+                format!("{dir}/icdar/gt_{i:06}.txt"),
+                Arc::new(text.into_bytes()),
+            );
+        }
+    }
+    let poses_json = json!({
+        "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
+                       "cx": intrinsics.cx, "cy": intrinsics.cy},
+        "frames": poses.iter().enumerate().map(|(i, p)| json!({
+            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target
+        })).collect::<Vec<_>>(),
+    });
+    outputs.insert(
+        format!("{dir}/poses.json"),
+        Arc::new(codec::to_pretty_json(&poses_json)),
+    );
+    let sheet = contact_sheet(&rgbs, &frames, input);
+    outputs.insert(
+        format!("{dir}/preview.png"),
+        Arc::new(codec::encode_png(&sheet)),
+    );
+    outputs
+}
+
+/// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the
+/// same bits on every platform; θ ≤ 120° keeps θ/2 ≤ 1.05 rad where 14 terms are exact to
+/// the last bit's neighbourhood).
+pub fn tan_half_degrees(degrees: f64) -> f64 {
+    let x = degrees / 2.0 * (std::f64::consts::PI / 180.0);
+    let (mut sin, mut cos) = (0.0, 0.0);
+    let (mut term_s, mut term_c) = (x, 1.0);
+    for n in 0..14 {
+        sin += term_s;
+        cos += term_c;
+        let k = 2.0 * f64::from(n);
+        term_s *= -x * x / ((k + 2.0) * (k + 3.0));
+        term_c *= -x * x / ((k + 1.0) * (k + 2.0));
+    }
+    sin / cos
+}
+
+/// Up to 12 frames spread over the path.
+fn contact_sheet_picks(frames: usize) -> Vec<usize> {
+    let n = frames.min(12);
+    (0..n).map(|k| k * frames / n.max(1)).collect()
+}
+
+/// The picked frames at half size in a grid, each kept annotation's box and class drawn.
+fn contact_sheet(rgbs: &[(usize, RgbImage)], frames: &[FrameInput], input: &PathInput) -> RgbImage {
+    let Some((_, first)) = rgbs.first() else {
+        return RgbImage::new(1, 1);
+    };
+    let (w, h) = (first.width() / 2, first.height() / 2);
+    let columns = 3u32.min(rgbs.len() as u32);
+    let rows = (rgbs.len() as u32).div_ceil(columns);
+    let mut sheet = RgbImage::from_pixel(
+        columns * w + (columns + 1) * 4,
+        rows * h + (rows + 1) * 4,
+        Rgb([20, 20, 20]),
+    );
+    let font = FontRef::try_from_slice(notosans::REGULAR_TTF).expect("the embedded font parses");
+    let names: BTreeMap<u32, &str> = input
+        .categories
+        .iter()
+        .map(|c| (c.id, c.name.as_str()))
+        .collect();
+    for (slot, (index, rgb)) in rgbs.iter().enumerate() {
+        let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
+        for object in annotate::shown(input.labels, &frames[*index], input.thresholds) {
+            let Some(category) = object.label.category.filter(|_| object.passes) else {
+                continue;
+            };
+            let v = &object.visible;
+            let (x0, y0) = ((v.x0 / 2) as i32, (v.y0 / 2) as i32);
+            let (bw, bh) = (((v.x1 - v.x0) / 2).max(1), ((v.y1 - v.y0) / 2).max(1));
+            let colour = palette(category);
+            draw_hollow_rect_mut(&mut small, Rect::at(x0, y0).of_size(bw, bh), colour);
+            let name = names.get(&category).copied().unwrap_or("?");
+            draw_text_mut(&mut small, colour, x0, (y0 - 12).max(0), 11.0, &font, name);
+        }
+        let (col, row) = (slot as u32 % columns, slot as u32 / columns);
+        imageops::overlay(
+            &mut sheet,
+            &small,
+            i64::from(4 + col * (w + 4)),
+            i64::from(4 + row * (h + 4)),
+        );
+    }
+    sheet
+}
+
+fn palette(category: u32) -> Rgb<u8> {
+    const COLOURS: [[u8; 3]; 6] = [
+        [255, 220, 0],
+        [0, 230, 255],
+        [255, 80, 200],
+        [120, 255, 80],
+        [255, 140, 0],
+        [200, 160, 255],
+    ];
+    Rgb(COLOURS[category as usize % COLOURS.len()])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tan_half_matches_known_values() {
+        for (degrees, expected) in [
+            (90.0, 1.0),
+            (60.0, 0.577_350_269_189_625_8),
+            (120.0, 1.732_050_807_568_877_2),
+        ] {
+            let got = tan_half_degrees(degrees);
+            assert!((got - expected).abs() < 1e-12, "{degrees}: {got}");
+        }
+    }
+
+    #[test]
+    fn contact_sheet_picks_spread_over_the_path() {
+        assert_eq!(contact_sheet_picks(3), [0, 1, 2]);
+        assert_eq!(
+            contact_sheet_picks(24),
+            [0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22]
+        );
+        assert!(contact_sheet_picks(0).is_empty());
+    }
+}

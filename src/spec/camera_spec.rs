@@ -1,0 +1,166 @@
+//! The dataset part of a spec: camera paths, lighting and annotation settings.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// One camera path; its frames and annotations go to `frames/<name>/`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    /// Name of the path (a folder name).
+    #[schemars(regex(pattern = r"^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$"))]
+    pub name: String,
+    /// `"roads"` drives along the roads in the right-hand lane, through crossings;
+    /// `"orbit"` circles the city looking at its centre (an overview).
+    #[serde(default)]
+    pub path: CameraPath,
+    /// Frames on the path, evenly spaced.
+    #[serde(default = "default_frames")]
+    #[schemars(range(min = 1, max = 100000))]
+    pub frames: u32,
+    /// Eye height in metres (roads: a driver's eye; orbit: the flight height).
+    #[serde(default = "default_height")]
+    #[schemars(range(min = 0.3, max = 5000.0))]
+    pub height: f64,
+    /// Vertical field of view in degrees.
+    #[serde(default = "default_fov")]
+    #[schemars(range(min = 10.0, max = 120.0))]
+    pub fov: f64,
+    /// Image width and height in pixels.
+    #[serde(default = "default_resolution")]
+    #[schemars(length(min = 2, max = 2), inner(range(min = 16, max = 4096)))]
+    pub resolution: Vec<u32>,
+    /// How far ahead a roads camera looks, in metres.
+    #[serde(default = "default_look_ahead")]
+    #[schemars(range(min = 1.0, max = 1000.0))]
+    pub look_ahead: f64,
+    /// Seeded random offset of the look-at point, in metres (yaw and pitch jitter).
+    #[serde(default = "default_jitter")]
+    #[schemars(range(min = 0.0, max = 50.0))]
+    pub jitter: f64,
+    /// Distance of a roads camera from the centre line, to the right, in metres.
+    #[serde(default = "default_lane_offset")]
+    #[schemars(range(min = 0.0, max = 50.0))]
+    pub lane_offset: f64,
+    /// Samples per pixel side for the colour image (1 = none, 2 = 2×2).
+    #[serde(default = "default_supersample")]
+    #[schemars(range(min = 1, max = 4))]
+    pub supersample: u32,
+}
+
+/// How a camera moves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CameraPath {
+    // Plain comments: the schema stays a simple enum.
+    #[default]
+    Roads,
+    Orbit,
+}
+
+/// Day or night.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LightingSpec {
+    /// `"day"`: sun, blue sky. `"night"`: dark sky, lamp lights, glowing lamp heads and a
+    /// share of lit windows.
+    #[serde(default)]
+    pub time: TimeOfDay,
+    /// Night: the share of facade windows that are lit.
+    #[serde(default = "default_lit_windows")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub lit_windows: f64,
+    /// Night: how far a street lamp's light reaches, in metres.
+    #[serde(default = "default_lamp_range")]
+    #[schemars(range(min = 1.0, max = 200.0))]
+    pub lamp_range: f64,
+}
+
+impl Default for LightingSpec {
+    fn default() -> Self {
+        LightingSpec {
+            time: TimeOfDay::Day,
+            lit_windows: default_lit_windows(),
+            lamp_range: default_lamp_range(),
+        }
+    }
+}
+
+/// Time of day.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeOfDay {
+    // Plain comments: the schema stays a simple enum.
+    #[default]
+    Day,
+    Night,
+}
+
+/// What the annotations keep.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AnnotationsSpec {
+    /// Object classes to annotate (the scene's `building`, `lamp`, … and the labels of
+    /// `[[objects]]`). Empty: every `[[objects]]` label, and `lamp`.
+    #[serde(default)]
+    pub classes: Vec<String>,
+    /// Objects showing fewer pixels are left out.
+    #[serde(default = "default_min_pixels")]
+    #[schemars(range(min = 1, max = 1000000))]
+    pub min_pixels: u64,
+    /// Objects showing less of themselves (where known) are left out.
+    #[serde(default = "default_min_fraction")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub min_fraction: f64,
+    /// Also write YOLO txt files (`class cx cy w h`, normalised) beside the frames.
+    #[serde(default)]
+    pub yolo: bool,
+}
+
+impl Default for AnnotationsSpec {
+    fn default() -> Self {
+        AnnotationsSpec {
+            classes: Vec::new(),
+            min_pixels: default_min_pixels(),
+            min_fraction: default_min_fraction(),
+            yolo: false,
+        }
+    }
+}
+
+fn default_frames() -> u32 {
+    100
+}
+fn default_height() -> f64 {
+    1.6
+}
+fn default_fov() -> f64 {
+    60.0
+}
+fn default_resolution() -> Vec<u32> {
+    vec![640, 480]
+}
+fn default_look_ahead() -> f64 {
+    25.0
+}
+fn default_jitter() -> f64 {
+    0.5
+}
+fn default_lane_offset() -> f64 {
+    4.0
+}
+fn default_supersample() -> u32 {
+    1
+}
+fn default_lit_windows() -> f64 {
+    0.3
+}
+fn default_lamp_range() -> f64 {
+    25.0
+}
+fn default_min_pixels() -> u64 {
+    16
+}
+fn default_min_fraction() -> f64 {
+    0.1
+}
