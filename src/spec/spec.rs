@@ -10,6 +10,8 @@ use std::fmt;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use super::object_spec::ObjectSpec;
+
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
 
@@ -35,6 +37,10 @@ pub struct Spec {
     /// Building placement (paper Algorithm 1).
     #[serde(default)]
     pub buildings: BuildingsSpec,
+    /// Inserted object classes: text on walls, traffic signs, user meshes.
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub objects: Vec<ObjectSpec>,
     /// Street lamp sites along the roads.
     #[serde(default)]
     pub lamps: LampsSpec,
