@@ -16,6 +16,7 @@
 //! | plan | [`plan`] | blocks, roads, lamps, buildings | [`model::CityPlan`] in metres |
 //! | preview | [`preview`] | layout image, plan | `plan.png` |
 //! | scene | [`scene`] | blocks, roads, lamps, buildings, facades | [`model::Scene`]: the 3D city |
+//! | objects | [`objects`] | `spec.objects`, plan, buildings, facades, mesh files | [`objects::Inserted`]: text, signs, user meshes |
 //! | export | [`export`] | scene | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
 //! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
@@ -34,6 +35,7 @@ pub mod lamps;
 pub mod layout;
 pub mod mirror;
 pub mod model;
+pub mod objects;
 pub mod parse;
 pub mod place;
 pub mod plan;

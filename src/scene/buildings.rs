@@ -108,6 +108,27 @@ fn facade_choice(input: &SceneInput, building: &Building) -> Option<usize> {
     })
 }
 
+/// The wall height of a building clad with `facade` (see the fallbacks above).
+fn facade_height(facade: Option<&Facade>) -> f64 {
+    facade.map_or(PLAIN_HEIGHT, |f| {
+        if usable(f.height) {
+            f.height
+        } else {
+            PLAIN_HEIGHT
+        }
+    })
+}
+
+/// Every building's wall height in metres (above the block surface), in input order: the
+/// same choice of facade and the same fallbacks as [`building_objects`].
+pub(crate) fn building_heights(input: &SceneInput) -> Vec<f64> {
+    input
+        .buildings
+        .iter()
+        .map(|b| facade_height(facade_choice(input, b).map(|c| &input.facades.facades[c])))
+        .collect()
+}
+
 fn usable(v: f64) -> bool {
     v.is_finite() && v > 0.0
 }
@@ -123,13 +144,7 @@ pub fn building_objects(input: &SceneInput, clad: &Cladding) -> Vec<SceneObject>
             let fp = building.footprint;
             let x = [f64::from(fp.x0) * mpp, f64::from(fp.x1) * mpp];
             let z = [f64::from(fp.y0) * mpp, f64::from(fp.y1) * mpp];
-            let height = facade.map_or(PLAIN_HEIGHT, |f| {
-                if usable(f.height) {
-                    f.height
-                } else {
-                    PLAIN_HEIGHT
-                }
-            });
+            let height = facade_height(facade);
             let tiled = input.widths.is_some();
             let u_end = |wall: f64| match facade {
                 Some(f) if tiled && usable(f.width) => wall / f.width,

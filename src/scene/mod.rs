@@ -30,12 +30,12 @@
 pub const VERSION: u32 = 1;
 
 mod blocks;
-mod buildings;
+pub(crate) mod buildings;
 mod markings;
-mod material_book;
-mod mesh_builder;
+pub(crate) mod material_book;
+pub(crate) mod mesh_builder;
 mod procedural;
-mod road_rect;
+pub(crate) mod road_rect;
 mod roads;
 mod row_region;
 mod sidewalks;

@@ -8,7 +8,7 @@
 //! | syntax | the file is TOML (one diagnostic) | yes |
 //! | version | `version` is one this cityspec reads | yes: other versions mean other keys |
 //! | schema | the committed `schemas/cityspec.schema.json`, via a JSON-schema validator | yes, after reporting all |
-//! | semantic | rules between values: one layout source, roads that fit, the image exists, … | no |
+//! | semantic | rules between values: one layout source, roads that fit, the image and models exist, … | no |
 //!
 //! Then serde builds the [`Spec`] (defaults filled in). The only I/O is through
 //! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world the build
@@ -22,6 +22,8 @@ mod fs_world;
 mod key_path;
 mod layout_checks;
 mod locator;
+mod object_checks;
+mod object_spec;
 mod render;
 mod schema_check;
 #[allow(clippy::module_inception)]
@@ -38,6 +40,7 @@ pub use camera_spec::{AnnotationsSpec, CameraPath, CameraSpec, LightingSpec, Tim
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
+pub use object_spec::{Ground, ObjectKind, ObjectSpec, SignKind, TextCase};
 pub use render::render;
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
@@ -113,6 +116,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     value_checks::check_buildings(&spec.buildings, &mut findings);
     value_checks::check_facades(&spec.facades, &source.path, world, &mut findings);
     value_checks::check_lamps(&spec.lamps, &mut findings);
+    object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

@@ -11,6 +11,7 @@ use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
+use super::object_spec::ObjectSpec;
 
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
@@ -37,6 +38,10 @@ pub struct Spec {
     /// Building placement (paper Algorithm 1).
     #[serde(default)]
     pub buildings: BuildingsSpec,
+    /// Inserted object classes: text on walls, traffic signs, user meshes.
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub objects: Vec<ObjectSpec>,
     /// Street lamp sites along the roads.
     #[serde(default)]
     pub lamps: LampsSpec,

@@ -1,0 +1,208 @@
+//! Roads + blocks + lamps → random free spots on the strips beside the roads and in the
+//! right-hand lanes, each with the direction of the traffic passing it.
+//!
+//! Traffic keeps right: on a horizontal road the lane below the centre line (larger image
+//! y) runs east. A strip spot is mid-strip beside a road, off every road (so never in a
+//! crossing) with a block pixel just behind it; a lane spot is mid-lane, clear of every
+//! other road by the object's radius. Spots keep [`LAMP_CLEARANCE`] plus their radius from
+//! lamps and their radius plus theirs from every spot taken before.
+
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
+use super::ObjectsInput;
+use crate::model::{Axis, ParsedLayout, Road};
+use crate::scene::road_rect::RoadRect;
+use crate::scene::strip_width_px;
+
+/// Metres an object keeps from a lamp site.
+pub const LAMP_CLEARANCE: f64 = 2.0;
+
+/// A chosen spot, in metres (x east, z south).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spot {
+    pub position: [f64; 2],
+    /// Unit direction of the traffic in the nearest lane of the road (x, z).
+    pub travel: [f64; 2],
+    pub road: u32,
+}
+
+/// Where objects already stand, and the geometry spots are drawn from.
+pub struct GroundSpots<'a> {
+    layout: &'a ParsedLayout,
+    rects: Vec<RoadRect>,
+    mpp: f64,
+    strip_px: f64,
+    /// (x, z, radius) in metres of everything standing: lamps first, with
+    /// [`LAMP_CLEARANCE`] as their radius.
+    taken: Vec<(f64, f64, f64)>,
+}
+
+impl<'a> GroundSpots<'a> {
+    pub fn new(input: &'a ObjectsInput) -> Self {
+        let mpp = input.metres_per_pixel;
+        GroundSpots {
+            layout: input.layout,
+            rects: input.layout.roads.iter().map(RoadRect::of).collect(),
+            mpp,
+            strip_px: f64::from(strip_width_px(input.layout)),
+            taken: input
+                .lamps
+                .iter()
+                .map(|l| (l.position[0] * mpp, l.position[1] * mpp, LAMP_CLEARANCE))
+                .collect(),
+        }
+    }
+
+    /// A free mid-strip spot for an object of `radius` metres, or None after `attempts`.
+    pub fn strip(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
+        (0..attempts).find_map(|_| {
+            let (road, high, along) = self.pick_road(rng)?;
+            let offset = self.strip_px / 2.0;
+            let across = if high {
+                road.edges[1] + offset
+            } else {
+                road.edges[0] - offset
+            };
+            let px = image_point(road, along, across);
+            // One pixel past the strip's far edge must be a block: a real strip, not a gap.
+            let behind = image_point(
+                road,
+                along,
+                across + if high { offset + 1.0 } else { -offset - 1.0 },
+            );
+            if !self.inside_image(px) || self.on_road(px, 0.0) || !self.in_block(behind) {
+                return None;
+            }
+            self.take(road, high, px, radius)
+        })
+    }
+
+    /// A free spot in the middle of a right-hand lane, or None after `attempts`.
+    pub fn lane(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
+        (0..attempts).find_map(|_| {
+            let (road, high, along) = self.pick_road(rng)?;
+            let quarter = (road.edges[1] - road.edges[0]) / 4.0;
+            let across = if high {
+                road.line + quarter
+            } else {
+                road.line - quarter
+            };
+            let px = image_point(road, along, across);
+            let r_px = radius / self.mpp;
+            let clear_of_others = self
+                .rects
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != road.id as usize)
+                .all(|(_, r)| !within(r, px, r_px));
+            // The whole footprint stays on this road: along and across.
+            let in_own = road.start + r_px <= along
+                && along <= road.end - r_px
+                && road.edges[0] <= across - r_px
+                && across + r_px <= road.edges[1];
+            if !self.inside_image(px) || !clear_of_others || !in_own {
+                return None;
+            }
+            self.take(road, high, px, radius)
+        })
+    }
+
+    /// A road (uniform among the roads), a side and an along-position on it.
+    fn pick_road(&self, rng: &mut Pcg64) -> Option<(&'a Road, bool, f64)> {
+        let roads = &self.layout.roads;
+        if roads.is_empty() {
+            return None;
+        }
+        let road = &roads[rng.random_range(0..roads.len())];
+        let high: bool = rng.random();
+        let t: f64 = rng.random();
+        let along = road.start + t * (road.end - road.start);
+        along.is_finite().then_some((road, high, along))
+    }
+
+    fn take(&mut self, road: &Road, high: bool, px: [f64; 2], radius: f64) -> Option<Spot> {
+        let position = [px[0] * self.mpp, px[1] * self.mpp];
+        let clear = self.taken.iter().all(|&(x, z, r)| {
+            let (dx, dz) = (x - position[0], z - position[1]);
+            let need = r + radius;
+            dx * dx + dz * dz >= need * need
+        });
+        if !clear {
+            return None;
+        }
+        self.taken.push((position[0], position[1], radius));
+        Some(Spot {
+            position,
+            travel: travel(road.axis, high),
+            road: road.id,
+        })
+    }
+
+    fn inside_image(&self, p: [f64; 2]) -> bool {
+        p[0] >= 0.0
+            && p[1] >= 0.0
+            && p[0] < f64::from(self.layout.width)
+            && p[1] < f64::from(self.layout.height)
+    }
+
+    fn on_road(&self, p: [f64; 2], margin: f64) -> bool {
+        self.rects.iter().any(|r| within(r, p, margin))
+    }
+
+    fn in_block(&self, p: [f64; 2]) -> bool {
+        if !self.inside_image(p) {
+            return false;
+        }
+        let (x, y) = (p[0] as u32, p[1] as u32);
+        self.layout.blocks.iter().any(|b| b.contains_pixel(x, y))
+    }
+}
+
+/// Whether `p` lies in `r` grown by `margin`.
+fn within(r: &RoadRect, p: [f64; 2], margin: f64) -> bool {
+    r.x[0] - margin <= p[0]
+        && p[0] <= r.x[1] + margin
+        && r.y[0] - margin <= p[1]
+        && p[1] <= r.y[1] + margin
+}
+
+fn image_point(road: &Road, along: f64, across: f64) -> [f64; 2] {
+    match road.axis {
+        Axis::Horizontal => [along, across],
+        Axis::Vertical => [across, along],
+    }
+}
+
+/// Direction of the traffic on the `high` (below / right) or low side of a road: keeping
+/// right, the side is on the driver's right, so travel = side rotated a quarter turn.
+pub fn travel(axis: Axis, high: bool) -> [f64; 2] {
+    let side = match (axis, high) {
+        (Axis::Horizontal, true) => [0.0, 1.0],
+        (Axis::Horizontal, false) => [0.0, -1.0],
+        (Axis::Vertical, true) => [1.0, 0.0],
+        (Axis::Vertical, false) => [-1.0, 0.0],
+    };
+    // Heading h has its right-hand side at (-h.z, h.x) (x east, z south), so h = (s.z, -s.x).
+    [side[1], -side[0]]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn traffic_keeps_right() {
+        // (axis, high side) → heading: south lane runs east, east lane runs north, …
+        let cases = [
+            (Axis::Horizontal, true, [1.0, 0.0]),
+            (Axis::Horizontal, false, [-1.0, 0.0]),
+            (Axis::Vertical, true, [0.0, -1.0]),
+            (Axis::Vertical, false, [0.0, 1.0]),
+        ];
+        for (axis, high, want) in cases {
+            let got = travel(axis, high);
+            assert_eq!(got.map(|v: f64| v + 0.0), want, "{axis:?} {high}");
+        }
+    }
+}

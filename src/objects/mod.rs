@@ -1,0 +1,216 @@
+//! Objects stage: `spec.objects` + plan (roads, lamps, buildings, facades) + model bytes →
+//! [`Inserted`]: text planes on walls, traffic signs beside roads and user meshes, ready to
+//! [`merge`] into the scene.
+//!
+//! | kind | object name | where | geometry |
+//! |---|---|---|---|
+//! | text | `text_0003` | a wall facing a road, 2.5 m up to 1 m below the roof | a plate quad 2.5 cm in front of the wall |
+//! | sign | `sign_0012` | mid-strip beside a road, ≥ 2 m from lamps, not in a crossing | pole + plate shaped like the sign, facing oncoming traffic |
+//! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
+//!
+//! Every object's class is its spec entry's `label`. Entry `i` draws from
+//! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
+//! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
+//! finds no free spot in [`ATTEMPTS`] tries is left out: `count` is an upper bound.
+//!
+//! No `sin`/`cos` from std: angles go through [`trig`], a fixed polynomial, so the output is
+//! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
+
+/// Bump when this stage's output bytes change: it is part of the stage's cache key.
+pub const VERSION: u32 = 1;
+
+mod ground_spots;
+mod objects_error;
+mod sign_face;
+#[cfg(test)]
+mod tests;
+mod text_plate;
+mod traffic_signs;
+mod trig;
+mod user_mesh;
+mod wall_text;
+mod word_list;
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::model::{
+    Building, FacadeSet, Lamp, Material, Mesh, ParsedLayout, Scene, SceneObject, Texture,
+};
+use crate::scene::material_book::MaterialBook;
+use crate::spec::{ObjectKind, ObjectSpec};
+
+pub use objects_error::ObjectsError;
+pub use word_list::WORDS;
+
+/// How many random spots an object tries before it is left out.
+pub const ATTEMPTS: u32 = 40;
+
+/// A user model's files, as the build driver read them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct MeshFiles {
+    pub obj: Vec<u8>,
+    pub mtl: Option<Vec<u8>>,
+    /// Texture file name (as the MTL names it) → its bytes (PNG or JPEG).
+    pub textures: BTreeMap<String, Vec<u8>>,
+}
+
+/// Everything the objects stage reads.
+pub struct ObjectsInput<'a> {
+    pub specs: &'a [ObjectSpec],
+    pub layout: &'a ParsedLayout,
+    pub lamps: &'a [Lamp],
+    pub buildings: &'a [Building],
+    /// As the scene stage gets them: they set the buildings' heights.
+    pub facades: &'a FacadeSet,
+    pub widths: Option<&'a [f64]>,
+    /// Keyed by the spec's `model` string.
+    pub meshes: &'a BTreeMap<String, MeshFiles>,
+    pub metres_per_pixel: f64,
+    pub seed: u64,
+}
+
+/// What gets inserted: objects (named `text_0003`, `sign_0012`, `<label>_0004`…, class =
+/// the spec's label), their materials and textures (indices local to this value), and per
+/// object its category label and, for text, the transcription and the 4 corners of the text
+/// quad in world coordinates (for ICDAR quads).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Inserted {
+    pub textures: Vec<Texture>,
+    pub materials: Vec<Material>,
+    pub objects: Vec<SceneObject>,
+    /// One per object, same order.
+    pub info: Vec<ObjectInfo>,
+}
+
+/// Annotation data of one inserted object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectInfo {
+    pub label: String,
+    /// Text objects: the words as drawn (with their case).
+    pub text: Option<String>,
+    /// Text objects: the text's box corners in world metres, clockwise from the top-left as
+    /// seen from the front (top-left, top-right, bottom-right, bottom-left).
+    pub corners: Option<[[f64; 3]; 4]>,
+}
+
+/// State shared by the entries while they are placed in order.
+pub(crate) struct Placing<'a> {
+    pub input: &'a ObjectsInput<'a>,
+    pub book: MaterialBook,
+    /// Material of a name already registered (sign faces, poles), so it is made once.
+    pub cached: BTreeMap<String, u32>,
+    pub out: Inserted,
+    /// Next number per object-name prefix.
+    counters: BTreeMap<String, u32>,
+}
+
+impl Placing<'_> {
+    /// The next unique name `<prefix>_NNNN`.
+    pub fn name(&mut self, prefix: &str) -> String {
+        let n = self.counters.entry(prefix.to_owned()).or_insert(0);
+        let name = format!("{prefix}_{n:04}");
+        *n += 1;
+        name
+    }
+
+    /// A material registered once under `name`, made by `make` the first time.
+    pub fn material(
+        &mut self,
+        name: &str,
+        make: impl FnOnce() -> ([f32; 3], Option<Texture>),
+    ) -> u32 {
+        if let Some(&m) = self.cached.get(name) {
+            return m;
+        }
+        let (colour, texture) = make();
+        let m = self.book.add(name, colour, texture.as_ref(), [0.0; 3]);
+        self.cached.insert(name.to_owned(), m);
+        m
+    }
+
+    pub fn push(&mut self, object: SceneObject, info: ObjectInfo) {
+        self.out.objects.push(object);
+        self.out.info.push(info);
+    }
+}
+
+/// Places every spec entry's objects, in entry order. Pure and deterministic.
+///
+/// Errors only for mesh entries: a model missing from `meshes`, an OBJ/MTL tobj cannot read,
+/// a texture the MTL names that is missing or not an image. Each error names the model.
+pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
+    let mut placing = Placing {
+        input,
+        book: MaterialBook::default(),
+        cached: BTreeMap::new(),
+        out: Inserted::default(),
+        counters: BTreeMap::new(),
+    };
+    let mut spots = ground_spots::GroundSpots::new(input);
+    let mut walls = wall_text::Walls::new(input);
+    for (i, spec) in input.specs.iter().enumerate() {
+        let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
+        match spec.kind {
+            ObjectKind::Text => walls.place(spec, &mut rng, &mut placing),
+            ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Mesh => {
+                user_mesh::place(spec, &mut rng, &mut spots, &mut placing)?;
+            }
+        }
+    }
+    let (textures, materials) = placing.book.finish();
+    placing.out.textures = textures;
+    placing.out.materials = materials;
+    Ok(placing.out)
+}
+
+/// Appends `inserted` to `scene`, re-basing material and texture indices; returns the index
+/// of the first inserted object in scene.objects.
+///
+/// A material whose name the scene already uses is renamed `<name>_2`, `<name>_3`, … (and
+/// its texture with it), so exported names stay unique.
+pub fn merge(scene: &mut Scene, inserted: &Inserted) -> usize {
+    let texture_base = scene.textures.len() as u32;
+    let material_base = scene.materials.len() as u32;
+    let mut material_names: BTreeSet<String> =
+        scene.materials.iter().map(|m| m.name.clone()).collect();
+    let mut texture_names: BTreeSet<String> =
+        scene.textures.iter().map(|t| t.name.clone()).collect();
+    let mut textures = inserted.textures.clone();
+    for material in &inserted.materials {
+        let mut name = material.name.clone();
+        let mut n = 2u32;
+        while material_names.contains(&name)
+            || (material.texture.is_some() && texture_names.contains(&name))
+        {
+            name = format!("{}_{n}", material.name);
+            n += 1;
+        }
+        material_names.insert(name.clone());
+        if let Some(t) = material.texture.and_then(|t| textures.get_mut(t as usize)) {
+            t.name = name.clone();
+            texture_names.insert(name.clone());
+        }
+        scene.materials.push(Material {
+            name,
+            texture: material.texture.map(|t| t + texture_base),
+            ..material.clone()
+        });
+    }
+    scene.textures.extend(textures);
+    let first = scene.objects.len();
+    scene.objects.extend(inserted.objects.iter().map(|o| {
+        SceneObject {
+            meshes: o
+                .meshes
+                .iter()
+                .map(|m| Mesh {
+                    material: m.material + material_base,
+                    ..m.clone()
+                })
+                .collect(),
+            ..o.clone()
+        }
+    }));
+    first
+}

@@ -1,0 +1,24 @@
+//! Why inserting objects failed: a user model that cannot be read (each names its model).
+
+use thiserror::Error;
+
+/// An objects-stage error; every variant names the spec's `model` string.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+pub enum ObjectsError {
+    #[error("model {model}: the build did not read its files")]
+    MissingModel { model: String },
+    #[error("model {model}: cannot read the OBJ: {message}")]
+    BadObj { model: String, message: String },
+    #[error("model {model}: cannot read its MTL: {message}")]
+    BadMtl { model: String, message: String },
+    #[error("model {model}: has no triangles")]
+    Empty { model: String },
+    #[error("model {model}: texture {texture} named by its MTL is missing")]
+    MissingTexture { model: String, texture: String },
+    #[error("model {model}: texture {texture} is not a PNG or JPEG image: {message}")]
+    BadTexture {
+        model: String,
+        texture: String,
+        message: String,
+    },
+}

@@ -1,0 +1,625 @@
+//! Objects tests on the default 768 × 768 city (layout → parse → lamps → place, builtin
+//! facade sizes) with text, sign and mesh entries.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use image::RgbImage;
+
+use super::ground_spots::travel;
+use super::wall_text::{MIN_HEIGHT, TOP_CLEARANCE, WALL_OFFSET, Walls};
+use super::*;
+use crate::build::widths_px;
+use crate::layout::generate;
+use crate::model::{Axis, Facade, Lamp, Roof};
+use crate::rng::stream;
+use crate::scene::mesh_builder::{cross, dot, sub};
+use crate::scene::road_rect::RoadRect;
+use crate::scene::{KERB_Y, ROAD_Y};
+use crate::spec::{GenerateSpec, Ground, ObjectKind, Palette, SignKind, TextCase};
+use crate::{lamps, parse, place};
+
+const SEED: u64 = 42;
+const BENCH: &str = "models/bench.obj";
+
+struct City {
+    image: RgbImage,
+    layout: ParsedLayout,
+    lamps: Vec<Lamp>,
+    buildings: Vec<Building>,
+    facades: FacadeSet,
+    meshes: BTreeMap<String, MeshFiles>,
+}
+
+/// Three facades 12, 15 and 21 m high (10, 14, 18 m wide).
+fn facade_set() -> FacadeSet {
+    let texture = Texture::from_rgb("t", &RgbImage::new(4, 4));
+    let facade = |name: &str, floors: u32, width: f64| Facade {
+        name: name.to_owned(),
+        floors,
+        height: f64::from(floors) * 3.0,
+        width,
+        molding: [0, 0, 0],
+        roof: 0,
+        windows: Vec::new(),
+        texture: texture.clone(),
+    };
+    FacadeSet {
+        facades: vec![
+            facade("a", 4, 10.0),
+            facade("b", 5, 14.0),
+            facade("c", 7, 18.0),
+        ],
+        roofs: vec![Roof {
+            name: "r".to_owned(),
+            colour: [0, 0, 0],
+            tile: 3.0,
+            texture,
+        }],
+    }
+}
+
+fn city() -> City {
+    let palette = Palette::default();
+    let image = generate(
+        &GenerateSpec::default(),
+        &palette,
+        &mut stream(SEED, "layout", 0),
+    )
+    .image;
+    let layout = parse::parse(&image, &palette);
+    let lamps = lamps::site_lamps(&image, &layout, &palette, 100.0, 20.0);
+    let facades = facade_set();
+    let metric: Vec<f64> = facades.facades.iter().map(|f| f.width).collect();
+    let buildings = place::place(&layout.blocks, &widths_px(&metric, 1.0), 2, SEED);
+    let bench = MeshFiles {
+        obj: include_bytes!("../../assets/models/bench.obj").to_vec(),
+        mtl: Some(include_bytes!("../../assets/models/bench.mtl").to_vec()),
+        textures: BTreeMap::new(),
+    };
+    City {
+        image,
+        layout,
+        lamps,
+        buildings,
+        facades,
+        meshes: BTreeMap::from([(BENCH.to_owned(), bench)]),
+    }
+}
+
+fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
+    toml::from_str(&format!(
+        "kind = {:?}\nlabel = {label:?}\ncount = {count}\n",
+        match kind {
+            ObjectKind::Text => "text",
+            ObjectKind::Sign => "sign",
+            ObjectKind::Mesh => "mesh",
+        }
+    ))
+    .unwrap()
+}
+
+fn bench(count: u32, on: Ground) -> ObjectSpec {
+    ObjectSpec {
+        model: Some(BENCH.to_owned()),
+        scale: [0.8, 1.2],
+        on,
+        ..spec(ObjectKind::Mesh, "bench", count)
+    }
+}
+
+fn run(city: &City, specs: &[ObjectSpec]) -> Result<Inserted, ObjectsError> {
+    insert(&input(city, specs))
+}
+
+fn input<'a>(city: &'a City, specs: &'a [ObjectSpec]) -> ObjectsInput<'a> {
+    ObjectsInput {
+        specs,
+        layout: &city.layout,
+        lamps: &city.lamps,
+        buildings: &city.buildings,
+        facades: &city.facades,
+        widths: None,
+        meshes: &city.meshes,
+        metres_per_pixel: 1.0,
+        seed: SEED,
+    }
+}
+
+fn all_kinds() -> Vec<ObjectSpec> {
+    vec![
+        ObjectSpec {
+            case: TextCase::Mixed,
+            words: [1, 3],
+            ..spec(ObjectKind::Text, "text", 40)
+        },
+        spec(ObjectKind::Sign, "traffic_sign", 25),
+        bench(10, Ground::Sidewalk),
+        ObjectSpec {
+            label: "car".to_owned(),
+            ..bench(6, Ground::Lane)
+        },
+    ]
+}
+
+#[test]
+fn counts_names_and_labels() {
+    let city = city();
+    let inserted = run(&city, &all_kinds()).unwrap();
+    let count = |label: &str| inserted.info.iter().filter(|i| i.label == label).count();
+    // The default city has room for all of them.
+    assert_eq!(count("text"), 40);
+    assert_eq!(count("traffic_sign"), 25);
+    assert_eq!(count("bench"), 10);
+    assert_eq!(count("car"), 6);
+    assert_eq!(inserted.objects.len(), inserted.info.len());
+    let names: BTreeSet<&str> = inserted.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names.len(), inserted.objects.len());
+    for (object, info) in inserted.objects.iter().zip(&inserted.info) {
+        assert_eq!(object.class, info.label);
+        let prefix = match info.label.as_str() {
+            "text" => "text_",
+            "traffic_sign" => "sign_",
+            "bench" => "bench_",
+            _ => "car_",
+        };
+        assert!(object.name.starts_with(prefix), "{}", object.name);
+        assert_eq!(info.text.is_some(), info.label == "text");
+        assert!(!object.meshes.is_empty());
+        for mesh in &object.meshes {
+            assert!((mesh.material as usize) < inserted.materials.len());
+            assert_eq!(mesh.positions.len(), mesh.normals.len());
+            assert_eq!(mesh.positions.len(), mesh.uvs.len());
+            assert!(
+                mesh.indices
+                    .iter()
+                    .all(|&i| (i as usize) < mesh.positions.len())
+            );
+        }
+    }
+    for m in &inserted.materials {
+        assert!(
+            m.texture
+                .is_none_or(|t| (t as usize) < inserted.textures.len())
+        );
+    }
+}
+
+#[test]
+fn count_is_an_upper_bound_when_the_city_is_full() {
+    let mut city = city();
+    // Only one building that faces a road is left.
+    let first = Walls::new(&input(&city, &[])).walls()[0].building;
+    city.buildings.retain(|b| b.id == first);
+    let inserted = run(&city, &[spec(ObjectKind::Text, "text", 5000)]).unwrap();
+    assert!(!inserted.objects.is_empty());
+    assert!(inserted.objects.len() < 5000);
+}
+
+#[test]
+fn text_quads_lie_on_their_walls_without_overlapping() {
+    let city = city();
+    let specs = [ObjectSpec {
+        letter_height: [0.5, 1.5],
+        ..spec(ObjectKind::Text, "text", 150)
+    }];
+    let inserted = run(&city, &specs).unwrap();
+    assert!(inserted.objects.len() > 100, "{}", inserted.objects.len());
+    let walls = Walls::new(&input(&city, &specs));
+    let heights: BTreeMap<u32, f64> = city
+        .buildings
+        .iter()
+        .map(|b| {
+            let f = &city.facades.facades[b.kind as usize];
+            (b.id, f.height)
+        })
+        .collect();
+    // Per wall: the plates found on it, as [u0, y0, u1, y1].
+    let mut on_wall: BTreeMap<usize, Vec<[f64; 4]>> = BTreeMap::new();
+    for (object, info) in inserted.objects.iter().zip(&inserted.info) {
+        let mesh = &object.meshes[0];
+        let points: Vec<[f64; 3]> = mesh.positions.iter().map(|p| p.map(f64::from)).collect();
+        let (w, wall) = walls
+            .walls()
+            .iter()
+            .enumerate()
+            .find(|(_, wall)| {
+                points.iter().all(|p| {
+                    let out = (p[0] - wall.origin[0]) * wall.normal[0]
+                        + (p[2] - wall.origin[1]) * wall.normal[1];
+                    (out - WALL_OFFSET).abs() < 1e-4 && {
+                        let u = (p[0] - wall.origin[0]) * wall.right[0]
+                            + (p[2] - wall.origin[1]) * wall.right[1];
+                        (-1e-4..=wall.length + 1e-4).contains(&u)
+                    }
+                })
+            })
+            .unwrap_or_else(|| panic!("{} is on no wall", object.name));
+        let u: Vec<f64> = points
+            .iter()
+            .map(|p| {
+                (p[0] - wall.origin[0]) * wall.right[0] + (p[2] - wall.origin[1]) * wall.right[1]
+            })
+            .collect();
+        let y: Vec<f64> = points.iter().map(|p| p[1]).collect();
+        let rect = [
+            u.iter().copied().fold(f64::INFINITY, f64::min),
+            y.iter().copied().fold(f64::INFINITY, f64::min),
+            u.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            y.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ];
+        let top = KERB_Y + heights[&wall.building];
+        assert!(rect[1] >= KERB_Y + MIN_HEIGHT - 1e-4, "{rect:?}");
+        assert!(rect[3] <= top - TOP_CLEARANCE + 1e-4, "{rect:?}");
+        // Faces outward: every triangle's winding and stored normal.
+        for t in mesh.indices.chunks(3) {
+            let p = |k: usize| points[t[k] as usize];
+            let n = cross(sub(p(1), p(0)), sub(p(2), p(0)));
+            let outward = [wall.normal[0], 0.0, wall.normal[1]];
+            assert!(dot(n, outward) > 0.0);
+            assert_eq!(mesh.normals[t[0] as usize].map(f64::from), outward);
+        }
+        // The text box lies inside the plate, on the same plane.
+        let corners = info.corners.unwrap();
+        for c in corners {
+            let cu =
+                (c[0] - wall.origin[0]) * wall.right[0] + (c[2] - wall.origin[1]) * wall.right[1];
+            assert!(rect[0] - 1e-4 <= cu && cu <= rect[2] + 1e-4);
+            assert!(rect[1] - 1e-4 <= c[1] && c[1] <= rect[3] + 1e-4);
+        }
+        assert!(corners[0][1] > corners[3][1], "top above bottom");
+        on_wall.entry(w).or_default().push(rect);
+    }
+    assert!(
+        on_wall.values().any(|r| r.len() > 1),
+        "no wall holds two plates"
+    );
+    for rects in on_wall.values() {
+        for (i, a) in rects.iter().enumerate() {
+            for b in &rects[i + 1..] {
+                let apart = a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1];
+                assert!(apart, "{a:?} overlaps {b:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn every_text_wall_faces_a_nearby_road() {
+    let city = city();
+    let walls = Walls::new(&input(&city, &[]));
+    assert!(walls.walls().len() > 20);
+    let rects: Vec<RoadRect> = city.layout.roads.iter().map(RoadRect::of).collect();
+    for wall in walls.walls() {
+        // Step out of the wall's middle: a road lies within 2 strips + 1 px (8 px strip).
+        let mid = [
+            wall.origin[0] + wall.right[0] * wall.length / 2.0,
+            wall.origin[1] + wall.right[1] * wall.length / 2.0,
+        ];
+        let hit = (1..=17).any(|d| {
+            let p = [
+                mid[0] + wall.normal[0] * f64::from(d),
+                mid[1] + wall.normal[1] * f64::from(d),
+            ];
+            rects
+                .iter()
+                .any(|r| r.x[0] <= p[0] && p[0] <= r.x[1] && r.y[0] <= p[1] && p[1] <= r.y[1])
+        });
+        assert!(hit, "{wall:?}");
+    }
+}
+
+#[test]
+fn signs_stand_on_the_strip_facing_oncoming_traffic() {
+    let city = city();
+    let inserted = run(&city, &[spec(ObjectKind::Sign, "traffic_sign", 40)]).unwrap();
+    assert_eq!(inserted.objects.len(), 40);
+    let strip = Palette::default().strip.0;
+    let mut kinds = BTreeSet::new();
+    for object in &inserted.objects {
+        let [pole, face, back] = &object.meshes[..] else {
+            panic!("{} has not 3 meshes", object.name)
+        };
+        kinds.insert(inserted.materials[face.material as usize].name.clone());
+        assert!(inserted.materials[face.material as usize].texture.is_some());
+        assert!(inserted.materials[back.material as usize].texture.is_none());
+        // The pole's axis: the mean of its corners.
+        let n = pole.positions.len() as f64;
+        let foot = [
+            pole.positions.iter().map(|p| f64::from(p[0])).sum::<f64>() / n,
+            pole.positions.iter().map(|p| f64::from(p[2])).sum::<f64>() / n,
+        ];
+        let min_y = pole
+            .positions
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!((min_y - KERB_Y).abs() < 1e-5);
+        let pixel = city.image.get_pixel(foot[0] as u32, foot[1] as u32).0;
+        assert_eq!(pixel, strip, "{} at {foot:?}", object.name);
+        for lamp in &city.lamps {
+            let d = (lamp.position[0] - foot[0]).hypot(lamp.position[1] - foot[1]);
+            assert!(d >= 2.0, "{} {d} m from a lamp", object.name);
+        }
+        // The nearest road, the side the sign stands on, its lane's traffic.
+        let (road, gap) = city
+            .layout
+            .roads
+            .iter()
+            .map(|r| {
+                let rect = RoadRect::of(r);
+                let dx = (rect.x[0] - foot[0]).max(foot[0] - rect.x[1]).max(0.0);
+                let dy = (rect.y[0] - foot[1]).max(foot[1] - rect.y[1]).max(0.0);
+                (r, dx.max(dy))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        assert!(gap <= 8.0);
+        let high = match road.axis {
+            Axis::Horizontal => foot[1] > road.line,
+            Axis::Vertical => foot[0] > road.line,
+        };
+        let h = travel(road.axis, high);
+        let normal = face.normals[0].map(f64::from);
+        assert_eq!(
+            [normal[0], normal[2]],
+            [-h[0] + 0.0, -h[1] + 0.0],
+            "{}",
+            object.name
+        );
+        for t in face.indices.chunks(3) {
+            let p = |k: usize| face.positions[t[k] as usize].map(f64::from);
+            assert!(dot(cross(sub(p(1), p(0)), sub(p(2), p(0))), normal) > 0.0);
+        }
+    }
+    assert!(kinds.len() >= 5, "{kinds:?}");
+}
+
+#[test]
+fn signs_only_of_the_listed_kinds() {
+    let city = city();
+    let specs = [ObjectSpec {
+        signs: vec![SignKind::Stop],
+        ..spec(ObjectKind::Sign, "stop_sign", 5)
+    }];
+    let inserted = run(&city, &specs).unwrap();
+    let faces: BTreeSet<&str> = inserted
+        .objects
+        .iter()
+        .map(|o| {
+            inserted.materials[o.meshes[1].material as usize]
+                .name
+                .as_str()
+        })
+        .collect();
+    assert_eq!(faces, BTreeSet::from(["sign_stop"]));
+    // One texture for all five stop signs.
+    assert_eq!(inserted.textures.len(), 1);
+}
+
+#[test]
+fn bench_asset_loads_with_its_materials_and_faces_out() {
+    let city = city();
+    let model = user_mesh::Model::load(BENCH, &city.meshes[BENCH]).unwrap();
+    let names: Vec<&str> = model.materials.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["wood", "metal", "default"]);
+    assert_eq!(model.materials[0].colour, [0.45, 0.28, 0.14]);
+    assert_eq!(model.min_y, 0.0);
+    let triangles: usize = model.parts.iter().map(|p| p.indices.len() / 3).sum();
+    assert_eq!(triangles, 6 * 12);
+    // Every triangle faces away from its box's centre: the file's faces wind CCW.
+    for part in &model.parts {
+        for t in part.indices.chunks(3) {
+            let p = |k: usize| part.positions[t[k] as usize];
+            let n = cross(sub(p(1), p(0)), sub(p(2), p(0)));
+            let stored = part.normals[t[0] as usize];
+            assert!(dot(n, stored) > 0.0);
+        }
+    }
+}
+
+#[test]
+fn meshes_stand_on_sidewalks_and_in_lanes() {
+    let city = city();
+    let specs = [bench(12, Ground::Sidewalk), bench(8, Ground::Lane)];
+    let inserted = run(&city, &specs).unwrap();
+    assert_eq!(inserted.objects.len(), 20);
+    let wood: Vec<&str> = inserted.materials.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(
+        wood,
+        [
+            "bench_wood",
+            "bench_metal",
+            "bench_default",
+            "bench_wood_2",
+            "bench_metal_2",
+            "bench_default_2"
+        ]
+    );
+    let rects: Vec<RoadRect> = city.layout.roads.iter().map(RoadRect::of).collect();
+    for (i, object) in inserted.objects.iter().enumerate() {
+        let points: Vec<[f32; 3]> = object
+            .meshes
+            .iter()
+            .flat_map(|m| m.positions.clone())
+            .collect();
+        let min_y = points
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(f64::INFINITY, f64::min);
+        let ground = if i < 12 { KERB_Y } else { ROAD_Y };
+        assert!((min_y - ground).abs() < 1e-5, "{} {min_y}", object.name);
+        let on_road = |p: &[f32; 3]| {
+            let (x, z) = (f64::from(p[0]), f64::from(p[2]));
+            rects
+                .iter()
+                .any(|r| r.x[0] <= x && x <= r.x[1] && r.y[0] <= z && z <= r.y[1])
+        };
+        if i < 12 {
+            assert!(points.iter().all(|p| !on_road(p)), "{}", object.name);
+        } else {
+            assert!(points.iter().all(on_road), "{}", object.name);
+        }
+    }
+}
+
+#[test]
+fn same_seed_same_objects_and_entries_are_independent() {
+    let city = city();
+    let specs = all_kinds();
+    let a = run(&city, &specs).unwrap();
+    let b = run(&city, &specs).unwrap();
+    assert_eq!(a, b);
+    for t in 0..a.textures.len() {
+        assert_eq!(a.textures[t].png, b.textures[t].png);
+    }
+    // Entry 1 changed (and a new entry 2): entry 0's text objects do not move.
+    let mut changed = specs.clone();
+    changed[1].count = 3;
+    changed[2].kind = ObjectKind::Text;
+    let c = run(&city, &changed).unwrap();
+    let texts = |i: &Inserted| -> Vec<SceneObject> {
+        i.objects
+            .iter()
+            .filter(|o| o.class == "text")
+            .take(40)
+            .cloned()
+            .collect()
+    };
+    assert_eq!(texts(&a), texts(&c));
+    assert_eq!(a.materials[..40], c.materials[..40]);
+    // And another seed moves them.
+    let other = insert(&ObjectsInput {
+        seed: SEED + 1,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    assert_ne!(texts(&a), texts(&other));
+}
+
+#[test]
+fn merge_rebases_indices() {
+    let city = city();
+    let inserted = run(&city, &all_kinds()).unwrap();
+    let mut scene = crate::scene::build(&crate::scene::SceneInput {
+        layout: &city.layout,
+        lamps: &city.lamps,
+        buildings: &city.buildings,
+        facades: &city.facades,
+        widths: None,
+        metres_per_pixel: 1.0,
+        seed: SEED,
+    });
+    let before = scene.clone();
+    let first = merge(&mut scene, &inserted);
+    assert_eq!(first, before.objects.len());
+    assert_eq!(scene.objects.len(), first + inserted.objects.len());
+    assert_eq!(scene.objects[..first], before.objects[..]);
+    for (merged, original) in scene.objects[first..].iter().zip(&inserted.objects) {
+        assert_eq!(merged.name, original.name);
+        for (m, o) in merged.meshes.iter().zip(&original.meshes) {
+            let material = &scene.materials[m.material as usize];
+            let source = &inserted.materials[o.material as usize];
+            assert_eq!(material.colour, source.colour);
+            assert_eq!(
+                material
+                    .texture
+                    .map(|t| scene.textures[t as usize].png.clone()),
+                source
+                    .texture
+                    .map(|t| inserted.textures[t as usize].png.clone())
+            );
+            assert_eq!(m.positions, o.positions);
+        }
+    }
+    let names: BTreeSet<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names.len(), scene.materials.len());
+    for m in &scene.materials {
+        if let Some(t) = m.texture {
+            assert_eq!(scene.textures[t as usize].name, m.name);
+        }
+    }
+
+    // A clash with a scene name is renamed, texture and all.
+    let mut clash = inserted.clone();
+    clash.materials[0].name = "asphalt".to_owned();
+    let mut scene = before.clone();
+    merge(&mut scene, &clash);
+    let renamed = &scene.materials[before.materials.len()];
+    assert_eq!(renamed.name, "asphalt_2");
+}
+
+/// A one-quad OBJ with vt, no normals, a textured MTL and a 2 × 2 PNG.
+fn textured_quad() -> MeshFiles {
+    let mut png = Vec::new();
+    image::DynamicImage::ImageRgb8(RgbImage::from_pixel(2, 2, image::Rgb([9, 99, 199])))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    MeshFiles {
+        obj: b"mtllib q.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+               usemtl poster\nf 1/1 2/2 3/3 4/4\n"
+            .to_vec(),
+        mtl: Some(b"newmtl poster\nKd 1 1 1\nmap_Kd poster.png\n".to_vec()),
+        textures: BTreeMap::from([("poster.png".to_owned(), png)]),
+    }
+}
+
+#[test]
+fn textured_models_keep_their_uvs_flipped_and_get_flat_normals() {
+    let model = user_mesh::Model::load("q.obj", &textured_quad()).unwrap();
+    let texture = model.materials[0].texture.as_ref().unwrap();
+    assert_eq!((texture.width, texture.height), (2, 2));
+    let part = &model.parts[0];
+    assert_eq!(part.indices.len(), 6);
+    for (p, uv) in part.positions.iter().zip(&part.uvs) {
+        // vt (0, 0) is the image's bottom-left: v down is 1 there.
+        assert_eq!([f64::from(uv[0]), f64::from(uv[1])], [p[0], 1.0 - p[1]]);
+    }
+    assert!(part.normals.iter().all(|n| *n == [0.0, 0.0, 1.0]));
+}
+
+#[test]
+fn model_errors_name_the_model() {
+    let city = city();
+    let specs = [ObjectSpec {
+        model: Some("cars/missing.obj".to_owned()),
+        ..bench(1, Ground::Lane)
+    }];
+    let error = run(&city, &specs).unwrap_err();
+    assert_eq!(
+        error,
+        ObjectsError::MissingModel {
+            model: "cars/missing.obj".to_owned()
+        }
+    );
+    let mut no_texture = textured_quad();
+    no_texture.textures.clear();
+    let mut no_mtl = textured_quad();
+    no_mtl.mtl = None;
+    let mut bad_png = textured_quad();
+    bad_png
+        .textures
+        .insert("poster.png".to_owned(), b"not a png".to_vec());
+    let empty = MeshFiles {
+        obj: b"# nothing\n".to_vec(),
+        ..MeshFiles::default()
+    };
+    let cases = [
+        (
+            no_texture,
+            "model q.obj: texture poster.png named by its MTL is missing",
+        ),
+        (
+            no_mtl,
+            "model q.obj: cannot read its MTL: the OBJ names an MTL file the build did not read",
+        ),
+        (
+            bad_png,
+            "model q.obj: texture poster.png is not a PNG or JPEG image",
+        ),
+        (empty, "model q.obj: has no triangles"),
+    ];
+    for (files, want) in cases {
+        let error = user_mesh::Model::load("q.obj", &files).unwrap_err();
+        assert!(error.to_string().starts_with(want), "{error}");
+    }
+}

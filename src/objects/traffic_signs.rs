@@ -1,0 +1,147 @@
+//! Sign specs + strip spots → `sign_NNNN` objects: a grey pole and a plate shaped like the
+//! sign, its face turned towards the traffic coming along the nearest lane.
+
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
+use super::ground_spots::GroundSpots;
+use super::{ATTEMPTS, ObjectInfo, Placing, sign_face};
+use crate::model::{Mesh, SceneObject, Texture};
+use crate::scene::KERB_Y;
+use crate::scene::mesh_builder::{MeshBuilder, cross, dot, sub};
+use crate::spec::{ObjectSpec, SignKind};
+
+/// Pole height above the sidewalk, and half its thickness, in metres.
+pub const POLE_HEIGHT: f64 = 2.6;
+pub const POLE_HALF: f64 = 0.04;
+/// Side of the plate's square (the sign's width and height), in metres.
+pub const PLATE: f64 = 0.75;
+/// Distance of the face in front of the pole's axis; the back sits 5 mm behind the face.
+pub const FACE_OFFSET: f64 = POLE_HALF + 0.015;
+/// Room a sign keeps around itself, in metres (from lamps, on top of their clearance).
+pub const RADIUS: f64 = 1.0;
+/// Numbers a speed-limit sign shows.
+pub const SPEEDS: [u32; 8] = [20, 30, 40, 50, 60, 70, 80, 100];
+
+const POLE_GREY: [f32; 3] = [0.45, 0.46, 0.48];
+const BACK_GREY: [f32; 3] = [0.6, 0.6, 0.62];
+
+pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+    let kinds: &[SignKind] = if spec.signs.is_empty() {
+        &SignKind::ALL
+    } else {
+        &spec.signs
+    };
+    for _ in 0..spec.count {
+        let kind = kinds[rng.random_range(0..kinds.len())];
+        let speed = SPEEDS[rng.random_range(0..SPEEDS.len())];
+        let Some(spot) = spots.strip(rng, RADIUS, ATTEMPTS) else {
+            continue;
+        };
+        // The face looks against the traffic: at the drivers coming towards it.
+        let facing = [-spot.travel[0], -spot.travel[1]];
+        let face_name = match kind {
+            SignKind::SpeedLimit => format!("sign_speed_limit_{speed}"),
+            other => format!("sign_{}", other.name()),
+        };
+        let face = placing.material(&face_name, || {
+            let image = sign_face::draw(kind, speed);
+            ([1.0; 3], Some(Texture::from_rgb(face_name.clone(), &image)))
+        });
+        let pole = placing.material("sign_pole", || (POLE_GREY, None));
+        let back = placing.material("sign_back", || (BACK_GREY, None));
+        let meshes = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+        let object = SceneObject {
+            name: placing.name("sign"),
+            class: spec.label.clone(),
+            meshes,
+        };
+        placing.push(
+            object,
+            ObjectInfo {
+                label: spec.label.clone(),
+                text: None,
+                corners: None,
+            },
+        );
+    }
+}
+
+/// Pole, face and back of a sign standing at `foot` (x, z), its face towards `facing`.
+pub fn sign_meshes(
+    kind: SignKind,
+    foot: [f64; 2],
+    facing: [f64; 2],
+    materials: [u32; 3],
+) -> Vec<Mesh> {
+    let [pole_m, face_m, back_m] = materials;
+    let mut pole = MeshBuilder::new(pole_m);
+    pole.oriented_box(
+        [foot[0], KERB_Y, foot[1]],
+        facing,
+        [POLE_HALF, POLE_HALF],
+        POLE_HEIGHT,
+    );
+    let ring = sign_face::outline(kind);
+    let centre_y = KERB_Y + POLE_HEIGHT - PLATE / 2.0;
+    // Seen from the front, "right" is (-facing) × up.
+    let right = [facing[1], -facing[0]];
+    let at = |uv: [f64; 2], out: f64| {
+        [
+            foot[0] + right[0] * (uv[0] - 0.5) * PLATE + facing[0] * out,
+            centre_y + (0.5 - uv[1]) * PLATE,
+            foot[1] + right[1] * (uv[0] - 0.5) * PLATE + facing[1] * out,
+        ]
+    };
+    let front_normal = [facing[0], 0.0, facing[1]];
+    let face = fan(face_m, &ring, |uv| at(uv, FACE_OFFSET), front_normal, true);
+    let back_normal = [-facing[0], 0.0, -facing[1]];
+    let back = fan(
+        back_m,
+        &ring,
+        |uv| at(uv, FACE_OFFSET - 0.005),
+        back_normal,
+        false,
+    );
+    vec![pole.finish(), face, back]
+}
+
+/// A convex polygon as a triangle fan around its centre, wound towards `normal`; uv from
+/// the outline when `textured`, else zero.
+fn fan(
+    material: u32,
+    ring: &[[f64; 2]],
+    at: impl Fn([f64; 2]) -> [f64; 3],
+    normal: [f64; 3],
+    textured: bool,
+) -> Mesh {
+    let mut mesh = Mesh {
+        material,
+        ..Mesh::default()
+    };
+    let centre = [0.5, 0.5];
+    let mut push = |uv: [f64; 2]| {
+        let p = at(uv);
+        mesh.positions.push(p.map(|v| v as f32));
+        mesh.normals.push(normal.map(|v| v as f32));
+        let uv = if textured { uv } else { [0.0, 0.0] };
+        mesh.uvs.push([uv[0] as f32, uv[1] as f32]);
+    };
+    push(centre);
+    for &uv in ring {
+        push(uv);
+    }
+    let n = ring.len() as u32;
+    for i in 0..n {
+        let (a, b) = (1 + i, 1 + (i + 1) % n);
+        let pa = at(ring[i as usize]);
+        let pb = at(ring[((i + 1) % n) as usize]);
+        let towards = dot(cross(sub(pa, at(centre)), sub(pb, at(centre))), normal) >= 0.0;
+        if towards {
+            mesh.indices.extend_from_slice(&[0, a, b]);
+        } else {
+            mesh.indices.extend_from_slice(&[0, b, a]);
+        }
+    }
+    mesh
+}

@@ -1,0 +1,65 @@
+//! Degrees → (cos, sin) with only `+ − × ÷`, so angles give the same bits on every platform.
+//!
+//! The angle is reduced to one of four quadrants around 0, 90, 180, 270° (|x| ≤ 45°) and
+//! Taylor polynomials to x¹⁰ are evaluated there: the error is below 2e-9.
+
+const DEG_TO_RAD: f64 = std::f64::consts::PI / 180.0;
+
+/// `(cos d, sin d)` of `d` degrees. Non-finite angles give `(1, 0)`.
+pub fn cos_sin_deg(degrees: f64) -> (f64, f64) {
+    if !degrees.is_finite() {
+        return (1.0, 0.0);
+    }
+    let turn = degrees - 360.0 * (degrees / 360.0).floor();
+    let quadrant = (turn / 90.0).round();
+    let x = (turn - 90.0 * quadrant) * DEG_TO_RAD;
+    let x2 = x * x;
+    let sin = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+    let cos = 1.0
+        - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+    match quadrant as i64 {
+        1 => (-sin, cos),
+        2 => (-cos, -sin),
+        3 => (sin, -cos),
+        _ => (cos, sin),
+    }
+}
+
+/// `(cos, sin)` of the sum of two angles given as `(cos, sin)`.
+pub fn add(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 * b.0 - a.1 * b.1, a.1 * b.0 + a.0 * b.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matches_std_to_nine_digits() {
+        let mut d = -725.0;
+        while d <= 725.0 {
+            let (c, s) = cos_sin_deg(d);
+            let r = d.to_radians();
+            assert!((c - r.cos()).abs() < 2e-9, "cos {d}");
+            assert!((s - r.sin()).abs() < 2e-9, "sin {d}");
+            d += 0.75;
+        }
+    }
+
+    #[test]
+    fn exact_at_quarter_turns_and_sums() {
+        let cases = [
+            (0.0, (1.0, 0.0)),
+            (90.0, (0.0, 1.0)),
+            (180.0, (-1.0, 0.0)),
+            (270.0, (0.0, -1.0)),
+            (-90.0, (0.0, -1.0)),
+            (f64::NAN, (1.0, 0.0)),
+        ];
+        for (d, want) in cases {
+            assert_eq!(cos_sin_deg(d), want, "{d}");
+        }
+        let (c, s) = add(cos_sin_deg(30.0), cos_sin_deg(60.0));
+        assert!(c.abs() < 1e-8 && (s - 1.0).abs() < 1e-8);
+    }
+}

@@ -1,0 +1,80 @@
+//! Object checks: schema-valid `[[objects]]` tables → the problems between values (ranges
+//! written high-to-low, a mesh class without its model, a model file that is not there).
+
+use std::fmt::Display;
+use std::path::Path;
+
+use super::findings::Findings;
+use super::object_spec::{ObjectKind, ObjectSpec};
+use super::{SpecWorld, resolve};
+
+/// Classes (and object-name prefixes) the scene stage uses itself.
+const SCENE_CLASSES: [&str; 7] = [
+    "ground", "block", "road", "marking", "sidewalk", "building", "lamp",
+];
+
+/// Every object class's ranges run low to high; a mesh class names a readable model file.
+pub(crate) fn check_objects(
+    objects: &[ObjectSpec],
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) {
+    for (i, object) in objects.iter().enumerate() {
+        let key = |name: &str| format!("objects[{i}].{name}");
+        match object.kind {
+            ObjectKind::Text => {
+                check_range(&key("letter_height"), object.letter_height, findings);
+                check_range(&key("words"), object.words, findings);
+            }
+            ObjectKind::Sign => {}
+            ObjectKind::Mesh => {
+                // Mesh objects are named `<label>_NNNN`: a scene class would clash.
+                if SCENE_CLASSES.contains(&object.label.as_str()) {
+                    findings.error(
+                        &key("label"),
+                        format!(
+                            "expected a label other than the scene's own classes ({}), found \
+                             {:?}",
+                            SCENE_CLASSES.join(", "),
+                            object.label
+                        ),
+                    );
+                }
+                check_range(&key("scale"), object.scale, findings);
+                check_range(&key("rotation"), object.rotation, findings);
+                match &object.model {
+                    None => findings.error(
+                        &format!("objects[{i}]"),
+                        "expected a `model` (an OBJ file) for an object of kind \"mesh\", \
+                         found none",
+                    ),
+                    Some(model) => {
+                        let file = resolve(spec_path, model);
+                        if let Err(problem) = world.file(&file) {
+                            findings.error(
+                                &key("model"),
+                                format!(
+                                    "expected an OBJ model file at {}, found {problem}",
+                                    file.display()
+                                ),
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn check_range<T: PartialOrd + Display>(key: &str, range: [T; 2], findings: &mut Findings) {
+    if range[0] > range[1] {
+        findings.error(
+            key,
+            format!(
+                "expected a range [low, high] with low ≤ high, found [{}, {}]",
+                range[0], range[1]
+            ),
+        );
+    }
+}

@@ -1,0 +1,178 @@
+//! The `[[objects]]` tables: inserted object classes (text on walls, traffic signs, user
+//! meshes), each with its annotation label, count and placement ranges.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// One class of inserted objects. Keys that do not apply to the `kind` are ignored.
+///
+/// `count` objects are attempted; when the city has no room for them all (walls too short,
+/// strips too crowded), fewer are placed and the build reports the shortfall.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    /// What to insert: `"text"` (words on walls facing a road), `"sign"` (traffic signs on
+    /// poles beside the roads) or `"mesh"` (a user OBJ model).
+    pub kind: ObjectKind,
+    /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
+    #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
+    pub label: String,
+    /// How many to place (fewer when they do not fit).
+    #[serde(default = "default_count")]
+    #[schemars(range(max = 100000))]
+    pub count: u32,
+    /// text: letter height range `[low, high]` in metres.
+    #[serde(default = "default_letter_height")]
+    #[schemars(inner(range(min = 0.05, max = 20.0)))]
+    pub letter_height: [f64; 2],
+    /// text: letter case of the words.
+    #[serde(default)]
+    pub case: TextCase,
+    /// text: words per sign, range `[low, high]`.
+    #[serde(default = "default_words")]
+    #[schemars(inner(range(min = 1, max = 8)))]
+    pub words: [u32; 2],
+    /// sign: which signs to draw from (all when empty).
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub signs: Vec<SignKind>,
+    /// mesh: the OBJ model, relative to the spec's folder; its MTL and textures lie beside it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "String", length(min = 1))]
+    pub model: Option<String>,
+    /// mesh: uniform scale range `[low, high]` applied to the model's units (metres).
+    #[serde(default = "default_scale")]
+    #[schemars(inner(range(min = 0.001, max = 1000.0)))]
+    pub scale: [f64; 2],
+    /// mesh: rotation about the vertical axis, range `[low, high]` in degrees. On a lane it
+    /// is added to the lane's heading (the model's front is its −z side).
+    #[serde(default = "default_rotation")]
+    #[schemars(inner(range(min = -3600.0, max = 3600.0)))]
+    pub rotation: [f64; 2],
+    /// mesh: where the models stand.
+    #[serde(default)]
+    pub on: Ground,
+}
+
+/// Which kind of object a class inserts.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectKind {
+    // Plain comments, not doc comments: so the schema is a simple `enum` and a wrong value
+    // reads "expected one of …".
+    Text,
+    Sign,
+    Mesh,
+}
+
+/// Letter case of text objects.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TextCase {
+    Lower,
+    Upper,
+    #[default]
+    Title,
+    // One of the three others, chosen per object.
+    Mixed,
+}
+
+/// A traffic sign cityspec draws.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum SignKind {
+    Stop,
+    Yield,
+    SpeedLimit,
+    NoEntry,
+    PedestrianCrossing,
+    OneWay,
+    NoParking,
+    Parking,
+}
+
+impl SignKind {
+    /// Every sign, in declaration order.
+    pub const ALL: [SignKind; 8] = [
+        SignKind::Stop,
+        SignKind::Yield,
+        SignKind::SpeedLimit,
+        SignKind::NoEntry,
+        SignKind::PedestrianCrossing,
+        SignKind::OneWay,
+        SignKind::NoParking,
+        SignKind::Parking,
+    ];
+
+    /// The snake_case name the spec uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            SignKind::Stop => "stop",
+            SignKind::Yield => "yield",
+            SignKind::SpeedLimit => "speed_limit",
+            SignKind::NoEntry => "no_entry",
+            SignKind::PedestrianCrossing => "pedestrian_crossing",
+            SignKind::OneWay => "one_way",
+            SignKind::NoParking => "no_parking",
+            SignKind::Parking => "parking",
+        }
+    }
+}
+
+/// Where mesh objects stand.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Ground {
+    // Mid-strip on the sidewalk beside a road.
+    #[default]
+    Sidewalk,
+    // In the middle of a road's right-hand lane, heading with the traffic.
+    Lane,
+}
+
+fn default_count() -> u32 {
+    10
+}
+fn default_letter_height() -> [f64; 2] {
+    [0.4, 1.0]
+}
+fn default_words() -> [u32; 2] {
+    [1, 2]
+}
+fn default_scale() -> [f64; 2] {
+    [1.0, 1.0]
+}
+fn default_rotation() -> [f64; 2] {
+    [0.0, 360.0]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_fill_in() {
+        let spec: ObjectSpec = toml::from_str("kind = \"text\"\nlabel = \"text\"\n").unwrap();
+        assert_eq!(spec.count, 10);
+        assert_eq!(spec.letter_height, [0.4, 1.0]);
+        assert_eq!(spec.case, TextCase::Title);
+        assert_eq!(spec.words, [1, 2]);
+        assert!(spec.signs.is_empty());
+        assert_eq!(spec.model, None);
+        assert_eq!(spec.scale, [1.0, 1.0]);
+        assert_eq!(spec.rotation, [0.0, 360.0]);
+        assert_eq!(spec.on, Ground::Sidewalk);
+    }
+
+    #[test]
+    fn sign_names_match_serde() {
+        for sign in SignKind::ALL {
+            let json = serde_json::to_string(&sign).unwrap();
+            assert_eq!(json, format!("\"{}\"", sign.name()));
+        }
+    }
+}
