@@ -26,6 +26,9 @@ pub enum BuildError {
     /// The facade set is unusable (the message names the file).
     #[error("{}: facades: {message}", spec.display())]
     Facades { spec: PathBuf, message: String },
+    /// An inserted object is unusable (a model file that does not load).
+    #[error("{}: objects: {message}", spec.display())]
+    Objects { spec: PathBuf, message: String },
     /// The renderer refused the scene (a cityspec bug or an unusable texture).
     #[error("{}: render: {message}", spec.display())]
     Render { spec: PathBuf, message: String },
@@ -59,6 +62,7 @@ impl BuildError {
                 | BuildError::Spec(_)
                 | BuildError::Input { .. }
                 | BuildError::Facades { .. }
+                | BuildError::Objects { .. }
                 | BuildError::DuplicateName { .. }
         )
     }

@@ -22,6 +22,8 @@ use crate::spec::CameraSpec;
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
+    /// World corners of text quads by instance id, for ICDAR quads.
+    pub corners: &'a BTreeMap<u32, [[f64; 3]; 4]>,
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
@@ -73,7 +75,11 @@ pub fn render_path(
             intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
             pose: *pose,
             full: BTreeMap::new(),
-            quads: BTreeMap::new(),
+            quads: input
+                .corners
+                .iter()
+                .filter_map(|(id, corners)| Some((*id, project_quad(pose, &intrinsics, corners)?)))
+                .collect(),
         })
         .collect();
     let coco = annotate::coco(input.categories, input.labels, &frames, input.thresholds);
@@ -132,6 +138,29 @@ pub fn tan_half_degrees(degrees: f64) -> f64 {
         term_c *= -x * x / ((k + 1.0) * (k + 2.0));
     }
     sin / cos
+}
+
+/// The image positions of four world points, if all are in front of the camera.
+fn project_quad(
+    pose: &CameraPose,
+    k: &Intrinsics,
+    corners: &[[f64; 3]; 4],
+) -> Option<[[f64; 2]; 4]> {
+    let basis = pose.basis()?;
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut out = [[0.0; 2]; 4];
+    for (slot, c) in out.iter_mut().zip(corners) {
+        let d = [c[0] - pose.eye[0], c[1] - pose.eye[1], c[2] - pose.eye[2]];
+        let z = dot(basis.forward, d);
+        if z < k.near {
+            return None;
+        }
+        *slot = [
+            k.cx + k.fx * dot(basis.right, d) / z,
+            k.cy - k.fy * dot(basis.up, d) / z,
+        ];
+    }
+    Some(out)
 }
 
 /// Up to 12 frames spread over the path.

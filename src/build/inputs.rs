@@ -9,8 +9,12 @@ use std::path::{Path, PathBuf};
 use sha2::{Digest, Sha256};
 
 use super::BuildError;
+use std::collections::BTreeMap;
+
 use crate::facades::{FacadeFile, FacadeSource};
 use crate::hash::hex;
+use crate::objects::MeshFiles;
+use crate::spec::ObjectKind;
 use crate::spec::{self, BUILTIN_FACADES, Spec};
 
 /// Where the layout comes from.
@@ -142,4 +146,78 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
 
 fn read_optional(path: &Path) -> Option<Vec<u8>> {
     fs::read(path).ok()
+}
+
+/// Reads every model a `mesh` object names: the OBJ, the MTL its `mtllib` names (beside
+/// it), and the texture files that MTL names. Returns them keyed by the spec's `model`
+/// string, and a digest of all their bytes for the stage keys.
+pub fn mesh_files(
+    spec_path: &Path,
+    spec: &Spec,
+) -> Result<(BTreeMap<String, MeshFiles>, String), BuildError> {
+    let mut meshes = BTreeMap::new();
+    let mut digest = Sha256::new();
+    for (index, object) in spec.objects.iter().enumerate() {
+        let (ObjectKind::Mesh, Some(model)) = (object.kind, &object.model) else {
+            continue;
+        };
+        if meshes.contains_key(model) {
+            continue;
+        }
+        let file = spec::resolve(spec_path, model);
+        let read = |path: &Path| {
+            fs::read(path).map_err(|e| BuildError::Input {
+                spec: spec_path.to_path_buf(),
+                key: "objects.model",
+                file: path.to_path_buf(),
+                message: format!("{e} (objects[{index}].model)"),
+            })
+        };
+        let obj = read(&file)?;
+        let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
+        let mtl_name = String::from_utf8_lossy(&obj).lines().find_map(|l| {
+            l.trim()
+                .strip_prefix("mtllib ")
+                .map(|n| n.trim().to_owned())
+        });
+        let mtl = match &mtl_name {
+            Some(name) => Some(read(&folder.join(name))?),
+            None => None,
+        };
+        let mut textures = BTreeMap::new();
+        if let Some(mtl) = &mtl {
+            for line in String::from_utf8_lossy(mtl).lines() {
+                let line = line.trim();
+                let Some(name) = ["map_Kd ", "map_Ka ", "map_d "]
+                    .iter()
+                    .find_map(|k| line.strip_prefix(k))
+                else {
+                    continue;
+                };
+                let name = name
+                    .split_whitespace()
+                    .last()
+                    .unwrap_or_default()
+                    .to_owned();
+                if !name.is_empty() && !textures.contains_key(&name) {
+                    textures.insert(name.clone(), read(&folder.join(&name))?);
+                }
+            }
+        }
+        for part in [
+            model.as_bytes(),
+            &obj[..],
+            mtl.as_deref().unwrap_or_default(),
+        ] {
+            digest.update((part.len() as u64).to_le_bytes());
+            digest.update(part);
+        }
+        for (name, bytes) in &textures {
+            digest.update(name.as_bytes());
+            digest.update((bytes.len() as u64).to_le_bytes());
+            digest.update(bytes);
+        }
+        meshes.insert(model.clone(), MeshFiles { obj, mtl, textures });
+    }
+    Ok((meshes, hex(&digest.finalize())))
 }

@@ -118,6 +118,7 @@ pub fn build_spec(
     let start = Instant::now();
     let source = inputs::layout_source(path, spec)?;
     let facade_input = inputs::facade_input(path, spec)?;
+    let meshes = inputs::mesh_files(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
     let progress = |camera: &str, done: usize, total: usize| {
         if let Some(report) = &options.progress {
@@ -129,6 +130,7 @@ pub fn build_spec(
         path.to_path_buf(),
         source,
         facade_input,
+        meshes,
         &cache,
         &progress,
     );

@@ -6,6 +6,7 @@
 //! artifact stages' cache entries, and changing `[lamps]` reruns `lamps`, `plan` and
 //! `preview` while `place` and `parse` stay cached.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -22,8 +23,8 @@ use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::{CameraPath, Spec, TimeOfDay};
 use crate::{
-    annotate, cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render,
-    rng, scene,
+    annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
+    preview, render, rng, scene,
 };
 use rand::Rng;
 
@@ -61,6 +62,9 @@ pub struct Pipeline<'a> {
     spec_path: PathBuf,
     source: LayoutSource,
     facade_input: FacadeInput,
+    meshes: BTreeMap<String, objects::MeshFiles>,
+    /// Per scene object: what annotations need (inserted objects' text and quads).
+    object_info: Vec<Option<objects::ObjectInfo>>,
     cache: &'a Cache,
     keys: Keys,
     pub runs: Vec<StageRun>,
@@ -91,15 +95,18 @@ impl<'a> Pipeline<'a> {
         spec_path: PathBuf,
         source: LayoutSource,
         facade_input: FacadeInput,
+        meshes: (BTreeMap<String, objects::MeshFiles>, String),
         cache: &'a Cache,
         progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     ) -> Self {
-        let keys = keys(spec, &source, &facade_input);
+        let keys = keys(spec, &source, &facade_input, &meshes.1);
         Pipeline {
             spec,
             spec_path,
             source,
             facade_input,
+            meshes: meshes.0,
+            object_info: Vec::new(),
             cache,
             keys,
             runs: Vec::new(),
@@ -433,6 +440,25 @@ impl<'a> Pipeline<'a> {
             metres_per_pixel: self.spec.layout.metres_per_pixel,
             seed: self.spec.seed,
         });
+        let mut built = built;
+        let inserted = objects::insert(&objects::ObjectsInput {
+            specs: &self.spec.objects,
+            layout: &parsed,
+            lamps: &lamps,
+            buildings: &buildings,
+            facades: &facades,
+            widths: self.spec.buildings.widths.as_deref(),
+            meshes: &self.meshes,
+            metres_per_pixel: self.spec.layout.metres_per_pixel,
+            seed: self.spec.seed,
+        })
+        .map_err(|e| BuildError::Objects {
+            spec: self.spec_path.clone(),
+            message: e.to_string(),
+        })?;
+        let first = objects::merge(&mut built, &inserted);
+        self.object_info = vec![None; first];
+        self.object_info.extend(inserted.info.into_iter().map(Some));
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {
             stage: "scene",
@@ -552,12 +578,19 @@ impl<'a> Pipeline<'a> {
                     }
                 };
                 let lighting = lighting(spec, &scene, &lamps, &facades);
-                let (categories, labels) = labels(spec, &scene);
+                let (categories, labels) = labels(spec, &scene, &p.object_info);
                 let thresholds = annotate::Thresholds {
                     min_pixels: spec.annotations.min_pixels,
                     min_fraction: spec.annotations.min_fraction,
                 };
+                let corners: BTreeMap<u32, [[f64; 3]; 4]> = p
+                    .object_info
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners?)))
+                    .collect();
                 let input = frames::PathInput {
+                    corners: &corners,
                     camera,
                     scene: &prepared,
                     lighting: &lighting,
@@ -663,7 +696,7 @@ pub fn widths_px(widths_m: &[f64], metres_per_pixel: f64) -> Vec<u32> {
 }
 
 /// Every stage's key, from the spec and the input files' hashes alone.
-fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys {
+fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: &str) -> Keys {
     let l = &spec.layout;
     let layout = match source {
         LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
@@ -722,6 +755,9 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput) -> Keys 
     // The scene is not cached: the export key holds everything the scene reads.
     let export = StageKey::new("export", export::VERSION)
         .spec("scene_version", &scene::VERSION)
+        .spec("objects_version", &objects::VERSION)
+        .spec("objects", &spec.objects)
+        .input("meshes", meshes)
         .spec("widths", &spec.buildings.widths)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .spec("seed", &spec.seed)
@@ -795,9 +831,20 @@ fn lighting(spec: &Spec, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) -> 
 }
 
 /// COCO categories (the annotated classes, ids from 1) and a label per scene object.
-fn labels(spec: &Spec, scene: &Scene) -> (Vec<annotate::Category>, Vec<annotate::ObjectLabel>) {
+fn labels(
+    spec: &Spec,
+    scene: &Scene,
+    info: &[Option<objects::ObjectInfo>],
+) -> (Vec<annotate::Category>, Vec<annotate::ObjectLabel>) {
     let classes: Vec<String> = if spec.annotations.classes.is_empty() {
-        vec!["lamp".to_owned()]
+        let mut classes: Vec<String> = Vec::new();
+        for object in &spec.objects {
+            if !classes.contains(&object.label) {
+                classes.push(object.label.clone());
+            }
+        }
+        classes.push("lamp".to_owned());
+        classes
     } else {
         spec.annotations.classes.clone()
     };
@@ -812,13 +859,14 @@ fn labels(spec: &Spec, scene: &Scene) -> (Vec<annotate::Category>, Vec<annotate:
     let labels = scene
         .objects
         .iter()
-        .map(|object| annotate::ObjectLabel {
+        .enumerate()
+        .map(|(i, object)| annotate::ObjectLabel {
             name: object.name.clone(),
             category: categories
                 .iter()
                 .find(|c| c.name == object.class)
                 .map(|c| c.id),
-            text: None,
+            text: info.get(i).and_then(|info| info.as_ref()?.text.clone()),
         })
         .collect();
     (categories, labels)
