@@ -1,7 +1,6 @@
 //! Bytes of stage outputs: PNG for images, JSON for values. Deterministic encoders only.
 
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{ImageEncoder, RgbImage};
+use image::RgbImage;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
@@ -13,18 +12,9 @@ use crate::model::FacadeSet;
 /// Bump when any encoding here changes its bytes: it is part of every stage key.
 pub const VERSION: u32 = 2;
 
-/// PNG bytes of an RGB image. The encoder settings are fixed, so the bytes are too.
+/// PNG bytes of an RGB image, with the same fixed settings as every texture.
 pub fn encode_png(image: &RgbImage) -> Vec<u8> {
-    let mut bytes = Vec::new();
-    PngEncoder::new_with_quality(&mut bytes, CompressionType::Fast, FilterType::Adaptive)
-        .write_image(
-            image.as_raw(),
-            image.width(),
-            image.height(),
-            image::ExtendedColorType::Rgb8,
-        )
-        .expect("encoding a PNG into memory cannot fail");
-    bytes
+    crate::model::encode_png(image)
 }
 
 /// Decodes PNG bytes this module wrote.

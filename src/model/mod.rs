@@ -25,4 +25,4 @@ pub use lamp::Lamp;
 pub use parsed_layout::ParsedLayout;
 pub use road::{Axis, Road};
 pub use scene::{Material, Mesh, Scene, SceneObject};
-pub use texture::Texture;
+pub use texture::{Texture, encode_png};

@@ -22,18 +22,24 @@ pub struct Texture {
     pub png: Arc<Vec<u8>>,
 }
 
+/// PNG bytes of an RGB image. The encoder settings are fixed, so the bytes are too.
+pub fn encode_png(image: &RgbImage) -> Vec<u8> {
+    let mut png = Vec::new();
+    PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
+        .write_image(
+            image.as_raw(),
+            image.width(),
+            image.height(),
+            image::ExtendedColorType::Rgb8,
+        )
+        .expect("encoding a PNG into memory cannot fail");
+    png
+}
+
 impl Texture {
     /// Encodes `image` as a PNG with fixed settings, so the same pixels give the same bytes.
     pub fn from_rgb(name: impl Into<String>, image: &RgbImage) -> Texture {
-        let mut png = Vec::new();
-        PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
-            .write_image(
-                image.as_raw(),
-                image.width(),
-                image.height(),
-                image::ExtendedColorType::Rgb8,
-            )
-            .expect("encoding a PNG into memory cannot fail");
+        let png = encode_png(image);
         Texture {
             name: name.into(),
             width: image.width(),
