@@ -181,7 +181,10 @@ fn write_spec(dir: &Path, name: &str, day: &str, mirror: &str) -> PathBuf {
         (Some(a), Some(b)) if a < b => format!("{}{}", &day[..a], &day[b..]),
         _ => day.to_owned(),
     };
+    // Paths in the spec are relative to specs/; this copy lives elsewhere.
+    let assets = format!("\"{}/assets/", repo().display());
     let text = day
+        .replace("\"../assets/", &assets)
         .replace("name = \"day\"", &format!("name = \"{name}\""))
         .replace(
             "[layout.generate]",
