@@ -62,7 +62,13 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     in_pool(8, || build::build(&other.spec("day"), &other.options())).unwrap();
     assert_eq!(tree(&other.out()), first);
     // The caches hold the same objects too.
-    assert_eq!(tree(&other.cache()), tree(&ws.cache()));
+    for part in ["objects", "entries"] {
+        assert_eq!(
+            tree(&other.cache().join(part)),
+            tree(&ws.cache().join(part)),
+            "{part}"
+        );
+    }
 }
 
 #[test]
@@ -339,4 +345,44 @@ fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says(
     let err = build::build(&ws.spec("cmp"), &ws.options()).unwrap_err();
     assert!(err.is_input_error());
     assert!(err.to_string().contains("street_04.xml"), "{err}");
+}
+
+#[test]
+fn noop_fast_path_reads_no_object_and_falls_back_when_a_file_changes() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let good = tree(&ws.out());
+    let manifest = build::Manifest::from_bytes(&good["day/manifest.json"]).unwrap();
+    let plan = manifest
+        .artifacts
+        .iter()
+        .find(|a| a.path == "plan.json")
+        .unwrap();
+    let object = ws
+        .cache()
+        .join("objects")
+        .join(&plan.sha256[..2])
+        .join(&plan.sha256);
+    fs::write(&object, b"damaged").unwrap();
+    // The output folder is as recorded: nothing is read, so the damage is not even seen.
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert!(report.up_to_date());
+    assert!(report.stages.iter().all(|s| s.repaired.is_none()));
+    // A changed output file (same size, new bytes) takes the full path, which re-verifies
+    // every object it reads, rebuilds the damaged one and restores the file.
+    let png = ws.out().join("day/plan.png");
+    let mut bytes = fs::read(&png).unwrap();
+    let last = bytes.len() - 1;
+    bytes[last] ^= 1;
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    fs::write(&png, &bytes).unwrap();
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert!(!report.up_to_date());
+    assert_eq!(report.written, ["plan.png"]);
+    let plan_run = report.stages.iter().find(|s| s.stage == "plan").unwrap();
+    assert!(
+        plan_run.repaired.is_some(),
+        "the damaged plan object is rebuilt"
+    );
+    assert_eq!(tree(&ws.out()), good);
 }

@@ -64,6 +64,12 @@ impl Cache {
         &self.root
     }
 
+    /// The entry recorded under `key`, without reading or verifying its objects.
+    pub fn entry(&self, key: &str) -> Option<Entry> {
+        let entry: Entry = serde_json::from_slice(&fs::read(self.entry_path(key)).ok()?).ok()?;
+        (entry.key == key).then_some(entry)
+    }
+
     /// The outputs recorded under `key`, each verified against its hash.
     pub fn get(&self, key: &str) -> Result<Outputs, Miss> {
         let entry_path = self.entry_path(key);

@@ -132,6 +132,20 @@ impl<'a> Pipeline<'a> {
         }
     }
 
+    /// The artifact stages' (name, key), in the order [`Pipeline::artifacts`] evaluates them.
+    pub fn artifact_stages(&self) -> Vec<(&'static str, &str)> {
+        let k = &self.keys;
+        let mut stages = vec![
+            ("mirror", k.mirror.as_str()),
+            ("plan", k.plan.as_str()),
+            ("preview", k.preview.as_str()),
+            ("export", k.export.as_str()),
+            ("overview", k.overview.as_str()),
+        ];
+        stages.extend(k.frames.iter().map(|key| ("frames", key.as_str())));
+        stages
+    }
+
     /// Every artifact of the spec, from the cache where possible.
     pub fn artifacts(&mut self) -> Result<Vec<ArtifactOut>, BuildError> {
         self.need_mirror()?;
