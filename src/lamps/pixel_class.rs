@@ -1,6 +1,6 @@
 //! RGB pixel + palette → `PixelClass`: which layout element a pixel was drawn as.
 
-use crate::spec::Palette;
+use crate::spec::{Palette, PaletteColour};
 
 /// The layout element a pixel shows, by nearest palette colour within the tolerance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -14,32 +14,13 @@ pub(crate) enum PixelClass {
 }
 
 impl PixelClass {
-    /// The nearest palette colour (Euclidean RGB distance) if it lies within
-    /// `palette.tolerance`; on a tie the earlier of road, line, block, strip wins.
     pub(crate) fn of(rgb: [u8; 3], palette: &Palette) -> PixelClass {
-        let candidates = [
-            (palette.road.0, PixelClass::Road),
-            (palette.line.0, PixelClass::Line),
-            (palette.block.0, PixelClass::Block),
-            (palette.strip.0, PixelClass::Strip),
-        ];
-        let distance2 = |c: [u8; 3]| -> u32 {
-            (0..3)
-                .map(|i| (i32::from(rgb[i]) - i32::from(c[i])).pow(2) as u32)
-                .sum()
-        };
-        let mut best = (u32::MAX, PixelClass::Unknown);
-        for (colour, class) in candidates {
-            let d = distance2(colour);
-            if d < best.0 {
-                best = (d, class);
-            }
-        }
-        let tolerance = u64::from(palette.tolerance);
-        if u64::from(best.0) <= tolerance * tolerance {
-            best.1
-        } else {
-            PixelClass::Unknown
+        match palette.classify(rgb) {
+            Some(PaletteColour::Road) => PixelClass::Road,
+            Some(PaletteColour::Line) => PixelClass::Line,
+            Some(PaletteColour::Block) => PixelClass::Block,
+            Some(PaletteColour::Strip) => PixelClass::Strip,
+            None => PixelClass::Unknown,
         }
     }
 }

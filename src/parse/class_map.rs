@@ -3,7 +3,7 @@
 use image::RgbImage;
 use rayon::prelude::*;
 
-use crate::spec::{Color, Palette};
+use crate::spec::{Color, Palette, PaletteColour};
 
 /// What a pixel shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,7 +90,7 @@ impl ClassMap {
 /// [`Class::Line`] when it is a blend of road and line colour with at least a quarter of line
 /// colour, within `tolerance` of that blend.
 struct Classifier {
-    colors: [(Class, [i32; 3]); 4],
+    palette: Palette,
     road: [i32; 3],
     /// line − road, and its squared length.
     towards_line: [i32; 3],
@@ -105,12 +105,7 @@ impl Classifier {
         let line = rgb(palette.line);
         let towards_line = [line[0] - road[0], line[1] - road[1], line[2] - road[2]];
         Classifier {
-            colors: [
-                (Class::Road, road),
-                (Class::Line, line),
-                (Class::Block, rgb(palette.block)),
-                (Class::Strip, rgb(palette.strip)),
-            ],
+            palette: palette.clone(),
             road,
             towards_line,
             towards_line_sq: dot(towards_line, towards_line),
@@ -136,16 +131,14 @@ impl Classifier {
 
     fn class(&self, px: [u8; 3]) -> Class {
         let p = px.map(i32::from);
-        let mut best = (Class::Other, i64::MAX);
-        for &(class, color) in &self.colors {
-            let d = [p[0] - color[0], p[1] - color[1], p[2] - color[2]];
-            let dist = dot(d, d);
-            if dist < best.1 {
-                best = (class, dist);
-            }
-        }
-        let (nearest, dist) = best;
-        let near = dist <= self.tolerance_sq;
+        let (colour, dist) = self.palette.nearest(px);
+        let nearest = match colour {
+            PaletteColour::Road => Class::Road,
+            PaletteColour::Line => Class::Line,
+            PaletteColour::Block => Class::Block,
+            PaletteColour::Strip => Class::Strip,
+        };
+        let near = i64::from(dist) <= self.tolerance_sq;
         match nearest {
             Class::Line if near => Class::Line,
             Class::Block | Class::Strip if near => nearest,

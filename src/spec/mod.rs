@@ -44,7 +44,7 @@ pub use object_spec::{Ground, ObjectKind, ObjectSpec, SignKind, TextCase};
 pub use render::render;
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
-    OnError, Palette, SPEC_VERSION, Spec,
+    OnError, Palette, PaletteColour, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
 

@@ -168,6 +168,45 @@ impl Default for Palette {
     }
 }
 
+/// One of the palette's four colours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PaletteColour {
+    Road,
+    Line,
+    Block,
+    Strip,
+}
+
+impl Palette {
+    /// The palette colour nearest to `rgb` (Euclidean RGB; ties go to the earlier of road,
+    /// line, block, strip) and its squared distance. The one rule every stage that reads a
+    /// layout image shares.
+    pub fn nearest(&self, rgb: [u8; 3]) -> (PaletteColour, u32) {
+        let candidates = [
+            (PaletteColour::Road, self.road),
+            (PaletteColour::Line, self.line),
+            (PaletteColour::Block, self.block),
+            (PaletteColour::Strip, self.strip),
+        ];
+        let mut best = (PaletteColour::Road, u32::MAX);
+        for (colour, Color(c)) in candidates {
+            let d: u32 = (0..3)
+                .map(|i| (i32::from(rgb[i]) - i32::from(c[i])).pow(2) as u32)
+                .sum();
+            if d < best.1 {
+                best = (colour, d);
+            }
+        }
+        best
+    }
+
+    /// The palette colour `rgb` shows: the nearest one, if within `tolerance`.
+    pub fn classify(&self, rgb: [u8; 3]) -> Option<PaletteColour> {
+        let (colour, d) = self.nearest(rgb);
+        (u64::from(d) <= u64::from(self.tolerance).pow(2)).then_some(colour)
+    }
+}
+
 /// Buildings for paper Algorithm 1. Lengths in metres.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
