@@ -128,6 +128,7 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
                 file: file.clone(),
                 message: e.to_string(),
             })?;
+            digest.update((text.len() as u64 + 1).to_le_bytes());
             digest.update(text.as_bytes());
             Some(text)
         }
