@@ -41,6 +41,7 @@
 pub const VERSION: u32 = 1;
 
 mod camera_pose;
+mod footprint;
 mod frame;
 mod intrinsics;
 mod lighting;
@@ -57,6 +58,7 @@ mod view;
 mod tests;
 
 pub use camera_pose::CameraPose;
+pub use footprint::Footprint;
 pub use frame::{Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{Light, Lighting};
@@ -86,10 +88,24 @@ pub fn render(
     lighting: &Lighting,
     supersample: u32,
 ) -> Frame {
+    render_measuring(scene, pose, intrinsics, lighting, supersample, &[]).0
+}
+
+/// [`render`], and the [`Footprint`] of each object of `measure` (instance ids, ascending)
+/// that would cover a pixel with nothing in front of it, in id order: the annotator's full
+/// projected box and the denominator of the visible fraction.
+pub fn render_measuring(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    lighting: &Lighting,
+    supersample: u32,
+    measure: &[u16],
+) -> (Frame, Vec<Footprint>) {
     let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
     let (width, height) = (intrinsics.width, intrinsics.height);
     let Some(view) = View::new(pose, intrinsics, samples) else {
-        return sky_frame(width, height, lighting);
+        return (sky_frame(width, height, lighting), Vec::new());
     };
 
     let per_object: Vec<Vec<ScreenTri>> = scene
@@ -103,6 +119,15 @@ pub fn render(
                 }
             }
             out
+        })
+        .collect();
+    // Nothing is nearer than the near plane; a larger 1/w is a rounding artefact.
+    let q_range = (1.0 / view.far, 1.0001 / view.near);
+    let footprints: Vec<Footprint> = measure
+        .par_iter()
+        .filter_map(|&id| {
+            let tris = per_object.get(usize::from(id).checked_sub(1)?)?;
+            footprint::measure(id, tris, samples, q_range)
         })
         .collect();
     let tris: Vec<ScreenTri> = per_object.into_iter().flatten().collect();
@@ -127,12 +152,13 @@ pub fn render(
         width,
         height,
         tiles_x,
+        q_range,
     };
     let tiles: Vec<TileOut> = (0..bins.len())
         .into_par_iter()
         .map(|t| tile::render_tile(&ctx, t))
         .collect();
-    assemble(width, height, &tiles)
+    (assemble(width, height, &tiles), footprints)
 }
 
 /// Triangle indices per tile, in scene order.

@@ -386,6 +386,92 @@ fn the_nearer_box_owns_the_pixels_where_boxes_overlap() {
     }
 }
 
+/// The tight box and pixel count of `id` in an instance image.
+fn visible_box(frame: &Frame, id: u16) -> Option<([u32; 4], u64)> {
+    let mut found: Option<([u32; 4], u64)> = None;
+    for (x, y, p) in frame.instance.enumerate_pixels() {
+        if p.0[0] == id {
+            let (b, n) = found.get_or_insert(([x, y, x, y], 0));
+            *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+            *n += 1;
+        }
+    }
+    found
+}
+
+#[test]
+fn footprints_are_what_an_object_shows_with_nothing_in_front() {
+    let near_box = cuboid(0, [-1.0, -1.0, -6.0], [1.0, 1.0, -5.0]);
+    let far_box = cuboid(0, [0.0, -2.0, -12.0], [3.0, 2.0, -10.0]);
+    let k = Intrinsics::from_fov(64, 48, 0.5);
+    let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
+    let scene = |objects| Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects,
+    };
+    // Off-screen, behind the camera: never measured.
+    let behind = cuboid(0, [-1.0, -1.0, 5.0], [1.0, 1.0, 6.0]);
+    let both = prepare(&scene(vec![
+        object("near", near_box.clone()),
+        object("far", far_box.clone()),
+        object("behind", behind),
+    ]))
+    .unwrap();
+    let far_alone = prepare(&scene(vec![object("far", far_box)])).unwrap();
+    for samples in [1, 2, 3] {
+        let (frame, footprints) = render_measuring(&both, &eye, &k, &flat(), samples, &[1, 2, 3]);
+        assert_eq!(frame, render(&both, &eye, &k, &flat(), samples));
+        let ids: Vec<u16> = footprints.iter().map(|f| f.id).collect();
+        assert_eq!(ids, [1, 2], "samples {samples}");
+        // The far box's footprint is exactly what it shows when alone.
+        let alone = render(&far_alone, &eye, &k, &flat(), samples);
+        let (b, n) = visible_box(&alone, 1).unwrap();
+        let far = footprints[1];
+        assert_eq!(([far.x0, far.y0, far.x1, far.y1], far.pixels), (b, n));
+        // Behind the near box it shows fewer pixels, all inside the footprint.
+        let (vb, vn) = visible_box(&frame, 2).unwrap();
+        assert!(vn > 0 && vn < far.pixels, "{vn} of {}", far.pixels);
+        assert!(vb[0] >= far.x0 && vb[1] >= far.y0 && vb[2] <= far.x1 && vb[3] <= far.y1);
+        // The unoccluded near box: its footprint is what it shows.
+        let near = footprints[0];
+        let (nb, nn) = visible_box(&frame, 1).unwrap();
+        assert_eq!(
+            (nb, nn),
+            ([near.x0, near.y0, near.x1, near.y1], near.pixels)
+        );
+    }
+    assert!(
+        render_measuring(&both, &eye, &k, &flat(), 1, &[])
+            .1
+            .is_empty()
+    );
+}
+
+#[test]
+fn every_visible_pixel_of_a_street_lies_in_its_objects_footprint() {
+    let prepared = prepare(&street_scene()).unwrap();
+    let k = Intrinsics::from_fov(96, 64, 0.6);
+    let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
+    let ids: Vec<u16> = (1..=prepared.object_count() as u16).collect();
+    for samples in [1, 2] {
+        let (frame, footprints) =
+            render_measuring(&prepared, &eye, &k, &Lighting::day(), samples, &ids);
+        for id in ids.iter().copied() {
+            let shown = visible_box(&frame, id);
+            let footprint = footprints.iter().find(|f| f.id == id);
+            match (shown, footprint) {
+                (Some((b, n)), Some(f)) => {
+                    assert!(n <= f.pixels, "id {id}: {n} > {}", f.pixels);
+                    assert!(b[0] >= f.x0 && b[1] >= f.y0 && b[2] <= f.x1 && b[3] <= f.y1);
+                }
+                (Some(_), None) => panic!("id {id} shows but has no footprint"),
+                (None, _) => {}
+            }
+        }
+    }
+}
+
 #[test]
 fn closed_boxes_show_from_every_side_and_single_walls_only_from_the_front() {
     let scene = Scene {

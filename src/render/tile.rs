@@ -38,6 +38,9 @@ pub(crate) struct FrameContext<'a> {
     pub width: u32,
     pub height: u32,
     pub tiles_x: u32,
+    /// Accepted 1/w: above 1/far, at most 1.0001/near (nothing is nearer than the near
+    /// plane; a larger 1/w is a rounding artefact).
+    pub q_range: (f64, f64),
 }
 
 /// A finished tile: its rectangle in output pixels and its pixels, row-major.
@@ -67,10 +70,9 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
     );
 
     // Visibility: nearest 1/w wins; ties go to the earlier triangle.
-    let mut depth = vec![1.0 / ctx.view.far; iw * ih];
+    let (q_min, q_max) = ctx.q_range;
+    let mut depth = vec![q_min; iw * ih];
     let mut id = vec![NOTHING; iw * ih];
-    // Nothing is nearer than the near plane; a larger 1/w is a rounding artefact.
-    let q_max = 1.0001 / ctx.view.near;
     for &t in &ctx.bins[tile] {
         ctx.tris[t as usize].rasterize(inner, |x, y, q| {
             let i = (y - inner[1]) as usize * iw + (x - inner[0]) as usize;
