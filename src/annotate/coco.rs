@@ -2,62 +2,93 @@
 
 use serde_json::{Value, json};
 
+use super::frame_annotations::{FrameAnnotations, summarize};
 use super::frame_input::{FrameInput, Thresholds};
 use super::object_label::{Category, ObjectLabel};
 use super::round;
-use super::shown_object::shown;
 
-/// COCO JSON bytes for one camera path.
-///
-/// - `images`: `id` (frame index + 1), `file_name`, `width`, `height`, and the extra keys
-///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target}` (metres, x east,
-///   y up, z south; up is +y).
-/// - `categories`: `id`, `name`, in the order given.
-/// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
-///   every labelled object whose category is listed and that passes `thresholds`: `id`,
-///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels,
-///   `area` = visible pixel count, `iscrowd` 0, `segmentation` = compressed RLE
-///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
-///   then the extra keys `instance_id` (the value in the instance image), `name`,
-///   `full_bbox` (projected box ignoring occlusion, or `null`), `visible_fraction` (or
-///   `null`) and, for text objects, `text`.
-///
-/// Keys are written in that order, one image, category or annotation per line. Intrinsics
-/// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
-/// non-finite number becomes `null`.
+/// COCO JSON bytes for frames held in memory: [`CocoWriter`] fed with each frame's
+/// [`summarize`].
 pub fn coco(
     categories: &[Category],
     labels: &[ObjectLabel],
     frames: &[FrameInput],
     thresholds: &Thresholds,
 ) -> Vec<u8> {
-    let mut images = Vec::with_capacity(frames.len());
-    let mut annotations = Vec::new();
-    for (index, frame) in frames.iter().enumerate() {
-        let image_id = index as u64 + 1;
+    let mut writer = CocoWriter::new(categories);
+    for frame in frames {
+        writer.push(&summarize(labels, frame, thresholds));
+    }
+    writer.finish()
+}
+
+/// Builds one camera path's COCO JSON (pycocotools loads it) frame by frame, holding only
+/// the text of its lines.
+///
+/// - `images`: `id` (frame index + 1), `file_name`, `width`, `height`, and the extra keys
+///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target}` (metres, x east,
+///   y up, z south; up is +y).
+/// - `categories`: `id`, `name`, in the order given.
+/// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
+///   every labelled object whose category is listed and that passes the thresholds: `id`,
+///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels,
+///   `area` = visible pixel count, `iscrowd` 0, `segmentation` = compressed RLE
+///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
+///   then the extra keys `instance_id` (the value in the instance image), `name`,
+///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
+///   it, inside the image, or `null` when unknown), `visible_fraction` (visible ÷ those
+///   pixels, or `null`) and, for text objects, `text`.
+///
+/// Keys are written in that order, one image, category or annotation per line. Intrinsics
+/// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
+/// non-finite number becomes `null`.
+pub struct CocoWriter {
+    categories: Vec<Category>,
+    images: String,
+    annotations: String,
+    frames: u64,
+    annotated: u64,
+}
+
+impl CocoWriter {
+    pub fn new(categories: &[Category]) -> CocoWriter {
+        CocoWriter {
+            categories: categories.to_vec(),
+            images: String::new(),
+            annotations: String::new(),
+            frames: 0,
+            annotated: 0,
+        }
+    }
+
+    /// Appends the next frame (image ids follow the order of the calls).
+    pub fn push(&mut self, frame: &FrameAnnotations) {
+        self.frames += 1;
+        let image_id = self.frames;
         let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
-        let (width, height) = frame.instance.dimensions();
-        images.push(json!({
+        let image = json!({
             "id": image_id,
             "file_name": frame.file_name,
-            "width": width,
-            "height": height,
+            "width": frame.width,
+            "height": frame.height,
             "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
             "pose": {
                 "eye": frame.pose.eye.map(|v| round(v, 1e3)),
                 "target": frame.pose.target.map(|v| round(v, 1e3)),
             },
-        }));
-        for object in shown(labels, frame, thresholds) {
+        });
+        line(&mut self.images, &image);
+        for object in &frame.objects {
             let Some(category) = object.label.category else {
                 continue;
             };
-            if !object.passes || !categories.iter().any(|c| c.id == category) {
+            if !object.passes || !self.categories.iter().any(|c| c.id == category) {
                 continue;
             }
+            self.annotated += 1;
             let v = &object.visible;
             let mut annotation = json!({
-                "id": annotations.len() + 1,
+                "id": self.annotated,
                 "image_id": image_id,
                 "category_id": category,
                 "bbox": v.bbox(),
@@ -72,35 +103,42 @@ pub fn coco(
             if let (Some(text), Value::Object(map)) = (&object.label.text, &mut annotation) {
                 map.insert("text".into(), Value::String(text.clone()));
             }
-            annotations.push(annotation);
+            line(&mut self.annotations, &annotation);
         }
     }
-    let categories: Vec<Value> = categories
-        .iter()
-        .map(|c| json!({"id": c.id, "name": c.name}))
-        .collect();
-    let mut out = String::new();
-    out.push_str("{\"info\":");
-    out.push_str(
-        &json!({"description": "cityspec annotations", "version": super::VERSION}).to_string(),
-    );
-    out.push_str(",\n\"licenses\":[]");
-    for (key, list) in [
-        ("images", &images),
-        ("categories", &categories),
-        ("annotations", &annotations),
-    ] {
-        out.push_str(",\n\"");
-        out.push_str(key);
-        out.push_str("\":[");
-        for (i, item) in list.iter().enumerate() {
-            out.push_str(if i == 0 { "\n" } else { ",\n" });
-            out.push_str(&item.to_string());
+
+    /// The whole document.
+    pub fn finish(self) -> Vec<u8> {
+        let categories = self.categories.iter().fold(String::new(), |mut out, c| {
+            line(&mut out, &json!({"id": c.id, "name": c.name}));
+            out
+        });
+        let mut out = String::new();
+        out.push_str("{\"info\":");
+        out.push_str(
+            &json!({"description": "cityspec annotations", "version": super::VERSION}).to_string(),
+        );
+        out.push_str(",\n\"licenses\":[]");
+        for (key, list) in [
+            ("images", &self.images),
+            ("categories", &categories),
+            ("annotations", &self.annotations),
+        ] {
+            out.push_str(",\n\"");
+            out.push_str(key);
+            out.push_str("\":[");
+            out.push_str(list);
+            out.push(']');
         }
-        out.push(']');
+        out.push_str("}\n");
+        out.into_bytes()
     }
-    out.push_str("}\n");
-    out.into_bytes()
+}
+
+/// Appends `item` to a JSON list's text: a newline, after a comma unless it is the first.
+fn line(list: &mut String, item: &Value) {
+    list.push_str(if list.is_empty() { "\n" } else { ",\n" });
+    list.push_str(&item.to_string());
 }
 
 #[cfg(test)]

@@ -2,9 +2,7 @@
 
 use std::fmt::Write;
 
-use super::frame_input::{FrameInput, Thresholds};
-use super::object_label::ObjectLabel;
-use super::shown_object::shown;
+use super::frame_annotations::FrameAnnotations;
 
 /// Visible fraction below which a text is "mostly hidden" and transcribed `###`.
 pub const MOSTLY_HIDDEN: f64 = 0.5;
@@ -19,9 +17,9 @@ pub const MOSTLY_HIDDEN: f64 = 0.5;
 /// care") when the text is mostly hidden — its visible fraction is below one half — or it
 /// misses `thresholds`. Every visible text gets a line, so a detector that finds a mostly
 /// hidden one is not counted wrong.
-pub fn icdar(labels: &[ObjectLabel], frame: &FrameInput, thresholds: &Thresholds) -> String {
+pub fn icdar(frame: &FrameAnnotations) -> String {
     let mut out = String::new();
-    for object in shown(labels, frame, thresholds) {
+    for object in &frame.objects {
         let Some(text) = &object.label.text else {
             continue;
         };
@@ -53,7 +51,7 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::test_image;
+    use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize, test_image};
     use crate::cameras::CameraPose;
 
     #[test]
@@ -98,7 +96,7 @@ mod tests {
             min_fraction: 0.0,
         };
         assert_eq!(
-            icdar(&labels, &frame, &thresholds),
+            icdar(&summarize(&labels, &frame, &thresholds)),
             "0,0,4,0,3,2,0,2,EXIT\n\
              4,0,5,0,5,1,4,1,line one line two, and more\n\
              0,3,1,3,1,3,0,3,###\n\

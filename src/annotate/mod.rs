@@ -8,9 +8,13 @@
 //! annotated when it has a category, shows at least `min_pixels` pixels and, where its
 //! fraction is known, at least `min_fraction` of itself.
 //!
+//! A frame is first [`summarize`]d (one scan of its instance image) into
+//! [`FrameAnnotations`]; every format is written from that summary, so a camera path
+//! streams: frame after frame is summarized, written and dropped.
+//!
 //! | output | function | per |
 //! |---|---|---|
-//! | COCO JSON (pycocotools loads it) | [`coco`] | camera path |
+//! | COCO JSON (pycocotools loads it) | [`CocoWriter`] (or [`coco`] for frames in memory) | camera path |
 //! | YOLO `class cx cy w h` | [`yolo`] | frame |
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
 //!
@@ -18,11 +22,12 @@
 //! floats rounded to fixed decimals before printing.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 mod coco;
 #[cfg(test)]
 mod fixture_tests;
+mod frame_annotations;
 mod frame_input;
 mod icdar;
 mod object_label;
@@ -31,7 +36,8 @@ mod shown_object;
 mod visible_object;
 mod yolo;
 
-pub use coco::coco;
+pub use coco::{CocoWriter, coco};
+pub use frame_annotations::{FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
 pub use object_label::{Category, ObjectLabel};

@@ -2,24 +2,17 @@
 
 use std::fmt::Write;
 
-use super::frame_input::{FrameInput, Thresholds};
-use super::object_label::{Category, ObjectLabel};
-use super::shown_object::shown;
+use super::frame_annotations::FrameAnnotations;
+use super::object_label::Category;
 
 /// YOLO txt for one frame: `class cx cy w h`, one line per object [`super::coco`] would
 /// annotate, in instance-id order. `class` is the category's index in `categories` (YOLO
 /// classes count from 0); the box is the visible box, its centre and size divided by the
 /// image width and height, with 6 decimals.
-pub fn yolo(
-    categories: &[Category],
-    labels: &[ObjectLabel],
-    frame: &FrameInput,
-    thresholds: &Thresholds,
-) -> String {
-    let (width, height) = frame.instance.dimensions();
-    let (width, height) = (f64::from(width), f64::from(height));
+pub fn yolo(categories: &[Category], frame: &FrameAnnotations) -> String {
+    let (width, height) = (f64::from(frame.width), f64::from(frame.height));
     let mut out = String::new();
-    for object in shown(labels, frame, thresholds) {
+    for object in &frame.objects {
         if !object.passes {
             continue;
         }
@@ -48,7 +41,7 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::test_image;
+    use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize, test_image};
     use crate::cameras::CameraPose;
 
     #[test]
@@ -97,7 +90,7 @@ mod tests {
             min_fraction: 0.0,
         };
         assert_eq!(
-            yolo(&categories, &labels, &frame, &all),
+            yolo(&categories, &summarize(&labels, &frame, &all)),
             "1 0.250000 0.250000 0.500000 0.500000\n0 0.937500 0.875000 0.125000 0.250000\n"
         );
         let big = Thresholds {
@@ -105,7 +98,7 @@ mod tests {
             min_fraction: 0.0,
         };
         assert_eq!(
-            yolo(&categories, &labels, &frame, &big),
+            yolo(&categories, &summarize(&labels, &frame, &big)),
             "1 0.250000 0.250000 0.500000 0.500000\n"
         );
     }

@@ -22,8 +22,59 @@ use serde::{Deserialize, Serialize};
 use super::atomic::write_atomic;
 use crate::hash::sha256_hex;
 
-/// A stage's outputs: file name → bytes.
-pub type Outputs = BTreeMap<String, Arc<Vec<u8>>>;
+/// A stage's outputs: file name → bytes, in memory or already stored as cache objects.
+pub type Outputs = BTreeMap<String, Blob>;
+
+/// One output's bytes: in memory, or an object already in the cache (a stage that streams
+/// its outputs, like a camera path's frames, stores each as it is made and keeps only its
+/// reference; cached stages whose values nobody decodes are looked up the same way).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Blob {
+    Bytes(Arc<Vec<u8>>),
+    Stored(ObjectRef),
+}
+
+impl Blob {
+    /// The bytes, when they are in memory.
+    pub fn bytes(&self) -> Option<&Arc<Vec<u8>>> {
+        match self {
+            Blob::Bytes(bytes) => Some(bytes),
+            Blob::Stored(_) => None,
+        }
+    }
+
+    /// The SHA-256 of the bytes.
+    pub fn sha256(&self) -> String {
+        match self {
+            Blob::Bytes(bytes) => sha256_hex(bytes),
+            Blob::Stored(object) => object.sha256.clone(),
+        }
+    }
+
+    /// The number of bytes.
+    pub fn size(&self) -> u64 {
+        match self {
+            Blob::Bytes(bytes) => bytes.len() as u64,
+            Blob::Stored(object) => object.bytes,
+        }
+    }
+}
+
+impl From<Vec<u8>> for Blob {
+    fn from(bytes: Vec<u8>) -> Blob {
+        Blob::Bytes(Arc::new(bytes))
+    }
+}
+
+/// Whether a looked-up stage's outputs are read into memory or only verified.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Load {
+    /// Read every object (the stage's value is decoded from them).
+    Bytes,
+    /// Verify every object, one at a time, and keep only references (artifact-only stages:
+    /// the driver copies them to the output folder one file at a time).
+    References,
+}
 
 /// What `entries/<key>.json` records.
 #[derive(Debug, Serialize, Deserialize)]
@@ -70,8 +121,9 @@ impl Cache {
         (entry.key == key).then_some(entry)
     }
 
-    /// The outputs recorded under `key`, each verified against its hash.
-    pub fn get(&self, key: &str) -> Result<Outputs, Miss> {
+    /// The outputs recorded under `key`, each verified against its hash, read into memory
+    /// or kept as references (`load`).
+    pub fn get(&self, key: &str, load: Load) -> Result<Outputs, Miss> {
         let entry_path = self.entry_path(key);
         let text = match fs::read(&entry_path) {
             Ok(text) => text,
@@ -86,22 +138,45 @@ impl Cache {
             )));
         }
         let mut outputs = Outputs::new();
-        for (name, object) in &entry.outputs {
-            let path = self.object_path(&object.sha256);
-            let bytes = fs::read(&path)
-                .map_err(|_| Miss::Corrupt(format!("{} is missing ({name})", path.display())))?;
-            if bytes.len() as u64 != object.bytes || sha256_hex(&bytes) != object.sha256 {
-                return Err(Miss::Corrupt(format!(
-                    "{} no longer matches its hash ({name})",
-                    path.display()
-                )));
-            }
-            outputs.insert(name.clone(), Arc::new(bytes));
+        for (name, object) in entry.outputs {
+            let bytes = self
+                .read_object(&object)
+                .map_err(|why| Miss::Corrupt(format!("{why} ({name})")))?;
+            let blob = match load {
+                Load::Bytes => Blob::from(bytes),
+                Load::References => Blob::Stored(object),
+            };
+            outputs.insert(name, blob);
         }
         Ok(outputs)
     }
 
-    /// Records `outputs` under `key`: objects first, then the entry.
+    /// The bytes of a stored object, verified against its size and hash.
+    pub fn read_object(&self, object: &ObjectRef) -> Result<Vec<u8>, String> {
+        let path = self.object_path(&object.sha256);
+        let bytes = fs::read(&path).map_err(|_| format!("{} is missing", path.display()))?;
+        if bytes.len() as u64 != object.bytes || sha256_hex(&bytes) != object.sha256 {
+            return Err(format!("{} no longer matches its hash", path.display()));
+        }
+        Ok(bytes)
+    }
+
+    /// Stores one object (unless an intact copy is there already) and returns its reference.
+    pub fn put_object(&self, bytes: &[u8]) -> io::Result<ObjectRef> {
+        let object = ObjectRef {
+            sha256: sha256_hex(bytes),
+            bytes: bytes.len() as u64,
+        };
+        let path = self.object_path(&object.sha256);
+        let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
+        if !intact {
+            write_atomic(&path, bytes)?;
+        }
+        Ok(object)
+    }
+
+    /// Records `outputs` under `key`: objects first (those in memory are stored now; stored
+    /// ones were stored by [`Cache::put_object`]), then the entry.
     pub fn put(
         &self,
         stage: &str,
@@ -109,16 +184,11 @@ impl Cache {
         outputs: &Outputs,
     ) -> io::Result<BTreeMap<String, ObjectRef>> {
         let mut refs = BTreeMap::new();
-        for (name, bytes) in outputs {
-            let object = ObjectRef {
-                sha256: sha256_hex(bytes),
-                bytes: bytes.len() as u64,
+        for (name, blob) in outputs {
+            let object = match blob {
+                Blob::Bytes(bytes) => self.put_object(bytes)?,
+                Blob::Stored(object) => object.clone(),
             };
-            let path = self.object_path(&object.sha256);
-            let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
-            if !intact {
-                write_atomic(&path, bytes)?;
-            }
             refs.insert(name.clone(), object);
         }
         let entry = Entry {
@@ -149,7 +219,7 @@ mod tests {
     fn outputs(pairs: &[(&str, &[u8])]) -> Outputs {
         pairs
             .iter()
-            .map(|(n, b)| (n.to_string(), Arc::new(b.to_vec())))
+            .map(|(n, b)| (n.to_string(), Blob::from(b.to_vec())))
             .collect()
     }
 
@@ -157,10 +227,18 @@ mod tests {
     fn put_then_get_round_trips() {
         let dir = tempfile::tempdir().unwrap();
         let cache = Cache::new(dir.path());
-        assert_eq!(cache.get("k1"), Err(Miss::Absent));
+        assert_eq!(cache.get("k1", Load::Bytes), Err(Miss::Absent));
         let out = outputs(&[("a.json", b"{}"), ("b.png", b"png bytes")]);
         cache.put("parse", "k1", &out).unwrap();
-        assert_eq!(cache.get("k1").unwrap(), out);
+        assert_eq!(cache.get("k1", Load::Bytes).unwrap(), out);
+        // By reference: the same hashes, no bytes.
+        let refs = cache.get("k1", Load::References).unwrap();
+        assert_eq!(refs.len(), 2);
+        for (name, blob) in &refs {
+            assert!(blob.bytes().is_none());
+            assert_eq!(blob.sha256(), out[name].sha256());
+            assert_eq!(blob.size(), out[name].size());
+        }
     }
 
     #[test]
@@ -173,15 +251,39 @@ mod tests {
         let object = cache.object_path(&refs["layout.png"].sha256);
         fs::write(&object, b"pixelz").unwrap();
         assert!(
-            matches!(cache.get("k2"), Err(Miss::Corrupt(m)) if m.contains("no longer matches"))
+            matches!(cache.get("k2", Load::References), Err(Miss::Corrupt(m)) if m.contains("no longer matches"))
         );
         // Putting the same outputs again repairs the object.
         cache
             .put("mirror", "k2", &outputs(&[("layout.png", b"pixels")]))
             .unwrap();
-        assert!(cache.get("k2").is_ok());
+        assert!(cache.get("k2", Load::References).is_ok());
         fs::remove_file(&object).unwrap();
-        assert!(matches!(cache.get("k2"), Err(Miss::Corrupt(m)) if m.contains("missing")));
+        assert!(
+            matches!(cache.get("k2", Load::References), Err(Miss::Corrupt(m)) if m.contains("missing"))
+        );
+    }
+
+    #[test]
+    fn streamed_objects_are_recorded_by_reference() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = Cache::new(dir.path());
+        let frame = cache.put_object(b"frame 0").unwrap();
+        assert_eq!(cache.read_object(&frame).unwrap(), b"frame 0");
+        let out = Outputs::from([
+            ("rgb/000000.png".to_owned(), Blob::Stored(frame.clone())),
+            ("coco.json".to_owned(), Blob::from(b"{}".to_vec())),
+        ]);
+        cache.put("frames", "k4", &out).unwrap();
+        let back = cache.get("k4", Load::Bytes).unwrap();
+        assert_eq!(
+            back["rgb/000000.png"].bytes().unwrap().as_slice(),
+            b"frame 0"
+        );
+        assert_eq!(
+            cache.get("k4", Load::References).unwrap()["rgb/000000.png"],
+            Blob::Stored(frame)
+        );
     }
 
     #[test]
@@ -190,6 +292,9 @@ mod tests {
         let cache = Cache::new(dir.path());
         fs::create_dir_all(dir.path().join("entries")).unwrap();
         fs::write(dir.path().join("entries/k3.json"), b"{ half").unwrap();
-        assert!(matches!(cache.get("k3"), Err(Miss::Corrupt(_))));
+        assert!(matches!(
+            cache.get("k3", Load::Bytes),
+            Err(Miss::Corrupt(_))
+        ));
     }
 }

@@ -6,7 +6,7 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 use std::sync::Arc;
 
-use super::cache::Outputs;
+use super::cache::{Blob, Outputs};
 use crate::model::FacadeSet;
 
 /// Bump when any encoding here changes its bytes: it is part of every stage key.
@@ -28,7 +28,7 @@ pub fn decode_png(bytes: &[u8]) -> Result<RgbImage, String> {
 /// `textures/<name>.png`.
 pub fn facade_set_outputs(set: &FacadeSet) -> Outputs {
     let mut outputs = Outputs::new();
-    outputs.insert("facades.json".to_owned(), Arc::new(to_json(set)));
+    outputs.insert("facades.json".to_owned(), Blob::from(to_json(set)));
     let textures = set
         .facades
         .iter()
@@ -37,7 +37,7 @@ pub fn facade_set_outputs(set: &FacadeSet) -> Outputs {
     for texture in textures {
         outputs.insert(
             format!("textures/{}.png", texture.name),
-            Arc::clone(&texture.png),
+            Blob::Bytes(Arc::clone(&texture.png)),
         );
     }
     outputs
@@ -45,17 +45,21 @@ pub fn facade_set_outputs(set: &FacadeSet) -> Outputs {
 
 /// The facade set back from [`facade_set_outputs`].
 pub fn facade_set_from_outputs(outputs: &Outputs) -> Result<FacadeSet, String> {
-    let mut set: FacadeSet = from_json(outputs.get("facades.json").ok_or("facades.json missing")?)?;
+    let mut set: FacadeSet = from_json(output(outputs, "facades.json")?)?;
     let textures = set.facades.iter_mut().map(|f| &mut f.texture);
     for texture in textures.chain(set.roofs.iter_mut().map(|r| &mut r.texture)) {
         let name = format!("textures/{}.png", texture.name);
-        texture.png = Arc::clone(
-            outputs
-                .get(&name)
-                .ok_or_else(|| format!("{name} missing"))?,
-        );
+        texture.png = Arc::clone(output(outputs, &name)?);
     }
     Ok(set)
+}
+
+/// The in-memory bytes of output `name`.
+pub fn output<'o>(outputs: &'o Outputs, name: &str) -> Result<&'o Arc<Vec<u8>>, String> {
+    outputs
+        .get(name)
+        .and_then(Blob::bytes)
+        .ok_or_else(|| format!("{name} missing"))
 }
 
 /// Compact JSON for values only the cache reads.

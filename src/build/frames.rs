@@ -1,11 +1,13 @@
 //! One camera path's dataset: scene + poses + lighting → frames (RGB, instance ids, depth),
 //! COCO, optional YOLO, ICDAR for text, poses, and a `preview.png` contact sheet.
 //!
-//! Glue between the cameras, render and annotate stages; pure (the driver stores and
-//! writes what it returns). File names are relative to the output folder.
+//! Glue between the cameras, render and annotate stages. It streams: each frame's files go
+//! to the caller's `emit` as soon as they are encoded, and the frame is then dropped, so
+//! memory does not grow with the number of frames (only the COCO text does, a few hundred
+//! bytes per annotation). Pure: the driver decides where emitted files go. File names are
+//! relative to the output folder.
 
 use std::collections::BTreeMap;
-use std::sync::Arc;
 
 use ab_glyph::FontRef;
 use image::{Rgb, RgbImage, imageops};
@@ -13,9 +15,8 @@ use imageproc::drawing::{draw_hollow_rect_mut, draw_text_mut};
 use imageproc::rect::Rect;
 use serde_json::json;
 
-use super::cache::Outputs;
 use super::codec;
-use crate::annotate::{self, Category, FrameInput, ObjectLabel, Thresholds};
+use crate::annotate::{self, Category, CocoWriter, FrameInput, ObjectLabel, Thresholds};
 use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Lighting, PreparedScene};
 use crate::spec::CameraSpec;
@@ -33,77 +34,102 @@ pub struct PathInput<'a> {
     pub yolo: bool,
 }
 
-/// Renders every pose and annotates the frames.
-pub fn render_path(
+/// A box drawn on the contact sheet: category and visible box (inclusive pixels).
+struct SheetBox {
+    category: u32,
+    bounds: [u32; 4],
+}
+
+/// Renders every pose and annotates the frames, handing each file to `emit` (name, bytes)
+/// as soon as it is ready; stops at the first error `emit` returns. `progress` is told
+/// the number of frames done.
+pub fn render_path<E>(
     input: &PathInput,
     poses: &[CameraPose],
+    mut emit: impl FnMut(String, Vec<u8>) -> Result<(), E>,
     mut progress: impl FnMut(usize),
-) -> Outputs {
+) -> Result<(), E> {
     let camera = input.camera;
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
     let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
     let dir = format!("frames/{}", camera.name);
-    let mut outputs = Outputs::new();
-    let mut instances = Vec::with_capacity(poses.len());
-    let mut rgbs = Vec::new();
+    // Objects whose visible fraction matters: those that may be annotated.
+    let measured: Vec<u16> = input
+        .labels
+        .iter()
+        .zip(1u16..)
+        .filter(|(label, _)| {
+            label
+                .category
+                .is_some_and(|c| input.categories.iter().any(|k| k.id == c))
+        })
+        .map(|(_, id)| id)
+        .collect();
+    let has_text = input
+        .labels
+        .iter()
+        .any(|l| l.text.is_some() && l.category.is_some());
     let picks = contact_sheet_picks(poses.len());
+    let mut sheet = Vec::with_capacity(picks.len());
+    let mut coco = CocoWriter::new(input.categories);
     for (i, pose) in poses.iter().enumerate() {
-        let frame = render::render(
+        let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             &intrinsics,
             input.lighting,
             camera.supersample,
+            &measured,
         );
-        let pngs = frame.encode_png();
-        outputs.insert(format!("{dir}/rgb/{i:06}.png"), Arc::new(pngs.rgb));
-        outputs.insert(format!("{dir}/ids/{i:06}.png"), Arc::new(pngs.instance));
-        outputs.insert(format!("{dir}/depth/{i:06}.png"), Arc::new(pngs.depth_mm));
-        if picks.contains(&i) {
-            rgbs.push((i, frame.rgb));
-        }
-        instances.push(frame.instance);
-        progress(i + 1);
-    }
-    let frames: Vec<FrameInput> = instances
-        .iter()
-        .zip(poses)
-        .enumerate()
-        .map(|(i, (instance, pose))| FrameInput {
+        let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
-            instance,
+            instance: &frame.instance,
             intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
             pose: *pose,
-            full: BTreeMap::new(),
+            full: footprints
+                .iter()
+                .map(|f| (u32::from(f.id), (f.bbox().map(f64::from), f.pixels)))
+                .collect(),
             quads: input
                 .corners
                 .iter()
                 .filter_map(|(id, corners)| Some((*id, project_quad(pose, &intrinsics, corners)?)))
                 .collect(),
-        })
-        .collect();
-    let coco = annotate::coco(input.categories, input.labels, &frames, input.thresholds);
-    outputs.insert(format!("{dir}/coco.json"), Arc::new(coco));
-    let has_text = input
-        .labels
-        .iter()
-        .any(|l| l.text.is_some() && l.category.is_some());
-    for (i, frame) in frames.iter().enumerate() {
+        };
+        let (pngs, summary) = rayon::join(
+            || frame.encode_png(),
+            || annotate::summarize(input.labels, &frame_input, input.thresholds),
+        );
+        emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
+        emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
+        emit(format!("{dir}/depth/{i:06}.png"), pngs.depth_mm)?;
+        coco.push(&summary);
         if input.yolo {
-            let text = annotate::yolo(input.categories, input.labels, frame, input.thresholds);
-            outputs.insert(
-                format!("{dir}/yolo/{i:06}.txt"),
-                Arc::new(text.into_bytes()),
-            );
+            let text = annotate::yolo(input.categories, &summary);
+            emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
         }
         if has_text {
-            let text = annotate::icdar(input.labels, frame, input.thresholds);
-            outputs.insert(
-                format!("{dir}/icdar/gt_{i:06}.txt"),
-                Arc::new(text.into_bytes()),
-            );
+            let text = annotate::icdar(&summary);
+            emit(format!("{dir}/icdar/gt_{i:06}.txt"), text.into_bytes())?;
         }
+        if picks.contains(&i) {
+            let boxes = summary
+                .objects
+                .iter()
+                .filter(|o| o.passes)
+                .filter_map(|o| {
+                    let v = &o.visible;
+                    Some(SheetBox {
+                        category: o.label.category?,
+                        bounds: [v.x0, v.y0, v.x1, v.y1],
+                    })
+                })
+                .collect::<Vec<_>>();
+            sheet.push((frame.rgb, boxes));
+        }
+        progress(i + 1);
     }
+    emit(format!("{dir}/coco.json"), coco.finish())?;
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
@@ -111,16 +137,12 @@ pub fn render_path(
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target
         })).collect::<Vec<_>>(),
     });
-    outputs.insert(
+    emit(
         format!("{dir}/poses.json"),
-        Arc::new(codec::to_pretty_json(&poses_json)),
-    );
-    let sheet = contact_sheet(&rgbs, &frames, input);
-    outputs.insert(
-        format!("{dir}/preview.png"),
-        Arc::new(codec::encode_png(&sheet)),
-    );
-    outputs
+        codec::to_pretty_json(&poses_json),
+    )?;
+    let picture = contact_sheet(&sheet, input.categories);
+    emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
 }
 
 /// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the
@@ -170,37 +192,30 @@ fn contact_sheet_picks(frames: usize) -> Vec<usize> {
 }
 
 /// The picked frames at half size in a grid, each kept annotation's box and class drawn.
-fn contact_sheet(rgbs: &[(usize, RgbImage)], frames: &[FrameInput], input: &PathInput) -> RgbImage {
-    let Some((_, first)) = rgbs.first() else {
+fn contact_sheet(frames: &[(RgbImage, Vec<SheetBox>)], categories: &[Category]) -> RgbImage {
+    let Some((first, _)) = frames.first() else {
         return RgbImage::new(1, 1);
     };
     let (w, h) = (first.width() / 2, first.height() / 2);
-    let columns = 3u32.min(rgbs.len() as u32);
-    let rows = (rgbs.len() as u32).div_ceil(columns);
+    let columns = 3u32.min(frames.len() as u32);
+    let rows = (frames.len() as u32).div_ceil(columns);
     let mut sheet = RgbImage::from_pixel(
         columns * w + (columns + 1) * 4,
         rows * h + (rows + 1) * 4,
         Rgb([20, 20, 20]),
     );
     let font = FontRef::try_from_slice(notosans::REGULAR_TTF).expect("the embedded font parses");
-    let names: BTreeMap<u32, &str> = input
-        .categories
-        .iter()
-        .map(|c| (c.id, c.name.as_str()))
-        .collect();
-    for (slot, (index, rgb)) in rgbs.iter().enumerate() {
+    let names: BTreeMap<u32, &str> = categories.iter().map(|c| (c.id, c.name.as_str())).collect();
+    for (slot, (rgb, boxes)) in frames.iter().enumerate() {
         let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
-        for object in annotate::shown(input.labels, &frames[*index], input.thresholds) {
-            let Some(category) = object.label.category.filter(|_| object.passes) else {
-                continue;
-            };
-            let v = &object.visible;
-            let (x0, y0) = ((v.x0 / 2) as i32, (v.y0 / 2) as i32);
-            let (bw, bh) = (((v.x1 - v.x0) / 2).max(1), ((v.y1 - v.y0) / 2).max(1));
-            let colour = palette(category);
-            draw_hollow_rect_mut(&mut small, Rect::at(x0, y0).of_size(bw, bh), colour);
-            let name = names.get(&category).copied().unwrap_or("?");
-            draw_text_mut(&mut small, colour, x0, (y0 - 12).max(0), 11.0, &font, name);
+        for b in boxes {
+            let [x0, y0, x1, y1] = b.bounds;
+            let (bx, by) = ((x0 / 2) as i32, (y0 / 2) as i32);
+            let (bw, bh) = (((x1 - x0) / 2).max(1), ((y1 - y0) / 2).max(1));
+            let colour = palette(b.category);
+            draw_hollow_rect_mut(&mut small, Rect::at(bx, by).of_size(bw, bh), colour);
+            let name = names.get(&b.category).copied().unwrap_or("?");
+            draw_text_mut(&mut small, colour, bx, (by - 12).max(0), 11.0, &font, name);
         }
         let (col, row) = (slot as u32 % columns, slot as u32 / columns);
         imageops::overlay(

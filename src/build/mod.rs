@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
-pub use cache::{Cache, Miss};
+pub use cache::{Blob, Cache, Load, Miss};
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use pipeline::widths_px;
@@ -191,16 +191,28 @@ pub fn build_spec(
     };
     for artifact in &artifacts {
         let file = out_dir.join(&artifact.path);
-        if fs::read(&file).is_ok_and(|old| old == *artifact.bytes) {
+        let sha256 = artifact.blob.sha256();
+        let size = artifact.blob.size();
+        // One file at a time: a stored object is read only when the folder lacks it.
+        let same = fs::metadata(&file).is_ok_and(|m| m.len() == size)
+            && fs::read(&file).is_ok_and(|old| crate::hash::sha256_hex(&old) == sha256);
+        if same {
             unchanged.push(artifact.path.clone());
         } else {
-            write_atomic(&file, &artifact.bytes).map_err(|e| output(e, &file))?;
+            match &artifact.blob {
+                Blob::Bytes(bytes) => write_atomic(&file, bytes),
+                Blob::Stored(object) => match cache.read_object(object) {
+                    Ok(bytes) => write_atomic(&file, &bytes),
+                    Err(why) => Err(io::Error::other(format!("cache object {why}"))),
+                },
+            }
+            .map_err(|e| output(e, &file))?;
             written.push(artifact.path.clone());
         }
         manifest.artifacts.push(Artifact {
             path: artifact.path.clone(),
-            sha256: crate::hash::sha256_hex(&artifact.bytes),
-            bytes: artifact.bytes.len() as u64,
+            sha256,
+            bytes: size,
             stage: artifact.stage.to_owned(),
             key: artifact.key.clone(),
         });

@@ -14,7 +14,7 @@ use std::time::Instant;
 use image::RgbImage;
 
 use super::BuildError;
-use super::cache::{Cache, Miss, Outputs};
+use super::cache::{Blob, Cache, Load, Miss, Outputs};
 use super::codec;
 use super::frames;
 use super::inputs::{FacadeInput, LayoutSource};
@@ -28,10 +28,11 @@ use crate::{
 };
 use rand::Rng;
 
-/// An artifact a build writes: name in the output folder, bytes, producing stage and key.
+/// An artifact a build writes: name in the output folder, bytes (in memory or a cache
+/// object), producing stage and key.
 pub struct ArtifactOut {
     pub path: String,
-    pub bytes: Arc<Vec<u8>>,
+    pub blob: Blob,
     pub stage: &'static str,
     pub key: String,
 }
@@ -188,9 +189,9 @@ impl<'a> Pipeline<'a> {
             .into_iter()
             .chain(frames)
             .flat_map(|(outputs, stage, key)| {
-                outputs.iter().map(move |(path, bytes)| ArtifactOut {
+                outputs.iter().map(move |(path, blob)| ArtifactOut {
                     path: path.clone(),
-                    bytes: Arc::clone(bytes),
+                    blob: blob.clone(),
                     stage,
                     key: key.clone(),
                 })
@@ -205,6 +206,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "layout",
             key,
+            Load::Bytes,
             |p| &mut p.layout,
             |_| Ok(()),
             |p, ()| {
@@ -232,7 +234,7 @@ impl<'a> Pipeline<'a> {
     fn layout_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
         self.need_layout()?;
         value(&mut self.layout, "layout", |o| {
-            codec::decode_png(&o["layout.png"])
+            codec::decode_png(codec::output(o, "layout.png")?)
         })
     }
 
@@ -241,6 +243,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "mirror",
             key,
+            Load::Bytes,
             |p| &mut p.mirror,
             |p| p.layout_image(),
             |p, layout| {
@@ -254,7 +257,7 @@ impl<'a> Pipeline<'a> {
     fn mirrored_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
         self.need_mirror()?;
         value(&mut self.mirror, "mirror", |o| {
-            codec::decode_png(&o["layout.png"])
+            codec::decode_png(codec::output(o, "layout.png")?)
         })
     }
 
@@ -263,6 +266,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "parse",
             key,
+            Load::Bytes,
             |p| &mut p.parse,
             |p| p.mirrored_image(),
             |p, image| {
@@ -276,7 +280,7 @@ impl<'a> Pipeline<'a> {
     fn parsed(&mut self) -> Result<Arc<ParsedLayout>, BuildError> {
         self.need_parse()?;
         value(&mut self.parse, "parse", |o| {
-            codec::from_json(&o["parsed.json"])
+            codec::from_json(codec::output(o, "parsed.json")?)
         })
     }
 
@@ -286,6 +290,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "lamps",
             key,
+            Load::Bytes,
             |p| &mut p.lamps,
             gather,
             |p, (image, parsed)| {
@@ -307,7 +312,7 @@ impl<'a> Pipeline<'a> {
     fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
         self.need_lamps()?;
         value(&mut self.lamps, "lamps", |o| {
-            codec::from_json(&o["lamps.json"])
+            codec::from_json(codec::output(o, "lamps.json")?)
         })
     }
 
@@ -323,6 +328,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "place",
             key,
+            Load::Bytes,
             |p| &mut p.place,
             gather,
             |p, (parsed, facades)| {
@@ -345,7 +351,7 @@ impl<'a> Pipeline<'a> {
     fn buildings(&mut self) -> Result<Arc<Vec<Building>>, BuildError> {
         self.need_place()?;
         value(&mut self.place, "place", |o| {
-            codec::from_json(&o["buildings.json"])
+            codec::from_json(codec::output(o, "buildings.json")?)
         })
     }
 
@@ -355,6 +361,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "plan",
             key,
+            Load::References,
             |p| &mut p.plan,
             gather,
             |p, (parsed, lamps, buildings)| {
@@ -378,6 +385,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "preview",
             key,
+            Load::References,
             |p| &mut p.preview,
             gather,
             |_, (image, parsed, lamps, buildings)| {
@@ -393,6 +401,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "facades",
             key,
+            Load::Bytes,
             |p| &mut p.facades,
             |_| Ok(()),
             |p, ()| {
@@ -414,7 +423,7 @@ impl<'a> Pipeline<'a> {
                 let mut outputs = codec::facade_set_outputs(&set);
                 outputs.insert(
                     "warnings.json".to_owned(),
-                    Arc::new(codec::to_json(&warnings)),
+                    Blob::from(codec::to_json(&warnings)),
                 );
                 Ok((set, outputs))
             },
@@ -422,8 +431,9 @@ impl<'a> Pipeline<'a> {
         // Warnings are told when the facades are processed, not on every cached build.
         if self.runs.len() > before && self.runs[before].status == StageStatus::Ran {
             let outputs = &evaluated(&self.facades).outputs;
-            let warnings: Vec<String> =
-                codec::from_json(&outputs["warnings.json"]).unwrap_or_default();
+            let warnings: Vec<String> = codec::output(outputs, "warnings.json")
+                .and_then(|bytes| codec::from_json(bytes))
+                .unwrap_or_default();
             self.warnings.extend(warnings);
         }
         Ok(())
@@ -491,13 +501,14 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "export",
             key,
+            Load::References,
             |p| &mut p.export,
             |p| p.scene(),
             |_, scene| {
                 let files = export::export(&scene);
                 let outputs = files
                     .into_iter()
-                    .map(|(path, bytes)| (path, Arc::new(bytes)))
+                    .map(|(path, bytes)| (path, Blob::from(bytes)))
                     .collect();
                 Ok(((), outputs))
             },
@@ -511,6 +522,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "overview",
             key,
+            Load::References,
             |p| &mut p.overview,
             gather,
             |p, (scene, parsed)| {
@@ -567,6 +579,7 @@ impl<'a> Pipeline<'a> {
         self.stage(
             "frames",
             key,
+            Load::References,
             move |p| &mut p.frames[index],
             gather,
             |p, (prepared, scene, parsed, lamps, facades)| {
@@ -614,9 +627,22 @@ impl<'a> Pipeline<'a> {
                     yolo: spec.annotations.yolo,
                 };
                 let total = poses.len();
-                let outputs = frames::render_path(&input, &poses, |done| {
-                    (p.progress)(&camera.name, done, total)
-                });
+                // Each file goes into the cache as it is made; only its reference stays.
+                let mut outputs = Outputs::new();
+                frames::render_path(
+                    &input,
+                    &poses,
+                    |name, bytes| {
+                        let object = p.cache.put_object(&bytes)?;
+                        outputs.insert(name, Blob::Stored(object));
+                        Ok(())
+                    },
+                    |done| (p.progress)(&camera.name, done, total),
+                )
+                .map_err(|source| BuildError::Cache {
+                    path: p.cache.root().to_path_buf(),
+                    source,
+                })?;
                 Ok(((), outputs))
             },
         )
@@ -627,6 +653,7 @@ impl<'a> Pipeline<'a> {
         &mut self,
         name: &'static str,
         key: String,
+        load: Load,
         slot: impl for<'x> Fn(&'x mut Self) -> &'x mut Option<Slot<T>>,
         gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
         run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
@@ -635,7 +662,7 @@ impl<'a> Pipeline<'a> {
             return Ok(());
         }
         let lookup = Instant::now();
-        let (filled, status, repaired, time) = match self.cache.get(&key) {
+        let (filled, status, repaired, time) = match self.cache.get(&key, load) {
             Ok(outputs) => (
                 Slot {
                     outputs,
@@ -652,13 +679,20 @@ impl<'a> Pipeline<'a> {
                 };
                 let inputs = gather(self)?;
                 let start = Instant::now();
-                let (value, outputs) = run(self, inputs)?;
-                self.cache
-                    .put(name, &key, &outputs)
-                    .map_err(|source| BuildError::Cache {
-                        path: self.cache.root().to_path_buf(),
-                        source,
-                    })?;
+                let (value, mut outputs) = run(self, inputs)?;
+                let refs =
+                    self.cache
+                        .put(name, &key, &outputs)
+                        .map_err(|source| BuildError::Cache {
+                            path: self.cache.root().to_path_buf(),
+                            source,
+                        })?;
+                if load == Load::References {
+                    // Stored now: the bytes need not stay in memory.
+                    for (name, object) in refs {
+                        outputs.insert(name, Blob::Stored(object));
+                    }
+                }
                 let slot = Slot {
                     outputs,
                     value: Some(Arc::new(value)),
@@ -698,7 +732,7 @@ fn evaluated<T>(slot: &Option<Slot<T>>) -> &Slot<T> {
 }
 
 fn one(name: &str, bytes: Vec<u8>) -> Outputs {
-    Outputs::from([(name.to_owned(), Arc::new(bytes))])
+    Outputs::from([(name.to_owned(), Blob::from(bytes))])
 }
 
 /// Building widths in layout pixels (at least one pixel each).

@@ -1,0 +1,55 @@
+//! One frame's instance image + labels + renderer data → [`FrameAnnotations`]: the labelled
+//! objects it shows, measured once and owned, so the frame's images can be dropped.
+//!
+//! A camera path streams: each frame is rendered, summarized here, written (COCO lines,
+//! YOLO, ICDAR) and forgotten, so memory does not grow with the number of frames.
+
+use std::collections::BTreeMap;
+
+use super::frame_input::{FrameInput, Thresholds};
+use super::object_label::ObjectLabel;
+use super::shown_object::{ShownObject, shown};
+use crate::cameras::CameraPose;
+
+/// What every output format needs of one frame.
+#[derive(Clone, Debug)]
+pub struct FrameAnnotations<'a> {
+    /// Name of the frame's RGB image, as the dataset stores it.
+    pub file_name: String,
+    pub width: u32,
+    pub height: u32,
+    /// Pinhole intrinsics in pixels: `[fx, fy, cx, cy]`.
+    pub intrinsics: [f64; 4],
+    pub pose: CameraPose,
+    /// The labelled objects the frame shows, in instance-id order, each with whether it
+    /// passes the thresholds.
+    pub objects: Vec<ShownObject<'a>>,
+    /// Projected text quads of the shown objects that have one, by instance id.
+    pub quads: BTreeMap<u32, [[f64; 2]; 4]>,
+}
+
+/// Scans `frame`'s instance image once and keeps what the outputs need.
+pub fn summarize<'a>(
+    labels: &'a [ObjectLabel],
+    frame: &FrameInput,
+    thresholds: &Thresholds,
+) -> FrameAnnotations<'a> {
+    let objects = shown(labels, frame, thresholds);
+    let quads = objects
+        .iter()
+        .filter_map(|o| {
+            let id = u32::from(o.visible.id);
+            Some((id, *frame.quads.get(&id)?))
+        })
+        .collect();
+    let (width, height) = frame.instance.dimensions();
+    FrameAnnotations {
+        file_name: frame.file_name.clone(),
+        width,
+        height,
+        intrinsics: frame.intrinsics,
+        pose: frame.pose,
+        objects,
+        quads,
+    }
+}
