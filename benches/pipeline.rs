@@ -8,14 +8,16 @@
 //! 50 ms; a no-op rebuild under 30 ms. Timings are printed, never asserted: a busy machine
 //! must not fail a build.
 
+mod support;
+
 use std::hint::black_box;
-use std::path::Path;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
 use cityspec::build::{self, BuildOptions, widths_px};
 use cityspec::spec::{GenerateSpec, Palette, Spec};
 use cityspec::{lamps, layout, mirror, parse, place, rng};
+use support::{copy_tree, day_without_cameras, repo};
 
 fn main() {
     let runs: usize = std::env::var("BENCH_RUNS")
@@ -99,10 +101,7 @@ fn stages(label: &str, ops: &[u8], runs: usize) {
 fn noop_rebuild(runs: usize) {
     let day = std::fs::read_to_string(repo().join("specs/day.toml")).unwrap();
     // The city alone (what issue 2 measured), then the full dataset with its 112 frames.
-    let city = match (day.find("[[cameras]]"), day.find("[lighting]")) {
-        (Some(a), Some(b)) if a < b => format!("{}{}", &day[..a], &day[b..]),
-        _ => day.clone(),
-    };
+    let city = day_without_cameras();
     noop_case("day.toml without cameras", &city, runs);
     noop_case("day.toml with 112 frames", &day, runs);
 }
@@ -157,21 +156,4 @@ fn row(label: &str, times: &mut [Duration]) {
         ms(times[0]),
         ms(times[times.len() - 1])
     );
-}
-
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap() {
-        let path = entry.unwrap().path();
-        let target = to.join(path.file_name().unwrap());
-        if path.is_dir() {
-            copy_tree(&path, &target);
-        } else {
-            std::fs::copy(&path, &target).unwrap();
-        }
-    }
-}
-
-fn repo() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
 }

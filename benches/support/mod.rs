@@ -1,0 +1,48 @@
+//! What the benchmarks share: the repository root, copying trees, the day spec without its
+//! cameras, medians and the peak memory of this process.
+
+#![allow(dead_code)] // each bench uses a part
+
+use std::fs;
+use std::path::Path;
+
+pub fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+pub fn copy_tree(from: &Path, to: &Path) {
+    fs::create_dir_all(to).unwrap();
+    for entry in fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let target = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_tree(&path, &target);
+        } else {
+            fs::copy(&path, &target).unwrap();
+        }
+    }
+}
+
+/// `specs/day.toml` with its `[[cameras]]` entries cut: the city alone.
+pub fn day_without_cameras() -> String {
+    let day = fs::read_to_string(repo().join("specs/day.toml")).unwrap();
+    match (day.find("[[cameras]]"), day.find("[lighting]")) {
+        (Some(a), Some(b)) if a < b => format!("{}{}", &day[..a], &day[b..]),
+        _ => day,
+    }
+}
+
+pub fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+/// Peak resident memory of this process so far, KiB (Linux `VmHWM`; 0 elsewhere).
+pub fn peak_kib() -> u64 {
+    let status = fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap_or(0)
+}
