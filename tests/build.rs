@@ -386,3 +386,52 @@ fn noop_fast_path_reads_no_object_and_falls_back_when_a_file_changes() {
     );
     assert_eq!(tree(&ws.out()), good);
 }
+
+/// Every COCO annotation of `spec`'s street camera: (bbox, full_bbox, visible_fraction).
+fn street_annotations(ws: &Workspace, spec: &str) -> Vec<([f64; 4], [f64; 4], f64)> {
+    let path = ws.out().join(spec).join("frames/street/coco.json");
+    let doc: serde_json::Value = serde_json::from_slice(&fs::read(path).unwrap()).unwrap();
+    let four = |v: &serde_json::Value| -> [f64; 4] {
+        std::array::from_fn(|i| v[i].as_f64().expect("a number"))
+    };
+    doc["annotations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            (
+                four(&a["bbox"]),
+                four(&a["full_bbox"]),
+                a["visible_fraction"].as_f64().expect("a visible fraction"),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
+    let ws = Workspace::with_spec("text");
+    ws.edit_spec("text", "frames = 4", "frames = 12");
+    // Words on walls are seldom hidden (by a sign, a lamp, a corner): a high threshold.
+    ws.edit_spec("text", "min_fraction = 0.3", "min_fraction = 0.95");
+    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    let kept = street_annotations(&ws, "text");
+    assert!(kept.len() > 10, "{} annotations", kept.len());
+    for (bbox, full, fraction) in &kept {
+        assert!((0.95..=1.0).contains(fraction), "{fraction}");
+        assert!(
+            full[0] <= bbox[0]
+                && full[1] <= bbox[1]
+                && bbox[0] + bbox[2] <= full[0] + full[2]
+                && bbox[1] + bbox[3] <= full[1] + full[3],
+            "{bbox:?} outside {full:?}"
+        );
+    }
+    // Without the fraction threshold, partly hidden words come back.
+    ws.edit_spec("text", "min_fraction = 0.95", "min_fraction = 0.0");
+    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    let all = street_annotations(&ws, "text");
+    let hidden = all.iter().filter(|(_, _, f)| *f < 0.95).count();
+    assert!(hidden > 0, "no annotation below 0.95 of {}", all.len());
+    assert_eq!(all.len(), kept.len() + hidden);
+}

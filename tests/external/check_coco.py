@@ -11,7 +11,9 @@ The instance image of an image entry is <instance-png-folder>/<stem of file_name
 2. every annotation's bbox is the tight box [x, y, w, h] of the pixels of its instance,
    its area is their count, iscrowd is 0, and its RLE segmentation decodes to exactly
    those pixels and is, character for character, what maskUtils.encode makes of them;
-3. when there are annotations, COCOeval of the ground truth against itself (every
+3. every annotation's full_bbox (the box of the pixels the object would cover with nothing
+   in front) contains its bbox, and its visible_fraction lies in (0, 1];
+4. when there are annotations, COCOeval of the ground truth against itself (every
    annotation as a detection with score 1) gives AP 1.0 for bbox and for segm.
 
 Exits 0 when all hold, 1 with a message on the first failure, 2 on bad usage.
@@ -78,6 +80,15 @@ def check_pixels(gt, folder):
                 raise CheckFailed(f"{where}: segmentation does not decode: {e}")
             if decoded.shape != mask.shape or not np.array_equal(decoded, mask):
                 raise CheckFailed(f"{where}: segmentation does not decode to its pixels")
+            full, fraction = ann.get("full_bbox"), ann.get("visible_fraction")
+            if full is None or fraction is None:
+                raise CheckFailed(f"{where}: full_bbox or visible_fraction is missing")
+            fx, fy, fw, fh = full
+            bx, by, bw, bh = ann["bbox"]
+            if not (fx <= bx and fy <= by and bx + bw <= fx + fw and by + bh <= fy + fh):
+                raise CheckFailed(f"{where}: bbox {ann['bbox']} is not inside full_bbox {full}")
+            if not 0.0 < fraction <= 1.0:
+                raise CheckFailed(f"{where}: visible_fraction {fraction} is not in (0, 1]")
             expected = mask_utils.encode(np.asfortranarray(mask.astype(np.uint8)))
             if ann["segmentation"] != {"size": expected["size"], "counts": expected["counts"].decode()}:
                 raise CheckFailed(f"{where}: segmentation is not what maskUtils.encode gives")
