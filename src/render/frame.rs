@@ -21,12 +21,22 @@ pub struct FramePngs {
 }
 
 impl Frame {
-    /// Encodes the three images with fixed settings: the same frame gives the same bytes.
+    /// Encodes the three images (in parallel) with fixed settings: the same frame gives
+    /// the same bytes.
     pub fn encode_png(&self) -> FramePngs {
+        let (rgb, (instance, depth_mm)) = rayon::join(
+            || encode(DynamicImage::ImageRgb8(self.rgb.clone())),
+            || {
+                rayon::join(
+                    || encode(DynamicImage::ImageLuma16(self.instance.clone())),
+                    || encode(DynamicImage::ImageLuma16(self.depth_mm.clone())),
+                )
+            },
+        );
         FramePngs {
-            rgb: encode(DynamicImage::ImageRgb8(self.rgb.clone())),
-            instance: encode(DynamicImage::ImageLuma16(self.instance.clone())),
-            depth_mm: encode(DynamicImage::ImageLuma16(self.depth_mm.clone())),
+            rgb,
+            instance,
+            depth_mm,
         }
     }
 }
