@@ -91,7 +91,7 @@ impl CocoWriter {
                 "id": self.annotated,
                 "image_id": image_id,
                 "category_id": category,
-                "bbox": v.bbox(),
+                "bbox": v.bounds.bbox(),
                 "area": v.pixels,
                 "iscrowd": 0,
                 "segmentation": {"size": v.rle.size, "counts": v.rle.to_compressed()},

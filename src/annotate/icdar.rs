@@ -24,8 +24,9 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
             continue;
         };
         let v = &object.visible;
+        let b = v.bounds;
         let boxed =
-            [[v.x0, v.y0], [v.x1, v.y0], [v.x1, v.y1], [v.x0, v.y1]].map(|p| p.map(i64::from));
+            [[b.x0, b.y0], [b.x1, b.y0], [b.x1, b.y1], [b.x0, b.y1]].map(|p| p.map(i64::from));
         let quad = frame
             .quads
             .get(&u32::from(v.id))

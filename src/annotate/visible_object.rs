@@ -3,33 +3,19 @@
 use image::{ImageBuffer, Luma};
 
 use super::rle::Rle;
+use crate::model::PixelBox;
 
 /// What one instance shows in a frame.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VisibleObject {
     /// The value in the instance image (object index + 1).
     pub id: u16,
-    /// Tight box of the visible pixels, inclusive: columns `x0..=x1`, rows `y0..=y1`.
-    pub x0: u32,
-    pub y0: u32,
-    pub x1: u32,
-    pub y1: u32,
+    /// Tight box of the visible pixels.
+    pub bounds: PixelBox,
     /// Visible pixel count.
     pub pixels: u64,
     /// The visible pixels as a COCO RLE.
     pub rle: Rle,
-}
-
-impl VisibleObject {
-    /// COCO `bbox` `[x, y, w, h]` of the visible pixels (pixel edges, so `w = x1 − x0 + 1`).
-    pub fn bbox(&self) -> [u32; 4] {
-        [
-            self.x0,
-            self.y0,
-            self.x1 - self.x0 + 1,
-            self.y1 - self.y0 + 1,
-        ]
-    }
 }
 
 /// Every non-zero id of `image`, in id order, with its visible box, count and RLE.
@@ -66,10 +52,7 @@ pub fn scan(image: &ImageBuffer<Luma<u16>, Vec<u16>>) -> Vec<VisibleObject> {
 
 /// Per-id state of the scan.
 struct Acc {
-    x0: u32,
-    y0: u32,
-    x1: u32,
-    y1: u32,
+    bounds: PixelBox,
     pixels: u64,
     counts: Vec<u64>,
     /// Column-major index just past the last pixel seen.
@@ -79,10 +62,7 @@ struct Acc {
 impl Acc {
     fn new(x: u32, y: u32) -> Acc {
         Acc {
-            x0: x,
-            y0: y,
-            x1: x,
-            y1: y,
+            bounds: PixelBox::at(x, y),
             pixels: 0,
             counts: Vec::new(),
             end: 0,
@@ -90,10 +70,7 @@ impl Acc {
     }
 
     fn add(&mut self, x: u32, y: u32, t: u64) {
-        self.x0 = self.x0.min(x);
-        self.y0 = self.y0.min(y);
-        self.x1 = self.x1.max(x);
-        self.y1 = self.y1.max(y);
+        self.bounds.include(x, y);
         self.pixels += 1;
         match self.counts.last_mut() {
             Some(run) if self.end == t => *run += 1,
@@ -111,10 +88,7 @@ impl Acc {
         }
         VisibleObject {
             id,
-            x0: self.x0,
-            y0: self.y0,
-            x1: self.x1,
-            y1: self.y1,
+            bounds: self.bounds,
             pixels: self.pixels,
             rle: Rle {
                 size,
@@ -143,9 +117,9 @@ mod tests {
         let found = scan(&img);
         assert_eq!(found.iter().map(|o| o.id).collect::<Vec<_>>(), [1, 2, 3]);
         let [one, two, three] = [&found[0], &found[1], &found[2]];
-        assert_eq!((one.bbox(), one.pixels), ([1, 1, 2, 2], 4));
-        assert_eq!((two.bbox(), two.pixels), ([1, 1, 4, 3], 8));
-        assert_eq!((three.bbox(), three.pixels), ([5, 4, 1, 1], 1));
+        assert_eq!((one.bounds.bbox(), one.pixels), ([1, 1, 2, 2], 4));
+        assert_eq!((two.bounds.bbox(), two.pixels), ([1, 1, 4, 3], 8));
+        assert_eq!((three.bounds.bbox(), three.pixels), ([5, 4, 1, 1], 1));
         // Column-major, 5 rows: object 1 fills rows 1–2 of columns 1 and 2.
         assert_eq!(one.rle.counts, [6, 2, 3, 2, 17]);
         // The last pixel is set: no trailing run of 0s.

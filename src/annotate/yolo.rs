@@ -23,7 +23,7 @@ pub fn yolo(categories: &[Category], frame: &FrameAnnotations) -> String {
         else {
             continue;
         };
-        let [x, y, w, h] = object.visible.bbox().map(f64::from);
+        let [x, y, w, h] = object.visible.bounds.bbox().map(f64::from);
         let cx = (x + w / 2.0) / width;
         let cy = (y + h / 2.0) / height;
         let _ = writeln!(

@@ -17,7 +17,7 @@ use serde_json::json;
 
 use super::codec;
 use crate::annotate::{self, Category, CocoWriter, FrameInput, ObjectLabel, Thresholds};
-use crate::model::CameraPose;
+use crate::model::{CameraPose, PixelBox};
 use crate::render::{self, Intrinsics, Lighting, PreparedScene};
 use crate::spec::CameraSpec;
 
@@ -34,10 +34,10 @@ pub struct PathInput<'a> {
     pub yolo: bool,
 }
 
-/// A box drawn on the contact sheet: category and visible box (inclusive pixels).
+/// A box drawn on the contact sheet: category and visible box.
 struct SheetBox {
     category: u32,
-    bounds: [u32; 4],
+    bounds: PixelBox,
 }
 
 /// Renders every pose and annotates the frames, handing each file to `emit` (name, bytes)
@@ -88,7 +88,7 @@ pub fn render_path<E>(
             pose: *pose,
             full: footprints
                 .iter()
-                .map(|f| (u32::from(f.id), (f.bbox().map(f64::from), f.pixels)))
+                .map(|f| (u32::from(f.id), (f.bounds.bbox().map(f64::from), f.pixels)))
                 .collect(),
             quads: input
                 .corners
@@ -121,7 +121,7 @@ pub fn render_path<E>(
                     let v = &o.visible;
                     Some(SheetBox {
                         category: o.label.category?,
-                        bounds: [v.x0, v.y0, v.x1, v.y1],
+                        bounds: v.bounds,
                     })
                 })
                 .collect::<Vec<_>>();
@@ -209,7 +209,7 @@ fn contact_sheet(frames: &[(RgbImage, Vec<SheetBox>)], categories: &[Category]) 
     for (slot, (rgb, boxes)) in frames.iter().enumerate() {
         let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
         for b in boxes {
-            let [x0, y0, x1, y1] = b.bounds;
+            let PixelBox { x0, y0, x1, y1 } = b.bounds;
             let (bx, by) = ((x0 / 2) as i32, (y0 / 2) as i32);
             let (bw, bh) = (((x1 - x0) / 2).max(1), ((y1 - y0) / 2).max(1));
             let colour = palette(b.category);

@@ -8,31 +8,17 @@
 //! nearest the centre). Every visible pixel of an object is therefore in its footprint.
 
 use super::screen_triangle::ScreenTri;
+use crate::model::PixelBox;
 
 /// Where one object would show if nothing were in front of it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Footprint {
     /// Instance id (object index + 1).
     pub id: u16,
-    /// Tight box of the covered pixels, inclusive: columns `x0..=x1`, rows `y0..=y1`.
-    pub x0: u32,
-    pub y0: u32,
-    pub x1: u32,
-    pub y1: u32,
+    /// Tight box of the covered pixels.
+    pub bounds: PixelBox,
     /// Covered pixels inside the image.
     pub pixels: u64,
-}
-
-impl Footprint {
-    /// COCO-style `[x, y, w, h]` of the box (pixel edges, so `w = x1 − x0 + 1`).
-    pub fn bbox(&self) -> [u32; 4] {
-        [
-            self.x0,
-            self.y0,
-            self.x1 - self.x0 + 1,
-            self.y1 - self.y0 + 1,
-        ]
-    }
 }
 
 /// The footprint of the object with instance `id` whose screen triangles are `tris`, or
@@ -81,15 +67,10 @@ pub(crate) fn measure(
         let (x, y) = (ox0 + (i % bw) as u32, oy0 + (i / bw) as u32);
         let f = found.get_or_insert(Footprint {
             id,
-            x0: x,
-            y0: y,
-            x1: x,
-            y1: y,
+            bounds: PixelBox::at(x, y),
             pixels: 0,
         });
-        f.x0 = f.x0.min(x);
-        f.x1 = f.x1.max(x);
-        f.y1 = f.y1.max(y);
+        f.bounds.include(x, y);
         f.pixels += 1;
     }
     found

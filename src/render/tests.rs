@@ -9,7 +9,7 @@ use super::prepared_scene::Triangle;
 use super::screen_triangle::{self, ScreenTri};
 use super::view::View;
 use super::*;
-use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
+use crate::model::{Material, Mesh, PixelBox, Scene, SceneObject, Texture};
 
 fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
     Material {
@@ -387,16 +387,20 @@ fn the_nearer_box_owns_the_pixels_where_boxes_overlap() {
 }
 
 /// The tight box and pixel count of `id` in an instance image.
-fn visible_box(frame: &Frame, id: u16) -> Option<([u32; 4], u64)> {
-    let mut found: Option<([u32; 4], u64)> = None;
+fn visible_box(frame: &Frame, id: u16) -> Option<(PixelBox, u64)> {
+    let mut found: Option<(PixelBox, u64)> = None;
     for (x, y, p) in frame.instance.enumerate_pixels() {
         if p.0[0] == id {
-            let (b, n) = found.get_or_insert(([x, y, x, y], 0));
-            *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+            let (b, n) = found.get_or_insert((PixelBox::at(x, y), 0));
+            b.include(x, y);
             *n += 1;
         }
     }
     found
+}
+
+fn inside(a: PixelBox, b: PixelBox) -> bool {
+    a.x0 >= b.x0 && a.y0 >= b.y0 && a.x1 <= b.x1 && a.y1 <= b.y1
 }
 
 #[test]
@@ -428,18 +432,15 @@ fn footprints_are_what_an_object_shows_with_nothing_in_front() {
         let alone = render(&far_alone, &eye, &k, &flat(), samples);
         let (b, n) = visible_box(&alone, 1).unwrap();
         let far = footprints[1];
-        assert_eq!(([far.x0, far.y0, far.x1, far.y1], far.pixels), (b, n));
+        assert_eq!((far.bounds, far.pixels), (b, n));
         // Behind the near box it shows fewer pixels, all inside the footprint.
         let (vb, vn) = visible_box(&frame, 2).unwrap();
         assert!(vn > 0 && vn < far.pixels, "{vn} of {}", far.pixels);
-        assert!(vb[0] >= far.x0 && vb[1] >= far.y0 && vb[2] <= far.x1 && vb[3] <= far.y1);
+        assert!(inside(vb, far.bounds));
         // The unoccluded near box: its footprint is what it shows.
         let near = footprints[0];
         let (nb, nn) = visible_box(&frame, 1).unwrap();
-        assert_eq!(
-            (nb, nn),
-            ([near.x0, near.y0, near.x1, near.y1], near.pixels)
-        );
+        assert_eq!((nb, nn), (near.bounds, near.pixels));
     }
     assert!(
         render_measuring(&both, &eye, &k, &flat(), 1, &[])
@@ -463,7 +464,7 @@ fn every_visible_pixel_of_a_street_lies_in_its_objects_footprint() {
             match (shown, footprint) {
                 (Some((b, n)), Some(f)) => {
                     assert!(n <= f.pixels, "id {id}: {n} > {}", f.pixels);
-                    assert!(b[0] >= f.x0 && b[1] >= f.y0 && b[2] <= f.x1 && b[3] <= f.y1);
+                    assert!(inside(b, f.bounds));
                 }
                 (Some(_), None) => panic!("id {id} shows but has no footprint"),
                 (None, _) => {}
