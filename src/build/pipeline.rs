@@ -592,7 +592,7 @@ impl<'a> Pipeline<'a> {
                         &parsed,
                         mpp,
                         &cameras::RoadPath {
-                            frames: camera.frames,
+                            frames: camera.frame_rule(),
                             height: camera.height,
                             look_ahead: camera.look_ahead,
                             jitter: camera.jitter,
@@ -601,7 +601,9 @@ impl<'a> Pipeline<'a> {
                         camera_seed,
                     ),
                     CameraPath::Orbit => {
-                        cameras::orbit_path(&parsed, mpp, camera.frames, camera.height)
+                        let length = cameras::orbit_length(&parsed, mpp);
+                        let frames = camera.frame_rule().frames(length);
+                        cameras::orbit_path(&parsed, mpp, frames, camera.height)
                     }
                 };
                 let lighting = lighting(spec, &scene, &lamps, &facades);

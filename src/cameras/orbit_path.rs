@@ -43,6 +43,20 @@ pub fn orbit_path(
         .collect()
 }
 
+/// Length in metres of the circle [`orbit_path`] flies (radius half the layout's
+/// diagonal); 0 when `metres_per_pixel` is not a positive finite number. A
+/// [`FrameRule::Spacing`](crate::spec::FrameRule) takes its frame count from this length;
+/// the frames are then that far apart on average (the orbit's steps vary, see
+/// [`orbit_path`]).
+pub fn orbit_length(layout: &ParsedLayout, metres_per_pixel: f64) -> f64 {
+    let m = metres_per_pixel;
+    if !(m.is_finite() && m > 0.0) {
+        return 0.0;
+    }
+    let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
+    std::f64::consts::PI * (w * w + h * h).sqrt()
+}
+
 /// The point at fraction `t ∈ [0, 1)` of the way around the square `[-1, 1]²` (x east,
 /// z south), starting at north `(0, -1)` and going clockwise seen from above.
 fn square_point(t: f64) -> [f64; 2] {
@@ -97,6 +111,18 @@ mod tests {
             let d = (b[0] - a[0]).abs() + (b[1] - a[1]).abs();
             assert!((d - 8.0 / n as f64).abs() < 1e-12, "{a:?} → {b:?}");
         }
+    }
+
+    #[test]
+    fn spacing_counts_frames_along_the_circle() {
+        use crate::spec::FrameRule;
+        // 150 m × 200 m: radius 125 m, circumference 250π ≈ 785.4 m.
+        let length = orbit_length(&layout(300, 400), 0.5);
+        assert!((length - 785.398).abs() < 1e-3, "{length}");
+        assert_eq!(FrameRule::Spacing(10.0).frames(length), 78);
+        assert_eq!(FrameRule::Spacing(800.0).frames(length), 1);
+        assert_eq!(orbit_length(&layout(300, 400), 0.0), 0.0);
+        assert_eq!(orbit_length(&layout(300, 400), f64::NAN), 0.0);
     }
 
     #[test]

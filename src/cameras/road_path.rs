@@ -3,9 +3,11 @@
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
+use super::leg::legs;
 use super::{CameraPose, mm};
-use crate::model::{Axis, ParsedLayout, Road};
+use crate::model::ParsedLayout;
 use crate::rng;
+use crate::spec::FrameRule;
 
 /// Metres the target drops per metre of look-ahead: a slight downward pitch (about 5.7°).
 pub const PITCH_DROP: f64 = 0.1;
@@ -13,8 +15,8 @@ pub const PITCH_DROP: f64 = 0.1;
 /// How a camera drives along the roads.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RoadPath {
-    /// Frames over the whole tour.
-    pub frames: u32,
+    /// Frames over the whole tour: a count, or one every so many metres of the tour.
+    pub frames: FrameRule,
     /// Eye height above the ground, metres.
     pub height: f64,
     /// How far ahead along the road the camera looks, metres (must be positive).
@@ -28,17 +30,22 @@ pub struct RoadPath {
 
 /// Drives along the roads: the path visits roads in id order, driving on the right-hand
 /// lane (offset from the centre line by `lane_offset`, right of the driving direction, but
-/// never off the road surface), from start to end, continuing through crossings; frames are
-/// evenly spaced by arc length over the whole tour, frame `i` at `(i + ½)·L/frames`. The
+/// never off the road surface), from the road's start, continuing through crossings, to
+/// `look_ahead` metres before the road surface ends (the layout border or a dead end, or the
+/// far edge of the road a T-junction runs into), so the look-at point never leaves the road.
+/// A road too short for that is skipped; if every road is, all are driven whole. Frames are
+/// evenly spaced by arc length over the whole tour of length `L` ([`tour_length`]): `n`
+/// frames (`frames` as [`FrameRule::frames`] of `L`), frame `i` at `(i + ½)·L/n`. The
 /// target is `look_ahead` metres ahead along the road, [`PITCH_DROP`]` · look_ahead` below
 /// eye height, plus a seeded jitter (`rng::stream(seed, "cameras", frame)`) of up to
 /// `jitter` metres across the road and up or down.
 ///
 /// Driving "start to end" is east on horizontal roads (right = south, +z) and south on
 /// vertical ones (right = west, −x). Between roads the camera jumps; the jump does not count
-/// as arc length. No poses when `frames` is 0, there is no road of positive length, or a
-/// parameter is out of range (`metres_per_pixel` and `look_ahead` must be positive and
-/// finite, `jitter` non-negative and finite, `height` and `lane_offset` finite).
+/// as arc length. No poses when there are no frames, there is no road of positive length,
+/// or a parameter is out of range (`metres_per_pixel` and `look_ahead` must be positive and
+/// finite, `jitter` non-negative and finite, `height` and `lane_offset` finite, a spacing
+/// positive and finite).
 pub fn road_path(
     layout: &ParsedLayout,
     metres_per_pixel: f64,
@@ -53,19 +60,20 @@ pub fn road_path(
         && path.jitter >= 0.0
         && path.height.is_finite()
         && path.lane_offset.is_finite();
-    if !valid || path.frames == 0 {
+    if !valid {
         return Vec::new();
     }
-    let legs = legs(layout, metres_per_pixel, path.lane_offset);
+    let legs = legs(layout, metres_per_pixel, path.lane_offset, path.look_ahead);
     let total: f64 = legs.iter().map(|l| l.length).sum();
-    if !(total > 0.0 && total.is_finite()) {
+    let frames = path.frames.frames(total);
+    if !(total > 0.0 && total.is_finite()) || frames == 0 {
         return Vec::new();
     }
-    let n = f64::from(path.frames);
-    let mut poses = Vec::with_capacity(path.frames as usize);
+    let n = f64::from(frames);
+    let mut poses = Vec::with_capacity(frames as usize);
     let mut leg = 0;
     let mut leg_start = 0.0;
-    for i in 0..path.frames {
+    for i in 0..frames {
         let s = (f64::from(i) + 0.5) * total / n;
         while leg + 1 < legs.len() && s >= leg_start + legs[leg].length {
             leg_start += legs[leg].length;
@@ -97,64 +105,21 @@ pub fn road_path(
     poses
 }
 
-/// Length in metres of the tour [`road_path`] drives: the sum of the roads' lengths. A
-/// driver that wants frames every `d` metres asks for `ceil(tour_length / d)` frames.
-pub fn tour_length(layout: &ParsedLayout, metres_per_pixel: f64) -> f64 {
-    if !(metres_per_pixel.is_finite() && metres_per_pixel > 0.0) {
+/// Length in metres of the tour [`road_path`] drives with this `look_ahead`: the sum of
+/// the legs' lengths, each road trimmed as [`road_path`] says. A [`FrameRule::Spacing`]
+/// takes its frame count from this length.
+pub fn tour_length(layout: &ParsedLayout, metres_per_pixel: f64, look_ahead: f64) -> f64 {
+    let valid = metres_per_pixel.is_finite()
+        && metres_per_pixel > 0.0
+        && look_ahead.is_finite()
+        && look_ahead > 0.0;
+    if !valid {
         return 0.0;
     }
-    legs(layout, metres_per_pixel, 0.0)
+    legs(layout, metres_per_pixel, 0.0, look_ahead)
         .iter()
         .map(|l| l.length)
         .sum()
-}
-
-/// One road as driven: lane start `[x, z]` in metres, unit direction, length in metres.
-struct Leg {
-    origin: [f64; 2],
-    dir: [f64; 2],
-    length: f64,
-}
-
-/// The roads of `layout` in id order as legs on their right-hand lanes. Roads with
-/// non-finite coordinates or no length are left out.
-fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64) -> Vec<Leg> {
-    let mut roads: Vec<&Road> = layout.roads.iter().collect();
-    roads.sort_by_key(|r| r.id);
-    roads
-        .into_iter()
-        .filter_map(|road| {
-            let coords = [
-                road.start,
-                road.end,
-                road.line,
-                road.edges[0],
-                road.edges[1],
-            ];
-            if !coords.iter().all(|v| v.is_finite()) || road.end <= road.start {
-                return None;
-            }
-            let lo = road.edges[0].min(road.edges[1]).min(road.line);
-            let hi = road.edges[0].max(road.edges[1]).max(road.line);
-            // Right of the driving direction: +y (south) when driving east, −x (west) when
-            // driving south.
-            let (origin, dir) = match road.axis {
-                Axis::Horizontal => {
-                    let across = (road.line + lane_offset / m).clamp(lo, hi);
-                    ([road.start * m, across * m], [1.0, 0.0])
-                }
-                Axis::Vertical => {
-                    let across = (road.line - lane_offset / m).clamp(lo, hi);
-                    ([across * m, road.start * m], [0.0, 1.0])
-                }
-            };
-            Some(Leg {
-                origin,
-                dir,
-                length: (road.end - road.start) * m,
-            })
-        })
-        .collect()
 }
 
 /// A uniform number in `[-1, 1)` from 53 random bits, computed the same on every platform.
@@ -165,7 +130,7 @@ fn signed_unit(bits: u64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Road;
+    use crate::model::{Axis, Road};
 
     const M: f64 = 0.5;
 
@@ -199,7 +164,7 @@ mod tests {
 
     fn path(frames: u32) -> RoadPath {
         RoadPath {
-            frames,
+            frames: FrameRule::Count(frames),
             height: 1.6,
             look_ahead: 10.0,
             jitter: 0.5,
@@ -211,10 +176,13 @@ mod tests {
     fn stays_on_the_right_lane_inside_the_layout() {
         let poses = road_path(&layout(), M, &path(40), 7);
         assert_eq!(poses.len(), 40);
-        // Horizontal road 0 first (id order), 100 m long, then vertical road 1, 80 m long.
+        // Horizontal road 0 first (id order), 100 m long, then vertical road 1, 80 m long,
+        // each driven up to 10 m (the look-ahead) before the border.
         let (mut east, mut south) = (0, 0);
         for p in &poses {
-            assert!((0.0..=100.0).contains(&p.eye[0]) && (0.0..=80.0).contains(&p.eye[2]));
+            assert!((0.0..=90.0).contains(&p.eye[0]) && (0.0..=70.0).contains(&p.eye[2]));
+            // The look-at point stays inside the layout, give or take the jitter across.
+            assert!(p.target[0] <= 100.0 && p.target[2] <= 80.0, "{p:?}");
             assert_eq!(p.eye[1], 1.6);
             if p.eye[2] == 100.5 * M + 3.0 {
                 // Driving east: the lane is south of the centre line, the target ahead.
@@ -233,15 +201,15 @@ mod tests {
                 (PITCH_DROP * 10.0 - 0.5 - 1e-9..=PITCH_DROP * 10.0 + 0.5 + 1e-9).contains(&drop)
             );
         }
-        // 180 m over 40 frames: 4.5 m apart, so 100 m of road 0 hold frames 0..22.
+        // 90 + 70 m over 40 frames: 4 m apart, so 90 m of road 0 hold frames 0..22.
         assert_eq!((east, south), (22, 18));
         assert!(poses[..22].iter().all(|p| p.eye[2] == 53.25));
     }
 
     #[test]
     fn frames_are_evenly_spaced_by_arc_length() {
-        let poses = road_path(&layout(), M, &path(40), 7);
-        let step = 180.0 / 40.0;
+        let poses = road_path(&layout(), M, &path(32), 7);
+        let step = 160.0 / 32.0;
         assert_eq!(poses[0].eye[0], step / 2.0);
         for pair in poses.windows(2) {
             let (a, b) = (pair[0].eye, pair[1].eye);
@@ -250,9 +218,10 @@ mod tests {
                 assert!((d - step).abs() < 2e-3, "{a:?} → {b:?}");
             }
         }
-        // The jump between roads adds no arc length: frame 22 sits at s = 22.5 · 4.5 =
-        // 101.25 m, which is 1.25 m into road 1.
-        assert_eq!(poses[22].eye[2], 1.25);
+        // The jump between roads adds no arc length: frame 18 sits at s = 18.5 · 5 =
+        // 92.5 m, which is 2.5 m into road 1 (road 0 is driven for 90 m).
+        assert_eq!(poses[17].eye[0], 87.5);
+        assert_eq!(poses[18].eye[2], 2.5);
     }
 
     #[test]
@@ -333,8 +302,80 @@ mod tests {
     }
 
     #[test]
-    fn tour_length_sums_the_roads() {
-        assert_eq!(tour_length(&layout(), M), 180.0);
-        assert_eq!(tour_length(&layout(), -1.0), 0.0);
+    fn tour_length_sums_the_trimmed_roads() {
+        // 100 m and 80 m of road, each less the 10 m look-ahead.
+        assert_eq!(tour_length(&layout(), M, 10.0), 160.0);
+        // Neither road is longer than 100 m of look-ahead: both are driven whole.
+        assert_eq!(tour_length(&layout(), M, 100.0), 180.0);
+        // Only road 0 is longer than 90 m: it alone is driven, for 10 m.
+        assert_eq!(tour_length(&layout(), M, 90.0), 10.0);
+        assert_eq!(tour_length(&layout(), -1.0, 10.0), 0.0);
+        assert_eq!(tour_length(&layout(), M, 0.0), 0.0);
+    }
+
+    #[test]
+    fn spacing_sets_the_frame_count_from_the_tour() {
+        let spaced = |spacing: f64| RoadPath {
+            frames: FrameRule::Spacing(spacing),
+            ..path(1)
+        };
+        // The tour is 160 m: a frame every 4 m is 40 frames, the same poses as asking for 40.
+        let poses = road_path(&layout(), M, &spaced(4.0), 7);
+        assert_eq!(poses, road_path(&layout(), M, &path(40), 7));
+        // ⌊160 / 7⌋ = 22 frames, 160/22 ≈ 7.27 m apart; a spacing longer than the tour
+        // still gives one frame, at its middle.
+        assert_eq!(road_path(&layout(), M, &spaced(7.0), 7).len(), 22);
+        let one = road_path(&layout(), M, &spaced(1000.0), 7);
+        assert_eq!(one.len(), 1);
+        assert_eq!(one[0].eye[0], 80.0);
+        // A spacing of a millimetre would ask for 160,000 frames: capped.
+        assert_eq!(
+            road_path(&layout(), M, &spaced(0.001), 7).len(),
+            crate::spec::MAX_FRAMES as usize
+        );
+        assert!(road_path(&layout(), M, &spaced(0.0), 7).is_empty());
+    }
+
+    #[test]
+    fn the_last_frames_look_down_the_road_not_past_its_end() {
+        let poses = road_path(
+            &layout(),
+            M,
+            &RoadPath {
+                jitter: 0.0,
+                ..path(160)
+            },
+            3,
+        );
+        // A frame a metre: the last on road 0 looks at x = 89.5 + 10 m, just short of the
+        // border at 100 m; the last on road 1 at z = 69.5 + 10 m, short of 80 m.
+        assert_eq!((poses[89].eye[0], poses[89].target[0]), (89.5, 99.5));
+        assert_eq!((poses[159].eye[2], poses[159].target[2]), (69.5, 79.5));
+    }
+
+    #[test]
+    fn a_side_road_drives_on_into_the_road_it_meets() {
+        // Road 1 now runs down from the top border into road 0 and ends on its line
+        // (y 101 px): its surface goes on to road 0's far edge at y 116 px, 58 m.
+        let mut t = layout();
+        t.roads[0].end = 101.0;
+        let poses = road_path(&t, M, &path(200), 5);
+        let last = poses.last().unwrap();
+        // 90 + 48 m over 200 frames: the last is half a step (0.345 m) short of 48 m.
+        assert!((last.eye[2] - (58.0 - 10.0)).abs() < 0.35, "{last:?}");
+        assert!(last.target[2] <= 58.0, "{last:?}");
+    }
+
+    #[test]
+    fn roads_all_shorter_than_the_look_ahead_are_driven_whole() {
+        let far = RoadPath {
+            look_ahead: 100.0,
+            jitter: 0.0,
+            ..path(180)
+        };
+        let poses = road_path(&layout(), M, &far, 1);
+        assert_eq!(poses.len(), 180);
+        assert_eq!(poses[99].eye[0], 99.5);
+        assert_eq!(poses[179].eye[2], 79.5);
     }
 }

@@ -14,10 +14,18 @@ pub struct CameraSpec {
     /// `"orbit"` circles the city looking at its centre (an overview).
     #[serde(default)]
     pub path: CameraPath,
-    /// Frames on the path, evenly spaced.
-    #[serde(default = "default_frames")]
-    #[schemars(range(min = 1, max = 100000))]
-    pub frames: u32,
+    /// Frames on the path, evenly spaced by arc length. Give `frames` or `spacing`, not
+    /// both; with neither, 100 frames.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "u32", range(min = 1, max = 100000), extend("default" = 100))]
+    pub frames: Option<u32>,
+    /// Metres between frames along the path, instead of `frames`: the path takes
+    /// max(1, ⌊length / spacing⌋) frames, at most 100000 (a smaller spacing on a long path
+    /// is capped there). The length is the driven tour for `"roads"` (every road's stretch
+    /// the camera drives, see `look_ahead`), the circle for `"orbit"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "f64", range(min = 0.01, max = 100000.0))]
+    pub spacing: Option<f64>,
     /// Eye height in metres (roads: a driver's eye; orbit: the flight height).
     #[serde(default = "default_height")]
     #[schemars(range(min = 0.3, max = 5000.0))]
@@ -30,7 +38,9 @@ pub struct CameraSpec {
     #[serde(default = "default_resolution")]
     #[schemars(length(min = 2, max = 2), inner(range(min = 16, max = 4096)))]
     pub resolution: Vec<u32>,
-    /// How far ahead a roads camera looks, in metres.
+    /// How far ahead a roads camera looks, in metres. The camera stops this far before a
+    /// road's end, so it never looks past the end; a road shorter than this is skipped
+    /// (unless every road is, then all are driven whole).
     #[serde(default = "default_look_ahead")]
     #[schemars(range(min = 1.0, max = 1000.0))]
     pub look_ahead: f64,
@@ -46,6 +56,58 @@ pub struct CameraSpec {
     #[serde(default = "default_supersample")]
     #[schemars(range(min = 1, max = 4))]
     pub supersample: u32,
+}
+
+/// The most frames one camera path takes (the schema's bound on `frames`, and the cap on
+/// a path's frames from `spacing`).
+pub const MAX_FRAMES: u32 = 100_000;
+
+/// Frames a path takes with no `frames` and no `spacing`.
+pub const DEFAULT_FRAMES: u32 = 100;
+
+impl CameraSpec {
+    /// How many frames this path takes: `frames`, or one every `spacing` metres, or the
+    /// default count. The semantic checks reject a spec giving both.
+    pub fn frame_rule(&self) -> FrameRule {
+        match (self.frames, self.spacing) {
+            (Some(count), _) => FrameRule::Count(count),
+            (None, Some(spacing)) => FrameRule::Spacing(spacing),
+            (None, None) => FrameRule::Count(DEFAULT_FRAMES),
+        }
+    }
+}
+
+/// How many frames a camera path takes.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrameRule {
+    /// Exactly this many frames.
+    Count(u32),
+    /// One frame every this many metres of path.
+    Spacing(f64),
+}
+
+impl FrameRule {
+    /// Frames over a path `length` metres long: the count as given, or
+    /// max(1, ⌊length / spacing⌋) capped at [`MAX_FRAMES`]. A spacing that is not a
+    /// positive finite number gives 0 frames (no poses).
+    pub fn frames(self, length: f64) -> u32 {
+        match self {
+            FrameRule::Count(count) => count,
+            FrameRule::Spacing(spacing) if spacing.is_finite() && spacing > 0.0 => {
+                let n = (length / spacing).floor();
+                // Comparisons with NaN are false: a NaN length gives one frame.
+                if n >= f64::from(MAX_FRAMES) {
+                    MAX_FRAMES
+                } else if n >= 1.0 {
+                    n as u32
+                } else {
+                    1
+                }
+            }
+            FrameRule::Spacing(_) => 0,
+        }
+    }
 }
 
 /// How a camera moves.
@@ -128,9 +190,6 @@ impl Default for AnnotationsSpec {
     }
 }
 
-fn default_frames() -> u32 {
-    100
-}
 fn default_height() -> f64 {
     1.6
 }
@@ -163,4 +222,35 @@ fn default_min_pixels() -> u64 {
 }
 fn default_min_fraction() -> f64 {
     0.1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spacing_gives_whole_frames_within_bounds() {
+        let cases: &[(FrameRule, f64, u32)] = &[
+            (FrameRule::Count(7), 1000.0, 7),
+            (FrameRule::Count(7), 0.0, 7),
+            (FrameRule::Spacing(10.0), 1000.0, 100),
+            // Floor: the frames are at least `spacing` apart.
+            (FrameRule::Spacing(10.0), 1009.9, 100),
+            (FrameRule::Spacing(3.0), 10.0, 3),
+            // At least one frame, however short the path.
+            (FrameRule::Spacing(10.0), 4.0, 1),
+            (FrameRule::Spacing(10.0), 0.0, 1),
+            (FrameRule::Spacing(10.0), f64::NAN, 1),
+            // At most MAX_FRAMES, however long the path.
+            (FrameRule::Spacing(0.01), 5000.0, MAX_FRAMES),
+            (FrameRule::Spacing(1.0), f64::INFINITY, MAX_FRAMES),
+            // A spacing that is no distance gives no frames.
+            (FrameRule::Spacing(0.0), 100.0, 0),
+            (FrameRule::Spacing(-1.0), 100.0, 0),
+            (FrameRule::Spacing(f64::NAN), 100.0, 0),
+        ];
+        for &(rule, length, frames) in cases {
+            assert_eq!(rule.frames(length), frames, "{rule:?} over {length} m");
+        }
+    }
 }

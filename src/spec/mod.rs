@@ -8,12 +8,13 @@
 //! | syntax | the file is TOML (one diagnostic) | yes |
 //! | version | `version` is one this cityspec reads | yes: other versions mean other keys |
 //! | schema | the committed `schemas/cityspec.schema.json`, via a JSON-schema validator | yes, after reporting all |
-//! | semantic | rules between values: one layout source, roads that fit, the image and models exist, … | no |
+//! | semantic | rules between values: one layout source, roads that fit, the image and models exist, one of a camera's `frames` and `spacing`, … | no |
 //!
 //! Then serde builds the [`Spec`] (defaults filled in). The only I/O is through
 //! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world the build
 //! driver passes in. Relative paths in a spec resolve against the spec's own folder.
 
+mod camera_checks;
 mod camera_spec;
 mod closest;
 mod diagnostic;
@@ -36,7 +37,10 @@ use std::path::{Path, PathBuf};
 
 use toml::de::{DeTable, DeValue};
 
-pub use camera_spec::{AnnotationsSpec, CameraPath, CameraSpec, LightingSpec, TimeOfDay};
+pub use camera_spec::{
+    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, FrameRule, LightingSpec, MAX_FRAMES,
+    TimeOfDay,
+};
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
@@ -117,6 +121,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     value_checks::check_facades(&spec.facades, &source.path, world, &mut findings);
     value_checks::check_lamps(&spec.lamps, &mut findings);
     object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
+    camera_checks::check_cameras(&spec.cameras, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

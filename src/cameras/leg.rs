@@ -1,0 +1,217 @@
+//! Legs of the road tour: parsed roads + lane offset + look-ahead → the stretches a camera
+//! drives, each ending `look_ahead` metres before its road does.
+//!
+//! Where a road "ends" depends on what is there (the parse stage ends every road where its
+//! centre line ends):
+//!
+//! - at the layout border the road surface stops with the line; beyond it is open ground,
+//!   so the look-at point must stop at the line's end;
+//! - at a T-junction or a corner the side road's line ends inside the crossing road (on
+//!   its centre line); the surface goes on to the crossing road's far edge, where a block
+//!   and its facades begin, so the look-at point may go that far;
+//! - at a dead end the surface stops with the line, as at the border.
+//!
+//! The camera starts at the road's start (0 m in): it looks forward, into the road.
+
+use crate::model::{Axis, ParsedLayout, Road};
+
+/// One road as driven: lane start `[x, z]` in metres, unit direction, and the length in
+/// metres the eye travels.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Leg {
+    pub origin: [f64; 2],
+    pub dir: [f64; 2],
+    pub length: f64,
+}
+
+/// The roads of `layout` in id order as legs on their right-hand lanes, each trimmed so
+/// the point `look_ahead` metres ahead of the eye stays on the road surface: a leg is the
+/// road's length up to its [`reach`] minus `look_ahead`, and a road whose reach is not
+/// longer than `look_ahead` is left out. When that leaves no leg, every road is driven
+/// whole instead (its look-at point passing its end), so a small city still gets a tour.
+/// Roads with non-finite coordinates or no length are always left out.
+pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: f64) -> Vec<Leg> {
+    let mut roads: Vec<&Road> = layout.roads.iter().filter(|r| sound(r)).collect();
+    roads.sort_by_key(|r| r.id);
+    let trimmed: Vec<Leg> = roads
+        .iter()
+        .filter_map(|road| {
+            let length = (reach(road, &roads) - road.start) * m - look_ahead;
+            (length > 0.0).then(|| lane(road, m, lane_offset, length))
+        })
+        .collect();
+    if !trimmed.is_empty() {
+        return trimmed;
+    }
+    roads
+        .iter()
+        .map(|road| lane(road, m, lane_offset, road.length() * m))
+        .collect()
+}
+
+/// Whether `road` has finite coordinates and a positive length.
+fn sound(road: &Road) -> bool {
+    let coords = [
+        road.start,
+        road.end,
+        road.line,
+        road.edges[0],
+        road.edges[1],
+    ];
+    coords.iter().all(|v| v.is_finite()) && road.end > road.start
+}
+
+/// How far along its axis `road`'s surface goes past its start, in pixels: the far edge of
+/// a crossing road whose surface holds the end of `road`'s centre line (a T-junction or a
+/// corner; a pixel of slack lets a line that stops at the crossing road's near edge count),
+/// else the end of the line (the layout border or a dead end).
+fn reach(road: &Road, roads: &[&Road]) -> f64 {
+    roads
+        .iter()
+        .filter(|c| c.axis != road.axis)
+        .filter(|c| c.start <= road.line && road.line <= c.end)
+        .filter_map(|c| {
+            let (low, high) = (c.edges[0].min(c.edges[1]), c.edges[0].max(c.edges[1]));
+            (low - 1.0 <= road.end && road.end <= high).then_some(high)
+        })
+        .fold(road.end, f64::max)
+}
+
+/// `road`'s right-hand lane as a leg of `length` metres, starting at the road's start.
+fn lane(road: &Road, m: f64, lane_offset: f64, length: f64) -> Leg {
+    let lo = road.edges[0].min(road.edges[1]).min(road.line);
+    let hi = road.edges[0].max(road.edges[1]).max(road.line);
+    // Right of the driving direction: +y (south) when driving east, −x (west) when driving
+    // south.
+    let (origin, dir) = match road.axis {
+        Axis::Horizontal => {
+            let across = (road.line + lane_offset / m).clamp(lo, hi);
+            ([road.start * m, across * m], [1.0, 0.0])
+        }
+        Axis::Vertical => {
+            let across = (road.line - lane_offset / m).clamp(lo, hi);
+            ([across * m, road.start * m], [0.0, 1.0])
+        }
+    };
+    Leg {
+        origin,
+        dir,
+        length,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn road(id: u32, axis: Axis, start: f64, end: f64, line: f64) -> Road {
+        Road {
+            id,
+            axis,
+            start,
+            end,
+            line,
+            edges: [line - 15.5, line + 16.5],
+        }
+    }
+
+    fn layout(roads: Vec<Road>) -> ParsedLayout {
+        ParsedLayout {
+            width: 400,
+            height: 300,
+            blocks: Vec::new(),
+            roads,
+        }
+    }
+
+    /// (origin, length) of each leg.
+    type Summary = Vec<([f64; 2], f64)>;
+
+    /// (origin, length) of each leg, at 1 m per pixel with no lane offset.
+    fn summary(roads: Vec<Road>, look_ahead: f64) -> Summary {
+        legs(&layout(roads), 1.0, 0.0, look_ahead)
+            .into_iter()
+            .map(|l| (l.origin, l.length))
+            .collect()
+    }
+
+    #[test]
+    fn legs_stop_look_ahead_before_the_road_surface_ends() {
+        use Axis::{Horizontal as H, Vertical as V};
+        // Main road: horizontal, line at y 100.5 (surface 85–117), border to border.
+        let main = || road(0, H, 0.0, 400.0, 100.5);
+        let cases: Vec<(&str, Vec<Road>, Summary)> = vec![
+            (
+                "border to border: the end is the border",
+                vec![main()],
+                vec![([0.0, 100.5], 375.0)],
+            ),
+            (
+                "a side road down from the main road to the border: starts on the main \
+                 road's line, ends at the border",
+                vec![main(), road(1, V, 100.0, 300.0, 200.5)],
+                vec![([0.0, 100.5], 375.0), ([200.5, 100.0], 175.0)],
+            ),
+            (
+                "a side road from the border up into a T: its surface goes on to the main \
+                 road's far edge",
+                vec![main(), road(1, V, 0.0, 101.0, 200.5)],
+                vec![([0.0, 100.5], 375.0), ([200.5, 0.0], 117.0 - 25.0)],
+            ),
+            (
+                "a line that stops a pixel short of the crossing road still reaches into it",
+                vec![main(), road(1, V, 0.0, 84.0, 200.5)],
+                vec![([0.0, 100.5], 375.0), ([200.5, 0.0], 92.0)],
+            ),
+            (
+                "a dead end short of any road: the end is the line's end",
+                vec![main(), road(1, V, 150.0, 260.0, 200.5)],
+                vec![([0.0, 100.5], 375.0), ([200.5, 150.0], 85.0)],
+            ),
+            (
+                "a road that ends at the main road's line but beyond its end is a dead end",
+                vec![road(0, H, 0.0, 150.0, 100.5), road(1, V, 0.0, 101.0, 200.5)],
+                vec![([0.0, 100.5], 125.0), ([200.5, 0.0], 76.0)],
+            ),
+            (
+                "a road no longer than the look-ahead is dropped",
+                vec![main(), road(1, V, 150.0, 175.0, 200.5)],
+                vec![([0.0, 100.5], 375.0)],
+            ),
+        ];
+        for (name, roads, expected) in cases {
+            assert_eq!(summary(roads, 25.0), expected, "{name}");
+        }
+    }
+
+    #[test]
+    fn when_every_road_is_too_short_all_are_driven_whole() {
+        let roads = vec![
+            road(1, Axis::Vertical, 10.0, 22.0, 200.5),
+            road(0, Axis::Horizontal, 0.0, 20.0, 100.5),
+        ];
+        assert_eq!(
+            summary(roads.clone(), 25.0),
+            vec![([0.0, 100.5], 20.0), ([200.5, 10.0], 12.0)]
+        );
+        // With a look-ahead that fits one of them, only that one is driven, trimmed.
+        assert_eq!(summary(roads, 15.0), vec![([0.0, 100.5], 5.0)]);
+    }
+
+    #[test]
+    fn unsound_roads_are_never_driven() {
+        let mut nan = road(1, Axis::Vertical, 0.0, 300.0, 200.5);
+        nan.edges[1] = f64::NAN;
+        let backwards = road(2, Axis::Vertical, 300.0, 0.0, 50.5);
+        let roads = vec![road(0, Axis::Horizontal, 0.0, 20.0, 100.5), nan, backwards];
+        assert_eq!(summary(roads, 25.0), vec![([0.0, 100.5], 20.0)]);
+    }
+
+    #[test]
+    fn lengths_scale_with_metres_per_pixel() {
+        let roads = vec![road(0, Axis::Horizontal, 0.0, 400.0, 100.5)];
+        let leg = &legs(&layout(roads), 0.5, 3.0, 25.0)[0];
+        assert_eq!(leg.origin, [0.0, 100.5 * 0.5 + 3.0]);
+        assert_eq!((leg.dir, leg.length), ([1.0, 0.0], 200.0 - 25.0));
+    }
+}

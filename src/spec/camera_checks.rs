@@ -1,0 +1,112 @@
+//! Camera checks: schema-valid `[[cameras]]` tables → the problems between values (a path
+//! given both a frame count and a frame spacing).
+
+use super::camera_spec::CameraSpec;
+use super::findings::Findings;
+
+/// Each camera gives at most one of `frames` and `spacing`.
+pub(crate) fn check_cameras(cameras: &[CameraSpec], findings: &mut Findings<'_, '_>) {
+    for (i, camera) in cameras.iter().enumerate() {
+        if camera.frames.is_some() && camera.spacing.is_some() {
+            let line = findings.line_of(&format!("cameras[{i}].frames"));
+            findings.error(
+                &format!("cameras[{i}].spacing"),
+                format!(
+                    "expected either `frames` or `spacing`, found both (`frames` is on line \
+                     {line})"
+                ),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use crate::spec::{FrameRule, SpecSource, SpecWorld, load};
+
+    struct NoFiles;
+
+    impl SpecWorld for NoFiles {
+        fn folder(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no folder {}", path.display()))
+        }
+
+        fn file(&self, path: &Path) -> Result<(), String> {
+            Err(format!("no file {}", path.display()))
+        }
+
+        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
+            Err("no such file".to_string())
+        }
+    }
+
+    /// The spec's first camera's frame rule, or its problems as `key: message`.
+    fn rule(cameras: &str) -> Result<FrameRule, Vec<String>> {
+        let source = SpecSource {
+            path: PathBuf::from("city.toml"),
+            text: format!("version = 1\nname = \"c\"\n[layout.generate]\n{cameras}"),
+        };
+        match load(&source, &NoFiles) {
+            Ok(spec) => Ok(spec.cameras[0].frame_rule()),
+            Err(e) => Err(e
+                .diagnostics
+                .iter()
+                .map(|d| format!("{}: {}", d.key, d.message))
+                .collect()),
+        }
+    }
+
+    #[test]
+    fn frames_or_spacing_or_the_default() {
+        let cases: &[(&str, Result<FrameRule, &[&str]>)] = &[
+            ("[[cameras]]\nname = \"a\"\n", Ok(FrameRule::Count(100))),
+            (
+                "[[cameras]]\nname = \"a\"\nframes = 7\n",
+                Ok(FrameRule::Count(7)),
+            ),
+            (
+                "[[cameras]]\nname = \"a\"\nspacing = 12.5\n",
+                Ok(FrameRule::Spacing(12.5)),
+            ),
+            (
+                "[[cameras]]\nname = \"a\"\npath = \"orbit\"\nspacing = 3\n",
+                Ok(FrameRule::Spacing(3.0)),
+            ),
+            (
+                "[[cameras]]\nname = \"a\"\nframes = 7\nspacing = 12.5\n",
+                Err(&[
+                    "cameras[0].spacing: expected either `frames` or `spacing`, found both \
+                     (`frames` is on line 6)",
+                ]),
+            ),
+            (
+                "[[cameras]]\nname = \"a\"\n[[cameras]]\nname = \"b\"\nspacing = 1\n\
+                 frames = 2\n",
+                Err(&[
+                    "cameras[1].spacing: expected either `frames` or `spacing`, found both \
+                     (`frames` is on line 9)",
+                ]),
+            ),
+        ];
+        for (cameras, expected) in cases {
+            let expected = (*expected)
+                .map_err(|problems| problems.iter().map(|p| p.to_string()).collect::<Vec<_>>());
+            assert_eq!(rule(cameras), expected, "{cameras}");
+        }
+    }
+
+    #[test]
+    fn the_schema_bounds_spacing() {
+        for spacing in ["0", "-5", "0.001", "1e9"] {
+            let problems = rule(&format!("[[cameras]]\nname = \"a\"\nspacing = {spacing}\n"))
+                .expect_err(spacing);
+            assert_eq!(problems.len(), 1, "{spacing}: {problems:?}");
+            assert!(
+                problems[0].starts_with("cameras[0].spacing: "),
+                "{problems:?}"
+            );
+        }
+    }
+}
