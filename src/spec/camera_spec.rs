@@ -200,7 +200,10 @@ fn default_resolution() -> Vec<u32> {
     vec![640, 480]
 }
 fn default_look_ahead() -> f64 {
-    25.0
+    // Far enough that the last frame before a road's end at the layout border still has
+    // buildings in view: they stand some 20–28 m to the side, and a 60° × 45° view takes
+    // in a building that far aside only beyond about 26 m.
+    50.0
 }
 fn default_jitter() -> f64 {
     0.5
