@@ -10,16 +10,19 @@
 //! Targets on the 2-core machine (issue 3): default city under 0.5 s, 4 × 4 under 10 s and
 //! 2 GiB, cost close to linear in polygons. Figures are printed, never asserted.
 
+mod support;
+
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 use ab_glyph::FontRef;
-use cityspec::build::{self, BuildOptions};
 use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut, draw_text_mut};
+use support::{
+    bench_runs, build_into, child_args, day_without_cameras, median, peak_kib, repo, run_child,
+};
 
 const CASES: [(&str, &str); 3] = [
     ("768x768", "[]"),
@@ -28,34 +31,19 @@ const CASES: [(&str, &str); 3] = [
 ];
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    if let Some(i) = args.iter().position(|a| a == "--child") {
-        child(
-            Path::new(&args[i + 1]),
-            Path::new(&args[i + 2]),
-            Path::new(&args[i + 3]),
-        );
+    if let Some([spec, cache, out]) = child_args() {
+        child(&spec, &cache, &out);
         return;
     }
-    let runs: usize = std::env::var("BENCH_RUNS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(5);
+    let runs = bench_runs(5);
     let dir = tempfile::tempdir().unwrap();
-    let day = fs::read_to_string(repo().join("specs/day.toml")).unwrap();
+    // The city only: the day spec's cameras (frames are benchmarked by `frames`) are cut.
+    let day = day_without_cameras();
 
     // The built-in facades, cached once, seed every cold build's cache.
     let seed_cache = dir.path().join("seed-cache");
     let warm_spec = write_spec(dir.path(), "warm", &day, "[]");
-    build::build(
-        &warm_spec,
-        &BuildOptions {
-            progress: None,
-            out_root: dir.path().join("warm-out"),
-            cache_dir: seed_cache.clone(),
-        },
-    )
-    .unwrap();
+    build_into(&warm_spec, &seed_cache, &dir.path().join("warm-out"));
 
     println!("cityspec city benchmark: {runs} cold builds per case, built-in facades cached");
     let mut points = Vec::new();
@@ -68,19 +56,7 @@ fn main() {
                 .join(format!("cache-{}-{run}", label.replace(' ', "_")));
             copy_facade_entries(&seed_cache, &cache);
             let out = dir.path().join(format!("out-{run}"));
-            let output = Command::new(std::env::current_exe().unwrap())
-                .args(["--child"])
-                .arg(&spec)
-                .arg(&cache)
-                .arg(&out)
-                .output()
-                .unwrap();
-            assert!(
-                output.status.success(),
-                "{}",
-                String::from_utf8_lossy(&output.stderr)
-            );
-            results.push(Sample::parse(&String::from_utf8(output.stdout).unwrap()));
+            results.push(Sample::parse(&run_child(&spec, &cache, &out)));
             let _ = fs::remove_dir_all(&cache);
             let _ = fs::remove_dir_all(&out);
         }
@@ -116,15 +92,7 @@ fn main() {
 /// One cold build in this process; prints `triangles`, stage times, total and peak memory.
 fn child(spec: &Path, cache: &Path, out: &Path) {
     let start = Instant::now();
-    let report = build::build(
-        spec,
-        &BuildOptions {
-            progress: None,
-            out_root: out.to_path_buf(),
-            cache_dir: cache.to_path_buf(),
-        },
-    )
-    .unwrap();
+    let report = build_into(spec, cache, out);
     let total = start.elapsed().as_secs_f64() * 1e3;
     println!("triangles {}", report.triangles.unwrap_or(0));
     for run in &report.stages {
@@ -166,21 +134,7 @@ impl Sample {
     }
 }
 
-fn peak_kib() -> u64 {
-    let status = fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-        .unwrap_or(0)
-}
-
 fn write_spec(dir: &Path, name: &str, day: &str, mirror: &str) -> PathBuf {
-    // The city only: the day spec's cameras (frames are benchmarked by `render`) are cut.
-    let day = match (day.find("[[cameras]]"), day.find("[lighting]")) {
-        (Some(a), Some(b)) if a < b => format!("{}{}", &day[..a], &day[b..]),
-        _ => day.to_owned(),
-    };
     // Paths in the spec are relative to specs/; this copy lives elsewhere.
     let assets = format!("\"{}/assets/", repo().display());
     let text = day
@@ -213,11 +167,6 @@ fn copy_facade_entries(from: &Path, to: &Path) {
             fs::copy(from.join(&rel), to.join(&rel)).unwrap();
         }
     }
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
 }
 
 /// Build time (ms) against triangles, with a least-squares line through the origin.
@@ -307,8 +256,4 @@ fn draw_plot(points: &[(&str, f64, f64)], path: &Path) {
     }
     fs::create_dir_all(path.parent().unwrap()).unwrap();
     img.save(path).unwrap();
-}
-
-fn repo() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
 }

@@ -17,26 +17,19 @@ mod support;
 
 use std::fs;
 use std::path::Path;
-use std::process::Command;
 use std::time::Instant;
 
-use cityspec::build::{self, BuildOptions};
-use support::{copy_tree, day_without_cameras, median, peak_kib, repo};
+use support::{
+    bench_runs, build_into, child_args, copy_tree, day_without_cameras, median, peak_kib, repo,
+    run_child,
+};
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    if let Some(i) = args.iter().position(|a| a == "--child") {
-        child(
-            Path::new(&args[i + 1]),
-            Path::new(&args[i + 2]),
-            Path::new(&args[i + 3]),
-        );
+    if let Some([spec, cache, out]) = child_args() {
+        child(&spec, &cache, &out);
         return;
     }
-    let runs: usize = std::env::var("BENCH_RUNS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(3);
+    let runs = bench_runs(3);
     let cases: Vec<u32> = std::env::var("BENCH_FRAMES")
         .unwrap_or_else(|_| "100,1000".to_owned())
         .split(',')
@@ -51,15 +44,7 @@ fn main() {
     fs::write(&seed_spec, &city).unwrap();
     // Everything but the frames, cached once: each case copies this cache.
     let seed_cache = dir.path().join("seed-cache");
-    build::build(
-        &seed_spec,
-        &BuildOptions {
-            progress: None,
-            out_root: dir.path().join("seed-out"),
-            cache_dir: seed_cache.clone(),
-        },
-    )
-    .unwrap();
+    build_into(&seed_spec, &seed_cache, &dir.path().join("seed-out"));
 
     println!(
         "cityspec frames benchmark: day city, one street camera at 640x480; the frames stage renders RGB + ids + depth, encodes the PNGs, annotates (COCO, YOLO, ICDAR) and stores every file in the cache"
@@ -79,19 +64,7 @@ fn main() {
             let cache = dir.path().join(format!("cache-{frames}-{run}"));
             copy_tree(&seed_cache, &cache);
             let out = dir.path().join(format!("out-{frames}-{run}"));
-            let output = Command::new(std::env::current_exe().unwrap())
-                .arg("--child")
-                .arg(&spec)
-                .arg(&cache)
-                .arg(&out)
-                .output()
-                .unwrap();
-            assert!(
-                output.status.success(),
-                "{}",
-                String::from_utf8_lossy(&output.stderr)
-            );
-            for line in String::from_utf8(output.stdout).unwrap().lines() {
+            for line in run_child(&spec, &cache, &out).lines() {
                 match line.split_whitespace().collect::<Vec<_>>().as_slice() {
                     ["frames_ms", ms] => times.push(ms.parse::<f64>().unwrap()),
                     ["total_ms", ms] => totals.push(ms.parse::<f64>().unwrap()),
@@ -124,15 +97,7 @@ fn camera(frames: u32) -> String {
 /// One build in this process; prints the frames stage's time and the peak memory.
 fn child(spec: &Path, cache: &Path, out: &Path) {
     let start = Instant::now();
-    let report = build::build(
-        spec,
-        &BuildOptions {
-            progress: None,
-            out_root: out.to_path_buf(),
-            cache_dir: cache.to_path_buf(),
-        },
-    )
-    .unwrap();
+    let report = build_into(spec, cache, out);
     let frames: f64 = report
         .stages
         .iter()

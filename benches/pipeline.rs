@@ -17,13 +17,10 @@ use std::time::{Duration, Instant};
 use cityspec::build::{self, BuildOptions, widths_px};
 use cityspec::spec::{GenerateSpec, Palette, Spec};
 use cityspec::{lamps, layout, mirror, parse, place, rng};
-use support::{copy_tree, day_without_cameras, repo};
+use support::{bench_runs, copy_tree, day_without_cameras, repo};
 
 fn main() {
-    let runs: usize = std::env::var("BENCH_RUNS")
-        .ok()
-        .and_then(|r| r.parse().ok())
-        .unwrap_or(21);
+    let runs = bench_runs(21);
     println!(
         "cityspec pipeline benchmarks, {runs} runs each, rayon threads: {}",
         rayon::current_num_threads()

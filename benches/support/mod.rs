@@ -4,7 +4,7 @@
 #![allow(dead_code)] // each bench uses a part
 
 use std::fs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -30,6 +30,52 @@ pub fn day_without_cameras() -> String {
         (Some(a), Some(b)) if a < b => format!("{}{}", &day[..a], &day[b..]),
         _ => day,
     }
+}
+
+/// `--child SPEC CACHE OUT`: the arguments of a bench's child build process, if it is one.
+pub fn child_args() -> Option<[PathBuf; 3]> {
+    let args: Vec<String> = std::env::args().collect();
+    let i = args.iter().position(|a| a == "--child")?;
+    Some(std::array::from_fn(|k| PathBuf::from(&args[i + 1 + k])))
+}
+
+/// Builds `spec` with this cache and output folder, without progress output.
+pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::build::BuildReport {
+    cityspec::build::build(
+        spec,
+        &cityspec::build::BuildOptions {
+            progress: None,
+            out_root: out.to_path_buf(),
+            cache_dir: cache.to_path_buf(),
+        },
+    )
+    .unwrap()
+}
+
+/// Runs this bench again as a child build process (see [`child_args`]) and returns what
+/// it printed: a fresh process, so its peak memory is the build's own.
+pub fn run_child(spec: &Path, cache: &Path, out: &Path) -> String {
+    let output = std::process::Command::new(std::env::current_exe().unwrap())
+        .arg("--child")
+        .arg(spec)
+        .arg(cache)
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
+/// Runs per case: `BENCH_RUNS`, else `default`.
+pub fn bench_runs(default: usize) -> usize {
+    std::env::var("BENCH_RUNS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(default)
 }
 
 pub fn median(mut values: Vec<f64>) -> f64 {
