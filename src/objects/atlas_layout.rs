@@ -137,20 +137,31 @@ impl AtlasLayout {
     pub fn paint(&self, page: usize, images: &[RgbImage]) -> RgbImage {
         let [w, h] = self.pages[page];
         let mut out = RgbImage::new(w, h);
-        for (slot, image) in self
+        let stride = w as usize * 3;
+        let on_page = self
             .slots
             .iter()
             .zip(images)
-            .filter(|(s, _)| s.page == page)
-        {
+            .filter(|(s, _)| s.page == page);
+        for (slot, image) in on_page {
             let [px0, py0, px1, py1] = slot.plate;
-            debug_assert_eq!((image.width(), image.height()), (px1 - px0, py1 - py0));
-            let [cx0, cy0, cx1, cy1] = slot.cell;
+            assert_eq!((image.width(), image.height()), (px1 - px0, py1 - py0));
+            let [cx0, cy0, cx1, cy1] = slot.cell.map(|v| v as usize);
+            let [px0, px1] = [px0, px1].map(|v| v as usize);
+            let source_stride = image.width() as usize * 3;
             for y in cy0..cy1 {
-                let sy = y.clamp(py0, py1 - 1) - py0;
-                for x in cx0..cx1 {
-                    let sx = x.clamp(px0, px1 - 1) - px0;
-                    out.put_pixel(x, y, *image.get_pixel(sx, sy));
+                // Rows above and below the plate repeat its first and last row; within a
+                // row, pixels left and right of it repeat its first and last pixel.
+                let sy = (y as u32).clamp(py0, py1 - 1) - py0;
+                let source = &image.as_raw()[sy as usize * source_stride..][..source_stride];
+                let row = &mut out.as_mut()[y * stride..][..stride];
+                let (first, last) = (&source[..3], &source[source_stride - 3..]);
+                for x in cx0..px0 {
+                    row[x * 3..x * 3 + 3].copy_from_slice(first);
+                }
+                row[px0 * 3..px1 * 3].copy_from_slice(source);
+                for x in px1..cx1 {
+                    row[x * 3..x * 3 + 3].copy_from_slice(last);
                 }
             }
         }
