@@ -4,7 +4,7 @@
 //!
 //! | kind | object name | where | geometry |
 //! |---|---|---|---|
-//! | text | `text_0003` | a wall facing a road, 2.5 m up to 1 m below the roof | a plate quad 2.5 cm in front of the wall |
+//! | text | `text_0003` | a wall facing a road, 2.5 m up to 1 m below the roof | a plate quad 2.5 cm in front of the wall, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
 //! | sign | `sign_0012` | mid-strip beside a road, ≥ 2 m from lamps, not in a crossing | pole + plate shaped like the sign, facing oncoming traffic |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
 //!
@@ -17,8 +17,9 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
+mod atlas_layout;
 mod ground_spots;
 mod objects_error;
 mod sign_face;

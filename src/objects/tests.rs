@@ -284,6 +284,99 @@ fn text_quads_lie_on_their_walls_without_overlapping() {
 }
 
 #[test]
+fn text_plates_share_atlas_pages_and_each_maps_to_its_own_plate() {
+    let city = city();
+    let specs = [
+        ObjectSpec {
+            letter_height: [0.3, 1.5],
+            words: [1, 3],
+            ..spec(ObjectKind::Text, "text", 150)
+        },
+        spec(ObjectKind::Text, "shop_sign", 30),
+    ];
+    let inserted = run(&city, &specs).unwrap();
+    assert!(inserted.objects.len() > 150, "{}", inserted.objects.len());
+    let pages: BTreeSet<u32> = inserted
+        .objects
+        .iter()
+        .map(|o| o.meshes[0].material)
+        .collect();
+    assert!(pages.len() <= 4, "{} pages for 180 plates", pages.len());
+    let decoded: BTreeMap<u32, RgbImage> = pages
+        .iter()
+        .map(|&m| {
+            let t = inserted.materials[m as usize].texture.unwrap();
+            (m, inserted.textures[t as usize].decode().unwrap())
+        })
+        .collect();
+    // Per page: the pixel rectangles the plates' uvs cover, [x0, y0, x1, y1).
+    let mut on_page: BTreeMap<u32, Vec<[u32; 4]>> = BTreeMap::new();
+    for (object, info) in inserted.objects.iter().zip(&inserted.info) {
+        let mesh = &object.meshes[0];
+        let page = &decoded[&mesh.material];
+        let (w, h) = (f64::from(page.width()), f64::from(page.height()));
+        let px = |v: f32, size: f64| {
+            let p = f64::from(v) * size;
+            assert!(
+                (p - p.round()).abs() < 1e-3,
+                "{}: uv off the pixel grid",
+                object.name
+            );
+            p.round() as u32
+        };
+        let xs: Vec<u32> = mesh.uvs.iter().map(|uv| px(uv[0], w)).collect();
+        let ys: Vec<u32> = mesh.uvs.iter().map(|uv| px(uv[1], h)).collect();
+        let rect = [
+            *xs.iter().min().unwrap(),
+            *ys.iter().min().unwrap(),
+            *xs.iter().max().unwrap(),
+            *ys.iter().max().unwrap(),
+        ];
+        // Pixels per metre agree along both sides: the rectangle is this plate's own.
+        let quad = |k: usize| mesh.positions[k].map(f64::from);
+        let across = (quad(1)[0] - quad(0)[0]).hypot(quad(1)[2] - quad(0)[2]);
+        let up = (quad(2)[1] - quad(1)[1]).abs();
+        let ratio = f64::from(rect[2] - rect[0]) / across / (f64::from(rect[3] - rect[1]) / up);
+        assert!((ratio - 1.0).abs() < 0.02, "{}: {ratio}", object.name);
+        // Its margin is one paper colour, repeated into the padding around it; the text is
+        // in another colour inside.
+        let paper = *page.get_pixel(rect[0], rect[1]);
+        let pad = super::atlas_layout::PADDING;
+        for y in rect[1] - pad..rect[3] + pad {
+            for x in rect[0] - pad..rect[2] + pad {
+                let margin =
+                    x < rect[0] + 4 || x >= rect[2] - 4 || y < rect[1] + 4 || y >= rect[3] - 4;
+                if margin {
+                    assert_eq!(*page.get_pixel(x, y), paper, "{} at {x},{y}", object.name);
+                }
+            }
+        }
+        let inked = (rect[1]..rect[3])
+            .flat_map(|y| (rect[0]..rect[2]).map(move |x| (x, y)))
+            .filter(|&(x, y)| *page.get_pixel(x, y) != paper)
+            .count();
+        assert!(inked > 20, "{}: {inked} inked pixels", object.name);
+        assert!(info.text.is_some());
+        on_page.entry(mesh.material).or_default().push(rect);
+    }
+    for rects in on_page.values() {
+        for (i, a) in rects.iter().enumerate() {
+            for b in &rects[i + 1..] {
+                let apart = a[2] <= b[0] || b[2] <= a[0] || a[3] <= b[1] || b[3] <= a[1];
+                assert!(apart, "{a:?} overlaps {b:?}");
+            }
+        }
+    }
+    // Each entry has pages of its own.
+    let labels_per_page: BTreeSet<(u32, &str)> = inserted
+        .objects
+        .iter()
+        .map(|o| (o.meshes[0].material, o.class.as_str()))
+        .collect();
+    assert_eq!(labels_per_page.len(), pages.len());
+}
+
+#[test]
 fn every_text_wall_faces_a_nearby_road() {
     let city = city();
     let walls = Walls::new(&input(&city, &[]));
@@ -486,7 +579,19 @@ fn same_seed_same_objects_and_entries_are_independent() {
             .collect()
     };
     assert_eq!(texts(&a), texts(&c));
-    assert_eq!(a.materials[..40], c.materials[..40]);
+    // Nor do their atlas pages: same materials, same pixels.
+    let pages = |i: &Inserted| -> Vec<(Material, Vec<u8>)> {
+        let used: BTreeSet<u32> = texts(i).iter().map(|o| o.meshes[0].material).collect();
+        used.into_iter()
+            .map(|m| {
+                let material = i.materials[m as usize].clone();
+                let png = i.textures[material.texture.unwrap() as usize].png.to_vec();
+                (material, png)
+            })
+            .collect()
+    };
+    assert!(!pages(&a).is_empty());
+    assert_eq!(pages(&a), pages(&c));
     // And another seed moves them.
     let other = insert(&ObjectsInput {
         seed: SEED + 1,

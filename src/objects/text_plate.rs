@@ -1,5 +1,5 @@
-//! Words + colours + letter size → a plate image with the words drawn in Noto Sans, and the
-//! text's box within it.
+//! Words + letter size → a plate's measures and the text's box within it; + colours → the
+//! plate image with the words drawn in Noto Sans.
 
 use std::sync::LazyLock;
 
@@ -20,9 +20,13 @@ pub static FONT: LazyLock<FontRef<'static>> = LazyLock::new(|| {
     FontRef::try_from_slice(notosans::REGULAR_TTF).expect("the embedded Noto Sans parses")
 });
 
-/// A drawn plate: the image and the text's box `[x0, y0, x1, y1]` in its pixels.
+/// A plate's measures: its size, the text's box `[x0, y0, x1, y1]` in its pixels and the
+/// letter size. Measuring is cheap; [`TextPlate::draw`] makes the pixels, so a caller can
+/// place plates first and draw them all at once, in parallel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TextPlate {
-    pub image: RgbImage,
+    pub width: u32,
+    pub height: u32,
     pub text_box: [u32; 4],
     /// The letter size in pixels (the height of the text box).
     pub letter_px: u32,
@@ -33,27 +37,33 @@ pub fn letter_px(height: f64) -> u32 {
     (height * PX_PER_LETTER_METRE).clamp(MIN_PX, MAX_PX).round() as u32
 }
 
-/// `text` in `ink` on a `paper` plate, letters `letter_px` tall.
-pub fn draw(text: &str, letter_px: u32, paper: [u8; 3], ink: [u8; 3]) -> TextPlate {
-    let scale = PxScale::from(letter_px as f32);
-    let (w, _) = text_size(scale, &*FONT, text);
-    let pad = (f64::from(letter_px) * PAD).round() as u32;
-    let width = w.max(1) + 2 * pad;
-    let height = letter_px + 2 * pad;
-    let mut image = RgbImage::from_pixel(width, height, Rgb(paper));
-    draw_text_mut(
-        &mut image,
-        Rgb(ink),
-        pad as i32,
-        pad as i32,
-        scale,
-        &*FONT,
-        text,
-    );
-    TextPlate {
-        image,
-        text_box: [pad, pad, pad + w.max(1), pad + letter_px],
-        letter_px,
+impl TextPlate {
+    /// The plate for `text` with letters `letter_px` tall.
+    pub fn measure(text: &str, letter_px: u32) -> TextPlate {
+        let (w, _) = text_size(PxScale::from(letter_px as f32), &*FONT, text);
+        let pad = (f64::from(letter_px) * PAD).round() as u32;
+        TextPlate {
+            width: w.max(1) + 2 * pad,
+            height: letter_px + 2 * pad,
+            text_box: [pad, pad, pad + w.max(1), pad + letter_px],
+            letter_px,
+        }
+    }
+
+    /// `text` (the text it was measured for) in `ink` on a `paper` plate.
+    pub fn draw(&self, text: &str, paper: [u8; 3], ink: [u8; 3]) -> RgbImage {
+        let mut image = RgbImage::from_pixel(self.width, self.height, Rgb(paper));
+        let [x0, y0, ..] = self.text_box;
+        draw_text_mut(
+            &mut image,
+            Rgb(ink),
+            x0 as i32,
+            y0 as i32,
+            PxScale::from(self.letter_px as f32),
+            &*FONT,
+            text,
+        );
+        image
     }
 }
 
@@ -65,13 +75,15 @@ mod tests {
     fn ink_stays_inside_the_text_box_and_width_follows_the_text() {
         let paper = [240, 240, 230];
         let ink = [20, 20, 40];
-        let short = draw("Sun", 64, paper, ink);
-        let long = draw("Sun Garden", 64, paper, ink);
-        assert!(long.image.width() > short.image.width() * 2);
-        for plate in [&short, &long] {
+        let short = TextPlate::measure("Sun", 64);
+        let long = TextPlate::measure("Sun Garden", 64);
+        assert!(long.width > short.width * 2);
+        for (plate, text) in [(&short, "Sun"), (&long, "Sun Garden")] {
+            let image = plate.draw(text, paper, ink);
+            assert_eq!((image.width(), image.height()), (plate.width, plate.height));
             let [x0, y0, x1, y1] = plate.text_box;
             let mut inked = 0;
-            for (x, y, p) in plate.image.enumerate_pixels() {
+            for (x, y, p) in image.enumerate_pixels() {
                 if p.0 != paper {
                     inked += 1;
                     assert!(x0 <= x && x <= x1 && y0 <= y && y <= y1, "ink at {x},{y}");

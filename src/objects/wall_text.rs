@@ -4,13 +4,17 @@
 //! wall) no farther than [`ROAD_REACH`] strip widths away. A plate stands between
 //! [`MIN_HEIGHT`] above the block surface and [`TOP_CLEARANCE`] below the roof, wholly on
 //! its wall, [`WALL_OFFSET`] in front of it, and keeps [`SPACING`] from the plates already
-//! on that wall.
+//! on that wall. An entry's plate images share a few atlas pages ([`AtlasLayout`]), one
+//! material per page, each plate's uvs covering its own rectangle.
 
 use std::collections::BTreeMap;
 
+use image::RgbImage;
 use rand::RngExt;
 use rand_pcg::Pcg64;
+use rayon::prelude::*;
 
+use super::atlas_layout::{self, AtlasLayout};
 use super::text_plate::{self, TextPlate};
 use super::{ATTEMPTS, ObjectInfo, ObjectsInput, Placing, WORDS};
 use crate::model::{SceneObject, Texture};
@@ -46,6 +50,18 @@ pub struct Wall {
     pub band: [f64; 2],
 }
 
+/// A plate placed on a wall, waiting for its place on an atlas page.
+struct Placed {
+    name: String,
+    wall: usize,
+    rect: [f64; 4],
+    plate: TextPlate,
+    /// Paper and ink.
+    colours: ([u8; 3], [u8; 3]),
+    text: String,
+    corners: [[f64; 3]; 4],
+}
+
 /// The walls facing roads, and the plates placed on each so far: `[u0, y0, u1, y1]`.
 pub struct Walls {
     walls: Vec<Wall>,
@@ -65,41 +81,79 @@ impl Walls {
         &self.walls
     }
 
-    /// Places `spec.count` text plates (fewer if they do not fit).
+    /// Places `spec.count` text plates (fewer if they do not fit), their images packed onto
+    /// shared atlas pages, one material per page.
     pub fn place(&mut self, spec: &ObjectSpec, rng: &mut Pcg64, placing: &mut Placing) {
         if self.walls.is_empty() {
             return;
         }
+        let mut placed: Vec<Placed> = Vec::new();
         for _ in 0..spec.count {
             let text = words(spec, rng);
             let height = uniform(rng, spec.letter_height);
             let (paper, ink) = colours(rng);
-            let plate = text_plate::draw(&text, text_plate::letter_px(height), paper, ink);
+            let plate = TextPlate::measure(&text, text_plate::letter_px(height));
             let metres_per_px = height / f64::from(plate.letter_px);
             let size = [
-                f64::from(plate.image.width()) * metres_per_px,
-                f64::from(plate.image.height()) * metres_per_px,
+                f64::from(plate.width) * metres_per_px,
+                f64::from(plate.height) * metres_per_px,
             ];
             let Some((w, rect)) = self.find_spot(rng, size) else {
                 continue;
             };
             self.placed.entry(w).or_default().push(rect);
-            let name = placing.name("text");
-            let texture = Texture::from_rgb(name.clone(), &plate.image);
-            let material = placing.material(&name, || ([1.0; 3], Some(texture)));
-            let wall = &self.walls[w];
+            let corners = text_corners(&self.walls[w], rect, &plate, metres_per_px);
+            placed.push(Placed {
+                name: placing.name("text"),
+                wall: w,
+                rect,
+                plate,
+                colours: (paper, ink),
+                text,
+                corners,
+            });
+        }
+        // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
+        // all in parallel, each result in its own slot.
+        let images: Vec<RgbImage> = placed
+            .par_iter()
+            .map(|p| p.plate.draw(&p.text, p.colours.0, p.colours.1))
+            .collect();
+        let sizes: Vec<[u32; 2]> = placed
+            .iter()
+            .map(|p| [p.plate.width, p.plate.height])
+            .collect();
+        let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
+        let pages: Vec<Texture> = (0..atlas.pages.len())
+            .into_par_iter()
+            .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
+            .collect();
+        let materials: Vec<u32> = pages
+            .iter()
+            .enumerate()
+            .map(|(i, page)| {
+                let name = format!("{}_atlas_{i}", spec.label);
+                placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
+            })
+            .collect();
+        for (i, p) in placed.into_iter().enumerate() {
+            let material = materials[atlas.slots[i].page];
             let object = SceneObject {
-                name,
+                name: p.name,
                 class: spec.label.clone(),
-                meshes: vec![plate_mesh(wall, rect, material)],
+                meshes: vec![plate_mesh(
+                    &self.walls[p.wall],
+                    p.rect,
+                    material,
+                    atlas.uv_spans(i),
+                )],
             };
-            let corners = text_corners(wall, rect, &plate, metres_per_px);
             placing.push(
                 object,
                 ObjectInfo {
                     label: spec.label.clone(),
-                    text: Some(text),
-                    corners: Some(corners),
+                    text: Some(p.text),
+                    corners: Some(p.corners),
                 },
             );
         }
@@ -203,7 +257,13 @@ pub fn wall_point(wall: &Wall, u: f64, y: f64, out: f64) -> [f64; 3] {
     ]
 }
 
-fn plate_mesh(wall: &Wall, rect: [f64; 4], material: u32) -> crate::model::Mesh {
+/// The plate's quad, `uv` = (u span, v span) of its rectangle on its atlas page.
+fn plate_mesh(
+    wall: &Wall,
+    rect: [f64; 4],
+    material: u32,
+    (u, v): ([f64; 2], [f64; 2]),
+) -> crate::model::Mesh {
     let a = wall_point(wall, rect[0], 0.0, WALL_OFFSET);
     let b = wall_point(wall, rect[2], 0.0, WALL_OFFSET);
     let mut mesh = MeshBuilder::new(material);
@@ -212,8 +272,8 @@ fn plate_mesh(wall: &Wall, rect: [f64; 4], material: u32) -> crate::model::Mesh 
         [b[0], b[2]],
         [rect[1], rect[3]],
         [wall.normal[0], 0.0, wall.normal[1]],
-        [0.0, 1.0],
-        [0.0, 1.0],
+        u,
+        v,
     );
     mesh.finish()
 }
