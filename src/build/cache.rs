@@ -25,29 +25,30 @@ use crate::hash::sha256_hex;
 /// A stage's outputs: file name → bytes, in memory or already stored as cache objects.
 pub type Outputs = BTreeMap<String, Blob>;
 
-/// One output's bytes: in memory, or an object already in the cache (a stage that streams
-/// its outputs, like a camera path's frames, stores each as it is made and keeps only its
-/// reference; cached stages whose values nobody decodes are looked up the same way).
+/// One output's bytes: made by a stage and not yet stored, or an object in the cache,
+/// with its bytes in memory or not. A stage that streams its outputs, like a camera path's
+/// frames, stores each as it is made and keeps only its reference; cached stages whose
+/// values nobody decodes are looked up the same way.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Blob {
     Bytes(Arc<Vec<u8>>),
-    Stored(ObjectRef),
+    Stored(ObjectRef, Option<Arc<Vec<u8>>>),
 }
 
 impl Blob {
     /// The bytes, when they are in memory.
     pub fn bytes(&self) -> Option<&Arc<Vec<u8>>> {
         match self {
-            Blob::Bytes(bytes) => Some(bytes),
-            Blob::Stored(_) => None,
+            Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => Some(bytes),
+            Blob::Stored(_, None) => None,
         }
     }
 
-    /// The SHA-256 of the bytes.
+    /// The SHA-256 of the bytes (computed only when not yet stored).
     pub fn sha256(&self) -> String {
         match self {
             Blob::Bytes(bytes) => sha256_hex(bytes),
-            Blob::Stored(object) => object.sha256.clone(),
+            Blob::Stored(object, _) => object.sha256.clone(),
         }
     }
 
@@ -55,8 +56,18 @@ impl Blob {
     pub fn size(&self) -> u64 {
         match self {
             Blob::Bytes(bytes) => bytes.len() as u64,
-            Blob::Stored(object) => object.bytes,
+            Blob::Stored(object, _) => object.bytes,
         }
+    }
+
+    /// This output once [`Cache::put`] stored it as `object`, keeping its bytes if it had
+    /// them in memory.
+    pub fn stored(self, object: ObjectRef) -> Blob {
+        let bytes = match self {
+            Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => Some(bytes),
+            Blob::Stored(_, None) => None,
+        };
+        Blob::Stored(object, bytes)
     }
 }
 
@@ -143,8 +154,8 @@ impl Cache {
                 .read_object(&object)
                 .map_err(|why| Miss::Corrupt(format!("{why} ({name})")))?;
             let blob = match load {
-                Load::Bytes => Blob::from(bytes),
-                Load::References => Blob::Stored(object),
+                Load::Bytes => Blob::Stored(object, Some(Arc::new(bytes))),
+                Load::References => Blob::Stored(object, None),
             };
             outputs.insert(name, blob);
         }
@@ -187,7 +198,7 @@ impl Cache {
         for (name, blob) in outputs {
             let object = match blob {
                 Blob::Bytes(bytes) => self.put_object(bytes)?,
-                Blob::Stored(object) => object.clone(),
+                Blob::Stored(object, _) => object.clone(),
             };
             refs.insert(name.clone(), object);
         }
@@ -230,7 +241,11 @@ mod tests {
         assert_eq!(cache.get("k1", Load::Bytes), Err(Miss::Absent));
         let out = outputs(&[("a.json", b"{}"), ("b.png", b"png bytes")]);
         cache.put("parse", "k1", &out).unwrap();
-        assert_eq!(cache.get("k1", Load::Bytes).unwrap(), out);
+        let back = cache.get("k1", Load::Bytes).unwrap();
+        for (name, blob) in &back {
+            assert_eq!(blob.bytes(), out[name].bytes());
+            assert_eq!(blob.sha256(), out[name].sha256());
+        }
         // By reference: the same hashes, no bytes.
         let refs = cache.get("k1", Load::References).unwrap();
         assert_eq!(refs.len(), 2);
@@ -271,7 +286,10 @@ mod tests {
         let frame = cache.put_object(b"frame 0").unwrap();
         assert_eq!(cache.read_object(&frame).unwrap(), b"frame 0");
         let out = Outputs::from([
-            ("rgb/000000.png".to_owned(), Blob::Stored(frame.clone())),
+            (
+                "rgb/000000.png".to_owned(),
+                Blob::Stored(frame.clone(), None),
+            ),
             ("coco.json".to_owned(), Blob::from(b"{}".to_vec())),
         ]);
         cache.put("frames", "k4", &out).unwrap();
@@ -282,7 +300,7 @@ mod tests {
         );
         assert_eq!(
             cache.get("k4", Load::References).unwrap()["rgb/000000.png"],
-            Blob::Stored(frame)
+            Blob::Stored(frame, None)
         );
     }
 

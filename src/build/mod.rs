@@ -200,8 +200,8 @@ pub fn build_spec(
             unchanged.push(artifact.path.clone());
         } else {
             match &artifact.blob {
-                Blob::Bytes(bytes) => write_atomic(&file, bytes),
-                Blob::Stored(object) => match cache.read_object(object) {
+                Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => write_atomic(&file, bytes),
+                Blob::Stored(object, None) => match cache.read_object(object) {
                     Ok(bytes) => write_atomic(&file, &bytes),
                     Err(why) => Err(io::Error::other(format!("cache object {why}"))),
                 },

@@ -636,7 +636,7 @@ impl<'a> Pipeline<'a> {
                     &poses,
                     |name, bytes| {
                         let object = p.cache.put_object(&bytes)?;
-                        outputs.insert(name, Blob::Stored(object));
+                        outputs.insert(name, Blob::Stored(object, None));
                         Ok(())
                     },
                     |done| (p.progress)(&camera.name, done, total),
@@ -689,10 +689,12 @@ impl<'a> Pipeline<'a> {
                             path: self.cache.root().to_path_buf(),
                             source,
                         })?;
-                if load == Load::References {
-                    // Stored now: the bytes need not stay in memory.
-                    for (name, object) in refs {
-                        outputs.insert(name, Blob::Stored(object));
+                // Each output now knows its object, so its hash is not computed again;
+                // bytes the stage made stay in memory for the driver to write (a
+                // streamed stage's never were).
+                for (name, object) in refs {
+                    if let Some(blob) = outputs.remove(&name) {
+                        outputs.insert(name, blob.stored(object));
                     }
                 }
                 let slot = Slot {
