@@ -861,11 +861,7 @@ fn lighting(spec: &Spec, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) -> 
             let lights = lamps
                 .iter()
                 .map(|lamp| render::Light {
-                    position: [
-                        (lamp.position[0] * mpp) as f32,
-                        5.8,
-                        (lamp.position[1] * mpp) as f32,
-                    ],
+                    position: scene::light_position(lamp, mpp).map(|v| v as f32),
                     colour: [1.6, 1.25, 0.8],
                     range,
                 })

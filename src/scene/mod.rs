@@ -49,6 +49,7 @@ use material_book::MaterialBook;
 use surfaces::Surfaces;
 
 pub use sidewalks::strip_width_px;
+pub use street_lamps::light_position;
 
 /// Height of the road surface above the ground.
 pub const ROAD_Y: f64 = 0.02;

@@ -23,6 +23,30 @@ const ARM_THICKNESS: f64 = 0.08;
 const ARM_DROP: f64 = 0.05;
 const HEAD_SIZE: [f64; 3] = [0.6, 0.28, 0.14];
 
+/// Where a lamp's light is, in metres: 5 cm under the middle of its head (`y` up), so the
+/// night lighting shines from the glowing head and not from the pole.
+pub fn light_position(lamp: &Lamp, mpp: f64) -> [f64; 3] {
+    let foot = [lamp.position[0] * mpp, lamp.position[1] * mpp];
+    let f = unit(lamp.facing);
+    let reach = ARM_LENGTH + 0.02 - HEAD_SIZE[0] / 2.0;
+    [
+        foot[0] + f[0] * reach,
+        head_bottom() - 0.05,
+        foot[1] + f[1] * reach,
+    ]
+}
+
+/// Height of the underside of a lamp head.
+fn head_bottom() -> f64 {
+    arm_y() + 0.01 - HEAD_SIZE[2]
+}
+
+/// Height of the underside of a lamp's arm: its top stays below the pole's cap, so the two
+/// never share a plane.
+fn arm_y() -> f64 {
+    KERB_Y + POLE_HEIGHT - ARM_DROP - ARM_THICKNESS
+}
+
 pub fn lamp_objects(lamps: &[Lamp], mpp: f64, surfaces: &Surfaces) -> Vec<SceneObject> {
     lamps
         .iter()
@@ -32,9 +56,8 @@ pub fn lamp_objects(lamps: &[Lamp], mpp: f64, surfaces: &Surfaces) -> Vec<SceneO
             let top = KERB_Y + POLE_HEIGHT;
             let mut metal = MeshBuilder::new(surfaces.lamp_metal);
             pole(&mut metal, foot, f, top);
-            // The arm starts inside the pole and reaches ARM_LENGTH from its axis; its top
-            // stays below the pole's cap, so the two never share a plane.
-            let arm_y = top - ARM_DROP - ARM_THICKNESS;
+            // The arm starts inside the pole and reaches ARM_LENGTH from its axis.
+            let arm_y = arm_y();
             let arm_base = [
                 foot[0] + f[0] * ARM_LENGTH / 2.0,
                 arm_y,
@@ -51,7 +74,7 @@ pub fn lamp_objects(lamps: &[Lamp], mpp: f64, surfaces: &Surfaces) -> Vec<SceneO
             let reach = ARM_LENGTH + 0.02 - HEAD_SIZE[0] / 2.0;
             let head_base = [
                 foot[0] + f[0] * reach,
-                arm_y + 0.01 - HEAD_SIZE[2],
+                head_bottom(),
                 foot[1] + f[1] * reach,
             ];
             let mut head = MeshBuilder::new(surfaces.lamp_head);

@@ -404,6 +404,18 @@ fn lamps_stand_at_their_sites_with_an_emissive_head_towards_the_road() {
             "{}: {along} {across}",
             object.name
         );
+        // The night light shines from just under the head's middle (1 px = 1 m here).
+        let light = super::light_position(lamp, 1.0);
+        let bottom = head
+            .positions
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!((light[0] - hx).abs() < 1e-3 && (light[2] - hz).abs() < 1e-3);
+        assert!(
+            light[1] < bottom && light[1] > bottom - 0.1,
+            "{light:?} {bottom}"
+        );
     }
 }
 
