@@ -14,10 +14,11 @@ use super::{KERB_Y, object};
 use crate::model::{Lamp, SceneObject};
 
 /// Pole height above the sidewalk, its radius, the arm's reach from the pole's axis, in
-/// metres.
+/// metres. Lamps stand mid-strip, 4 m from the road with the default 8 m strip: the arm
+/// carries the head out over the road's edge, where a street lamp lights the road.
 pub const POLE_HEIGHT: f64 = 6.0;
 pub const POLE_RADIUS: f64 = 0.08;
-pub const ARM_LENGTH: f64 = 1.5;
+pub const ARM_LENGTH: f64 = 4.5;
 const ARM_THICKNESS: f64 = 0.08;
 /// How far the arm's top sits below the pole's cap.
 const ARM_DROP: f64 = 0.05;
