@@ -36,8 +36,9 @@ pub fn coco(
 ///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
 ///   then the extra keys `instance_id` (the value in the instance image), `name`,
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
-///   it, inside the image, or `null` when unknown), `visible_fraction` (visible ÷ those
-///   pixels, or `null`) and, for text objects, `text`.
+///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
+///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
+///   it; or `null`) and, for text objects, `text`.
 ///
 /// Keys are written in that order, one image, category or annotation per line. Intrinsics
 /// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a

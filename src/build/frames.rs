@@ -88,7 +88,7 @@ pub fn render_path<E>(
             pose: *pose,
             full: footprints
                 .iter()
-                .map(|f| (u32::from(f.id), (f.bounds.bbox().map(f64::from), f.pixels)))
+                .map(|f| (u32::from(f.id), (f.bbox().map(|v| v as f64), f.pixels)))
                 .collect(),
             quads: input
                 .corners

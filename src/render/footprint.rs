@@ -1,35 +1,146 @@
 //! Screen triangles of one object → its [`Footprint`]: the pixels it would cover with
-//! nothing in front of it, their count and box.
+//! nothing in front of it and no image edge to stop it, their count and box.
 //!
 //! The annotator divides an object's visible pixels (from the instance image) by its
-//! footprint's pixels to get the visible fraction, so the footprint is measured exactly as
-//! the instance image is made: the same screen triangles, the same fill rule, the same
-//! near/far acceptance of 1/w, and, with supersampling, the same sample per pixel (the one
-//! nearest the centre). Every visible pixel of an object is therefore in its footprint.
+//! footprint's pixels to get the visible fraction, so occlusion and truncation by the image
+//! edge both lower it. Inside the image the footprint is measured exactly as the instance
+//! image is made: the same screen triangles, the same fill rule, the same near/far
+//! acceptance of 1/w and, with supersampling, the same sample per pixel (the one nearest
+//! the centre); so every visible pixel of an object lies in its footprint. Outside the
+//! image the same object is rasterized again in a view widened by [`PAD`] image sizes on
+//! every side (same focal length, same sample grid), counting only pixels off the image.
 
-use super::screen_triangle::ScreenTri;
-use crate::model::PixelBox;
+use rayon::prelude::*;
 
-/// Where one object would show if nothing were in front of it.
+use super::prepared_scene::PreparedScene;
+use super::screen_triangle::{self, ScreenTri};
+use super::view::View;
+use super::{CameraPose, Intrinsics};
+
+/// How far beyond each image edge a footprint is measured, in image widths (left and
+/// right) and heights (above and below). Parts of an object further out are not counted.
+pub const PAD: u32 = 1;
+
+/// Where one object would show with nothing in front of it, on an image without edges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Footprint {
     /// Instance id (object index + 1).
     pub id: u16,
-    /// Tight box of the covered pixels.
-    pub bounds: PixelBox,
-    /// Covered pixels inside the image.
+    /// Tight box of the covered pixels, inclusive `[x0, y0, x1, y1]`, in image pixel
+    /// coordinates: it reaches past the image (below 0, beyond the size) where the object
+    /// does, up to [`PAD`] image sizes.
+    pub bounds: [i64; 4],
+    /// Covered pixels, in the image and beyond it.
     pub pixels: u64,
+    /// Covered pixels inside the image.
+    pub inside: u64,
 }
 
-/// The footprint of the object with instance `id` whose screen triangles are `tris`, or
-/// `None` when it covers no pixel. `samples` is the supersampling factor the triangles were
-/// set up for; `q_range` the accepted `(1/far, 1.0001/near]` of 1/w, as the tiles use.
+impl Footprint {
+    /// COCO-style `[x, y, w, h]` of the box (pixel edges, so `w = x1 − x0 + 1`).
+    pub fn bbox(&self) -> [i64; 4] {
+        let [x0, y0, x1, y1] = self.bounds;
+        [x0, y0, x1 - x0 + 1, y1 - y0 + 1]
+    }
+}
+
+/// The footprints of the objects `ids` (instance ids) that cover a pixel of the image, in
+/// the order of `ids`. `per_object` holds every object's screen triangles in the frame's
+/// view (set up for `samples` per pixel side); `q_range` is the accepted 1/w.
 pub(crate) fn measure(
-    id: u16,
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    k: &Intrinsics,
+    samples: u32,
+    per_object: &[Vec<ScreenTri>],
+    ids: &[u16],
+    q_range: (f64, f64),
+) -> Vec<Footprint> {
+    let (w, h) = (k.width, k.height);
+    let pad = [i64::from(w * PAD), i64::from(h * PAD)];
+    // The same camera on an image PAD sizes larger on every side, its pixel grid aligned
+    // with the image's.
+    let wide = Intrinsics {
+        width: w * (1 + 2 * PAD),
+        height: h * (1 + 2 * PAD),
+        cx: k.cx + f64::from(w * PAD),
+        cy: k.cy + f64::from(h * PAD),
+        ..*k
+    };
+    let wide_view = View::new(pose, &wide, samples);
+    let off_image = |x: i64, y: i64| x < 0 || y < 0 || x >= i64::from(w) || y >= i64::from(h);
+    ids.par_iter()
+        .filter_map(|&id| {
+            let index = usize::from(id).checked_sub(1)?;
+            let inside = cover(per_object.get(index)?, samples, q_range, [0, 0], |_, _| {
+                true
+            });
+            inside.bounds?;
+            let outside = match &wide_view {
+                Some(view) => {
+                    let object = scene.objects.get(index)?;
+                    let mut tris = Vec::new();
+                    for i in object.first..object.end {
+                        screen_triangle::setup(&scene.triangles[i], i as u32, view, &mut tris);
+                    }
+                    cover(&tris, samples, q_range, pad, off_image)
+                }
+                None => Coverage::default(),
+            };
+            inside.footprint(id, outside)
+        })
+        .collect()
+}
+
+/// Pixels covered by some triangles: their count and inclusive box.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Coverage {
+    pub pixels: u64,
+    pub bounds: Option<[i64; 4]>,
+}
+
+impl Coverage {
+    /// Both coverages together (they must not share a pixel).
+    pub(crate) fn join(self, other: Coverage) -> Coverage {
+        let bounds = match (self.bounds, other.bounds) {
+            (Some(a), Some(b)) => Some([
+                a[0].min(b[0]),
+                a[1].min(b[1]),
+                a[2].max(b[2]),
+                a[3].max(b[3]),
+            ]),
+            (a, b) => a.or(b),
+        };
+        Coverage {
+            pixels: self.pixels + other.pixels,
+            bounds,
+        }
+    }
+
+    /// The footprint of object `id` whose pixels in the image are `self` and beyond it
+    /// `outside`, or `None` when it covers no pixel of the image.
+    pub(crate) fn footprint(self, id: u16, outside: Coverage) -> Option<Footprint> {
+        self.bounds?;
+        let all = self.join(outside);
+        Some(Footprint {
+            id,
+            bounds: all.bounds?,
+            pixels: all.pixels,
+            inside: self.pixels,
+        })
+    }
+}
+
+/// The output pixels `tris` cover (set up for `samples` per pixel side; `q_range` the
+/// accepted `(1/far, 1.0001/near]` of 1/w, as the tiles use), each moved by `-shift`
+/// and kept only when `keep(x, y)` holds for the moved position.
+pub(crate) fn cover(
     tris: &[ScreenTri],
     samples: u32,
     q_range: (f64, f64),
-) -> Option<Footprint> {
+    shift: [i64; 2],
+    keep: impl Fn(i64, i64) -> bool,
+) -> Coverage {
     let s = samples.max(1);
     let mid = (s - 1) / 2;
     let mut bounds = [u32::MAX, u32::MAX, 0, 0];
@@ -42,7 +153,7 @@ pub(crate) fn measure(
         ];
     }
     if bounds[0] >= bounds[2] || bounds[1] >= bounds[3] {
-        return None;
+        return Coverage::default();
     }
     // Output pixels whose centre sample lies inside the internal bounds.
     let ox0 = bounds[0].saturating_sub(mid).div_ceil(s);
@@ -50,7 +161,7 @@ pub(crate) fn measure(
     let ox1 = (bounds[2] + s - 1 - mid) / s;
     let oy1 = (bounds[3] + s - 1 - mid) / s;
     if ox0 >= ox1 || oy0 >= oy1 {
-        return None;
+        return Coverage::default();
     }
     let bw = (ox1 - ox0) as usize;
     let mut covered = vec![false; bw * (oy1 - oy0) as usize];
@@ -62,16 +173,17 @@ pub(crate) fn measure(
             }
         });
     }
-    let mut found: Option<Footprint> = None;
+    let mut found = Coverage::default();
     for (i, _) in covered.iter().enumerate().filter(|(_, c)| **c) {
-        let (x, y) = (ox0 + (i % bw) as u32, oy0 + (i / bw) as u32);
-        let f = found.get_or_insert(Footprint {
-            id,
-            bounds: PixelBox::at(x, y),
-            pixels: 0,
+        let x = i64::from(ox0) + (i % bw) as i64 - shift[0];
+        let y = i64::from(oy0) + (i / bw) as i64 - shift[1];
+        if !keep(x, y) {
+            continue;
+        }
+        found = found.join(Coverage {
+            pixels: 1,
+            bounds: Some([x, y, x, y]),
         });
-        f.bounds.include(x, y);
-        f.pixels += 1;
     }
     found
 }

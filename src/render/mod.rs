@@ -58,7 +58,7 @@ mod view;
 mod tests;
 
 pub use camera_pose::CameraPose;
-pub use footprint::Footprint;
+pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{Light, Lighting};
@@ -92,8 +92,9 @@ pub fn render(
 }
 
 /// [`render`], and the [`Footprint`] of each object of `measure` (instance ids, ascending)
-/// that would cover a pixel with nothing in front of it, in id order: the annotator's full
-/// projected box and the denominator of the visible fraction.
+/// that would cover a pixel of the image with nothing in front of it, in id order: where it
+/// would show with nothing in front and no image edge (the annotator's full projected box
+/// and the denominator of the visible fraction).
 pub fn render_measuring(
     scene: &PreparedScene,
     pose: &CameraPose,
@@ -123,13 +124,15 @@ pub fn render_measuring(
         .collect();
     // Nothing is nearer than the near plane; a larger 1/w is a rounding artefact.
     let q_range = (1.0 / view.far, 1.0001 / view.near);
-    let footprints: Vec<Footprint> = measure
-        .par_iter()
-        .filter_map(|&id| {
-            let tris = per_object.get(usize::from(id).checked_sub(1)?)?;
-            footprint::measure(id, tris, samples, q_range)
-        })
-        .collect();
+    let footprints = footprint::measure(
+        scene,
+        pose,
+        intrinsics,
+        samples,
+        &per_object,
+        measure,
+        q_range,
+    );
     let tris: Vec<ScreenTri> = per_object.into_iter().flatten().collect();
 
     let tiles_x = width.div_ceil(TILE);

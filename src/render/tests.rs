@@ -399,8 +399,13 @@ fn visible_box(frame: &Frame, id: u16) -> Option<(PixelBox, u64)> {
     found
 }
 
-fn inside(a: PixelBox, b: PixelBox) -> bool {
-    a.x0 >= b.x0 && a.y0 >= b.y0 && a.x1 <= b.x1 && a.y1 <= b.y1
+fn corners(b: PixelBox) -> [i64; 4] {
+    [b.x0, b.y0, b.x1, b.y1].map(i64::from)
+}
+
+fn inside(a: PixelBox, b: [i64; 4]) -> bool {
+    let a = corners(a);
+    a[0] >= b[0] && a[1] >= b[1] && a[2] <= b[2] && a[3] <= b[3]
 }
 
 #[test]
@@ -432,7 +437,8 @@ fn footprints_are_what_an_object_shows_with_nothing_in_front() {
         let alone = render(&far_alone, &eye, &k, &flat(), samples);
         let (b, n) = visible_box(&alone, 1).unwrap();
         let far = footprints[1];
-        assert_eq!((far.bounds, far.pixels), (b, n));
+        assert_eq!((far.bounds, far.pixels), (corners(b), n));
+        assert_eq!(far.inside, far.pixels);
         // Behind the near box it shows fewer pixels, all inside the footprint.
         let (vb, vn) = visible_box(&frame, 2).unwrap();
         assert!(vn > 0 && vn < far.pixels, "{vn} of {}", far.pixels);
@@ -440,13 +446,47 @@ fn footprints_are_what_an_object_shows_with_nothing_in_front() {
         // The unoccluded near box: its footprint is what it shows.
         let near = footprints[0];
         let (nb, nn) = visible_box(&frame, 1).unwrap();
-        assert_eq!((nb, nn), (near.bounds, near.pixels));
+        assert_eq!((corners(nb), nn), (near.bounds, near.pixels));
     }
     assert!(
         render_measuring(&both, &eye, &k, &flat(), 1, &[])
             .1
             .is_empty()
     );
+}
+
+#[test]
+fn footprints_reach_past_the_image_edge() {
+    // A 4 m square 5 m ahead, shifted so its left part is out of a 64 × 48 image.
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([0.5; 3], None, [0.0; 3])],
+        objects: vec![object("square", vec![wall(-5.0, 2.0)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let eye = pose([3.5, 0.0, 0.0], [3.5, 0.0, -1.0]);
+    let k = Intrinsics::from_fov(64, 48, 0.5);
+    for samples in [1, 2] {
+        let (frame, footprints) = render_measuring(&prepared, &eye, &k, &flat(), samples, &[1]);
+        let [f] = footprints[..] else {
+            panic!("{footprints:?}")
+        };
+        let (shown, n) = visible_box(&frame, 1).unwrap();
+        assert_eq!(shown.x0, 0);
+        assert_eq!(f.inside, n);
+        assert!(f.bounds[0] < 0 && f.pixels > 2 * n, "{f:?}, {n} shown");
+        // The same camera on an image three times as wide, its grid aligned: the square
+        // shows whole, as large as the footprint says.
+        let wide = Intrinsics {
+            width: 3 * 64,
+            cx: k.cx + 64.0,
+            ..k
+        };
+        let whole = render(&prepared, &eye, &wide, &flat(), samples);
+        let (b, all) = visible_box(&whole, 1).unwrap();
+        assert_eq!(corners(b)[0] - 64, f.bounds[0]);
+        assert!(all.abs_diff(f.pixels) <= 4, "{all} vs {}", f.pixels);
+    }
 }
 
 #[test]

@@ -170,7 +170,8 @@ pub struct AnnotationsSpec {
     #[serde(default = "default_min_pixels")]
     #[schemars(range(min = 1, max = 1000000))]
     pub min_pixels: u64,
-    /// Objects showing less of themselves (where known) are left out.
+    /// Objects showing less than this share of themselves are left out: hidden behind
+    /// others or cut off by the image edge.
     #[serde(default = "default_min_fraction")]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub min_fraction: f64,
