@@ -45,19 +45,25 @@ impl Footprint {
 }
 
 /// The footprints of the objects `ids` (instance ids) that cover a pixel of the image, in
-/// the order of `ids`. `per_object` holds every object's screen triangles in the frame's
-/// view (set up for `samples` per pixel side); `q_range` is the accepted 1/w.
+/// the order of `ids`. `view` is the frame's view and `per_object` every object's screen
+/// triangles in it (set up for `samples` per pixel side); `q_range` is the accepted 1/w.
+///
+/// An object whose bounding box projects wholly inside the image cannot reach past it and
+/// is measured once; the others are rasterized again in the widened view, over the four
+/// bands around the image only.
+#[allow(clippy::too_many_arguments)] // the frame's context, passed as the renderer holds it
 pub(crate) fn measure(
     scene: &PreparedScene,
     pose: &CameraPose,
     k: &Intrinsics,
+    view: &View,
     samples: u32,
     per_object: &[Vec<ScreenTri>],
     ids: &[u16],
     q_range: (f64, f64),
 ) -> Vec<Footprint> {
     let (w, h) = (k.width, k.height);
-    let pad = [i64::from(w * PAD), i64::from(h * PAD)];
+    let s = samples.max(1);
     // The same camera on an image PAD sizes larger on every side, its pixel grid aligned
     // with the image's.
     let wide = Intrinsics {
@@ -68,24 +74,36 @@ pub(crate) fn measure(
         ..*k
     };
     let wide_view = View::new(pose, &wide, samples);
-    let off_image = |x: i64, y: i64| x < 0 || y < 0 || x >= i64::from(w) || y >= i64::from(h);
+    // The widened view's internal pixels around the image: above, below, left, right.
+    let (x0, y0) = (w * PAD * s, h * PAD * s);
+    let (x1, y1) = (x0 + w * s, y0 + h * s);
+    let (ww, wh) = (wide.width * s, wide.height * s);
+    let bands = [
+        [0, 0, ww, y0],
+        [0, y1, ww, wh],
+        [0, y0, x0, y1],
+        [x1, y0, ww, y1],
+    ];
+    let shift = [i64::from(w * PAD), i64::from(h * PAD)];
     ids.par_iter()
         .filter_map(|&id| {
             let index = usize::from(id).checked_sub(1)?;
-            let inside = cover(per_object.get(index)?, samples, q_range, [0, 0], |_, _| {
-                true
-            });
+            let tris = per_object.get(index)?;
+            let inside = cover(tris, samples, q_range, [0, 0, u32::MAX, u32::MAX], [0, 0]);
             inside.bounds?;
+            let object = scene.objects.get(index)?;
             let outside = match &wide_view {
-                Some(view) => {
-                    let object = scene.objects.get(index)?;
+                Some(wide_view) if !view.holds_box(object.min, object.max) => {
                     let mut tris = Vec::new();
                     for i in object.first..object.end {
-                        screen_triangle::setup(&scene.triangles[i], i as u32, view, &mut tris);
+                        screen_triangle::setup(&scene.triangles[i], i as u32, wide_view, &mut tris);
                     }
-                    cover(&tris, samples, q_range, pad, off_image)
+                    bands
+                        .iter()
+                        .map(|band| cover(&tris, samples, q_range, *band, shift))
+                        .fold(Coverage::default(), Coverage::join)
                 }
-                None => Coverage::default(),
+                _ => Coverage::default(),
             };
             inside.footprint(id, outside)
         })
@@ -131,15 +149,15 @@ impl Coverage {
     }
 }
 
-/// The output pixels `tris` cover (set up for `samples` per pixel side; `q_range` the
-/// accepted `(1/far, 1.0001/near]` of 1/w, as the tiles use), each moved by `-shift`
-/// and kept only when `keep(x, y)` holds for the moved position.
+/// The output pixels `tris` cover inside `clip` (internal pixels `[x0, y0, x1, y1)`), the
+/// triangles being set up for `samples` per pixel side and `q_range` the accepted
+/// `(1/far, 1.0001/near]` of 1/w, as the tiles use; positions moved by `-shift`.
 pub(crate) fn cover(
     tris: &[ScreenTri],
     samples: u32,
     q_range: (f64, f64),
+    clip: [u32; 4],
     shift: [i64; 2],
-    keep: impl Fn(i64, i64) -> bool,
 ) -> Coverage {
     let s = samples.max(1);
     let mid = (s - 1) / 2;
@@ -152,6 +170,12 @@ pub(crate) fn cover(
             bounds[3].max(t.bounds[3]),
         ];
     }
+    let bounds = [
+        bounds[0].max(clip[0]),
+        bounds[1].max(clip[1]),
+        bounds[2].min(clip[2]),
+        bounds[3].min(clip[3]),
+    ];
     if bounds[0] >= bounds[2] || bounds[1] >= bounds[3] {
         return Coverage::default();
     }
@@ -177,9 +201,6 @@ pub(crate) fn cover(
     for (i, _) in covered.iter().enumerate().filter(|(_, c)| **c) {
         let x = i64::from(ox0) + (i % bw) as i64 - shift[0];
         let y = i64::from(oy0) + (i / bw) as i64 - shift[1];
-        if !keep(x, y) {
-            continue;
-        }
         found = found.join(Coverage {
             pixels: 1,
             bounds: Some([x, y, x, y]),

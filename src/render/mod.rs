@@ -128,6 +128,7 @@ pub fn render_measuring(
         scene,
         pose,
         intrinsics,
+        &view,
         samples,
         &per_object,
         measure,

@@ -116,6 +116,32 @@ impl View {
     }
 }
 
+impl View {
+    /// Whether an axis-aligned world box lies wholly in front of the near plane and
+    /// projects inside the image (false when unsure).
+    pub(crate) fn holds_box(&self, min: [f64; 3], max: [f64; 3]) -> bool {
+        if !(min.iter().chain(&max).all(|v| v.is_finite()) && min[0] <= max[0]) {
+            return false;
+        }
+        (0..8).all(|i| {
+            let c = self.to_camera([
+                if i & 1 == 0 { min[0] } else { max[0] },
+                if i & 2 == 0 { min[1] } else { max[1] },
+                if i & 4 == 0 { min[2] } else { max[2] },
+            ]);
+            if c[2] < self.near {
+                return false;
+            }
+            let [x, y] = self.project(c);
+            // A pixel of margin: the fill rule and snapping act within a pixel.
+            x >= 1.0
+                && y >= 1.0
+                && x <= f64::from(self.width) - 1.0
+                && y <= f64::from(self.height) - 1.0
+        })
+    }
+}
+
 /// Signed distance-like value of camera point `c` to a clip plane.
 #[inline]
 pub(crate) fn plane(p: &[f64; 3], c: &[f64; 3]) -> f64 {
@@ -142,6 +168,24 @@ mod tests {
         let [x, y] = v.project(c);
         assert_eq!([x, y], [32.0 + 6.0, 24.0 - 12.0]);
         assert_eq!(v.unproject(x, y, 4.0), [1.0, 2.0, -4.0]);
+    }
+
+    #[test]
+    fn only_boxes_projecting_wholly_inside_are_held() {
+        let v = view();
+        let cases = [
+            ([-1.0, -1.0, -5.0], [1.0, 1.0, -4.0], true),
+            // Reaches past the right edge: x = 32 + 24 · 9 / 4 = 86 > 64 at depth 4.
+            ([-1.0, -1.0, -5.0], [9.0, 1.0, -4.0], false),
+            // Behind the camera, or straddling the near plane.
+            ([-1.0, -1.0, 4.0], [1.0, 1.0, 5.0], false),
+            ([-1.0, -1.0, -5.0], [1.0, 1.0, 0.0], false),
+            ([1.0, 1.0, 1.0], [-1.0, -1.0, -1.0], false),
+            ([f64::NAN, 0.0, -5.0], [1.0, 1.0, -4.0], false),
+        ];
+        for (min, max, held) in cases {
+            assert_eq!(v.holds_box(min, max), held, "{min:?} {max:?}");
+        }
     }
 
     #[test]
