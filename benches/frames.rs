@@ -12,6 +12,10 @@
 //! the 100-frame build does. Figures are printed, never asserted. `BENCH_RUNS` sets the
 //! runs of the 100-frame case (default 3; the 1,000-frame case runs once), `BENCH_FRAMES`
 //! the cases (default `100,1000`).
+//!
+//! The builds write below `TMPDIR`. On an ext4 disk that has just seen many files deleted
+//! (benchmarks do that), creating files costs the kernel up to a quarter of the time and
+//! runs vary by a third; `TMPDIR=/dev/shm` measures the work without the disk.
 
 mod support;
 
