@@ -133,6 +133,21 @@ impl Placing<'_> {
         self.out.objects.push(object);
         self.out.info.push(info);
     }
+
+    /// Pushes an object of class `label` that carries no text.
+    pub fn push_plain(&mut self, name: String, label: &str, meshes: Vec<Mesh>) {
+        let object = SceneObject {
+            name,
+            class: label.to_owned(),
+            meshes,
+        };
+        let info = ObjectInfo {
+            label: label.to_owned(),
+            text: None,
+            corners: None,
+        };
+        self.push(object, info);
+    }
 }
 
 /// Places every spec entry's objects, in entry order. Pure and deterministic.

@@ -5,8 +5,8 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ground_spots::GroundSpots;
-use super::{ATTEMPTS, ObjectInfo, Placing, sign_face};
-use crate::model::{Mesh, SceneObject, Texture};
+use super::{ATTEMPTS, Placing, sign_face};
+use crate::model::{Mesh, Texture};
 use crate::scene::KERB_Y;
 use crate::scene::mesh_builder::{MeshBuilder, cross, dot, sub};
 use crate::spec::{ObjectSpec, SignKind};
@@ -51,19 +51,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         let pole = placing.material("sign_pole", || (POLE_GREY, None));
         let back = placing.material("sign_back", || (BACK_GREY, None));
         let meshes = sign_meshes(kind, spot.position, facing, [pole, face, back]);
-        let object = SceneObject {
-            name: placing.name("sign"),
-            class: spec.label.clone(),
-            meshes,
-        };
-        placing.push(
-            object,
-            ObjectInfo {
-                label: spec.label.clone(),
-                text: None,
-                corners: None,
-            },
-        );
+        let name = placing.name("sign");
+        placing.push_plain(name, &spec.label, meshes);
     }
 }
 

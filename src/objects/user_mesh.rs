@@ -13,8 +13,8 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::{GroundSpots, Spot};
 use super::trig::{add, cos_sin_deg};
-use super::{ATTEMPTS, MeshFiles, ObjectInfo, ObjectsError, Placing};
-use crate::model::{Mesh, SceneObject, Texture};
+use super::{ATTEMPTS, MeshFiles, ObjectsError, Placing};
+use crate::model::{Mesh, Texture};
 use crate::scene::mesh_builder::{cross, dot, sub};
 use crate::scene::{KERB_Y, ROAD_Y};
 use crate::spec::{Ground, ObjectSpec};
@@ -260,19 +260,8 @@ pub fn place(
                 .collect()
         });
         let meshes = instance(&model, ids, &spot, scale, turn, ground);
-        let object = SceneObject {
-            name: placing.name(&spec.label),
-            class: spec.label.clone(),
-            meshes,
-        };
-        placing.push(
-            object,
-            ObjectInfo {
-                label: spec.label.clone(),
-                text: None,
-                corners: None,
-            },
-        );
+        let name = placing.name(&spec.label);
+        placing.push_plain(name, &spec.label, meshes);
     }
     Ok(())
 }
