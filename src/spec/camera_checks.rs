@@ -1,12 +1,23 @@
 //! Camera checks: schema-valid `[[cameras]]` tables → the problems between values (a path
-//! given both a frame count and a frame spacing).
+//! given both a frame count and a frame spacing, two paths with one name).
 
 use super::camera_spec::CameraSpec;
 use super::findings::Findings;
 
-/// Each camera gives at most one of `frames` and `spacing`.
+/// Each camera gives at most one of `frames` and `spacing`, and has a name of its own: a
+/// path writes `frames/<name>/`, so two paths of one name would write the same files.
 pub(crate) fn check_cameras(cameras: &[CameraSpec], findings: &mut Findings<'_, '_>) {
     for (i, camera) in cameras.iter().enumerate() {
+        if let Some(first) = cameras[..i].iter().position(|c| c.name == camera.name) {
+            findings.error(
+                &format!("cameras[{i}].name"),
+                format!(
+                    "expected distinct camera names, found {:?} again (it is also \
+                     cameras[{first}].name)",
+                    camera.name
+                ),
+            );
+        }
         if camera.frames.is_some() && camera.spacing.is_some() {
             let line = findings.line_of(&format!("cameras[{i}].frames"));
             findings.error(
@@ -87,6 +98,14 @@ mod tests {
                 Err(&[
                     "cameras[1].spacing: expected either `frames` or `spacing`, found both \
                      (`frames` is on line 9)",
+                ]),
+            ),
+            (
+                "[[cameras]]\nname = \"a\"\n[[cameras]]\nname = \"b\"\n[[cameras]]\n\
+                 name = \"a\"\n",
+                Err(&[
+                    "cameras[2].name: expected distinct camera names, found \"a\" again (it is \
+                     also cameras[0].name)",
                 ]),
             ),
         ];
