@@ -114,6 +114,7 @@ fn noop_case(label: &str, text: &str, runs: usize) {
         progress: None,
         out_root: dir.path().join("out"),
         cache_dir: dir.path().join("cache"),
+        waiting: None,
     };
     let cold = Instant::now();
     build::build(&spec, &options).unwrap();

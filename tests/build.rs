@@ -435,3 +435,167 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
     assert!(hidden > 0, "no annotation below 0.95 of {}", all.len());
     assert_eq!(all.len(), kept.len() + hidden);
 }
+
+/// Issue 8, case 1: stale-file removal trusted the paths of the old `manifest.json`: an
+/// absolute path got that file deleted, and so did a path through a directory symlink.
+#[cfg(unix)]
+#[test]
+fn issue_8_an_old_manifest_cannot_delete_files_outside_the_output_folder() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let day = ws.out().join("day");
+    let far = ws.path().join("far");
+    fs::create_dir_all(&far).unwrap();
+    fs::write(far.join("victim.txt"), b"keep me").unwrap();
+    let absolute = ws.path().join("absolute-victim.txt");
+    fs::write(&absolute, b"keep me too").unwrap();
+    std::os::unix::fs::symlink(&far, day.join("link")).unwrap();
+    let manifest_file = day.join("manifest.json");
+    let mut manifest = build::Manifest::from_bytes(&fs::read(&manifest_file).unwrap()).unwrap();
+    for path in [
+        absolute.to_string_lossy().into_owned(),
+        "link/victim.txt".into(),
+    ] {
+        let mut listed = manifest.artifacts[0].clone();
+        listed.path = path;
+        manifest.artifacts.push(listed);
+    }
+    fs::write(&manifest_file, manifest.to_bytes()).unwrap();
+
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert_eq!(fs::read(&absolute).unwrap(), b"keep me too");
+    assert_eq!(fs::read(far.join("victim.txt")).unwrap(), b"keep me");
+    assert!(
+        fs::symlink_metadata(day.join("link")).is_err(),
+        "the link is gone"
+    );
+    common::assert_matches_manifest(&day);
+}
+
+/// Issue 8, case 1 (and 9): a build wrote through directory symlinks inside `out/`.
+#[cfg(unix)]
+#[test]
+fn issue_8_a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let day = ws.out().join("day");
+    let good = tree(&day);
+    let far = ws.path().join("far");
+    fs::create_dir_all(&far).unwrap();
+    fs::rename(day.join("frames"), ws.path().join("frames-moved")).unwrap();
+    std::os::unix::fs::symlink(&far, day.join("frames")).unwrap();
+
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert_eq!(
+        fs::read_dir(&far).unwrap().count(),
+        0,
+        "nothing is written on the far side of the link"
+    );
+    assert!(fs::symlink_metadata(day.join("frames")).unwrap().is_dir());
+    assert_eq!(tree(&day), good);
+}
+
+/// Issue 8, case 1: the output folder itself a link, or a folder that is not cityspec's.
+#[cfg(unix)]
+#[test]
+fn issue_8_a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
+    let ws = Workspace::with_spec("day");
+    let mine = ws.path().join("mine");
+    fs::create_dir_all(&mine).unwrap();
+    fs::write(mine.join("notes.txt"), b"mine").unwrap();
+    fs::create_dir_all(ws.out()).unwrap();
+    std::os::unix::fs::symlink(&mine, ws.out().join("day")).unwrap();
+    let err = build::build(&ws.spec("day"), &ws.options()).unwrap_err();
+    assert!(err.to_string().contains("is a symbolic link"), "{err}");
+    fs::remove_file(ws.out().join("day")).unwrap();
+    fs::rename(&mine, ws.out().join("day")).unwrap();
+    let err = build::build(&ws.spec("day"), &ws.options()).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("not the output folder of spec \"day\""),
+        "{err}"
+    );
+    assert_eq!(
+        tree(&ws.out().join("day")).into_keys().collect::<Vec<_>>(),
+        ["notes.txt"]
+    );
+}
+
+/// Issue 8, case 2: a cache entry whose output name is an absolute path wrote that file.
+#[test]
+fn issue_8_a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let good = tree(&ws.out());
+    let files = tree(&ws.out().join("day"));
+    let manifest = build::Manifest::from_bytes(&files["manifest.json"]).unwrap();
+    let plan = manifest
+        .artifacts
+        .iter()
+        .find(|a| a.path == "plan.json")
+        .unwrap();
+    let entry_file = ws
+        .cache()
+        .join("entries")
+        .join(format!("{}.json", plan.key));
+    let mut entry: serde_json::Value =
+        serde_json::from_slice(&fs::read(&entry_file).unwrap()).unwrap();
+    let evil = ws.path().join("evil.json");
+    let object = entry["outputs"]["plan.json"].clone();
+    entry["outputs"] = serde_json::json!({ evil.to_string_lossy(): object });
+    fs::write(&entry_file, serde_json::to_vec(&entry).unwrap()).unwrap();
+    fs::remove_dir_all(ws.out()).unwrap();
+
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let run = report.stages.iter().find(|s| s.stage == "plan").unwrap();
+    assert_eq!(run.status, StageStatus::Ran);
+    let why = run.repaired.as_deref().unwrap_or_default();
+    assert!(
+        why.contains("not a file this stage writes") && why.contains("evil.json"),
+        "{why}"
+    );
+    assert!(
+        !evil.exists(),
+        "nothing is written outside the output folder"
+    );
+    assert_eq!(tree(&ws.out()), good);
+    // The rebuilt entry is whole again.
+    assert!(
+        build::build(&ws.spec("day"), &ws.options())
+            .unwrap()
+            .up_to_date()
+    );
+}
+
+/// Issue 8, case 6: the no-op fast path returned before temporaries were swept, and
+/// orphans of a killed build survived.
+#[test]
+fn issue_8_no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
+    let ws = Workspace::with_spec("day");
+    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let good = tree(&ws.out());
+    let day = ws.out().join("day");
+    fs::write(day.join(".plan.png.cityspec-tmp-999-0"), b"").unwrap();
+    fs::write(day.join("frames/street/rgb/999999.png"), b"orphan").unwrap();
+    let staged = ws.out().join(".day~cityspec-stage-999-0");
+    fs::create_dir_all(staged.join("frames")).unwrap();
+    fs::write(staged.join("plan.png"), b"half").unwrap();
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert_eq!(report.ran().count(), 0);
+    assert!(report.written.is_empty(), "{:?}", report.written);
+    assert_eq!(
+        report.removed,
+        [
+            ".plan.png.cityspec-tmp-999-0",
+            "frames/street/rgb/999999.png"
+        ]
+    );
+    assert_eq!(tree(&ws.out()), good);
+
+    // A staging folder left beside an up-to-date folder: the fast path removes it too.
+    fs::create_dir_all(&staged).unwrap();
+    fs::write(staged.join("plan.png"), b"half").unwrap();
+    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    assert!(report.up_to_date());
+    assert_eq!(tree(&ws.out()), good);
+}

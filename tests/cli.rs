@@ -183,18 +183,13 @@ fn killed_build_leaves_no_partial_artifact() {
         std::thread::sleep(Duration::from_millis(delay_ms));
         let _ = child.kill();
         let _ = child.wait();
+        // The first build's folder appears whole or not at all.
         let out = ws.path().join("out/mirrored");
         if out.exists() {
-            for (name, bytes) in tree(&out) {
-                if name.starts_with('.') {
-                    continue; // a temporary, swept by the next build
-                }
-                assert_eq!(
-                    Some(&bytes),
-                    whole.get(&name),
-                    "{name} is partial after a kill at {delay_ms} ms"
-                );
-            }
+            assert!(
+                tree(&out) == whole,
+                "the folder is partial after a kill at {delay_ms} ms"
+            );
         }
         // Cache entries only ever point at whole objects: whatever was recorded verifies.
         let cache = cityspec::build::Cache::new(ws.path().join(".cityspec-cache"));
@@ -217,6 +212,7 @@ fn killed_build_leaves_no_partial_artifact() {
         whole,
         "the next build completes and sweeps temporaries"
     );
+    assert_eq!(leftovers(&ws.path().join("out")), Vec::<String>::new());
 }
 
 #[test]
@@ -233,4 +229,218 @@ fn facades_export_writes_the_builtin_set_in_the_cmp_layout() {
     for ext in ["jpg", "xml", "png"] {
         assert!(written.contains_key(&format!("builtin_00.{ext}")), "{ext}");
     }
+}
+
+/// Hidden entries beside the output folders (staging or old folders) besides lock files.
+fn leftovers(out_root: &std::path::Path) -> Vec<String> {
+    fs::read_dir(out_root)
+        .map(|d| {
+            d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n.starts_with('.') && !n.ends_with("~cityspec-lock"))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Issue 8, case 6 (case 4 of the brief): a build killed over an earlier one left files
+/// that disagree with `manifest.json`. Here the sync aborts the process right after its
+/// N-th change to the file system, for every N, so each kill lands mid-write for sure.
+#[test]
+fn issue_8_a_build_killed_after_any_write_leaves_the_old_folder_or_the_new() {
+    let ws = Workspace::with_spec("day");
+    let text = fs::read_to_string(ws.spec("day")).unwrap();
+    fs::write(
+        ws.path().join("specs/day-b.toml"),
+        text.replacen("seed = 7", "seed = 8", 1),
+    )
+    .unwrap();
+    let build = |spec: &str, out: &str, abort_after: Option<u64>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_cityspec"));
+        command
+            .current_dir(ws.path())
+            .args(["build", "-q", "--out", out, spec]);
+        if let Some(n) = abort_after {
+            command.env("CITYSPEC_TEST_ABORT_AFTER_WRITES", n.to_string());
+        }
+        command.output().unwrap()
+    };
+    assert!(build("specs/day.toml", "old", None).status.success());
+    assert!(build("specs/day-b.toml", "new", None).status.success());
+    let old = tree(&ws.path().join("old/day"));
+    let new = tree(&ws.path().join("new/day"));
+    assert_ne!(old, new);
+    let out = ws.path().join("out");
+    let mut kills = 0;
+    for n in 1u64.. {
+        // Over an earlier build (every n), and as the first build (the first few n).
+        for first in [false, true] {
+            if first && n > 3 {
+                continue;
+            }
+            let _ = fs::remove_dir_all(&out);
+            if !first {
+                common::copy_tree(&ws.path().join("old/day"), &out.join("day"));
+            }
+            let run = build("specs/day-b.toml", "out", Some(n));
+            if run.status.success() {
+                assert!(n > 3, "the sync makes more than 3 changes");
+                assert_eq!(tree(&out.join("day")), new);
+                assert_eq!(leftovers(&out), Vec::<String>::new());
+                eprintln!("{kills} kills survived, after 1..{n} writes");
+                assert!(kills > 20, "the sync wrote only {n} times");
+                return;
+            }
+            assert_eq!(run.status.code(), None, "{}", stderr(&run));
+            kills += 1;
+            let now = if out.join("day").exists() {
+                tree(&out.join("day"))
+            } else {
+                Default::default()
+            };
+            let before = if first { &Default::default() } else { &old };
+            assert!(
+                &now == before || now == new,
+                "after {n} writes the folder is a mix: {} files, {} of the old, {} of the new",
+                now.len(),
+                now.iter().filter(|(k, v)| old.get(*k) == Some(v)).count(),
+                now.iter().filter(|(k, v)| new.get(*k) == Some(v)).count()
+            );
+            // The next build completes and leaves nothing behind.
+            assert!(build("specs/day-b.toml", "out", None).status.success());
+            assert_eq!(tree(&out.join("day")), new, "after a kill at write {n}");
+            assert_eq!(leftovers(&out), Vec::<String>::new());
+        }
+    }
+}
+
+/// Issue 8, case 7: concurrent builds into one output folder with a cold cache failed
+/// ("cannot write out/day20/city.glb") in 11 of 13 rounds. Now they take turns.
+#[test]
+fn issue_8_concurrent_builds_of_one_output_folder_take_turns() {
+    let ws = Workspace::with_spec("day");
+    let reference = cityspec(
+        &ws,
+        &[
+            "build",
+            "-q",
+            "--out",
+            "ref",
+            "--cache",
+            "ref-cache",
+            "specs/day.toml",
+        ],
+    );
+    assert!(reference.status.success());
+    let whole = tree(&ws.path().join("ref/day"));
+    let mut waited = 0;
+    const ROUNDS: usize = 4;
+    for round in 0..ROUNDS {
+        let _ = fs::remove_dir_all(ws.path().join("out"));
+        let _ = fs::remove_dir_all(ws.path().join(".cityspec-cache"));
+        let children: Vec<_> = (0..3)
+            .map(|_| {
+                Command::new(env!("CARGO_BIN_EXE_cityspec"))
+                    .current_dir(ws.path())
+                    .args(["build", "-q", "-j1", "specs/day.toml"])
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        for child in children {
+            let out = child.wait_with_output().unwrap();
+            let text = stderr(&out);
+            assert!(out.status.success(), "round {round}: {text}");
+            if text.contains("waiting for another cityspec build of out/day") {
+                waited += 1;
+            }
+        }
+        assert_eq!(tree(&ws.path().join("out/day")), whole, "round {round}");
+        assert_eq!(leftovers(&ws.path().join("out")), Vec::<String>::new());
+    }
+    eprintln!("{ROUNDS} concurrent rounds of 3 builds, {waited} builds waited");
+    assert!(waited > 0, "some build must have waited for another");
+}
+
+/// Issue 8: a cache shared by concurrent builds (into separate folders) stays whole, and
+/// `verify --all` finds every cached stage rebuilding to its cached bytes.
+#[test]
+fn issue_8_a_shared_cache_stays_whole_under_concurrent_builds() {
+    let ws = Workspace::with_spec("day");
+    let children: Vec<_> = ["a", "b", "c"]
+        .iter()
+        .map(|out| {
+            Command::new(env!("CARGO_BIN_EXE_cityspec"))
+                .current_dir(ws.path())
+                .args(["build", "-q", "-j1", "--out", out, "specs/day.toml"])
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for child in children {
+        let out = child.wait_with_output().unwrap();
+        assert!(out.status.success(), "{}", stderr(&out));
+    }
+    let a = tree(&ws.path().join("a/day"));
+    assert_eq!(tree(&ws.path().join("b/day")), a);
+    assert_eq!(tree(&ws.path().join("c/day")), a);
+    let verify = cityspec(&ws, &["verify", "--all", "specs/day.toml"]);
+    assert_eq!(verify.status.code(), Some(0), "{}", stderr(&verify));
+    assert!(
+        stderr(&verify).contains("rechecked 12 of 12 cached stages: all rebuild"),
+        "{}",
+        stderr(&verify)
+    );
+}
+
+/// Issue 8, case 2: an entry naming another stage's valid object went unnoticed, and
+/// later builds said "up to date". `cityspec verify` reruns the stage and names it.
+#[test]
+fn issue_8_verify_names_a_poisoned_entry() {
+    let ws = Workspace::with_spec("day");
+    assert!(
+        cityspec(&ws, &["build", "-q", "specs/day.toml"])
+            .status
+            .success()
+    );
+    let sample = cityspec(
+        &ws,
+        &["verify", "--sample", "2", "--seed", "7", "specs/day.toml"],
+    );
+    assert_eq!(sample.status.code(), Some(0), "{}", stderr(&sample));
+    assert!(
+        stderr(&sample).contains("rechecked 2 of 12 cached stages (a sample, --seed 7)"),
+        "{}",
+        stderr(&sample)
+    );
+
+    let manifest = cityspec::build::Manifest::from_bytes(
+        &fs::read(ws.path().join("out/day/manifest.json")).unwrap(),
+    )
+    .unwrap();
+    let find = |path: &str| manifest.artifacts.iter().find(|a| a.path == path).unwrap();
+    let (plan_png, layout_png) = (find("plan.png"), find("layout.png"));
+    let entry_file = ws
+        .path()
+        .join(".cityspec-cache/entries")
+        .join(format!("{}.json", plan_png.key));
+    let mut entry: serde_json::Value =
+        serde_json::from_slice(&fs::read(&entry_file).unwrap()).unwrap();
+    entry["outputs"]["plan.png"] =
+        serde_json::json!({ "sha256": layout_png.sha256, "bytes": layout_png.bytes });
+    fs::write(&entry_file, serde_json::to_vec(&entry).unwrap()).unwrap();
+
+    let check = cityspec(&ws, &["verify", "--all", "specs/day.toml"]);
+    let text = stderr(&check);
+    assert_eq!(check.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("error: day: stage preview (cache entry")
+            && text.contains(&format!(
+                "plan.png is cached as {}",
+                &layout_png.sha256[..12]
+            ))
+            && text.contains("rechecked 12 of 12 cached stages: 1 differ"),
+        "{text}"
+    );
 }

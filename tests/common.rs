@@ -65,6 +65,7 @@ impl Workspace {
             progress: None,
             out_root: self.out(),
             cache_dir: self.cache(),
+            waiting: None,
         }
     }
 
@@ -91,14 +92,28 @@ pub fn copy_tree(from: &Path, to: &Path) {
     }
 }
 
-/// Every file below `dir` (relative path → bytes), sorted.
+/// Every file below `dir` (relative path → bytes), sorted; symbolic links as
+/// `-> target`. Builds' lock files (`.<name>~cityspec-lock`, empty, kept on purpose
+/// beside each output folder) are left out.
 pub fn tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
     let mut files = std::collections::BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
         for entry in fs::read_dir(&d).unwrap() {
             let path = entry.unwrap().path();
-            if path.is_dir() {
+            let kind = fs::symlink_metadata(&path).unwrap().file_type();
+            if path.to_string_lossy().ends_with("~cityspec-lock") {
+                continue;
+            }
+            if kind.is_symlink() {
+                let rel = path
+                    .strip_prefix(dir)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned();
+                let target = fs::read_link(&path).unwrap();
+                files.insert(rel, format!("-> {}", target.display()).into_bytes());
+            } else if kind.is_dir() {
                 stack.push(path);
             } else {
                 let rel = path
@@ -111,4 +126,33 @@ pub fn tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
         }
     }
     files
+}
+
+/// The artifacts of a manifest's output folder: its `manifest.json` lists exactly the
+/// other files, each with its bytes' hash.
+pub fn assert_matches_manifest(out: &Path) {
+    let files = tree(out);
+    let manifest = cityspec::build::Manifest::from_bytes(&files["manifest.json"])
+        .unwrap_or_else(|| panic!("{}: manifest.json does not parse", out.display()));
+    let listed: std::collections::BTreeMap<&str, &str> = manifest
+        .artifacts
+        .iter()
+        .map(|a| (a.path.as_str(), a.sha256.as_str()))
+        .collect();
+    let found: Vec<&str> = files
+        .keys()
+        .map(String::as_str)
+        .filter(|p| *p != "manifest.json")
+        .collect();
+    assert_eq!(
+        found,
+        listed.keys().copied().collect::<Vec<_>>(),
+        "{}: files besides the manifest's",
+        out.display()
+    );
+    for (path, bytes) in &files {
+        if let Some(sha) = listed.get(path.as_str()) {
+            assert_eq!(&cityspec::hash::sha256_hex(bytes), sha, "{path}");
+        }
+    }
 }

@@ -47,6 +47,7 @@ pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::build::Bui
             progress: None,
             out_root: out.to_path_buf(),
             cache_dir: cache.to_path_buf(),
+            waiting: None,
         },
     )
     .unwrap()

@@ -135,6 +135,33 @@ impl Cache {
     /// The outputs recorded under `key`, each verified against its hash, read into memory
     /// or kept as references (`load`).
     pub fn get(&self, key: &str, load: Load) -> Result<Outputs, Miss> {
+        self.get_checked(key, load, |_| Ok(()))
+    }
+
+    /// [`Cache::get`] for stage `stage`, whose output names must pass `names` (see
+    /// [`super::output_names`]): an entry of another stage, or one naming a file its stage
+    /// never writes, is corrupt before any of its objects is read.
+    pub fn get_stage(
+        &self,
+        stage: &str,
+        key: &str,
+        load: Load,
+        names: &super::output_names::OutputNames,
+    ) -> Result<Outputs, Miss> {
+        self.get_checked(key, load, |entry| {
+            if entry.stage != stage {
+                return Err(format!("it records stage {:?}, not {stage:?}", entry.stage));
+            }
+            names.check(entry.outputs.keys().map(String::as_str))
+        })
+    }
+
+    fn get_checked(
+        &self,
+        key: &str,
+        load: Load,
+        accept: impl FnOnce(&Entry) -> Result<(), String>,
+    ) -> Result<Outputs, Miss> {
         let entry_path = self.entry_path(key);
         let text = match fs::read(&entry_path) {
             Ok(text) => text,
@@ -148,6 +175,7 @@ impl Cache {
                 entry_path.display()
             )));
         }
+        accept(&entry).map_err(|why| Miss::Corrupt(format!("{}: {why}", entry_path.display())))?;
         let mut outputs = Outputs::new();
         for (name, object) in entry.outputs {
             let bytes = self
@@ -218,7 +246,8 @@ impl Cache {
         self.root.join("objects").join(&sha256[..2]).join(sha256)
     }
 
-    fn entry_path(&self, key: &str) -> PathBuf {
+    /// Where the entry of `key` lives.
+    pub fn entry_path(&self, key: &str) -> PathBuf {
         self.root.join("entries").join(format!("{key}.json"))
     }
 }

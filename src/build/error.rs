@@ -42,6 +42,10 @@ pub enum BuildError {
     /// Writing the output folder failed.
     #[error("cannot write {}: {source}", path.display())]
     Output { path: PathBuf, source: io::Error },
+    /// The output folder is one cityspec must not replace (a link, a folder of the
+    /// user's), or a stage named a path outside it.
+    #[error("{}: {message}", path.display())]
+    OutputFolder { path: PathBuf, message: String },
     /// Writing the cache failed.
     #[error("cannot write the cache at {}: {source}", path.display())]
     Cache { path: PathBuf, source: io::Error },

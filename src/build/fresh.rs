@@ -7,17 +7,22 @@
 //! file (size, mtime); when all agree, nothing is read. Like cargo's fingerprints this trusts
 //! a file whose size and mtime are unchanged; the record lives in the cache folder and never
 //! in a key or an artifact. Anything else falls back to the full build, which re-verifies.
+//!
+//! The record also holds the mtime of every folder of the output folder: a file added,
+//! removed or renamed anywhere (a temporary or an orphan) changes its folder's mtime, so
+//! the fast path never leaves a stray file in place; the full path removes it.
 
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
-use std::time::UNIX_EPOCH;
 
 use serde::{Deserialize, Serialize};
 
 use super::atomic::write_atomic;
 use super::cache::Cache;
 use super::manifest::{Artifact, Manifest};
+use super::out_dir::{folders_of, mtime_ns};
+use super::output_names::is_safe_relative;
 use crate::hash::sha256_hex;
 
 /// What the last build left in one output folder.
@@ -25,6 +30,10 @@ use crate::hash::sha256_hex;
 pub struct FreshRecord {
     /// Path (relative, `/`-separated, `manifest.json` included) → size, mtime, sha256.
     pub files: BTreeMap<String, FileStamp>,
+    /// Folder (relative, `""` for the output folder itself) → mtime. A record without
+    /// folders (from an older cityspec) never matches.
+    #[serde(default)]
+    pub dirs: BTreeMap<String, u128>,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -39,15 +48,17 @@ fn record_path(cache: &Cache, out_dir: &Path) -> std::path::PathBuf {
     cache.root().join("fresh").join(format!("{name}.json"))
 }
 
-fn stamp(path: &Path) -> Option<(u64, u128)> {
-    let meta = fs::metadata(path).ok()?;
-    let mtime = meta
-        .modified()
-        .ok()?
-        .duration_since(UNIX_EPOCH)
-        .ok()?
-        .as_nanos();
-    Some((meta.len(), mtime))
+/// Size and mtime of a regular file, or of a folder (`dir`), never through a symbolic link
+/// at `path` itself (its parents are vouched for by their own recorded stamps).
+fn stamp(path: &Path, dir: bool) -> Option<(u64, u128)> {
+    let meta = fs::symlink_metadata(path).ok()?;
+    let kind_ok = if dir { meta.is_dir() } else { meta.is_file() };
+    kind_ok.then(|| (meta.len(), mtime_ns(&meta)))
+}
+
+/// The record of the last build into `out_dir`, if any.
+pub fn load(cache: &Cache, out_dir: &Path) -> Option<FreshRecord> {
+    serde_json::from_slice(&fs::read(record_path(cache, out_dir)).ok()?).ok()
 }
 
 /// The manifest of an up-to-date output folder, or `None` when anything may have changed.
@@ -57,12 +68,14 @@ pub fn check(
     name: &str,
     stages: &[(&'static str, &str)],
 ) -> Option<Manifest> {
-    let record: FreshRecord =
-        serde_json::from_slice(&fs::read(record_path(cache, out_dir)).ok()?).ok()?;
+    let record = load(cache, out_dir)?;
     let mut artifacts = Vec::new();
     for (stage, key) in stages {
         let entry = cache.entry(key)?;
         for (path, object) in &entry.outputs {
+            if !is_safe_relative(path) {
+                return None;
+            }
             artifacts.push(Artifact {
                 path: path.clone(),
                 sha256: object.sha256.clone(),
@@ -86,13 +99,27 @@ pub fn check(
     let mut count = 0;
     for (path, sha) in expected {
         let recorded = record.files.get(path)?;
-        let (bytes, mtime_ns) = stamp(&out_dir.join(path))?;
+        let (bytes, mtime_ns) = stamp(&out_dir.join(path), false)?;
         if recorded.sha256 != sha || recorded.bytes != bytes || recorded.mtime_ns != mtime_ns {
             return None;
         }
         count += 1;
     }
-    (count == record.files.len()).then_some(manifest)
+    if count != record.files.len() {
+        return None;
+    }
+    let dirs = folders_of(manifest.artifacts.iter().map(|a| a.path.as_str()));
+    if dirs.len() != record.dirs.len() {
+        return None;
+    }
+    for dir in &dirs {
+        let recorded = record.dirs.get(dir)?;
+        let (_, mtime_ns) = stamp(&out_dir.join(dir), true)?;
+        if *recorded != mtime_ns {
+            return None;
+        }
+    }
+    Some(manifest)
 }
 
 /// Records what the output folder holds after a build (best effort: a failure only costs
@@ -105,7 +132,7 @@ pub fn record(cache: &Cache, out_dir: &Path, manifest: &Manifest, manifest_bytes
         .map(|a| (a.path.clone(), a.sha256.clone()))
         .chain([("manifest.json".to_owned(), sha256_hex(manifest_bytes))]);
     for (path, sha256) in items {
-        let Some((bytes, mtime_ns)) = stamp(&out_dir.join(&path)) else {
+        let Some((bytes, mtime_ns)) = stamp(&out_dir.join(&path), false) else {
             return;
         };
         files.insert(
@@ -117,7 +144,14 @@ pub fn record(cache: &Cache, out_dir: &Path, manifest: &Manifest, manifest_bytes
             },
         );
     }
-    if let Ok(text) = serde_json::to_vec(&FreshRecord { files }) {
+    let mut dirs = BTreeMap::new();
+    for dir in folders_of(manifest.artifacts.iter().map(|a| a.path.as_str())) {
+        let Some((_, mtime_ns)) = stamp(&out_dir.join(&dir), true) else {
+            return;
+        };
+        dirs.insert(dir, mtime_ns);
+    }
+    if let Ok(text) = serde_json::to_vec(&FreshRecord { files, dirs }) {
         let _ = write_atomic(&record_path(cache, out_dir), &text);
     }
 }

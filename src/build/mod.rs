@@ -2,9 +2,10 @@
 //!
 //! The only code that knows the stage order, reads and writes files and keeps the cache.
 //! For each spec it reads the TOML, validates it ([`crate::spec::load`]), computes every
-//! stage key, pulls the artifacts through the cache ([`pipeline`]) and writes them into
-//! `<out>/<name>/` atomically, `manifest.json` last. Files that already hold the right bytes
-//! are left alone, so a rebuild with nothing changed writes nothing.
+//! stage key, pulls the artifacts through the cache ([`pipeline`]) and puts them into
+//! `<out>/<name>/` ([`out_dir`]): the folder is replaced whole or not at all, under a lock
+//! that makes builds of one folder take turns. Files that already hold the right bytes are
+//! kept, so a rebuild with nothing changed writes nothing.
 
 mod atomic;
 mod cache;
@@ -14,13 +15,15 @@ mod frames;
 mod fresh;
 mod inputs;
 mod manifest;
+mod out_dir;
+mod output_names;
 mod pipeline;
 mod report;
 mod stage_key;
+mod verify;
 
 use std::collections::BTreeMap;
 use std::fs;
-use std::io;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -28,14 +31,20 @@ pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
+pub use output_names::{OutputNames, is_safe_relative};
 pub use pipeline::widths_px;
 pub use report::{BuildReport, StageRun, StageStatus};
+pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
 use crate::spec::{self, FsWorld, Spec, SpecSource};
+use out_dir::OutDir;
 use pipeline::Pipeline;
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
 pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
+
+/// Told that another build holds the output folder (its path) and this one waits its turn.
+pub type Waiting = std::sync::Arc<dyn Fn(&Path) + Send + Sync>;
 
 /// Where a build writes.
 #[derive(Clone)]
@@ -46,6 +55,8 @@ pub struct BuildOptions {
     pub cache_dir: PathBuf,
     /// Called as frames are rendered (the CLI draws a progress bar).
     pub progress: Option<Progress>,
+    /// Called when this build must wait for another build of the same output folder.
+    pub waiting: Option<Waiting>,
 }
 
 impl Default for BuildOptions {
@@ -54,6 +65,7 @@ impl Default for BuildOptions {
             out_root: PathBuf::from("out"),
             cache_dir: PathBuf::from(".cityspec-cache"),
             progress: None,
+            waiting: None,
         }
     }
 }
@@ -135,7 +147,14 @@ pub fn build_spec(
         &cache,
         &progress,
     );
-    let out_dir = options.out_root.join(&spec.name);
+    let waiting = |dir: &Path| {
+        if let Some(report) = &options.waiting {
+            report(dir);
+        }
+    };
+    // Held until this build returns: builds of one output folder take turns.
+    let out = OutDir::open(&options.out_root, &spec.name, &waiting)?;
+    let out_dir = out.path().to_path_buf();
     let stages = pipeline.artifact_stages();
     if let Some(manifest) = fresh::check(&cache, &out_dir, &spec.name, &stages) {
         let lookup = start.elapsed();
@@ -165,88 +184,31 @@ pub fn build_spec(
         });
     }
     let artifacts = pipeline.artifacts()?;
-    let output = |source: io::Error, file: &Path| BuildError::Output {
-        path: file.to_path_buf(),
-        source,
-    };
-    let mut folders: Vec<PathBuf> = artifacts
-        .iter()
-        .filter_map(|a| out_dir.join(&a.path).parent().map(Path::to_path_buf))
-        .collect();
-    folders.push(out_dir.clone());
-    folders.sort();
-    folders.dedup();
-    for folder in &folders {
-        sweep_temporaries(folder).map_err(|e| output(e, folder))?;
-    }
-
-    let old = fs::read(out_dir.join("manifest.json"))
-        .ok()
-        .and_then(|b| Manifest::from_bytes(&b));
-    let mut written = Vec::new();
-    let mut unchanged = Vec::new();
     let mut manifest = Manifest {
         name: spec.name.clone(),
-        artifacts: Vec::new(),
+        artifacts: artifacts
+            .iter()
+            .map(|artifact| Artifact {
+                path: artifact.path.clone(),
+                sha256: artifact.blob.sha256(),
+                bytes: artifact.blob.size(),
+                stage: artifact.stage.to_owned(),
+                key: artifact.key.clone(),
+            })
+            .collect(),
     };
-    for artifact in &artifacts {
-        let file = out_dir.join(&artifact.path);
-        let sha256 = artifact.blob.sha256();
-        let size = artifact.blob.size();
-        // One file at a time: a stored object is read only when the folder lacks it.
-        let same = fs::metadata(&file).is_ok_and(|m| m.len() == size)
-            && fs::read(&file).is_ok_and(|old| crate::hash::sha256_hex(&old) == sha256);
-        if same {
-            unchanged.push(artifact.path.clone());
-        } else {
-            match &artifact.blob {
-                Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => write_atomic(&file, bytes),
-                Blob::Stored(object, None) => match cache.read_object(object) {
-                    Ok(bytes) => write_atomic(&file, &bytes),
-                    Err(why) => Err(io::Error::other(format!("cache object {why}"))),
-                },
-            }
-            .map_err(|e| output(e, &file))?;
-            written.push(artifact.path.clone());
-        }
-        manifest.artifacts.push(Artifact {
-            path: artifact.path.clone(),
-            sha256,
-            bytes: size,
-            stage: artifact.stage.to_owned(),
-            key: artifact.key.clone(),
-        });
-    }
     manifest.artifacts.sort_by(|a, b| a.path.cmp(&b.path));
-
-    // Files an earlier build wrote that this one no longer produces would be stale.
-    let mut removed = Vec::new();
-    for stale in old.iter().flat_map(|m| &m.artifacts) {
-        let still = manifest.artifacts.iter().any(|a| a.path == stale.path);
-        let file = out_dir.join(&stale.path);
-        if !still && !stale.path.contains("..") && file.is_file() {
-            fs::remove_file(&file).map_err(|e| output(e, &file))?;
-            removed.push(stale.path.clone());
-        }
-    }
-
-    let manifest_file = out_dir.join("manifest.json");
     let bytes = manifest.to_bytes();
-    if fs::read(&manifest_file).is_ok_and(|old| old == bytes) {
-        unchanged.push("manifest.json".to_owned());
-    } else {
-        write_atomic(&manifest_file, &bytes).map_err(|e| output(e, &manifest_file))?;
-        written.push("manifest.json".to_owned());
-    }
-
+    let record = fresh::load(&cache, &out_dir);
+    let synced = out.sync(&artifacts, &bytes, &cache, record.as_ref())?;
     fresh::record(&cache, &out_dir, &manifest, &bytes);
     Ok(BuildReport {
         name: spec.name.clone(),
         out_dir,
         stages: pipeline.runs,
-        written,
-        unchanged,
-        removed,
+        written: synced.written,
+        unchanged: synced.unchanged,
+        removed: synced.removed,
         warnings: pipeline.warnings,
         triangles: pipeline.triangles,
         elapsed: start.elapsed(),

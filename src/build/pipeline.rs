@@ -14,10 +14,11 @@ use std::time::Instant;
 use image::RgbImage;
 
 use super::BuildError;
-use super::cache::{Blob, Cache, Load, Miss, Outputs};
+use super::cache::{Blob, Cache, Load, Miss, ObjectRef, Outputs};
 use super::codec;
 use super::frames;
 use super::inputs::{FacadeInput, LayoutSource};
+use super::output_names::OutputNames;
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
@@ -88,6 +89,11 @@ pub struct Pipeline<'a> {
     place: Option<Slot<Vec<Building>>>,
     plan: Option<Slot<()>>,
     preview: Option<Slot<()>>,
+    /// Keys of stages `cityspec verify` reruns despite their cache entry.
+    recheck: Option<String>,
+    /// Set while a rechecked stage runs: it stores nothing in the cache.
+    rechecking: bool,
+    verdict: Option<Option<String>>,
 }
 
 impl<'a> Pipeline<'a> {
@@ -130,7 +136,59 @@ impl<'a> Pipeline<'a> {
             place: None,
             plan: None,
             preview: None,
+            recheck: None,
+            rechecking: false,
+            verdict: None,
         }
+    }
+
+    /// Every cached stage's (name, key), in evaluation order.
+    pub fn all_stages(&self) -> Vec<(&'static str, String)> {
+        let k = &self.keys;
+        let mut stages: Vec<(&'static str, String)> = [
+            ("layout", &k.layout),
+            ("mirror", &k.mirror),
+            ("parse", &k.parse),
+            ("lamps", &k.lamps),
+            ("facades", &k.facades),
+            ("place", &k.place),
+            ("plan", &k.plan),
+            ("preview", &k.preview),
+            ("export", &k.export),
+            ("overview", &k.overview),
+        ]
+        .into_iter()
+        .map(|(stage, key)| (stage, key.clone()))
+        .collect();
+        stages.extend(k.frames.iter().map(|key| ("frames", key.clone())));
+        stages
+    }
+
+    /// Runs stage `stage` (key `key`) again, its inputs from the cache, and compares its
+    /// outputs with its cache entry: `None` when they match, else what differs.
+    pub fn recheck(&mut self, stage: &str, key: &str) -> Result<Option<String>, BuildError> {
+        self.recheck = Some(key.to_owned());
+        self.verdict = None;
+        match stage {
+            "layout" => self.need_layout(),
+            "mirror" => self.need_mirror(),
+            "parse" => self.need_parse(),
+            "lamps" => self.need_lamps(),
+            "facades" => self.need_facades(),
+            "place" => self.need_place(),
+            "plan" => self.need_plan(),
+            "preview" => self.need_preview(),
+            "export" => self.need_export(),
+            "overview" => self.need_overview(),
+            _ => match self.keys.frames.iter().position(|k| k == key) {
+                Some(camera) => self.need_frames(camera),
+                None => Ok(()),
+            },
+        }?;
+        self.recheck = None;
+        Ok(self.verdict.take().unwrap_or_else(|| {
+            Some("already evaluated from the cache before it could be rechecked".to_owned())
+        }))
     }
 
     /// The artifact stages' (name, key), in the order [`Pipeline::artifacts`] evaluates them.
@@ -635,7 +693,14 @@ impl<'a> Pipeline<'a> {
                     &input,
                     &poses,
                     |name, bytes| {
-                        let object = p.cache.put_object(&bytes)?;
+                        let object = if p.rechecking {
+                            ObjectRef {
+                                sha256: crate::hash::sha256_hex(&bytes),
+                                bytes: bytes.len() as u64,
+                            }
+                        } else {
+                            p.cache.put_object(&bytes)?
+                        };
                         outputs.insert(name, Blob::Stored(object, None));
                         Ok(())
                     },
@@ -660,50 +725,66 @@ impl<'a> Pipeline<'a> {
         gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
         run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
     ) -> Result<(), BuildError> {
+        let names = self.output_names(name, &key);
+        if self.recheck.as_deref() == Some(key.as_str()) {
+            // `cityspec verify`: run the stage whatever the cache holds, and compare.
+            let cached = self.cache.get_stage(name, &key, Load::References, &names);
+            let inputs = gather(self)?;
+            self.rechecking = true;
+            let ran = run(self, inputs);
+            self.rechecking = false;
+            let (value, outputs) = ran?;
+            self.verdict = Some(super::verify::compare(&cached, &outputs));
+            *slot(self) = Some(Slot {
+                outputs,
+                value: Some(Arc::new(value)),
+            });
+            return Ok(());
+        }
         if slot(self).is_some() {
             return Ok(());
         }
         let lookup = Instant::now();
-        let (filled, status, repaired, time) = match self.cache.get(&key, load) {
-            Ok(outputs) => (
-                Slot {
-                    outputs,
-                    value: None,
-                },
-                StageStatus::Cached,
-                None,
-                lookup.elapsed(),
-            ),
-            Err(miss) => {
-                let repaired = match miss {
-                    Miss::Absent => None,
-                    Miss::Corrupt(why) => Some(why),
-                };
-                let inputs = gather(self)?;
-                let start = Instant::now();
-                let (value, mut outputs) = run(self, inputs)?;
-                let refs =
-                    self.cache
-                        .put(name, &key, &outputs)
-                        .map_err(|source| BuildError::Cache {
+        let (filled, status, repaired, time) =
+            match self.cache.get_stage(name, &key, load, &names) {
+                Ok(outputs) => (
+                    Slot {
+                        outputs,
+                        value: None,
+                    },
+                    StageStatus::Cached,
+                    None,
+                    lookup.elapsed(),
+                ),
+                Err(miss) => {
+                    let repaired = match miss {
+                        Miss::Absent => None,
+                        Miss::Corrupt(why) => Some(why),
+                    };
+                    let inputs = gather(self)?;
+                    let start = Instant::now();
+                    let (value, mut outputs) = run(self, inputs)?;
+                    let refs = self.cache.put(name, &key, &outputs).map_err(|source| {
+                        BuildError::Cache {
                             path: self.cache.root().to_path_buf(),
                             source,
-                        })?;
-                // Each output now knows its object, so its hash is not computed again;
-                // bytes the stage made stay in memory for the driver to write (a
-                // streamed stage's never were).
-                for (name, object) in refs {
-                    if let Some(blob) = outputs.remove(&name) {
-                        outputs.insert(name, blob.stored(object));
+                        }
+                    })?;
+                    // Each output now knows its object, so its hash is not computed again;
+                    // bytes the stage made stay in memory for the driver to write (a
+                    // streamed stage's never were).
+                    for (name, object) in refs {
+                        if let Some(blob) = outputs.remove(&name) {
+                            outputs.insert(name, blob.stored(object));
+                        }
                     }
+                    let slot = Slot {
+                        outputs,
+                        value: Some(Arc::new(value)),
+                    };
+                    (slot, StageStatus::Ran, repaired, start.elapsed())
                 }
-                let slot = Slot {
-                    outputs,
-                    value: Some(Arc::new(value)),
-                };
-                (slot, StageStatus::Ran, repaired, start.elapsed())
-            }
-        };
+            };
         self.runs.push(StageRun {
             stage: name,
             key,
@@ -713,6 +794,14 @@ impl<'a> Pipeline<'a> {
         });
         *slot(self) = Some(filled);
         Ok(())
+    }
+}
+
+impl Pipeline<'_> {
+    /// The names stage `stage` (of key `key`, which tells camera paths apart) writes.
+    fn output_names(&self, stage: &str, key: &str) -> OutputNames {
+        let camera = self.keys.frames.iter().position(|k| k == key);
+        OutputNames::of(stage, camera.map(|i| self.spec.cameras[i].name.as_str()))
     }
 }
 

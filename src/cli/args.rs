@@ -48,6 +48,36 @@ pub enum Command {
         #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
         jobs: Option<u16>,
     },
+    /// Check the cache: rerun a seeded sample of a spec's cached stages (or all of them)
+    /// and compare their bytes with the cached ones, like Nix's `--check`.
+    ///
+    /// Finds entries that name whole, valid objects which are not what their stage makes
+    /// (a poisoned shared cache, or a stage whose code changed without a `VERSION` bump).
+    /// Each rechecked stage takes its inputs from the cache, so a bad entry is named by its
+    /// own stage. Exit code 1 when any entry differs or is damaged.
+    #[command(
+        after_help = "Examples:\n  cityspec verify specs/day.toml                 # 3 stages, a fresh seed (printed)\n  cityspec verify --all specs/day.toml           # every cached stage\n  cityspec verify --sample 5 --seed 42 specs/*.toml"
+    )]
+    Verify {
+        /// Spec files (TOML).
+        #[arg(required = true, value_name = "SPEC")]
+        specs: Vec<PathBuf>,
+        /// Stage cache folder.
+        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        cache: PathBuf,
+        /// Recheck every cached stage.
+        #[arg(long, conflicts_with = "sample")]
+        all: bool,
+        /// How many cached stages of each spec to recheck.
+        #[arg(long, value_name = "N", default_value_t = 3)]
+        sample: usize,
+        /// Seed of the sample (default: from the clock, printed so a run can be repeated).
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+        /// Worker threads (default: one per core).
+        #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
+        jobs: Option<u16>,
+    },
     /// Check specs (syntax, schema, meaning, input files) without building; report every
     /// error with file:line:col and key path.
     #[command(after_help = "Example:\n  cityspec validate specs/*.toml")]

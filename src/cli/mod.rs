@@ -45,19 +45,11 @@ pub fn run() -> ExitCode {
                 out_root,
                 cache_dir: cache,
                 progress,
+                waiting: Some(print::waiting_line()),
             };
-            let pool = match rayon::ThreadPoolBuilder::new()
-                .num_threads(jobs.map_or(0, usize::from))
-                .build()
-            {
+            let pool = match pool(jobs) {
                 Ok(pool) => pool,
-                Err(e) => {
-                    eprintln!(
-                        "error: cannot start {} worker threads: {e}",
-                        jobs.map_or(0, usize::from)
-                    );
-                    return ExitCode::from(1);
-                }
+                Err(code) => return code,
             };
             match pool.install(|| build::build_all(&specs, &options)) {
                 Ok(reports) => {
@@ -65,6 +57,40 @@ pub fn run() -> ExitCode {
                         out.report(report);
                     }
                     ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
+            }
+        }
+        Command::Verify {
+            specs,
+            cache,
+            all,
+            sample,
+            seed,
+            jobs,
+        } => {
+            let seed = seed.unwrap_or_else(clock_seed);
+            let options = build::VerifyOptions {
+                cache_dir: cache,
+                all,
+                sample,
+                seed,
+            };
+            let pool = match pool(jobs) {
+                Ok(pool) => pool,
+                Err(code) => return code,
+            };
+            match pool.install(|| build::verify_all(&specs, &options)) {
+                Ok(reports) => {
+                    let failed = reports.iter().any(|r| r.failed().next().is_some());
+                    for report in &reports {
+                        out.verify_report(report, (!all).then_some(seed));
+                    }
+                    if failed {
+                        ExitCode::from(1)
+                    } else {
+                        ExitCode::SUCCESS
+                    }
                 }
                 Err(errors) => exit_for(&errors, &out),
             }
@@ -100,6 +126,27 @@ pub fn run() -> ExitCode {
             ExitCode::SUCCESS
         }
     }
+}
+
+/// A worker pool of `jobs` threads (default: one per core).
+fn pool(jobs: Option<u16>) -> Result<rayon::ThreadPool, ExitCode> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.map_or(0, usize::from))
+        .build()
+        .map_err(|e| {
+            eprintln!(
+                "error: cannot start {} worker threads: {e}",
+                jobs.map_or(0, usize::from)
+            );
+            ExitCode::from(1)
+        })
+}
+
+/// A sample seed for `verify` when none is given: a different sample on every run.
+fn clock_seed() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos() as u64 % 1_000_000)
 }
 
 fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {

@@ -1,6 +1,6 @@
 //! Terminal output: build summaries, per-stage lines and rendered errors, on stderr.
 
-use crate::build::{BuildError, BuildReport, StageStatus};
+use crate::build::{BuildError, BuildReport, StageStatus, VerifyReport};
 
 pub struct Printer {
     pub quiet: bool,
@@ -75,6 +75,45 @@ impl Printer {
         }
     }
 
+    /// One spec's cache check: every entry that differs, then a summary line.
+    pub fn verify_report(&self, report: &VerifyReport, seed: Option<u64>) {
+        for verdict in &report.verdicts {
+            match &verdict.problem {
+                Some(problem) => eprintln!(
+                    "error: {}: stage {} (cache entry {}) does not rebuild to its cached \
+                     bytes: {problem}; remove the entry and build again",
+                    report.name,
+                    verdict.stage,
+                    verdict.entry.display()
+                ),
+                None if self.verbose => eprintln!(
+                    "  ok     {:<8} key {}",
+                    verdict.stage,
+                    verdict.key.get(..12).unwrap_or(&verdict.key)
+                ),
+                None => {}
+            }
+        }
+        let failed = report.failed().count();
+        let sample = match seed {
+            Some(seed) => format!(" (a sample, --seed {seed})"),
+            None => String::new(),
+        };
+        if failed > 0 || !self.quiet {
+            eprintln!(
+                "{}: rechecked {} of {} cached stages{sample}: {}",
+                report.name,
+                report.verdicts.len(),
+                report.cached,
+                if failed == 0 {
+                    "all rebuild to their cached bytes".to_owned()
+                } else {
+                    format!("{failed} differ")
+                }
+            );
+        }
+    }
+
     pub fn error(&self, error: &BuildError) {
         match error {
             BuildError::Spec(errors) => eprint!("{}", crate::spec::render(errors, self.color)),
@@ -111,5 +150,16 @@ pub fn progress_line(terminal: bool) -> crate::build::Progress {
             }
             *state = Some((path, started, last));
         }
+    })
+}
+
+/// Says that this build waits for another build of the same output folder (even with
+/// `--quiet`: a build that seems to hang should say why).
+pub fn waiting_line() -> crate::build::Waiting {
+    std::sync::Arc::new(|dir: &std::path::Path| {
+        eprintln!(
+            "waiting for another cityspec build of {} to finish…",
+            dir.display()
+        );
     })
 }

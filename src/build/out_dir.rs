@@ -1,0 +1,487 @@
+//! The output folder: a build's artifacts → `<out>/<name>/`, replaced whole or not at all.
+//!
+//! The folder is closed. Every path written is one of the stage's known relative names
+//! ([`super::output_names`]), checked again here; nothing is read from or trusted in the
+//! old folder except the bytes of regular files found by walking it without following
+//! symbolic links; the old `manifest.json` only tells a cityspec output folder from a
+//! foreign one.
+//!
+//! A build that changes anything writes the new folder beside the old one, in a hidden
+//! staging folder `<out>/.<name>~cityspec-stage-…`: unchanged files are hard links to the
+//! old ones (no bytes copied), new ones are written, `manifest.json` last. Then one
+//! `renameat2(RENAME_EXCHANGE)` (macOS: `RENAME_SWAP`) swaps the two folders, and the old
+//! one is deleted. So after a kill at any moment `<out>/<name>/` holds the whole previous
+//! build or the whole new one. Where the exchange is not available the swap is two renames
+//! through `<out>/.<name>~cityspec-old-…`, and a kill between them is rolled back by the
+//! next build. Leftover staging and old folders are removed by the next build, before its
+//! no-op fast path.
+//!
+//! Builds of one output folder serialize on `<out>/.<name>~cityspec-lock` (an OS file
+//! lock, released when the process ends however it ends). The lock file stays.
+//!
+//! Test hook: `CITYSPEC_TEST_ABORT_AFTER_WRITES=N` aborts the process right after the
+//! N-th change the sync makes to the file system, so a test can kill a build at every step.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs::{self, File, TryLockError};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::UNIX_EPOCH;
+
+use super::BuildError;
+use super::cache::{Blob, Cache};
+use super::fresh::FreshRecord;
+use super::manifest::Manifest;
+use super::output_names::is_safe_relative;
+use super::pipeline::ArtifactOut;
+use crate::hash::sha256_hex;
+
+/// One spec's output folder, locked for this build.
+pub struct OutDir {
+    root: PathBuf,
+    name: String,
+    dir: PathBuf,
+    /// Held until the build ends.
+    _lock: File,
+    faults: Faults,
+}
+
+/// What a sync did, by relative path.
+#[derive(Debug, Default)]
+pub struct Synced {
+    pub written: Vec<String>,
+    pub unchanged: Vec<String>,
+    pub removed: Vec<String>,
+}
+
+/// The regular files, folders and anything else (symbolic links, sockets) of the old
+/// folder, found without following links.
+#[derive(Default)]
+struct OldTree {
+    files: BTreeMap<String, (u64, u128)>,
+    dirs: BTreeSet<String>,
+    others: Vec<String>,
+}
+
+impl OutDir {
+    /// Locks `<root>/<name>/` for this build (telling `waiting` when another build holds
+    /// it), removes what a killed build left beside it, and checks that the folder, if
+    /// present, is a cityspec output folder of this spec.
+    pub fn open(root: &Path, name: &str, waiting: &dyn Fn(&Path)) -> Result<OutDir, BuildError> {
+        let io_err = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| BuildError::Output { path, source }
+        };
+        fs::create_dir_all(root).map_err(io_err(root))?;
+        let lock_path = root.join(format!(".{name}~cityspec-lock"));
+        let lock = File::options()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(io_err(&lock_path))?;
+        match lock.try_lock() {
+            Ok(()) => {}
+            Err(TryLockError::WouldBlock) => {
+                waiting(&root.join(name));
+                lock.lock().map_err(io_err(&lock_path))?;
+            }
+            Err(TryLockError::Error(e)) => return Err(io_err(&lock_path)(e)),
+        }
+        let out = OutDir {
+            root: root.to_path_buf(),
+            name: name.to_owned(),
+            dir: root.join(name),
+            _lock: lock,
+            faults: Faults::from_env(),
+        };
+        out.recover().map_err(io_err(root))?;
+        out.check_is_ours()?;
+        Ok(out)
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Makes the folder hold exactly `artifacts` and `manifest.json` (`manifest`), and
+    /// nothing else; writes nothing when it already does.
+    pub fn sync(
+        &self,
+        artifacts: &[ArtifactOut],
+        manifest: &[u8],
+        cache: &Cache,
+        record: Option<&FreshRecord>,
+    ) -> Result<Synced, BuildError> {
+        let io_err = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| BuildError::Output { path, source }
+        };
+        for artifact in artifacts {
+            if !is_safe_relative(&artifact.path) || artifact.path == "manifest.json" {
+                return Err(self.refuse(format!(
+                    "stage {} names output {:?}, which is not a path inside the folder",
+                    artifact.stage, artifact.path
+                )));
+            }
+        }
+        let old = walk(&self.dir).map_err(io_err(&self.dir))?;
+        // An artifact whose old file holds its bytes is kept (hard-linked when the folder
+        // is replaced); the recorded hash of a file whose size and mtime are unchanged is
+        // trusted, as by the no-op fast path.
+        let same = |path: &str, sha256: &str, size: u64| {
+            let Some(&(bytes, mtime_ns)) = old.files.get(path) else {
+                return false;
+            };
+            if bytes != size {
+                return false;
+            }
+            let recorded = record.and_then(|r| r.files.get(path));
+            if recorded.is_some_and(|s| s.bytes == bytes && s.mtime_ns == mtime_ns) {
+                return recorded.is_some_and(|s| s.sha256 == sha256);
+            }
+            fs::read(self.dir.join(path)).is_ok_and(|b| sha256_hex(&b) == sha256)
+        };
+        let mut synced = Synced::default();
+        let mut keep = BTreeSet::new();
+        for artifact in artifacts {
+            if same(
+                &artifact.path,
+                &artifact.blob.sha256(),
+                artifact.blob.size(),
+            ) {
+                keep.insert(artifact.path.as_str());
+                synced.unchanged.push(artifact.path.clone());
+            } else {
+                synced.written.push(artifact.path.clone());
+            }
+        }
+        let manifest_same = same(
+            "manifest.json",
+            &sha256_hex(manifest),
+            manifest.len() as u64,
+        );
+        if manifest_same {
+            keep.insert("manifest.json");
+            synced.unchanged.push("manifest.json".to_owned());
+        } else {
+            synced.written.push("manifest.json".to_owned());
+        }
+        let wanted: BTreeSet<&str> = artifacts
+            .iter()
+            .map(|a| a.path.as_str())
+            .chain(["manifest.json"])
+            .collect();
+        synced.removed = old
+            .files
+            .keys()
+            .filter(|p| !wanted.contains(p.as_str()))
+            .chain(&old.others)
+            .cloned()
+            .collect();
+        let dirs_match = old.dirs == folders_of(wanted.iter().copied());
+        if synced.written.is_empty() && synced.removed.is_empty() && dirs_match {
+            return Ok(synced);
+        }
+
+        // Build the new folder beside the old one, then swap.
+        let stage = self.reserved("stage");
+        fs::create_dir(&stage).map_err(io_err(&stage))?;
+        self.faults.step();
+        for artifact in artifacts {
+            let target = stage.join(&artifact.path);
+            make_parent(&target).map_err(io_err(&target))?;
+            let linked = keep.contains(artifact.path.as_str())
+                && fs::hard_link(self.dir.join(&artifact.path), &target).is_ok();
+            if !linked {
+                match &artifact.blob {
+                    Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => write_new(&target, bytes),
+                    Blob::Stored(object, None) => match cache.read_object(object) {
+                        Ok(bytes) => write_new(&target, &bytes),
+                        Err(why) => Err(io::Error::other(format!("cache object {why}"))),
+                    },
+                }
+                .map_err(io_err(&self.dir.join(&artifact.path)))?;
+            }
+            self.faults.step();
+        }
+        let target = stage.join("manifest.json");
+        let linked =
+            manifest_same && fs::hard_link(self.dir.join("manifest.json"), &target).is_ok();
+        if !linked {
+            write_new(&target, manifest).map_err(io_err(&self.dir.join("manifest.json")))?;
+        }
+        self.faults.step();
+        self.swap(&stage, old.exists()).map_err(io_err(&self.dir))?;
+        Ok(synced)
+    }
+
+    /// Puts the staged folder in place of the old one, atomically where the OS can.
+    fn swap(&self, stage: &Path, old_exists: bool) -> io::Result<()> {
+        if !old_exists {
+            fs::rename(stage, &self.dir)?;
+            self.faults.step();
+            return Ok(());
+        }
+        if exchange(stage, &self.dir)? {
+            self.faults.step();
+            // `stage` now holds the old build.
+            remove_entry(stage)?;
+            self.faults.step();
+            return Ok(());
+        }
+        let aside = self.reserved("old");
+        fs::rename(&self.dir, &aside)?;
+        self.faults.step();
+        fs::rename(stage, &self.dir)?;
+        self.faults.step();
+        remove_entry(&aside)?;
+        self.faults.step();
+        Ok(())
+    }
+
+    /// Removes what a killed build left beside the folder: staging folders (whole or not,
+    /// never swapped in), and an old folder moved aside (deleted when the new one is in
+    /// place, moved back when the kill landed between the two renames).
+    fn recover(&self) -> io::Result<()> {
+        let stage = format!(".{}~cityspec-stage-", self.name);
+        let aside = format!(".{}~cityspec-old-", self.name);
+        let mut leftovers: Vec<(bool, PathBuf)> = Vec::new();
+        for entry in fs::read_dir(&self.root)? {
+            let entry = entry?;
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if name.starts_with(&stage) {
+                leftovers.push((false, entry.path()));
+            } else if name.starts_with(&aside) {
+                leftovers.push((true, entry.path()));
+            }
+        }
+        leftovers.sort();
+        for (is_aside, path) in leftovers {
+            if is_aside && fs::symlink_metadata(&self.dir).is_err() {
+                fs::rename(&path, &self.dir)?;
+            } else {
+                remove_entry(&path)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses to replace a folder that is not a cityspec output folder of this spec (a
+    /// user who points `--out` at a folder of their own must not lose it), or that is a
+    /// symbolic link (the build would land on its far side).
+    fn check_is_ours(&self) -> Result<(), BuildError> {
+        let meta = match fs::symlink_metadata(&self.dir) {
+            Ok(meta) => meta,
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(()),
+            Err(source) => {
+                return Err(BuildError::Output {
+                    path: self.dir.clone(),
+                    source,
+                });
+            }
+        };
+        if meta.file_type().is_symlink() {
+            return Err(self.refuse(
+                "is a symbolic link; cityspec replaces its output folder whole and does not \
+                 follow links: remove the link, or point --out at the real folder's parent"
+                    .to_owned(),
+            ));
+        }
+        if !meta.is_dir() {
+            return Err(self.refuse("is not a folder".to_owned()));
+        }
+        let manifest = self.dir.join("manifest.json");
+        let ours = fs::symlink_metadata(&manifest).is_ok_and(|m| m.is_file())
+            && fs::read(&manifest)
+                .ok()
+                .and_then(|b| Manifest::from_bytes(&b))
+                .is_some_and(|m| m.name == self.name);
+        let empty = fs::read_dir(&self.dir).is_ok_and(|mut d| d.next().is_none());
+        if ours || empty {
+            Ok(())
+        } else {
+            Err(self.refuse(format!(
+                "exists but is not the output folder of spec {:?} (no manifest.json of that \
+                 name); cityspec replaces its output folder whole, so it will not touch this \
+                 one: move it away or choose another --out",
+                self.name
+            )))
+        }
+    }
+
+    fn refuse(&self, message: String) -> BuildError {
+        BuildError::OutputFolder {
+            path: self.dir.clone(),
+            message,
+        }
+    }
+
+    /// A fresh hidden name beside the folder: `.<name>~cityspec-<what>-<pid>-<n>`.
+    fn reserved(&self, what: &str) -> PathBuf {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let pid = std::process::id();
+        self.root
+            .join(format!(".{}~cityspec-{what}-{pid}-{n}", self.name))
+    }
+}
+
+impl OldTree {
+    fn exists(&self) -> bool {
+        self.dirs.contains("")
+    }
+}
+
+/// Every folder the paths need, `""` (the output folder itself) included.
+pub fn folders_of<'p>(paths: impl IntoIterator<Item = &'p str>) -> BTreeSet<String> {
+    let mut dirs = BTreeSet::from([String::new()]);
+    for path in paths {
+        let mut at = 0;
+        while let Some(slash) = path[at..].find('/') {
+            dirs.insert(path[..at + slash].to_owned());
+            at += slash + 1;
+        }
+    }
+    dirs
+}
+
+/// The old folder's contents, without following symbolic links.
+fn walk(dir: &Path) -> io::Result<OldTree> {
+    let mut tree = OldTree::default();
+    match fs::symlink_metadata(dir) {
+        Ok(meta) if meta.is_dir() => {}
+        Ok(_) => return Ok(tree),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(tree),
+        Err(e) => return Err(e),
+    }
+    tree.dirs.insert(String::new());
+    let mut stack = vec![String::new()];
+    while let Some(rel) = stack.pop() {
+        for entry in fs::read_dir(dir.join(&rel))? {
+            let entry = entry?;
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let path = if rel.is_empty() {
+                name
+            } else {
+                format!("{rel}/{name}")
+            };
+            let kind = entry.file_type()?;
+            if kind.is_dir() {
+                tree.dirs.insert(path.clone());
+                stack.push(path);
+            } else if kind.is_file() {
+                let meta = entry.metadata()?;
+                tree.files.insert(path, (meta.len(), mtime_ns(&meta)));
+            } else {
+                tree.others.push(path);
+            }
+        }
+    }
+    Ok(tree)
+}
+
+/// A file's modification time in nanoseconds since the epoch (0 when unknown).
+pub fn mtime_ns(meta: &fs::Metadata) -> u128 {
+    meta.modified()
+        .ok()
+        .and_then(|t| t.duration_since(UNIX_EPOCH).ok())
+        .map_or(0, |d| d.as_nanos())
+}
+
+fn make_parent(path: &Path) -> io::Result<()> {
+    match path.parent() {
+        Some(parent) => fs::create_dir_all(parent),
+        None => Ok(()),
+    }
+}
+
+/// Writes a file that must not exist yet (the staging folder is this build's own).
+fn write_new(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let mut file = File::create_new(path)?;
+    file.write_all(bytes)?;
+    file.flush()
+}
+
+/// Removes a file, a symbolic link (not what it points at) or a whole folder.
+fn remove_entry(path: &Path) -> io::Result<()> {
+    match fs::symlink_metadata(path) {
+        Ok(meta) if meta.is_dir() => fs::remove_dir_all(path),
+        Ok(_) => fs::remove_file(path),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(e),
+    }
+}
+
+/// Swaps two folders in one step; `Ok(false)` when this OS or file system cannot.
+#[cfg(any(target_os = "linux", target_os = "android", target_vendor = "apple"))]
+fn exchange(a: &Path, b: &Path) -> io::Result<bool> {
+    use rustix::fs::{CWD, RenameFlags, renameat_with};
+    use rustix::io::Errno;
+    match renameat_with(CWD, a, CWD, b, RenameFlags::EXCHANGE) {
+        Ok(()) => Ok(true),
+        Err(Errno::INVAL | Errno::NOSYS | Errno::OPNOTSUPP) => Ok(false),
+        Err(e) => Err(e.into()),
+    }
+}
+
+#[cfg(not(any(target_os = "linux", target_os = "android", target_vendor = "apple")))]
+fn exchange(_: &Path, _: &Path) -> io::Result<bool> {
+    Ok(false)
+}
+
+/// The test hook: abort after the N-th file-system change.
+struct Faults {
+    abort_after: Option<u64>,
+    done: AtomicU64,
+}
+
+impl Faults {
+    fn from_env() -> Faults {
+        Faults {
+            abort_after: std::env::var("CITYSPEC_TEST_ABORT_AFTER_WRITES")
+                .ok()
+                .and_then(|v| v.parse().ok()),
+            done: AtomicU64::new(0),
+        }
+    }
+
+    fn step(&self) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        if self.abort_after == Some(done) {
+            std::process::abort();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_of_lists_every_ancestor() {
+        let dirs = folders_of(["a.png", "frames/s/rgb/000000.png", "textures/t.png"]);
+        let want = ["", "frames", "frames/s", "frames/s/rgb", "textures"];
+        assert_eq!(dirs, want.iter().map(|s| s.to_string()).collect());
+    }
+
+    #[test]
+    fn walk_does_not_follow_links() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let far = dir.path().join("far");
+        fs::create_dir_all(out.join("sub")).unwrap();
+        fs::create_dir_all(&far).unwrap();
+        fs::write(far.join("secret.txt"), b"x").unwrap();
+        fs::write(out.join("sub/a.txt"), b"a").unwrap();
+        #[cfg(unix)]
+        std::os::unix::fs::symlink(&far, out.join("link")).unwrap();
+        let tree = walk(&out).unwrap();
+        assert_eq!(tree.files.keys().collect::<Vec<_>>(), ["sub/a.txt"]);
+        #[cfg(unix)]
+        assert_eq!(tree.others, ["link"]);
+        remove_entry(&out).unwrap();
+        assert!(far.join("secret.txt").exists());
+    }
+}

@@ -1,0 +1,229 @@
+//! The names a stage may give its outputs: a stage name (and camera) → the known relative
+//! file names, and the check that a cache entry uses only those.
+//!
+//! A cache entry is data from disk, possibly from another machine: its output names decide
+//! where the driver writes. So an entry is trusted only when every name is one its stage
+//! writes (fixed names like `plan.png`, or a pattern like `frames/<camera>/rgb/NNNNNN.png`),
+//! always relative, never with `..`; anything else makes the entry corrupt, and the stage is
+//! rebuilt. A new artifact file name must be added here, or every build rebuilds its stage.
+
+/// What names a stage's outputs may have.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum OutputNames {
+    /// Exactly these names.
+    Fixed(&'static [&'static str]),
+    /// `facades.json`, `warnings.json` and `textures/<file>.png`.
+    Facades,
+    /// `city.obj`, `city.mtl`, `city.glb` and `textures/<file>.png`.
+    Export,
+    /// Everything under `frames/<camera>/` a camera path writes.
+    Frames(String),
+}
+
+impl OutputNames {
+    /// The names stage `stage` writes; `camera` is the camera path's name for `frames`.
+    pub fn of(stage: &str, camera: Option<&str>) -> OutputNames {
+        match stage {
+            "layout" | "mirror" => OutputNames::Fixed(&["layout.png"]),
+            "parse" => OutputNames::Fixed(&["parsed.json"]),
+            "lamps" => OutputNames::Fixed(&["lamps.json"]),
+            "place" => OutputNames::Fixed(&["buildings.json"]),
+            "plan" => OutputNames::Fixed(&["plan.json"]),
+            "preview" => OutputNames::Fixed(&["plan.png"]),
+            "overview" => OutputNames::Fixed(&["overview.png"]),
+            "facades" => OutputNames::Facades,
+            "export" => OutputNames::Export,
+            "frames" => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
+            _ => OutputNames::Fixed(&[]),
+        }
+    }
+
+    /// Whether `name` is one of these.
+    pub fn allows(&self, name: &str) -> bool {
+        if !is_safe_relative(name) {
+            return false;
+        }
+        match self {
+            OutputNames::Fixed(names) => names.contains(&name),
+            OutputNames::Facades => {
+                matches!(name, "facades.json" | "warnings.json") || is_texture(name)
+            }
+            OutputNames::Export => {
+                matches!(name, "city.obj" | "city.mtl" | "city.glb") || is_texture(name)
+            }
+            OutputNames::Frames(camera) => name
+                .strip_prefix("frames/")
+                .and_then(|rest| rest.strip_prefix(camera.as_str()))
+                .and_then(|rest| rest.strip_prefix('/'))
+                .is_some_and(is_frame_file),
+        }
+    }
+
+    /// Names every entry of the stage must have.
+    fn required(&self) -> &'static [&'static str] {
+        match self {
+            OutputNames::Fixed(names) => names,
+            OutputNames::Facades => &["facades.json", "warnings.json"],
+            OutputNames::Export => &["city.glb", "city.mtl", "city.obj"],
+            OutputNames::Frames(_) => &[],
+        }
+    }
+
+    /// Why a set of output names (a cache entry's) is not this stage's, if it is not.
+    pub fn check<'n>(&self, names: impl IntoIterator<Item = &'n str>) -> Result<(), String> {
+        let names: Vec<&str> = names.into_iter().collect();
+        if let Some(bad) = names.iter().find(|n| !self.allows(n)) {
+            return Err(format!(
+                "names output {bad:?}, not a file this stage writes"
+            ));
+        }
+        if let Some(missing) = self.required().iter().find(|r| !names.contains(r)) {
+            return Err(format!("lacks output {missing:?}"));
+        }
+        if let OutputNames::Frames(camera) = self {
+            let coco = format!("frames/{camera}/coco.json");
+            if !names.contains(&coco.as_str()) {
+                return Err(format!("lacks output {coco:?}"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A relative, `/`-separated path that stays inside the folder it is joined to: no root,
+/// drive or `\`, no empty, `.` or `..` component, no NUL.
+pub fn is_safe_relative(path: &str) -> bool {
+    !path.is_empty()
+        && !path.contains(['\\', '\0', ':'])
+        && path
+            .split('/')
+            .all(|part| !part.is_empty() && part != "." && part != "..")
+}
+
+/// One plain file name: not hidden (no temporary or reserved name), not a path.
+fn is_file_name(name: &str) -> bool {
+    is_safe_relative(name) && !name.contains('/') && !name.starts_with('.')
+}
+
+fn is_texture(name: &str) -> bool {
+    name.strip_prefix("textures/")
+        .and_then(|rest| rest.strip_suffix(".png"))
+        .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
+}
+
+/// A file of one camera path, relative to `frames/<camera>/`.
+fn is_frame_file(rest: &str) -> bool {
+    let numbered =
+        |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
+    match rest {
+        "coco.json" | "poses.json" | "preview.png" => true,
+        _ => {
+            let png = rest.strip_suffix(".png");
+            let txt = rest.strip_suffix(".txt");
+            ["rgb/", "ids/", "depth/"]
+                .iter()
+                .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
+                || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
+                || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_that_leave_the_folder_are_unsafe() {
+        for bad in [
+            "",
+            "/etc/passwd",
+            "../x",
+            "a/../../x",
+            "a//b",
+            "./a",
+            "a/.",
+            "C:x",
+            "a\\b",
+            "a\0b",
+        ] {
+            assert!(!is_safe_relative(bad), "{bad:?}");
+        }
+        for good in ["plan.png", "frames/street/rgb/000001.png", "a/..b/c"] {
+            assert!(is_safe_relative(good), "{good:?}");
+        }
+    }
+
+    #[test]
+    fn each_stage_allows_only_its_own_names() {
+        let cases: &[(&str, Option<&str>, &str, bool)] = &[
+            ("preview", None, "plan.png", true),
+            ("preview", None, "plan.json", false),
+            ("preview", None, "/tmp/plan.png", false),
+            ("mirror", None, "layout.png", true),
+            ("export", None, "textures/0123abcd.png", true),
+            ("export", None, "textures/.hidden.png", false),
+            ("export", None, "textures/a/b.png", false),
+            ("export", None, "textures/../../x.png", false),
+            ("facades", None, "textures/street_01.png", true),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/rgb/000003.png",
+                true,
+            ),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/icdar/gt_000003.txt",
+                true,
+            ),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/yolo/000003.txt",
+                true,
+            ),
+            ("frames", Some("street"), "frames/street/coco.json", true),
+            ("frames", Some("street"), "frames/aerial/coco.json", false),
+            ("frames", Some("street"), "frames/street/rgb/3.png", false),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/../../x/000001.png",
+                false,
+            ),
+            ("frames", Some("street"), "frames/streetx/coco.json", false),
+        ];
+        for (stage, camera, name, allowed) in cases {
+            assert_eq!(
+                OutputNames::of(stage, *camera).allows(name),
+                *allowed,
+                "{stage} {name}"
+            );
+        }
+    }
+
+    #[test]
+    fn entries_need_their_stage_s_outputs() {
+        assert!(OutputNames::of("plan", None).check(["plan.json"]).is_ok());
+        assert!(
+            OutputNames::of("plan", None)
+                .check([])
+                .unwrap_err()
+                .contains("lacks")
+        );
+        let export = OutputNames::of("export", None);
+        assert!(export.check(["city.obj", "city.mtl", "city.glb"]).is_ok());
+        assert!(export.check(["city.obj", "city.glb"]).is_err());
+        let frames = OutputNames::of("frames", Some("a"));
+        assert!(frames.check(["frames/a/coco.json"]).is_ok());
+        assert!(frames.check(["frames/a/poses.json"]).is_err());
+        assert!(
+            OutputNames::of("plan", None)
+                .check(["plan.json", "/home/u/.bashrc"])
+                .unwrap_err()
+                .contains("/home/u/.bashrc")
+        );
+    }
+}
