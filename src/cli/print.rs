@@ -50,10 +50,10 @@ impl Printer {
                 eprintln!("  removed stale {}", report.out_dir.join(path).display());
             }
         }
-        if let Some(triangles) = report.triangles {
-            if self.verbose {
-                eprintln!("  scene: {triangles} triangles");
-            }
+        if let Some(triangles) = report.triangles
+            && self.verbose
+        {
+            eprintln!("  scene: {triangles} triangles");
         }
         let ms = report.elapsed.as_secs_f64() * 1e3;
         let ran = report.ran().count();

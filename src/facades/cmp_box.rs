@@ -93,10 +93,10 @@ pub fn write_cmp_xml(boxes: &[CmpBox], width: u32, height: u32) -> String {
 
 fn strip_declaration(text: &str) -> &str {
     let text = text.trim_start_matches('\u{feff}').trim_start();
-    if text.starts_with("<?xml") {
-        if let Some(end) = text.find("?>") {
-            return &text[end + 2..];
-        }
+    if text.starts_with("<?xml")
+        && let Some(end) = text.find("?>")
+    {
+        return &text[end + 2..];
     }
     text
 }

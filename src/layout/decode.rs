@@ -62,10 +62,10 @@ fn size_error(error: image::ImageError, bytes: &[u8]) -> LayoutError {
             .with_guessed_format()
             .ok()
             .and_then(|r| r.into_dimensions().ok());
-        if let Some((width, height)) = size {
-            if let Err(too_large) = check_size(width, height) {
-                return too_large;
-            }
+        if let Some((width, height)) = size
+            && let Err(too_large) = check_size(width, height)
+        {
+            return too_large;
         }
     }
     LayoutError::Decode(error)

@@ -57,7 +57,7 @@ pub fn paving() -> RgbImage {
     RgbImage::from_fn(SIZE, SIZE, |x, y| {
         let row = y / h;
         let xs = (x + if row % 2 == 1 { w / 2 } else { 0 }) % SIZE;
-        let joint = y % h == 0 || xs % w == 0;
+        let joint = y % h == 0 || xs.is_multiple_of(w);
         let tone = (stone[idx(xs / w + 4 * (row % 2), row, 8)] - 128) / 8;
         let f = (fine[idx(x, y, SIZE)] - 128) / 16;
         let v = if joint { 92 } else { 150 + tone + f };

@@ -146,13 +146,12 @@ impl<'i> Locator<'i> {
             .map(|(k, v)| (KeyPath::root().key(k.get_ref()), v, Some(k.span())))
             .collect();
         while let Some((path, value, key_span)) = stack.pop() {
-            if let (Some(span), Some(Segment::Key(key))) = (key_span, path.0.last()) {
-                if key == name
-                    && span.start < offset
-                    && best.as_ref().is_none_or(|(s, _)| span.start > *s)
-                {
-                    best = Some((span.start, path.clone()));
-                }
+            if let (Some(span), Some(Segment::Key(key))) = (key_span, path.0.last())
+                && key == name
+                && span.start < offset
+                && best.as_ref().is_none_or(|(s, _)| span.start > *s)
+            {
+                best = Some((span.start, path.clone()));
             }
             match value.get_ref() {
                 DeValue::Table(t) => stack.extend(

@@ -245,7 +245,7 @@ pub fn shop(
     c.part(CmpLabel::Deco, a);
     let stripe_light = mix(awning, [240, 236, 226], 0.85);
     c.each(a, |x, y, _| {
-        let base = if ((x - a.x0) / 12) % 2 == 0 {
+        let base = if ((x - a.x0) / 12).is_multiple_of(2) {
             awning
         } else {
             stripe_light

@@ -42,7 +42,7 @@ fn bricks(c: &mut Canvas, r: PxRect, brick: Colour, mortar: Colour, rng: &mut Pc
     c.each(r, |x, y, _| {
         let (lx, ly) = (x - r.x0, y - r.y0);
         let row = ly / COURSE;
-        let shift = if row % 2 == 0 { 0 } else { BRICK / 2 };
+        let shift = if row.is_multiple_of(2) { 0 } else { BRICK / 2 };
         let col = (lx + shift) / BRICK;
         let in_joint = ly % COURSE >= COURSE - 2 || (lx + shift) % BRICK >= BRICK - 2;
         let grain = rng.random_range(-6..=6);
