@@ -14,6 +14,7 @@ mod frames;
 mod fresh;
 mod inputs;
 mod manifest;
+mod object_views;
 mod pipeline;
 mod report;
 mod stage_key;
