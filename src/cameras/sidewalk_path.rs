@@ -31,8 +31,8 @@ pub struct SidewalkPath {
 /// Walks around every block in id order, clockwise seen from above, so the block and its
 /// shop fronts are on the walker's right (heading +90°) and the street on the left
 /// (−90°): along the rectangle around the block's bounding box, [`WALK_SHARE`] of the
-/// sidewalk's width out from it, cut to the layout (a block at the border has no sidewalk
-/// beyond it). Frames are spaced evenly by arc length
+/// sidewalk's width out from it, cut to the layout. A side less than a sidewalk's width
+/// from the layout's edge is left out: beyond it is the end of the world, not a street. Frames are spaced evenly by arc length
 /// over the whole walk ([`walk_length`]); between sides and blocks the walker jumps. Each
 /// frame draws its aim from `rng::stream(seed, "cameras/aim", frame)`.
 ///
@@ -69,11 +69,12 @@ pub fn walk_length(layout: &ParsedLayout, metres_per_pixel: f64, sidewalk: f64) 
 }
 
 /// The axis-aligned side from `a` to `b`, cut to the layout `[0, size[0]] × [0, size[1]]`;
-/// `None` when nothing of it is inside.
-fn clipped(a: [f64; 2], b: [f64; 2], size: [f64; 2]) -> Option<Leg> {
+/// `None` when nothing of it is inside or it runs less than `margin` from the layout's
+/// edge.
+fn clipped(a: [f64; 2], b: [f64; 2], size: [f64; 2], margin: f64) -> Option<Leg> {
     // The axis the side runs along, and the one it stands still on.
     let (run, fixed) = if a[1] == b[1] { (0, 1) } else { (1, 0) };
-    if !(0.0..=size[fixed]).contains(&a[fixed]) {
+    if !(margin..=size[fixed] - margin).contains(&a[fixed]) {
         return None;
     }
     let (from, to) = (a[run].clamp(0.0, size[run]), b[run].clamp(0.0, size[run]));
@@ -112,7 +113,7 @@ fn sides(layout: &ParsedLayout, m: f64, sidewalk: f64) -> Vec<Leg> {
         let corners = [[x0, z0], [x1, z0], [x1, z1], [x0, z1]];
         for k in 0..4 {
             let (a, b) = (corners[k], corners[(k + 1) % 4]);
-            if let Some(leg) = clipped(a, b, [w, h]) {
+            if let Some(leg) = clipped(a, b, [w, h], sidewalk) {
                 legs.push(leg);
             }
         }
@@ -164,11 +165,13 @@ mod tests {
     #[test]
     fn walks_clockwise_around_each_block_beside_it() {
         // Block 0 spans x 10–20 m, z 20–30 m; the walk is 1.5 m out: a 13 × 13 m ring.
-        // Block 1 (x 30–45 m, z 0–15 m) touches the top border: its north side is left
-        // out, leaving 18 + 15 + 18 m.
-        assert_eq!(walk_length(&layout(), 0.5, 5.0), 4.0 * 13.0 + 51.0);
-        let poses = sidewalk_path(&layout(), 0.5, &path(103, ValueRange::Fixed(90.0)), 3);
-        assert_eq!(poses.len(), 103);
+        // Block 1 (x 30–45 m, z 0–15 m) touches the top border, and its east side runs
+        // 3.5 m from the right border (50 m), less than a sidewalk: only its south side
+        // (18 m) and west side (cut at the border: 16.5 m) are walked.
+        assert_eq!(walk_length(&layout(), 0.5, 5.0), 4.0 * 13.0 + 34.5);
+        let poses = sidewalk_path(&layout(), 0.5, &path(173, ValueRange::Fixed(90.0)), 3);
+        assert_eq!(poses.len(), 173);
+        assert!(poses.iter().all(|p| p.eye[0] != 46.5));
         for p in &poses {
             let (x, z) = (p.eye[0], p.eye[2]);
             let on_ring0 = ((x == 8.5 || x == 21.5) && (18.5..=31.5).contains(&z))
@@ -183,7 +186,7 @@ mod tests {
             assert!(to_block[0] * view[0] + to_block[1] * view[1] > 0.0, "{p:?}");
         }
         // The first frame is half a step into block 0's north side, walking east.
-        assert_eq!(poses[0].eye, [9.0, 1.6, 18.5]);
+        assert_eq!(poses[0].eye, [8.75, 1.6, 18.5]);
     }
 
     #[test]
