@@ -32,10 +32,7 @@ fn main() {
     let poses: Vec<CameraPose> = (0..runs)
         .map(|i| {
             let z = 370.0 - 15.0 * i as f64;
-            CameraPose {
-                eye: [116.0, 1.7, z],
-                target: [118.0, 3.0, z - 40.0],
-            }
+            CameraPose::level([116.0, 1.7, z], [118.0, 3.0, z - 40.0])
         })
         .collect();
     let windows = LitWindows {

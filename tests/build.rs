@@ -599,3 +599,50 @@ fn issue_8_no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
     assert!(report.up_to_date());
     assert_eq!(tree(&ws.out()), good);
 }
+
+/// The `poses.json` of camera `name` in the text city.
+fn poses(ws: &Workspace, name: &str) -> serde_json::Value {
+    let path = ws.out().join(format!("text/frames/{name}/poses.json"));
+    serde_json::from_slice(&fs::read(path).unwrap()).unwrap()
+}
+
+#[test]
+fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_camera() {
+    let ws = Workspace::with_spec("text");
+    ws.edit_spec(
+        "text",
+        "frames = 4\njitter = 1.0",
+        "frames = 4\njitter = 1.0\nheading = [-60, 60]\nroll = [-5, 5]\nheight = [1.4, 2.0]",
+    );
+    ws.edit_spec("text", "frames = 4\ndistance", "frames = 3\ndistance");
+    in_pool(1, || build::build(&ws.spec("text"), &ws.options())).unwrap();
+    let first = tree(&ws.out());
+    let other = Workspace::with_spec("text");
+    fs::copy(ws.spec("text"), other.spec("text")).unwrap();
+    in_pool(8, || build::build(&other.spec("text"), &other.options())).unwrap();
+    assert_eq!(tree(&other.out()), first);
+
+    let street = poses(&ws, "street");
+    let frames = street["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 4);
+    for f in frames {
+        let heading = f["angles"]["heading"].as_f64().unwrap();
+        let height = f["angles"]["height"].as_f64().unwrap();
+        assert!((-60.0..=60.0).contains(&heading), "{f}");
+        assert_eq!(f["eye"][1].as_f64().unwrap(), height);
+    }
+    // Every aimed frame found a viewpoint whose text shows.
+    let words = poses(&ws, "words");
+    assert_eq!(words["frames"].as_array().unwrap().len(), 3);
+
+    // A camera added in front of the others leaves their poses as they were.
+    ws.edit_spec(
+        "text",
+        "[[cameras]]\nname = \"street\"",
+        "[[cameras]]\nname = \"extra\"\nframes = 2\nheading = [-90, 90]\n\n\
+         [[cameras]]\nname = \"street\"",
+    );
+    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    assert_eq!(poses(&ws, "street"), street);
+    assert_eq!(poses(&ws, "words"), words);
+}

@@ -26,8 +26,10 @@ pub fn coco(
 /// the text of its lines.
 ///
 /// - `images`: `id` (frame index + 1), `file_name`, `width`, `height`, and the extra keys
-///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target}` (metres, x east,
-///   y up, z south; up is +y).
+///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target, up}` (metres, x
+///   east, y up, z south; `up` the direction of the image's top, +y for a level camera),
+///   with the path's drawn `heading`, `pitch`, `roll` (degrees) and `height` (metres)
+///   when it draws them.
 /// - `categories`: `id`, `name`, in the order given.
 /// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
 ///   every labelled object whose category is listed and that passes the thresholds: `id`,
@@ -67,16 +69,28 @@ impl CocoWriter {
         self.frames += 1;
         let image_id = self.frames;
         let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
+        let mut pose = json!({
+            "eye": frame.pose.eye.map(|v| round(v, 1e3)),
+            "target": frame.pose.target.map(|v| round(v, 1e3)),
+            "up": frame.pose.up.map(|v| round(v, 1e6)),
+        });
+        if let Some(a) = frame.pose.angles {
+            for (key, value) in [
+                ("heading", a.heading),
+                ("pitch", a.pitch),
+                ("roll", a.roll),
+                ("height", a.height),
+            ] {
+                pose[key] = json!(round(value, 1e3));
+            }
+        }
         let image = json!({
             "id": image_id,
             "file_name": frame.file_name,
             "width": frame.width,
             "height": frame.height,
             "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
-            "pose": {
-                "eye": frame.pose.eye.map(|v| round(v, 1e3)),
-                "target": frame.pose.target.map(|v| round(v, 1e3)),
-            },
+            "pose": pose,
         });
         line(&mut self.images, &image);
         for object in &frame.objects {
@@ -148,7 +162,7 @@ mod tests {
 
     use super::*;
     use crate::annotate::{Rle, test_image};
-    use crate::cameras::CameraPose;
+    use crate::model::CameraPose;
 
     fn categories() -> Vec<Category> {
         ["building", "sign", "text"]
@@ -196,10 +210,7 @@ mod tests {
             file_name: name.into(),
             instance: img,
             intrinsics: [400.0, 400.0, 4.0, 2.5],
-            pose: CameraPose {
-                eye: [1.0, 1.6, -0.0],
-                target: [11.0, 0.6, 0.1234567],
-            },
+            pose: CameraPose::level([1.0, 1.6, -0.0], [11.0, 0.6, 0.1234567]),
             full: BTreeMap::from([
                 (1, ([0.0, 0.0, 5.0, 4.0], 24)),
                 (2, ([1.0, 1.0, 2.0, 1.0], 2)),
@@ -230,7 +241,7 @@ mod tests {
         assert_eq!(images.len(), 2);
         assert_eq!(
             images[0].to_string(),
-            r#"{"id":1,"file_name":"f0.png","width":8,"height":5,"intrinsics":{"fx":400.0,"fy":400.0,"cx":4.0,"cy":2.5},"pose":{"eye":[1.0,1.6,0.0],"target":[11.0,0.6,0.123]}}"#
+            r#"{"id":1,"file_name":"f0.png","width":8,"height":5,"intrinsics":{"fx":400.0,"fy":400.0,"cx":4.0,"cy":2.5},"pose":{"eye":[1.0,1.6,0.0],"target":[11.0,0.6,0.123],"up":[0.0,1.0,0.0]}}"#
         );
         assert_eq!(
             doc["categories"][2].to_string(),

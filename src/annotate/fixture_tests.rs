@@ -17,7 +17,7 @@ use rand::RngExt;
 use serde_json::Value;
 
 use super::*;
-use crate::cameras::CameraPose;
+use crate::model::CameraPose;
 
 const W: u32 = 64;
 const H: u32 = 48;
@@ -107,10 +107,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
             file_name: format!("frames/{i:06}.png"),
             instance: image,
             intrinsics: [32.0, 32.0, 32.0, 24.0],
-            pose: CameraPose {
-                eye: [i as f64, 1.6, 0.0],
-                target: [i as f64 + 10.0, 0.6, 0.0],
-            },
+            pose: CameraPose::level([i as f64, 1.6, 0.0], [i as f64 + 10.0, 0.6, 0.0]),
             full: full.clone(),
             quads: BTreeMap::new(),
         })

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use super::frame_input::{FrameInput, Thresholds};
 use super::object_label::ObjectLabel;
 use super::shown_object::{ShownObject, shown};
-use crate::cameras::CameraPose;
+use crate::model::CameraPose;
 
 /// What every output format needs of one frame.
 #[derive(Clone, Debug)]

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use image::{ImageBuffer, Luma};
 
-use crate::cameras::CameraPose;
+use crate::model::CameraPose;
 
 /// One frame: its instance-id image and what the renderer knows about it.
 ///

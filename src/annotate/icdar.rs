@@ -53,7 +53,7 @@ mod tests {
 
     use super::*;
     use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize, test_image};
-    use crate::cameras::CameraPose;
+    use crate::model::CameraPose;
 
     #[test]
     fn mostly_hidden_or_too_small_text_is_do_not_care() {
@@ -81,10 +81,7 @@ mod tests {
             file_name: "f.png".into(),
             instance: &img,
             intrinsics: [1.0, 1.0, 4.0, 2.0],
-            pose: CameraPose {
-                eye: [0.0; 3],
-                target: [0.0, 0.0, 1.0],
-            },
+            pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::from([
                 (1, ([0.0, 0.0, 3.0, 2.0], 6)),
                 (2, ([4.0, 0.0, 2.0, 4.0], 8)),

@@ -42,7 +42,7 @@ mod tests {
 
     use super::*;
     use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize, test_image};
-    use crate::cameras::CameraPose;
+    use crate::model::CameraPose;
 
     #[test]
     fn boxes_are_normalised_and_classes_count_from_zero() {
@@ -78,10 +78,7 @@ mod tests {
             file_name: "f.png".into(),
             instance: &img,
             intrinsics: [4.0, 4.0, 4.0, 2.0],
-            pose: CameraPose {
-                eye: [0.0; 3],
-                target: [1.0, 0.0, 0.0],
-            },
+            pose: CameraPose::level([0.0; 3], [1.0, 0.0, 0.0]),
             full: BTreeMap::new(),
             quads: BTreeMap::new(),
         };

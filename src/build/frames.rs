@@ -134,7 +134,8 @@ pub fn render_path<E>(
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "frames": poses.iter().enumerate().map(|(i, p)| json!({
-            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target
+            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
+            "up": p.up, "angles": p.angles
         })).collect::<Vec<_>>(),
     });
     emit(

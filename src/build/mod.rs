@@ -15,6 +15,7 @@ mod frames;
 mod fresh;
 mod inputs;
 mod manifest;
+mod object_views;
 mod out_dir;
 mod output_names;
 mod pipeline;

@@ -18,6 +18,7 @@ use super::cache::{Blob, Cache, Load, Miss, ObjectRef, Outputs};
 use super::codec;
 use super::frames;
 use super::inputs::{FacadeInput, LayoutSource};
+use super::object_views;
 use super::output_names::OutputNames;
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
@@ -644,24 +645,47 @@ impl<'a> Pipeline<'a> {
                 let spec = p.spec;
                 let camera = &spec.cameras[index];
                 let mpp = spec.layout.metres_per_pixel;
-                let camera_seed = rng::stream(spec.seed, "camera", index as u64).next_u64();
+                // Seeded by the camera's name, not its place in the list: adding or
+                // reordering cameras leaves every other camera's poses as they were.
+                let camera_seed =
+                    rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
+                let aim = cameras::Aim::of(camera);
                 let poses = match camera.path {
                     CameraPath::Roads => cameras::road_path(
                         &parsed,
                         mpp,
                         &cameras::RoadPath {
                             frames: camera.frame_rule(),
-                            height: camera.height,
+                            aim,
                             look_ahead: camera.look_ahead,
                             jitter: camera.jitter,
                             lane_offset: camera.lane_offset,
                         },
                         camera_seed,
                     ),
+                    CameraPath::Sidewalks => cameras::sidewalk_path(
+                        &parsed,
+                        mpp,
+                        &cameras::SidewalkPath {
+                            frames: camera.frame_rule(),
+                            aim,
+                            sidewalk: f64::from(scene::strip_width_px(&parsed)) * mpp,
+                        },
+                        camera_seed,
+                    ),
+                    CameraPath::Objects => object_views::aimed_poses(
+                        &prepared,
+                        &scene,
+                        &parsed,
+                        mpp,
+                        camera,
+                        camera_seed,
+                    ),
                     CameraPath::Orbit => {
                         let length = cameras::orbit_length(&parsed, mpp);
                         let frames = camera.frame_rule().frames(length);
-                        cameras::orbit_path(&parsed, mpp, frames, camera.height)
+                        // A range of heights: the orbit flies at its middle.
+                        cameras::orbit_path(&parsed, mpp, frames, camera.height.at(0.5))
                     }
                 };
                 let lighting = lighting(spec, &scene, &lamps, &facades);

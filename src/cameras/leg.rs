@@ -49,6 +49,35 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
         .collect()
 }
 
+/// Points `n` evenly spaced by arc length along `legs` taken one after another (the jumps
+/// between legs do not count): point `i` at `(i + ½)·L/n` of the total length `L`, with
+/// its leg's direction. Empty when `n` is 0 or `L` is not positive and finite.
+pub(super) fn stations(legs: &[Leg], n: u32) -> Vec<([f64; 2], [f64; 2])> {
+    let total: f64 = legs.iter().map(|l| l.length).sum();
+    if !(total > 0.0 && total.is_finite()) || n == 0 {
+        return Vec::new();
+    }
+    let mut out = Vec::with_capacity(n as usize);
+    let (mut leg, mut leg_start) = (0, 0.0);
+    for i in 0..n {
+        let s = (f64::from(i) + 0.5) * total / f64::from(n);
+        while leg + 1 < legs.len() && s >= leg_start + legs[leg].length {
+            leg_start += legs[leg].length;
+            leg += 1;
+        }
+        let l = &legs[leg];
+        let along = (s - leg_start).clamp(0.0, l.length);
+        out.push((
+            [
+                l.origin[0] + l.dir[0] * along,
+                l.origin[1] + l.dir[1] * along,
+            ],
+            l.dir,
+        ));
+    }
+    out
+}
+
 /// Whether `road` has finite coordinates and a positive length.
 fn sound(road: &Road) -> bool {
     let coords = [

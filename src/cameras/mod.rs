@@ -1,31 +1,47 @@
 //! Cameras stage: parsed layout + metres per pixel + path settings → [`CameraPose`]s per frame.
 //!
-//! Two paths, both without trigonometry, so every platform computes the same poses bit for
-//! bit (only `+ − × ÷` and `sqrt`, which IEEE 754 rounds exactly):
+//! Four paths, all computed the same bit for bit on every platform (only `+ − × ÷`,
+//! `sqrt`, which IEEE 754 rounds exactly, and `libm`'s pure-Rust sine and cosine):
 //!
 //! - [`road_path`] drives along the roads on the right-hand lane, through crossings, each
 //!   road until the look-at point reaches its end (never out of town), with frames evenly
 //!   spaced by arc length over the whole tour and a seeded target jitter;
+//! - [`sidewalk_path`] walks clockwise around each block on its sidewalk, shop fronts on
+//!   the right, the street on the left;
+//! - [`object_views`] stands in free space around objects of chosen classes and aims at
+//!   them: candidates per frame, of which the build keeps the first whose object the
+//!   renderer shows;
 //! - [`orbit_path`] circles the city for overviews, looking at its centre.
 //!
+//! The moving paths draw each frame's heading, pitch, roll and eye height from the
+//! camera's [`Aim`] ranges, from a stream per camera seed and frame, so one camera's poses
+//! never depend on another camera. The drawn values ride along in the pose
+//! ([`crate::model::PoseAngles`]) and are written beside it.
+//!
 //! A path takes a frame count or a spacing ([`FrameRule`]): a spacing divides the path's
-//! length, [`tour_length`] or [`orbit_length`], into frames.
+//! length, [`tour_length`], [`walk_length`] or [`orbit_length`], into frames.
 //!
 //! Poses are in world metres (x east = layout x, y up, z south = layout y), rounded to the
 //! millimetre so that written poses print short, stable numbers; `-0` becomes `0`.
 //! [`CameraPose`] lives in [`crate::model`]; the renderer consumes it.
 
 /// Bump when this stage's output changes: it is part of the stage's cache key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
+mod aim;
 mod leg;
+mod object_path;
 mod orbit_path;
 mod road_path;
+mod sidewalk_path;
 
 pub use crate::model::CameraPose;
 pub use crate::spec::FrameRule;
+pub use aim::Aim;
+pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
 pub use orbit_path::{orbit_length, orbit_path};
-pub use road_path::{RoadPath, road_path, tour_length};
+pub use road_path::{ROAD_PITCH, RoadPath, road_path, tour_length};
+pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};
 
 /// `v` rounded to the millimetre, with `-0` made `0`.
 fn mm(v: f64) -> f64 {

@@ -35,10 +35,10 @@ pub fn orbit_path(
         .map(|i| {
             let [u, v] = square_point(f64::from(i) / f64::from(frames));
             let r = radius / (u * u + v * v).sqrt();
-            CameraPose {
-                eye: [mm(centre[0] + u * r), mm(height), mm(centre[1] + v * r)],
-                target: [mm(centre[0]), 0.0, mm(centre[1])],
-            }
+            CameraPose::level(
+                [mm(centre[0] + u * r), mm(height), mm(centre[1] + v * r)],
+                [mm(centre[0]), 0.0, mm(centre[1])],
+            )
         })
         .collect()
 }

@@ -3,22 +3,24 @@
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-use super::leg::legs;
+use super::aim::{Aim, aimed_pose};
+use super::leg::{legs, stations};
 use super::{CameraPose, mm};
 use crate::model::ParsedLayout;
 use crate::rng;
 use crate::spec::FrameRule;
 
-/// Metres the target drops per metre of look-ahead: a slight downward pitch (about 5.7°).
-pub const PITCH_DROP: f64 = 0.1;
+/// The default pitch of a road camera, degrees: the look-at point drops a tenth of the
+/// look-ahead (atan 0.1 = 5.71°).
+pub const ROAD_PITCH: f64 = -5.711;
 
 /// How a camera drives along the roads.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RoadPath {
     /// Frames over the whole tour: a count, or one every so many metres of the tour.
     pub frames: FrameRule,
-    /// Eye height above the ground, metres.
-    pub height: f64,
+    /// Heading, pitch, roll and eye height, drawn per frame.
+    pub aim: Aim,
     /// How far ahead along the road the camera looks, metres (must be positive).
     pub look_ahead: f64,
     /// Largest target offset across the road and up or down, metres: the yaw/pitch jitter.
@@ -35,16 +37,18 @@ pub struct RoadPath {
 /// far edge of the road a T-junction runs into), so the look-at point never leaves the road.
 /// A road too short for that is skipped; if every road is, all are driven whole. Frames are
 /// evenly spaced by arc length over the whole tour of length `L` ([`tour_length`]): `n`
-/// frames (`frames` as [`FrameRule::frames`] of `L`), frame `i` at `(i + ½)·L/n`. The
-/// target is `look_ahead` metres ahead along the road, [`PITCH_DROP`]` · look_ahead` below
-/// eye height, plus a seeded jitter (`rng::stream(seed, "cameras", frame)`) of up to
-/// `jitter` metres across the road and up or down.
+/// frames (`frames` as [`FrameRule::frames`] of `L`), frame `i` at `(i + ½)·L/n`. Each
+/// frame draws its heading (from the direction of travel), pitch, roll and eye height
+/// from `aim` (`rng::stream(seed, "cameras/aim", frame)`); the target is `look_ahead`
+/// metres along that view, plus a seeded jitter (`rng::stream(seed, "cameras", frame)`)
+/// of up to `jitter` metres across the road and up or down.
 ///
 /// Driving "start to end" is east on horizontal roads (right = south, +z) and south on
 /// vertical ones (right = west, −x). Between roads the camera jumps; the jump does not count
 /// as arc length. No poses when there are no frames, there is no road of positive length,
 /// or a parameter is out of range (`metres_per_pixel` and `look_ahead` must be positive and
-/// finite, `jitter` non-negative and finite, `height` and `lane_offset` finite, a spacing
+/// finite, `jitter` non-negative and finite, `aim` valid ([`Aim::is_valid`]),
+/// `lane_offset` finite, a spacing
 /// positive and finite).
 pub fn road_path(
     layout: &ParsedLayout,
@@ -58,51 +62,31 @@ pub fn road_path(
         && path.look_ahead > 0.0
         && path.jitter.is_finite()
         && path.jitter >= 0.0
-        && path.height.is_finite()
+        && path.aim.is_valid()
         && path.lane_offset.is_finite();
     if !valid {
         return Vec::new();
     }
     let legs = legs(layout, metres_per_pixel, path.lane_offset, path.look_ahead);
     let total: f64 = legs.iter().map(|l| l.length).sum();
-    let frames = path.frames.frames(total);
-    if !(total > 0.0 && total.is_finite()) || frames == 0 {
-        return Vec::new();
-    }
-    let n = f64::from(frames);
-    let mut poses = Vec::with_capacity(frames as usize);
-    let mut leg = 0;
-    let mut leg_start = 0.0;
-    for i in 0..frames {
-        let s = (f64::from(i) + 0.5) * total / n;
-        while leg + 1 < legs.len() && s >= leg_start + legs[leg].length {
-            leg_start += legs[leg].length;
-            leg += 1;
-        }
-        let l = &legs[leg];
-        let along = (s - leg_start).clamp(0.0, l.length);
-        let eye = [
-            l.origin[0] + l.dir[0] * along,
-            l.origin[1] + l.dir[1] * along,
-        ];
-        let right = [-l.dir[1], l.dir[0]];
-        let mut stream = rng::stream(seed, "cameras", u64::from(i));
-        let yaw = signed_unit(stream.next_u64()) * path.jitter;
-        let pitch = signed_unit(stream.next_u64()) * path.jitter;
-        let target = [
-            eye[0] + l.dir[0] * path.look_ahead + right[0] * yaw,
-            eye[1] + l.dir[1] * path.look_ahead + right[1] * yaw,
-        ];
-        poses.push(CameraPose {
-            eye: [mm(eye[0]), mm(path.height), mm(eye[1])],
-            target: [
-                mm(target[0]),
-                mm(path.height - PITCH_DROP * path.look_ahead + pitch),
-                mm(target[1]),
-            ],
-        });
-    }
-    poses
+    stations(&legs, path.frames.frames(total))
+        .into_iter()
+        .zip(0u64..)
+        .map(|((eye, dir), i)| {
+            let right = [-dir[1], dir[0]];
+            let angles = path.aim.draw(&mut rng::stream(seed, "cameras/aim", i));
+            let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
+            let mut stream = rng::stream(seed, "cameras", i);
+            let yaw = signed_unit(stream.next_u64()) * path.jitter;
+            let pitch = signed_unit(stream.next_u64()) * path.jitter;
+            pose.target = [
+                mm(pose.target[0] + right[0] * yaw),
+                mm(pose.target[1] + pitch),
+                mm(pose.target[2] + right[1] * yaw),
+            ];
+            pose
+        })
+        .collect()
 }
 
 /// Length in metres of the tour [`road_path`] drives with this `look_ahead`: the sum of
@@ -131,6 +115,7 @@ fn signed_unit(bits: u64) -> f64 {
 mod tests {
     use super::*;
     use crate::model::{Axis, Road};
+    use crate::spec::ValueRange;
 
     const M: f64 = 0.5;
 
@@ -162,10 +147,20 @@ mod tests {
         }
     }
 
+    /// A level aim at 1.6 m: the target exactly `look_ahead` ahead.
+    fn level() -> Aim {
+        Aim {
+            heading: ValueRange::Fixed(0.0),
+            pitch: ValueRange::Fixed(0.0),
+            roll: ValueRange::Fixed(0.0),
+            height: ValueRange::Fixed(1.6),
+        }
+    }
+
     fn path(frames: u32) -> RoadPath {
         RoadPath {
             frames: FrameRule::Count(frames),
-            height: 1.6,
+            aim: level(),
             look_ahead: 10.0,
             jitter: 0.5,
             lane_offset: 3.0,
@@ -197,9 +192,7 @@ mod tests {
                 south += 1;
             }
             let drop = p.eye[1] - p.target[1];
-            assert!(
-                (PITCH_DROP * 10.0 - 0.5 - 1e-9..=PITCH_DROP * 10.0 + 0.5 + 1e-9).contains(&drop)
-            );
+            assert!((-0.5 - 1e-9..=0.5 + 1e-9).contains(&drop), "{p:?}");
         }
         // 90 + 70 m over 40 frames: 4 m apart, so 90 m of road 0 hold frames 0..22.
         assert_eq!((east, south), (22, 18));
@@ -238,7 +231,7 @@ mod tests {
         };
         let calm = road_path(&layout(), M, &still, 11);
         assert_eq!(calm, road_path(&layout(), M, &still, 12));
-        assert!(calm.iter().all(|p| p.target[1] == 0.6));
+        assert!(calm.iter().all(|p| p.target[1] == 1.6));
     }
 
     #[test]
@@ -278,7 +271,10 @@ mod tests {
                 "infinite height",
                 M,
                 RoadPath {
-                    height: f64::INFINITY,
+                    aim: Aim {
+                        height: ValueRange::Between([1.0, f64::INFINITY]),
+                        ..level()
+                    },
                     ..path(5)
                 },
             ),
@@ -377,5 +373,49 @@ mod tests {
         assert_eq!(poses.len(), 180);
         assert_eq!(poses[99].eye[0], 99.5);
         assert_eq!(poses[179].eye[2], 79.5);
+    }
+
+    #[test]
+    fn ranged_aims_look_around_from_the_same_eyes() {
+        let ranged = RoadPath {
+            aim: Aim {
+                heading: ValueRange::Between([-60.0, 60.0]),
+                pitch: ValueRange::Between([-10.0, 5.0]),
+                roll: ValueRange::Between([-4.0, 4.0]),
+                height: ValueRange::Between([1.2, 2.0]),
+            },
+            jitter: 0.0,
+            ..path(40)
+        };
+        let poses = road_path(&layout(), M, &ranged, 9);
+        let plain = road_path(&layout(), M, &path(40), 9);
+        let (mut left, mut right) = (0, 0);
+        for (p, q) in poses.iter().zip(&plain) {
+            let a = p.angles.unwrap();
+            assert_eq!([p.eye[0], p.eye[2]], [q.eye[0], q.eye[2]]);
+            assert_eq!(p.eye[1], a.height);
+            assert!((1.2..=2.0).contains(&a.height) && (-4.0..=4.0).contains(&a.roll));
+            assert!((-60.0..=60.0).contains(&a.heading) && (-10.0..=5.0).contains(&a.pitch));
+            // The view turns from the road's direction by the heading: its cosine is the
+            // horizontal view's part along the road.
+            let d = [p.target[0] - p.eye[0], p.target[2] - p.eye[2]];
+            let along = if p.eye[2] == 100.5 * M + 3.0 {
+                d[0]
+            } else {
+                d[1]
+            };
+            let (ch, _) = super::super::aim::cos_sin(a.heading);
+            let (cp, _) = super::super::aim::cos_sin(a.pitch);
+            assert!((along - 10.0 * ch * cp).abs() < 2e-3, "{p:?}");
+            if a.heading < 0.0 {
+                left += 1
+            } else {
+                right += 1
+            }
+        }
+        assert!(left > 5 && right > 5, "{left} {right}");
+        // Another camera seed draws other angles at the same eyes.
+        let other = road_path(&layout(), M, &ranged, 10);
+        assert!(other.iter().zip(&poses).any(|(p, q)| p.angles != q.angles));
     }
 }

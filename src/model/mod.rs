@@ -19,7 +19,7 @@ mod texture;
 
 pub use block::{Band, Block, PxRect};
 pub use building::Building;
-pub use camera_pose::CameraPose;
+pub use camera_pose::{CameraPose, PoseAngles};
 pub use city_plan::{CityPlan, PlanBlock, PlanBuilding, PlanLamp, PlanRoad};
 pub use facade_set::{Facade, FacadeSet, Roof};
 pub use lamp::Lamp;

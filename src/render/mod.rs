@@ -4,8 +4,9 @@
 //! # Conventions
 //!
 //! - **World → camera**: right-handed look-at. `forward = normalize(target − eye)`,
-//!   `right = normalize(forward × up)` with `up = +y` (a camera looking straight up or down
-//!   takes north, −z, as its up), `true up = right × forward`. For `d = p − eye`:
+//!   `right = normalize(forward × up)` with the pose's `up` (+y when level, turned about
+//!   the view direction by a roll; a camera looking along it takes north, −z, as its up),
+//!   `true up = right × forward`. For `d = p − eye`:
 //!   `x_pixel = cx + fx · (right·d)/(forward·d)`, `y_pixel = cy − fy · (up·d)/(forward·d)`
 //!   (y down in the image). Pixel `(i, j)` covers `[i, i+1) × [j, j+1)`; it is sampled at
 //!   its centre `(i + 0.5, j + 0.5)`.

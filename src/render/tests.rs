@@ -112,7 +112,7 @@ fn checker_texture(size: u32, cell: u32) -> Texture {
 }
 
 fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
-    CameraPose { eye, target }
+    CameraPose::level(eye, target)
 }
 
 /// Colour = albedo: black sky, white ambient, no sun, no emission.

@@ -153,10 +153,7 @@ mod tests {
     use super::*;
 
     fn view() -> View {
-        let pose = CameraPose {
-            eye: [0.0, 0.0, 0.0],
-            target: [0.0, 0.0, -1.0],
-        };
+        let pose = CameraPose::level([0.0, 0.0, 0.0], [0.0, 0.0, -1.0]);
         View::new(&pose, &Intrinsics::from_fov(64, 48, 1.0), 1).unwrap()
     }
 

@@ -1,7 +1,9 @@
 //! The dataset part of a spec: camera paths, lighting and annotation settings.
 
-use schemars::JsonSchema;
+use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Serialize};
+
+use super::value_range::{ValueRange, range_schema};
 
 /// One camera path; its frames and annotations go to `frames/<name>/`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -11,6 +13,8 @@ pub struct CameraSpec {
     #[schemars(regex(pattern = r"^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$"))]
     pub name: String,
     /// `"roads"` drives along the roads in the right-hand lane, through crossings;
+    /// `"sidewalks"` walks the sidewalks clockwise around each block (the block on the
+    /// right); `"objects"` looks at objects of `classes` from free space around them;
     /// `"orbit"` circles the city looking at its centre (an overview).
     #[serde(default)]
     pub path: CameraPath,
@@ -26,10 +30,47 @@ pub struct CameraSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(with = "f64", range(min = 0.01, max = 100000.0))]
     pub spacing: Option<f64>,
-    /// Eye height in metres (roads: a driver's eye; orbit: the flight height).
+    /// Eye height in metres (roads: a driver's eye; sidewalks, objects: a pedestrian's;
+    /// orbit: the flight height): a number, or a range `[low, high]` drawn per frame.
     #[serde(default = "default_height")]
-    #[schemars(range(min = 0.3, max = 5000.0))]
-    pub height: f64,
+    #[schemars(schema_with = "height_schema", extend("default" = 1.6))]
+    pub height: ValueRange,
+    /// Yaw in degrees, a number or a range drawn per frame, positive to the right: roads
+    /// and sidewalks turn from the direction of travel (default 0 on roads, [-120, 120] on
+    /// sidewalks, so a walk looks at shop fronts on the right and the street on the
+    /// left); objects turn the aim from the line of sight to the target (default
+    /// [-15, 15], so the target is not always in the centre). Orbit: unused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(schema_with = "heading_schema")]
+    pub heading: Option<ValueRange>,
+    /// Pitch in degrees, positive up, a number or a range drawn per frame: from the
+    /// horizontal on roads (default -5.7, a tenth of the look-ahead down) and sidewalks
+    /// (default [-10, 10]); objects tilt the aim from the line of sight to the target
+    /// (default [-8, 8]). Orbit: unused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(schema_with = "pitch_schema")]
+    pub pitch: Option<ValueRange>,
+    /// Roll in degrees about the view direction, positive clockwise (the horizon tilts
+    /// anticlockwise in the image), a number or a range drawn per frame. Default 0.
+    /// Orbit: unused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(schema_with = "roll_schema")]
+    pub roll: Option<ValueRange>,
+    /// Objects path: the classes (the scene's `lamp`, … and `[[objects]]` labels) whose
+    /// objects the frames aim at, one object per frame, drawn.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub classes: Vec<String>,
+    /// Objects path: the eye's horizontal distance from the target in metres, a number or
+    /// a range drawn per frame.
+    #[serde(default = "default_distance")]
+    #[schemars(schema_with = "distance_schema", extend("default" = [4.0, 12.0]))]
+    pub distance: ValueRange,
+    /// Objects path: the bearing in degrees of the eye around the target, from the
+    /// target's front (the way its textured face looks; any bearing for an object without
+    /// one), a number or a range drawn per frame.
+    #[serde(default = "default_angle")]
+    #[schemars(schema_with = "angle_schema", extend("default" = [-60.0, 60.0]))]
+    pub angle: ValueRange,
     /// Vertical field of view in degrees.
     #[serde(default = "default_fov")]
     #[schemars(range(min = 10.0, max = 120.0))]
@@ -117,6 +158,8 @@ pub enum CameraPath {
     // Plain comments: the schema stays a simple enum.
     #[default]
     Roads,
+    Sidewalks,
+    Objects,
     Orbit,
 }
 
@@ -191,8 +234,32 @@ impl Default for AnnotationsSpec {
     }
 }
 
-fn default_height() -> f64 {
-    1.6
+fn default_height() -> ValueRange {
+    ValueRange::Fixed(1.6)
+}
+fn default_distance() -> ValueRange {
+    ValueRange::Between([4.0, 12.0])
+}
+fn default_angle() -> ValueRange {
+    ValueRange::Between([-60.0, 60.0])
+}
+fn height_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(0.3, 5000.0)
+}
+fn heading_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(-180.0, 180.0)
+}
+fn pitch_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(-89.0, 89.0)
+}
+fn roll_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(-90.0, 90.0)
+}
+fn distance_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(0.5, 1000.0)
+}
+fn angle_schema(_: &mut SchemaGenerator) -> Schema {
+    range_schema(-180.0, 180.0)
 }
 fn default_fov() -> f64 {
     60.0

@@ -15,6 +15,7 @@
 //! driver passes in. Relative paths in a spec resolve against the spec's own folder.
 
 mod camera_checks;
+mod camera_path_checks;
 mod camera_spec;
 mod closest;
 mod diagnostic;
@@ -32,6 +33,7 @@ mod spec;
 mod spec_errors;
 mod toml_json;
 mod value_checks;
+mod value_range;
 
 use std::path::{Path, PathBuf};
 
@@ -51,6 +53,7 @@ pub use spec::{
     OnError, Palette, PaletteColour, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
+pub use value_range::ValueRange;
 
 use findings::Findings;
 use key_path::KeyPath;
@@ -122,6 +125,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     value_checks::check_lamps(&spec.lamps, &mut findings);
     object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
     camera_checks::check_cameras(&spec.cameras, &mut findings);
+    camera_path_checks::check_camera_paths(&spec.cameras, &spec.objects, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

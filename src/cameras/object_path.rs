@@ -1,0 +1,267 @@
+//! Object views: labelled objects' positions + free space → candidate viewpoints per
+//! frame, each aimed at one object from a seeded distance and bearing.
+//!
+//! The stage cannot see: whether a candidate's object is hidden behind a building, a lamp
+//! or another object is the renderer's to say. So each frame gets [`ATTEMPTS`] candidates
+//! in order, and the build's frames glue keeps the first whose object shows enough.
+
+use rand::Rng;
+use serde::{Deserialize, Serialize};
+
+use super::CameraPose;
+use super::aim::{Aim, aimed_pose, cos_sin, unit};
+use crate::model::ParsedLayout;
+use crate::rng;
+use crate::spec::ValueRange;
+
+/// Candidate viewpoints drawn per frame.
+pub const ATTEMPTS: u32 = 12;
+
+/// Metres an eye keeps from every block (the blocks hold the buildings): it stands on a
+/// road or a sidewalk, never in a wall.
+pub const CLEARANCE: f64 = 0.75;
+
+/// An object a camera may aim at.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObjectTarget {
+    /// Instance id (scene object index + 1).
+    pub id: u32,
+    /// The point to aim at, metres.
+    pub centre: [f64; 3],
+    /// Unit `[x, z]` direction its front looks to, if it has one (a text plate, a sign's
+    /// face); bearings are measured from it.
+    pub front: Option<[f64; 2]>,
+}
+
+/// How an objects path draws its viewpoints.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObjectsPath {
+    pub frames: u32,
+    /// Heading and pitch turn the aim off the line of sight; roll and eye height as drawn.
+    pub aim: Aim,
+    /// Horizontal distance from the object to the eye, metres.
+    pub distance: ValueRange,
+    /// Bearing of the eye around the object from its front, degrees, positive clockwise
+    /// seen from above; any bearing for an object without a front.
+    pub angle: ValueRange,
+}
+
+/// One candidate: the object aimed at and the pose.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObjectView {
+    pub target: u32,
+    pub pose: CameraPose,
+}
+
+/// Up to [`ATTEMPTS`] candidate views for each of `path.frames` frames. Attempt `a` of
+/// frame `i` draws from `rng::stream(seed, "cameras/objects", i · ATTEMPTS + a)`, in order:
+/// the object (uniformly among `targets`), the distance, the bearing, then the aim. A
+/// candidate whose eye is outside the layout or within [`CLEARANCE`] of a block is
+/// dropped, so a frame may get fewer candidates, or none. The pose's recorded heading and
+/// pitch are the aim's turn off the line of sight.
+///
+/// No candidates at all without targets or with a parameter out of range
+/// (`metres_per_pixel` positive and finite, ranges finite, distances positive).
+pub fn object_views(
+    layout: &ParsedLayout,
+    metres_per_pixel: f64,
+    targets: &[ObjectTarget],
+    path: &ObjectsPath,
+    seed: u64,
+) -> Vec<Vec<ObjectView>> {
+    let m = metres_per_pixel;
+    let valid = m.is_finite()
+        && m > 0.0
+        && path.aim.is_valid()
+        && path.distance.is_finite()
+        && path.distance.ends()[0] > 0.0
+        && path.angle.is_finite();
+    if !valid || targets.is_empty() {
+        return Vec::new();
+    }
+    let attempts = u64::from(ATTEMPTS);
+    (0..u64::from(path.frames))
+        .map(|frame| {
+            (0..attempts)
+                .filter_map(|a| {
+                    let mut stream = rng::stream(seed, "cameras/objects", frame * attempts + a);
+                    let pick = (unit(stream.next_u64()) * targets.len() as f64) as usize;
+                    let target = &targets[pick.min(targets.len() - 1)];
+                    let distance = path.distance.at(unit(stream.next_u64()));
+                    let turn = unit(stream.next_u64());
+                    let (bearing, from) = match target.front {
+                        Some(front) => (path.angle.at(turn), front),
+                        None => (360.0 * turn - 180.0, [0.0, -1.0]),
+                    };
+                    let out = turned(from, bearing);
+                    let ground = [
+                        target.centre[0] + out[0] * distance,
+                        target.centre[2] + out[1] * distance,
+                    ];
+                    let angles = path.aim.draw(&mut stream);
+                    if !free(layout, m, ground) {
+                        return None;
+                    }
+                    let sight = [
+                        target.centre[0] - ground[0],
+                        target.centre[1] - angles.height,
+                        target.centre[2] - ground[1],
+                    ];
+                    let flat = (sight[0] * sight[0] + sight[2] * sight[2]).sqrt();
+                    let length = (flat * flat + sight[1] * sight[1]).sqrt();
+                    if !(flat > 0.0 && length.is_finite()) {
+                        return None;
+                    }
+                    let dir = [sight[0] / flat, sight[2] / flat];
+                    let base = (flat / length, sight[1] / length);
+                    Some(ObjectView {
+                        target: target.id,
+                        pose: aimed_pose(ground, dir, base, angles, length),
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Unit `v` turned `degrees` clockwise seen from above (x east, z south).
+fn turned(v: [f64; 2], degrees: f64) -> [f64; 2] {
+    let (c, s) = cos_sin(degrees);
+    [c * v[0] - s * v[1], c * v[1] + s * v[0]]
+}
+
+/// Whether ground point `p` (metres) is inside the layout and at least [`CLEARANCE`] from
+/// every block, checked at `p` and at the four points that far from it along the axes
+/// (blocks are unions of pixel rectangles, at least a few metres wide).
+fn free(layout: &ParsedLayout, m: f64, p: [f64; 2]) -> bool {
+    let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
+    let c = CLEARANCE;
+    let probes = [
+        p,
+        [p[0] - c, p[1]],
+        [p[0] + c, p[1]],
+        [p[0], p[1] - c],
+        [p[0], p[1] + c],
+    ];
+    probes.iter().all(|q| {
+        let inside = q[0] >= 0.0 && q[1] >= 0.0 && q[0] < w && q[1] < h;
+        inside && {
+            let (x, y) = ((q[0] / m) as u32, (q[1] / m) as u32);
+            !layout.blocks.iter().any(|b| b.contains_pixel(x, y))
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Band, Block, PxRect};
+
+    /// A 100 × 100 m layout at 1 m per pixel with one block x 40–60, z 40–60.
+    fn layout() -> ParsedLayout {
+        ParsedLayout {
+            width: 100,
+            height: 100,
+            blocks: vec![Block {
+                id: 0,
+                bbox: PxRect {
+                    x0: 40,
+                    y0: 40,
+                    x1: 60,
+                    y1: 60,
+                },
+                area: 400,
+                outline: Vec::new(),
+                bands: vec![Band {
+                    y0: 40,
+                    y1: 60,
+                    spans: vec![[40, 60]],
+                }],
+            }],
+            roads: Vec::new(),
+        }
+    }
+
+    fn path(heading: ValueRange) -> ObjectsPath {
+        ObjectsPath {
+            frames: 20,
+            aim: Aim {
+                heading,
+                pitch: ValueRange::Fixed(0.0),
+                roll: ValueRange::Fixed(0.0),
+                height: ValueRange::Fixed(1.6),
+            },
+            distance: ValueRange::Between([4.0, 8.0]),
+            angle: ValueRange::Between([-45.0, 45.0]),
+        }
+    }
+
+    /// Text on the block's north wall, facing north, 3 m up.
+    const TEXT: ObjectTarget = ObjectTarget {
+        id: 7,
+        centre: [50.0, 3.0, 40.0],
+        front: Some([0.0, -1.0]),
+    };
+
+    #[test]
+    fn views_stand_in_front_of_the_object_outside_the_block_and_look_at_it() {
+        let views = object_views(&layout(), 1.0, &[TEXT], &path(ValueRange::Fixed(0.0)), 4);
+        assert_eq!(views.len(), 20);
+        for frame in &views {
+            // Every eye in front of the wall is free: all attempts survive.
+            assert_eq!(frame.len(), ATTEMPTS as usize);
+            for v in frame {
+                let p = v.pose;
+                assert_eq!(v.target, 7);
+                let (dx, dz) = (p.eye[0] - 50.0, p.eye[2] - 40.0);
+                let d = (dx * dx + dz * dz).sqrt();
+                assert!((4.0 - 2e-3..=8.0 + 2e-3).contains(&d), "{p:?}");
+                // Within 45° of the front (north, −z).
+                assert!(-dz >= d * std::f64::consts::FRAC_1_SQRT_2 - 2e-3, "{p:?}");
+                // Aimed straight at the centre: the target is the object's centre.
+                let t = p.target;
+                assert!(
+                    (t[0] - 50.0).abs() < 3e-3 && (t[1] - 3.0).abs() < 3e-3,
+                    "{p:?}"
+                );
+                assert!((t[2] - 40.0).abs() < 3e-3, "{p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn eyes_never_stand_in_a_block_and_aims_turn_off_the_centre() {
+        // The same text seen from behind: every bearing puts the eye inside the block.
+        let behind = ObjectTarget {
+            front: Some([0.0, 1.0]),
+            ..TEXT
+        };
+        let views = object_views(&layout(), 1.0, &[behind], &path(ValueRange::Fixed(0.0)), 4);
+        assert!(views.iter().all(|f| f.is_empty()));
+        // A lamp without a front, beside the block: any bearing, never into the block.
+        let lamp = ObjectTarget {
+            id: 3,
+            centre: [50.0, 2.0, 37.0],
+            front: None,
+        };
+        let turned = path(ValueRange::Between([-20.0, 20.0]));
+        let views = object_views(&layout(), 1.0, &[lamp, TEXT], &turned, 9);
+        let mut off_centre = 0;
+        for v in views.iter().flatten() {
+            let [x, _, z] = v.pose.eye;
+            assert!(
+                !((39.25..=60.75).contains(&x) && (39.25..=60.75).contains(&z)),
+                "{v:?}"
+            );
+            let heading = v.pose.angles.unwrap().heading;
+            assert!((-20.0..=20.0).contains(&heading));
+            off_centre += usize::from(heading.abs() > 5.0);
+        }
+        assert!(off_centre > 20, "{off_centre}");
+        assert_eq!(
+            views,
+            object_views(&layout(), 1.0, &[lamp, TEXT], &turned, 9)
+        );
+        assert!(object_views(&layout(), 1.0, &[], &turned, 9).is_empty());
+    }
+}
