@@ -443,4 +443,43 @@ fn issue_8_verify_names_a_poisoned_entry() {
             && text.contains("rechecked 12 of 12 cached stages: 1 differ"),
         "{text}"
     );
+#[test]
+fn word_files_feed_the_text_and_bad_ones_exit_2() {
+    let ws = Workspace::with_spec("text");
+    ws.edit_spec(
+        "text",
+        "case = \"mixed\"",
+        "case = \"upper\"\nwords_file = \"shops.txt\"",
+    );
+    let words = ws.path().join("specs/shops.txt");
+    let bad: [(Option<&[u8]>, &str); 3] = [
+        (None, "objects[0].words_file"),
+        (Some(b"# only a comment\n"), "holds no words"),
+        (Some(&[0xff, 0xfe, b'a']), "not UTF-8"),
+    ];
+    for (bytes, message) in bad {
+        if let Some(bytes) = bytes {
+            fs::write(&words, bytes).unwrap();
+        }
+        let out = cityspec(&ws, &["build", "specs/text.toml"]);
+        assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+        assert!(stderr(&out).contains(message), "{}", stderr(&out));
+    }
+    fs::write(&words, "# shop names\nbakery café\n").unwrap();
+    let out = cityspec(&ws, &["build", "specs/text.toml"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let coco: serde_json::Value = serde_json::from_slice(
+        &fs::read(ws.path().join("out/text/frames/street/coco.json")).unwrap(),
+    )
+    .unwrap();
+    let texts: Vec<&str> = coco["annotations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a["text"].as_str().unwrap())
+        .collect();
+    assert!(!texts.is_empty());
+    for word in texts.iter().flat_map(|t| t.split(' ')) {
+        assert!(["BAKERY", "CAFÉ"].contains(&word), "{word}");
+    }
 }

@@ -40,7 +40,9 @@ pub fn coco(
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
 ///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
-///   it; or `null`) and, for text objects, `text`.
+///   it; or `null`) and, for text objects, `text` (the plate's whole text: COCO stays one
+///   annotation per plate, whose mask is the plate; ICDAR has the words) and `attributes`
+///   `{text_font, text_style}` (style `shop`, `banner` or `painted`).
 ///
 /// Keys are written in that order, one image, category or annotation per line. Intrinsics
 /// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
@@ -118,6 +120,11 @@ impl CocoWriter {
             if let (Some(text), Value::Object(map)) = (&object.label.text, &mut annotation) {
                 map.insert("text".into(), Value::String(text.clone()));
             }
+            if let (false, Value::Object(map)) =
+                (object.label.attributes.is_empty(), &mut annotation)
+            {
+                map.insert("attributes".into(), json!(object.label.attributes));
+            }
             line(&mut self.annotations, &annotation);
         }
     }
@@ -180,6 +187,7 @@ mod tests {
             name: name.into(),
             category,
             text: text.map(String::from),
+            attributes: Default::default(),
         };
         vec![
             label("building_0", Some(1), None),

@@ -38,6 +38,7 @@ fn labels() -> Vec<ObjectLabel> {
                 name: format!("object_{id:04}"),
                 category,
                 text,
+                attributes: Default::default(),
             }
         })
         .collect()

@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use super::frame_input::{FrameInput, Thresholds};
 use super::object_label::ObjectLabel;
 use super::shown_object::{ShownObject, shown};
+use super::word_quad::WordQuad;
 use crate::model::CameraPose;
 
 /// What every output format needs of one frame.
@@ -24,8 +25,9 @@ pub struct FrameAnnotations<'a> {
     /// The labelled objects the frame shows, in instance-id order, each with whether it
     /// passes the thresholds.
     pub objects: Vec<ShownObject<'a>>,
-    /// Projected text quads of the shown objects that have one, by instance id.
-    pub quads: BTreeMap<u32, [[f64; 2]; 4]>,
+    /// Per shown text object that has them, by instance id: its words' projected quads and
+    /// how much of each the frame shows.
+    pub quads: BTreeMap<u32, Vec<WordQuad>>,
 }
 
 /// Scans `frame`'s instance image once and keeps what the outputs need.
@@ -35,14 +37,19 @@ pub fn summarize<'a>(
     thresholds: &Thresholds,
 ) -> FrameAnnotations<'a> {
     let objects = shown(labels, frame, thresholds);
+    let (width, height) = frame.instance.dimensions();
     let quads = objects
         .iter()
         .filter_map(|o| {
             let id = u32::from(o.visible.id);
-            Some((id, *frame.quads.get(&id)?))
+            let words = frame.quads.get(&id)?.iter().map(|&quad| {
+                WordQuad::measure(quad, width, height, |x, y| {
+                    u32::from(frame.instance.get_pixel(x, y).0[0]) == id
+                })
+            });
+            Some((id, words.collect()))
         })
         .collect();
-    let (width, height) = frame.instance.dimensions();
     FrameAnnotations {
         file_name: frame.file_name.clone(),
         width,

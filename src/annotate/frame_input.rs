@@ -22,9 +22,10 @@ pub struct FrameInput<'a> {
     /// ignoring occlusion, when the renderer knows them. Without it an object's visible
     /// fraction is unknown and only `min_pixels` applies to it.
     pub full: BTreeMap<u32, ([f64; 4], u64)>,
-    /// Per text object: the four projected corners of its text quad, clockwise from the
-    /// top-left of the writing, when the renderer knows them (for ICDAR lines).
-    pub quads: BTreeMap<u32, [[f64; 2]; 4]>,
+    /// Per text object: per word of its text (split at spaces, in order), the four
+    /// projected corners of the word's quad, clockwise from the top-left of the writing,
+    /// when the renderer knows them (for ICDAR lines).
+    pub quads: BTreeMap<u32, Vec<[[f64; 2]; 4]>>,
 }
 
 /// Which visible objects are annotated.

@@ -1,48 +1,88 @@
-//! One frame → ICDAR 2015 text lines: `x1,y1,x2,y2,x3,y3,x4,y4,transcription`.
+//! One frame → ICDAR 2015 word lines: `x1,y1,x2,y2,x3,y3,x4,y4,transcription`.
 
 use std::fmt::Write;
 
 use super::frame_annotations::FrameAnnotations;
 
-/// Visible fraction below which a text is "mostly hidden" and transcribed `###`.
+/// Visible fraction below which a word is "mostly hidden" and transcribed `###`.
 pub const MOSTLY_HIDDEN: f64 = 0.5;
+/// Fewest pixels per character along the writing for a word to be transcribed.
+pub const MIN_PX_PER_CHAR: f64 = 2.0;
 
-/// ICDAR 2015 lines for the text objects (labels with `text`) visible in one frame, in
-/// instance-id order: `x1,y1,x2,y2,x3,y3,x4,y4,transcription`, integer pixel coordinates.
+/// ICDAR 2015 lines for the text objects (labels with `text`) visible in one frame: one
+/// line per word (ICDAR 2015 is word-level), objects in instance-id order and words in
+/// reading order, `x1,y1,x2,y2,x3,y3,x4,y4,transcription` with integer pixel coordinates.
 ///
-/// The quad is the renderer's projected corners (`frame.quads`) when given and finite,
-/// rounded to the nearest pixel; otherwise the visible box's corner pixels clockwise from
-/// the top-left (`x0,y0, x1,y0, x1,y1, x0,y1`, inclusive). The transcription is the text
-/// with line breaks and other control characters made spaces, or `###` (ICDAR's "do not
-/// care") when the text is mostly hidden — its visible fraction is below one half — or it
-/// misses `thresholds`. Every visible text gets a line, so a detector that finds a mostly
-/// hidden one is not counted wrong.
+/// - The quad is the word's projected ink box (`frame.quads`), clockwise from the top-left
+///   of the writing. **At the image edge** each corner is rounded and then clamped into the
+///   image (`0..=width−1`, `0..=height−1`), so every coordinate is a pixel of the frame; a
+///   word cut by the edge is therefore written as its visible part's hull, and its
+///   transcription is kept only while at least half of it is in view (below).
+/// - The transcription is the word, or `###` (ICDAR's "do not care") when the word is
+///   mostly hidden (less than [`MOSTLY_HIDDEN`] of its quad shows the object, counting
+///   occlusion and the image edge), narrower than [`MIN_PX_PER_CHAR`] pixels per
+///   character, or its object misses the thresholds. A word the frame does not show at
+///   all gets no line; every other gets one, so a detector that finds a hard word is not
+///   counted wrong.
+/// - A text object without word quads (a corner behind the camera) gets one line: its
+///   visible box's corner pixels clockwise from the top-left, transcribed only when it is
+///   a single word that passes the rules above.
+///
+/// Control characters in a word become spaces.
 pub fn icdar(frame: &FrameAnnotations) -> String {
     let mut out = String::new();
+    let clamp = |[x, y]: [f64; 2]| {
+        let max = [frame.width.max(1) - 1, frame.height.max(1) - 1].map(i64::from);
+        [
+            (x.round() as i64).clamp(0, max[0]),
+            (y.round() as i64).clamp(0, max[1]),
+        ]
+    };
     for object in &frame.objects {
         let Some(text) = &object.label.text else {
             continue;
         };
         let v = &object.visible;
-        let b = v.bounds;
-        let boxed =
-            [[b.x0, b.y0], [b.x1, b.y0], [b.x1, b.y1], [b.x0, b.y1]].map(|p| p.map(i64::from));
-        let quad = frame
+        let words: Vec<&str> = text.split(' ').collect();
+        let mut line = |quad: [[i64; 2]; 4], word: &str, readable: bool| {
+            for [x, y] in quad {
+                let _ = write!(out, "{x},{y},");
+            }
+            if readable && !word.is_empty() {
+                out.extend(word.chars().map(|c| if c.is_control() { ' ' } else { c }));
+            } else {
+                out.push_str("###");
+            }
+            out.push('\n');
+        };
+        let quads = frame
             .quads
             .get(&u32::from(v.id))
-            .filter(|q| q.iter().flatten().all(|c| c.is_finite() && c.abs() < 1e15))
-            .map(|q| q.map(|p| p.map(|c| c.round() as i64)))
-            .unwrap_or(boxed);
-        let hidden = !object.passes || object.fraction.is_some_and(|f| f < MOSTLY_HIDDEN);
-        for [x, y] in quad {
-            let _ = write!(out, "{x},{y},");
+            .filter(|q| q.len() == words.len());
+        match quads {
+            Some(quads) => {
+                for (word, w) in words.iter().zip(quads) {
+                    if w.visible <= 0.0 {
+                        continue;
+                    }
+                    let wide = w.length() >= MIN_PX_PER_CHAR * word.chars().count() as f64;
+                    let readable = object.passes && w.visible >= MOSTLY_HIDDEN && wide;
+                    line(w.quad.map(clamp), word, readable);
+                }
+            }
+            None => {
+                let b = v.bounds;
+                let quad = [[b.x0, b.y0], [b.x1, b.y0], [b.x1, b.y1], [b.x0, b.y1]]
+                    .map(|p| p.map(i64::from));
+                let wide =
+                    f64::from(b.x1 - b.x0 + 1) >= MIN_PX_PER_CHAR * text.chars().count() as f64;
+                let readable = words.len() == 1
+                    && object.passes
+                    && object.fraction.is_none_or(|f| f >= MOSTLY_HIDDEN)
+                    && wide;
+                line(quad, text, readable);
+            }
         }
-        if hidden {
-            out.push_str("###");
-        } else {
-            out.extend(text.chars().map(|c| if c.is_control() { ' ' } else { c }));
-        }
-        out.push('\n');
     }
     out
 }
@@ -52,42 +92,61 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize, test_image};
+    use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize};
     use crate::model::CameraPose;
 
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> [[f64; 2]; 4] {
+        [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+    }
+
     #[test]
-    fn mostly_hidden_or_too_small_text_is_do_not_care() {
-        // Four texts: 1 fully seen, 2 with half of it hidden, 3 with less than half
-        // seen, 4 a single pixel; 5 is a building without text.
-        let img = test_image(&[
-            &[1, 1, 1, 0, 2, 2, 0, 4],
-            &[1, 1, 1, 0, 2, 2, 0, 0],
-            &[0, 0, 0, 0, 0, 0, 0, 0],
-            &[3, 3, 0, 5, 5, 0, 0, 0],
-        ]);
+    fn one_line_per_word_with_do_not_care_for_small_hidden_or_cut_words() {
+        // 20 × 6: 1 "Write Group" (x 0..12, rows 0..3), 2 "Edge" running past the right
+        // edge, 3 "Hidden" mostly behind 5, 4 "Gone word" whose second word is off the
+        // image, 5 "Ok" with no quads, 6 a building.
+        let img = image::ImageBuffer::from_fn(20, 6, |x, y| {
+            image::Luma([match (x, y) {
+                (0..=11, 0..=2) => 1u16,
+                (14..=19, 0..=2) => 2,
+                (0..=2, 4..=5) => 3,
+                (3..=11, 4..=5) => 5,
+                (14..=19, 4..=5) => 4,
+                (12..=13, 4..=5) => 6,
+                _ => 0,
+            }])
+        });
         let label = |text: Option<&str>| ObjectLabel {
             name: "x".into(),
             category: Some(1),
             text: text.map(String::from),
+            attributes: Default::default(),
         };
         let labels = [
-            label(Some("EXIT")),
-            label(Some("line one\nline two, and more")),
-            label(Some("CAFE")),
-            label(Some("X")),
+            label(Some("Write Group")),
+            label(Some("Edge")),
+            label(Some("Hidden")),
+            label(Some("Gone word")),
+            label(Some("Ok")),
             label(None),
         ];
         let frame = FrameInput {
             file_name: "f.png".into(),
             instance: &img,
-            intrinsics: [1.0, 1.0, 4.0, 2.0],
+            intrinsics: [1.0, 1.0, 10.0, 3.0],
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
-            full: BTreeMap::from([
-                (1, ([0.0, 0.0, 3.0, 2.0], 6)),
-                (2, ([4.0, 0.0, 2.0, 4.0], 8)),
-                (3, ([0.0, 3.0, 4.0, 2.0], 5)),
+            full: BTreeMap::new(),
+            quads: BTreeMap::from([
+                (
+                    1,
+                    vec![rect(0.0, 0.0, 10.0, 3.0), rect(10.0, 0.0, 12.0, 3.0)],
+                ),
+                (2, vec![rect(14.0, 0.0, 24.0, 3.0)]),
+                (3, vec![rect(0.0, 4.0, 12.0, 6.0)]),
+                (
+                    4,
+                    vec![rect(14.0, 4.0, 20.0, 6.0), rect(30.0, 4.0, 40.0, 6.0)],
+                ),
             ]),
-            quads: BTreeMap::from([(1, [[-0.4, 0.2], [3.5, 0.0], [3.0, 2.49], [0.0, 2.0]])]),
         };
         let thresholds = Thresholds {
             min_pixels: 2,
@@ -95,10 +154,12 @@ mod tests {
         };
         assert_eq!(
             icdar(&summarize(&labels, &frame, &thresholds)),
-            "0,0,4,0,3,2,0,2,EXIT\n\
-             4,0,5,0,5,1,4,1,line one line two, and more\n\
-             0,3,1,3,1,3,0,3,###\n\
-             7,0,7,0,7,0,7,0,###\n"
+            "0,0,10,0,10,3,0,3,Write\n\
+             10,0,12,0,12,3,10,3,###\n\
+             14,0,19,0,19,3,14,3,Edge\n\
+             0,4,12,4,12,5,0,5,###\n\
+             14,4,19,4,19,5,14,5,###\n\
+             3,4,11,4,11,5,3,5,Ok\n"
         );
     }
 }

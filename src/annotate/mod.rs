@@ -34,6 +34,7 @@ mod object_label;
 mod rle;
 mod shown_object;
 mod visible_object;
+mod word_quad;
 mod yolo;
 
 pub use coco::{CocoWriter, coco};
@@ -44,6 +45,7 @@ pub use object_label::{Category, ObjectLabel};
 pub use rle::{Rle, RleError};
 pub use shown_object::{ShownObject, shown};
 pub use visible_object::{VisibleObject, scan};
+pub use word_quad::WordQuad;
 pub use yolo::yolo;
 
 /// `v` rounded to a multiple of `1 / scale` (`scale` a power of ten; `-0` made `0`), or

@@ -1,5 +1,7 @@
 //! What the scene knows of each object, and the categories annotations use.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 /// A COCO category.
@@ -19,4 +21,8 @@ pub struct ObjectLabel {
     pub category: Option<u32>,
     /// The words on a text object; text objects also go into the ICDAR lines.
     pub text: Option<String>,
+    /// Extra attributes written into the object's COCO annotation as `attributes` (text:
+    /// `text_style`, `text_font`); none written when empty.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub attributes: BTreeMap<String, String>,
 }

@@ -68,6 +68,7 @@ mod tests {
             name: name.into(),
             category,
             text: None,
+            attributes: Default::default(),
         };
         let labels = [
             label("car_0", Some(20)),

@@ -23,8 +23,8 @@ use crate::spec::CameraSpec;
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
-    /// World corners of text quads by instance id, for ICDAR quads.
-    pub corners: &'a BTreeMap<u32, [[f64; 3]; 4]>,
+    /// Per text object by instance id: its words' world corners, for ICDAR quads.
+    pub corners: &'a BTreeMap<u32, Vec<[[f64; 3]; 4]>>,
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
@@ -93,7 +93,10 @@ pub fn render_path<E>(
             quads: input
                 .corners
                 .iter()
-                .filter_map(|(id, corners)| Some((*id, project_quad(pose, &intrinsics, corners)?)))
+                .filter_map(|(id, words)| {
+                    let quads = words.iter().map(|c| project_quad(pose, &intrinsics, c));
+                    Some((*id, quads.collect::<Option<Vec<_>>>()?))
+                })
                 .collect(),
         };
         let (pngs, summary) = rayon::join(

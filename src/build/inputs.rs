@@ -149,9 +149,13 @@ fn read_optional(path: &Path) -> Option<Vec<u8>> {
     fs::read(path).ok()
 }
 
+/// Largest word file a text object may name, in bytes.
+pub const MAX_WORDS_FILE: u64 = 1 << 20;
+
 /// Reads every model a `mesh` object names: the OBJ, the MTL its `mtllib` names (beside
-/// it), and the texture files that MTL names. Returns them keyed by the spec's `model`
-/// string, and a digest of all their bytes for the stage keys.
+/// it), and the texture files that MTL names; and every `words_file` a `text` object names
+/// (its bytes as the `obj`, at most [`MAX_WORDS_FILE`]). Returns them keyed by the spec's
+/// `model` or `words_file` string, and a digest of all their bytes for the stage keys.
 pub fn mesh_files(
     spec_path: &Path,
     spec: &Spec,
@@ -159,6 +163,21 @@ pub fn mesh_files(
     let mut meshes = BTreeMap::new();
     let mut digest = Sha256::new();
     for (index, object) in spec.objects.iter().enumerate() {
+        if let (ObjectKind::Text, Some(words)) = (object.kind, &object.words_file) {
+            if !meshes.contains_key(words) {
+                let bytes = words_file(spec_path, words, index)?;
+                for part in [words.as_bytes(), &bytes[..]] {
+                    digest.update((part.len() as u64).to_le_bytes());
+                    digest.update(part);
+                }
+                let files = MeshFiles {
+                    obj: bytes,
+                    ..MeshFiles::default()
+                };
+                meshes.insert(words.clone(), files);
+            }
+            continue;
+        }
         let (ObjectKind::Mesh, Some(model)) = (object.kind, &object.model) else {
             continue;
         };
@@ -221,4 +240,30 @@ pub fn mesh_files(
         meshes.insert(model.clone(), MeshFiles { obj, mtl, textures });
     }
     Ok((meshes, hex(&digest.finalize())))
+}
+
+/// Reads a text object's word file: at most [`MAX_WORDS_FILE`] bytes of UTF-8 holding at
+/// least one word.
+fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, BuildError> {
+    let file = spec::resolve(spec_path, words);
+    let error = |message: String| BuildError::Input {
+        spec: spec_path.to_path_buf(),
+        key: "objects.words_file",
+        file: file.clone(),
+        message: format!("{message} (objects[{index}].words_file)"),
+    };
+    let size = fs::metadata(&file).map_err(|e| error(e.to_string()))?.len();
+    if size > MAX_WORDS_FILE {
+        return Err(error(format!(
+            "the word file is {size} bytes, more than the {MAX_WORDS_FILE} allowed"
+        )));
+    }
+    let bytes = fs::read(&file).map_err(|e| error(e.to_string()))?;
+    match std::str::from_utf8(&bytes) {
+        Err(e) => Err(error(format!("the word file is not UTF-8: {e}"))),
+        Ok(text) if crate::objects::parse_words(text).is_empty() => {
+            Err(error("the word file holds no words".to_owned()))
+        }
+        Ok(_) => Ok(bytes),
+    }
 }

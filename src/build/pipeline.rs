@@ -694,11 +694,13 @@ impl<'a> Pipeline<'a> {
                     min_pixels: spec.annotations.min_pixels,
                     min_fraction: spec.annotations.min_fraction,
                 };
-                let corners: BTreeMap<u32, [[f64; 3]; 4]> = p
+                // Per text object: its words' world corners.
+                let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = p
                     .object_info
                     .iter()
                     .enumerate()
-                    .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners?)))
+                    .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners.clone())))
+                    .filter(|(_, words)| !words.is_empty())
                     .collect();
                 let input = frames::PathInput {
                     corners: &corners,
@@ -1028,6 +1030,10 @@ fn labels(
                 .find(|c| c.name == object.class)
                 .map(|c| c.id),
             text: info.get(i).and_then(|info| info.as_ref()?.text.clone()),
+            attributes: info
+                .get(i)
+                .and_then(|info| Some(info.as_ref()?.attributes.clone()))
+                .unwrap_or_default(),
         })
         .collect();
     (categories, labels)

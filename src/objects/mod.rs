@@ -4,7 +4,7 @@
 //!
 //! | kind | object name | where | geometry |
 //! |---|---|---|---|
-//! | text | `text_0003` | a wall facing a road, 2.5 m up to 1 m below the roof | a plate quad 2.5 cm in front of the wall, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
+//! | text | `text_0003` | free wall (no window, no other plate) facing a road, 2.5 m up to 1 m below the roof; shop signs low | a plate quad 2.5 cm in front of the wall (shop sign, banner, or painted on the wall's own pixels), one of eight fonts, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
 //! | sign | `sign_0012` | mid-strip beside a road, ≥ 2 m from lamps, not in a crossing | pole + plate shaped like the sign, facing oncoming traffic |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
 //!
@@ -17,14 +17,17 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 mod atlas_layout;
 mod ground_spots;
 mod objects_error;
+mod plate_style;
 mod sign_face;
 #[cfg(test)]
 mod tests;
+mod text_colours;
+mod text_font;
 mod text_plate;
 mod traffic_signs;
 mod trig;
@@ -41,12 +44,13 @@ use crate::scene::material_book::MaterialBook;
 use crate::spec::{ObjectKind, ObjectSpec};
 
 pub use objects_error::ObjectsError;
-pub use word_list::WORDS;
+pub use word_list::{WORDS, parse_words};
 
 /// How many random spots an object tries before it is left out.
 pub const ATTEMPTS: u32 = 40;
 
-/// A user model's files, as the build driver read them.
+/// A file set an object entry names, as the build driver read it: a user model's OBJ, MTL
+/// and textures, or a text entry's word file (its bytes in `obj`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MeshFiles {
     pub obj: Vec<u8>,
@@ -72,8 +76,8 @@ pub struct ObjectsInput<'a> {
 
 /// What gets inserted: objects (named `text_0003`, `sign_0012`, `<label>_0004`…, class =
 /// the spec's label), their materials and textures (indices local to this value), and per
-/// object its category label and, for text, the transcription and the 4 corners of the text
-/// quad in world coordinates (for ICDAR quads).
+/// object its category label and, for text, the transcription, the 4 corners of every
+/// word's quad in world coordinates (for ICDAR quads) and its style attributes.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Inserted {
     pub textures: Vec<Texture>,
@@ -89,9 +93,12 @@ pub struct ObjectInfo {
     pub label: String,
     /// Text objects: the words as drawn (with their case).
     pub text: Option<String>,
-    /// Text objects: the text's box corners in world metres, clockwise from the top-left as
-    /// seen from the front (top-left, top-right, bottom-right, bottom-left).
-    pub corners: Option<[[f64; 3]; 4]>,
+    /// Text objects: per word of `text` (split at spaces, in order), its ink box's corners
+    /// in world metres, clockwise from the top-left as seen from the front (top-left,
+    /// top-right, bottom-right, bottom-left). Empty for other objects.
+    pub corners: Vec<[[f64; 3]; 4]>,
+    /// Extra annotation attributes (text objects: `text_style`, `text_font`).
+    pub attributes: BTreeMap<String, String>,
 }
 
 /// State shared by the entries while they are placed in order.
@@ -144,7 +151,8 @@ impl Placing<'_> {
         let info = ObjectInfo {
             label: label.to_owned(),
             text: None,
-            corners: None,
+            corners: Vec::new(),
+            attributes: BTreeMap::new(),
         };
         self.push(object, info);
     }
@@ -152,8 +160,9 @@ impl Placing<'_> {
 
 /// Places every spec entry's objects, in entry order. Pure and deterministic.
 ///
-/// Errors only for mesh entries: a model missing from `meshes`, an OBJ/MTL tobj cannot read,
-/// a texture the MTL names that is missing or not an image. Each error names the model.
+/// Errors for mesh entries: a model missing from `meshes`, an OBJ/MTL tobj cannot read, a
+/// texture the MTL names that is missing or not an image; for text entries: a word file
+/// missing from `meshes` or without words. Each error names the file.
 pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     let mut placing = Placing {
         input,
@@ -167,7 +176,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
         match spec.kind {
-            ObjectKind::Text => walls.place(spec, &mut rng, &mut placing),
+            ObjectKind::Text => walls.place(spec, &mut rng, &mut placing)?,
             ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Mesh => {
                 user_mesh::place(spec, &mut rng, &mut spots, &mut placing)?;

@@ -1,10 +1,13 @@
-//! Why inserting objects failed: a user model that cannot be read (each names its model).
+//! Why inserting objects failed: a user model or word file that cannot be read (each names
+//! its file as the spec wrote it).
 
 use thiserror::Error;
 
-/// An objects-stage error; every variant names the spec's `model` string.
+/// An objects-stage error; every variant names the spec's `model` or `words_file` string.
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
 pub enum ObjectsError {
+    #[error("word file {file}: the build did not read it, or it holds no words")]
+    MissingWords { file: String },
     #[error("model {model}: the build did not read its files")]
     MissingModel { model: String },
     #[error("model {model}: cannot read the OBJ: {message}")]

@@ -4,8 +4,12 @@
 //! wall) no farther than [`ROAD_REACH`] strip widths away. A plate stands between
 //! [`MIN_HEIGHT`] above the block surface and [`TOP_CLEARANCE`] below the roof, wholly on
 //! its wall, [`WALL_OFFSET`] in front of it, and keeps [`SPACING`] from the plates already
-//! on that wall. An entry's plate images share a few atlas pages ([`AtlasLayout`]), one
-//! material per page, each plate's uvs covering its own rectangle.
+//! on that wall and [`WINDOW_MARGIN`] from the facade's window boxes (so no plate covers a
+//! window). A wall with another building between it and the road does not face the road.
+//! Each plate draws a style ([`PlateStyle::WALL_MIX`]), a font ([`TextFont::ALL`]) and a
+//! colour pair ([`text_colours`]); painted text is drawn straight onto the wall's own
+//! pixels. An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material
+//! per page, each plate's uvs covering its own rectangle.
 
 use std::collections::BTreeMap;
 
@@ -15,10 +19,13 @@ use rand_pcg::Pcg64;
 use rayon::prelude::*;
 
 use super::atlas_layout::{self, AtlasLayout};
-use super::text_plate::{self, TextPlate};
-use super::{ATTEMPTS, ObjectInfo, ObjectsInput, Placing, WORDS};
+use super::plate_style::{PlateStyle, SHOP_BAND};
+use super::text_colours::{self, luminance};
+use super::text_font::TextFont;
+use super::text_plate::{self, Background, TextPlate};
+use super::{ATTEMPTS, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words};
 use crate::model::{SceneObject, Texture};
-use crate::scene::buildings::building_heights;
+use crate::scene::buildings::{building_heights, facade_choice};
 use crate::scene::mesh_builder::MeshBuilder;
 use crate::scene::road_rect::RoadRect;
 use crate::scene::{KERB_Y, SceneInput, strip_width_px};
@@ -34,6 +41,10 @@ pub const WALL_OFFSET: f64 = 0.025;
 pub const SPACING: f64 = 0.2;
 /// How many strip widths (plus one pixel) a road may lie from a wall that faces it.
 pub const ROAD_REACH: f64 = 2.0;
+/// Gap kept between a plate and a window box, in metres.
+pub const WINDOW_MARGIN: f64 = 0.15;
+/// Share of hard (low-contrast) painted text, as for plates.
+const HARD_SHARE: f64 = text_colours::HARD_SHARE;
 
 /// One building wall that faces a road, in metres.
 #[derive(Clone, Debug, PartialEq)]
@@ -48,6 +59,14 @@ pub struct Wall {
     pub length: f64,
     /// Heights (y) plates may use: `[bottom, top]`.
     pub band: [f64; 2],
+    /// The facade that clads it (index into the facade set), if any.
+    pub facade: Option<usize>,
+    /// Metres of wall one facade repeat covers (the wall's length when it is not tiled).
+    pub repeat: f64,
+    /// The wall's height above the block surface, in metres.
+    pub height: f64,
+    /// The facade's window boxes on this wall, `[u0, y0, u1, y1]` in metres.
+    pub windows: Vec<[f64; 4]>,
 }
 
 /// A plate placed on a wall, waiting for its place on an atlas page.
@@ -56,16 +75,18 @@ struct Placed {
     wall: usize,
     rect: [f64; 4],
     plate: TextPlate,
-    /// Paper and ink.
-    colours: ([u8; 3], [u8; 3]),
+    background: Background,
+    ink: [u8; 3],
     text: String,
-    corners: [[f64; 3]; 4],
+    corners: Vec<[[f64; 3]; 4]>,
 }
 
 /// The walls facing roads, and the plates placed on each so far: `[u0, y0, u1, y1]`.
 pub struct Walls {
     walls: Vec<Wall>,
     placed: BTreeMap<usize, Vec<[f64; 4]>>,
+    /// Decoded facade images (for painted text), by facade index, decoded when first used.
+    images: BTreeMap<usize, Option<RgbImage>>,
 }
 
 impl Walls {
@@ -73,6 +94,7 @@ impl Walls {
         Walls {
             walls: facing_walls(input),
             placed: BTreeMap::new(),
+            images: BTreeMap::new(),
         }
     }
 
@@ -83,32 +105,78 @@ impl Walls {
 
     /// Places `spec.count` text plates (fewer if they do not fit), their images packed onto
     /// shared atlas pages, one material per page.
-    pub fn place(&mut self, spec: &ObjectSpec, rng: &mut Pcg64, placing: &mut Placing) {
+    pub fn place(
+        &mut self,
+        spec: &ObjectSpec,
+        rng: &mut Pcg64,
+        placing: &mut Placing,
+    ) -> Result<(), ObjectsError> {
+        let user: Option<Vec<String>> = match &spec.words_file {
+            None => None,
+            Some(file) => {
+                let missing = || ObjectsError::MissingWords { file: file.clone() };
+                let bytes = &placing.input.meshes.get(file).ok_or_else(missing)?.obj;
+                let words = parse_words(&String::from_utf8_lossy(bytes));
+                if words.is_empty() {
+                    return Err(missing());
+                }
+                Some(words)
+            }
+        };
+        let list: Vec<&str> = match &user {
+            Some(words) => words.iter().map(String::as_str).collect(),
+            None => WORDS.to_vec(),
+        };
         if self.walls.is_empty() {
-            return;
+            return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
         for _ in 0..spec.count {
-            let text = words(spec, rng);
+            let text = words(spec, &list, rng);
             let height = uniform(rng, spec.letter_height);
-            let (paper, ink) = colours(rng);
-            let plate = TextPlate::measure(&text, text_plate::letter_px(height));
+            let style = pick_style(rng);
+            let font = match TextFont::ALL[rng.random_range(0..TextFont::ALL.len())] {
+                // Hairline serifs painted on brick do not read: paint the slab serif instead.
+                TextFont::Serif if style == PlateStyle::Painted => TextFont::Slab,
+                font => font,
+            };
+            let plate = TextPlate::measure(&text, text_plate::letter_px(height), font, style);
             let metres_per_px = height / f64::from(plate.letter_px);
             let size = [
                 f64::from(plate.width) * metres_per_px,
                 f64::from(plate.height) * metres_per_px,
             ];
-            let Some((w, rect)) = self.find_spot(rng, size) else {
+            let Some((w, rect)) = self.find_spot(rng, size, style) else {
                 continue;
             };
             self.placed.entry(w).or_default().push(rect);
-            let corners = text_corners(&self.walls[w], rect, &plate, metres_per_px);
+            let (background, ink) = match (style, self.wall_patch(w, rect, &plate, placing)) {
+                (PlateStyle::Painted, Some(patch)) => {
+                    let hard = rng.random::<f64>() < HARD_SHARE;
+                    let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
+                    (Background::Wall(patch), ink)
+                }
+                _ => {
+                    let (paper, ink) = text_colours::pair(rng);
+                    (Background::Paper(paper), ink)
+                }
+            };
+            // A painted plate on a wall without a facade image is drawn as a banner.
+            let plate = match (&background, style) {
+                (Background::Paper(_), PlateStyle::Painted) => TextPlate {
+                    style: PlateStyle::Banner,
+                    ..plate
+                },
+                _ => plate,
+            };
+            let corners = word_corners(&self.walls[w], rect, &plate, metres_per_px);
             placed.push(Placed {
                 name: placing.name("text"),
                 wall: w,
                 rect,
                 plate,
-                colours: (paper, ink),
+                background,
+                ink,
                 text,
                 corners,
             });
@@ -117,7 +185,7 @@ impl Walls {
         // all in parallel, each result in its own slot.
         let images: Vec<RgbImage> = placed
             .par_iter()
-            .map(|p| p.plate.draw(&p.text, p.colours.0, p.colours.1))
+            .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
             .collect();
         let sizes: Vec<[u32; 2]> = placed
             .iter()
@@ -153,36 +221,126 @@ impl Walls {
                 ObjectInfo {
                     label: spec.label.clone(),
                     text: Some(p.text),
-                    corners: Some(p.corners),
+                    corners: p.corners,
+                    attributes: text_attributes(&p.plate),
                 },
             );
         }
+        Ok(())
     }
 
-    /// A wall and a free rectangle `[u0, y0, u1, y1]` of `size` on it.
-    fn find_spot(&self, rng: &mut Pcg64, size: [f64; 2]) -> Option<(usize, [f64; 4])> {
+    /// A wall and a free rectangle `[u0, y0, u1, y1]` of `size` on it: clear of the plates
+    /// placed so far and of the windows; a shop sign low on the wall.
+    fn find_spot(
+        &self,
+        rng: &mut Pcg64,
+        size: [f64; 2],
+        style: PlateStyle,
+    ) -> Option<(usize, [f64; 4])> {
         (0..ATTEMPTS).find_map(|_| {
             let w = rng.random_range(0..self.walls.len());
             let wall = &self.walls[w];
             let free_u = wall.length - size[0];
-            let free_y = wall.band[1] - wall.band[0] - size[1];
+            let mut free_y = wall.band[1] - wall.band[0] - size[1];
+            if style == PlateStyle::Shop {
+                free_y = free_y.min(SHOP_BAND);
+            }
             if free_u < 0.0 || free_y < 0.0 {
                 return None;
             }
             let u0 = rng.random::<f64>() * free_u;
             let y0 = wall.band[0] + rng.random::<f64>() * free_y;
             let rect = [u0, y0, u0 + size[0], y0 + size[1]];
-            let clear = self.placed.get(&w).is_none_or(|rects| {
-                rects.iter().all(|r| {
-                    rect[2] + SPACING <= r[0]
-                        || r[2] + SPACING <= rect[0]
-                        || rect[3] + SPACING <= r[1]
-                        || r[3] + SPACING <= rect[1]
-                })
-            });
+            let apart = |r: &[f64; 4], gap: f64| {
+                rect[2] + gap <= r[0]
+                    || r[2] + gap <= rect[0]
+                    || rect[3] + gap <= r[1]
+                    || r[3] + gap <= rect[1]
+            };
+            let clear = self
+                .placed
+                .get(&w)
+                .is_none_or(|rects| rects.iter().all(|r| apart(r, SPACING)))
+                && wall.windows.iter().all(|r| apart(r, WINDOW_MARGIN));
             clear.then_some((w, rect))
         })
     }
+
+    /// The wall's own pixels under `rect`, at the plate's size: the background of painted
+    /// text. `None` when the wall has no facade or its image does not decode.
+    fn wall_patch(
+        &mut self,
+        w: usize,
+        rect: [f64; 4],
+        plate: &TextPlate,
+        placing: &Placing,
+    ) -> Option<RgbImage> {
+        let wall = &self.walls[w];
+        let f = wall.facade?;
+        let image = self
+            .images
+            .entry(f)
+            .or_insert_with(|| placing.input.facades.facades[f].texture.decode().ok())
+            .as_ref()?;
+        let (iw, ih) = (f64::from(image.width()), f64::from(image.height()));
+        if iw < 1.0 || ih < 1.0 {
+            return None;
+        }
+        let (pw, ph) = (f64::from(plate.width), f64::from(plate.height));
+        Some(RgbImage::from_fn(plate.width, plate.height, |x, y| {
+            let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
+            let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
+            let tu = (u / wall.repeat).rem_euclid(1.0);
+            let tv = 1.0 - (height - KERB_Y) / wall.height;
+            bilinear(image, tu * iw - 0.5, tv * ih - 0.5)
+        }))
+    }
+}
+
+/// Plate style drawn by its share in [`PlateStyle::WALL_MIX`].
+fn pick_style(rng: &mut Pcg64) -> PlateStyle {
+    let total: u32 = PlateStyle::WALL_MIX.iter().map(|(_, n)| n).sum();
+    let mut k = rng.random_range(0..total);
+    for (style, n) in PlateStyle::WALL_MIX {
+        if k < n {
+            return style;
+        }
+        k -= n;
+    }
+    PlateStyle::WALL_MIX[0].0
+}
+
+/// The COCO attributes of a text object: its plate style and font.
+pub fn text_attributes(plate: &TextPlate) -> BTreeMap<String, String> {
+    BTreeMap::from([
+        ("text_font".to_owned(), plate.font.name().to_owned()),
+        ("text_style".to_owned(), plate.style.name().to_owned()),
+    ])
+}
+
+/// Mean luminance of an image's pixels.
+fn mean_luminance(image: &RgbImage) -> f64 {
+    let n = (image.width() * image.height()).max(1);
+    image.pixels().map(|p| luminance(p.0)).sum::<f64>() / f64::from(n)
+}
+
+/// Bilinear sample of `image` at texel coordinates (centres on integers), clamped at the
+/// edges.
+fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
+    let (w, h) = (image.width() as i64, image.height() as i64);
+    let (fx, fy) = (x.floor(), y.floor());
+    let (ax, ay) = (x - fx, y - fy);
+    let at = |dx: i64, dy: i64| {
+        let px = (fx as i64 + dx).clamp(0, w - 1) as u32;
+        let py = (fy as i64 + dy).clamp(0, h - 1) as u32;
+        image.get_pixel(px, py).0
+    };
+    let (p00, p10, p01, p11) = (at(0, 0), at(1, 0), at(0, 1), at(1, 1));
+    image::Rgb(std::array::from_fn(|c| {
+        let top = f64::from(p00[c]) * (1.0 - ax) + f64::from(p10[c]) * ax;
+        let bottom = f64::from(p01[c]) * (1.0 - ax) + f64::from(p11[c]) * ax;
+        (top * (1.0 - ay) + bottom * ay).round() as u8
+    }))
 }
 
 /// The gap from a wall to a road straight in front of it, if the road is in front.
@@ -204,8 +362,16 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
     let rects: Vec<RoadRect> = input.layout.roads.iter().map(RoadRect::of).collect();
     let reach = ROAD_REACH * f64::from(strip_width_px(input.layout)) + 1.0;
     let mpp = input.metres_per_pixel;
+    let footprints: Vec<[f64; 4]> = input
+        .buildings
+        .iter()
+        .map(|b| {
+            let f = b.footprint;
+            [f.x0, f.y0, f.x1, f.y1].map(f64::from)
+        })
+        .collect();
     let mut walls = Vec::new();
-    for (building, &height) in input.buildings.iter().zip(&heights) {
+    for (b, (building, &height)) in input.buildings.iter().zip(&heights).enumerate() {
         let fp = building.footprint;
         let (x0, x1) = (f64::from(fp.x0), f64::from(fp.x1));
         let (y0, y1) = (f64::from(fp.y0), f64::from(fp.y1));
@@ -229,12 +395,32 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
         if band[1] <= band[0] {
             continue;
         }
+        let facade = facade_choice(&scene_input, building);
         for (normal, corner, gap) in sides {
-            let faces_road = rects.iter().filter_map(gap).any(|g| g <= reach);
-            if !faces_road {
+            // The nearest road in front must be nearer than any other building in front.
+            let Some(to_road) = rects.iter().filter_map(gap).reduce(f64::min) else {
+                continue;
+            };
+            let blocked = footprints.iter().enumerate().any(|(o, f)| {
+                let r = RoadRect {
+                    x: [f[0], f[2]],
+                    y: [f[1], f[3]],
+                };
+                o != b && gap(&r).is_some_and(|g| g < to_road)
+            });
+            if to_road > reach || blocked {
                 continue;
             }
             let length = if normal[0] == 0.0 { x1 - x0 } else { y1 - y0 } * mpp;
+            let f = facade.map(|f| &input.facades.facades[f]);
+            let usable = |v: f64| v.is_finite() && v > 0.0;
+            let repeat = match f {
+                Some(f) if input.widths.is_some() && usable(f.width) => f.width,
+                _ => length,
+            };
+            let windows = f.map_or_else(Vec::new, |f| {
+                window_rects(&f.windows, length, repeat, height)
+            });
             walls.push(Wall {
                 building: building.id,
                 origin: [corner[0] * mpp, corner[1] * mpp],
@@ -242,10 +428,38 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
                 normal,
                 length,
                 band,
+                facade,
+                repeat,
+                height,
+                windows,
             });
         }
     }
     walls
+}
+
+/// A facade's window boxes (texture coordinates, v down from the roof line) as rectangles
+/// `[u0, y0, u1, y1]` in metres on a wall `length` long and `height` high whose facade
+/// repeats every `repeat` metres.
+fn window_rects(windows: &[[f32; 4]], length: f64, repeat: f64, height: f64) -> Vec<[f64; 4]> {
+    let copies = (length / repeat).ceil().clamp(1.0, 1000.0) as u32;
+    let mut out = Vec::new();
+    for k in 0..copies {
+        let start = f64::from(k) * repeat;
+        for w in windows {
+            let [u0, v0, u1, v1] = w.map(f64::from);
+            let (a, b) = (start + u0 * repeat, (start + u1 * repeat).min(length));
+            if a < b {
+                out.push([
+                    a,
+                    KERB_Y + height * (1.0 - v1),
+                    b,
+                    KERB_Y + height * (1.0 - v0),
+                ]);
+            }
+        }
+    }
+    out
 }
 
 /// The world point `u` metres right of the wall's left edge, `y` up, `out` in front of it.
@@ -278,26 +492,38 @@ fn plate_mesh(
     mesh.finish()
 }
 
-/// The text box's corners: top-left, top-right, bottom-right, bottom-left from the front.
-fn text_corners(wall: &Wall, rect: [f64; 4], plate: &TextPlate, m_per_px: f64) -> [[f64; 3]; 4] {
-    let [bx0, by0, bx1, by1] = plate.text_box.map(|v| f64::from(v) * m_per_px);
-    let (u0, u1) = (rect[0] + bx0, rect[0] + bx1);
-    // Image rows run down from the plate's top edge.
-    let (top, bottom) = (rect[3] - by0, rect[3] - by1);
-    [
-        wall_point(wall, u0, top, WALL_OFFSET),
-        wall_point(wall, u1, top, WALL_OFFSET),
-        wall_point(wall, u1, bottom, WALL_OFFSET),
-        wall_point(wall, u0, bottom, WALL_OFFSET),
-    ]
+/// Every word's ink box corners: top-left, top-right, bottom-right, bottom-left from the
+/// front.
+fn word_corners(
+    wall: &Wall,
+    rect: [f64; 4],
+    plate: &TextPlate,
+    m_per_px: f64,
+) -> Vec<[[f64; 3]; 4]> {
+    plate
+        .words
+        .iter()
+        .map(|word| {
+            let [bx0, by0, bx1, by1] = word.map(|v| f64::from(v) * m_per_px);
+            let (u0, u1) = (rect[0] + bx0, rect[0] + bx1);
+            // Image rows run down from the plate's top edge.
+            let (top, bottom) = (rect[3] - by0, rect[3] - by1);
+            [
+                wall_point(wall, u0, top, WALL_OFFSET),
+                wall_point(wall, u1, top, WALL_OFFSET),
+                wall_point(wall, u1, bottom, WALL_OFFSET),
+                wall_point(wall, u0, bottom, WALL_OFFSET),
+            ]
+        })
+        .collect()
 }
 
 fn uniform(rng: &mut Pcg64, range: [f64; 2]) -> f64 {
     range[0] + rng.random::<f64>() * (range[1] - range[0])
 }
 
-/// The words of one plate, in the spec's case.
-pub fn words(spec: &ObjectSpec, rng: &mut Pcg64) -> String {
+/// The words of one plate drawn from `list`, in the spec's case.
+pub fn words(spec: &ObjectSpec, list: &[&str], rng: &mut Pcg64) -> String {
     let [low, high] = spec.words;
     let n = rng.random_range(low.max(1)..=high.max(low).max(1));
     let case = match spec.case {
@@ -308,28 +534,22 @@ pub fn words(spec: &ObjectSpec, rng: &mut Pcg64) -> String {
     };
     let words: Vec<String> = (0..n)
         .map(|_| {
-            let word = WORDS[rng.random_range(0..WORDS.len())];
+            let word = list[rng.random_range(0..list.len())];
             match case {
-                TextCase::Upper => word.to_ascii_uppercase(),
+                TextCase::Upper => word.to_uppercase(),
+                TextCase::Lower => word.to_lowercase(),
                 TextCase::Title => {
-                    let mut w = word.to_owned();
-                    w[..1].make_ascii_uppercase();
-                    w
+                    let mut chars = word.chars();
+                    chars.next().map_or_else(String::new, |first| {
+                        first
+                            .to_uppercase()
+                            .chain(chars.flat_map(char::to_lowercase))
+                            .collect()
+                    })
                 }
-                _ => word.to_owned(),
+                TextCase::Mixed => word.to_owned(),
             }
         })
         .collect();
     words.join(" ")
-}
-
-/// A plate colour and an ink colour with strong contrast: one light, one dark.
-fn colours(rng: &mut Pcg64) -> ([u8; 3], [u8; 3]) {
-    let light: [u8; 3] = std::array::from_fn(|_| rng.random_range(185..=255));
-    let dark: [u8; 3] = std::array::from_fn(|_| rng.random_range(0..=70));
-    if rng.random::<bool>() {
-        (light, dark)
-    } else {
-        (dark, light)
-    }
 }

@@ -1,5 +1,5 @@
-//! The curated word list text objects draw from: 401 common, inoffensive English words,
-//! lower case ASCII, sorted.
+//! The curated word list text objects draw from by default (401 common, inoffensive English
+//! words, lower case ASCII, sorted), and the reading of a user's word file.
 
 /// Words for text objects.
 pub const WORDS: [&str; 401] = [
@@ -406,9 +406,26 @@ pub const WORDS: [&str; 401] = [
     "zoo",
 ];
 
+/// The words of a word file: whitespace-separated, lines whose first non-blank character is
+/// `#` skipped, in file order (duplicates kept: they weight the draw).
+pub fn parse_words(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|line| !line.trim_start().starts_with('#'))
+        .flat_map(str::split_whitespace)
+        .map(str::to_owned)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn word_files_split_on_whitespace_and_skip_comments() {
+        let text = "# shop names\nBakery  Café\n\n  # not this\nNo.\t7\r\n";
+        assert_eq!(parse_words(text), ["Bakery", "Café", "No.", "7"]);
+        assert!(parse_words("# only a comment\n \n").is_empty());
+    }
 
     #[test]
     fn words_are_sorted_unique_lower_case_ascii() {

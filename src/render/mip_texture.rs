@@ -3,11 +3,16 @@
 //! Level 0 keeps the texture's own sRGB bytes. Each further level halves width and height
 //! (rounding down, at least 1) and averages 2 × 2 texels in linear light, stored again as
 //! 8-bit sRGB through the fixed table. Sampling converts texels to linear through the
-//! 256-entry table and blends in linear.
+//! 256-entry table and blends in linear; slanted footprints are filtered anisotropically
+//! (up to [`MAX_ANISOTROPY`] trilinear taps along their long side).
 
 use image::RgbImage;
 
 use super::srgb::{Srgb, srgb};
+
+/// Most trilinear taps one sample spreads along a slanted footprint (and the largest
+/// footprint aspect ratio filtered without blur).
+pub(crate) const MAX_ANISOTROPY: f64 = 4.0;
 
 /// A texture with its mip levels, finest first.
 pub(crate) struct MipTexture {
@@ -45,19 +50,50 @@ impl MipTexture {
         MipTexture { levels }
     }
 
-    /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), with the
-    /// mip level chosen from the uv derivatives per screen pixel:
+    /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), filtered
+    /// anisotropically from the uv derivatives per screen pixel:
     /// `d = [du/dx, dv/dx, du/dy, dv/dy]`.
+    ///
+    /// A pixel's footprint on a wall seen at a slant is long and thin. Choosing the mip
+    /// level from its long side (plain trilinear) blurs text across the short side; from its
+    /// short side alone it shimmers along the long one. So the level comes from the long
+    /// side ÷ the anisotropy (at most [`MAX_ANISOTROPY`]), and that many trilinear taps are
+    /// spread along the long side and averaged.
     pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4]) -> [f32; 3] {
-        let table = srgb();
         let (w, h) = (
             f64::from(self.levels[0].width),
             f64::from(self.levels[0].height),
         );
         let x2 = (d[0] * w) * (d[0] * w) + (d[1] * h) * (d[1] * h);
         let y2 = (d[2] * w) * (d[2] * w) + (d[3] * h) * (d[3] * h);
-        // The level of detail: log2 of the longer footprint side in level-0 texels.
-        let lod = 0.5 * log2_approx(x2.max(y2));
+        let (major2, minor2, axis) = if x2 >= y2 {
+            (x2, y2, [d[0], d[1]])
+        } else {
+            (y2, x2, [d[2], d[3]])
+        };
+        let ratio = (major2 / minor2.max(1e-300))
+            .sqrt()
+            .clamp(1.0, MAX_ANISOTROPY);
+        let taps = ratio.ceil() as u32;
+        if !ratio.is_finite() || taps <= 1 {
+            return self.trilinear(u, v, 0.5 * log2_approx(major2));
+        }
+        // The level of detail: log2 of the long footprint side ÷ the taps' spread.
+        let lod = 0.5 * log2_approx(major2) - log2_approx(ratio);
+        let mut sum = [0f32; 3];
+        for k in 0..taps {
+            let t = (f64::from(k) + 0.5) / f64::from(taps) - 0.5;
+            let c = self.trilinear(u + t * axis[0], v + t * axis[1], lod);
+            for (s, c) in sum.iter_mut().zip(c) {
+                *s += c;
+            }
+        }
+        sum.map(|s| s / taps as f32)
+    }
+
+    /// Trilinear sample at level of detail `lod` (level-0 texels per pixel, log2).
+    fn trilinear(&self, u: f64, v: f64, lod: f64) -> [f32; 3] {
+        let table = srgb();
         let top = (self.levels.len() - 1) as f64;
         if lod.is_nan() || lod <= 0.0 {
             return self.levels[0].bilinear(u, v, table);
@@ -217,6 +253,25 @@ mod tests {
             let c = t.sample(u, v, still);
             assert_eq!(c, if white { [1.0; 3] } else { [0.0; 3] }, "({u}, {v})");
         }
+    }
+
+    #[test]
+    fn slanted_footprints_keep_detail_across_their_short_side() {
+        // Vertical stripes one texel wide, 64 texels: a footprint 4 texels long along the
+        // stripes and 1 across still resolves the stripes (level 0); plain trilinear from
+        // the long side would read level 2, flat grey.
+        let stripes = RgbImage::from_fn(64, 64, |x, _| {
+            if x % 2 == 0 {
+                Rgb([255; 3])
+            } else {
+                Rgb([0; 3])
+            }
+        });
+        let t = MipTexture::new(&stripes);
+        let texel = 1.0 / 64.0;
+        let white = t.sample(0.5 * texel, 0.5, [texel, 0.0, 0.0, 4.0 * texel]);
+        let black = t.sample(1.5 * texel, 0.5, [texel, 0.0, 0.0, 4.0 * texel]);
+        assert!(white[0] > 0.99 && black[0] < 0.01, "{white:?} {black:?}");
     }
 
     #[test]

@@ -94,7 +94,7 @@ impl Cladding {
 }
 
 /// The facade index of `building` (None when the set has no facades).
-fn facade_choice(input: &SceneInput, building: &Building) -> Option<usize> {
+pub(crate) fn facade_choice(input: &SceneInput, building: &Building) -> Option<usize> {
     let n = input.facades.facades.len();
     if n == 0 {
         return None;

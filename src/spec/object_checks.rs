@@ -1,5 +1,6 @@
 //! Object checks: schema-valid `[[objects]]` tables → the problems between values (ranges
-//! written high-to-low, a mesh class without its model, a model file that is not there).
+//! written high-to-low, a mesh class without its model, a model or word file that is not
+//! there).
 
 use std::fmt::Display;
 use std::path::Path;
@@ -26,6 +27,18 @@ pub(crate) fn check_objects(
             ObjectKind::Text => {
                 check_range(&key("letter_height"), object.letter_height, findings);
                 check_range(&key("words"), object.words, findings);
+                if let Some(words) = &object.words_file {
+                    let file = resolve(spec_path, words);
+                    if let Err(problem) = world.file(&file) {
+                        findings.error(
+                            &key("words_file"),
+                            format!(
+                                "expected a word file at {}, found {problem}",
+                                file.display()
+                            ),
+                        );
+                    }
+                }
             }
             ObjectKind::Sign => {}
             ObjectKind::Mesh => {

@@ -32,6 +32,12 @@ pub struct ObjectSpec {
     #[serde(default = "default_words")]
     #[schemars(inner(range(min = 1, max = 8)))]
     pub words: [u32; 2],
+    /// text: a UTF-8 word file (words separated by spaces or line breaks, lines starting
+    /// with `#` skipped, at most 1 MiB), relative to the spec's folder; its bytes are part
+    /// of the build's cache key. The built-in list of 401 common English words when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "String", length(min = 1))]
+    pub words_file: Option<String>,
     /// sign: which signs to draw from (all when empty).
     #[serde(default)]
     #[schemars(length(max = 64))]
@@ -162,6 +168,7 @@ mod tests {
         assert_eq!(spec.case, TextCase::Title);
         assert_eq!(spec.words, [1, 2]);
         assert!(spec.signs.is_empty());
+        assert_eq!(spec.words_file, None);
         assert_eq!(spec.model, None);
         assert_eq!(spec.scale, [1.0, 1.0]);
         assert_eq!(spec.rotation, [0.0, 360.0]);
