@@ -93,6 +93,8 @@ fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
             ObjectKind::Text => "text",
             ObjectKind::Sign => "sign",
             ObjectKind::Mesh => "mesh",
+            ObjectKind::Car => "car",
+            ObjectKind::Tree => "tree",
         }
     ))
     .unwrap()
