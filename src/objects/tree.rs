@@ -61,7 +61,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         } else {
             strip_crown
         };
-        if !(max_crown > 0.5) {
+        if max_crown.is_nan() || max_crown <= 0.5 {
             continue;
         }
         let crown = crown_radius(kind, height).min(max_crown);
@@ -156,8 +156,7 @@ fn tree_meshes(
     let mut lobes: Vec<([f64; 3], [f64; 2])> = Vec::new();
     let turn: f64 = rng.random::<f64>() * 360.0;
     let (c, s) = trig::cos_sin_deg(turn);
-    let trunk_top;
-    match kind {
+    let trunk_top = match kind {
         TreeSpecies::Round => {
             let ry = (0.95 * r).min(0.45 * h);
             lobes.push(([0.0, h - ry, 0.0], [r * 0.85, ry * 0.85]));
@@ -169,13 +168,13 @@ fn tree_meshes(
                 [-0.35 * r * c, h - 1.1 * ry, -0.35 * r * s],
                 [r * 0.62, ry * 0.6],
             ));
-            trunk_top = h - ry;
+            h - ry
         }
         TreeSpecies::Columnar => {
             let ry = 0.24 * h;
             lobes.push(([0.0, h - ry, 0.0], [r * 0.9, ry]));
             lobes.push(([0.0, h - 2.1 * ry, 0.0], [r, ry * 0.9]));
-            trunk_top = h - ry;
+            h - ry
         }
         TreeSpecies::Conifer => {
             for (k, (b, a, w)) in [(0.18, 0.6, 1.0), (0.4, 0.82, 0.75), (0.62, 1.0, 0.5)]
@@ -190,7 +189,7 @@ fn tree_meshes(
                     turn + 15.0 * k as f64,
                 );
             }
-            trunk_top = 0.5 * h;
+            0.5 * h
         }
         TreeSpecies::Spreading => {
             let ry = (0.45 * r).min(0.3 * h);
@@ -203,9 +202,9 @@ fn tree_meshes(
                 [-0.4 * r * c, h - 1.2 * ry, -0.4 * r * s],
                 [r * 0.6, ry * 0.8],
             ));
-            trunk_top = h - ry;
+            h - ry
         }
-    }
+    };
     for (offset, radii) in lobes {
         let centre = [
             base[0] + offset[0],

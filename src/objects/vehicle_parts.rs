@@ -67,7 +67,7 @@ impl Solid {
             area = [area[0] + c[0], area[1] + c[1], area[2] + c[2]];
         }
         let turn = dot(area, normal);
-        if !(turn.abs() > 1e-9) {
+        if turn.is_nan() || turn.abs() <= 1e-9 {
             return;
         }
         let base = self.mesh.positions.len() as u32;
@@ -89,7 +89,7 @@ impl Solid {
     pub fn triangle_out(&mut self, corners: [[f64; 3]; 3], inside: [f64; 3]) {
         let n = cross(sub(corners[1], corners[0]), sub(corners[2], corners[0]));
         let len = dot(n, n).sqrt();
-        if !(len > 1e-12) {
+        if len.is_nan() || len <= 1e-12 {
             return;
         }
         let mut n = n.map(|v| v / len);
@@ -170,7 +170,7 @@ pub fn centroid(points: &[[f64; 2]]) -> [f64; 2] {
 fn outward(a: [f64; 2], b: [f64; 2], centre: [f64; 2]) -> Option<[f64; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
-    if !(len > 1e-12) {
+    if len.is_nan() || len <= 1e-12 {
         return None;
     }
     let mut n = [d[1] / len, -d[0] / len];
