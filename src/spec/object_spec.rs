@@ -280,6 +280,23 @@ mod tests {
     }
 
     #[test]
+    fn labels_default_to_the_kind_except_for_meshes() {
+        let mut specs: Vec<ObjectSpec> = ["car", "tree", "sign", "text", "mesh"]
+            .iter()
+            .map(|kind| toml::from_str(&format!("kind = {kind:?}\n")).unwrap())
+            .collect();
+        specs.push(toml::from_str("kind = \"car\"\nlabel = \"vehicle\"\n").unwrap());
+        fill_default_labels(&mut specs);
+        let labels: Vec<&str> = specs.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            ["car", "tree", "traffic_sign", "text", "", "vehicle"]
+        );
+        assert_eq!(specs[0].parked, 0.75);
+        assert_eq!(specs[1].height, [5.0, 10.0]);
+    }
+
+    #[test]
     fn sign_names_match_serde() {
         for sign in SignKind::ALL {
             let json = serde_json::to_string(&sign).unwrap();
