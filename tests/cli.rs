@@ -81,7 +81,7 @@ fn invalid_spec_exits_2_with_location_and_writes_nothing() {
     let out = cityspec(&ws, &["build", "specs/day.toml"]);
     assert_eq!(out.status.code(), Some(2));
     let text = stderr(&out);
-    assert!(text.contains("specs/day.toml:10:14"), "{text}");
+    assert!(text.contains("specs/day.toml:13:14"), "{text}");
     assert!(text.contains("layout.generate.road_width"), "{text}");
     assert!(
         !ws.path().join("out").exists(),
