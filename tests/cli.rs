@@ -81,7 +81,7 @@ fn invalid_spec_exits_2_with_location_and_writes_nothing() {
     let out = cityspec(&ws, &["build", "specs/day.toml"]);
     assert_eq!(out.status.code(), Some(2));
     let text = stderr(&out);
-    assert!(text.contains("specs/day.toml:10:14"), "{text}");
+    assert!(text.contains("specs/day.toml:13:14"), "{text}");
     assert!(text.contains("layout.generate.road_width"), "{text}");
     assert!(
         !ws.path().join("out").exists(),
@@ -443,6 +443,8 @@ fn issue_8_verify_names_a_poisoned_entry() {
             && text.contains("rechecked 12 of 12 cached stages: 1 differ"),
         "{text}"
     );
+}
+
 #[test]
 fn word_files_feed_the_text_and_bad_ones_exit_2() {
     let ws = Workspace::with_spec("text");

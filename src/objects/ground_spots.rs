@@ -33,9 +33,50 @@ pub struct GroundSpots<'a> {
     rects: Vec<RoadRect>,
     mpp: f64,
     strip_px: f64,
-    /// (x, z, radius) in metres of everything standing: lamps first, with
+    /// The ground everything standing takes, in metres: lamps first, with
     /// [`LAMP_CLEARANCE`] as their radius.
-    taken: Vec<(f64, f64, f64)>,
+    taken: Vec<Footprint>,
+}
+
+/// Ground an object takes, in metres (x east, z south).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Footprint {
+    /// Centre (x, z) and radius.
+    Circle([f64; 2], f64),
+    /// An axis-aligned rectangle `[x0, x1] × [z0, z1]` (cars: roads are axis-aligned).
+    Rect([f64; 2], [f64; 2]),
+}
+
+impl Footprint {
+    /// Whether the two share interior area (touching does not count).
+    pub fn overlaps(&self, other: &Footprint) -> bool {
+        match (*self, *other) {
+            (Footprint::Circle(a, ra), Footprint::Circle(b, rb)) => {
+                let (dx, dz) = (a[0] - b[0], a[1] - b[1]);
+                dx * dx + dz * dz < (ra + rb) * (ra + rb)
+            }
+            (Footprint::Circle(c, r), Footprint::Rect(x, z))
+            | (Footprint::Rect(x, z), Footprint::Circle(c, r)) => {
+                let dx = c[0] - c[0].clamp(x[0], x[1]);
+                let dz = c[1] - c[1].clamp(z[0], z[1]);
+                dx * dx + dz * dz < r * r
+            }
+            (Footprint::Rect(ax, az), Footprint::Rect(bx, bz)) => {
+                ax[0] < bx[1] && bx[0] < ax[1] && az[0] < bz[1] && bz[0] < az[1]
+            }
+        }
+    }
+}
+
+/// Where on a road a footprint goes: its half extents along and across the road and its
+/// distance right of the centre line (driving direction), in metres, and how far it keeps
+/// from every other road (a crossing) and, along the road, from other footprints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoadSlot {
+    pub half: [f64; 2],
+    pub offset: f64,
+    pub crossing_clearance: f64,
+    pub gap: f64,
 }
 
 impl<'a> GroundSpots<'a> {
@@ -49,9 +90,90 @@ impl<'a> GroundSpots<'a> {
             taken: input
                 .lamps
                 .iter()
-                .map(|l| (l.position[0] * mpp, l.position[1] * mpp, LAMP_CLEARANCE))
+                .map(|l| {
+                    Footprint::Circle([l.position[0] * mpp, l.position[1] * mpp], LAMP_CLEARANCE)
+                })
                 .collect(),
         }
+    }
+
+    /// Half the strip's width, in metres.
+    pub fn strip_half(&self) -> f64 {
+        self.strip_px / 2.0 * self.mpp
+    }
+
+    /// Takes `footprint` if it overlaps nothing taken; whether it did.
+    pub fn claim(&mut self, footprint: Footprint) -> bool {
+        if self.taken.iter().any(|t| t.overlaps(&footprint)) {
+            return false;
+        }
+        self.taken.push(footprint);
+        true
+    }
+
+    /// A random road (uniform), side and place along it where `slot` fits: wholly on the
+    /// road, `slot.crossing_clearance` clear of every other road, overlapping nothing taken
+    /// (`slot.gap` added along the road). `offset` says where across, given the road's
+    /// width in metres; None skips the draw. The footprint is taken. None after `attempts`.
+    pub fn road(
+        &mut self,
+        rng: &mut Pcg64,
+        attempts: u32,
+        slot: impl Fn(f64) -> Option<RoadSlot>,
+    ) -> Option<Spot> {
+        (0..attempts).find_map(|_| {
+            let (road, high, along) = self.pick_road(rng)?;
+            let s = slot((road.edges[1] - road.edges[0]) * self.mpp)?;
+            let right = if high { 1.0 } else { -1.0 };
+            let across = road.line + right * s.offset / self.mpp;
+            let [ha, hc] = s.half.map(|h| h / self.mpp);
+            let own = RoadRect::of(road);
+            let (a, c) = match road.axis {
+                Axis::Horizontal => (own.x, own.y),
+                Axis::Vertical => (own.y, own.x),
+            };
+            let on_own = a[0] <= along - ha
+                && along + ha <= a[1]
+                && c[0] <= across - hc
+                && across + hc <= c[1];
+            let clear = s.crossing_clearance / self.mpp;
+            let rect = |ga: f64| {
+                let (x, z) = match road.axis {
+                    Axis::Horizontal => (
+                        [along - ha - ga, along + ha + ga],
+                        [across - hc, across + hc],
+                    ),
+                    Axis::Vertical => (
+                        [across - hc, across + hc],
+                        [along - ha - ga, along + ha + ga],
+                    ),
+                };
+                RoadRect { x, y: z }
+            };
+            let grown = rect(clear);
+            let clear_of_others = self
+                .rects
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != road.id as usize)
+                .all(|(_, r)| !r.overlaps(&grown));
+            if !on_own || !clear_of_others {
+                return None;
+            }
+            let metres =
+                |r: RoadRect| Footprint::Rect(r.x.map(|v| v * self.mpp), r.y.map(|v| v * self.mpp));
+            let probe = metres(rect(s.gap / self.mpp));
+            if self.taken.iter().any(|t| t.overlaps(&probe)) {
+                return None;
+            }
+            self.taken.push(metres(rect(0.0)));
+            let px = image_point(road, along, across);
+            Some(Spot {
+                position: [px[0] * self.mpp, px[1] * self.mpp],
+                travel: travel(road.axis, high),
+                road: road.id,
+            })
+        })
     }
 
     /// A free mid-strip spot for an object of `radius` metres, or None after `attempts`.
@@ -123,15 +245,9 @@ impl<'a> GroundSpots<'a> {
 
     fn take(&mut self, road: &Road, high: bool, px: [f64; 2], radius: f64) -> Option<Spot> {
         let position = [px[0] * self.mpp, px[1] * self.mpp];
-        let clear = self.taken.iter().all(|&(x, z, r)| {
-            let (dx, dz) = (x - position[0], z - position[1]);
-            let need = r + radius;
-            dx * dx + dz * dz >= need * need
-        });
-        if !clear {
+        if !self.claim(Footprint::Circle(position, radius)) {
             return None;
         }
-        self.taken.push((position[0], position[1], radius));
         Some(Spot {
             position,
             travel: travel(road.axis, high),

@@ -7,6 +7,8 @@
 //! | text | `text_0003` | free wall (no window, no other plate) facing a road, 2.5 m up to 1 m below the roof; shop signs low | a plate quad 2.5 cm in front of the wall (shop sign, banner, or painted on the wall's own pixels), one of eight fonts, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
 //! | sign | `sign_0012` | mid-strip beside a road, ≥ 2 m from lamps, not in a crossing | pole + plate shaped like the sign, facing oncoming traffic |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
+//! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
+//! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of four species (`tree` module) |
 //!
 //! Every object's class is its spec entry's `label`. Entry `i` draws from
 //! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
@@ -20,6 +22,7 @@
 pub const VERSION: u32 = 3;
 
 mod atlas_layout;
+mod car;
 mod ground_spots;
 mod objects_error;
 mod plate_style;
@@ -30,8 +33,10 @@ mod text_colours;
 mod text_font;
 mod text_plate;
 mod traffic_signs;
+mod tree;
 mod trig;
 mod user_mesh;
+mod vehicle_parts;
 mod wall_text;
 mod word_list;
 
@@ -136,6 +141,16 @@ impl Placing<'_> {
         m
     }
 
+    /// A plain, emissive material registered once under `name`: it glows at night.
+    pub fn glowing(&mut self, name: &str, colour: [f32; 3], emissive: [f32; 3]) -> u32 {
+        if let Some(&m) = self.cached.get(name) {
+            return m;
+        }
+        let m = self.book.add(name, colour, None, emissive);
+        self.cached.insert(name.to_owned(), m);
+        m
+    }
+
     pub fn push(&mut self, object: SceneObject, info: ObjectInfo) {
         self.out.objects.push(object);
         self.out.info.push(info);
@@ -181,6 +196,8 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             ObjectKind::Mesh => {
                 user_mesh::place(spec, &mut rng, &mut spots, &mut placing)?;
             }
+            ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
         }
     }
     let (textures, materials) = placing.book.finish();

@@ -93,6 +93,8 @@ fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
             ObjectKind::Text => "text",
             ObjectKind::Sign => "sign",
             ObjectKind::Mesh => "mesh",
+            ObjectKind::Car => "car",
+            ObjectKind::Tree => "tree",
         }
     ))
     .unwrap()
@@ -886,4 +888,71 @@ fn a_word_file_replaces_the_built_in_words() {
             file: "nowhere.txt".to_owned()
         })
     );
+}
+
+#[test]
+fn cars_and_trees_never_overlap_anything_standing() {
+    let city = city();
+    let specs = [
+        spec(ObjectKind::Sign, "traffic_sign", 60),
+        spec(ObjectKind::Tree, "tree", 200),
+        spec(ObjectKind::Car, "car", 400),
+    ];
+    let inserted = run(&city, &specs).unwrap();
+    // Ground boxes (x0, x1, z0, z1) of every object, from its vertices.
+    let boxes: Vec<(&str, [f64; 4])> = inserted
+        .objects
+        .iter()
+        .map(|o| {
+            let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+            for p in o.meshes.iter().flat_map(|m| &m.positions) {
+                let p = p.map(f64::from);
+                b = [
+                    b[0].min(p[0]),
+                    b[1].max(p[0]),
+                    b[2].min(p[2]),
+                    b[3].max(p[2]),
+                ];
+            }
+            (o.class.as_str(), b)
+        })
+        .collect();
+    let cars: Vec<[f64; 4]> = boxes.iter().filter(|b| b.0 == "car").map(|b| b.1).collect();
+    let trees = boxes.iter().filter(|b| b.0 == "tree").count();
+    assert!(
+        cars.len() > 200 && trees > 100,
+        "{} cars, {trees} trees",
+        cars.len()
+    );
+    for (i, a) in boxes.iter().enumerate() {
+        for b in &boxes[i + 1..] {
+            if a.0 == "traffic_sign" && b.0 == "traffic_sign" {
+                continue;
+            }
+            let (p, q) = (a.1, b.1);
+            // Lights and wheels stand out of a car's footprint by at most 3 cm.
+            let overlap = p[0] + 0.03 < q[1] - 0.03
+                && q[0] + 0.03 < p[1] - 0.03
+                && p[2] + 0.03 < q[3] - 0.03
+                && q[2] + 0.03 < p[3] - 0.03;
+            let is_tree_pair = a.0 == "tree" || b.0 == "tree";
+            // Crowns take circles, so a tree's box may overlap another tree's or a sign's
+            // box at a corner; a car's box never overlaps any other object's.
+            assert!(
+                !overlap || is_tree_pair && a.0 != "car" && b.0 != "car",
+                "{a:?} {b:?}"
+            );
+        }
+    }
+    // Every car stands wholly on a road.
+    for c in &cars {
+        let on_road = city.layout.roads.iter().any(|r| {
+            let rect = RoadRect::of(r);
+            rect.x[0] <= c[0] + 0.05
+                && c[1] - 0.05 <= rect.x[1]
+                && rect.y[0] <= c[2] + 0.05
+                && c[3] - 0.05 <= rect.y[1]
+        });
+        assert!(on_road, "{c:?}");
+    }
 }

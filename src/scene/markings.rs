@@ -1,12 +1,14 @@
-//! Roads → `marking_NNNN` objects: white dashes along each road's centre line, left out of
-//! every crossing (any stretch where another road's surface meets the line) and
-//! [`CROSSING_MARGIN`] either side of it.
+//! Roads → `marking_NNNN` objects: white dashes along each road's centre line and between
+//! its driving lanes, and a solid line along each parking lane (the road's
+//! [`StreetProfile`]), all left out of every crossing (any stretch where another road's
+//! surface meets the centre line) and [`CROSSING_MARGIN`] either side of it.
 //!
 //! Within each free stretch the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a
 //! stretch between two crossings looks the same from both ends.
 
 use super::mesh_builder::MeshBuilder;
 use super::road_rect::RoadRect;
+use super::street_profile::StreetProfile;
 use super::{MARKING_Y, object};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
@@ -29,27 +31,60 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
         .enumerate()
         .filter_map(|(i, road)| {
             let mut mesh = MeshBuilder::new(material);
-            for [a, b] in dashes(road, i, &rects, mpp) {
-                let half = LINE_WIDTH / 2.0;
-                let line = road.line * mpp;
-                let (x, z) = match road.axis {
-                    Axis::Horizontal => ([a, b], [line - half, line + half]),
-                    Axis::Vertical => ([line - half, line + half], [a, b]),
-                };
-                // uv: the whole dash is one white quad; 0..1 over it.
-                let corners = [
-                    [x[0], MARKING_Y, z[0]],
-                    [x[1], MARKING_Y, z[0]],
-                    [x[1], MARKING_Y, z[1]],
-                    [x[0], MARKING_Y, z[1]],
-                ];
-                let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-                mesh.quad(corners, super::mesh_builder::UP, uvs);
+            let free = free_along(road, i, &rects, mpp);
+            for (offset, solid) in lines(road, mpp) {
+                for &stretch in &free {
+                    let pieces = if solid {
+                        vec![stretch]
+                    } else {
+                        centred_dashes(stretch)
+                    };
+                    for [a, b] in pieces {
+                        stripe(&mut mesh, road, mpp, offset, [a, b]);
+                    }
+                }
             }
             (!mesh.is_empty())
                 .then(|| object(format!("marking_{:04}", road.id), "marking", vec![mesh]))
         })
         .collect()
+}
+
+/// The lines of `road` as (offset from the centre line in metres, solid): the dashed
+/// centre line, dashed lines between the driving lanes of each side, and a solid line
+/// along each parking lane ([`StreetProfile`]).
+fn lines(road: &Road, mpp: f64) -> Vec<(f64, bool)> {
+    let profile = StreetProfile::of((road.edges[1] - road.edges[0]) * mpp);
+    let mut lines = vec![(0.0, false)];
+    for side in [-1.0, 1.0] {
+        for k in 0..profile.lanes - 1 {
+            lines.push((side * profile.lane_edge(k), false));
+        }
+        if profile.parking > 0.0 {
+            lines.push((side * profile.lane_edge(profile.lanes - 1), true));
+        }
+    }
+    lines
+}
+
+/// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, from `a` to
+/// `b` metres along it.
+fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, [a, b]: [f64; 2]) {
+    let half = LINE_WIDTH / 2.0;
+    let line = road.line * mpp + offset;
+    let (x, z) = match road.axis {
+        Axis::Horizontal => ([a, b], [line - half, line + half]),
+        Axis::Vertical => ([line - half, line + half], [a, b]),
+    };
+    // uv: the whole stripe is one white quad; 0..1 over it.
+    let corners = [
+        [x[0], MARKING_Y, z[0]],
+        [x[1], MARKING_Y, z[0]],
+        [x[1], MARKING_Y, z[1]],
+        [x[0], MARKING_Y, z[1]],
+    ];
+    let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    mesh.quad(corners, super::mesh_builder::UP, uvs);
 }
 
 fn metres(r: RoadRect, mpp: f64) -> RoadRect {
@@ -59,8 +94,8 @@ fn metres(r: RoadRect, mpp: f64) -> RoadRect {
     }
 }
 
-/// Along-axis `[from, to]` (metres) of each dash of road `i`.
-fn dashes(road: &Road, i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> {
+/// Along-axis `[from, to]` (metres) of the stretches of road `i` clear of crossings.
+fn free_along(road: &Road, i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> {
     let half = LINE_WIDTH / 2.0;
     let line = road.line * mpp;
     let own = [
@@ -90,9 +125,6 @@ fn dashes(road: &Road, i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> 
         })
         .collect();
     free_stretches(own, blocked)
-        .into_iter()
-        .flat_map(centred_dashes)
-        .collect()
 }
 
 /// `range` minus the union of `blocked`, in order.

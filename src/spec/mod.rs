@@ -46,7 +46,7 @@ pub use camera_spec::{
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
-pub use object_spec::{Ground, ObjectKind, ObjectSpec, SignKind, TextCase};
+pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
 pub use render::render;
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
@@ -112,10 +112,11 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
         return Err(fail(diagnostics));
     }
 
-    let spec: Spec = match toml::from_str(text) {
+    let mut spec: Spec = match toml::from_str(text) {
         Ok(spec) => spec,
         Err(error) => return Err(fail(vec![serde_diagnostic(text, &locator, &error)])),
     };
+    object_spec::fill_default_labels(&mut spec.objects);
 
     let mut findings = Findings::new(&locator, text);
     layout_checks::check_layout(&spec.layout, &source.path, world, &mut findings);

@@ -41,6 +41,13 @@ pub(crate) fn check_objects(
                 }
             }
             ObjectKind::Sign => {}
+            ObjectKind::Car => {}
+            ObjectKind::Tree => check_range(&key("height"), object.height, findings),
+            ObjectKind::Mesh if object.label.is_empty() => findings.error(
+                &format!("objects[{i}]"),
+                "expected a `label` for an object of kind \"mesh\" (its annotation \
+                 category), found none",
+            ),
             ObjectKind::Mesh => {
                 // Mesh objects are named `<label>_NNNN`: a scene class would clash.
                 if SCENE_CLASSES.contains(&object.label.as_str()) {

@@ -12,9 +12,13 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
     /// What to insert: `"text"` (words on walls facing a road), `"sign"` (traffic signs on
-    /// poles beside the roads) or `"mesh"` (a user OBJ model).
+    /// poles beside the roads), `"mesh"` (a user OBJ model), `"car"` (cars, vans, buses
+    /// and trucks parked at the curbs and standing in the lanes) or `"tree"` (street trees
+    /// in the sidewalk strips and on the blocks' open paving).
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
+    /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`); a mesh needs one.
+    #[serde(default)]
     #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
     pub label: String,
     /// How many to place (fewer when they do not fit).
@@ -58,6 +62,102 @@ pub struct ObjectSpec {
     /// mesh: where the models stand.
     #[serde(default)]
     pub on: Ground,
+    /// car: body types to draw from (all when empty); list one twice to draw it twice as often.
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub bodies: Vec<CarBody>,
+    /// car: share of the cars parked along the curbs; the others stand in the driving lanes.
+    #[serde(default = "default_parked")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub parked: f64,
+    /// tree: crown shapes to draw from (all when empty).
+    #[serde(default)]
+    #[schemars(length(max = 64))]
+    pub species: Vec<TreeSpecies>,
+    /// tree: height range `[low, high]` in metres.
+    #[serde(default = "default_tree_height")]
+    #[schemars(inner(range(min = 2.0, max = 40.0)))]
+    pub height: [f64; 2],
+    /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
+    /// of the sidewalk strips.
+    #[serde(default = "default_plazas")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub plazas: f64,
+}
+
+impl ObjectSpec {
+    /// The label an entry of `kind` gets when the spec gives none; mesh entries have none.
+    pub fn default_label(kind: ObjectKind) -> Option<&'static str> {
+        match kind {
+            ObjectKind::Text => Some("text"),
+            ObjectKind::Sign => Some("traffic_sign"),
+            ObjectKind::Car => Some("car"),
+            ObjectKind::Tree => Some("tree"),
+            ObjectKind::Mesh => None,
+        }
+    }
+}
+
+/// Gives every entry without a `label` its kind's default (a mesh entry keeps none, and
+/// the checks report it).
+pub(crate) fn fill_default_labels(objects: &mut [ObjectSpec]) {
+    for object in objects.iter_mut().filter(|o| o.label.is_empty()) {
+        if let Some(label) = ObjectSpec::default_label(object.kind) {
+            object.label = label.to_owned();
+        }
+    }
+}
+
+/// A car body cityspec builds.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum CarBody {
+    Sedan,
+    Hatchback,
+    Suv,
+    Van,
+    Bus,
+    Truck,
+}
+
+impl CarBody {
+    /// Every body, in declaration order.
+    pub const ALL: [CarBody; 6] = [
+        CarBody::Sedan,
+        CarBody::Hatchback,
+        CarBody::Suv,
+        CarBody::Van,
+        CarBody::Bus,
+        CarBody::Truck,
+    ];
+}
+
+/// A tree crown shape cityspec builds.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum TreeSpecies {
+    // A round broadleaf crown (lime, maple).
+    Round,
+    // A tall narrow crown (poplar, hornbeam).
+    Columnar,
+    // Stacked cones (spruce, fir).
+    Conifer,
+    // A wide, flat crown of a few lobes (plane, acacia).
+    Spreading,
+}
+
+impl TreeSpecies {
+    /// Every species, in declaration order.
+    pub const ALL: [TreeSpecies; 4] = [
+        TreeSpecies::Round,
+        TreeSpecies::Columnar,
+        TreeSpecies::Conifer,
+        TreeSpecies::Spreading,
+    ];
 }
 
 /// Which kind of object a class inserts.
@@ -71,6 +171,8 @@ pub enum ObjectKind {
     Text,
     Sign,
     Mesh,
+    Car,
+    Tree,
 }
 
 /// Letter case of text objects.
@@ -155,6 +257,15 @@ fn default_scale() -> [f64; 2] {
 fn default_rotation() -> [f64; 2] {
     [0.0, 360.0]
 }
+fn default_parked() -> f64 {
+    0.75
+}
+fn default_tree_height() -> [f64; 2] {
+    [5.0, 10.0]
+}
+fn default_plazas() -> f64 {
+    0.25
+}
 
 #[cfg(test)]
 mod tests {
@@ -173,6 +284,23 @@ mod tests {
         assert_eq!(spec.scale, [1.0, 1.0]);
         assert_eq!(spec.rotation, [0.0, 360.0]);
         assert_eq!(spec.on, Ground::Sidewalk);
+    }
+
+    #[test]
+    fn labels_default_to_the_kind_except_for_meshes() {
+        let mut specs: Vec<ObjectSpec> = ["car", "tree", "sign", "text", "mesh"]
+            .iter()
+            .map(|kind| toml::from_str(&format!("kind = {kind:?}\n")).unwrap())
+            .collect();
+        specs.push(toml::from_str("kind = \"car\"\nlabel = \"vehicle\"\n").unwrap());
+        fill_default_labels(&mut specs);
+        let labels: Vec<&str> = specs.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            ["car", "tree", "traffic_sign", "text", "", "vehicle"]
+        );
+        assert_eq!(specs[0].parked, 0.75);
+        assert_eq!(specs[1].height, [5.0, 10.0]);
     }
 
     #[test]

@@ -1,0 +1,454 @@
+//! Car specs + road slots → `car_NNNN` objects: low-poly sedans, hatchbacks, SUVs, vans,
+//! buses and trucks with seeded paint, dark glass, wheels, and head and tail lights that
+//! glow at night (emissive, like the lamp heads).
+//!
+//! A car is a side profile extruded across its width (the lower body), a narrower cabin on
+//! it whose windscreen and rear window are glass, inset side windows, octagonal wheels and
+//! four light quads; a truck adds a cargo box. About 150–190 triangles each.
+//!
+//! Where: `parked` of them along the curbs (in the parking lane of the road's
+//! [`StreetProfile`], or against the curb when there is none), the others standing in a
+//! driving lane with the traffic. Cars are axis-aligned rectangles on the ground
+//! ([`Footprint::Rect`]): they never overlap each other or anything else standing, keep
+//! clear of crossings, and no lane car stands within [`CAMERA_CLEARANCE`] of the line a
+//! roads camera drives by default ([`CAMERA_LANE`] right of the centre line), so a default
+//! drive never passes through a car.
+
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
+use super::ground_spots::{GroundSpots, RoadSlot};
+use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
+use super::{ATTEMPTS, Placing, trig};
+use crate::model::Mesh;
+use crate::scene::ROAD_Y;
+use crate::scene::street_profile::StreetProfile;
+use crate::spec::{CarBody, ObjectSpec};
+
+/// The roads camera's default `lane_offset`, metres right of the centre line.
+pub const CAMERA_LANE: f64 = 4.0;
+/// Room a lane car keeps from that line, metres.
+pub const CAMERA_CLEARANCE: f64 = 1.0;
+/// Gap a parked car keeps from the curb, metres.
+pub const CURB_GAP: f64 = 0.25;
+
+/// The body mix when the spec lists none: mostly cars, a few vans, buses and trucks.
+const DEFAULT_MIX: [CarBody; 12] = [
+    CarBody::Sedan,
+    CarBody::Sedan,
+    CarBody::Sedan,
+    CarBody::Sedan,
+    CarBody::Hatchback,
+    CarBody::Hatchback,
+    CarBody::Hatchback,
+    CarBody::Suv,
+    CarBody::Suv,
+    CarBody::Van,
+    CarBody::Bus,
+    CarBody::Truck,
+];
+
+/// Paint colours (linear RGB), common ones listed more than once so they come up more.
+const PAINTS: [[f32; 3]; 16] = [
+    [0.78, 0.78, 0.76], // white
+    [0.80, 0.80, 0.80],
+    [0.42, 0.43, 0.45], // silver
+    [0.40, 0.40, 0.40],
+    [0.14, 0.14, 0.15],   // grey
+    [0.035, 0.035, 0.04], // black
+    [0.05, 0.05, 0.05],
+    [0.02, 0.04, 0.13],  // dark blue
+    [0.04, 0.13, 0.42],  // blue
+    [0.45, 0.02, 0.02],  // red
+    [0.18, 0.01, 0.015], // dark red
+    [0.03, 0.10, 0.05],  // green
+    [0.45, 0.38, 0.26],  // beige
+    [0.70, 0.48, 0.04],  // yellow
+    [0.25, 0.22, 0.20],  // brown grey
+    [0.60, 0.22, 0.03],  // orange
+];
+
+const GLASS: [f32; 3] = [0.012, 0.016, 0.022];
+const TYRE: [f32; 3] = [0.012, 0.012, 0.012];
+const HEAD_COLOUR: [f32; 3] = [0.85, 0.85, 0.8];
+const HEAD_GLOW: [f32; 3] = [1.0, 0.93, 0.78];
+const TAIL_COLOUR: [f32; 3] = [0.35, 0.01, 0.01];
+const TAIL_GLOW: [f32; 3] = [0.9, 0.04, 0.02];
+
+/// A body's dimensions, metres: `u` from the rear (0) to the front (`length`), `y` up from
+/// the ground.
+#[derive(Clone, Copy, Debug)]
+pub struct Shape {
+    pub length: f64,
+    pub width: f64,
+    /// Underside of the body.
+    pub sill: f64,
+    /// Top of the body at the rear and under the side windows.
+    pub belt: f64,
+    /// Top of the body at the front (the bonnet).
+    pub hood: f64,
+    pub roof: f64,
+    /// Cabin `u`: rear at the belt, rear at the roof, front at the roof, front at the belt.
+    pub cabin: [f64; 4],
+    /// How much narrower than the body the cabin is on each side.
+    pub inset: f64,
+    pub wheel: f64,
+    pub axles: [f64; 2],
+    /// Side windows per side.
+    pub panes: u32,
+    /// Trucks: the cargo box's `u` range and top.
+    pub cargo: Option<([f64; 2], f64)>,
+}
+
+impl Shape {
+    pub fn of(body: CarBody) -> Shape {
+        let car = |length, width, sill, belt, hood, roof, cabin, wheel, axles, panes| Shape {
+            length,
+            width,
+            sill,
+            belt,
+            hood,
+            roof,
+            cabin,
+            inset: 0.09,
+            wheel,
+            axles,
+            panes,
+            cargo: None,
+        };
+        match body {
+            CarBody::Sedan => car(
+                4.6,
+                1.8,
+                0.3,
+                0.95,
+                0.85,
+                1.45,
+                [1.0, 1.5, 2.95, 3.55],
+                0.32,
+                [0.95, 3.65],
+                2,
+            ),
+            CarBody::Hatchback => car(
+                4.0,
+                1.75,
+                0.3,
+                0.95,
+                0.85,
+                1.5,
+                [0.12, 0.4, 2.35, 3.0],
+                0.31,
+                [0.75, 3.25],
+                2,
+            ),
+            CarBody::Suv => car(
+                4.7,
+                1.9,
+                0.4,
+                1.1,
+                1.0,
+                1.78,
+                [0.1, 0.28, 3.05, 3.65],
+                0.38,
+                [0.95, 3.75],
+                3,
+            ),
+            CarBody::Van => car(
+                5.0,
+                1.95,
+                0.35,
+                1.05,
+                0.95,
+                2.1,
+                [0.05, 0.1, 3.85, 4.5],
+                0.34,
+                [0.9, 4.1],
+                3,
+            ),
+            CarBody::Bus => Shape {
+                inset: 0.03,
+                ..car(
+                    11.0,
+                    2.5,
+                    0.35,
+                    1.2,
+                    1.2,
+                    3.0,
+                    [0.05, 0.08, 10.85, 10.96],
+                    0.5,
+                    [2.6, 8.9],
+                    7,
+                )
+            },
+            CarBody::Truck => Shape {
+                inset: 0.05,
+                cargo: Some(([0.1, 5.3], 3.4)),
+                ..car(
+                    7.5,
+                    2.35,
+                    0.45,
+                    1.25,
+                    1.15,
+                    2.85,
+                    [5.45, 5.5, 7.15, 7.45],
+                    0.48,
+                    [1.6, 6.1],
+                    1,
+                )
+            },
+        }
+    }
+
+    /// The lower body's side profile, convex, counter-clockwise.
+    pub fn body_profile(&self) -> Vec<[f64; 2]> {
+        let (l, s) = (self.length, self.sill);
+        vec![
+            [0.08, s],
+            [l - 0.15, s],
+            [l, s + 0.15],
+            [l, self.hood - 0.08],
+            [l - 0.35, self.hood],
+            [0.08, self.belt],
+            [0.0, self.belt - 0.08],
+            [0.0, s + 0.08],
+        ]
+    }
+
+    /// The cabin's side profile (bottom, front slope, roof, rear slope), its bottom sunk
+    /// 10 cm into the body along the slopes so no gap shows under the windscreen.
+    pub fn cabin_profile(&self) -> [[f64; 2]; 4] {
+        let [r0, r1, f1, f0] = self.cabin;
+        let rise = self.roof - self.belt;
+        let sink = 0.1;
+        [
+            [r0 - (r1 - r0) * sink / rise, self.belt - sink],
+            [f0 + (f0 - f1) * sink / rise, self.belt - sink],
+            [f1, self.roof],
+            [r1, self.roof],
+        ]
+    }
+}
+
+/// The materials a car is made of.
+struct Paints {
+    paint: u32,
+    cargo: u32,
+    glass: u32,
+    tyre: u32,
+    head: u32,
+    tail: u32,
+}
+
+pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+    let bodies: &[CarBody] = if spec.bodies.is_empty() {
+        &DEFAULT_MIX
+    } else {
+        &spec.bodies
+    };
+    for _ in 0..spec.count {
+        let body = bodies[rng.random_range(0..bodies.len())];
+        let paint = rng.random_range(0..PAINTS.len());
+        let cargo = if rng.random::<f64>() < 0.6 {
+            0
+        } else {
+            rng.random_range(0..PAINTS.len())
+        };
+        let parked = rng.random::<f64>() < spec.parked;
+        let lane_pick: f64 = rng.random();
+        let shape = Shape::of(body);
+        let half = [shape.length / 2.0, shape.width / 2.0];
+        let slot = |width: f64| {
+            let profile = StreetProfile::of(width);
+            if parked {
+                let offset = profile.half - CURB_GAP - half[1];
+                (offset > half[1]).then_some(RoadSlot {
+                    half,
+                    offset,
+                    crossing_clearance: 5.0,
+                    gap: 0.4,
+                })
+            } else {
+                let free: Vec<f64> = (0..profile.lanes)
+                    .map(|k| profile.lane_centre(k))
+                    .filter(|c| (c - CAMERA_LANE).abs() >= half[1] + CAMERA_CLEARANCE)
+                    .filter(|c| c + half[1] <= profile.half - profile.parking)
+                    .collect();
+                // `lane_pick` < 1, so the index is in range.
+                let offset = *free.get((lane_pick * free.len() as f64) as usize)?;
+                Some(RoadSlot {
+                    half,
+                    offset,
+                    crossing_clearance: 1.0,
+                    gap: 2.5,
+                })
+            }
+        };
+        let Some(spot) = spots.road(rng, ATTEMPTS, slot) else {
+            continue;
+        };
+        let paints = Paints {
+            paint: paint_material(placing, paint),
+            cargo: paint_material(placing, cargo),
+            glass: placing.material("car_glass", || (GLASS, None)),
+            tyre: placing.material("car_tyre", || (TYRE, None)),
+            head: placing.glowing("car_headlight", HEAD_COLOUR, HEAD_GLOW),
+            tail: placing.glowing("car_taillight", TAIL_COLOUR, TAIL_GLOW),
+        };
+        let frame = Frame {
+            origin: [
+                spot.position[0] - spot.travel[0] * half[0],
+                ROAD_Y,
+                spot.position[1] - spot.travel[1] * half[0],
+            ],
+            forward: spot.travel,
+        };
+        let meshes = car_meshes(&shape, &frame, &paints);
+        let name = placing.name("car");
+        placing.push_plain(name, &spec.label, meshes);
+    }
+}
+
+fn paint_material(placing: &mut Placing, k: usize) -> u32 {
+    placing.material(&format!("car_paint_{k:02}"), || (PAINTS[k], None))
+}
+
+/// The meshes of a car of `shape` standing in `frame` (origin: the middle of its rear on
+/// the ground; `u` forward).
+fn car_meshes(shape: &Shape, frame: &Frame, m: &Paints) -> Vec<Mesh> {
+    let hw = shape.width / 2.0;
+    let mut paint = Solid::new(m.paint);
+    let mut glass = Solid::new(m.glass);
+    let mut tyre = Solid::new(m.tyre);
+    let mut cargo = Solid::new(m.cargo);
+    let mut head = Solid::new(m.head);
+    let mut tail = Solid::new(m.tail);
+
+    paint.prism(frame, &shape.body_profile(), [-hw, hw], &[]);
+    // Cabin: sides and roof painted, windscreen (edge 1) and rear window (edge 3) glass, no
+    // bottom (edge 0, inside the body).
+    let cabin = shape.cabin_profile();
+    let cw = hw - shape.inset;
+    paint.prism(frame, &cabin, [-cw, cw], &[0, 1, 3]);
+    let c = centroid(&cabin);
+    glass.profile_face(frame, &cabin, c, 1, [-cw, cw]);
+    glass.profile_face(frame, &cabin, c, 3, [-cw, cw]);
+    side_windows(&mut glass, frame, shape, cw + 0.01);
+    if let Some((u, top)) = shape.cargo {
+        cargo.cuboid(frame, u, [shape.sill + 0.5, top], [-hw - 0.02, hw + 0.02]);
+    }
+    for &axle in &shape.axles {
+        for v in [[hw - 0.24, hw + 0.01], [-hw - 0.01, -hw + 0.24]] {
+            tyre.prism(frame, &wheel_profile(axle, shape.wheel), v, &[]);
+        }
+    }
+    // Lights: quads 1 cm in front of the body's vertical front and rear faces.
+    let forward = frame.dir(1.0, 0.0, 0.0);
+    let back = forward.map(|x| -x);
+    for side in [-1.0, 1.0] {
+        let v = [side * (hw - 0.42), side * (hw - 0.1)];
+        let lamp = |u: f64, y: [f64; 2]| {
+            [
+                frame.at(u, y[0], v[0]),
+                frame.at(u, y[0], v[1]),
+                frame.at(u, y[1], v[1]),
+                frame.at(u, y[1], v[0]),
+            ]
+        };
+        head.polygon(
+            &lamp(shape.length + 0.01, [shape.hood - 0.3, shape.hood - 0.15]),
+            forward,
+        );
+        tail.polygon(&lamp(-0.01, [shape.belt - 0.32, shape.belt - 0.17]), back);
+    }
+    finish_all(vec![paint, glass, tyre, cargo, head, tail])
+}
+
+/// `shape.panes` glass quads on each cabin side, at `|v| = v`, framed by 8 cm pillars.
+fn side_windows(glass: &mut Solid, frame: &Frame, shape: &Shape, v: f64) {
+    let [r0, r1, f1, f0] = shape.cabin;
+    let (y0, y1) = (shape.belt + 0.07, shape.roof - 0.08);
+    let t = |y: f64| (y - shape.belt) / (shape.roof - shape.belt);
+    let edge = |y: f64| {
+        let k = t(y);
+        [r0 + (r1 - r0) * k + 0.08, f0 + (f1 - f0) * k - 0.08]
+    };
+    let (bottom, top) = (edge(y0), edge(y1));
+    let n = f64::from(shape.panes.max(1));
+    let pillar = 0.05;
+    for side in [-1.0, 1.0] {
+        let normal = frame.dir(0.0, 0.0, side);
+        for k in 0..shape.panes.max(1) {
+            let at = |span: [f64; 2], j: f64| span[0] + (span[1] - span[0]) * j / n;
+            let (j0, j1) = (f64::from(k), f64::from(k + 1));
+            let inner = |j: f64, s: f64| if j > 0.0 && j < n { s * pillar } else { 0.0 };
+            let corners = [
+                frame.at(at(bottom, j0) + inner(j0, 1.0), y0, side * v),
+                frame.at(at(bottom, j1) + inner(j1, -1.0), y0, side * v),
+                frame.at(at(top, j1) + inner(j1, -1.0), y1, side * v),
+                frame.at(at(top, j0) + inner(j0, 1.0), y1, side * v),
+            ];
+            glass.polygon(&corners, normal);
+        }
+    }
+}
+
+/// An octagon of radius `r` standing on the ground at `axle`, in (u, y).
+fn wheel_profile(axle: f64, r: f64) -> Vec<[f64; 2]> {
+    (0..8)
+        .map(|k| {
+            let (c, s) = trig::cos_sin_deg(22.5 + 45.0 * f64::from(k));
+            [axle + r * c, r + r * s]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn convex(profile: &[[f64; 2]]) -> bool {
+        let n = profile.len();
+        (0..n).all(|k| {
+            let (a, b, c) = (profile[k], profile[(k + 1) % n], profile[(k + 2) % n]);
+            (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]) > 0.0
+        })
+    }
+
+    #[test]
+    fn every_body_is_convex_and_low_poly() {
+        let frame = Frame {
+            origin: [0.0; 3],
+            forward: [0.0, 1.0],
+        };
+        for body in CarBody::ALL {
+            let shape = Shape::of(body);
+            assert!(convex(&shape.body_profile()), "{body:?}");
+            assert!(convex(&shape.cabin_profile()), "{body:?}");
+            assert!(shape.cabin[0] < shape.cabin[1] && shape.cabin[2] < shape.cabin[3]);
+            let m = Paints {
+                paint: 0,
+                cargo: 1,
+                glass: 2,
+                tyre: 3,
+                head: 4,
+                tail: 5,
+            };
+            let meshes = car_meshes(&shape, &frame, &m);
+            let triangles: usize = meshes.iter().map(|m| m.indices.len() / 3).sum();
+            assert!((100..=300).contains(&triangles), "{body:?}: {triangles}");
+            // Every part stays within the body's length and width (wheels and lights
+            // stand out by a few centimetres) and on the ground.
+            for mesh in &meshes {
+                for p in &mesh.positions {
+                    let p = p.map(f64::from);
+                    assert!(p[1] >= 0.0 && p[1] <= 3.5, "{body:?} {p:?}");
+                    assert!(p[0].abs() <= shape.width / 2.0 + 0.03, "{body:?} {p:?}");
+                    assert!(
+                        p[2] >= -0.02 && p[2] <= shape.length + 0.02,
+                        "{body:?} {p:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,370 @@
+//! Tree specs + strip spots and open block paving → `tree_NNNN` objects: a hexagonal trunk
+//! and a solid low-poly crown of one of four species, seeded in size, shape and shade.
+//!
+//! | species | crown | triangles |
+//! |---|---|---|
+//! | round | a ball and two smaller lobes | ~108 |
+//! | columnar | two tall lobes stacked | ~76 |
+//! | conifer | three stacked octagonal cones | ~60 |
+//! | spreading | three wide, flat lobes | ~108 |
+//!
+//! Lobes are subdivided octahedra (32 faces) whose corners are pushed in or out at random,
+//! so no two crowns are alike. A `plazas` share of the trees stands on the blocks' open
+//! paving, clear of every building by its crown; the rest stand mid-strip beside a road,
+//! their crowns kept inside the strip (never over the road or a block). Trees take a
+//! circle as wide as their crown ([`super::ground_spots::Footprint::Circle`]), so they never
+//! overlap lamps, signs, cars, benches or each other.
+
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
+use super::ground_spots::{Footprint, GroundSpots};
+use super::vehicle_parts::{Solid, finish_all};
+use super::{ATTEMPTS, Placing, trig};
+use crate::model::Mesh;
+use crate::scene::KERB_Y;
+use crate::spec::{ObjectSpec, TreeSpecies};
+
+/// Largest crown radius on open paving, metres.
+pub const MAX_PLAZA_CROWN: f64 = 3.5;
+/// Room a plaza tree's crown keeps from a building, metres.
+pub const BUILDING_CLEARANCE: f64 = 0.3;
+
+const BARK: [f32; 3] = [0.08, 0.055, 0.035];
+/// Three leaf shades per species (linear RGB), in [`TreeSpecies::ALL`] order.
+const LEAVES: [[[f32; 3]; 3]; 4] = [
+    [[0.05, 0.12, 0.025], [0.07, 0.15, 0.03], [0.04, 0.09, 0.02]],
+    [[0.08, 0.15, 0.03], [0.06, 0.13, 0.035], [0.1, 0.17, 0.04]],
+    [
+        [0.015, 0.05, 0.025],
+        [0.02, 0.065, 0.03],
+        [0.012, 0.04, 0.02],
+    ],
+    [[0.1, 0.14, 0.03], [0.13, 0.15, 0.035], [0.08, 0.12, 0.03]],
+];
+
+pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+    let species: &[TreeSpecies] = if spec.species.is_empty() {
+        &TreeSpecies::ALL
+    } else {
+        &spec.species
+    };
+    let strip_crown = spots.strip_half() - 0.15;
+    for _ in 0..spec.count {
+        let kind = species[rng.random_range(0..species.len())];
+        let t: f64 = rng.random();
+        let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
+        let shade = rng.random_range(0..3usize);
+        let in_plaza = rng.random::<f64>() < spec.plazas;
+        let max_crown = if in_plaza {
+            MAX_PLAZA_CROWN
+        } else {
+            strip_crown
+        };
+        if max_crown.is_nan() || max_crown <= 0.5 {
+            continue;
+        }
+        let crown = crown_radius(kind, height).min(max_crown);
+        let foot = if in_plaza {
+            plaza_spot(rng, crown, spots, placing)
+        } else {
+            spots.strip(rng, crown + 0.1, ATTEMPTS).map(|s| s.position)
+        };
+        let Some(foot) = foot else {
+            continue;
+        };
+        let k = TreeSpecies::ALL
+            .iter()
+            .position(|&s| s == kind)
+            .unwrap_or(0);
+        let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
+            (LEAVES[k][shade], None)
+        });
+        let bark = placing.material("tree_bark", || (BARK, None));
+        let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
+        let name = placing.name("tree");
+        placing.push_plain(name, &spec.label, meshes);
+    }
+}
+
+/// The crown radius a tree of `height` metres has, before any limit.
+fn crown_radius(kind: TreeSpecies, height: f64) -> f64 {
+    height
+        * match kind {
+            TreeSpecies::Round => 0.3,
+            TreeSpecies::Columnar => 0.15,
+            TreeSpecies::Conifer => 0.22,
+            TreeSpecies::Spreading => 0.42,
+        }
+}
+
+/// A random point on a block's paving, `crown + BUILDING_CLEARANCE` clear of every
+/// building, whose circle of `crown` is free; it is taken.
+fn plaza_spot(
+    rng: &mut Pcg64,
+    crown: f64,
+    spots: &mut GroundSpots,
+    placing: &Placing,
+) -> Option<[f64; 2]> {
+    let input = placing.input;
+    let blocks = &input.layout.blocks;
+    let mpp = input.metres_per_pixel;
+    if blocks.is_empty() {
+        return None;
+    }
+    (0..ATTEMPTS).find_map(|_| {
+        let block = &blocks[rng.random_range(0..blocks.len())];
+        let (tx, ty): (f64, f64) = (rng.random(), rng.random());
+        let b = block.bbox;
+        let px = [
+            f64::from(b.x0) + tx * f64::from(b.x1 - b.x0),
+            f64::from(b.y0) + ty * f64::from(b.y1 - b.y0),
+        ];
+        // `as` saturates; the pixel test bounds it.
+        if !block.contains_pixel(px[0] as u32, px[1] as u32) {
+            return None;
+        }
+        let p = [px[0] * mpp, px[1] * mpp];
+        let room = crown + BUILDING_CLEARANCE;
+        let clear = input.buildings.iter().all(|building| {
+            let f = building.footprint;
+            let x = [f64::from(f.x0) * mpp, f64::from(f.x1) * mpp];
+            let z = [f64::from(f.y0) * mpp, f64::from(f.y1) * mpp];
+            let dx = p[0] - p[0].clamp(x[0], x[1]);
+            let dz = p[1] - p[1].clamp(z[0], z[1]);
+            dx * dx + dz * dz >= room * room
+        });
+        (clear && spots.claim(Footprint::Circle(p, crown + 0.1))).then_some(p)
+    })
+}
+
+/// Trunk and crown of a tree standing at `foot` (x, z) on the kerb-high paving.
+fn tree_meshes(
+    kind: TreeSpecies,
+    height: f64,
+    crown: f64,
+    foot: [f64; 2],
+    rng: &mut Pcg64,
+    [bark, leaves]: [u32; 2],
+) -> Vec<Mesh> {
+    let mut trunk = Solid::new(bark);
+    let mut crowns = Solid::new(leaves);
+    let base = [foot[0], KERB_Y, foot[1]];
+    let h = height;
+    let r = crown;
+    // Lobes: (centre offset (x, y, z) from the foot, radii (across, up)).
+    let mut lobes: Vec<([f64; 3], [f64; 2])> = Vec::new();
+    let turn: f64 = rng.random::<f64>() * 360.0;
+    let (c, s) = trig::cos_sin_deg(turn);
+    let trunk_top = match kind {
+        TreeSpecies::Round => {
+            let ry = (0.95 * r).min(0.45 * h);
+            lobes.push(([0.0, h - ry, 0.0], [r * 0.85, ry * 0.85]));
+            lobes.push((
+                [0.35 * r * c, h - 1.2 * ry, 0.35 * r * s],
+                [r * 0.62, ry * 0.6],
+            ));
+            lobes.push((
+                [-0.35 * r * c, h - 1.1 * ry, -0.35 * r * s],
+                [r * 0.62, ry * 0.6],
+            ));
+            h - ry
+        }
+        TreeSpecies::Columnar => {
+            let ry = 0.24 * h;
+            lobes.push(([0.0, h - ry, 0.0], [r * 0.9, ry]));
+            lobes.push(([0.0, h - 2.1 * ry, 0.0], [r, ry * 0.9]));
+            h - ry
+        }
+        TreeSpecies::Conifer => {
+            for (k, (b, a, w)) in [(0.18, 0.6, 1.0), (0.4, 0.82, 0.75), (0.62, 1.0, 0.5)]
+                .into_iter()
+                .enumerate()
+            {
+                cone(
+                    &mut crowns,
+                    [base[0], base[1] + b * h, base[2]],
+                    a * h - b * h,
+                    w * r,
+                    turn + 15.0 * k as f64,
+                );
+            }
+            0.5 * h
+        }
+        TreeSpecies::Spreading => {
+            let ry = (0.45 * r).min(0.3 * h);
+            lobes.push(([0.0, h - ry, 0.0], [r * 0.7, ry]));
+            lobes.push((
+                [0.4 * r * c, h - 1.2 * ry, 0.4 * r * s],
+                [r * 0.6, ry * 0.8],
+            ));
+            lobes.push((
+                [-0.4 * r * c, h - 1.2 * ry, -0.4 * r * s],
+                [r * 0.6, ry * 0.8],
+            ));
+            h - ry
+        }
+    };
+    for (offset, radii) in lobes {
+        let centre = [
+            base[0] + offset[0],
+            base[1] + offset[1],
+            base[2] + offset[2],
+        ];
+        blob(&mut crowns, centre, radii, rng);
+    }
+    let trunk_radius = 0.08 + 0.012 * h;
+    hexagonal_trunk(&mut trunk, base, trunk_radius, trunk_top, turn);
+    finish_all(vec![trunk, crowns])
+}
+
+/// A subdivided octahedron (32 faces) of radii `[across, up]` around `centre`, each corner
+/// pushed out or in by up to 15 %; every face looks away from the centre. Lobe radii are
+/// chosen so the jittered crown stays within the tree's crown radius.
+fn blob(solid: &mut Solid, centre: [f64; 3], radii: [f64; 2], rng: &mut Pcg64) {
+    let (points, faces) = geosphere();
+    let scale: Vec<f64> = points
+        .iter()
+        .map(|_| 0.85 + 0.15 * rng.random::<f64>())
+        .collect();
+    let at = |i: usize| {
+        let p = points[i];
+        let k = scale[i];
+        [
+            centre[0] + p[0] * radii[0] * k,
+            centre[1] + p[1] * radii[1] * k,
+            centre[2] + p[2] * radii[0] * k,
+        ]
+    };
+    for [a, b, c] in faces {
+        solid.triangle_out([at(a), at(b), at(c)], centre);
+    }
+}
+
+/// Unit directions and faces of an octahedron subdivided once: 18 corners, 32 faces.
+fn geosphere() -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+    let mut points: Vec<[f64; 3]> = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let octa = [
+        [0, 2, 4],
+        [4, 2, 1],
+        [1, 2, 5],
+        [5, 2, 0],
+        [0, 4, 3],
+        [4, 1, 3],
+        [1, 5, 3],
+        [5, 0, 3],
+    ];
+    let mid = |a: usize, b: usize, points: &mut Vec<[f64; 3]>| {
+        let (p, q) = (points[a], points[b]);
+        let m = [
+            (p[0] + q[0]) / 2.0,
+            (p[1] + q[1]) / 2.0,
+            (p[2] + q[2]) / 2.0,
+        ];
+        let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+        let m = m.map(|v| v / len);
+        if let Some(i) = points.iter().position(|&x| x == m) {
+            return i;
+        }
+        points.push(m);
+        points.len() - 1
+    };
+    let mut faces = Vec::new();
+    for [a, b, c] in octa {
+        let ab = mid(a, b, &mut points);
+        let bc = mid(b, c, &mut points);
+        let ca = mid(c, a, &mut points);
+        faces.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    (points, faces)
+}
+
+/// An octagonal cone: base circle of `radius` at `base`, apex `height` above, and its base.
+fn cone(solid: &mut Solid, base: [f64; 3], height: f64, radius: f64, turn: f64) {
+    let ring: Vec<[f64; 3]> = (0..8)
+        .map(|k| {
+            let (c, s) = trig::cos_sin_deg(turn + 45.0 * f64::from(k));
+            [base[0] + radius * c, base[1], base[2] + radius * s]
+        })
+        .collect();
+    let apex = [base[0], base[1] + height, base[2]];
+    let inside = [base[0], base[1] + height / 3.0, base[2]];
+    for k in 0..8 {
+        solid.triangle_out([ring[k], ring[(k + 1) % 8], apex], inside);
+    }
+    solid.polygon(&ring, [0.0, -1.0, 0.0]);
+}
+
+/// A six-sided trunk from `base` up to `top` (absolute height above the paving), no caps.
+fn hexagonal_trunk(solid: &mut Solid, base: [f64; 3], radius: f64, top: f64, turn: f64) {
+    let ring: Vec<[f64; 2]> = (0..6)
+        .map(|k| {
+            let (c, s) = trig::cos_sin_deg(turn + 60.0 * f64::from(k));
+            [base[0] + radius * c, base[2] + radius * s]
+        })
+        .collect();
+    let y = [base[1], base[1] + top];
+    for k in 0..6 {
+        let (a, b) = (ring[k], ring[(k + 1) % 6]);
+        let mid = [(a[0] + b[0]) / 2.0 - base[0], (a[1] + b[1]) / 2.0 - base[2]];
+        let len = (mid[0] * mid[0] + mid[1] * mid[1]).sqrt();
+        let normal = [mid[0] / len, 0.0, mid[1] / len];
+        let corners = [
+            [a[0], y[0], a[1]],
+            [b[0], y[0], b[1]],
+            [b[0], y[1], b[1]],
+            [a[0], y[1], a[1]],
+        ];
+        solid.polygon(&corners, normal);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::stream;
+
+    #[test]
+    fn geosphere_is_closed() {
+        let (points, faces) = geosphere();
+        assert_eq!((points.len(), faces.len()), (18, 32));
+        // Closed: every edge is shared by exactly two faces.
+        let mut edges = std::collections::BTreeMap::new();
+        for f in &faces {
+            for k in 0..3 {
+                let (a, b) = (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]));
+                *edges.entry((a, b)).or_insert(0) += 1;
+            }
+        }
+        assert!(edges.values().all(|&n| n == 2));
+    }
+
+    #[test]
+    fn trees_are_low_poly_and_stay_within_their_crown() {
+        let mut rng = stream(3, "tree-test", 0);
+        for kind in TreeSpecies::ALL {
+            for height in [5.0, 10.0] {
+                let crown = crown_radius(kind, height).min(2.25);
+                let meshes = tree_meshes(kind, height, crown, [10.0, 20.0], &mut rng, [0, 1]);
+                let triangles: usize = meshes.iter().map(|m| m.indices.len() / 3).sum();
+                assert!((50..=150).contains(&triangles), "{kind:?}: {triangles}");
+                for p in meshes.iter().flat_map(|m| &m.positions) {
+                    let p = p.map(f64::from);
+                    let (dx, dz) = (p[0] - 10.0, p[2] - 20.0);
+                    assert!((dx * dx + dz * dz).sqrt() <= crown + 1e-6, "{kind:?} {p:?}");
+                    assert!(
+                        p[1] >= KERB_Y && p[1] <= KERB_Y + height + 1e-6,
+                        "{kind:?} {p:?}"
+                    );
+                }
+            }
+        }
+    }
+}
