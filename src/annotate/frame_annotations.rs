@@ -26,6 +26,19 @@ pub struct FrameAnnotations<'a> {
     pub objects: Vec<ShownObject<'a>>,
     /// Projected text quads of the shown objects that have one, by instance id.
     pub quads: BTreeMap<u32, [[f64; 2]; 4]>,
+    /// The frame's depth image, when the dataset has one (the caller sets it).
+    pub depth: Option<DepthFile>,
+}
+
+/// Where a frame's depth image is and how to read it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthFile {
+    /// Relative to the camera path's folder, like `file_name` (`depth/000017.png`).
+    pub file_name: String,
+    /// `cm16`, `mm16` or `f32`.
+    pub format: &'static str,
+    /// Metres per stored unit.
+    pub scale: f64,
 }
 
 /// Scans `frame`'s instance image once and keeps what the outputs need.
@@ -38,7 +51,7 @@ pub fn summarize<'a>(
     let quads = objects
         .iter()
         .filter_map(|o| {
-            let id = u32::from(o.visible.id);
+            let id = o.visible.id;
             Some((id, *frame.quads.get(&id)?))
         })
         .collect();
@@ -51,5 +64,6 @@ pub fn summarize<'a>(
         pose: frame.pose,
         objects,
         quads,
+        depth: None,
     }
 }

@@ -11,7 +11,9 @@ pub const MOSTLY_HIDDEN: f64 = 0.5;
 /// instance-id order: `x1,y1,x2,y2,x3,y3,x4,y4,transcription`, integer pixel coordinates.
 ///
 /// The quad is the renderer's projected corners (`frame.quads`) when given and finite,
-/// rounded to the nearest pixel; otherwise the visible box's corner pixels clockwise from
+/// rounded to the nearest pixel and clamped into the image (`0..=width−1`,
+/// `0..=height−1`: a text cut by the image edge gets the quad of its part inside, never
+/// negative coordinates); otherwise the visible box's corner pixels clockwise from
 /// the top-left (`x0,y0, x1,y0, x1,y1, x0,y1`, inclusive). The transcription is the text
 /// with line breaks and other control characters made spaces, or `###` (ICDAR's "do not
 /// care") when the text is mostly hidden — its visible fraction is below one half — or it
@@ -29,9 +31,16 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
             [[b.x0, b.y0], [b.x1, b.y0], [b.x1, b.y1], [b.x0, b.y1]].map(|p| p.map(i64::from));
         let quad = frame
             .quads
-            .get(&u32::from(v.id))
+            .get(&v.id)
             .filter(|q| q.iter().flatten().all(|c| c.is_finite() && c.abs() < 1e15))
-            .map(|q| q.map(|p| p.map(|c| c.round() as i64)))
+            .map(|q| {
+                q.map(|[x, y]| {
+                    [
+                        (x.round() as i64).clamp(0, i64::from(frame.width) - 1),
+                        (y.round() as i64).clamp(0, i64::from(frame.height) - 1),
+                    ]
+                })
+            })
             .unwrap_or(boxed);
         let hidden = !object.passes || object.fraction.is_some_and(|f| f < MOSTLY_HIDDEN);
         for [x, y] in quad {
@@ -69,6 +78,7 @@ mod tests {
             name: "x".into(),
             category: Some(1),
             text: text.map(String::from),
+            sign: None,
         };
         let labels = [
             label(Some("EXIT")),
@@ -90,7 +100,8 @@ mod tests {
                 (2, ([4.0, 0.0, 2.0, 4.0], 8)),
                 (3, ([0.0, 3.0, 4.0, 2.0], 5)),
             ]),
-            quads: BTreeMap::from([(1, [[-0.4, 0.2], [3.5, 0.0], [3.0, 2.49], [0.0, 2.0]])]),
+            // Corners past the image edges are clamped into it.
+            quads: BTreeMap::from([(1, [[-3.4, 0.2], [3.5, -2.0], [9.6, 2.49], [0.0, 2.0]])]),
         };
         let thresholds = Thresholds {
             min_pixels: 2,
@@ -98,7 +109,7 @@ mod tests {
         };
         assert_eq!(
             icdar(&summarize(&labels, &frame, &thresholds)),
-            "0,0,4,0,3,2,0,2,EXIT\n\
+            "0,0,4,0,7,2,0,2,EXIT\n\
              4,0,5,0,5,1,4,1,line one line two, and more\n\
              0,3,1,3,1,3,0,3,###\n\
              7,0,7,0,7,0,7,0,###\n"
