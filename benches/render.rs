@@ -61,11 +61,12 @@ fn main() {
     if let Ok(dir) = std::env::var("RENDER_BENCH_DUMP") {
         // For a look at what is being timed: the first pose, by day and by night.
         for (name, lighting) in [("day", Lighting::day()), ("night", night.clone())] {
-            let png = render::render(&prepared, &poses[0], &k, &lighting, 1).encode_png();
+            let png = render::render(&prepared, &poses[0], &k, &lighting, 1)
+                .encode(render::DepthFormat::Mm16);
             let dir = std::path::Path::new(&dir);
             std::fs::write(dir.join(format!("{name}_rgb.png")), &png.rgb).unwrap();
             std::fs::write(dir.join(format!("{name}_instance.png")), &png.instance).unwrap();
-            std::fs::write(dir.join(format!("{name}_depth.png")), &png.depth_mm).unwrap();
+            std::fs::write(dir.join(format!("{name}_depth.png")), &png.depth).unwrap();
         }
     }
     println!(

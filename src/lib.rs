@@ -21,6 +21,7 @@
 //! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
+//! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
 //! Shared types live in [`model`]; stages depend on them, never on each other.
 
@@ -44,3 +45,4 @@ pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spec;
+pub mod stats;

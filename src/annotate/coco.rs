@@ -29,12 +29,17 @@ pub fn coco(
 ///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target, up}` (metres, x
 ///   east, y up, z south; `up` the direction of the image's top, +y for a level camera),
 ///   with the path's drawn `heading`, `pitch`, `roll` (degrees) and `height` (metres)
-///   when it draws them.
+///   when it draws them, and, when the frame has a depth image, `depth`
+///   `{file_name, format, scale}` (metres per stored unit).
+/// - ignore regions: a listed object that shows pixels but misses the thresholds is
+///   written with `iscrowd` 1 and its RLE mask, so pycocotools' COCOeval (and loaders
+///   that follow it) neither rewards nor punishes a detection of it.
 /// - `categories`: `id`, `name`, in the order given.
 /// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
-///   every labelled object whose category is listed and that passes the thresholds: `id`,
-///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels,
-///   `area` = visible pixel count, `iscrowd` 0, `segmentation` = compressed RLE
+///   every labelled object whose category is listed: `id`,
+///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels
+///   (inside the image by construction), `area` = visible pixel count, `iscrowd` 0 when
+///   it passes the thresholds, else 1 (an ignore region), `segmentation` = compressed RLE
 ///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
 ///   then the extra keys `instance_id` (the value in the instance image), `name`,
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
@@ -42,7 +47,9 @@ pub fn coco(
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
 ///   it; or `null`) and, for text objects, `text` (the plate's whole text: COCO stays one
 ///   annotation per plate, whose mask is the plate; ICDAR has the words) and `attributes`
-///   `{text_font, text_style}` (style `shop`, `banner` or `painted`).
+///   `{text_font, text_style}` (style `shop`, `banner` or `painted`); for a sign seen from the
+///   front `attributes` `{"sign_type": "stop"}`. A sign seen from behind is not its
+///   category: it takes the category `<label>_back` when that is listed, else it is left out.
 ///
 /// Keys are written in that order, one image, category or annotation per line. Intrinsics
 /// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
@@ -86,7 +93,7 @@ impl CocoWriter {
                 pose[key] = json!(round(value, 1e3));
             }
         }
-        let image = json!({
+        let mut image = json!({
             "id": image_id,
             "file_name": frame.file_name,
             "width": frame.width,
@@ -94,12 +101,18 @@ impl CocoWriter {
             "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
             "pose": pose,
         });
+        if let (Some(depth), Value::Object(map)) = (&frame.depth, &mut image) {
+            map.insert(
+                "depth".into(),
+                json!({"file_name": depth.file_name, "format": depth.format, "scale": depth.scale}),
+            );
+        }
         line(&mut self.images, &image);
         for object in &frame.objects {
-            let Some(category) = object.label.category else {
+            let Some(category) = object.category else {
                 continue;
             };
-            if !object.passes || !self.categories.iter().any(|c| c.id == category) {
+            if !self.categories.iter().any(|c| c.id == category) {
                 continue;
             }
             self.annotated += 1;
@@ -110,20 +123,24 @@ impl CocoWriter {
                 "category_id": category,
                 "bbox": v.bounds.bbox(),
                 "area": v.pixels,
-                "iscrowd": 0,
+                "iscrowd": u8::from(!object.passes),
                 "segmentation": {"size": v.rle.size, "counts": v.rle.to_compressed()},
                 "instance_id": v.id,
                 "name": object.label.name,
                 "full_bbox": object.full_box.map(|b| b.map(|x| round(x, 1e3))),
                 "visible_fraction": object.fraction.and_then(|f| round(f, 1e6)),
             });
-            if let (Some(text), Value::Object(map)) = (&object.label.text, &mut annotation) {
-                map.insert("text".into(), Value::String(text.clone()));
-            }
-            if let (false, Value::Object(map)) =
-                (object.label.attributes.is_empty(), &mut annotation)
-            {
-                map.insert("attributes".into(), json!(object.label.attributes));
+            if let Value::Object(map) = &mut annotation {
+                if let Some(text) = &object.label.text {
+                    map.insert("text".into(), Value::String(text.clone()));
+                }
+                let mut attributes = object.label.attributes.clone();
+                if let Some(kind) = object.subclass {
+                    attributes.insert("sign_type".into(), kind.to_string());
+                }
+                if !attributes.is_empty() {
+                    map.insert("attributes".into(), json!(attributes));
+                }
             }
             line(&mut self.annotations, &annotation);
         }
@@ -168,7 +185,7 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::{Rle, test_image};
+    use crate::annotate::{Rle, SignLabel, test_image};
     use crate::model::CameraPose;
 
     fn categories() -> Vec<Category> {
@@ -188,6 +205,7 @@ mod tests {
             category,
             text: text.map(String::from),
             attributes: Default::default(),
+            sign: None,
         };
         vec![
             label("building_0", Some(1), None),
@@ -200,7 +218,7 @@ mod tests {
 
     /// 8 × 5: building 1 partly behind sign 2 (2 px, too few) and text 5 (no projected
     /// count known); sign 3 shows 4 of its 40 px; ground 4 along the bottom.
-    fn frame_image() -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+    fn frame_image() -> image::ImageBuffer<image::Luma<u32>, Vec<u32>> {
         test_image(&[
             &[1, 1, 1, 1, 1, 0, 3, 3],
             &[1, 2, 2, 1, 1, 0, 3, 3],
@@ -212,7 +230,7 @@ mod tests {
 
     fn frame<'a>(
         name: &str,
-        img: &'a image::ImageBuffer<image::Luma<u16>, Vec<u16>>,
+        img: &'a image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
     ) -> FrameInput<'a> {
         FrameInput {
             file_name: name.into(),
@@ -257,7 +275,7 @@ mod tests {
         );
 
         let anns = doc["annotations"].as_array().unwrap();
-        let summary: Vec<(u64, u64, u64, String)> = anns
+        let summary: Vec<(u64, u64, u64, String, u64)> = anns
             .iter()
             .map(|a| {
                 let n = |k: &str| a[k].as_u64().unwrap();
@@ -266,19 +284,25 @@ mod tests {
                     n("image_id"),
                     n("instance_id"),
                     a["bbox"].to_string(),
+                    n("iscrowd"),
                 )
             })
             .collect();
-        // Sign 2 (2 px) and sign 3 in frame 0 (10 %) are dropped, the ground has no
-        // category; sign 3 in frame 1 has no projected count, so only its pixels count.
+        // Sign 2 (2 px) and sign 3 in frame 0 (10 %) miss the thresholds: ignore regions;
+        // the ground has no category; sign 3 in frame 1 has no projected count, so only
+        // its pixels count.
         assert_eq!(
             summary,
             [
-                (1, 1, 1, "[0,0,5,4]".to_string()),
-                (2, 1, 5, "[2,2,2,2]".to_string()),
-                (3, 2, 3, "[1,1,2,2]".to_string()),
+                (1, 1, 1, "[0,0,5,4]".to_string(), 0),
+                (2, 1, 2, "[1,1,2,1]".to_string(), 1),
+                (3, 1, 3, "[6,0,2,2]".to_string(), 1),
+                (4, 1, 5, "[2,2,2,2]".to_string(), 0),
+                (5, 2, 3, "[1,1,2,2]".to_string(), 0),
             ]
         );
+        assert_eq!(anns[1]["area"], 2);
+        assert_eq!(anns[2]["visible_fraction"], 0.1);
         let building = &anns[0];
         assert_eq!(building["area"], 14);
         assert_eq!(building["iscrowd"], 0);
@@ -288,18 +312,19 @@ mod tests {
         // 14 of 24 projected pixels, to 6 decimals.
         assert_eq!(building["visible_fraction"], 0.583333);
         assert!(building.get("text").is_none());
-        let text = &anns[1];
+        let text = &anns[3];
         assert_eq!(text["text"], "OPEN");
         assert_eq!(text["full_bbox"], Value::Null);
         assert_eq!(text["visible_fraction"], Value::Null);
 
         // The segmentation decodes to exactly the visible pixels.
-        for (ann, img) in [(&anns[0], &a), (&anns[1], &a), (&anns[2], &b)] {
+        for ann in anns {
+            let img = if ann["image_id"] == 1 { &a } else { &b };
             let seg = &ann["segmentation"];
             let [h, w] = [0, 1].map(|i| seg["size"][i].as_u64().unwrap() as u32);
             assert_eq!((w, h), img.dimensions());
             let rle = Rle::from_compressed(seg["counts"].as_str().unwrap(), h, w).unwrap();
-            let id = ann["instance_id"].as_u64().unwrap() as u16;
+            let id = ann["instance_id"].as_u64().unwrap() as u32;
             let mask: Vec<bool> = img.pixels().map(|p| p.0[0] == id).collect();
             assert_eq!(rle.to_row_major(), mask);
             assert_eq!(rle.area(), ann["area"].as_u64().unwrap());
@@ -313,14 +338,60 @@ mod tests {
         let first = coco(&categories(), &labels(), &frames, &THRESHOLDS);
         assert_eq!(first, coco(&categories(), &labels(), &frames, &THRESHOLDS));
         let text = String::from_utf8(first).unwrap();
-        // info, licenses, images + 1, categories + 3, annotations + 2.
-        assert_eq!(text.lines().count(), 2 + 2 + 4 + 3);
+        // info, licenses, images + 1, categories + 3, annotations + 4.
+        assert_eq!(text.lines().count(), 2 + 2 + 4 + 5);
         assert!(
             text.lines()
                 .nth(5)
                 .unwrap()
                 .starts_with(r#"{"id":1,"name":"building"}"#)
         );
+    }
+
+    #[test]
+    fn a_sign_is_its_category_only_from_the_front() {
+        // A stop sign facing east (+x), seen from the east, then from the west with and
+        // without a back category listed.
+        let img = test_image(&[&[1, 1], &[1, 1]]);
+        let sign = |back_category| ObjectLabel {
+            name: "sign_0".into(),
+            category: Some(2),
+            text: None,
+            sign: Some(SignLabel {
+                kind: "stop".into(),
+                centre: [0.0, 2.0, 0.0],
+                normal: [1.0, 0.0, 0.0],
+                back_category,
+            }),
+        };
+        let seen_from = |x: f64| {
+            let mut f = frame("f.png", &img);
+            f.full.clear();
+            f.pose.eye = [x, 1.6, 0.3];
+            f
+        };
+        let mut with_back = categories();
+        with_back.push(Category {
+            id: 4,
+            name: "sign_back".into(),
+        });
+        let annotate = |label: ObjectLabel, x: f64| {
+            let bytes = coco(&with_back, &[label], &[seen_from(x)], &THRESHOLDS);
+            let doc: Value = serde_json::from_slice(&bytes).unwrap();
+            doc["annotations"].as_array().unwrap().clone()
+        };
+        let front = annotate(sign(Some(4)), 5.0);
+        assert_eq!(front.len(), 1);
+        assert_eq!(front[0]["category_id"], 2);
+        assert_eq!(
+            front[0]["attributes"].to_string(),
+            r#"{"sign_type":"stop"}"#
+        );
+        let back = annotate(sign(Some(4)), -5.0);
+        assert_eq!(back.len(), 1);
+        assert_eq!(back[0]["category_id"], 4);
+        assert!(back[0].get("attributes").is_none());
+        assert!(annotate(sign(None), -5.0).is_empty());
     }
 
     #[test]

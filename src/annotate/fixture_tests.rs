@@ -1,5 +1,6 @@
 //! A synthetic dataset (overlapping rectangles drawn far to near) written as COCO JSON and
-//! 16-bit instance PNGs, for `tests/external/check_coco.py`.
+//! RGB-packed instance PNGs (`id = R + 256·G + 256²·B`, with ids on both sides of 65,535),
+//! for `tests/external/check_coco.py`. Objects under the thresholds are ignore regions.
 //!
 //! The test writes into a temporary folder and checks the files against the images itself.
 //! To run the Python checker on them, keep them:
@@ -21,17 +22,20 @@ use crate::model::CameraPose;
 
 const W: u32 = 64;
 const H: u32 = 48;
-const OBJECTS: u16 = 14;
+const OBJECTS: u32 = 14;
+/// Object `n` (2 and up) has instance id `BASE + n`: ids run across the 16-bit limit.
+const BASE: u32 = 65_530;
 
-type Instance = ImageBuffer<Luma<u16>, Vec<u16>>;
+type Instance = ImageBuffer<Luma<u32>, Vec<u32>>;
 
 fn labels() -> Vec<ObjectLabel> {
-    (1..=OBJECTS)
+    (1..=BASE + OBJECTS)
         .map(|id| {
-            let (category, text) = match id {
-                1 => (None, None),
-                id if id % 4 == 0 => (Some(3), Some(format!("WORD{id}"))),
-                id if id % 3 == 0 => (Some(2), None),
+            let n = id.saturating_sub(BASE);
+            let (category, text) = match n {
+                0 | 1 => (None, None),
+                n if n % 4 == 0 => (Some(3), Some(format!("WORD{n}"))),
+                n if n % 3 == 0 => (Some(2), None),
                 _ => (Some(1), None),
             };
             ObjectLabel {
@@ -39,6 +43,7 @@ fn labels() -> Vec<ObjectLabel> {
                 category,
                 text,
                 attributes: Default::default(),
+                sign: None,
             }
         })
         .collect()
@@ -49,7 +54,7 @@ fn labels() -> Vec<ObjectLabel> {
 /// image and, per id, the projected box and pixel count ignoring occlusion.
 fn draw_frame(frame: u64) -> (Instance, BTreeMap<u32, ([f64; 4], u64)>) {
     let mut rng = crate::rng::stream(1, "annotate-fixture", frame);
-    let mut shapes: Vec<(u32, u16, Vec<[i64; 4]>)> = vec![(u32::MAX, 1, vec![[0, 32, 64, 48]])];
+    let mut shapes: Vec<(u32, u32, Vec<[i64; 4]>)> = vec![(u32::MAX, 1, vec![[0, 32, 64, 48]])];
     for id in 2..=OBJECTS {
         let mut rect = || {
             let (x, y) = (rng.random_range(-8..60i64), rng.random_range(-8..44i64));
@@ -60,7 +65,7 @@ fn draw_frame(frame: u64) -> (Instance, BTreeMap<u32, ([f64; 4], u64)>) {
         if id % 5 == 0 {
             parts.push(rect());
         }
-        shapes.push((rng.random_range(0..1000u32), id, parts));
+        shapes.push((rng.random_range(0..1000u32), BASE + id, parts));
     }
     shapes.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut image = Instance::new(W, H);
@@ -80,13 +85,13 @@ fn draw_frame(frame: u64) -> (Instance, BTreeMap<u32, ([f64; 4], u64)>) {
         let x1 = parts.iter().map(|r| r[2]).max().unwrap() as f64;
         let y1 = parts.iter().map(|r| r[3]).max().unwrap() as f64;
         let count = own.iter().filter(|p| **p).count() as u64;
-        full.insert(u32::from(*id), ([x0, y0, x1 - x0, y1 - y0], count));
+        full.insert(*id, ([x0, y0, x1 - x0, y1 - y0], count));
     }
     (image, full)
 }
 
 /// The tight box and pixel count of `id` in `image`, computed the plain way.
-fn tight_box(image: &Instance, id: u16) -> Option<([u32; 4], u64)> {
+fn tight_box(image: &Instance, id: u32) -> Option<([u32; 4], u64)> {
     let pixels: Vec<(u32, u32)> = image
         .enumerate_pixels()
         .filter(|(_, _, p)| p.0[0] == id)
@@ -129,7 +134,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
     std::fs::create_dir_all(dir.join("instance")).unwrap();
     std::fs::write(dir.join("coco.json"), &json).unwrap();
     for (i, (image, _)) in images.iter().enumerate() {
-        image
+        crate::render::pack_ids(image)
             .save(dir.join("instance").join(format!("{i:06}.png")))
             .unwrap();
     }
@@ -147,18 +152,26 @@ fn fixture_boxes_are_tight_boxes_of_the_written_pngs() {
     let doc: Value = serde_json::from_slice(&json).unwrap();
     let anns = doc["annotations"].as_array().unwrap();
     // Enough objects survive occlusion and the thresholds to make the check meaningful,
-    // and some are dropped by them.
-    assert!(anns.len() >= 20, "{} annotations", anns.len());
+    // some miss them (ignore regions), and some are wholly hidden.
+    let crowd = anns.iter().filter(|a| a["iscrowd"] == 1).count();
+    assert!(anns.len() - crowd >= 20, "{} annotations", anns.len());
+    assert!(crowd >= 2, "{crowd} ignore regions");
     assert!(anns.len() < 4 * (OBJECTS as usize - 1));
+    let ids: Vec<u64> = anns
+        .iter()
+        .map(|a| a["instance_id"].as_u64().unwrap())
+        .collect();
+    assert!(ids.iter().any(|&id| id > 65_535) && ids.iter().any(|&id| id <= 65_535));
     for ann in anns {
         let frame = ann["image_id"].as_u64().unwrap() as usize - 1;
         let path = dir.join("instance").join(format!("{frame:06}.png"));
-        let read: Instance = image::open(&path).unwrap().into_luma16();
+        let read: Instance = crate::render::unpack_ids(&image::open(&path).unwrap().into_rgb8());
         assert_eq!(read, images[frame]);
-        let id = ann["instance_id"].as_u64().unwrap() as u16;
+        let id = ann["instance_id"].as_u64().unwrap() as u32;
         let (bbox, area) = tight_box(&read, id).unwrap();
         assert_eq!(ann["bbox"], serde_json::json!(bbox), "{ann}");
         assert_eq!(ann["area"], area, "{ann}");
-        assert!(area >= 4 && ann["visible_fraction"].as_f64().unwrap() >= 0.1);
+        let passes = area >= 4 && ann["visible_fraction"].as_f64().unwrap() >= 0.1;
+        assert_eq!(ann["iscrowd"], u8::from(!passes), "{ann}");
     }
 }

@@ -28,6 +28,19 @@ pub struct FrameAnnotations<'a> {
     /// Per shown text object that has them, by instance id: its words' projected quads and
     /// how much of each the frame shows.
     pub quads: BTreeMap<u32, Vec<WordQuad>>,
+    /// The frame's depth image, when the dataset has one (the caller sets it).
+    pub depth: Option<DepthFile>,
+}
+
+/// Where a frame's depth image is and how to read it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthFile {
+    /// Relative to the camera path's folder, like `file_name` (`depth/000017.png`).
+    pub file_name: String,
+    /// `cm16`, `mm16` or `f32`.
+    pub format: &'static str,
+    /// Metres per stored unit.
+    pub scale: f64,
 }
 
 /// Scans `frame`'s instance image once and keeps what the outputs need.
@@ -41,10 +54,10 @@ pub fn summarize<'a>(
     let quads = objects
         .iter()
         .filter_map(|o| {
-            let id = u32::from(o.visible.id);
+            let id = o.visible.id;
             let words = frame.quads.get(&id)?.iter().map(|&quad| {
                 WordQuad::measure(quad, width, height, |x, y| {
-                    u32::from(frame.instance.get_pixel(x, y).0[0]) == id
+                    frame.instance.get_pixel(x, y).0[0] == id
                 })
             });
             Some((id, words.collect()))
@@ -58,5 +71,6 @@ pub fn summarize<'a>(
         pose: frame.pose,
         objects,
         quads,
+        depth: None,
     }
 }

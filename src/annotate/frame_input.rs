@@ -14,7 +14,7 @@ pub struct FrameInput<'a> {
     /// Name of the frame's RGB image, as the dataset stores it (`frames/000017.png`).
     pub file_name: String,
     /// Instance ids per pixel: 0 = background, k = object index + 1.
-    pub instance: &'a ImageBuffer<Luma<u16>, Vec<u16>>,
+    pub instance: &'a ImageBuffer<Luma<u32>, Vec<u32>>,
     /// Pinhole intrinsics in pixels: `[fx, fy, cx, cy]`.
     pub intrinsics: [f64; 4],
     pub pose: CameraPose,

@@ -55,10 +55,7 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
             }
             out.push('\n');
         };
-        let quads = frame
-            .quads
-            .get(&u32::from(v.id))
-            .filter(|q| q.len() == words.len());
+        let quads = frame.quads.get(&v.id).filter(|q| q.len() == words.len());
         match quads {
             Some(quads) => {
                 for (word, w) in words.iter().zip(quads) {
@@ -106,7 +103,7 @@ mod tests {
         // image, 5 "Ok" with no quads, 6 a building.
         let img = image::ImageBuffer::from_fn(20, 6, |x, y| {
             image::Luma([match (x, y) {
-                (0..=11, 0..=2) => 1u16,
+                (0..=11, 0..=2) => 1u32,
                 (14..=19, 0..=2) => 2,
                 (0..=2, 4..=5) => 3,
                 (3..=11, 4..=5) => 5,
@@ -120,6 +117,7 @@ mod tests {
             category: Some(1),
             text: text.map(String::from),
             attributes: Default::default(),
+            sign: None,
         };
         let labels = [
             label(Some("Write Group")),

@@ -6,7 +6,9 @@
 //! id's visible box, pixel count and COCO RLE ([`VisibleObject`]); the renderer's projected
 //! box and pixel count (ignoring occlusion) give the visible fraction. An object is
 //! annotated when it has a category, shows at least `min_pixels` pixels and, where its
-//! fraction is known, at least `min_fraction` of itself.
+//! fraction is known, at least `min_fraction` of itself; a listed object that shows less
+//! becomes a COCO ignore region (`iscrowd` 1) rather than vanishing. A sign counts as its
+//! category only where the frame sees its face ([`SignLabel`]).
 //!
 //! A frame is first [`summarize`]d (one scan of its instance image) into
 //! [`FrameAnnotations`]; every format is written from that summary, so a camera path
@@ -38,15 +40,15 @@ mod word_quad;
 mod yolo;
 
 pub use coco::{CocoWriter, coco};
-pub use frame_annotations::{FrameAnnotations, summarize};
+pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
-pub use object_label::{Category, ObjectLabel};
+pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use rle::{Rle, RleError};
 pub use shown_object::{ShownObject, shown};
 pub use visible_object::{VisibleObject, scan};
 pub use word_quad::WordQuad;
-pub use yolo::yolo;
+pub use yolo::{YoloClasses, yolo};
 
 /// `v` rounded to a multiple of `1 / scale` (`scale` a power of ten; `-0` made `0`), or
 /// `None` when it is not finite.
@@ -57,7 +59,7 @@ fn round(v: f64, scale: f64) -> Option<f64> {
 
 /// An instance image from rows of ids.
 #[cfg(test)]
-pub(crate) fn test_image(rows: &[&[u16]]) -> image::ImageBuffer<image::Luma<u16>, Vec<u16>> {
+pub(crate) fn test_image(rows: &[&[u32]]) -> image::ImageBuffer<image::Luma<u32>, Vec<u32>> {
     image::ImageBuffer::from_fn(rows[0].len() as u32, rows.len() as u32, |x, y| {
         image::Luma([rows[y as usize][x as usize]])
     })

@@ -13,7 +13,7 @@ pub struct Category {
 }
 
 /// One object of the scene, at index `instance id − 1`.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ObjectLabel {
     /// Stable object name (`building_0042`), written into each annotation.
     pub name: String,
@@ -25,4 +25,34 @@ pub struct ObjectLabel {
     /// `text_style`, `text_font`); none written when empty.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub attributes: BTreeMap<String, String>,
+    /// A sign: which way its face looks, so it is labelled by the side a frame shows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sign: Option<SignLabel>,
+}
+
+/// A sign's face: it counts as its category only where the camera sees the front.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SignLabel {
+    /// The sign's type (`stop`, `yield`, `speed_limit`, …): the annotation's
+    /// `attributes.sign_type`, and the YOLO subclass.
+    pub kind: String,
+    /// Centre of the face, world metres.
+    pub centre: [f64; 3],
+    /// Unit normal of the face, pointing out of its front.
+    pub normal: [f64; 3],
+    /// Category of the sign seen from behind (a blank back), when one is annotated.
+    pub back_category: Option<u32>,
+}
+
+impl SignLabel {
+    /// Whether a camera at `eye` sees the front: the eye lies on the face's side of its
+    /// plane. (The face is flat, so this holds for every pixel of it at once.)
+    pub fn front_seen_from(&self, eye: [f64; 3]) -> bool {
+        let d = [
+            eye[0] - self.centre[0],
+            eye[1] - self.centre[1],
+            eye[2] - self.centre[2],
+        ];
+        d[0] * self.normal[0] + d[1] * self.normal[1] + d[2] * self.normal[2] > 0.0
+    }
 }

@@ -1,5 +1,7 @@
 //! One pass over an instance-id image → every instance's visible pixels: box, count, RLE.
 
+use std::collections::BTreeMap;
+
 use image::{ImageBuffer, Luma};
 
 use super::rle::Rle;
@@ -9,7 +11,7 @@ use crate::model::PixelBox;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VisibleObject {
     /// The value in the instance image (object index + 1).
-    pub id: u16,
+    pub id: u32,
     /// Tight box of the visible pixels.
     pub bounds: PixelBox,
     /// Visible pixel count.
@@ -23,11 +25,15 @@ pub struct VisibleObject {
 /// Occlusion is handled by construction: a pixel belongs to the one instance the renderer
 /// wrote there, so a partly covered object keeps only the pixels it shows. The image is
 /// walked once, column by column (the order COCO's RLE runs in), extending each id's
-/// current run or opening a new one.
-pub fn scan(image: &ImageBuffer<Luma<u16>, Vec<u16>>) -> Vec<VisibleObject> {
+/// current run or opening a new one. Ids are up to 24 bits and a frame shows few of them,
+/// so they are looked up in an ordered map, with the previous pixel's id as a shortcut
+/// (runs down a column mostly share one id).
+pub fn scan(image: &ImageBuffer<Luma<u32>, Vec<u32>>) -> Vec<VisibleObject> {
     let (w, h) = image.dimensions();
     let raw = image.as_raw();
-    let mut found: Vec<Option<Acc>> = Vec::new();
+    let mut slots: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut found: Vec<(u32, Acc)> = Vec::new();
+    let mut last: Option<(u32, usize)> = None;
     for x in 0..w {
         for y in 0..h {
             let id = raw[y as usize * w as usize + x as usize];
@@ -35,18 +41,23 @@ pub fn scan(image: &ImageBuffer<Luma<u16>, Vec<u16>>) -> Vec<VisibleObject> {
                 continue;
             }
             let t = u64::from(x) * u64::from(h) + u64::from(y);
-            if found.len() <= usize::from(id) {
-                found.resize_with(usize::from(id) + 1, || None);
-            }
-            let acc = found[usize::from(id)].get_or_insert_with(|| Acc::new(x, y));
-            acc.add(x, y, t);
+            let slot = match last {
+                Some((seen, slot)) if seen == id => slot,
+                _ => *slots.entry(id).or_insert_with(|| {
+                    found.push((id, Acc::new(x, y)));
+                    found.len() - 1
+                }),
+            };
+            last = Some((id, slot));
+            found[slot].1.add(x, y, t);
         }
     }
     let total = u64::from(w) * u64::from(h);
-    found
-        .into_iter()
-        .enumerate()
-        .filter_map(|(id, acc)| acc.map(|a| a.finish(id as u16, [h, w], total)))
+    let mut found: Vec<Option<(u32, Acc)>> = found.into_iter().map(Some).collect();
+    slots
+        .values()
+        .filter_map(|&slot| found[slot].take())
+        .map(|(id, acc)| acc.finish(id, [h, w], total))
         .collect()
 }
 
@@ -82,7 +93,7 @@ impl Acc {
         self.end = t + 1;
     }
 
-    fn finish(mut self, id: u16, size: [u32; 2], total: u64) -> VisibleObject {
+    fn finish(mut self, id: u32, size: [u32; 2], total: u64) -> VisibleObject {
         if total > self.end {
             self.counts.push(total - self.end);
         }
@@ -129,6 +140,15 @@ mod tests {
             assert_eq!(o.rle, Rle::from_row_major(&mask, 5, 6), "id {}", o.id);
             assert_eq!(o.rle.area(), o.pixels);
         }
+    }
+
+    #[test]
+    fn ids_beyond_sixteen_bits_keep_their_own_pixels() {
+        let img = image(&[&[16_777_215, 70_000], &[1, 70_000]]);
+        let found = scan(&img);
+        let ids: Vec<(u32, u64)> = found.iter().map(|o| (o.id, o.pixels)).collect();
+        assert_eq!(ids, [(1, 1), (70_000, 2), (16_777_215, 1)]);
+        assert_eq!(found[1].rle.counts, [2, 2]);
     }
 
     #[test]

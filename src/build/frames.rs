@@ -1,5 +1,6 @@
-//! One camera path's dataset: scene + poses + lighting → frames (RGB, instance ids, depth),
-//! COCO, optional YOLO, ICDAR for text, poses, and a `preview.png` contact sheet.
+//! One camera path's dataset: scene + poses + lighting → frames (RGB, RGB-packed instance
+//! ids, depth in the camera's format), COCO, optional YOLO (with `yolo/classes.txt`), ICDAR
+//! for text, poses, and a `preview.png` contact sheet.
 //!
 //! Glue between the cameras, render and annotate stages. It streams: each frame's files go
 //! to the caller's `emit` as soon as they are encoded, and the frame is then dropped, so
@@ -16,7 +17,9 @@ use imageproc::rect::Rect;
 use serde_json::json;
 
 use super::codec;
-use crate::annotate::{self, Category, CocoWriter, FrameInput, ObjectLabel, Thresholds};
+use crate::annotate::{
+    self, Category, CocoWriter, DepthFile, FrameInput, ObjectLabel, Thresholds, YoloClasses,
+};
 use crate::model::{CameraPose, PixelBox};
 use crate::render::{self, Intrinsics, Lighting, PreparedScene};
 use crate::spec::CameraSpec;
@@ -31,7 +34,8 @@ pub struct PathInput<'a> {
     pub categories: &'a [Category],
     pub labels: &'a [ObjectLabel],
     pub thresholds: &'a Thresholds,
-    pub yolo: bool,
+    /// YOLO's classes, when YOLO files are written.
+    pub yolo: Option<&'a YoloClasses>,
 }
 
 /// A box drawn on the contact sheet: category and visible box.
@@ -53,15 +57,16 @@ pub fn render_path<E>(
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
     let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
     let dir = format!("frames/{}", camera.name);
-    // Objects whose visible fraction matters: those that may be annotated.
-    let measured: Vec<u16> = input
+    let depth_format = camera.depth;
+    // Objects whose visible fraction matters: those that may be annotated (a sign by its
+    // front or its back).
+    let listed = |c: Option<u32>| c.is_some_and(|c| input.categories.iter().any(|k| k.id == c));
+    let measured: Vec<u32> = input
         .labels
         .iter()
-        .zip(1u16..)
+        .zip(1u32..)
         .filter(|(label, _)| {
-            label
-                .category
-                .is_some_and(|c| input.categories.iter().any(|k| k.id == c))
+            listed(label.category) || listed(label.sign.as_ref().and_then(|s| s.back_category))
         })
         .map(|(_, id)| id)
         .collect();
@@ -88,7 +93,7 @@ pub fn render_path<E>(
             pose: *pose,
             full: footprints
                 .iter()
-                .map(|f| (u32::from(f.id), (f.bbox().map(|v| v as f64), f.pixels)))
+                .map(|f| (f.id, (f.bbox().map(|v| v as f64), f.pixels)))
                 .collect(),
             quads: input
                 .corners
@@ -99,16 +104,22 @@ pub fn render_path<E>(
                 })
                 .collect(),
         };
-        let (pngs, summary) = rayon::join(
-            || frame.encode_png(),
+        let (pngs, mut summary) = rayon::join(
+            || frame.encode(depth_format),
             || annotate::summarize(input.labels, &frame_input, input.thresholds),
         );
+        let depth_name = format!("depth/{i:06}.{}", depth_format.extension());
         emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
         emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
-        emit(format!("{dir}/depth/{i:06}.png"), pngs.depth_mm)?;
+        emit(format!("{dir}/{depth_name}"), pngs.depth)?;
+        summary.depth = Some(DepthFile {
+            file_name: depth_name,
+            format: depth_format.name(),
+            scale: depth_format.scale(),
+        });
         coco.push(&summary);
-        if input.yolo {
-            let text = annotate::yolo(input.categories, &summary);
+        if let Some(classes) = input.yolo {
+            let text = annotate::yolo(classes, &summary);
             emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
         }
         if has_text {
@@ -119,11 +130,11 @@ pub fn render_path<E>(
             let boxes = summary
                 .objects
                 .iter()
-                .filter(|o| o.passes)
+                .filter(|o| o.passes && listed(o.category))
                 .filter_map(|o| {
                     let v = &o.visible;
                     Some(SheetBox {
-                        category: o.label.category?,
+                        category: o.category?,
                         bounds: v.bounds,
                     })
                 })
@@ -133,9 +144,17 @@ pub fn render_path<E>(
         progress(i + 1);
     }
     emit(format!("{dir}/coco.json"), coco.finish())?;
+    if let Some(classes) = input.yolo {
+        emit(
+            format!("{dir}/yolo/classes.txt"),
+            classes.names_file().into_bytes(),
+        )?;
+    }
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
+        "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
+                  "extension": depth_format.extension(), "sky": 0},
         "frames": poses.iter().enumerate().map(|(i, p)| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
             "up": p.up, "angles": p.angles

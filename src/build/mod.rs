@@ -11,6 +11,7 @@ mod atomic;
 mod cache;
 mod codec;
 mod error;
+mod frame_labels;
 mod frames;
 mod fresh;
 mod inputs;

@@ -16,6 +16,7 @@ use image::RgbImage;
 use super::BuildError;
 use super::cache::{Blob, Cache, Load, Miss, ObjectRef, Outputs};
 use super::codec;
+use super::frame_labels;
 use super::frames;
 use super::inputs::{FacadeInput, LayoutSource};
 use super::object_views;
@@ -68,6 +69,8 @@ pub struct Pipeline<'a> {
     meshes: BTreeMap<String, objects::MeshFiles>,
     /// Per scene object: what annotations need (inserted objects' text and quads).
     object_info: Vec<Option<objects::ObjectInfo>>,
+    /// Traffic signs' faces, by scene object index.
+    sign_faces: BTreeMap<usize, objects::SignFace>,
     cache: &'a Cache,
     keys: Keys,
     pub runs: Vec<StageRun>,
@@ -115,6 +118,7 @@ impl<'a> Pipeline<'a> {
             facade_input,
             meshes: meshes.0,
             object_info: Vec::new(),
+            sign_faces: BTreeMap::new(),
             cache,
             keys,
             runs: Vec::new(),
@@ -540,6 +544,11 @@ impl<'a> Pipeline<'a> {
             message: e.to_string(),
         })?;
         let first = objects::merge(&mut built, &inserted);
+        self.sign_faces = inserted
+            .sign_faces
+            .iter()
+            .map(|(i, f)| (first + i, *f))
+            .collect();
         self.object_info = vec![None; first];
         self.object_info.extend(inserted.info.into_iter().map(Some));
         self.triangles = Some(built.triangle_count());
@@ -689,7 +698,8 @@ impl<'a> Pipeline<'a> {
                     }
                 };
                 let lighting = lighting(spec, &scene, &lamps, &facades);
-                let (categories, labels) = labels(spec, &scene, &p.object_info);
+                let path_labels =
+                    frame_labels::labels(spec, camera, &scene, &p.object_info, &p.sign_faces);
                 let thresholds = annotate::Thresholds {
                     min_pixels: spec.annotations.min_pixels,
                     min_fraction: spec.annotations.min_fraction,
@@ -707,10 +717,10 @@ impl<'a> Pipeline<'a> {
                     camera,
                     scene: &prepared,
                     lighting: &lighting,
-                    categories: &categories,
-                    labels: &labels,
+                    categories: &path_labels.categories,
+                    labels: &path_labels.labels,
                     thresholds: &thresholds,
-                    yolo: spec.annotations.yolo,
+                    yolo: path_labels.yolo.as_ref(),
                 };
                 let total = poses.len();
                 // Each file goes into the cache as it is made; only its reference stays.
@@ -991,50 +1001,4 @@ fn lighting(spec: &Spec, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) -> 
             render::Lighting::night(lights, Some(windows))
         }
     }
-}
-
-/// COCO categories (the annotated classes, ids from 1) and a label per scene object.
-fn labels(
-    spec: &Spec,
-    scene: &Scene,
-    info: &[Option<objects::ObjectInfo>],
-) -> (Vec<annotate::Category>, Vec<annotate::ObjectLabel>) {
-    let classes: Vec<String> = if spec.annotations.classes.is_empty() {
-        let mut classes: Vec<String> = Vec::new();
-        for object in &spec.objects {
-            if !classes.contains(&object.label) {
-                classes.push(object.label.clone());
-            }
-        }
-        classes.push("lamp".to_owned());
-        classes
-    } else {
-        spec.annotations.classes.clone()
-    };
-    let categories: Vec<annotate::Category> = classes
-        .iter()
-        .enumerate()
-        .map(|(i, name)| annotate::Category {
-            id: i as u32 + 1,
-            name: name.clone(),
-        })
-        .collect();
-    let labels = scene
-        .objects
-        .iter()
-        .enumerate()
-        .map(|(i, object)| annotate::ObjectLabel {
-            name: object.name.clone(),
-            category: categories
-                .iter()
-                .find(|c| c.name == object.class)
-                .map(|c| c.id),
-            text: info.get(i).and_then(|info| info.as_ref()?.text.clone()),
-            attributes: info
-                .get(i)
-                .and_then(|info| Some(info.as_ref()?.attributes.clone()))
-                .unwrap_or_default(),
-        })
-        .collect();
-    (categories, labels)
 }

@@ -95,6 +95,18 @@ pub enum Command {
     /// specs with it.
     #[command(after_help = "Example:\n  cityspec schema > schemas/cityspec.schema.json")]
     Schema,
+    /// Measure a built output folder: per camera path, the pixel share of each object
+    /// kind (from the ids images and the object names in city.obj), labelled objects per
+    /// frame by class (median), and box-height percentiles (from coco.json).
+    #[command(after_help = "Example:\n  cityspec stats out/day\n  cityspec stats --json out/day")]
+    Stats {
+        /// An output folder (OUT/<name>/) holding city.obj and frames/.
+        #[arg(value_name = "OUT_DIR")]
+        dir: PathBuf,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 #[derive(Debug, Subcommand)]

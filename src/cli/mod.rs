@@ -125,6 +125,23 @@ pub fn run() -> ExitCode {
             print!("{}", crate::spec::schema_json());
             ExitCode::SUCCESS
         }
+        Command::Stats { dir, json } => match crate::stats::measure(&dir) {
+            Ok(stats) if json => {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&stats).expect("stats serialize")
+                );
+                ExitCode::SUCCESS
+            }
+            Ok(stats) => {
+                print!("{}", crate::stats::table(&stats));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
     }
 }
 

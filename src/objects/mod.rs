@@ -49,6 +49,7 @@ use crate::scene::material_book::MaterialBook;
 use crate::spec::{ObjectKind, ObjectSpec};
 
 pub use objects_error::ObjectsError;
+pub use traffic_signs::SignFace;
 pub use word_list::{WORDS, parse_words};
 
 /// How many random spots an object tries before it is left out.
@@ -90,6 +91,8 @@ pub struct Inserted {
     pub objects: Vec<SceneObject>,
     /// One per object, same order.
     pub info: Vec<ObjectInfo>,
+    /// The faces of the traffic signs, by index in `objects`.
+    pub sign_faces: BTreeMap<usize, SignFace>,
 }
 
 /// Annotation data of one inserted object.

@@ -53,7 +53,33 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         let meshes = sign_meshes(kind, spot.position, facing, [pole, face, back]);
         let name = placing.name("sign");
         placing.push_plain(name, &spec.label, meshes);
+        let index = placing.out.objects.len() - 1;
+        let centre = [
+            spot.position[0] + facing[0] * FACE_OFFSET,
+            KERB_Y + POLE_HEIGHT - PLATE / 2.0,
+            spot.position[1] + facing[1] * FACE_OFFSET,
+        ];
+        let normal = [facing[0], 0.0, facing[1]];
+        placing.out.sign_faces.insert(
+            index,
+            SignFace {
+                kind,
+                centre,
+                normal,
+            },
+        );
     }
+}
+
+/// Where a sign's face is and which way it looks, so annotations can tell its front from
+/// its blank back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SignFace {
+    pub kind: SignKind,
+    /// Centre of the face, world metres.
+    pub centre: [f64; 3],
+    /// Unit normal out of the face (horizontal).
+    pub normal: [f64; 3],
 }
 
 /// Pole, face and back of a sign standing at `foot` (x, z), its face towards `facing`.

@@ -25,7 +25,7 @@ pub const PAD: u32 = 1;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Footprint {
     /// Instance id (object index + 1).
-    pub id: u16,
+    pub id: u32,
     /// Tight box of the covered pixels, inclusive `[x0, y0, x1, y1]`, in image pixel
     /// coordinates: it reaches past the image (below 0, beyond the size) where the object
     /// does, up to [`PAD`] image sizes.
@@ -59,7 +59,7 @@ pub(crate) fn measure(
     view: &View,
     samples: u32,
     per_object: &[Vec<ScreenTri>],
-    ids: &[u16],
+    ids: &[u32],
     q_range: (f64, f64),
 ) -> Vec<Footprint> {
     let (w, h) = (k.width, k.height);
@@ -87,7 +87,7 @@ pub(crate) fn measure(
     let shift = [i64::from(w * PAD), i64::from(h * PAD)];
     ids.par_iter()
         .filter_map(|&id| {
-            let index = usize::from(id).checked_sub(1)?;
+            let index = (id as usize).checked_sub(1)?;
             let tris = per_object.get(index)?;
             let inside = cover(tris, samples, q_range, [0, 0, u32::MAX, u32::MAX], [0, 0]);
             inside.bounds?;
@@ -137,7 +137,7 @@ impl Coverage {
 
     /// The footprint of object `id` whose pixels in the image are `self` and beyond it
     /// `outside`, or `None` when it covers no pixel of the image.
-    pub(crate) fn footprint(self, id: u16, outside: Coverage) -> Option<Footprint> {
+    pub(crate) fn footprint(self, id: u32, outside: Coverage) -> Option<Footprint> {
         self.bounds?;
         let all = self.join(outside);
         Some(Footprint {

@@ -1,44 +1,121 @@
-//! One rendered frame → its three images, and their PNG encodings.
+//! One rendered frame → its three images, and their encodings (PNG, and `.npy` for
+//! float depth).
 
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ImageBuffer, Luma, RgbImage};
 
-/// A rendered frame: sRGB colour, instance ids (0 = sky, object index + 1 otherwise) and
-/// depth along the view axis in millimetres (0 = sky, clamped to 65535).
+pub use crate::spec::DepthFormat;
+
+/// A rendered frame: sRGB colour, instance ids (0 = sky, object index + 1 otherwise, at
+/// most 24 bits) and depth along the view axis in metres (0 = sky).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
     pub rgb: RgbImage,
-    pub instance: ImageBuffer<Luma<u16>, Vec<u16>>,
-    pub depth_mm: ImageBuffer<Luma<u16>, Vec<u16>>,
+    pub instance: ImageBuffer<Luma<u32>, Vec<u32>>,
+    pub depth: ImageBuffer<Luma<f32>, Vec<f32>>,
 }
 
-/// PNG bytes of a frame's images: 8-bit RGB, 16-bit grey instance ids, 16-bit grey depth.
+/// Encoded files of a frame: 8-bit RGB PNG, RGB-packed instance ids PNG, and the depth in
+/// the path's [`DepthFormat`] (a 16-bit grey PNG, or a `.npy`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FramePngs {
     pub rgb: Vec<u8>,
     pub instance: Vec<u8>,
-    pub depth_mm: Vec<u8>,
+    pub depth: Vec<u8>,
 }
 
 impl Frame {
     /// Encodes the three images (in parallel) with fixed settings: the same frame gives
     /// the same bytes.
-    pub fn encode_png(&self) -> FramePngs {
-        let (rgb, (instance, depth_mm)) = rayon::join(
+    ///
+    /// Instance ids are packed into an 8-bit RGB PNG as COCO panoptic does:
+    /// `id = R + 256·G + 256²·B`. Depth follows `depth`: millimetres or centimetres
+    /// rounded and clamped to 1–65535 in a 16-bit grey PNG (0 stays the sky), or float32
+    /// metres in a `.npy`.
+    pub fn encode(&self, depth: DepthFormat) -> FramePngs {
+        let (rgb, (instance, depth)) = rayon::join(
             || encode(DynamicImage::ImageRgb8(self.rgb.clone())),
             || {
                 rayon::join(
-                    || encode(DynamicImage::ImageLuma16(self.instance.clone())),
-                    || encode(DynamicImage::ImageLuma16(self.depth_mm.clone())),
+                    || encode(DynamicImage::ImageRgb8(pack_ids(&self.instance))),
+                    || match depth {
+                        DepthFormat::F32 => npy_f32(&self.depth),
+                        format => encode(DynamicImage::ImageLuma16(self.depth_u16(format))),
+                    },
                 )
             },
         );
         FramePngs {
             rgb,
             instance,
-            depth_mm,
+            depth,
         }
     }
+
+    /// The depth as 16-bit units of `format`'s scale (1 mm or 1 cm), rounded and clamped to
+    /// 1–65535; 0 for the sky. `F32` counts as millimetres.
+    pub fn depth_u16(&self, format: DepthFormat) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+        let per_metre = match format {
+            DepthFormat::Cm16 => 100.0,
+            DepthFormat::Mm16 | DepthFormat::F32 => 1000.0,
+        };
+        let (w, h) = self.depth.dimensions();
+        ImageBuffer::from_fn(w, h, |x, y| {
+            let d = self.depth.get_pixel(x, y).0[0];
+            Luma([if d > 0.0 {
+                (f64::from(d) * per_metre).round().clamp(1.0, 65535.0) as u16
+            } else {
+                0
+            }])
+        })
+    }
+
+    /// The depth in millimetres as the 16-bit PNG of [`DepthFormat::Mm16`] holds it.
+    pub fn depth_mm(&self) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+        self.depth_u16(DepthFormat::Mm16)
+    }
+}
+
+/// Instance ids as RGB: `R = id & 255`, `G = (id >> 8) & 255`, `B = (id >> 16) & 255`.
+pub fn pack_ids(ids: &ImageBuffer<Luma<u32>, Vec<u32>>) -> RgbImage {
+    let (w, h) = ids.dimensions();
+    let raw: Vec<u8> = ids
+        .as_raw()
+        .iter()
+        .flat_map(|&id| [id as u8, (id >> 8) as u8, (id >> 16) as u8])
+        .collect();
+    RgbImage::from_raw(w, h, raw).expect("three bytes per pixel")
+}
+
+/// Instance ids from an RGB-packed image (the inverse of [`pack_ids`]).
+pub fn unpack_ids(rgb: &RgbImage) -> ImageBuffer<Luma<u32>, Vec<u32>> {
+    let (w, h) = rgb.dimensions();
+    let raw = rgb
+        .as_raw()
+        .chunks_exact(3)
+        .map(|p| u32::from(p[0]) | u32::from(p[1]) << 8 | u32::from(p[2]) << 16)
+        .collect();
+    ImageBuffer::from_raw(w, h, raw).expect("one id per pixel")
+}
+
+/// A NumPy `.npy` (format 1.0) of little-endian float32, shape `(height, width)`, C order:
+/// `numpy.load` reads it.
+fn npy_f32(image: &ImageBuffer<Luma<f32>, Vec<f32>>) -> Vec<u8> {
+    let (w, h) = image.dimensions();
+    let mut header = format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({h}, {w}), }}");
+    // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = Vec::with_capacity(10 + header.len() + image.as_raw().len() * 4);
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    for v in image.as_raw() {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out
 }
 
 fn encode(image: DynamicImage) -> Vec<u8> {
@@ -57,24 +134,67 @@ fn encode(image: DynamicImage) -> Vec<u8> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn sixteen_bit_images_round_trip_through_png() {
-        let instance = ImageBuffer::from_fn(5, 3, |x, y| Luma([(x * 1000 + y) as u16 + 300]));
-        let depth_mm = ImageBuffer::from_fn(5, 3, |x, _| Luma([65535 - x as u16]));
-        let frame = Frame {
+    fn frame() -> Frame {
+        Frame {
             rgb: RgbImage::new(5, 3),
-            instance: instance.clone(),
-            depth_mm: depth_mm.clone(),
-        };
-        let png = frame.encode_png();
-        assert_eq!(png, frame.encode_png());
-        let back = image::load_from_memory(&png.instance)
-            .unwrap()
-            .into_luma16();
-        assert_eq!(back, instance);
-        let back = image::load_from_memory(&png.depth_mm)
-            .unwrap()
-            .into_luma16();
-        assert_eq!(back, depth_mm);
+            instance: ImageBuffer::from_fn(5, 3, |x, y| {
+                Luma([[0, 1, 255, 256, 65_535, 65_536, 16_777_215][((x + y) % 7) as usize]])
+            }),
+            depth: ImageBuffer::from_fn(5, 3, |x, y| {
+                Luma([[0.0, 0.0004, 1.0, 65.5354, 65.536, 655.36, 2500.25]
+                    [((x + 2 * y) % 7) as usize]])
+            }),
+        }
+    }
+
+    #[test]
+    fn ids_round_trip_through_the_rgb_png_beyond_sixteen_bits() {
+        let frame = frame();
+        let files = frame.encode(DepthFormat::Cm16);
+        assert_eq!(files, frame.encode(DepthFormat::Cm16));
+        let rgb = image::load_from_memory(&files.instance).unwrap();
+        assert!(matches!(rgb, DynamicImage::ImageRgb8(_)));
+        assert_eq!(unpack_ids(&rgb.into_rgb8()), frame.instance);
+        // COCO panoptic's rule, written out: 65,536 is (0, 0, 1).
+        let packed = pack_ids(&ImageBuffer::from_pixel(1, 1, Luma([65_536 + 2 * 256 + 3])));
+        assert_eq!(packed.get_pixel(0, 0).0, [3, 2, 1]);
+    }
+
+    #[test]
+    fn sixteen_bit_depth_is_scaled_rounded_and_clamped() {
+        let frame = frame();
+        for (format, expected) in [
+            (
+                DepthFormat::Mm16,
+                [0u16, 1, 1000, 65535, 65535, 65535, 65535],
+            ),
+            (DepthFormat::Cm16, [0, 1, 100, 6554, 6554, 65535, 65535]),
+        ] {
+            let png = frame.encode(format).depth;
+            let back = image::load_from_memory(&png).unwrap().into_luma16();
+            assert_eq!(back, frame.depth_u16(format));
+            let first_row: Vec<u16> = (0..5).map(|x| back.get_pixel(x, 0).0[0]).collect();
+            assert_eq!(first_row, expected[..5], "{format:?}");
+            let y = 1; // (x + 2) % 7: 2, 3, 4, 5, 6
+            assert_eq!(back.get_pixel(3, y).0[0], expected[5], "{format:?}");
+            assert_eq!(back.get_pixel(4, y).0[0], expected[6], "{format:?}");
+        }
+    }
+
+    #[test]
+    fn float_depth_is_a_numpy_file() {
+        let frame = frame();
+        let npy = frame.encode(DepthFormat::F32).depth;
+        assert_eq!(&npy[..8], b"\x93NUMPY\x01\x00");
+        let len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
+        assert_eq!((10 + len) % 64, 0);
+        let header = std::str::from_utf8(&npy[10..10 + len]).unwrap();
+        assert!(header.starts_with("{'descr': '<f4', 'fortran_order': False, 'shape': (3, 5), }"));
+        assert!(header.ends_with('\n'));
+        let values: Vec<f32> = npy[10 + len..]
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        assert_eq!(values, frame.depth.as_raw().clone());
     }
 }

@@ -105,7 +105,7 @@ impl WindowLookup {
     /// Whether the surface point with texture coordinates `(u, v)` of `texture` on object
     /// `instance` lies in a lit window.
     #[inline]
-    pub(crate) fn is_lit(&self, texture: u32, instance: u16, u: f64, v: f64) -> bool {
+    pub(crate) fn is_lit(&self, texture: u32, instance: u32, u: f64, v: f64) -> bool {
         let Some(Some(grid)) = self.per_texture.get(texture as usize) else {
             return false;
         };
@@ -170,7 +170,7 @@ mod tests {
     fn share_is_about_right_and_whole_windows_agree() {
         let half = WindowLookup::new(&windows(0.5), 3);
         let mut lit = 0;
-        for instance in 1..=1000u16 {
+        for instance in 1..=1000u32 {
             let a = half.is_lit(1, instance, 0.15, 0.15);
             assert_eq!(
                 a,

@@ -10,9 +10,12 @@
 //!   `x_pixel = cx + fx · (right·d)/(forward·d)`, `y_pixel = cy − fy · (up·d)/(forward·d)`
 //!   (y down in the image). Pixel `(i, j)` covers `[i, i+1) × [j, j+1)`; it is sampled at
 //!   its centre `(i + 0.5, j + 0.5)`.
-//! - **Depth** is `forward·d` in metres (not the distance to the eye). The depth image holds
-//!   `round(depth · 1000)` millimetres in a 16-bit PNG, clamped to 1–65535; 0 means sky.
-//! - **Instance ids**: object index in [`crate::model::Scene::objects`] + 1, 16-bit; 0 = sky.
+//! - **Depth** is `forward·d` in metres (not the distance to the eye), kept as `f32`; 0
+//!   means sky. [`DepthFormat`] says how it is written (millimetres or centimetres in a
+//!   16-bit PNG, or 32-bit float metres in a `.npy`).
+//! - **Instance ids**: object index in [`crate::model::Scene::objects`] + 1, up to 24 bits
+//!   ([`MAX_OBJECTS`]); 0 = sky. The ids PNG packs them into RGB as COCO panoptic does:
+//!   `id = R + 256·G + 256²·B`.
 //! - **Colour**: `albedo · (ambient + sun_colour · max(0, n·sun) + Σ lights colour ·
 //!   (1 − (d/r)²)² · max(0, n·l)) + emissive · emission`, plus a glow on lit windows, in
 //!   linear light; `albedo = base colour · texture`. Written as 8-bit sRGB through a fixed
@@ -39,7 +42,7 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 mod camera_pose;
 mod footprint;
@@ -60,11 +63,11 @@ mod tests;
 
 pub use camera_pose::CameraPose;
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
-pub use frame::{Frame, FramePngs};
+pub use frame::{DepthFormat, Frame, FramePngs, pack_ids, unpack_ids};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{Light, Lighting};
 pub use lit_windows::LitWindows;
-pub use prepared_scene::{PreparedScene, prepare};
+pub use prepared_scene::{MAX_OBJECTS, PreparedScene, prepare};
 pub use render_error::RenderError;
 
 use image::{ImageBuffer, Luma, Rgb, RgbImage};
@@ -102,7 +105,7 @@ pub fn render_measuring(
     intrinsics: &Intrinsics,
     lighting: &Lighting,
     supersample: u32,
-    measure: &[u16],
+    measure: &[u32],
 ) -> (Frame, Vec<Footprint>) {
     let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
     let (width, height) = (intrinsics.width, intrinsics.height);
@@ -233,7 +236,7 @@ fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
 fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
     let mut rgb = RgbImage::new(width, height);
     let mut instance = ImageBuffer::new(width, height);
-    let mut depth_mm = ImageBuffer::new(width, height);
+    let mut depth = ImageBuffer::new(width, height);
     for t in tiles {
         let tw = t.rect[2] - t.rect[0];
         for (k, (x, y)) in (t.rect[1]..t.rect[3])
@@ -247,13 +250,13 @@ fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
                 Rgb([t.rgb[3 * k], t.rgb[3 * k + 1], t.rgb[3 * k + 2]]),
             );
             instance.put_pixel(x, y, Luma([t.instance[k]]));
-            depth_mm.put_pixel(x, y, Luma([t.depth_mm[k]]));
+            depth.put_pixel(x, y, Luma([t.depth[k]]));
         }
     }
     Frame {
         rgb,
         instance,
-        depth_mm,
+        depth,
     }
 }
 
@@ -263,6 +266,6 @@ fn sky_frame(width: u32, height: u32, lighting: &Lighting) -> Frame {
     Frame {
         rgb: RgbImage::from_pixel(width, height, sky),
         instance: ImageBuffer::new(width, height),
-        depth_mm: ImageBuffer::new(width, height),
+        depth: ImageBuffer::new(width, height),
     }
 }

@@ -8,6 +8,10 @@ use super::camera_pose::{cross, dot, normalize};
 use super::mip_texture::MipTexture;
 use crate::model::Scene;
 
+/// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
+/// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.
+pub const MAX_OBJECTS: u32 = (1 << 24) - 1;
+
 /// A scene ready to render many frames: decoded textures with mip chains, flattened
 /// triangles, per-object instance ids (object index + 1; 0 = sky) and bounding boxes.
 pub struct PreparedScene {
@@ -39,7 +43,7 @@ pub(crate) struct Triangle {
     /// Unit face normal, pointing to the front.
     pub normal: [f32; 3],
     pub material: u32,
-    pub instance: u16,
+    pub instance: u32,
 }
 
 impl PreparedScene {
@@ -61,7 +65,7 @@ impl PreparedScene {
 /// wrong way still shows its outside. Degenerate triangles and those with non-finite
 /// coordinates are dropped; missing uvs read as (0, 0).
 pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
-    if scene.objects.len() > usize::from(u16::MAX) {
+    if scene.objects.len() > MAX_OBJECTS as usize {
         return Err(RenderError::TooManyObjects {
             count: scene.objects.len(),
         });
@@ -99,7 +103,7 @@ pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
     let mut objects = Vec::with_capacity(scene.objects.len());
     let mut triangles = Vec::with_capacity(scene.triangle_count());
     for (index, object) in scene.objects.iter().enumerate() {
-        let instance = (index + 1) as u16;
+        let instance = (index + 1) as u32;
         let first = triangles.len();
         for mesh in &object.meshes {
             if mesh.material as usize >= materials.len() {

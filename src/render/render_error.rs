@@ -12,8 +12,9 @@ pub enum RenderError {
         #[source]
         source: image::ImageError,
     },
-    /// Instance ids are 16-bit: 0 is the sky, objects are 1–65,535.
-    #[error("the scene has {count} objects; instance ids allow at most 65535")]
+    /// Instance ids are 24-bit (RGB-packed in the ids PNG): 0 is the sky, objects are
+    /// 1–16,777,215.
+    #[error("the scene has {count} objects; instance ids allow at most 16777215")]
     TooManyObjects { count: usize },
     /// A mesh names a material the scene does not have.
     #[error("object {object:?}: a mesh uses material {material}, but the scene has {count}")]

@@ -1,5 +1,5 @@
 //! One tile of the frame: binned screen triangles → depth and triangle ids per sample →
-//! shaded linear colour → resolved pixels (RGB, instance id, depth in mm).
+//! shaded linear colour → resolved pixels (RGB, instance id, depth in metres).
 //!
 //! A tile owns its pixels, reads shared data only, and visits its triangles in scene
 //! order, so its output does not depend on which thread runs it or when.
@@ -47,8 +47,8 @@ pub(crate) struct FrameContext<'a> {
 pub(crate) struct TileOut {
     pub rect: [u32; 4],
     pub rgb: Vec<u8>,
-    pub instance: Vec<u16>,
-    pub depth_mm: Vec<u16>,
+    pub instance: Vec<u32>,
+    pub depth: Vec<f32>,
 }
 
 const NOTHING: u32 = u32::MAX;
@@ -116,7 +116,7 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
         rect,
         rgb: Vec::with_capacity(ow * oh * 3),
         instance: Vec::with_capacity(ow * oh),
-        depth_mm: Vec::with_capacity(ow * oh),
+        depth: Vec::with_capacity(ow * oh),
     };
     for oy in 0..oh {
         for ox in 0..ow {
@@ -134,13 +134,13 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
             match id[centre] {
                 NOTHING => {
                     out.instance.push(0);
-                    out.depth_mm.push(0);
+                    out.depth.push(0.0);
                 }
                 t => {
                     let tri = &ctx.tris[t as usize];
                     out.instance
                         .push(ctx.scene.triangles[tri.source as usize].instance);
-                    out.depth_mm.push(depth_mm(depth[centre]));
+                    out.depth.push(depth_metres(depth[centre]));
                 }
             }
         }
@@ -148,9 +148,9 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
     out
 }
 
-/// Millimetres of depth `1/q`, rounded, within 1–65535 (0 is kept for the sky).
-fn depth_mm(q: f64) -> u16 {
-    (1000.0 / q).round().clamp(1.0, 65535.0) as u16
+/// Depth `1/q` in metres as `f32`, at least 1e-6 (0 is kept for the sky).
+fn depth_metres(q: f64) -> f32 {
+    ((1.0 / q) as f32).max(1e-6)
 }
 
 /// Linear colour of the surface of `tri` at internal pixel `(x, y)`, where 1/w = `q`.

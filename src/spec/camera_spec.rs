@@ -97,6 +97,57 @@ pub struct CameraSpec {
     #[serde(default = "default_supersample")]
     #[schemars(range(min = 1, max = 4))]
     pub supersample: u32,
+    /// How `depth/` is written: `"cm16"` (16-bit PNG, centimetres, up to 655.35 m),
+    /// `"mm16"` (16-bit PNG, millimetres, up to 65.535 m) or `"f32"` (32-bit float metres
+    /// in a `.npy`, any distance). 0 is the sky in all three.
+    #[serde(default)]
+    pub depth: DepthFormat,
+    /// Classes this path annotates, instead of `[annotations] classes` (for example
+    /// `["building", "road"]` for a camera looking down on the city).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub classes: Option<Vec<String>>,
+}
+
+/// How a camera path's depth images are written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DepthFormat {
+    // Plain comments: the schema stays a simple enum.
+    // 16-bit PNG, centimetres (0.01 m per unit), saturating at 655.35 m.
+    #[default]
+    Cm16,
+    // 16-bit PNG, millimetres (0.001 m per unit), saturating at 65.535 m.
+    Mm16,
+    // .npy of little-endian float32 metres, shape (height, width).
+    F32,
+}
+
+impl DepthFormat {
+    /// The spec's name of the format.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthFormat::Cm16 => "cm16",
+            DepthFormat::Mm16 => "mm16",
+            DepthFormat::F32 => "f32",
+        }
+    }
+
+    /// Metres per stored unit: depth in metres = stored value × scale.
+    pub fn scale(self) -> f64 {
+        match self {
+            DepthFormat::Cm16 => 0.01,
+            DepthFormat::Mm16 => 0.001,
+            DepthFormat::F32 => 1.0,
+        }
+    }
+
+    /// File extension of the depth images.
+    pub fn extension(self) -> &'static str {
+        match self {
+            DepthFormat::Cm16 | DepthFormat::Mm16 => "png",
+            DepthFormat::F32 => "npy",
+        }
+    }
 }
 
 /// The most frames one camera path takes (the schema's bound on `frames`, and the cap on
@@ -218,9 +269,14 @@ pub struct AnnotationsSpec {
     #[serde(default = "default_min_fraction")]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub min_fraction: f64,
-    /// Also write YOLO txt files (`class cx cy w h`, normalised) beside the frames.
+    /// Also write YOLO txt files (`class cx cy w h`, normalised) beside the frames, and
+    /// `yolo/classes.txt` naming the class ids.
     #[serde(default)]
     pub yolo: bool,
+    /// YOLO: one class per sign type (`traffic_sign/stop`, `traffic_sign/yield`, …)
+    /// instead of one per sign label. COCO always has the type as `attributes.sign_type`.
+    #[serde(default)]
+    pub yolo_sign_types: bool,
 }
 
 impl Default for AnnotationsSpec {
@@ -230,6 +286,7 @@ impl Default for AnnotationsSpec {
             min_pixels: default_min_pixels(),
             min_fraction: default_min_fraction(),
             yolo: false,
+            yolo_sign_types: false,
         }
     }
 }

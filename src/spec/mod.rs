@@ -40,8 +40,8 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 pub use camera_spec::{
-    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, FrameRule, LightingSpec, MAX_FRAMES,
-    TimeOfDay,
+    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, DepthFormat, FrameRule, LightingSpec,
+    MAX_FRAMES, TimeOfDay,
 };
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;

@@ -3,18 +3,25 @@
 
 usage: check_coco.py <coco.json> <instance-png-folder>
 
-The instance image of an image entry is <instance-png-folder>/<stem of file_name>.png: a
-16-bit grayscale PNG, 0 = background, k = object index + 1 (the annotation's
-`instance_id`). Checks, in order:
+The instance image of an image entry is <instance-png-folder>/<stem of file_name>.png: an
+8-bit RGB PNG packing 24-bit ids as COCO panoptic does, id = R + 256*G + 256**2*B
+(0 = background, k = object index + 1, the annotation's `instance_id`). A 16-bit
+grayscale PNG (cityspec before ids were packed) is read as the ids directly. Checks, in
+order:
 
 1. pycocotools loads the file;
 2. every annotation's bbox is the tight box [x, y, w, h] of the pixels of its instance,
-   its area is their count, iscrowd is 0, and its RLE segmentation decodes to exactly
-   those pixels and is, character for character, what maskUtils.encode makes of them;
+   its area is their count, iscrowd is 0 or 1 (1: an ignore region, an object under the
+   thresholds), and its RLE segmentation decodes to exactly those pixels and is,
+   character for character, what maskUtils.encode makes of them;
 3. every annotation's full_bbox (the box of the pixels the object would cover with nothing
-   in front) contains its bbox, and its visible_fraction lies in (0, 1];
-4. when there are annotations, COCOeval of the ground truth against itself (every
-   annotation as a detection with score 1) gives AP 1.0 for bbox and for segm.
+   in front) contains its bbox, and its visible_fraction lies in (0, 1] (both may be null
+   on an ignore region);
+4. an image entry's `depth`, when given, names a file beside the COCO file that reads as
+   height x width (a 16-bit PNG, or a .npy of float32 metres), with a positive `scale`;
+5. when there are annotations, COCOeval of the ground truth against itself (every
+   annotation as a detection with score 1) gives AP 1.0 for bbox and for segm, the
+   ignore regions matched and ignored as pycocotools does with iscrowd.
 
 Exits 0 when all hold, 1 with a message on the first failure, 2 on bad usage.
 Needs: pycocotools, numpy, pillow.
@@ -48,11 +55,44 @@ def instance_path(folder, file_name):
     return os.path.join(folder, stem + ".png")
 
 
-def check_pixels(gt, folder):
+def read_ids(path):
+    """Instance ids of an ids PNG: RGB-packed (id = R + 256 G + 256^2 B), or 16-bit grey."""
+    arr = np.array(Image.open(path))
+    if arr.ndim == 3:
+        arr = arr[..., :3].astype(np.uint32)
+        return arr[..., 0] + (arr[..., 1] << 8) + (arr[..., 2] << 16)
+    return arr.astype(np.uint32)
+
+
+def check_depth(img, base):
+    depth = img.get("depth")
+    if depth is None:
+        return
+    where = f"image {img['id']}: depth {depth}"
+    if not (isinstance(depth.get("scale"), (int, float)) and depth["scale"] > 0):
+        raise CheckFailed(f"{where}: scale is not a positive number")
+    path = os.path.join(base, depth["file_name"])
+    try:
+        if path.endswith(".npy"):
+            arr = np.load(path)
+            if arr.dtype != np.float32:
+                raise CheckFailed(f"{where}: {path} holds {arr.dtype}, not float32")
+        else:
+            arr = np.array(Image.open(path))
+            if arr.dtype != np.uint16:
+                raise CheckFailed(f"{where}: {path} holds {arr.dtype}, not 16-bit")
+    except (OSError, ValueError) as e:
+        raise CheckFailed(f"{where}: cannot read {path}: {e}")
+    if arr.shape != (img["height"], img["width"]):
+        raise CheckFailed(f"{where}: {path} is {arr.shape}, not {img['height']}x{img['width']}")
+
+
+def check_pixels(gt, folder, base):
     for img in gt.dataset["images"]:
+        check_depth(img, base)
         path = instance_path(folder, img["file_name"])
         try:
-            ids = np.array(Image.open(path))
+            ids = read_ids(path)
         except OSError as e:
             raise CheckFailed(f"image {img['id']}: cannot read instance image {path}: {e}")
         if ids.shape != (img["height"], img["width"]):
@@ -72,8 +112,9 @@ def check_pixels(gt, folder):
                 raise CheckFailed(f"{where}: bbox {ann['bbox']} is not the tight box {tight}")
             if ann["area"] != int(mask.sum()):
                 raise CheckFailed(f"{where}: area {ann['area']} but {int(mask.sum())} pixels")
-            if ann.get("iscrowd") != 0:
-                raise CheckFailed(f"{where}: iscrowd is {ann.get('iscrowd')!r}, not 0")
+            crowd = ann.get("iscrowd")
+            if crowd not in (0, 1):
+                raise CheckFailed(f"{where}: iscrowd is {crowd!r}, not 0 or 1")
             try:
                 decoded = gt.annToMask(ann).astype(bool)
             except Exception as e:  # pycocotools raises ValueError or KeyError on bad RLE
@@ -81,13 +122,14 @@ def check_pixels(gt, folder):
             if decoded.shape != mask.shape or not np.array_equal(decoded, mask):
                 raise CheckFailed(f"{where}: segmentation does not decode to its pixels")
             full, fraction = ann.get("full_bbox"), ann.get("visible_fraction")
-            if full is None or fraction is None:
+            if crowd == 0 and (full is None or fraction is None):
                 raise CheckFailed(f"{where}: full_bbox or visible_fraction is missing")
-            fx, fy, fw, fh = full
-            bx, by, bw, bh = ann["bbox"]
-            if not (fx <= bx and fy <= by and bx + bw <= fx + fw and by + bh <= fy + fh):
-                raise CheckFailed(f"{where}: bbox {ann['bbox']} is not inside full_bbox {full}")
-            if not 0.0 < fraction <= 1.0:
+            if full is not None:
+                fx, fy, fw, fh = full
+                bx, by, bw, bh = ann["bbox"]
+                if not (fx <= bx and fy <= by and bx + bw <= fx + fw and by + bh <= fy + fh):
+                    raise CheckFailed(f"{where}: bbox {ann['bbox']} is not inside full_bbox {full}")
+            if fraction is not None and not 0.0 < fraction <= 1.0:
                 raise CheckFailed(f"{where}: visible_fraction {fraction} is not in (0, 1]")
             expected = mask_utils.encode(np.asfortranarray(mask.astype(np.uint8)))
             if ann["segmentation"] != {"size": expected["size"], "counts": expected["counts"].decode()}:
@@ -95,7 +137,9 @@ def check_pixels(gt, folder):
 
 
 def check_self_eval(gt):
-    anns = gt.dataset["annotations"]
+    # The regular annotations as detections; ignore regions stay ground truth only (a
+    # detection on one is neither a hit nor a false positive).
+    anns = [a for a in gt.dataset["annotations"] if a["iscrowd"] == 0]
     most = max(len(v) for v in gt.imgToAnns.values())
     results = {}
     for iou_type, key in (("bbox", "bbox"), ("segm", "segmentation")):
@@ -131,15 +175,18 @@ def main(argv):
             gt = quietly(COCO, coco_path)
         except Exception as e:  # pycocotools raises whatever json or its asserts raise
             raise CheckFailed(f"pycocotools cannot load it: {type(e).__name__}: {e}")
-        check_pixels(gt, folder)
-        aps = check_self_eval(gt) if gt.dataset["annotations"] else {}
+        check_pixels(gt, folder, os.path.dirname(os.path.abspath(coco_path)))
+        regular = [a for a in gt.dataset["annotations"] if a["iscrowd"] == 0]
+        aps = check_self_eval(gt) if regular else {}
     except CheckFailed as e:
         print(f"check_coco: {coco_path}: {e}", file=sys.stderr)
         return 1
     summary = ", ".join(f"AP {k} {v:.1f}" for k, v in aps.items()) or "no annotations"
+    crowd = sum(1 for a in gt.dataset["annotations"] if a["iscrowd"] == 1)
     print(
         f"check_coco: {coco_path}: ok: {len(gt.dataset['images'])} images, "
-        f"{len(gt.dataset['annotations'])} annotations, {summary}"
+        f"{len(gt.dataset['annotations']) - crowd} annotations and {crowd} ignore regions, "
+        f"{summary}"
     )
     return 0
 

@@ -1,0 +1,304 @@
+//! One camera path's folder (`frames/<name>/`: `ids/*.png`, `coco.json`) + the kind of each
+//! instance id → [`PathStats`].
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use rayon::prelude::*;
+use serde::Serialize;
+use serde_json::Value;
+
+use super::StatsError;
+
+/// What one camera path's frames show.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PathStats {
+    /// The path's folder name.
+    pub name: String,
+    /// Frames (images in `coco.json`).
+    pub frames: usize,
+    /// Pixels over all `ids/` images.
+    pub pixels: u64,
+    /// Share of the pixels per object kind (`sky` for id 0, `unknown` for ids past the
+    /// scene's objects), largest first.
+    pub kinds: Vec<KindShare>,
+    /// Median over frames of the labelled objects (`iscrowd` 0) of all classes.
+    pub labelled_per_frame: f64,
+    /// p25, p50, p75 of the labelled boxes' heights in pixels, all classes; `None` when
+    /// there are none.
+    pub box_height: Option<[f64; 3]>,
+    /// Per COCO category, in the file's order.
+    pub classes: Vec<ClassStats>,
+}
+
+/// One object kind's pixels.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct KindShare {
+    pub kind: String,
+    pub pixels: u64,
+    /// `pixels` ÷ all pixels of the path.
+    pub share: f64,
+}
+
+/// One COCO category of a path.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClassStats {
+    pub name: String,
+    /// Labelled objects (`iscrowd` 0) over all frames.
+    pub labelled: u64,
+    /// Ignore regions (`iscrowd` 1: shown but under the thresholds) over all frames.
+    pub ignored: u64,
+    /// Median over frames of its labelled objects per frame.
+    pub per_frame: f64,
+    /// p25, p50, p75 of its labelled boxes' heights in pixels.
+    pub box_height: Option<[f64; 3]>,
+}
+
+/// Measures the path folder `dir`; `kinds[k]` is the kind of instance id `k + 1`.
+pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsError> {
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let (pixels, kind_pixels) = count_kinds(&dir.join("ids"), kinds)?;
+    let mut shares: Vec<KindShare> = kind_pixels
+        .into_iter()
+        .map(|(kind, n)| KindShare {
+            kind,
+            pixels: n,
+            share: if pixels > 0 {
+                n as f64 / pixels as f64
+            } else {
+                0.0
+            },
+        })
+        .collect();
+    shares.sort_by(|a, b| b.pixels.cmp(&a.pixels).then(a.kind.cmp(&b.kind)));
+
+    let coco_path = dir.join("coco.json");
+    let bytes = std::fs::read(&coco_path).map_err(|source| StatsError::Io {
+        path: coco_path.clone(),
+        source,
+    })?;
+    let bad = |message: &str| StatsError::Bad {
+        path: coco_path.clone(),
+        message: message.to_owned(),
+    };
+    let doc: Value = serde_json::from_slice(&bytes).map_err(|e| bad(&e.to_string()))?;
+    let list = |key: &str| {
+        doc[key]
+            .as_array()
+            .ok_or_else(|| bad(&format!("no {key} list")))
+    };
+    let images: Vec<u64> = list("images")?
+        .iter()
+        .map(|i| {
+            i["id"]
+                .as_u64()
+                .ok_or_else(|| bad("an image without an id"))
+        })
+        .collect::<Result<_, _>>()?;
+    let frame_of: BTreeMap<u64, usize> =
+        images.iter().enumerate().map(|(i, id)| (*id, i)).collect();
+    let categories: Vec<(u64, String)> = list("categories")?
+        .iter()
+        .map(|c| Some((c["id"].as_u64()?, c["name"].as_str()?.to_owned())))
+        .collect::<Option<_>>()
+        .ok_or_else(|| bad("a category without an id or name"))?;
+    // Per category: labelled count per frame, heights, ignore regions.
+    let mut per_frame = vec![vec![0u64; images.len()]; categories.len()];
+    let mut all_per_frame = vec![0u64; images.len()];
+    let mut heights: Vec<Vec<f64>> = vec![Vec::new(); categories.len()];
+    let mut ignored = vec![0u64; categories.len()];
+    for ann in list("annotations")? {
+        let category = ann["category_id"].as_u64();
+        let Some(c) = categories.iter().position(|(id, _)| Some(*id) == category) else {
+            return Err(bad("an annotation of an unlisted category"));
+        };
+        if ann["iscrowd"].as_u64() == Some(1) {
+            ignored[c] += 1;
+            continue;
+        }
+        let frame = ann["image_id"]
+            .as_u64()
+            .and_then(|id| frame_of.get(&id))
+            .ok_or_else(|| bad("an annotation of an unlisted image"))?;
+        per_frame[c][*frame] += 1;
+        all_per_frame[*frame] += 1;
+        heights[c].push(
+            ann["bbox"][3]
+                .as_f64()
+                .ok_or_else(|| bad("a bbox without a height"))?,
+        );
+    }
+    let mut all_heights: Vec<f64> = heights.iter().flatten().copied().collect();
+    let classes = categories
+        .iter()
+        .enumerate()
+        .map(|(c, (_, name))| ClassStats {
+            name: name.clone(),
+            labelled: per_frame[c].iter().sum(),
+            ignored: ignored[c],
+            per_frame: median_count(&per_frame[c]),
+            box_height: quartiles(&mut heights[c]),
+        })
+        .collect();
+    Ok(PathStats {
+        name,
+        frames: images.len(),
+        pixels,
+        kinds: shares,
+        labelled_per_frame: median_count(&all_per_frame),
+        box_height: quartiles(&mut all_heights),
+        classes,
+    })
+}
+
+/// All pixels of the `ids/*.png` images in `dir`, and the pixels of each kind.
+fn count_kinds(dir: &Path, kinds: &[String]) -> Result<(u64, BTreeMap<String, u64>), StatsError> {
+    let io = |source| StatsError::Io {
+        path: dir.to_path_buf(),
+        source,
+    };
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .map_err(io)?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "png"))
+        .collect();
+    files.sort();
+    // Kinds as small indices: 0 sky, 1 unknown, then the scene's kinds in name order.
+    let mut names: Vec<String> = kinds.to_vec();
+    names.sort();
+    names.dedup();
+    names.retain(|n| n != "sky" && n != "unknown");
+    names.splice(0..0, ["sky".to_owned(), "unknown".to_owned()]);
+    let index: Vec<usize> = kinds
+        .iter()
+        .map(|k| names.iter().position(|n| n == k).unwrap_or(1))
+        .collect();
+    let counts = files
+        .par_iter()
+        .map(|path| {
+            let image = image::open(path).map_err(|e| StatsError::Bad {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
+            let ids = crate::render::unpack_ids(&image.into_rgb8());
+            let mut counts = vec![0u64; names.len()];
+            for &id in ids.as_raw() {
+                let k = match id {
+                    0 => 0,
+                    id => index.get(id as usize - 1).copied().unwrap_or(1),
+                };
+                counts[k] += 1;
+            }
+            Ok(counts)
+        })
+        .collect::<Result<Vec<_>, StatsError>>()?;
+    let mut total = vec![0u64; names.len()];
+    for c in &counts {
+        for (t, n) in total.iter_mut().zip(c) {
+            *t += n;
+        }
+    }
+    let pixels = total.iter().sum();
+    let by_kind = names
+        .into_iter()
+        .zip(total)
+        .filter(|(_, n)| *n > 0)
+        .collect();
+    Ok((pixels, by_kind))
+}
+
+/// The median of counts (mean of the middle two for an even number); 0 for none.
+fn median_count(counts: &[u64]) -> f64 {
+    let mut v: Vec<f64> = counts.iter().map(|&c| c as f64).collect();
+    v.sort_by(f64::total_cmp);
+    percentile(&v, 0.5).unwrap_or(0.0)
+}
+
+fn quartiles(values: &mut [f64]) -> Option<[f64; 3]> {
+    values.sort_by(f64::total_cmp);
+    Some([
+        percentile(values, 0.25)?,
+        percentile(values, 0.5)?,
+        percentile(values, 0.75)?,
+    ])
+}
+
+/// The `p` quantile of sorted `values`, interpolated linearly between ranks (NumPy's
+/// default); `None` for no values.
+pub fn percentile(sorted: &[f64], p: f64) -> Option<f64> {
+    let last = sorted.len().checked_sub(1)?;
+    let at = p.clamp(0.0, 1.0) * last as f64;
+    let lo = at.floor() as usize;
+    let hi = (lo + 1).min(last);
+    Some(sorted[lo] + (sorted[hi] - sorted[lo]) * (at - lo as f64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_interpolate_like_numpy() {
+        let v = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(percentile(&v, 0.25), Some(1.75));
+        assert_eq!(percentile(&v, 0.5), Some(2.5));
+        assert_eq!(percentile(&v, 0.75), Some(3.25));
+        assert_eq!(percentile(&[7.0], 0.25), Some(7.0));
+        assert_eq!(percentile(&[], 0.5), None);
+        assert_eq!(median_count(&[0, 5, 1]), 1.0);
+    }
+
+    #[test]
+    fn a_written_path_is_measured() {
+        let temp = tempfile::tempdir().unwrap();
+        let dir = temp.path().join("street");
+        std::fs::create_dir_all(dir.join("ids")).unwrap();
+        // Two 4 × 2 frames: id 0 sky, 1 road, 2 building, 70,000 past the scene.
+        let frames: [[u32; 8]; 2] = [[0, 0, 2, 2, 1, 1, 1, 1], [0, 2, 2, 2, 1, 1, 1, 70_000]];
+        for (i, ids) in frames.iter().enumerate() {
+            let image =
+                image::ImageBuffer::from_fn(4, 2, |x, y| image::Luma([ids[(y * 4 + x) as usize]]));
+            crate::render::pack_ids(&image)
+                .save(dir.join("ids").join(format!("{i:06}.png")))
+                .unwrap();
+        }
+        let coco = r#"{"images":[{"id":1},{"id":2}],
+            "categories":[{"id":1,"name":"building"},{"id":2,"name":"road"}],
+            "annotations":[
+              {"image_id":1,"category_id":1,"bbox":[2,0,2,1],"iscrowd":0},
+              {"image_id":2,"category_id":1,"bbox":[1,0,3,1],"iscrowd":0},
+              {"image_id":2,"category_id":2,"bbox":[0,1,3,1],"iscrowd":1}]}"#;
+        std::fs::write(dir.join("coco.json"), coco).unwrap();
+        let kinds = ["road".to_owned(), "building".to_owned()];
+        let stats = measure_path(&dir, &kinds).unwrap();
+        assert_eq!(
+            (stats.name.as_str(), stats.frames, stats.pixels),
+            ("street", 2, 16)
+        );
+        let shares: Vec<(&str, u64)> = stats
+            .kinds
+            .iter()
+            .map(|k| (k.kind.as_str(), k.pixels))
+            .collect();
+        assert_eq!(
+            shares,
+            [("road", 7), ("building", 5), ("sky", 3), ("unknown", 1)]
+        );
+        assert_eq!(stats.labelled_per_frame, 1.0);
+        let building = &stats.classes[0];
+        assert_eq!(
+            (building.labelled, building.ignored, building.per_frame),
+            (2, 0, 1.0)
+        );
+        assert_eq!(building.box_height, Some([1.0, 1.0, 1.0]));
+        let road = &stats.classes[1];
+        assert_eq!(
+            (road.labelled, road.ignored, road.per_frame, road.box_height),
+            (0, 1, 0.0, None)
+        );
+    }
+}

@@ -1,0 +1,55 @@
+//! [`Stats`] → a plain-text table for the terminal.
+
+use std::fmt::Write;
+
+use super::Stats;
+
+/// The stats as text: per path, the pixel share of each kind, then per class the labelled
+/// objects per frame (median), totals, ignore regions and box-height quartiles.
+pub fn table(stats: &Stats) -> String {
+    let mut out = String::new();
+    for path in &stats.paths {
+        let _ = writeln!(
+            out,
+            "path {}: {} frames, {} pixels",
+            path.name, path.frames, path.pixels
+        );
+        let _ = writeln!(out, "  {:<20} {:>8}", "kind", "pixels");
+        for k in &path.kinds {
+            let _ = writeln!(out, "  {:<20} {:>7.2} %", k.kind, k.share * 100.0);
+        }
+        let _ = writeln!(
+            out,
+            "  {:<20} {:>9} {:>9} {:>7}   {:>5} {:>5} {:>5}",
+            "class", "per frame", "labelled", "ignored", "h p25", "p50", "p75"
+        );
+        let rows = path.classes.iter().map(|c| {
+            (
+                c.name.as_str(),
+                c.per_frame,
+                c.labelled,
+                c.ignored,
+                c.box_height,
+            )
+        });
+        let all = (
+            "(all labelled)",
+            path.labelled_per_frame,
+            path.classes.iter().map(|c| c.labelled).sum(),
+            path.classes.iter().map(|c| c.ignored).sum(),
+            path.box_height,
+        );
+        for (name, per_frame, labelled, ignored, height) in rows.chain([all]) {
+            let h = height.map_or_else(
+                || format!("{:>5} {:>5} {:>5}", "-", "-", "-"),
+                |[a, b, c]| format!("{a:>5.1} {b:>5.1} {c:>5.1}"),
+            );
+            let _ = writeln!(
+                out,
+                "  {name:<20} {per_frame:>9.1} {labelled:>9} {ignored:>7}   {h}"
+            );
+        }
+        out.push('\n');
+    }
+    out
+}
