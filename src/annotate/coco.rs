@@ -357,6 +357,7 @@ mod tests {
             name: "sign_0".into(),
             category: Some(2),
             text: None,
+            attributes: Default::default(),
             sign: Some(SignLabel {
                 kind: "stop".into(),
                 centre: [0.0, 2.0, 0.0],

@@ -29,7 +29,7 @@ pub fn labels(
     info: &[Option<ObjectInfo>],
     sign_faces: &BTreeMap<usize, SignFace>,
 ) -> PathLabels {
-    let classes: Vec<String> = match (&camera.classes, spec.annotations.classes.is_empty()) {
+    let classes: Vec<String> = match (&camera.label_classes, spec.annotations.classes.is_empty()) {
         (Some(classes), _) => classes.clone(),
         (None, false) => spec.annotations.classes.clone(),
         (None, true) => {

@@ -60,9 +60,7 @@ pub fn aimed_poses(
 
 /// Whether `view`'s object shows enough in a render with `intrinsics`.
 fn shows(prepared: &PreparedScene, view: &ObjectView, intrinsics: &Intrinsics) -> bool {
-    let Ok(id) = u16::try_from(view.target) else {
-        return false;
-    };
+    let id = view.target;
     let lighting = render::Lighting::day();
     let (frame, footprints) =
         render::render_measuring(prepared, &view.pose, intrinsics, &lighting, 1, &[id]);

@@ -105,7 +105,7 @@ pub struct CameraSpec {
     /// Classes this path annotates, instead of `[annotations] classes` (for example
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub classes: Option<Vec<String>>,
+    pub label_classes: Option<Vec<String>>,
 }
 
 /// How a camera path's depth images are written.
