@@ -44,3 +44,5 @@ pub mod render;
 pub mod rng;
 pub mod scene;
 pub mod spec;
+#[doc(hidden)]
+pub mod test_seed;

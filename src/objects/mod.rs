@@ -21,6 +21,7 @@ pub const VERSION: u32 = 2;
 
 mod atlas_layout;
 mod ground_spots;
+pub mod obj_lines;
 mod objects_error;
 mod sign_face;
 #[cfg(test)]
