@@ -14,8 +14,8 @@
 //! | frame memory | the largest camera's resolution × supersampling² |
 //! | frame bytes | Σ frames × resolution (a spacing gives length ÷ spacing frames) |
 //!
-//! The per-item memory figures were measured with `/usr/bin/time -f %M` on release builds
-//! (see ARCHITECTURE.md) and rounded up.
+//! The per-item memory figures come from the peak memory of the builds issue 8 measured,
+//! rounded up; they are estimates, and `[limits]` is the knob.
 
 use super::camera_spec::{FrameRule, MAX_FRAMES};
 use super::findings::Findings;
@@ -26,10 +26,12 @@ pub const MAX_INSTANCE_ID: u64 = (1 << 24) - 1;
 
 /// Memory per layout pixel: the image, its mirror, class maps, the preview and PNG codecs.
 const BYTES_PER_PIXEL: u64 = 40;
-/// Memory per building: its mesh, materials, plan and export entries.
+/// Memory per building: its mesh, materials, plan and export entries (issue 8: about 746k
+/// buildings on 1024² with `widths = [1]`, `gap = 0` took 8.6 GB).
 const BYTES_PER_BUILDING: u64 = 12 * 1024;
-/// Memory per lamp: its mesh and plan and export entries.
-const BYTES_PER_LAMP: u64 = 8 * 1024;
+/// Memory per lamp: its mesh, light and plan entries (issue 8: 49k lamps on 4096² took
+/// 11.5 GB).
+const BYTES_PER_LAMP: u64 = 240 * 1024;
 /// Memory per inserted object (a text plate's atlas share dominates).
 const BYTES_PER_OBJECT: u64 = 16 * 1024;
 /// Memory per frame pixel per sample: colour, depth, ids, footprints, the contact sheet.
@@ -135,9 +137,12 @@ pub(crate) fn check_costs(spec: &Spec, layout: LayoutExtent, findings: &mut Find
     // The key most to blame: the largest contributor.
     let blame = {
         let candidates = [
-            (e.buildings, blame_buildings(findings)),
-            (e.lamps, "lamps.spacing"),
-            (e.objects, "objects"),
+            (
+                e.buildings.saturating_mul(BYTES_PER_BUILDING),
+                blame_buildings(findings),
+            ),
+            (e.lamps.saturating_mul(BYTES_PER_LAMP), "lamps.spacing"),
+            (e.objects.saturating_mul(BYTES_PER_OBJECT), "objects"),
         ];
         candidates
             .iter()

@@ -31,7 +31,7 @@ impl Default for LimitsSpec {
 }
 
 fn default_memory_mib() -> u64 {
-    4096
+    8192
 }
 fn default_output_mib() -> u64 {
     64 * 1024
