@@ -46,3 +46,5 @@ pub mod rng;
 pub mod scene;
 pub mod spec;
 pub mod stats;
+#[doc(hidden)]
+pub mod test_seed;

@@ -3,8 +3,10 @@
 //! Stages never touch files; the driver reads what a spec names here, hashes it for the
 //! stage keys and hands the bytes on.
 
+use std::cell::RefCell;
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::io::Cursor;
+use std::path::{Component, Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
@@ -44,12 +46,13 @@ pub fn layout_source(spec_path: &Path, spec: &Spec) -> Result<LayoutSource, Buil
         return Ok(LayoutSource::Generate);
     };
     let file = spec::resolve(spec_path, relative);
-    let bytes = fs::read(&file).map_err(|e| BuildError::Input {
-        spec: spec_path.to_path_buf(),
-        key: "layout.image",
-        file: file.clone(),
-        message: e.to_string(),
-    })?;
+    let bytes =
+        spec::read_capped(&file, spec::MAX_IMAGE_BYTES).map_err(|why| BuildError::Input {
+            spec: spec_path.to_path_buf(),
+            key: "layout.image",
+            file: file.clone(),
+            message: format!("expected a layout image, found {why}"),
+        })?;
     Ok(LayoutSource::Image { path: file, bytes })
 }
 
@@ -94,10 +97,16 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
             .map(|ext| folder.join(format!("{name}.{ext}")))
             .find(|p| p.is_file())
             .unwrap_or_else(|| folder.join(format!("{name}.jpg")));
-        let photo = fs::read(&photo_path).map_err(|e| input_error(&photo_path, e.to_string()))?;
-        let xml = read_optional(&folder.join(format!("{name}.xml")))
-            .map(|bytes| String::from_utf8_lossy(&bytes).into_owned());
-        let labels = read_optional(&folder.join(format!("{name}.png")));
+        let photo = spec::read_capped(&photo_path, spec::MAX_TEXTURE_BYTES).map_err(|why| {
+            input_error(&photo_path, format!("expected a facade photo, found {why}"))
+        })?;
+        let optional = |ext: &str| {
+            let path = folder.join(format!("{name}.{ext}"));
+            read_optional(&path)
+                .map_err(|why| input_error(&path, format!("expected a facade file, found {why}")))
+        };
+        let xml = optional("xml")?.map(|bytes| String::from_utf8_lossy(&bytes).into_owned());
+        let labels = optional("png")?;
         for part in [
             Some(name.as_bytes()),
             Some(&photo[..]),
@@ -122,11 +131,13 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
     let floors = match &facades.floors {
         Some(relative) => {
             let file = folder.join(relative);
-            let text = fs::read_to_string(&file).map_err(|e| BuildError::Input {
-                spec: spec_path.to_path_buf(),
-                key: "facades.floors",
-                file: file.clone(),
-                message: e.to_string(),
+            let text = spec::read_text_capped(&file, spec::MAX_FLOORS_BYTES).map_err(|why| {
+                BuildError::Input {
+                    spec: spec_path.to_path_buf(),
+                    key: "facades.floors",
+                    file: file.clone(),
+                    message: format!("expected a floors file, found {why}"),
+                }
             })?;
             digest.update((text.len() as u64 + 1).to_le_bytes());
             digest.update(text.as_bytes());
@@ -145,8 +156,14 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
     })
 }
 
-fn read_optional(path: &Path) -> Option<Vec<u8>> {
-    fs::read(path).ok()
+/// The file's bytes if it exists; a file that is there but not a regular file, or over the
+/// cap, is an error rather than "absent".
+fn read_optional(path: &Path) -> Result<Option<Vec<u8>>, String> {
+    match spec::check_file(path, spec::MAX_TEXTURE_BYTES) {
+        Err(why) if why == "no such file" => Ok(None),
+        Err(why) => Err(why),
+        Ok(_) => spec::read_capped(path, spec::MAX_TEXTURE_BYTES).map(Some),
+    }
 }
 
 /// Largest word file a text object may name, in bytes.
@@ -156,6 +173,11 @@ pub const MAX_WORDS_FILE: u64 = 1 << 20;
 /// it), and the texture files that MTL names; and every `words_file` a `text` object names
 /// (its bytes as the `obj`, at most [`MAX_WORDS_FILE`]). Returns them keyed by the spec's
 /// `model` or `words_file` string, and a digest of all their bytes for the stage keys.
+///
+/// tobj parses both files (nothing else here reads OBJ or MTL), so a model that would fail
+/// in the scene fails here, before any stage runs or caches, with `file:line`. The MTL and
+/// its textures must lie inside the model's folder: no absolute paths, no `..`, no symlink
+/// out, so a model cannot copy any image on the machine into `out/textures/`.
 pub fn mesh_files(
     spec_path: &Path,
     spec: &Spec,
@@ -185,43 +207,72 @@ pub fn mesh_files(
             continue;
         }
         let file = spec::resolve(spec_path, model);
-        let read = |path: &Path| {
-            fs::read(path).map_err(|e| BuildError::Input {
-                spec: spec_path.to_path_buf(),
-                key: "objects.model",
-                file: path.to_path_buf(),
-                message: format!("{e} (objects[{index}].model)"),
-            })
+        let fail = |path: &Path, message: String| BuildError::Input {
+            spec: spec_path.to_path_buf(),
+            key: "objects.model",
+            file: path.to_path_buf(),
+            message: format!("{message} (objects[{index}].model)"),
         };
-        let obj = read(&file)?;
+        let read = |path: &Path, cap: u64, what: &str| {
+            spec::read_capped(path, cap)
+                .map_err(|why| fail(path, format!("expected {what}, found {why}")))
+        };
+        let obj = read(&file, spec::MAX_MODEL_BYTES, "an OBJ model")?;
         let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
-        let mtl_name = String::from_utf8_lossy(&obj).lines().find_map(|l| {
-            l.trim()
-                .strip_prefix("mtllib ")
-                .map(|n| n.trim().to_owned())
-        });
+        let obj_text = String::from_utf8_lossy(&obj);
+        let mtl_names = RefCell::new(Vec::new());
+        let options = tobj::LoadOptions {
+            triangulate: true,
+            single_index: true,
+            ..Default::default()
+        };
+        tobj::load_obj_buf(&mut Cursor::new(&obj[..]), &options, |name| {
+            mtl_names
+                .borrow_mut()
+                .push(name.to_string_lossy().into_owned());
+            Ok((Vec::new(), Default::default()))
+        })
+        .map(|_| ())
+        .map_err(|e| {
+            let at = crate::objects::obj_lines::obj_error_line(&obj_text, &e);
+            fail(
+                &file,
+                line_message(at, &format!("not a valid OBJ model: {e}")),
+            )
+        })?;
+        let mtl_name = mtl_names.into_inner().into_iter().next();
         let mtl = match &mtl_name {
-            Some(name) => Some(read(&folder.join(name))?),
+            Some(name) => {
+                let path = inside(&folder, name).map_err(|why| fail(&file, why))?;
+                Some(read(&path, spec::MAX_MTL_BYTES, "an MTL file")?)
+            }
             None => None,
         };
         let mut textures = BTreeMap::new();
-        if let Some(mtl) = &mtl {
-            for line in String::from_utf8_lossy(mtl).lines() {
-                let line = line.trim();
-                let Some(name) = ["map_Kd ", "map_Ka ", "map_d "]
-                    .iter()
-                    .find_map(|k| line.strip_prefix(k))
-                else {
+        if let (Some(mtl), Some(mtl_name)) = (&mtl, &mtl_name) {
+            let mtl_path = folder.join(mtl_name);
+            let (materials, _) = tobj::load_mtl_buf(&mut Cursor::new(&mtl[..])).map_err(|e| {
+                let text = String::from_utf8_lossy(mtl);
+                let at = crate::objects::obj_lines::mtl_error_line(&text, &e);
+                fail(
+                    &mtl_path,
+                    line_message(at, &format!("not a valid MTL file: {e}")),
+                )
+            })?;
+            let names = materials.iter().flat_map(|m| {
+                [&m.diffuse_texture, &m.ambient_texture, &m.dissolve_texture]
+                    .into_iter()
+                    .flatten()
+            });
+            for name in names {
+                if name.is_empty() || textures.contains_key(name) {
                     continue;
-                };
-                let name = name
-                    .split_whitespace()
-                    .last()
-                    .unwrap_or_default()
-                    .to_owned();
-                if !name.is_empty() && !textures.contains_key(&name) {
-                    textures.insert(name.clone(), read(&folder.join(&name))?);
                 }
+                let path = inside(&folder, name).map_err(|why| fail(&mtl_path, why))?;
+                textures.insert(
+                    name.clone(),
+                    read(&path, spec::MAX_TEXTURE_BYTES, "a texture image")?,
+                );
             }
         }
         for part in [
@@ -266,4 +317,42 @@ fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, Bu
         }
         Ok(_) => Ok(bytes),
     }
+}
+
+/// `message`, prefixed `line N: ` when the line is known (the error names the file).
+fn line_message(line: Option<usize>, message: &str) -> String {
+    match line {
+        Some(n) => format!("line {n}: {message}"),
+        None => message.to_owned(),
+    }
+}
+
+/// `name` (from an OBJ or MTL) resolved in `folder`, if it stays inside it: relative, no
+/// `..`, and not leading out through a symlink.
+fn inside(folder: &Path, name: &str) -> Result<PathBuf, String> {
+    let relative = Path::new(name);
+    let escapes = relative.is_absolute()
+        || relative
+            .components()
+            .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir));
+    if escapes {
+        return Err(format!(
+            "expected a file name inside the model's folder, found {name:?}"
+        ));
+    }
+    let path = folder.join(relative);
+    let base = fs::canonicalize(if folder.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        folder
+    });
+    if let (Ok(base), Ok(real)) = (base, fs::canonicalize(&path)) {
+        if !real.starts_with(&base) {
+            return Err(format!(
+                "expected a file inside the model's folder, found {name:?}, a link to {}",
+                real.display()
+            ));
+        }
+    }
+    Ok(path)
 }

@@ -74,10 +74,12 @@ impl Default for BuildOptions {
 
 /// Reads and validates one spec file.
 pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
-    let text = fs::read_to_string(path).map_err(|source| BuildError::ReadSpec {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    // Capped, and refused unless a regular file: a spec that is `/dev/zero` fails at once.
+    let text =
+        spec::read_text_capped(path, spec::MAX_SPEC_BYTES).map_err(|why| BuildError::ReadSpec {
+            path: path.to_path_buf(),
+            source: io::Error::other(format!("expected a spec file, found {why}")),
+        })?;
     let source = SpecSource {
         path: path.to_path_buf(),
         text,

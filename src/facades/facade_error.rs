@@ -19,6 +19,9 @@ pub enum FacadeError {
         #[source]
         source: image::ImageError,
     },
+    /// The photo file is cut short.
+    #[error("{file}: not a whole image: found {why}")]
+    Truncated { file: String, why: String },
     /// The photo is empty or too large to decode safely.
     #[error("{file}: the photo is {width}×{height} px; 8 to {max_side} px a side are accepted")]
     BadSize {

@@ -310,7 +310,10 @@ fn bad_facade_data_errors_or_is_skipped_as_the_spec_says() {
             "data/cmp/no_windows.xml: no window boxes below the first molding",
         ),
         (garbage, "data/cmp/garbage.jpg: not a readable image"),
-        (truncated, "data/cmp/truncated.jpg: not a readable image"),
+        (
+            truncated,
+            "data/cmp/truncated.jpg: not a whole image: found a truncated JPEG",
+        ),
         (bad_xml, "data/cmp/bad_xml.xml: not valid XML"),
         (
             low_molding,

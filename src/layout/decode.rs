@@ -34,6 +34,8 @@ pub fn decode(bytes: &[u8]) -> Result<RgbImage, LayoutError> {
     let decoder = reader.into_decoder().map_err(|e| size_error(e, bytes))?;
     let (width, height) = decoder.dimensions();
     check_size(width, height)?;
+    // The decoder fills a cut-off JPEG with grey rows without a word: refuse it here.
+    super::image_end::check_complete(bytes).map_err(LayoutError::Truncated)?;
     let image = DynamicImage::from_decoder(decoder).map_err(|e| size_error(e, bytes))?;
     Ok(flatten(image))
 }
@@ -179,7 +181,7 @@ mod tests {
             (
                 "truncated png",
                 png_bytes(&RgbaImage::new(8, 8))[..40].to_vec(),
-                |e| matches!(e, LayoutError::Decode(_)),
+                |e| matches!(e, LayoutError::Decode(_) | LayoutError::Truncated(_)),
             ),
             (
                 "too wide",

@@ -22,6 +22,9 @@ pub enum LayoutError {
     /// The image has no pixels.
     #[error("the layout image is empty (0 px wide or high)")]
     Empty,
+    /// The file ends before its end marker (a download or copy cut short).
+    #[error("the layout image is {0}")]
+    Truncated(String),
     /// The decoder rejected the data (truncated or corrupt file).
     #[error("the layout image could not be decoded: {0}")]
     Decode(#[source] image::ImageError),

@@ -13,8 +13,10 @@ pub const VERSION: u32 = 1;
 
 mod decode;
 mod generated_layout;
+mod image_end;
 mod layout_error;
 
 pub use decode::{MAX_PIXELS, MAX_SIDE, decode};
 pub use generated_layout::{GeneratedLayout, generate};
+pub use image_end::check_complete;
 pub use layout_error::LayoutError;

@@ -24,6 +24,7 @@ pub const VERSION: u32 = 3;
 mod atlas_layout;
 mod car;
 mod ground_spots;
+pub mod obj_lines;
 mod objects_error;
 mod plate_style;
 mod sign_face;

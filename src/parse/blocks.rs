@@ -138,8 +138,16 @@ impl<'a> Shape<'a> {
         };
         let (mut previous, mut current) = (first, start);
         let mut border = Vec::new();
-        // Every border pixel is visited at most four times; the bound only guards the loop.
-        let limit = 4 * self.rows.iter().map(|r| r.len()).sum::<usize>() * 8 + 8;
+        // Every border pixel is visited at most four times, and every border pixel is one
+        // of the block's pixels: the bound only guards the loop. (It once counted runs, not
+        // pixels, and cut the border of long thin blocks short: issue 8, case 8.)
+        let pixels: i64 = self
+            .rows
+            .iter()
+            .flat_map(|row| row.iter())
+            .map(|(_, r)| i64::from(r[1]) - i64::from(r[0]))
+            .sum();
+        let limit = 4 * usize::try_from(pixels).unwrap_or(usize::MAX / 8) + 8;
         loop {
             border.push(current);
             let back = direction(current, previous);
@@ -359,6 +367,7 @@ mod tests {
     }
 
     proptest::proptest! {
+        #![proptest_config(crate::test_seed::proptest_config(256))]
         #[test]
         fn outer_borders_match_imageprocs(
             cells in proptest::collection::vec(proptest::bool::weighted(0.6), 12 * 9),
@@ -421,6 +430,21 @@ mod tests {
             ),
             vec![[7, 5]]
         );
+    }
+
+    #[test]
+    fn a_long_thin_block_keeps_its_four_corners() {
+        // Issue 8, case 8: a block 422 px wide and 13 rows high lost its far corners.
+        let runs: Vec<(u32, Run)> = (6..19).map(|y| (y, [6, 428])).collect();
+        let bbox = PxRect {
+            x0: 6,
+            y0: 6,
+            x1: 428,
+            y1: 19,
+        };
+        let mut got = outline(&runs, bbox);
+        got.sort();
+        assert_eq!(got, vec![[6, 6], [6, 18], [427, 6], [427, 18]]);
     }
 
     #[test]

@@ -94,8 +94,27 @@ fn parse_recovers_the_generated_roads_and_blocks() {
     }
 }
 
+#[test]
+fn parse_recovers_long_thin_blocks() {
+    // Issue 8, case 8: the proptest drew this on a fresh machine; the outline of a block
+    // 13 px high and over 400 px wide came back with three corners.
+    let spec = spec((434, 242), 9, 6, (3, 0), 9);
+    let mut thin = 0;
+    for seed in 0..64 {
+        let layout = generated(&spec, seed);
+        // The old bound on the border walk cut blocks under 28 px high short.
+        thin += layout.blocks.iter().filter(|b| b.height() < 28).count();
+        let parsed = parse(&layout.image, &Palette::default());
+        assert_recovers(&parsed, &layout.roads, &layout.blocks, &format!("#{seed}"));
+    }
+    assert!(
+        thin > 0,
+        "no seed drew a thin block: the test lost its case"
+    );
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #![proptest_config(crate::test_seed::proptest_config(48))]
     #[test]
     fn parse_recovers_any_generated_layout(
         width in 64u32..500,

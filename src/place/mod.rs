@@ -386,7 +386,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(96))]
+        #![proptest_config(crate::test_seed::proptest_config(96))]
 
         #[test]
         fn buildings_keep_every_rule(

@@ -7,6 +7,7 @@ use std::path::Path;
 use image::ImageReader;
 
 use super::SpecWorld;
+use super::input_file::{MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, read_capped};
 
 /// The real file system: reads only the header of each image.
 #[derive(Clone, Copy, Debug, Default)]
@@ -14,6 +15,7 @@ pub struct FsWorld;
 
 impl SpecWorld for FsWorld {
     fn folder(&self, path: &Path) -> Result<(), String> {
+        // Folders are listed, never read whole; their files go through the caps.
         match std::fs::metadata(path) {
             Ok(meta) if meta.is_dir() => Ok(()),
             Ok(_) => Err("a file, not a folder".to_string()),
@@ -23,18 +25,15 @@ impl SpecWorld for FsWorld {
     }
 
     fn file(&self, path: &Path) -> Result<(), String> {
-        match File::open(path) {
-            Ok(_) if path.is_dir() => Err("a folder, not a file".to_string()),
-            Ok(_) => Ok(()),
-            Err(e) if e.kind() == ErrorKind::NotFound => Err("no such file".to_string()),
-            Err(e) => Err(format!("an unreadable file ({e})")),
-        }
+        // Every file a spec names is read through a cap; the largest cap is the model's.
+        check_file(path, MAX_MODEL_BYTES).map(|_| ())
     }
 
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
         if path.is_dir() {
             return Err("a directory".to_string());
         }
+        check_file(path, MAX_IMAGE_BYTES)?;
         let unreadable = |e: std::io::Error| match e.kind() {
             ErrorKind::NotFound => "no such file".to_string(),
             ErrorKind::PermissionDenied => "a file it may not read".to_string(),
@@ -55,6 +54,17 @@ impl SpecWorld for FsWorld {
             .map_err(unreadable)?
             .into_dimensions()
             .map_err(|e| format!("an unreadable image ({e})"))
+    }
+
+    fn layout_pixels(&self, path: &Path) -> Option<Result<image::RgbImage, String>> {
+        // The same reading and decoding as the build's, so `validate` refuses what `build`
+        // would (a truncated or corrupt image).
+        Some(read_capped(path, MAX_IMAGE_BYTES).and_then(|bytes| {
+            crate::layout::decode(&bytes).map_err(|e| match e {
+                crate::layout::LayoutError::Truncated(why) => why,
+                other => other.to_string(),
+            })
+        }))
     }
 }
 

@@ -1,11 +1,15 @@
-//! Layout checks: a schema-valid [`LayoutSpec`] + the world's image headers → the problems
-//! the schema cannot see (one layout source, roads that fit, a readable image of sane size,
-//! a mirrored city that is not absurdly large).
+//! Layout checks: a schema-valid [`LayoutSpec`] + the world's image headers and pixels →
+//! the problems the schema cannot see (one layout source, roads that fit, a whole image of
+//! sane size drawn in the palette, a mirrored city that is not absurdly large), and the
+//! layout's extent for the cost checks.
 
 use std::path::Path;
 
+use image::RgbImage;
+
+use super::cost_checks::LayoutExtent;
 use super::findings::Findings;
-use super::spec::{GenerateSpec, LayoutSpec};
+use super::spec::{GenerateSpec, LayoutSpec, Palette, PaletteColour};
 use super::{SpecWorld, resolve};
 
 /// Largest side of a layout image, drawn, generated or mirrored, in pixels.
@@ -13,13 +17,14 @@ pub const MAX_LAYOUT_SIDE: u64 = 16384;
 /// Largest layout image area in pixels (64 Mpx).
 pub const MAX_LAYOUT_PIXELS: u64 = 64 * 1024 * 1024;
 
-/// Checks `layout`; `spec_path` is the spec's path as given, against which the image resolves.
+/// Checks `layout`; `spec_path` is the spec's path as given, against which the image
+/// resolves. Returns the mirrored layout's extent when the layout is sound.
 pub(crate) fn check_layout(
     layout: &LayoutSpec,
     spec_path: &Path,
     world: &dyn SpecWorld,
     findings: &mut Findings<'_, '_>,
-) {
+) -> Option<LayoutExtent> {
     let mut base = None;
     match (&layout.generate, &layout.image) {
         (None, None) => findings.error(
@@ -39,19 +44,54 @@ pub(crate) fn check_layout(
         }
         (Some(generate), None) => {
             if check_generate(generate, findings) {
-                base = Some((u64::from(generate.width), u64::from(generate.height)));
+                base = Some(generated_extent(generate));
             }
         }
         (None, Some(_)) => {}
     }
     if let Some(image) = &layout.image {
-        let dims = check_image(image, spec_path, world, findings);
+        let extent = check_image(image, &layout.palette, spec_path, world, findings);
         if layout.generate.is_none() {
-            base = dims;
+            base = extent;
         }
     }
-    if let Some((width, height)) = base {
-        check_mirror(&layout.mirror, width, height, findings);
+    let base = base?;
+    check_mirror(&layout.mirror, base.width, base.height, findings).then(|| {
+        let doublings = layout
+            .mirror
+            .iter()
+            .map(|&op| if op == 3 { 2 } else { 1 })
+            .sum::<u32>();
+        let (mut w, mut h) = (base.width, base.height);
+        for op in &layout.mirror {
+            if *op != 1 {
+                w *= 2;
+            }
+            if *op != 2 {
+                h *= 2;
+            }
+        }
+        LayoutExtent {
+            width: w,
+            height: h,
+            block_px: base.block_px << doublings,
+            line_px: base.line_px << doublings,
+        }
+    })
+}
+
+/// A generated layout's extent: blocks fill what the roads and strips leave.
+fn generated_extent(g: &GenerateSpec) -> LayoutExtent {
+    let (w, h) = (u64::from(g.width), u64::from(g.height));
+    let (nh, nv) = (u64::from(g.horizontal_roads), u64::from(g.vertical_roads));
+    let (road, strip) = (u64::from(g.road_width), u64::from(g.strip_width));
+    let blocks_w = w.saturating_sub(nv * road + 2 * strip * (nv + 1));
+    let blocks_h = h.saturating_sub(nh * road + 2 * strip * (nh + 1));
+    LayoutExtent {
+        width: w,
+        height: h,
+        block_px: blocks_w * blocks_h,
+        line_px: nh * w + nv * h,
     }
 }
 
@@ -126,15 +166,17 @@ fn check_generate(g: &GenerateSpec, findings: &mut Findings<'_, '_>) -> bool {
     sound
 }
 
-/// Checks the image exists, is an image, and is not too large; its size when sound.
+/// Checks the image exists, is a whole image of sane size and is drawn in the palette; its
+/// extent when sound.
 fn check_image(
     image: &str,
+    palette: &Palette,
     spec_path: &Path,
     world: &dyn SpecWorld,
     findings: &mut Findings<'_, '_>,
-) -> Option<(u64, u64)> {
+) -> Option<LayoutExtent> {
     let resolved = resolve(spec_path, image);
-    match world.image_dimensions(&resolved) {
+    let (w, h) = match world.image_dimensions(&resolved) {
         Err(problem) => {
             findings.error(
                 "layout.image",
@@ -143,29 +185,114 @@ fn check_image(
                     resolved.display()
                 ),
             );
-            None
+            return None;
         }
-        Ok((w, h)) => {
-            let (w, h) = (u64::from(w), u64::from(h));
-            if too_large(w, h) {
+        Ok((w, h)) => (u64::from(w), u64::from(h)),
+    };
+    if too_large(w, h) {
+        findings.error(
+            "layout.image",
+            format!(
+                "the image is too large: expected at most {MAX_LAYOUT_SIDE} px a side \
+                 and {} Mpx, found {w}×{h} px in {}",
+                MAX_LAYOUT_PIXELS >> 20,
+                resolved.display()
+            ),
+        );
+        return None;
+    }
+    // Worlds that do not decode pixels (tests) get an upper bound.
+    let mut extent = LayoutExtent {
+        width: w,
+        height: h,
+        block_px: w * h,
+        line_px: w + h,
+    };
+    match world.layout_pixels(&resolved) {
+        None => {}
+        Some(Err(problem)) => {
+            findings.error(
+                "layout.image",
+                format!(
+                    "expected a whole PNG or JPEG layout image at {}, found {problem}",
+                    resolved.display()
+                ),
+            );
+            return None;
+        }
+        Some(Ok(pixels)) => {
+            let counts = palette_counts(&pixels, palette);
+            let [road, line, block, _] = counts;
+            if road + line == 0 || block == 0 {
+                let missing = match (road + line == 0, block == 0) {
+                    (true, true) => "neither road nor block colours",
+                    (true, false) => "no road colours",
+                    _ => "no block colours",
+                };
                 findings.error(
                     "layout.image",
                     format!(
-                        "the image is too large: expected at most {MAX_LAYOUT_SIDE} px a side \
-                         and {} Mpx, found {w}×{h} px in {}",
-                        MAX_LAYOUT_PIXELS >> 20,
-                        resolved.display()
+                        "expected a layout drawn with the palette (road {}, line {}, block {}, \
+                         strip {}, within {} of each), found {missing} in {}; its most common \
+                         colours are {}; draw with the palette or set `[layout.palette]` to \
+                         the image's colours",
+                        palette.road,
+                        palette.line,
+                        palette.block,
+                        palette.strip,
+                        palette.tolerance,
+                        resolved.display(),
+                        most_common(&pixels, 3)
                     ),
                 );
                 return None;
             }
-            Some((w, h))
+            extent.block_px = block;
+            extent.line_px = line;
         }
     }
+    Some(extent)
 }
 
-/// Checks the mirrored city stays within the size limits.
-fn check_mirror(ops: &[u8], width: u64, height: u64, findings: &mut Findings<'_, '_>) {
+/// Pixels of each palette colour: road, line, block, strip.
+fn palette_counts(image: &RgbImage, palette: &Palette) -> [u64; 4] {
+    let mut counts = [0u64; 4];
+    for pixel in image.pixels() {
+        let slot = match palette.classify(pixel.0) {
+            Some(PaletteColour::Road) => 0,
+            Some(PaletteColour::Line) => 1,
+            Some(PaletteColour::Block) => 2,
+            Some(PaletteColour::Strip) => 3,
+            None => continue,
+        };
+        counts[slot] += 1;
+    }
+    counts
+}
+
+/// The `n` most common exact colours with their shares, e.g. `#ffffff (71 %), …`.
+fn most_common(image: &RgbImage, n: usize) -> String {
+    let mut colours: Vec<u32> = image
+        .pixels()
+        .map(|p| u32::from_be_bytes([0, p.0[0], p.0[1], p.0[2]]))
+        .collect();
+    colours.sort_unstable();
+    let total = colours.len().max(1) as f64;
+    let mut runs: Vec<(usize, u32)> = colours
+        .chunk_by(|a, b| a == b)
+        .map(|run| (run.len(), run[0]))
+        .collect();
+    // Most pixels first; ties by colour, so the message is deterministic.
+    runs.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    runs.iter()
+        .take(n)
+        .map(|&(count, rgb)| format!("#{rgb:06x} ({:.0} %)", 100.0 * count as f64 / total))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Checks the mirrored city stays within the size limits; true when it does.
+fn check_mirror(ops: &[u8], width: u64, height: u64, findings: &mut Findings<'_, '_>) -> bool {
     let (mut w, mut h) = (width, height);
     for op in ops {
         match op {
@@ -185,7 +312,9 @@ fn check_mirror(ops: &[u8], width: u64, height: u64, findings: &mut Findings<'_,
                 MAX_LAYOUT_PIXELS >> 20
             ),
         );
+        return false;
     }
+    true
 }
 
 fn too_large(w: u64, h: u64) -> bool {

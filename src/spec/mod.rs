@@ -17,12 +17,16 @@
 mod camera_checks;
 mod camera_path_checks;
 mod camera_spec;
+mod class_checks;
 mod closest;
+mod cost_checks;
 mod diagnostic;
 mod findings;
 mod fs_world;
+mod input_file;
 mod key_path;
 mod layout_checks;
+mod limits_spec;
 mod locator;
 mod object_checks;
 mod object_spec;
@@ -43,9 +47,16 @@ pub use camera_spec::{
     AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, DepthFormat, FrameRule, LightingSpec,
     MAX_FRAMES, TimeOfDay,
 };
+pub use class_checks::produced_classes;
+pub use cost_checks::{CostEstimate, MAX_INSTANCE_ID};
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
+pub use input_file::{
+    MAX_FLOORS_BYTES, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, MAX_MTL_BYTES, MAX_SPEC_BYTES,
+    MAX_TEXTURE_BYTES, check_file, read_capped, read_text_capped,
+};
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
+pub use limits_spec::LimitsSpec;
 pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
 pub use render::render;
 pub use spec::{
@@ -76,6 +87,13 @@ pub trait SpecWorld {
     fn folder(&self, path: &Path) -> Result<(), String>;
     /// Whether `path` (already resolved) is a readable file; Err(message) when it is not.
     fn file(&self, path: &Path) -> Result<(), String>;
+    /// The layout image at `path` (already resolved) decoded, for the checks that need its
+    /// pixels: a whole file, drawn in the palette, its block area and road length. None
+    /// when this world does not decode images (the checks then use the header's size).
+    /// Err(message) completes "expected a whole PNG or JPEG layout image at …, found …".
+    fn layout_pixels(&self, _path: &Path) -> Option<Result<image::RgbImage, String>> {
+        None
+    }
 }
 
 /// Syntax → version → schema → serde → semantic; every error of the file at once.
@@ -119,7 +137,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     object_spec::fill_default_labels(&mut spec.objects);
 
     let mut findings = Findings::new(&locator, text);
-    layout_checks::check_layout(&spec.layout, &source.path, world, &mut findings);
+    let extent = layout_checks::check_layout(&spec.layout, &source.path, world, &mut findings);
     value_checks::check_palette(&spec.layout.palette, &mut findings);
     value_checks::check_buildings(&spec.buildings, &mut findings);
     value_checks::check_facades(&spec.facades, &source.path, world, &mut findings);
@@ -127,6 +145,10 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
     camera_checks::check_cameras(&spec.cameras, &mut findings);
     camera_path_checks::check_camera_paths(&spec.cameras, &spec.objects, &mut findings);
+    class_checks::check_classes(&spec, &mut findings);
+    if let Some(extent) = extent {
+        cost_checks::check_costs(&spec, extent, &mut findings);
+    }
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

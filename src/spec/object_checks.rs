@@ -5,14 +5,10 @@
 use std::fmt::Display;
 use std::path::Path;
 
+use super::class_checks::SCENE_CLASSES;
 use super::findings::Findings;
 use super::object_spec::{ObjectKind, ObjectSpec};
 use super::{SpecWorld, resolve};
-
-/// Classes (and object-name prefixes) the scene stage uses itself.
-const SCENE_CLASSES: [&str; 7] = [
-    "ground", "block", "road", "marking", "sidewalk", "building", "lamp",
-];
 
 /// Every object class's ranges run low to high; a mesh class names a readable model file.
 pub(crate) fn check_objects(

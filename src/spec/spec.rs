@@ -11,6 +11,7 @@ use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
+use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
 
 /// The spec format version this build of cityspec reads.
@@ -55,6 +56,9 @@ pub struct Spec {
     /// What the annotations keep.
     #[serde(default)]
     pub annotations: AnnotationsSpec,
+    /// What a build may cost (memory, frame bytes) before validation refuses it.
+    #[serde(default)]
+    pub limits: LimitsSpec,
 }
 
 /// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).

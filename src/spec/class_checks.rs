@@ -1,0 +1,50 @@
+//! Class checks: the spec's `annotations.classes` + the classes its scene and objects
+//! produce → an error for each class nothing produces, with a did-you-mean.
+//!
+//! A class no object carries would silently give zero annotations (issue 8: `"traffic_sgn"`).
+//! [`produced_classes`] is the one place that says which classes a spec's city holds: the
+//! scene's own classes and every `[[objects]]` label. New object kinds produce their
+//! `label`; a new scene class joins [`SCENE_CLASSES`].
+
+use super::closest::closest;
+use super::findings::Findings;
+use super::spec::Spec;
+
+/// Classes (and object-name prefixes) the scene stage gives its own objects.
+pub(crate) const SCENE_CLASSES: [&str; 7] = [
+    "ground", "block", "road", "marking", "sidewalk", "building", "lamp",
+];
+
+/// Every class the city of `spec` holds objects of, in a fixed order: the scene's, then the
+/// `[[objects]]` labels in spec order.
+pub fn produced_classes(spec: &Spec) -> Vec<&str> {
+    let mut classes: Vec<&str> = SCENE_CLASSES.to_vec();
+    for object in &spec.objects {
+        if !classes.contains(&object.label.as_str()) {
+            classes.push(&object.label);
+        }
+    }
+    classes
+}
+
+/// Every `annotations.classes` entry must be a class the city holds.
+pub(crate) fn check_classes(spec: &Spec, findings: &mut Findings<'_, '_>) {
+    let produced = produced_classes(spec);
+    for (i, class) in spec.annotations.classes.iter().enumerate() {
+        if produced.contains(&class.as_str()) {
+            continue;
+        }
+        let hint = match closest(class, produced.iter().copied()) {
+            Some(near) => format!(" (did you mean `{near}`?)"),
+            None => String::new(),
+        };
+        findings.error(
+            &format!("annotations.classes[{i}]"),
+            format!(
+                "expected a class the city holds ({}), found {class:?}, which no object \
+                 carries, so it would get no annotations{hint}",
+                produced.join(", ")
+            ),
+        );
+    }
+}
