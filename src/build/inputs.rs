@@ -346,13 +346,13 @@ fn inside(folder: &Path, name: &str) -> Result<PathBuf, String> {
     } else {
         folder
     });
-    if let (Ok(base), Ok(real)) = (base, fs::canonicalize(&path)) {
-        if !real.starts_with(&base) {
-            return Err(format!(
-                "expected a file inside the model's folder, found {name:?}, a link to {}",
-                real.display()
-            ));
-        }
+    if let (Ok(base), Ok(real)) = (base, fs::canonicalize(&path))
+        && !real.starts_with(&base)
+    {
+        return Err(format!(
+            "expected a file inside the model's folder, found {name:?}, a link to {}",
+            real.display()
+        ));
     }
     Ok(path)
 }

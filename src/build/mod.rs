@@ -25,7 +25,7 @@ mod stage_key;
 mod verify;
 
 use std::collections::BTreeMap;
-use std::fs;
+use std::io;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
