@@ -7,7 +7,12 @@ use image::{DynamicImage, ImageBuffer, Luma, RgbImage};
 /// depth along the view axis in millimetres (0 = sky, clamped to 65535).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
+    /// The default development of `linear`: the lighting's exposure, the filmic tone
+    /// curve, sRGB ([`super::develop`]).
     pub rgb: RgbImage,
+    /// Linear scene radiance per pixel, row-major, before exposure and tone mapping,
+    /// unclamped (HDR).
+    pub linear: Vec<[f32; 3]>,
     pub instance: ImageBuffer<Luma<u16>, Vec<u16>>,
     pub depth_mm: ImageBuffer<Luma<u16>, Vec<u16>>,
 }
@@ -63,6 +68,7 @@ mod tests {
         let depth_mm = ImageBuffer::from_fn(5, 3, |x, _| Luma([65535 - x as u16]));
         let frame = Frame {
             rgb: RgbImage::new(5, 3),
+            linear: vec![[0.0; 3]; 15],
             instance: instance.clone(),
             depth_mm: depth_mm.clone(),
         };

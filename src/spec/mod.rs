@@ -22,6 +22,7 @@ mod findings;
 mod fs_world;
 mod key_path;
 mod layout_checks;
+mod lighting_spec;
 mod locator;
 mod object_checks;
 mod object_spec;
@@ -38,12 +39,12 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 pub use camera_spec::{
-    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, FrameRule, LightingSpec, MAX_FRAMES,
-    TimeOfDay,
+    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, FrameRule, MAX_FRAMES,
 };
 pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
+pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use object_spec::{Ground, ObjectKind, ObjectSpec, SignKind, TextCase};
 pub use render::render;
 pub use spec::{
@@ -122,6 +123,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     value_checks::check_lamps(&spec.lamps, &mut findings);
     object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
     camera_checks::check_cameras(&spec.cameras, &mut findings);
+    lighting_spec::check_lighting(&spec.lighting, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

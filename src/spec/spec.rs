@@ -10,7 +10,8 @@ use std::fmt;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
+use super::camera_spec::{AnnotationsSpec, CameraSpec};
+use super::lighting_spec::LightingSpec;
 use super::object_spec::ObjectSpec;
 
 /// The spec format version this build of cityspec reads.
