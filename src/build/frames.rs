@@ -18,7 +18,7 @@ use serde_json::json;
 use super::codec;
 use crate::annotate::{self, Category, CocoWriter, FrameInput, ObjectLabel, Thresholds};
 use crate::model::{CameraPose, PixelBox};
-use crate::render::{self, Intrinsics, Lighting, PreparedScene};
+use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
 use crate::spec::CameraSpec;
 
 /// Everything one camera path needs besides its poses.
@@ -28,6 +28,11 @@ pub struct PathInput<'a> {
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
+    /// The sun `lighting` was made for, written into poses.json.
+    pub sun: Sun,
+    /// With `[lighting] vary = "frame"`: the lighting and sun of frame `i` (instead of
+    /// `lighting` and `sun`).
+    pub relight: Option<&'a (dyn Fn(usize) -> (Lighting, Sun) + Sync)>,
     pub categories: &'a [Category],
     pub labels: &'a [ObjectLabel],
     pub thresholds: &'a Thresholds,
@@ -72,12 +77,19 @@ pub fn render_path<E>(
     let picks = contact_sheet_picks(poses.len());
     let mut sheet = Vec::with_capacity(picks.len());
     let mut coco = CocoWriter::new(input.categories);
+    let mut suns = Vec::with_capacity(poses.len());
     for (i, pose) in poses.iter().enumerate() {
+        let drawn = input.relight.map(|f| f(i));
+        let (lighting, sun) = match &drawn {
+            Some((lighting, sun)) => (lighting, *sun),
+            None => (input.lighting, input.sun),
+        };
+        suns.push(sun);
         let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             &intrinsics,
-            input.lighting,
+            lighting,
             camera.supersample,
             &measured,
         );
@@ -133,8 +145,9 @@ pub fn render_path<E>(
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
-        "frames": poses.iter().enumerate().map(|(i, p)| json!({
-            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target
+        "frames": poses.iter().zip(&suns).enumerate().map(|(i, (p, sun))| json!({
+            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
+            "sun": sun
         })).collect::<Vec<_>>(),
     });
     emit(

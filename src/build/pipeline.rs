@@ -21,7 +21,7 @@ use super::inputs::{FacadeInput, LayoutSource};
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{CameraPath, Spec};
+use crate::spec::{CameraPath, Spec, Vary};
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
     preview, render, rng, scene,
@@ -614,6 +614,13 @@ impl<'a> Pipeline<'a> {
                 };
                 let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
                 let lighting = lighting(spec, &sun, &scene, &lamps, &facades);
+                let relight = (spec.lighting.vary == Vary::Frame).then(|| {
+                    |i: usize| {
+                        let sun =
+                            render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
+                        (self::lighting(spec, &sun, &scene, &lamps, &facades), sun)
+                    }
+                });
                 let (categories, labels) = labels(spec, &scene, &p.object_info);
                 let thresholds = annotate::Thresholds {
                     min_pixels: spec.annotations.min_pixels,
@@ -630,6 +637,8 @@ impl<'a> Pipeline<'a> {
                     camera,
                     scene: &prepared,
                     lighting: &lighting,
+                    sun,
+                    relight: relight.as_ref().map(|f| f as _),
                     categories: &categories,
                     labels: &labels,
                     thresholds: &thresholds,

@@ -60,6 +60,8 @@ mod tile;
 mod view;
 
 #[cfg(test)]
+mod shadow_tests;
+#[cfg(test)]
 mod tests;
 
 pub use camera_pose::CameraPose;

@@ -11,7 +11,7 @@ use super::view::View;
 use super::*;
 use crate::model::{Material, Mesh, PixelBox, Scene, SceneObject, Texture};
 
-fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
+pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
     Material {
         name: format!("m{}", texture.map_or(-1, i64::from)),
         colour,
@@ -38,7 +38,7 @@ fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
 
 /// A quad through corners `c` (in order around it), wound counter-clockwise around
 /// `normal`, with vertex normals `normal`.
-fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) -> Mesh {
+pub(super) fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) -> Mesh {
     let g = cross(sub(c[1], c[0]), sub(c[2], c[0]));
     let indices = if dot(g, normal) >= 0.0 {
         vec![0, 1, 2, 0, 2, 3]
@@ -54,10 +54,10 @@ fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) ->
     }
 }
 
-const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+pub(super) const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 
 /// A closed box, every face wound counter-clockwise seen from outside.
-fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
+pub(super) fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
     let [x0, y0, z0] = lo;
     let [x1, y1, z1] = hi;
     let faces = [
@@ -92,7 +92,7 @@ fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
         .collect()
 }
 
-fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
+pub(super) fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
     SceneObject {
         name: name.into(),
         class: "test".into(),
@@ -111,12 +111,12 @@ fn checker_texture(size: u32, cell: u32) -> Texture {
     Texture::from_rgb(format!("checker_{size}_{cell}"), &image)
 }
 
-fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
+pub(super) fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
     CameraPose { eye, target }
 }
 
 /// Colour = albedo: black sky, white ambient, no sun, no emission.
-fn flat() -> Lighting {
+pub(super) fn flat() -> Lighting {
     Lighting {
         sky: Sky::flat([0.0; 3]),
         ambient: [1.0; 3],
