@@ -614,7 +614,7 @@ impl<'a> Pipeline<'a> {
                 };
                 let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
                 let lighting = lighting(spec, &sun, &scene, &lamps, &facades);
-                let relight = (spec.lighting.vary == Vary::Frame).then(|| {
+                let relight = (spec.lighting.vary == Vary::Frame).then_some({
                     |i: usize| {
                         let sun =
                             render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);

@@ -20,8 +20,11 @@ pub struct PreparedScene {
     pub(crate) triangles: Vec<Triangle>,
     /// The last shadow map built, with the sun direction it was built for: a camera path
     /// under one sun builds it once.
-    shadows: Mutex<Option<([u32; 3], Option<Arc<ShadowMap>>)>>,
+    shadows: Mutex<Option<LastShadowMap>>,
 }
+
+/// A sun direction's bits and its shadow map (`None`: the sun is down).
+type LastShadowMap = ([u32; 3], Option<Arc<ShadowMap>>);
 
 /// What shading needs of a material.
 pub(crate) struct ShadeMaterial {

@@ -42,7 +42,7 @@ impl ShadowMap {
     /// The map of `scene` for the sun in direction `dir` (unit, towards the sun). `None`
     /// for an empty scene or a sun at or below the horizon.
     pub(crate) fn build(scene: &PreparedScene, dir: [f64; 3]) -> Option<ShadowMap> {
-        if !(dir[1] > 1e-3) || scene.triangles.is_empty() {
+        if dir[1].is_nan() || dir[1] <= 1e-3 || scene.triangles.is_empty() {
             return None;
         }
         // Light space: `right` horizontal, `up` = right × (−dir) … any fixed basis works.
@@ -56,7 +56,7 @@ impl ShadowMap {
         let up = cross(dir, right);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for o in &scene.objects {
-            if !(o.min[0] <= o.max[0]) {
+            if o.min[0].is_nan() || o.min[0] > o.max[0] {
                 continue;
             }
             for i in 0..8 {
@@ -181,7 +181,7 @@ impl ShadowMap {
 fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
     let [a, b, c] = *t;
     let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    if !(area.abs() > 1e-12) {
+    if area.is_nan() || area.abs() <= 1e-12 {
         return;
     }
     let x0 = a[0].min(b[0]).min(c[0]).floor().max(0.0) as usize;

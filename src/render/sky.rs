@@ -144,8 +144,8 @@ impl Sky {
         });
         let cos_sun = d[0] * self.sun[0] + d[1] * self.sun[1] + d[2] * self.sun[2];
         if cos_sun > self.cos_disk {
-            for k in 0..3 {
-                c[k] += self.disk[k];
+            for (c, d) in c.iter_mut().zip(self.disk) {
+                *c += d;
             }
         }
         c
