@@ -21,7 +21,7 @@ use crate::annotate::{
     self, Category, CocoWriter, DepthFile, FrameInput, ObjectLabel, Thresholds, YoloClasses,
 };
 use crate::model::{CameraPose, PixelBox};
-use crate::render::{self, Intrinsics, Lighting, PreparedScene};
+use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
 use crate::spec::CameraSpec;
 
 /// Everything one camera path needs besides its poses.
@@ -31,6 +31,11 @@ pub struct PathInput<'a> {
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
+    /// The sun `lighting` was made for, written into poses.json.
+    pub sun: Sun,
+    /// With `[lighting] vary = "frame"`: the lighting and sun of frame `i` (instead of
+    /// `lighting` and `sun`).
+    pub relight: Option<&'a (dyn Fn(usize) -> (Lighting, Sun) + Sync)>,
     pub categories: &'a [Category],
     pub labels: &'a [ObjectLabel],
     pub thresholds: &'a Thresholds,
@@ -77,12 +82,19 @@ pub fn render_path<E>(
     let picks = contact_sheet_picks(poses.len());
     let mut sheet = Vec::with_capacity(picks.len());
     let mut coco = CocoWriter::new(input.categories);
+    let mut suns = Vec::with_capacity(poses.len());
     for (i, pose) in poses.iter().enumerate() {
+        let drawn = input.relight.map(|f| f(i));
+        let (lighting, sun) = match &drawn {
+            Some((lighting, sun)) => (lighting, *sun),
+            None => (input.lighting, input.sun),
+        };
+        suns.push(sun);
         let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             &intrinsics,
-            input.lighting,
+            lighting,
             camera.supersample,
             &measured,
         );
@@ -155,9 +167,9 @@ pub fn render_path<E>(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().enumerate().map(|(i, p)| json!({
+        "frames": poses.iter().zip(&suns).enumerate().map(|(i, (p, sun))| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
-            "up": p.up, "angles": p.angles
+            "up": p.up, "angles": p.angles, "sun": sun
         })).collect::<Vec<_>>(),
     });
     emit(

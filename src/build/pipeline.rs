@@ -24,7 +24,7 @@ use super::output_names::OutputNames;
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{CameraPath, Spec, TimeOfDay};
+use crate::spec::{CameraPath, Spec, Vary};
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
     preview, render, rng, scene,
@@ -586,18 +586,25 @@ impl<'a> Pipeline<'a> {
     /// `overview.png`: the textured city from the air, rendered by cityspec's renderer.
     fn need_overview(&mut self) -> Result<(), BuildError> {
         let key = self.keys.overview.clone();
-        let gather = |p: &mut Self| Ok((p.scene()?, p.parsed()?));
+        let gather = |p: &mut Self| {
+            Ok((
+                p.prepared_scene()?,
+                p.scene()?,
+                p.parsed()?,
+                p.lamp_sites()?,
+                p.facade_set()?,
+            ))
+        };
         self.stage(
             "overview",
             key,
             Load::References,
             |p| &mut p.overview,
             gather,
-            |p, (scene, parsed)| {
-                let prepared = render::prepare(&scene).map_err(|e| BuildError::Render {
-                    spec: p.spec_path.clone(),
-                    message: e.to_string(),
-                })?;
+            |p, (prepared, scene, parsed, lamps, facades)| {
+                // The spec's light; a drawn sun is drawn for the overview on its own.
+                let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, u32::MAX, 0);
+                let lighting = lighting(p.spec, &sun, &scene, &lamps, &facades);
                 let (w, h) = (f64::from(parsed.width), f64::from(parsed.height));
                 let span = (w * w + h * h).sqrt() * p.spec.layout.metres_per_pixel;
                 // The north-east corner of an orbit, 0.6 of the city's diagonal up: the whole
@@ -608,8 +615,7 @@ impl<'a> Pipeline<'a> {
                     Some(pose) => {
                         let mut intrinsics = render::Intrinsics::from_fov(1280, 960, 0.5);
                         intrinsics.far = span * 4.0;
-                        render::render(&prepared, pose, &intrinsics, &render::Lighting::day(), 2)
-                            .rgb
+                        render::render(&prepared, pose, &intrinsics, &lighting, 2).rgb
                     }
                     None => image::RgbImage::new(1280, 960),
                 };
@@ -697,7 +703,15 @@ impl<'a> Pipeline<'a> {
                         cameras::orbit_path(&parsed, mpp, frames, camera.height.at(0.5))
                     }
                 };
-                let lighting = lighting(spec, &scene, &lamps, &facades);
+                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
+                let lighting = lighting(spec, &sun, &scene, &lamps, &facades);
+                let relight = (spec.lighting.vary == Vary::Frame).then_some({
+                    |i: usize| {
+                        let sun =
+                            render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
+                        (self::lighting(spec, &sun, &scene, &lamps, &facades), sun)
+                    }
+                });
                 let path_labels =
                     frame_labels::labels(spec, camera, &scene, &p.object_info, &p.sign_faces);
                 let thresholds = annotate::Thresholds {
@@ -717,6 +731,8 @@ impl<'a> Pipeline<'a> {
                     camera,
                     scene: &prepared,
                     lighting: &lighting,
+                    sun,
+                    relight: relight.as_ref().map(|f| f as _),
                     categories: &path_labels.categories,
                     labels: &path_labels.labels,
                     thresholds: &thresholds,
@@ -945,6 +961,8 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
         .finish();
     let overview = StageKey::new("overview", render::VERSION)
         .spec("cameras_version", &cameras::VERSION)
+        .spec("lighting", &spec.lighting)
+        .spec("seed", &spec.seed)
         .input("export", &export)
         .finish();
     let frames = spec
@@ -976,29 +994,18 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
     }
 }
 
-/// The spec's lighting: day, or night with a light at every lamp head and lit windows.
-fn lighting(spec: &Spec, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) -> render::Lighting {
-    match spec.lighting.time {
-        TimeOfDay::Day => render::Lighting::day(),
-        TimeOfDay::Night => {
-            let mpp = spec.layout.metres_per_pixel;
-            let range = spec.lighting.lamp_range as f32;
-            let lights = lamps
-                .iter()
-                .map(|lamp| render::Light {
-                    position: scene::light_position(lamp, mpp).map(|v| v as f32),
-                    colour: [1.6, 1.25, 0.8],
-                    range,
-                })
-                .collect();
-            let windows = render::LitWindows::from_facades(
-                scene,
-                facades,
-                spec.lighting.lit_windows as f32,
-                spec.seed,
-                [1.0, 0.82, 0.5],
-            );
-            render::Lighting::night(lights, Some(windows))
-        }
-    }
+/// The spec's lighting under `sun`, with a light at every lamp head.
+fn lighting(
+    spec: &Spec,
+    sun: &render::Sun,
+    scene: &Scene,
+    lamps: &[Lamp],
+    facades: &FacadeSet,
+) -> render::Lighting {
+    let mpp = spec.layout.metres_per_pixel;
+    let heads: Vec<[f64; 3]> = lamps
+        .iter()
+        .map(|lamp| scene::light_position(lamp, mpp))
+        .collect();
+    render::lighting_for(&spec.lighting, sun, scene, facades, &heads, spec.seed)
 }

@@ -10,7 +10,12 @@ pub use crate::spec::DepthFormat;
 /// most 24 bits) and depth along the view axis in metres (0 = sky).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
+    /// The default development of `linear`: the lighting's exposure, the filmic tone
+    /// curve, sRGB ([`super::develop`]).
     pub rgb: RgbImage,
+    /// Linear scene radiance per pixel, row-major, before exposure and tone mapping,
+    /// unclamped (HDR).
+    pub linear: Vec<[f32; 3]>,
     pub instance: ImageBuffer<Luma<u32>, Vec<u32>>,
     pub depth: ImageBuffer<Luma<f32>, Vec<f32>>,
 }
@@ -137,6 +142,7 @@ mod tests {
     fn frame() -> Frame {
         Frame {
             rgb: RgbImage::new(5, 3),
+            linear: vec![[0.0; 3]; 15],
             instance: ImageBuffer::from_fn(5, 3, |x, y| {
                 Luma([[0, 1, 255, 256, 65_535, 65_536, 16_777_215][((x + y) % 7) as usize]])
             }),

@@ -1,8 +1,15 @@
-//! Lighting of a frame: sky, ambient, sun, point lights, emission and lit windows.
+//! Sun + turbidity + lamps + lit windows → [`Lighting`] of a frame: sky, ambient from
+//! above and below, the sun with its colour through the air, shadows, point lights,
+//! emission and lit windows, and the exposure of the default development.
+//!
+//! Units: a white diffuse surface under a unit light shows radiance 1; the high sun is
+//! about 1, the daylight sky's ambient about 0.3. Everything is linear RGB and HDR.
 
 use serde::{Deserialize, Serialize};
 
-use super::LitWindows;
+use super::sky::{Sky, smoothstep};
+use super::sun::{self, Sun};
+use super::{LitWindows, develop};
 
 /// A point light with a smooth falloff to zero at `range`:
 /// `colour · (1 − (d / range)²)²` at distance `d < range`.
@@ -16,50 +23,118 @@ pub struct Light {
 /// Everything about a frame's light; all colours linear RGB.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Lighting {
-    /// Background colour where nothing is drawn.
-    pub sky: [f32; 3],
+    /// Radiance where nothing is drawn.
+    pub sky: Sky,
+    /// Ambient light on an upward surface (the sky's irradiance ÷ π).
     pub ambient: [f32; 3],
+    /// Ambient light on a downward surface (light bounced off the ground).
+    pub ground_ambient: [f32; 3],
     /// Towards the sun, unit length.
     pub sun_direction: [f32; 3],
     /// Zero at night.
     pub sun_colour: [f32; 3],
-    /// Lamp lights at night (empty by day).
+    /// Whether the sun casts shadows (a shadow map of the whole scene).
+    pub shadows: bool,
+    /// Lamp lights after dusk (empty by day).
     pub lights: Vec<Light>,
     /// Scale of the materials' emissive colours: 1 at night (lamp heads glow), 0 by day.
     pub emission: f32,
-    /// Lit windows at night; `None` by day.
+    /// Lit windows after dusk; `None` by day.
     pub windows: Option<LitWindows>,
+    /// Exposure of the default development ([`develop::develop`]) of `Frame::rgb`.
+    pub exposure: f32,
 }
 
+/// The night sky's colour.
+pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
+/// Albedo of the ground, for the light it bounces up.
+const GROUND_ALBEDO: f32 = 0.2;
+/// Colour of a street lamp at full strength.
+pub const LAMP_COLOUR: [f32; 3] = [1.6, 1.25, 0.8];
+/// Colour of a lit window.
+pub const WINDOW_COLOUR: [f32; 3] = [1.0, 0.82, 0.5];
+
 impl Lighting {
-    /// A clear day: blue sky, sun from the south-east and high, soft ambient, no emission.
+    /// A clear day: the `day` preset's sun (high, south-east), turbidity 3, shadows, no
+    /// lamps.
     pub fn day() -> Lighting {
-        // (0.4, 0.8, 0.45) normalised by hand: length √(0.16 + 0.64 + 0.2025) ≈ 1.001248.
-        let inv = 1.0 / 1.001_248_4;
-        Lighting {
-            sky: [0.45, 0.62, 0.9],
-            ambient: [0.32, 0.34, 0.38],
-            sun_direction: [0.4 * inv, 0.8 * inv, 0.45 * inv],
-            sun_colour: [0.95, 0.9, 0.82],
-            lights: Vec::new(),
-            emission: 0.0,
-            windows: None,
-        }
+        Lighting::from_sun(&sun::DAY, 3.0, Vec::new(), None)
     }
 
     /// Night: a dark sky, a faint ambient, no sun, the given lamp lights, glowing emissive
     /// materials and (optionally) lit windows.
     pub fn night(lights: Vec<Light>, windows: Option<LitWindows>) -> Lighting {
+        Lighting::from_sun(&sun::NIGHT, 3.0, lights, windows)
+    }
+
+    /// The light of `sun` through air of `turbidity`. `lights` (at full strength) and
+    /// `windows` come on as the sun sets: off above 10° of elevation, fully on below 3°.
+    pub fn from_sun(
+        sun: &Sun,
+        turbidity: f64,
+        lights: Vec<Light>,
+        windows: Option<LitWindows>,
+    ) -> Lighting {
+        let sun_colour = sun_colour(sun.elevation, turbidity);
+        let sky = Sky::daylight(sun, turbidity, sun_colour, NIGHT_SKY);
+        let night_ambient = [0.02, 0.022, 0.03];
+        let ambient: [f32; 3] = std::array::from_fn(|k| sky.ambient_up[k].max(night_ambient[k]));
+        let d = sun.direction();
+        let rise = d[1].max(0.0) as f32;
+        let ground_ambient: [f32; 3] =
+            std::array::from_fn(|k| GROUND_ALBEDO * (ambient[k] + sun_colour[k] * rise));
+        let dark = (1.0 - smoothstep(3.0, 10.0, sun.elevation)) as f32;
+        let lights = if dark > 0.0 {
+            lights
+                .into_iter()
+                .map(|l| Light {
+                    colour: l.colour.map(|c| c * dark),
+                    ..l
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let windows = windows.filter(|_| dark > 0.0).map(|w| LitWindows {
+            colour: w.colour.map(|c| c * dark),
+            ..w
+        });
+        // The default development exposes for the light falling on the scene: about 1 by
+        // day, more at dusk, at most 2.5 at night (lamps then fill the frame's highlights).
+        let key = develop::luminance(ambient) + develop::luminance(sun_colour) * rise;
+        let exposure = (0.9 / key.max(0.01)).clamp(0.75, 2.5);
         Lighting {
-            sky: [0.005, 0.007, 0.02],
-            ambient: [0.02, 0.022, 0.03],
-            sun_direction: [0.0, 1.0, 0.0],
-            sun_colour: [0.0; 3],
+            sky,
+            ambient,
+            ground_ambient,
+            sun_direction: d.map(|v| v as f32),
+            sun_colour,
+            shadows: true,
             lights,
-            emission: 1.0,
+            emission: dark,
             windows,
+            exposure,
         }
     }
+}
+
+/// The direct sun's colour at `elevation` degrees: extinction along the air mass
+/// (Kasten and Young 1989) with Rayleigh and aerosol optical depths per channel (the
+/// aerosol part grows with turbidity), fading out as the sun sets.
+pub fn sun_colour(elevation: f64, turbidity: f64) -> [f32; 3] {
+    if elevation <= -1.0 {
+        return [0.0; 3];
+    }
+    let e = elevation.max(0.0);
+    let mass = 1.0 / (libm::sin(e.to_radians()) + 0.50572 * libm::pow(e + 6.07995, -1.6364));
+    let aerosol = (turbidity - 1.0).max(0.0) * 0.5;
+    let depth = [
+        0.04 + 0.05 * aerosol,
+        0.09 + 0.055 * aerosol,
+        0.20 + 0.065 * aerosol,
+    ];
+    let fade = smoothstep(-1.0, 1.0, elevation);
+    depth.map(|t| (1.15 * libm::exp(-t * mass) * fade) as f32)
 }
 
 #[cfg(test)]
@@ -73,8 +148,26 @@ mod tests {
         let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         assert!((len2 - 1.0).abs() < 1e-5, "{len2}");
         assert_eq!(day.emission, 0.0);
+        assert!(day.lights.is_empty());
         let night = Lighting::night(Vec::new(), None);
         assert_eq!(night.sun_colour, [0.0; 3]);
-        assert!(night.sky.iter().zip(day.sky).all(|(n, d)| *n < d));
+        assert_eq!(night.emission, 1.0);
+        let (n, s) = (
+            night.sky.radiance([0.0, 1.0, 0.0]),
+            day.sky.radiance([0.0, 1.0, 0.0]),
+        );
+        assert!(n.iter().zip(s).all(|(n, d)| *n < d));
+        assert!(day.ambient.iter().all(|&a| a > 0.1), "{:?}", day.ambient);
+    }
+
+    #[test]
+    fn the_sun_reddens_and_dims_as_it_sets() {
+        let noon = sun_colour(60.0, 3.0);
+        let low = sun_colour(3.0, 3.0);
+        assert!(noon[2] > 0.6 && noon[0] > 0.85, "{noon:?}");
+        assert!(low[0] > 2.0 * low[2] && low[0] < noon[0], "{low:?}");
+        assert_eq!(sun_colour(-5.0, 3.0), [0.0; 3]);
+        let hazy = sun_colour(30.0, 8.0);
+        assert!(hazy[1] < sun_colour(30.0, 2.0)[1]);
     }
 }

@@ -45,6 +45,7 @@
 pub const VERSION: u32 = 3;
 
 mod camera_pose;
+pub mod develop;
 mod footprint;
 mod frame;
 mod intrinsics;
@@ -53,11 +54,17 @@ mod lit_windows;
 mod mip_texture;
 mod prepared_scene;
 mod render_error;
+mod scene_lighting;
 mod screen_triangle;
+mod shadow_map;
+mod sky;
 mod srgb;
+mod sun;
 mod tile;
 mod view;
 
+#[cfg(test)]
+mod shadow_tests;
 #[cfg(test)]
 mod tests;
 
@@ -65,10 +72,13 @@ pub use camera_pose::CameraPose;
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs, pack_ids, unpack_ids};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
-pub use lighting::{Light, Lighting};
+pub use lighting::{LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour};
 pub use lit_windows::LitWindows;
 pub use prepared_scene::{MAX_OBJECTS, PreparedScene, prepare};
 pub use render_error::RenderError;
+pub use scene_lighting::lighting_for;
+pub use sky::Sky;
+pub use sun::{Sun, solar_position};
 
 use image::{ImageBuffer, Luma, Rgb, RgbImage};
 use rayon::prelude::*;
@@ -148,6 +158,11 @@ pub fn render_measuring(
         .windows
         .as_ref()
         .map(|w| WindowLookup::new(w, scene.textures.len()));
+    let shadows = if lighting.shadows {
+        scene.shadow_map(lighting.sun_direction)
+    } else {
+        None
+    };
     let ctx = FrameContext {
         scene,
         view: &view,
@@ -156,6 +171,7 @@ pub fn render_measuring(
         bins: &bins,
         lights: &lights,
         windows: windows.as_ref(),
+        shadows: shadows.as_deref(),
         samples,
         width,
         height,
@@ -235,6 +251,7 @@ fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
 
 fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
     let mut rgb = RgbImage::new(width, height);
+    let mut linear = vec![[0f32; 3]; width as usize * height as usize];
     let mut instance = ImageBuffer::new(width, height);
     let mut depth = ImageBuffer::new(width, height);
     for t in tiles {
@@ -249,22 +266,26 @@ fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
                 y,
                 Rgb([t.rgb[3 * k], t.rgb[3 * k + 1], t.rgb[3 * k + 2]]),
             );
+            linear[(y * width + x) as usize] = t.linear[k];
             instance.put_pixel(x, y, Luma([t.instance[k]]));
             depth.put_pixel(x, y, Luma([t.depth[k]]));
         }
     }
     Frame {
         rgb,
+        linear,
         instance,
         depth,
     }
 }
 
 fn sky_frame(width: u32, height: u32, lighting: &Lighting) -> Frame {
-    let table = srgb::srgb();
-    let sky = Rgb(lighting.sky.map(|c| table.to_srgb8(c)));
+    // No usable view: the sky at the horizon, everywhere.
+    let sky = lighting.sky.radiance([0.0, 0.0, -1.0]);
+    let linear = vec![sky; width as usize * height as usize];
     Frame {
-        rgb: RgbImage::from_pixel(width, height, sky),
+        rgb: develop::develop(&linear, width, height, lighting.exposure),
+        linear,
         instance: ImageBuffer::new(width, height),
         depth: ImageBuffer::new(width, height),
     }

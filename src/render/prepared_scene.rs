@@ -1,11 +1,14 @@
 //! Scene → [`PreparedScene`]: decoded mip-mapped textures, flattened triangles with their
 //! instance ids and face normals, and per-object bounding boxes for frustum culling.
 
+use std::sync::{Arc, Mutex};
+
 use rayon::prelude::*;
 
 use super::RenderError;
 use super::camera_pose::{cross, dot, normalize};
 use super::mip_texture::MipTexture;
+use super::shadow_map::ShadowMap;
 use crate::model::Scene;
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
@@ -19,7 +22,13 @@ pub struct PreparedScene {
     pub(crate) materials: Vec<ShadeMaterial>,
     pub(crate) objects: Vec<ObjectBounds>,
     pub(crate) triangles: Vec<Triangle>,
+    /// The last shadow map built, with the sun direction it was built for: a camera path
+    /// under one sun builds it once.
+    shadows: Mutex<Option<LastShadowMap>>,
 }
+
+/// A sun direction's bits and its shadow map (`None`: the sun is down).
+type LastShadowMap = ([u32; 3], Option<Arc<ShadowMap>>);
 
 /// What shading needs of a material.
 pub(crate) struct ShadeMaterial {
@@ -50,6 +59,21 @@ impl PreparedScene {
     /// Number of objects (instance ids run 1..=this).
     pub fn object_count(&self) -> usize {
         self.objects.len()
+    }
+
+    /// The shadow map for the sun in direction `sun` (built now, or the last one if it was
+    /// built for the same direction). `None` when the sun is at or below the horizon.
+    pub(crate) fn shadow_map(&self, sun: [f32; 3]) -> Option<Arc<ShadowMap>> {
+        let bits = sun.map(f32::to_bits);
+        let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((key, map)) = slot.as_ref()
+            && *key == bits
+        {
+            return map.clone();
+        }
+        let map = ShadowMap::build(self, sun.map(f64::from)).map(Arc::new);
+        *slot = Some((bits, map.clone()));
+        map
     }
 
     /// Number of drawable triangles (degenerate and non-finite ones are dropped).
@@ -176,5 +200,6 @@ pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
         materials,
         objects,
         triangles,
+        shadows: Mutex::new(None),
     })
 }

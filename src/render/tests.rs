@@ -11,7 +11,7 @@ use super::view::View;
 use super::*;
 use crate::model::{Material, Mesh, PixelBox, Scene, SceneObject, Texture};
 
-fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
+pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
     Material {
         name: format!("m{}", texture.map_or(-1, i64::from)),
         colour,
@@ -38,7 +38,7 @@ fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
 
 /// A quad through corners `c` (in order around it), wound counter-clockwise around
 /// `normal`, with vertex normals `normal`.
-fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) -> Mesh {
+pub(super) fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) -> Mesh {
     let g = cross(sub(c[1], c[0]), sub(c[2], c[0]));
     let indices = if dot(g, normal) >= 0.0 {
         vec![0, 1, 2, 0, 2, 3]
@@ -54,10 +54,10 @@ fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [f32; 3]) ->
     }
 }
 
-const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+pub(super) const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 
 /// A closed box, every face wound counter-clockwise seen from outside.
-fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
+pub(super) fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
     let [x0, y0, z0] = lo;
     let [x1, y1, z1] = hi;
     let faces = [
@@ -92,7 +92,7 @@ fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
         .collect()
 }
 
-fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
+pub(super) fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
     SceneObject {
         name: name.into(),
         class: "test".into(),
@@ -111,21 +111,31 @@ fn checker_texture(size: u32, cell: u32) -> Texture {
     Texture::from_rgb(format!("checker_{size}_{cell}"), &image)
 }
 
-fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
+pub(super) fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
     CameraPose::level(eye, target)
 }
 
 /// Colour = albedo: black sky, white ambient, no sun, no emission.
-fn flat() -> Lighting {
+pub(super) fn flat() -> Lighting {
     Lighting {
-        sky: [0.0; 3],
+        sky: Sky::flat([0.0; 3]),
         ambient: [1.0; 3],
+        ground_ambient: [1.0; 3],
         sun_direction: [0.0, 1.0, 0.0],
         sun_colour: [0.0; 3],
+        shadows: false,
         lights: Vec::new(),
         emission: 0.0,
         windows: None,
+        exposure: 1.0,
     }
+}
+
+/// Pixel `(x, y)` of the frame's linear colour written as sRGB with a plain clip (no tone
+/// curve): the albedo, under [`flat`] lighting.
+fn clipped(frame: &Frame, x: u32, y: u32) -> [u8; 3] {
+    let table = super::srgb::srgb();
+    frame.linear[(y * frame.rgb.width() + x) as usize].map(|c| table.to_srgb8(c))
 }
 
 fn count(frame: &Frame, id: u32) -> usize {
@@ -269,9 +279,9 @@ fn a_quad_in_front_of_the_camera_covers_the_expected_pixels() {
             let upper = x + y < 64;
             assert_eq!(p.0[0], if upper { 1 } else { 2 }, "({x}, {y})");
             assert_eq!(frame.depth_mm().get_pixel(x, y).0[0], 1000);
-            assert_eq!(frame.rgb.get_pixel(x, y).0, [255; 3]);
+            assert_eq!(clipped(&frame, x, y), [255; 3]);
         } else {
-            assert_eq!(frame.rgb.get_pixel(x, y).0, [0; 3]);
+            assert_eq!(clipped(&frame, x, y), [0; 3]);
         }
     }
     assert_eq!(count(&frame, 1) + count(&frame, 2), 32 * 32);
@@ -653,7 +663,7 @@ fn a_checker_floor_is_textured_perspective_correctly() {
             let white = ((x / 2.0).floor() + (z / 2.0).floor()).rem_euclid(2.0) == 0.0;
             let expected = if white { [255; 3] } else { [0; 3] };
             assert_eq!(
-                frame.rgb.get_pixel(px, py).0,
+                clipped(&frame, px, py),
                 expected,
                 "({px}, {py}) at x {x:.2}, z {z:.2}"
             );
@@ -785,12 +795,7 @@ fn supersampling_smooths_colour_but_keeps_ids_exact() {
     let prepared = prepare(&scene).unwrap();
     let k = Intrinsics::from_fov(32, 32, 0.5);
     let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
-    let grey = |f: &Frame| {
-        f.rgb
-            .pixels()
-            .filter(|p| p.0[0] > 0 && p.0[0] < 255)
-            .count()
-    };
+    let grey = |f: &Frame| f.linear.iter().filter(|p| p[0] > 0.0 && p[0] < 1.0).count();
     assert_eq!(grey(&render(&prepared, &eye, &k, &flat(), 1)), 0);
     assert!(grey(&render(&prepared, &eye, &k, &flat(), 2)) > 10);
 }
@@ -849,8 +854,8 @@ fn emissive_surfaces_glow_without_any_light() {
     let off = render(&prepared, &eye, &k, &none, 1);
     none.emission = 1.0;
     let on = render(&prepared, &eye, &k, &none, 1);
-    assert_eq!(off.rgb.get_pixel(8, 8).0, [0, 0, 0]);
-    assert_eq!(on.rgb.get_pixel(8, 8).0, [255, 188, 0]);
+    assert_eq!(clipped(&off, 8, 8), [0, 0, 0]);
+    assert_eq!(clipped(&on, 8, 8), [255, 188, 0]);
 }
 
 #[test]

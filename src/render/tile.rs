@@ -5,9 +5,11 @@
 //! order, so its output does not depend on which thread runs it or when.
 
 use super::Lighting;
+use super::develop::tone;
 use super::lit_windows::WindowLookup;
 use super::prepared_scene::PreparedScene;
 use super::screen_triangle::{ScreenTri, at};
+use super::shadow_map::ShadowMap;
 use super::srgb::srgb;
 use super::view::View;
 
@@ -32,6 +34,7 @@ pub(crate) struct FrameContext<'a> {
     pub bins: &'a [Vec<u32>],
     pub lights: &'a [FrameLight],
     pub windows: Option<&'a WindowLookup>,
+    pub shadows: Option<&'a ShadowMap>,
     /// Samples per pixel side.
     pub samples: u32,
     /// Output size.
@@ -47,6 +50,7 @@ pub(crate) struct FrameContext<'a> {
 pub(crate) struct TileOut {
     pub rect: [u32; 4],
     pub rgb: Vec<u8>,
+    pub linear: Vec<[f32; 3]>,
     pub instance: Vec<u32>,
     pub depth: Vec<f32>,
 }
@@ -93,44 +97,65 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
                 && inner[1] < l.rect[3]
         })
         .collect();
-    let sky = ctx.lighting.sky;
-    let colour: Vec<[f32; 3]> = (0..iw * ih)
-        .map(|i| match id[i] {
-            NOTHING => sky,
-            t => {
-                let x = inner[0] + (i % iw) as u32;
-                let y = inner[1] + (i / iw) as u32;
-                shade(ctx, &ctx.tris[t as usize], x, y, depth[i], &lights)
-            }
-        })
-        .collect();
 
-    // Resolve: colour averaged over the s × s samples; instance and depth from the sample
-    // nearest the pixel centre (the upper-left of the central ones when s is even).
+    // Resolve, shading once per pixel and triangle: each distinct triangle (or the sky)
+    // among a pixel's s × s samples is shaded once, at the sample nearest the centre for
+    // the centre's triangle and at its first sample otherwise, and weighted by its share
+    // of the samples. Instance and depth come from the sample nearest the pixel centre
+    // (the upper-left of the central ones when s is even).
     let table = srgb();
+    let exposure = ctx.lighting.exposure;
     let (ow, oh) = ((rect[2] - rect[0]) as usize, (rect[3] - rect[1]) as usize);
-    let s = s as usize;
-    let mid = (s - 1) / 2;
-    let norm = 1.0 / (s * s) as f32;
+    let su = s as usize;
+    let mid = (su - 1) / 2;
+    let norm = 1.0 / (su * su) as f32;
     let mut out = TileOut {
         rect,
         rgb: Vec::with_capacity(ow * oh * 3),
+        linear: Vec::with_capacity(ow * oh),
         instance: Vec::with_capacity(ow * oh),
         depth: Vec::with_capacity(ow * oh),
     };
+    let scale = f64::from(s);
+    let shade_sample = |i: usize| -> [f32; 3] {
+        let x = inner[0] + (i % iw) as u32;
+        let y = inner[1] + (i / iw) as u32;
+        match id[i] {
+            NOTHING => sky(ctx, x, y),
+            t => shade(ctx, &ctx.tris[t as usize], x, y, depth[i], &lights, scale),
+        }
+    };
+    // (triangle, samples, sample to shade) per distinct triangle of a pixel.
+    let mut seen: Vec<(u32, u32, usize)> = Vec::with_capacity(su * su);
     for oy in 0..oh {
         for ox in 0..ow {
-            let mut sum = [0f32; 3];
-            for sy in 0..s {
-                for sx in 0..s {
-                    let c = colour[(oy * s + sy) * iw + ox * s + sx];
-                    sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
+            let centre = (oy * su + mid) * iw + ox * su + mid;
+            let c = if su == 1 {
+                shade_sample(centre)
+            } else {
+                seen.clear();
+                seen.push((id[centre], 0, centre));
+                for sy in 0..su {
+                    for sx in 0..su {
+                        let i = (oy * su + sy) * iw + ox * su + sx;
+                        match seen.iter_mut().find(|e| e.0 == id[i]) {
+                            Some(e) => e.1 += 1,
+                            None => seen.push((id[i], 1, i)),
+                        }
+                    }
                 }
+                let mut sum = [0f32; 3];
+                for &(_, count, i) in &seen {
+                    let c = shade_sample(i);
+                    let w = count as f32 * norm;
+                    sum = [sum[0] + c[0] * w, sum[1] + c[1] * w, sum[2] + c[2] * w];
+                }
+                sum
+            };
+            for v in c {
+                out.rgb.push(table.to_srgb8(tone(v * exposure)));
             }
-            for c in sum {
-                out.rgb.push(table.to_srgb8(c * norm));
-            }
-            let centre = (oy * s + mid) * iw + ox * s + mid;
+            out.linear.push(c);
             match id[centre] {
                 NOTHING => {
                     out.instance.push(0);
@@ -153,6 +178,21 @@ fn depth_metres(q: f64) -> f32 {
     ((1.0 / q) as f32).max(1e-6)
 }
 
+/// Sky radiance through internal pixel `(x, y)`.
+fn sky(ctx: &FrameContext, x: u32, y: u32) -> [f32; 3] {
+    let v = ctx.view;
+    let a = (f64::from(x) + 0.5 - v.cx) / v.fx;
+    let b = (f64::from(y) + 0.5 - v.cy) / v.fy;
+    let (r, u, f) = (v.basis.right, v.basis.up, v.basis.forward);
+    let d = [
+        f[0] + a * r[0] - b * u[0],
+        f[1] + a * r[1] - b * u[1],
+        f[2] + a * r[2] - b * u[2],
+    ];
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    ctx.lighting.sky.radiance(d.map(|c| c / len))
+}
+
 /// Linear colour of the surface of `tri` at internal pixel `(x, y)`, where 1/w = `q`.
 fn shade(
     ctx: &FrameContext,
@@ -161,6 +201,7 @@ fn shade(
     y: u32,
     q: f64,
     lights: &[&FrameLight],
+    scale: f64,
 ) -> [f32; 3] {
     let scene = ctx.scene;
     let source = &scene.triangles[tri.source as usize];
@@ -177,11 +218,12 @@ fn shade(
             (0.0, 0.0)
         };
         // d(u/w · w)/dx = (d(u/w)/dx − u · d(1/w)/dx) · w, and likewise for v and y.
+        // Scaled to output pixels: a pixel is shaded once, whatever its samples.
         let d = [
-            (tri.uq[0] - u * tri.q[0]) / q,
-            (tri.vq[0] - v * tri.q[0]) / q,
-            (tri.uq[1] - u * tri.q[1]) / q,
-            (tri.vq[1] - v * tri.q[1]) / q,
+            (tri.uq[0] - u * tri.q[0]) / q * scale,
+            (tri.vq[0] - v * tri.q[0]) / q * scale,
+            (tri.uq[1] - u * tri.q[1]) / q * scale,
+            (tri.vq[1] - v * tri.q[1]) / q * scale,
         ];
         let t = scene.textures[texture as usize].sample(u, v, d);
         albedo = [albedo[0] * t[0], albedo[1] * t[1], albedo[2] * t[2]];
@@ -193,35 +235,46 @@ fn shade(
     }
     let l = ctx.lighting;
     let n = source.normal;
-    let sun = (n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2])
-        .max(0.0);
+    let sun = n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2];
+    let needs_point = !lights.is_empty() || (sun > 0.0 && ctx.shadows.is_some());
+    let p = if needs_point {
+        ctx.view.unproject(px, py, 1.0 / q)
+    } else {
+        [0.0; 3]
+    };
+    let sun = if sun <= 0.0 {
+        0.0
+    } else if let Some(map) = ctx.shadows {
+        sun * map.light(p, n.map(f64::from))
+    } else {
+        sun
+    };
+    // Ambient: the sky from above, the ground's bounce from below, blended by the normal.
+    let up = 0.5 + 0.5 * n[1];
     let mut light = [
-        l.ambient[0] + l.sun_colour[0] * sun,
-        l.ambient[1] + l.sun_colour[1] * sun,
-        l.ambient[2] + l.sun_colour[2] * sun,
+        l.ground_ambient[0] + (l.ambient[0] - l.ground_ambient[0]) * up + l.sun_colour[0] * sun,
+        l.ground_ambient[1] + (l.ambient[1] - l.ground_ambient[1]) * up + l.sun_colour[1] * sun,
+        l.ground_ambient[2] + (l.ambient[2] - l.ground_ambient[2]) * up + l.sun_colour[2] * sun,
     ];
-    if !lights.is_empty() {
-        let p = ctx.view.unproject(px, py, 1.0 / q);
-        for lamp in lights {
-            let d = [
-                lamp.position[0] - p[0],
-                lamp.position[1] - p[1],
-                lamp.position[2] - p[2],
-            ];
-            let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if d2.is_nan() || d2 >= lamp.range2 || d2 <= 0.0 {
-                continue;
-            }
-            let n_dot = (f64::from(n[0]) * d[0] + f64::from(n[1]) * d[1] + f64::from(n[2]) * d[2])
-                / d2.sqrt();
-            if n_dot <= 0.0 {
-                continue;
-            }
-            let t = 1.0 - d2 / lamp.range2;
-            let k = (t * t * n_dot) as f32;
-            for (l, c) in light.iter_mut().zip(lamp.colour) {
-                *l += c * k;
-            }
+    for lamp in lights {
+        let d = [
+            lamp.position[0] - p[0],
+            lamp.position[1] - p[1],
+            lamp.position[2] - p[2],
+        ];
+        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if d2.is_nan() || d2 >= lamp.range2 || d2 <= 0.0 {
+            continue;
+        }
+        let n_dot =
+            (f64::from(n[0]) * d[0] + f64::from(n[1]) * d[1] + f64::from(n[2]) * d[2]) / d2.sqrt();
+        if n_dot <= 0.0 {
+            continue;
+        }
+        let t = 1.0 - d2 / lamp.range2;
+        let k = (t * t * n_dot) as f32;
+        for (l, c) in light.iter_mut().zip(lamp.colour) {
+            *l += c * k;
         }
     }
     let e = l.emission;

@@ -214,44 +214,6 @@ pub enum CameraPath {
     Orbit,
 }
 
-/// Day or night.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct LightingSpec {
-    /// `"day"`: sun, blue sky. `"night"`: dark sky, lamp lights, glowing lamp heads and a
-    /// share of lit windows.
-    #[serde(default)]
-    pub time: TimeOfDay,
-    /// Night: the share of facade windows that are lit.
-    #[serde(default = "default_lit_windows")]
-    #[schemars(range(min = 0.0, max = 1.0))]
-    pub lit_windows: f64,
-    /// Night: how far a street lamp's light reaches, in metres.
-    #[serde(default = "default_lamp_range")]
-    #[schemars(range(min = 1.0, max = 200.0))]
-    pub lamp_range: f64,
-}
-
-impl Default for LightingSpec {
-    fn default() -> Self {
-        LightingSpec {
-            time: TimeOfDay::Day,
-            lit_windows: default_lit_windows(),
-            lamp_range: default_lamp_range(),
-        }
-    }
-}
-
-/// Time of day.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum TimeOfDay {
-    // Plain comments: the schema stays a simple enum.
-    #[default]
-    Day,
-    Night,
-}
-
 /// What the annotations keep.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -338,12 +300,6 @@ fn default_lane_offset() -> f64 {
 }
 fn default_supersample() -> u32 {
     1
-}
-fn default_lit_windows() -> f64 {
-    0.3
-}
-fn default_lamp_range() -> f64 {
-    25.0
 }
 fn default_min_pixels() -> u64 {
     16

@@ -26,6 +26,7 @@ mod fs_world;
 mod input_file;
 mod key_path;
 mod layout_checks;
+mod lighting_spec;
 mod limits_spec;
 mod locator;
 mod object_checks;
@@ -44,8 +45,7 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 pub use camera_spec::{
-    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, DepthFormat, FrameRule, LightingSpec,
-    MAX_FRAMES, TimeOfDay,
+    AnnotationsSpec, CameraPath, CameraSpec, DEFAULT_FRAMES, DepthFormat, FrameRule, MAX_FRAMES,
 };
 pub use class_checks::produced_classes;
 pub use cost_checks::{CostEstimate, MAX_INSTANCE_ID};
@@ -56,6 +56,7 @@ pub use input_file::{
     MAX_TEXTURE_BYTES, check_file, read_capped, read_text_capped,
 };
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
+pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
 pub use render::render;
@@ -149,6 +150,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     if let Some(extent) = extent {
         cost_checks::check_costs(&spec, extent, &mut findings);
     }
+    lighting_spec::check_lighting(&spec.lighting, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

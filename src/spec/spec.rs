@@ -10,7 +10,8 @@ use std::fmt;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
+use super::camera_spec::{AnnotationsSpec, CameraSpec};
+use super::lighting_spec::LightingSpec;
 use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
 

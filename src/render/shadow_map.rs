@@ -1,0 +1,221 @@
+//! Prepared scene + direction to the sun → [`ShadowMap`]: an orthographic depth map of
+//! the whole scene seen from the sun, and the soft shadow test against it.
+//!
+//! - **Extent and resolution** come from the scene's bounds only: the map covers the
+//!   scene's box as seen from the sun, with square texels of `max extent / MAX_SIDE` (at
+//!   least [`MIN_TEXEL`]). Every frame under the same sun reads the same map, so shadows
+//!   cannot crawl as the camera moves.
+//! - **Content**: per texel, the largest `p · sun` (the surface nearest the sun) over every
+//!   triangle covering the texel centre, both faces. A max does not depend on the order
+//!   of the triangles, and bands of rows are rasterized in parallel, each owning its rows.
+//! - **Test** at a surface point `p` with normal `n`: `p` is moved one texel along `n`
+//!   (normal offset), then compared with a bias of `texel · (0.5 + 2 · tan θ)` (slope
+//!   scaled; θ is the angle between `n` and the sun), over a 4 × 4 texel grid weighted as
+//!   a 3-texel box filter (percentage-closer filtering with a fixed kernel): soft edges
+//!   about three texels wide.
+
+use rayon::prelude::*;
+
+use super::prepared_scene::PreparedScene;
+
+/// Largest side of the map in texels.
+pub(crate) const MAX_SIDE: f64 = 4096.0;
+/// Smallest texel, metres.
+pub(crate) const MIN_TEXEL: f64 = 0.005;
+/// Rows per parallel band.
+const BAND: usize = 32;
+
+/// The scene's depth as seen from the sun.
+pub(crate) struct ShadowMap {
+    /// Towards the sun.
+    pub(crate) dir: [f64; 3],
+    right: [f64; 3],
+    up: [f64; 3],
+    origin: [f64; 2],
+    pub(crate) texel: f64,
+    width: usize,
+    height: usize,
+    depth: Vec<f32>,
+}
+
+impl ShadowMap {
+    /// The map of `scene` for the sun in direction `dir` (unit, towards the sun). `None`
+    /// for an empty scene or a sun at or below the horizon.
+    pub(crate) fn build(scene: &PreparedScene, dir: [f64; 3]) -> Option<ShadowMap> {
+        if dir[1].is_nan() || dir[1] <= 1e-3 || scene.triangles.is_empty() {
+            return None;
+        }
+        // Light space: `right` horizontal, `up` = right × (−dir) … any fixed basis works.
+        let r = [dir[2], 0.0, -dir[0]];
+        let rl = (r[0] * r[0] + r[2] * r[2]).sqrt();
+        let right = if rl > 1e-9 {
+            [r[0] / rl, 0.0, r[2] / rl]
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        let up = cross(dir, right);
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for o in &scene.objects {
+            if o.min[0].is_nan() || o.min[0] > o.max[0] {
+                continue;
+            }
+            for i in 0..8 {
+                let p = [
+                    if i & 1 == 0 { o.min[0] } else { o.max[0] },
+                    if i & 2 == 0 { o.min[1] } else { o.max[1] },
+                    if i & 4 == 0 { o.min[2] } else { o.max[2] },
+                ];
+                let q = [dot(p, right), dot(p, up)];
+                for k in 0..2 {
+                    lo[k] = lo[k].min(q[k]);
+                    hi[k] = hi[k].max(q[k]);
+                }
+            }
+        }
+        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
+            return None;
+        }
+        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let texel = (extent / MAX_SIDE).max(MIN_TEXEL);
+        // One texel of margin on every side, for the filter.
+        let origin = [lo[0] - texel, lo[1] - texel];
+        let width = ((hi[0] - lo[0]) / texel).ceil() as usize + 2;
+        let height = ((hi[1] - lo[1]) / texel).ceil() as usize + 2;
+
+        // Triangles in texel coordinates, binned by band.
+        let tris: Vec<[[f64; 3]; 3]> = scene
+            .triangles
+            .iter()
+            .map(|t| {
+                t.p.map(|p| {
+                    let p = p.map(f64::from);
+                    [
+                        (dot(p, right) - origin[0]) / texel,
+                        (dot(p, up) - origin[1]) / texel,
+                        dot(p, dir),
+                    ]
+                })
+            })
+            .collect();
+        let bands = height.div_ceil(BAND);
+        let mut bins = vec![Vec::new(); bands];
+        for (i, t) in tris.iter().enumerate() {
+            let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);
+            let y1 = t.iter().map(|v| v[1]).fold(f64::NEG_INFINITY, f64::max);
+            let (b0, b1) = (
+                (y0.max(0.0) as usize / BAND).min(bands - 1),
+                (y1.max(0.0) as usize / BAND).min(bands - 1),
+            );
+            for bin in &mut bins[b0..=b1] {
+                bin.push(i as u32);
+            }
+        }
+        let depth: Vec<f32> = bins
+            .par_iter()
+            .enumerate()
+            .flat_map_iter(|(b, bin)| {
+                let rows = [b * BAND, ((b + 1) * BAND).min(height)];
+                let mut band = vec![f32::NEG_INFINITY; (rows[1] - rows[0]) * width];
+                for &i in bin {
+                    raster(&tris[i as usize], rows, width, &mut band);
+                }
+                band
+            })
+            .collect();
+        Some(ShadowMap {
+            dir,
+            right,
+            up,
+            origin,
+            texel,
+            width,
+            height,
+            depth,
+        })
+    }
+
+    /// Share of the sun reaching surface point `p` with unit normal `n`, 0–1.
+    pub(crate) fn light(&self, p: [f64; 3], n: [f64; 3]) -> f32 {
+        let cos = dot(n, self.dir);
+        if cos <= 0.0 {
+            return 0.0;
+        }
+        let tan = ((1.0 - cos * cos).max(0.0).sqrt() / cos).min(5.0);
+        let q = [
+            p[0] + n[0] * self.texel,
+            p[1] + n[1] * self.texel,
+            p[2] + n[2] * self.texel,
+        ];
+        let z = dot(q, self.dir) + self.texel * (0.5 + 2.0 * tan);
+        let fx = (dot(q, self.right) - self.origin[0]) / self.texel - 0.5;
+        let fy = (dot(q, self.up) - self.origin[1]) / self.texel - 0.5;
+        if !(fx.is_finite() && fy.is_finite()) {
+            return 1.0;
+        }
+        let (ix, iy) = (fx.floor(), fy.floor());
+        let (tx, ty) = (fx - ix, fy - iy);
+        // A 3-texel box centred on the point: texels ix−1 … ix+2, the outer two partly.
+        let wx = [(1.0 - tx) / 3.0, 1.0 / 3.0, 1.0 / 3.0, tx / 3.0];
+        let wy = [(1.0 - ty) / 3.0, 1.0 / 3.0, 1.0 / 3.0, ty / 3.0];
+        let mut lit = 0.0;
+        for (j, wy) in wy.iter().enumerate() {
+            let y = iy as i64 - 1 + j as i64;
+            if y < 0 || y >= self.height as i64 {
+                lit += wy;
+                continue;
+            }
+            let row = &self.depth[y as usize * self.width..][..self.width];
+            for (i, wx) in wx.iter().enumerate() {
+                let x = ix as i64 - 1 + i as i64;
+                if x < 0 || x >= self.width as i64 || f64::from(row[x as usize]) <= z {
+                    lit += wy * wx;
+                }
+            }
+        }
+        lit as f32
+    }
+}
+
+/// Writes the max depth of triangle `t` (texel coordinates and depth) at the texel centres
+/// it covers within `rows` into `band`.
+fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
+    let [a, b, c] = *t;
+    let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if area.is_nan() || area.abs() <= 1e-12 {
+        return;
+    }
+    let x0 = a[0].min(b[0]).min(c[0]).floor().max(0.0) as usize;
+    let x1 = (a[0].max(b[0]).max(c[0]).ceil().max(0.0) as usize).min(width);
+    let y0 = (a[1].min(b[1]).min(c[1]).floor().max(0.0) as usize).max(rows[0]);
+    let y1 = (a[1].max(b[1]).max(c[1]).ceil().max(0.0) as usize).min(rows[1]);
+    let inv = 1.0 / area;
+    for y in y0..y1 {
+        let py = y as f64 + 0.5;
+        let row = &mut band[(y - rows[0]) * width..][..width];
+        for (x, slot) in row.iter_mut().enumerate().take(x1).skip(x0) {
+            let px = x as f64 + 0.5;
+            // Barycentric weights; a texel centre on an edge counts for both sides.
+            let w0 = ((b[0] - px) * (c[1] - py) - (b[1] - py) * (c[0] - px)) * inv;
+            let w1 = ((c[0] - px) * (a[1] - py) - (c[1] - py) * (a[0] - px)) * inv;
+            let w2 = 1.0 - w0 - w1;
+            if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
+                let z = (w0 * a[2] + w1 * b[2] + w2 * c[2]) as f32;
+                if z > *slot {
+                    *slot = z;
+                }
+            }
+        }
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
