@@ -43,4 +43,5 @@ pub mod preview;
 pub mod render;
 pub mod rng;
 pub mod scene;
+pub mod sensor;
 pub mod spec;

@@ -27,7 +27,8 @@ pub fn coco(
 ///
 /// - `images`: `id` (frame index + 1), `file_name`, `width`, `height`, and the extra keys
 ///   `intrinsics` `{fx, fy, cx, cy}` (pixels) and `pose` `{eye, target}` (metres, x east,
-///   y up, z south; up is +y).
+///   y up, z south; up is +y), and `conditions` when the frames stage records the weather
+///   and sensor values the frame drew.
 /// - `categories`: `id`, `name`, in the order given.
 /// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
 ///   every labelled object whose category is listed and that passes the thresholds: `id`,
@@ -64,6 +65,12 @@ impl CocoWriter {
 
     /// Appends the next frame (image ids follow the order of the calls).
     pub fn push(&mut self, frame: &FrameAnnotations) {
+        self.push_with_conditions(frame, &Value::Null);
+    }
+
+    /// [`CocoWriter::push`], recording `conditions` (the weather and sensor values the
+    /// frame drew) as the image entry's `conditions` after its `pose`, unless it is null.
+    pub fn push_with_conditions(&mut self, frame: &FrameAnnotations, conditions: &Value) {
         self.frames += 1;
         let image_id = self.frames;
         let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
@@ -78,6 +85,10 @@ impl CocoWriter {
                 "target": frame.pose.target.map(|v| round(v, 1e3)),
             },
         });
+        let mut image = image;
+        if let (false, Value::Object(map)) = (conditions.is_null(), &mut image) {
+            map.insert("conditions".into(), conditions.clone());
+        }
         line(&mut self.images, &image);
         for object in &frame.objects {
             let Some(category) = object.label.category else {

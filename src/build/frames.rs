@@ -18,8 +18,9 @@ use serde_json::json;
 use super::codec;
 use crate::annotate::{self, Category, CocoWriter, FrameInput, ObjectLabel, Thresholds};
 use crate::model::{CameraPose, PixelBox};
-use crate::render::{self, Intrinsics, Lighting, PreparedScene};
-use crate::spec::CameraSpec;
+use crate::render::{self, Frame, Intrinsics, Lighting, PreparedScene};
+use crate::sensor::{self, SensorFrame, WeatherLight};
+use crate::spec::{CameraSpec, WeatherSpec};
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
@@ -32,6 +33,9 @@ pub struct PathInput<'a> {
     pub labels: &'a [ObjectLabel],
     pub thresholds: &'a Thresholds,
     pub yolo: bool,
+    pub weather: &'a WeatherSpec,
+    /// Seed of this camera's per-frame conditions (`sensor::draw`).
+    pub conditions_seed: u64,
 }
 
 /// A box drawn on the contact sheet: category and visible box.
@@ -72,15 +76,46 @@ pub fn render_path<E>(
     let picks = contact_sheet_picks(poses.len());
     let mut sheet = Vec::with_capacity(picks.len());
     let mut coco = CocoWriter::new(input.categories);
+    let mut conditions_json = Vec::with_capacity(poses.len());
     for (i, pose) in poses.iter().enumerate() {
-        let (frame, footprints) = render::render_measuring(
+        let conditions = sensor::draw(
+            input.weather,
+            &camera.sensor,
+            input.conditions_seed,
+            i as u64,
+        );
+        let lighting = weathered(input.lighting, &sensor::weather_light(&conditions));
+        let (mut frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             &intrinsics,
-            input.lighting,
+            lighting.as_ref().unwrap_or(input.lighting),
             camera.supersample,
             &measured,
         );
+        // The sensor stage replaces the RGB image only: ids, depth and labels stay as
+        // rendered.
+        let linear = linear_radiance(&frame);
+        let depth: Vec<f32> = frame
+            .depth_mm
+            .pixels()
+            .map(|p| f32::from(p.0[0]) / 1000.0)
+            .collect();
+        let developed = sensor::develop(
+            &SensorFrame {
+                width,
+                height,
+                linear: &linear,
+                depth: &depth,
+                pose: *pose,
+                intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
+                motion: sensor::travel_direction(poses, i),
+                horizon: input.lighting.sky,
+            },
+            &conditions,
+        );
+        frame.rgb = developed.rgb;
+        let drawn = conditions.to_json(developed.exposure);
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance: &frame.instance,
@@ -103,7 +138,8 @@ pub fn render_path<E>(
         emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
         emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
         emit(format!("{dir}/depth/{i:06}.png"), pngs.depth_mm)?;
-        coco.push(&summary);
+        coco.push_with_conditions(&summary, &drawn);
+        conditions_json.push(drawn);
         if input.yolo {
             let text = annotate::yolo(input.categories, &summary);
             emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
@@ -133,8 +169,9 @@ pub fn render_path<E>(
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
-        "frames": poses.iter().enumerate().map(|(i, p)| json!({
-            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target
+        "frames": poses.iter().zip(conditions_json).enumerate().map(|(i, (p, c))| json!({
+            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
+            "conditions": c
         })).collect::<Vec<_>>(),
     });
     emit(
@@ -143,6 +180,27 @@ pub fn render_path<E>(
     )?;
     let picture = contact_sheet(&sheet, input.categories);
     emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
+}
+
+/// The frame's linear radiance, for the sensor stage.
+///
+/// MERGE: the renderer is to hand over `Frame.linear` (linear HDR radiance before
+/// exposure); until then this decodes the 8-bit sRGB image, which clips at 1. Replace the
+/// body with `frame.linear.clone()` (or borrow it) when `Frame.linear` lands.
+fn linear_radiance(frame: &Frame) -> Vec<[f32; 3]> {
+    sensor::decode_srgb(&frame.rgb)
+}
+
+/// The lighting under a frame's weather, when it differs from the path's: the sun and
+/// the sky light scaled. (`shadow_strength` is for the renderer's shadows.)
+fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
+    if light.sun_scale == 1.0 && light.sky_scale == 1.0 {
+        return None;
+    }
+    let mut out = lighting.clone();
+    out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
+    out.ambient = out.ambient.map(|c| c * light.sky_scale);
+    Some(out)
 }
 
 /// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the

@@ -3,6 +3,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::sensor_spec::SensorSpec;
+
 /// One camera path; its frames and annotations go to `frames/<name>/`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -56,6 +58,9 @@ pub struct CameraSpec {
     #[serde(default = "default_supersample")]
     #[schemars(range(min = 1, max = 4))]
     pub supersample: u32,
+    /// Exposure, tone curve, noise, compression and lens effects of the RGB image.
+    #[serde(default)]
+    pub sensor: SensorSpec,
 }
 
 /// The most frames one camera path takes (the schema's bound on `frames`, and the cap on

@@ -27,11 +27,15 @@ mod object_checks;
 mod object_spec;
 mod render;
 mod schema_check;
+mod sensor_ranges;
+mod sensor_spec;
 #[allow(clippy::module_inception)]
 mod spec;
 mod spec_errors;
 mod toml_json;
 mod value_checks;
+mod value_range;
+mod weather_spec;
 
 use std::path::{Path, PathBuf};
 
@@ -46,11 +50,14 @@ pub use fs_world::FsWorld;
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use object_spec::{Ground, ObjectKind, ObjectSpec, SignKind, TextCase};
 pub use render::render;
+pub use sensor_spec::{ExposureMode, SensorSpec};
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
     OnError, Palette, PaletteColour, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
+pub use value_range::ValueRange;
+pub use weather_spec::{Weather, WeatherKinds, WeatherSpec};
 
 use findings::Findings;
 use key_path::KeyPath;

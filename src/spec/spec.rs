@@ -12,6 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::camera_spec::{AnnotationsSpec, CameraSpec, LightingSpec};
 use super::object_spec::ObjectSpec;
+use super::weather_spec::WeatherSpec;
 
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
@@ -52,6 +53,9 @@ pub struct Spec {
     /// Day or night.
     #[serde(default)]
     pub lighting: LightingSpec,
+    /// Clear, overcast, fog or rain, fixed or drawn per frame.
+    #[serde(default)]
+    pub weather: WeatherSpec,
     /// What the annotations keep.
     #[serde(default)]
     pub annotations: AnnotationsSpec,
