@@ -78,11 +78,9 @@ pub fn draw(weather: &WeatherSpec, sensor: &SensorSpec, seed: u64, frame: u64) -
         // 53 random bits → [0, 1).
         (stream.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     };
-    let value = |name: &str, range: ValueRange| {
-        match range {
-            ValueRange::Fixed(v) => v,
-            ValueRange::Between(_) => range.at(uniform(name)),
-        }
+    let value = |name: &str, range: ValueRange| match range {
+        ValueRange::Fixed(v) => v,
+        ValueRange::Between(_) => range.at(uniform(name)),
     };
     let choices = weather.kind.choices();
     let pick = ((uniform("weather") * choices.len() as f64) as usize).min(choices.len() - 1);

@@ -58,7 +58,7 @@ pub(crate) fn motion_blur(
             };
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
             let len = (dx * dx + dy * dy).sqrt();
-            if !(len >= 1.0) {
+            if len.is_nan() || len < 1.0 {
                 continue;
             }
             let scale = if len > MAX_BLUR { MAX_BLUR / len } else { 1.0 };

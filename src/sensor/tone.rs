@@ -3,7 +3,7 @@
 //! linear radiance.
 //!
 //! The tone curve is Narkowicz's fit of the ACES filmic curve, a rational function (only
-//! + − × ÷): a toe that keeps shadows soft, mid grey 0.18 → 0.27, and a shoulder that
+//! plus, minus, times, divide): a toe that keeps shadows soft, mid grey 0.18 → 0.27, and a shoulder that
 //! rolls highlights off towards white instead of clipping them. Logs and powers come from
 //! the pure-Rust `libm`, so every machine gets the same bits.
 

@@ -185,8 +185,8 @@ fn wet(
         .project_from([0.0; 3], mirrored)
         .filter(|p| p[0] >= 0.0 && p[1] >= 0.0 && (p[0] as usize) < w && (p[1] as usize) < h)
         .map_or(sky, |p| before[p[1] as usize * w + p[0] as usize]);
-    let reflection = [0, 1, 2].map(|k| 0.6 * seen[k] + 0.4 * sky[k]);
-    let k = (0.85 * s * fresnel).min(1.0);
+    let reflection = [0, 1, 2].map(|k| 0.3 * seen[k] + 0.7 * sky[k]);
+    let k = (0.5 * s * fresnel).min(1.0);
     [0, 1, 2].map(|i| out[i] * (1.0 - k) + reflection[i] * k)
 }
 

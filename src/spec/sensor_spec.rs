@@ -88,13 +88,7 @@ mod tests {
         let s: SensorSpec =
             toml::from_str("exposure = \"fixed\"\nev = [-1, 1]\njpeg_quality = [60, 90]").unwrap();
         assert_eq!(s.exposure, ExposureMode::Fixed);
-        assert_eq!(
-            s.ev,
-            ValueRange::Between([-1.0, 1.0])
-        );
-        assert_eq!(
-            s.jpeg_quality,
-            Some(ValueRange::Between([60.0, 90.0]))
-        );
+        assert_eq!(s.ev, ValueRange::Between([-1.0, 1.0]));
+        assert_eq!(s.jpeg_quality, Some(ValueRange::Between([60.0, 90.0])));
     }
 }

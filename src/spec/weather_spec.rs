@@ -125,10 +125,7 @@ mod tests {
     fn one_kind_or_a_mix() {
         let w: WeatherSpec = toml::from_str("kind = \"fog\"\nstrength = [0.2, 0.6]").unwrap();
         assert_eq!(w.kind.choices(), [Weather::Fog]);
-        assert_eq!(
-            w.strength,
-            ValueRange::Between([0.2, 0.6])
-        );
+        assert_eq!(w.strength, ValueRange::Between([0.2, 0.6]));
         let w: WeatherSpec = toml::from_str("kind = [\"clear\", \"rain\", \"rain\"]").unwrap();
         assert_eq!(
             w.kind.choices(),
