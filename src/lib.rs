@@ -44,6 +44,7 @@ pub mod preview;
 pub mod render;
 pub mod rng;
 pub mod scene;
+pub mod sensor;
 pub mod spec;
 pub mod stats;
 #[doc(hidden)]

@@ -30,7 +30,8 @@ pub fn coco(
 ///   east, y up, z south; `up` the direction of the image's top, +y for a level camera),
 ///   with the path's drawn `heading`, `pitch`, `roll` (degrees) and `height` (metres)
 ///   when it draws them, and, when the frame has a depth image, `depth`
-///   `{file_name, format, scale}` (metres per stored unit).
+///   `{file_name, format, scale}` (metres per stored unit), and `conditions` when the
+///   frames stage records the weather and sensor values the frame drew.
 /// - ignore regions: a listed object that shows pixels but misses the thresholds is
 ///   written with `iscrowd` 1 and its RLE mask, so pycocotools' COCOeval (and loaders
 ///   that follow it) neither rewards nor punishes a detection of it.
@@ -75,6 +76,12 @@ impl CocoWriter {
 
     /// Appends the next frame (image ids follow the order of the calls).
     pub fn push(&mut self, frame: &FrameAnnotations) {
+        self.push_with_conditions(frame, &Value::Null);
+    }
+
+    /// [`CocoWriter::push`], recording `conditions` (the weather and sensor values the
+    /// frame drew) as the image entry's `conditions` after its `pose`, unless it is null.
+    pub fn push_with_conditions(&mut self, frame: &FrameAnnotations, conditions: &Value) {
         self.frames += 1;
         let image_id = self.frames;
         let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
@@ -106,6 +113,9 @@ impl CocoWriter {
                 "depth".into(),
                 json!({"file_name": depth.file_name, "format": depth.format, "scale": depth.scale}),
             );
+        }
+        if let (false, Value::Object(map)) = (conditions.is_null(), &mut image) {
+            map.insert("conditions".into(), conditions.clone());
         }
         line(&mut self.images, &image);
         for object in &frame.objects {

@@ -22,7 +22,8 @@ use crate::annotate::{
 };
 use crate::model::{CameraPose, PixelBox};
 use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
-use crate::spec::CameraSpec;
+use crate::sensor::{self, SensorFrame, WeatherLight};
+use crate::spec::{CameraSpec, WeatherSpec};
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
@@ -41,6 +42,9 @@ pub struct PathInput<'a> {
     pub thresholds: &'a Thresholds,
     /// YOLO's classes, when YOLO files are written.
     pub yolo: Option<&'a YoloClasses>,
+    pub weather: &'a WeatherSpec,
+    /// Seed of this camera's per-frame conditions (`sensor::draw`).
+    pub conditions_seed: u64,
 }
 
 /// A box drawn on the contact sheet: category and visible box.
@@ -83,14 +87,23 @@ pub fn render_path<E>(
     let mut sheet = Vec::with_capacity(picks.len());
     let mut coco = CocoWriter::new(input.categories);
     let mut suns = Vec::with_capacity(poses.len());
+    let mut conditions_json = Vec::with_capacity(poses.len());
     for (i, pose) in poses.iter().enumerate() {
-        let drawn = input.relight.map(|f| f(i));
-        let (lighting, sun) = match &drawn {
+        let drawn_sun = input.relight.map(|f| f(i));
+        let (lighting, sun) = match &drawn_sun {
             Some((lighting, sun)) => (lighting, *sun),
             None => (input.lighting, input.sun),
         };
         suns.push(sun);
-        let (frame, footprints) = render::render_measuring(
+        let conditions = sensor::draw(
+            input.weather,
+            &camera.sensor,
+            input.conditions_seed,
+            i as u64,
+        );
+        let weathered = weathered(lighting, &sensor::weather_light(&conditions));
+        let lighting = weathered.as_ref().unwrap_or(lighting);
+        let (mut frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             &intrinsics,
@@ -98,6 +111,24 @@ pub fn render_path<E>(
             camera.supersample,
             &measured,
         );
+        // The sensor stage replaces the RGB image only: ids, depth and labels stay as
+        // rendered.
+        let developed = sensor::develop(
+            &SensorFrame {
+                width,
+                height,
+                linear: &frame.linear,
+                depth: frame.depth.as_raw(),
+                pose: *pose,
+                intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
+                motion: sensor::travel_direction(poses, i),
+                horizon: lighting.sky.horizon(),
+                scene_exposure: lighting.exposure,
+            },
+            &conditions,
+        );
+        frame.rgb = developed.rgb;
+        let drawn = conditions.to_json(developed.exposure);
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance: &frame.instance,
@@ -129,7 +160,8 @@ pub fn render_path<E>(
             format: depth_format.name(),
             scale: depth_format.scale(),
         });
-        coco.push(&summary);
+        coco.push_with_conditions(&summary, &drawn);
+        conditions_json.push(drawn);
         if let Some(classes) = input.yolo {
             let text = annotate::yolo(classes, &summary);
             emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
@@ -167,9 +199,9 @@ pub fn render_path<E>(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(&suns).enumerate().map(|(i, (p, sun))| json!({
+        "frames": poses.iter().zip(&suns).zip(conditions_json).enumerate().map(|(i, ((p, sun), c))| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
-            "up": p.up, "angles": p.angles, "sun": sun
+            "up": p.up, "angles": p.angles, "sun": sun, "conditions": c
         })).collect::<Vec<_>>(),
     });
     emit(
@@ -178,6 +210,20 @@ pub fn render_path<E>(
     )?;
     let picture = contact_sheet(&sheet, input.categories);
     emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
+}
+
+/// The frame's linear radiance, for the sensor stage.
+///
+/// The lighting under a frame's weather, when it differs from the path's: the sun and
+/// the sky light scaled. (`shadow_strength` is for the renderer's shadows.)
+fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
+    if light.sun_scale == 1.0 && light.sky_scale == 1.0 {
+        return None;
+    }
+    let mut out = lighting.clone();
+    out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
+    out.ambient = out.ambient.map(|c| c * light.sky_scale);
+    Some(out)
 }
 
 /// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the

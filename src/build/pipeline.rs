@@ -27,7 +27,7 @@ use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::{CameraPath, Spec, Vary};
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
-    preview, render, rng, scene,
+    preview, render, rng, scene, sensor,
 };
 use rand::Rng;
 
@@ -737,6 +737,8 @@ impl<'a> Pipeline<'a> {
                     labels: &path_labels.labels,
                     thresholds: &thresholds,
                     yolo: path_labels.yolo.as_ref(),
+                    weather: &spec.weather,
+                    conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
                 };
                 let total = poses.len();
                 // Each file goes into the cache as it is made; only its reference stays.
@@ -971,8 +973,10 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
         .map(|camera| {
             StageKey::new("frames", render::VERSION)
                 .spec("versions", &[cameras::VERSION, annotate::VERSION])
+                .spec("sensor_version", &sensor::VERSION)
                 .spec("camera", camera)
                 .spec("lighting", &spec.lighting)
+                .spec("weather", &spec.weather)
                 .spec("annotations", &spec.annotations)
                 .spec("seed", &spec.seed)
                 .input("export", &export)

@@ -111,6 +111,29 @@ impl Sky {
         }
     }
 
+    /// The sky's mean colour just above the horizon, over eight compass directions: the
+    /// colour fog and grey skies fade to.
+    pub fn horizon(&self) -> [f32; 3] {
+        let r = std::f64::consts::FRAC_1_SQRT_2;
+        let mut sum = [0f32; 3];
+        for [x, z] in [
+            [1.0, 0.0],
+            [r, r],
+            [0.0, 1.0],
+            [-r, r],
+            [-1.0, 0.0],
+            [-r, -r],
+            [0.0, -1.0],
+            [r, -r],
+        ] {
+            // 2° above the horizon (sin 2° ≈ 0.0349), normalised.
+            let (y, n) = (0.0349, (1.0f64 + 0.0349 * 0.0349).sqrt());
+            let c = self.radiance([x / n, y / n, z / n]);
+            sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
+        }
+        sum.map(|c| c / 8.0)
+    }
+
     /// Radiance seen in direction `d` (unit length).
     #[inline]
     pub(crate) fn radiance(&self, d: [f64; 3]) -> [f32; 3] {

@@ -3,6 +3,7 @@
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Serialize};
 
+use super::sensor_spec::SensorSpec;
 use super::value_range::{ValueRange, range_schema};
 
 /// One camera path; its frames and annotations go to `frames/<name>/`.
@@ -106,6 +107,9 @@ pub struct CameraSpec {
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub label_classes: Option<Vec<String>>,
+    /// Exposure, tone curve, noise, compression and lens effects of the RGB image.
+    #[serde(default)]
+    pub sensor: SensorSpec,
 }
 
 /// How a camera path's depth images are written.

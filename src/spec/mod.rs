@@ -33,12 +33,15 @@ mod object_checks;
 mod object_spec;
 mod render;
 mod schema_check;
+mod sensor_ranges;
+mod sensor_spec;
 #[allow(clippy::module_inception)]
 mod spec;
 mod spec_errors;
 mod toml_json;
 mod value_checks;
 mod value_range;
+mod weather_spec;
 
 use std::path::{Path, PathBuf};
 
@@ -60,12 +63,14 @@ pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
 pub use render::render;
+pub use sensor_spec::{ExposureMode, SensorSpec};
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
     OnError, Palette, PaletteColour, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
 pub use value_range::ValueRange;
+pub use weather_spec::{Weather, WeatherKinds, WeatherSpec};
 
 use findings::Findings;
 use key_path::KeyPath;

@@ -14,6 +14,7 @@ use super::camera_spec::{AnnotationsSpec, CameraSpec};
 use super::lighting_spec::LightingSpec;
 use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
+use super::weather_spec::WeatherSpec;
 
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
@@ -54,6 +55,9 @@ pub struct Spec {
     /// Day or night.
     #[serde(default)]
     pub lighting: LightingSpec,
+    /// Clear, overcast, fog or rain, fixed or drawn per frame.
+    #[serde(default)]
+    pub weather: WeatherSpec,
     /// What the annotations keep.
     #[serde(default)]
     pub annotations: AnnotationsSpec,

@@ -1,0 +1,154 @@
+//! Exposed linear radiance → display RGB: automatic exposure, a filmic tone curve and the
+//! sRGB encoding; and the sRGB decoding the glue needs until the renderer hands over
+//! linear radiance.
+//!
+//! The tone curve is Narkowicz's fit of the ACES filmic curve, a rational function (only
+//! plus, minus, times, divide): a toe that keeps shadows soft, mid grey 0.18 → 0.27, and a shoulder that
+//! rolls highlights off towards white instead of clipping them. Logs and powers come from
+//! the pure-Rust `libm`, so every machine gets the same bits.
+
+use std::sync::OnceLock;
+
+use image::{Rgb, RgbImage};
+use rayon::prelude::*;
+
+/// Mid grey: automatic exposure maps the frame's log-average luminance here.
+const KEY: f32 = 0.18;
+/// Automatic exposure stays within these multipliers (a black frame is not amplified
+/// without bound).
+const AUTO_RANGE: (f32, f32) = (1.0 / 64.0, 64.0);
+/// Entries of the encoding table, indexed by sqrt(value).
+const ENCODE_ENTRIES: usize = 4096;
+
+/// Rec. 709 luminance of linear RGB.
+#[inline]
+pub(crate) fn luminance(c: [f32; 3]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// The multiplier that maps the log-average luminance of `linear` to mid grey, from every
+/// 4th pixel of every 4th row (summed in a fixed order, in f64).
+pub fn auto_exposure(linear: &[[f32; 3]], width: u32) -> f32 {
+    let w = width.max(1) as usize;
+    let rows = linear.len() / w;
+    let (mut sum, mut n) = (0.0f64, 0u32);
+    for y in (0..rows).step_by(4) {
+        for x in (0..w).step_by(4) {
+            let l = luminance(linear[y * w + x]).max(0.0);
+            sum += f64::from(libm::logf(l + 1e-4));
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return 1.0;
+    }
+    let mean = libm::exp(sum / f64::from(n)) as f32;
+    (KEY / mean).clamp(AUTO_RANGE.0, AUTO_RANGE.1)
+}
+
+/// The filmic curve: exposed linear → display linear in 0–1.
+#[inline]
+pub(crate) fn filmic(x: f32) -> f32 {
+    let x = x.max(0.0);
+    (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).min(1.0)
+}
+
+/// Exposed linear RGB (row-major, `width` wide) → 8-bit sRGB through the filmic curve.
+pub fn tone_map(exposed: &[[f32; 3]], width: u32, height: u32) -> RgbImage {
+    let table = encode_table();
+    let mut bytes = vec![0u8; exposed.len() * 3];
+    bytes
+        .par_chunks_mut(width.max(1) as usize * 3)
+        .zip(exposed.par_chunks(width.max(1) as usize))
+        .for_each(|(out, row)| {
+            for (o, c) in out.chunks_exact_mut(3).zip(row) {
+                for k in 0..3 {
+                    o[k] = encode(table, filmic(c[k]));
+                }
+            }
+        });
+    RgbImage::from_raw(width, height, bytes).unwrap_or_else(|| RgbImage::new(width, height))
+}
+
+#[inline]
+fn encode(table: &[u8], display: f32) -> u8 {
+    // NaN becomes index 0 in the saturating cast.
+    let index = (display.clamp(0.0, 1.0).sqrt() * (ENCODE_ENTRIES - 1) as f32 + 0.5) as usize;
+    table[index.min(ENCODE_ENTRIES - 1)]
+}
+
+/// Display linear (0–1, by its square root) → 8-bit sRGB.
+fn encode_table() -> &'static [u8] {
+    static TABLE: OnceLock<Vec<u8>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        (0..ENCODE_ENTRIES)
+            .map(|i| {
+                let root = i as f64 / (ENCODE_ENTRIES - 1) as f64;
+                let l = root * root;
+                let s = if l <= 0.003_130_8 {
+                    12.92 * l
+                } else {
+                    1.055 * libm::pow(l, 1.0 / 2.4) - 0.055
+                };
+                (s * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
+            })
+            .collect()
+    })
+}
+
+/// 8-bit sRGB → linear (0–1).
+pub fn srgb_to_linear(s: u8) -> f32 {
+    static TABLE: OnceLock<[f32; 256]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut t = [0f32; 256];
+        for (i, v) in t.iter_mut().enumerate() {
+            let s = i as f64 / 255.0;
+            *v = if s <= 0.04045 {
+                s / 12.92
+            } else {
+                libm::pow((s + 0.055) / 1.055, 2.4)
+            } as f32;
+        }
+        t
+    })[usize::from(s)]
+}
+
+/// An sRGB image's pixels in linear light, row-major.
+pub fn decode_srgb(rgb: &RgbImage) -> Vec<[f32; 3]> {
+    rgb.pixels().map(|Rgb(p)| p.map(srgb_to_linear)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn filmic_is_monotonic_with_a_soft_shoulder() {
+        let mut last = -1.0;
+        for i in 0..2000 {
+            let y = filmic(i as f32 * 0.01);
+            assert!(y >= last, "{i}");
+            last = y;
+        }
+        assert_eq!(filmic(0.0), 0.0);
+        assert!((filmic(0.18) - 0.267).abs() < 0.01);
+        // Not a hard clip: 1 and 2 stay apart, and only very bright light reaches white.
+        assert!(filmic(1.0) < 0.85 && filmic(2.0) > filmic(1.0) + 0.05);
+    }
+
+    #[test]
+    fn srgb_round_trips_through_the_tables() {
+        let table = encode_table();
+        for s in 0..=255u8 {
+            assert_eq!(encode(table, srgb_to_linear(s)), s);
+        }
+    }
+
+    #[test]
+    fn auto_exposure_brings_the_frame_to_mid_grey() {
+        let frame = vec![[0.05f32; 3]; 64 * 48];
+        let e = auto_exposure(&frame, 64);
+        assert!((e * 0.05 - KEY).abs() < 0.001, "{e}");
+        assert_eq!(auto_exposure(&vec![[0.0; 3]; 64], 8), AUTO_RANGE.1);
+    }
+}

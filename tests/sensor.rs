@@ -1,0 +1,92 @@
+//! The sensor stage changes the RGB frames only: a camera path built with weather and
+//! sensor effects has the same ids, depth, YOLO and COCO annotations as without them.
+
+mod common;
+
+use std::fs;
+
+use cityspec::build;
+use common::{Workspace, tree};
+
+/// The spec's `[cameras.sensor]` table and `[weather]` table, which end at a blank line or
+/// the end of the file.
+fn without_conditions(text: &str) -> String {
+    let mut out = Vec::new();
+    let mut skipping = false;
+    for line in text.lines() {
+        if line.starts_with("[cameras.sensor]") || line.starts_with("[weather]") {
+            skipping = true;
+        } else if line.trim().is_empty() {
+            skipping = false;
+        }
+        if !skipping {
+            out.push(line);
+        }
+    }
+    out.join("\n") + "\n"
+}
+
+/// COCO without the images' `conditions` (the only key the conditions add).
+fn coco_without_conditions(bytes: &[u8]) -> serde_json::Value {
+    let mut doc: serde_json::Value = serde_json::from_slice(bytes).unwrap();
+    for image in doc["images"].as_array_mut().unwrap() {
+        image.as_object_mut().unwrap().remove("conditions");
+    }
+    doc
+}
+
+#[test]
+fn weather_and_sensor_change_rgb_only() {
+    let ws = Workspace::with_spec("randomized");
+    ws.edit_spec("randomized", "frames = 48", "frames = 4");
+    // Every frame foggy or rainy, so each one differs from the clear render.
+    ws.edit_spec(
+        "randomized",
+        r#"kind = ["clear", "clear", "overcast", "fog", "rain"]"#,
+        r#"kind = ["fog", "rain"]"#,
+    );
+    build::build(&ws.spec("randomized"), &ws.options()).unwrap();
+    let with = tree(&ws.out().join("randomized/frames/street"));
+
+    let path = ws.spec("randomized");
+    let text = fs::read_to_string(&path).unwrap();
+    fs::write(&path, without_conditions(&text)).unwrap();
+    build::build(&ws.spec("randomized"), &ws.options()).unwrap();
+    let without = tree(&ws.out().join("randomized/frames/street"));
+
+    assert_eq!(
+        with.keys().collect::<Vec<_>>(),
+        without.keys().collect::<Vec<_>>()
+    );
+    let mut rgb = 0;
+    for (name, bytes) in &with {
+        let plain = &without[name];
+        if name.starts_with("ids/") || name.starts_with("depth/") || name.starts_with("yolo/") {
+            assert!(bytes == plain, "{name} changed");
+        } else if name.starts_with("rgb/") {
+            assert!(bytes != plain, "{name} unchanged by fog or rain");
+            rgb += 1;
+        }
+    }
+    assert_eq!(rgb, 4);
+    let coco = coco_without_conditions(&with["coco.json"]);
+    assert_eq!(coco, coco_without_conditions(&without["coco.json"]));
+    assert!(coco["annotations"].as_array().unwrap().len() > 5);
+
+    // Each image records what it drew; poses.json the same values.
+    let doc: serde_json::Value = serde_json::from_slice(&with["coco.json"]).unwrap();
+    let poses: serde_json::Value = serde_json::from_slice(&with["poses.json"]).unwrap();
+    for (image, frame) in doc["images"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(poses["frames"].as_array().unwrap())
+    {
+        let conditions = &image["conditions"];
+        let weather = conditions["weather"].as_str().unwrap();
+        assert!(weather == "fog" || weather == "rain", "{weather}");
+        let quality = conditions["jpeg_quality"].as_f64().unwrap();
+        assert!((60.0..=95.0).contains(&quality), "{quality}");
+        assert_eq!(&frame["conditions"], conditions);
+    }
+}
