@@ -116,13 +116,17 @@ fn is_frame_file(rest: &str) -> bool {
     let numbered =
         |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
     match rest {
-        "coco.json" | "poses.json" | "preview.png" => true,
+        "coco.json" | "poses.json" | "preview.png" | "yolo/classes.txt" => true,
         _ => {
             let png = rest.strip_suffix(".png");
             let txt = rest.strip_suffix(".txt");
             ["rgb/", "ids/", "depth/"]
                 .iter()
                 .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
+                || numbered(
+                    rest.strip_suffix(".npy")
+                        .and_then(|s| s.strip_prefix("depth/")),
+                )
                 || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
                 || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
         }
@@ -182,6 +186,18 @@ mod tests {
                 "frames",
                 Some("street"),
                 "frames/street/yolo/000003.txt",
+                true,
+            ),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/yolo/classes.txt",
+                true,
+            ),
+            (
+                "frames",
+                Some("street"),
+                "frames/street/depth/000003.npy",
                 true,
             ),
             ("frames", Some("street"), "frames/street/coco.json", true),
