@@ -157,8 +157,12 @@ def check_self_eval(gt):
         ev.params.maxDets = [1, 10, max(100, most)]
         quietly(ev.evaluate)
         quietly(ev.accumulate)
-        quietly(ev.summarize)
-        ap = float(ev.stats[0])
+        # AP at IoU .50:.95 over all areas at the largest maxDets, as summarize() computes
+        # stats[0] but without its fixed maxDets=100 (with more detections in an image,
+        # summarize finds no matching maxDets column and reports -1).
+        precision = ev.eval["precision"][:, :, :, 0, -1]
+        valid = precision[precision > -1]
+        ap = float(np.mean(valid)) if valid.size else -1.0
         if abs(ap - 1.0) > 1e-12:
             raise CheckFailed(f"COCOeval {iou_type} of the ground truth against itself: AP {ap}, not 1.0")
         results[iou_type] = ap
