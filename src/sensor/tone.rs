@@ -14,9 +14,12 @@ use rayon::prelude::*;
 
 /// Mid grey: automatic exposure maps the frame's log-average luminance here.
 const KEY: f32 = 0.18;
-/// Automatic exposure stays within these multipliers (a black frame is not amplified
-/// without bound).
-const AUTO_RANGE: (f32, f32) = (1.0 / 64.0, 64.0);
+/// Automatic exposure stays within these multipliers, as a camera's does within its
+/// shortest and longest shutter and its ISO range: it may darken a bright frame by 4 stops
+/// but brighten a dark one by 1 stop only, so night and heavy rain stay dark (a gain of
+/// 20, which a night street's mean asks for, turns night into a grey day) and a black
+/// frame is not amplified into noise.
+const AUTO_RANGE: (f32, f32) = (1.0 / 16.0, 2.0);
 /// Entries of the encoding table, indexed by sqrt(value).
 const ENCODE_ENTRIES: usize = 4096;
 
@@ -146,9 +149,13 @@ mod tests {
 
     #[test]
     fn auto_exposure_brings_the_frame_to_mid_grey() {
-        let frame = vec![[0.05f32; 3]; 64 * 48];
+        let frame = vec![[0.12f32; 3]; 64 * 48];
         let e = auto_exposure(&frame, 64);
-        assert!((e * 0.05 - KEY).abs() < 0.001, "{e}");
+        assert!((e * 0.12 - KEY).abs() < 0.001, "{e}");
+        // A night street (mean 0.009) is brightened by one stop only; a glare darkened.
+        assert_eq!(auto_exposure(&vec![[0.009; 3]; 64], 8), AUTO_RANGE.1);
         assert_eq!(auto_exposure(&vec![[0.0; 3]; 64], 8), AUTO_RANGE.1);
+        let e = auto_exposure(&vec![[1.44f32; 3]; 64], 8);
+        assert!((e - 0.125).abs() < 0.001, "{e}");
     }
 }
