@@ -115,6 +115,7 @@ fn noop_case(label: &str, text: &str, runs: usize) {
         out_root: dir.path().join("out"),
         cache_dir: dir.path().join("cache"),
         waiting: None,
+        strict: false,
     };
     let cold = Instant::now();
     build::build(&spec, &options).unwrap();

@@ -485,3 +485,40 @@ fn word_files_feed_the_text_and_bad_ones_exit_2() {
         assert!(["BAKERY", "CAFÉ"].contains(&word), "{word}");
     }
 }
+
+#[test]
+fn issue_8_objects_placed_short_of_count_warn_and_fail_under_strict() {
+    let ws = Workspace::with_spec("day");
+    let spec = "version = 1\nname = \"crowded\"\nseed = 3\n\n[layout.generate]\n\
+                horizontal_roads = 2\nvertical_roads = 2\n\n[[objects]]\nkind = \"text\"\n\
+                label = \"text\"\ncount = 100000\n";
+    fs::write(ws.path().join("specs/crowded.toml"), spec).unwrap();
+    let strict = cityspec(&ws, &["build", "--strict", "specs/crowded.toml"]);
+    let text = stderr(&strict);
+    assert_eq!(strict.status.code(), Some(2), "{text}");
+    assert!(text.contains("--strict"), "{text}");
+    assert!(
+        text.contains("objects[0] (text, label \"text\"): placed "),
+        "{text}"
+    );
+    assert!(text.contains(" of 100,000"), "{text}");
+    assert!(!ws.path().join("out/crowded").exists(), "{text}");
+
+    let plain = cityspec(&ws, &["build", "specs/crowded.toml"]);
+    let text = stderr(&plain);
+    assert_eq!(plain.status.code(), Some(0), "{text}");
+    assert!(text.contains("warning: crowded: objects[0]"), "{text}");
+    assert!(text.contains(" of 100,000"), "{text}");
+    assert!(ws.path().join("out/crowded/manifest.json").is_file());
+
+    // An entry that fits places all it asks for: no warning, and --strict builds.
+    ws.edit_spec(
+        "crowded",
+        "kind = \"text\"\nlabel = \"text\"\ncount = 100000",
+        "kind = \"sign\"\nlabel = \"traffic_sign\"\ncount = 2",
+    );
+    let fits = cityspec(&ws, &["build", "--strict", "specs/crowded.toml"]);
+    let text = stderr(&fits);
+    assert_eq!(fits.status.code(), Some(0), "{text}");
+    assert!(!text.contains("warning"), "{text}");
+}

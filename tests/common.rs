@@ -66,6 +66,7 @@ impl Workspace {
             out_root: self.out(),
             cache_dir: self.cache(),
             waiting: None,
+            strict: false,
         }
     }
 

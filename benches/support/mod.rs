@@ -48,6 +48,7 @@ pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::build::Bui
             out_root: out.to_path_buf(),
             cache_dir: cache.to_path_buf(),
             waiting: None,
+            strict: false,
         },
     )
     .unwrap()

@@ -29,6 +29,12 @@ pub enum BuildError {
     /// An inserted object is unusable (a model file that does not load).
     #[error("{}: objects: {message}", spec.display())]
     Objects { spec: PathBuf, message: String },
+    /// `--strict`: the build would have succeeded with these warnings.
+    #[error("{}: --strict: {}", spec.display(), warnings.join("; "))]
+    Strict {
+        spec: PathBuf,
+        warnings: Vec<String>,
+    },
     /// The renderer refused the scene (a cityspec bug or an unusable texture).
     #[error("{}: render: {message}", spec.display())]
     Render { spec: PathBuf, message: String },
@@ -67,6 +73,7 @@ impl BuildError {
                 | BuildError::Input { .. }
                 | BuildError::Facades { .. }
                 | BuildError::Objects { .. }
+                | BuildError::Strict { .. }
                 | BuildError::DuplicateName { .. }
         )
     }

@@ -59,6 +59,9 @@ pub struct BuildOptions {
     pub progress: Option<Progress>,
     /// Called when this build must wait for another build of the same output folder.
     pub waiting: Option<Waiting>,
+    /// Warnings (objects placed fewer times than asked, facade problems) fail the build
+    /// with [`BuildError::Strict`] before the output folder is touched.
+    pub strict: bool,
 }
 
 impl Default for BuildOptions {
@@ -68,6 +71,7 @@ impl Default for BuildOptions {
             cache_dir: PathBuf::from(".cityspec-cache"),
             progress: None,
             waiting: None,
+            strict: false,
         }
     }
 }
@@ -151,6 +155,7 @@ pub fn build_spec(
         &cache,
         &progress,
     );
+    pipeline.strict = options.strict;
     let waiting = |dir: &Path| {
         if let Some(report) = &options.waiting {
             report(dir);
@@ -188,6 +193,12 @@ pub fn build_spec(
         });
     }
     let artifacts = pipeline.artifacts()?;
+    if options.strict && !pipeline.warnings.is_empty() {
+        return Err(BuildError::Strict {
+            spec: path.to_path_buf(),
+            warnings: pipeline.warnings,
+        });
+    }
     let mut manifest = Manifest {
         name: spec.name.clone(),
         artifacts: artifacts

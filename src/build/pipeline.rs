@@ -76,6 +76,9 @@ pub struct Pipeline<'a> {
     pub runs: Vec<StageRun>,
     /// Warnings of stages that ran (skipped facades, …).
     pub warnings: Vec<String>,
+    /// `--strict`: objects placed short of `count` fail the scene, before any stage that
+    /// reads it writes a cache entry (so a later plain build still warns).
+    pub strict: bool,
     /// Triangles in the scene, when the scene was built.
     pub triangles: Option<usize>,
     scene: Option<Arc<Scene>>,
@@ -123,6 +126,7 @@ impl<'a> Pipeline<'a> {
             keys,
             runs: Vec::new(),
             warnings: Vec::new(),
+            strict: false,
             triangles: None,
             scene: None,
             facades: None,
@@ -543,6 +547,15 @@ impl<'a> Pipeline<'a> {
             spec: self.spec_path.clone(),
             message: e.to_string(),
         })?;
+        // `count` is an upper bound; falling short is told, with the numbers.
+        let shortfalls = inserted.shortfalls(&self.spec.objects);
+        if self.strict && !shortfalls.is_empty() {
+            return Err(BuildError::Strict {
+                spec: self.spec_path.clone(),
+                warnings: shortfalls,
+            });
+        }
+        self.warnings.extend(shortfalls);
         let first = objects::merge(&mut built, &inserted);
         self.sign_faces = inserted
             .sign_faces

@@ -47,6 +47,10 @@ pub enum Command {
         /// Worker threads (default: one per core). Output bytes never depend on it.
         #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
         jobs: Option<u16>,
+        /// Treat warnings (objects placed fewer times than `count` asks, facade problems)
+        /// as errors: exit code 2, and the output folder is left as it was.
+        #[arg(long)]
+        strict: bool,
     },
     /// Check the cache: rerun a seeded sample of a spec's cached stages (or all of them)
     /// and compare their bytes with the cached ones, like Nix's `--check`.

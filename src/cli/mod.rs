@@ -39,6 +39,7 @@ pub fn run() -> ExitCode {
             out: out_root,
             cache,
             jobs,
+            strict,
         } => {
             let progress = (!args.quiet).then(|| print::progress_line(color));
             let options = BuildOptions {
@@ -46,6 +47,7 @@ pub fn run() -> ExitCode {
                 cache_dir: cache,
                 progress,
                 waiting: Some(print::waiting_line()),
+                strict,
             };
             let pool = match pool(jobs) {
                 Ok(pool) => pool,

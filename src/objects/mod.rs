@@ -94,6 +94,44 @@ pub struct Inserted {
     pub info: Vec<ObjectInfo>,
     /// The faces of the traffic signs, by index in `objects`.
     pub sign_faces: BTreeMap<usize, SignFace>,
+    /// Per spec entry, how many objects it placed (at most its `count`).
+    pub placed: Vec<u32>,
+}
+
+impl Inserted {
+    /// One line per spec entry that placed fewer objects than its `count` asks, with the
+    /// numbers: `count` is an upper bound, so falling short is a warning, not an error.
+    pub fn shortfalls(&self, specs: &[ObjectSpec]) -> Vec<String> {
+        specs
+            .iter()
+            .zip(&self.placed)
+            .enumerate()
+            .filter(|(_, (spec, placed))| **placed < spec.count)
+            .map(|(i, (spec, placed))| {
+                let kind = format!("{:?}", spec.kind).to_lowercase();
+                format!(
+                    "objects[{i}] ({kind}, label {:?}): placed {} of {} (no free spot left \
+                     after {ATTEMPTS} tries each)",
+                    spec.label,
+                    thousands(*placed),
+                    thousands(spec.count)
+                )
+            })
+            .collect()
+    }
+}
+
+/// `n` with a comma every three digits: `100,000`.
+fn thousands(n: u32) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// Annotation data of one inserted object.
@@ -194,6 +232,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     let mut walls = wall_text::Walls::new(input);
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
+        let before = placing.out.objects.len();
         match spec.kind {
             ObjectKind::Text => walls.place(spec, &mut rng, &mut placing)?,
             ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
@@ -203,6 +242,8 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
         }
+        let placed = placing.out.objects.len() - before;
+        placing.out.placed.push(placed as u32);
     }
     let (textures, materials) = placing.book.finish();
     placing.out.textures = textures;

@@ -192,9 +192,29 @@ fn count_is_an_upper_bound_when_the_city_is_full() {
     // Only one building that faces a road is left.
     let first = Walls::new(&input(&city, &[])).walls()[0].building;
     city.buildings.retain(|b| b.id == first);
-    let inserted = run(&city, &[spec(ObjectKind::Text, "text", 5000)]).unwrap();
+    let specs = [spec(ObjectKind::Text, "text", 5000)];
+    let inserted = run(&city, &specs).unwrap();
     assert!(!inserted.objects.is_empty());
     assert!(inserted.objects.len() < 5000);
+    // The shortfall is told with the numbers.
+    assert_eq!(inserted.placed, vec![inserted.objects.len() as u32]);
+    let warnings = inserted.shortfalls(&specs);
+    assert_eq!(warnings.len(), 1);
+    let expected = format!("placed {} of 5,000", inserted.objects.len());
+    assert!(
+        warnings[0].starts_with("objects[0] (text, label \"text\")"),
+        "{warnings:?}"
+    );
+    assert!(warnings[0].contains(&expected), "{warnings:?}");
+}
+
+#[test]
+fn an_entry_that_places_all_it_asks_for_has_no_shortfall() {
+    let city = city();
+    let specs = [spec(ObjectKind::Sign, "traffic_sign", 3)];
+    let inserted = run(&city, &specs).unwrap();
+    assert_eq!(inserted.placed, vec![3]);
+    assert!(inserted.shortfalls(&specs).is_empty());
 }
 
 #[test]
