@@ -27,12 +27,15 @@
 pub const VERSION: u32 = 3;
 
 mod coco;
+mod contact_sheet;
 #[cfg(test)]
 mod fixture_tests;
 mod frame_annotations;
 mod frame_input;
 mod icdar;
 mod object_label;
+mod path_labels;
+mod project_quad;
 mod rle;
 mod shown_object;
 mod visible_object;
@@ -40,10 +43,13 @@ mod word_quad;
 mod yolo;
 
 pub use coco::{CocoWriter, coco};
+pub use contact_sheet::ContactSheet;
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
 pub use object_label::{Category, ObjectLabel, SignLabel};
+pub use path_labels::{ClassedObject, PathLabels, path_labels};
+pub use project_quad::project_quad;
 pub use rle::{Rle, RleError};
 pub use shown_object::{ShownObject, shown};
 pub use visible_object::{VisibleObject, scan};

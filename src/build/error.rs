@@ -3,10 +3,15 @@
 use std::io;
 use std::path::PathBuf;
 
+use crate::facades::FacadeError;
+use crate::layout::LayoutError;
+use crate::objects::ObjectsError;
+use crate::render::RenderError;
 use crate::spec::SpecErrors;
 
-/// A failed build. [`BuildError::is_input_error`] separates bad input (exit code 2) from
-/// failures of the build itself (exit code 1).
+/// A failed build. Each stage's error is kept whole as the [`source`](std::error::Error::source),
+/// so the CLI can tell bad input (exit code 2) from failures of the build itself (exit
+/// code 1) by the cause, not by the message.
 #[derive(Debug, thiserror::Error)]
 pub enum BuildError {
     /// The spec file could not be read.
@@ -15,7 +20,8 @@ pub enum BuildError {
     /// The spec is invalid; every error is inside.
     #[error("{0}")]
     Spec(SpecErrors),
-    /// An input file the spec names is unusable.
+    /// An input file the spec names cannot be read (missing, too large, not a regular
+    /// file, not UTF-8): the reading helpers say why in words.
     #[error("{}: {key} = {}: {message}", spec.display(), file.display())]
     Input {
         spec: PathBuf,
@@ -23,21 +29,42 @@ pub enum BuildError {
         file: PathBuf,
         message: String,
     },
-    /// The facade set is unusable (the message names the file).
-    #[error("{}: facades: {message}", spec.display())]
-    Facades { spec: PathBuf, message: String },
+    /// The layout image the spec names does not decode.
+    #[error("{}: layout.image = {}: {source}", spec.display(), file.display())]
+    Layout {
+        spec: PathBuf,
+        file: PathBuf,
+        #[source]
+        source: LayoutError,
+    },
+    /// The facade set is unusable (the source names the file).
+    #[error("{}: facades: {source}", spec.display())]
+    Facades {
+        spec: PathBuf,
+        #[source]
+        source: FacadeError,
+    },
     /// An inserted object is unusable (a model file that does not load).
-    #[error("{}: objects: {message}", spec.display())]
-    Objects { spec: PathBuf, message: String },
+    #[error("{}: objects: {source}", spec.display())]
+    Objects {
+        spec: PathBuf,
+        #[source]
+        source: ObjectsError,
+    },
     /// `--strict`: the build would have succeeded with these warnings.
     #[error("{}: --strict: {}", spec.display(), warnings.join("; "))]
     Strict {
         spec: PathBuf,
         warnings: Vec<String>,
     },
-    /// The renderer refused the scene (a cityspec bug or an unusable texture).
-    #[error("{}: render: {message}", spec.display())]
-    Render { spec: PathBuf, message: String },
+    /// The renderer refused the scene: too many objects for the instance ids (the spec
+    /// asks for too much), or a cityspec bug (a mesh naming a missing material).
+    #[error("{}: render: {source}", spec.display())]
+    Render {
+        spec: PathBuf,
+        #[source]
+        source: RenderError,
+    },
     /// Two specs of one build share a name and so an output folder.
     #[error("{} and {} are both named {name:?}: they would write the same output folder", first.display(), second.display())]
     DuplicateName {
@@ -61,20 +88,4 @@ pub enum BuildError {
         stage: &'static str,
         message: String,
     },
-}
-
-impl BuildError {
-    /// Whether the user's spec or input is at fault (exit code 2) rather than the build.
-    pub fn is_input_error(&self) -> bool {
-        matches!(
-            self,
-            BuildError::ReadSpec { .. }
-                | BuildError::Spec(_)
-                | BuildError::Input { .. }
-                | BuildError::Facades { .. }
-                | BuildError::Objects { .. }
-                | BuildError::Strict { .. }
-                | BuildError::DuplicateName { .. }
-        )
-    }
 }

@@ -2,7 +2,9 @@
 //! ids, depth in the camera's format), COCO, optional YOLO (with `yolo/classes.txt`), ICDAR
 //! for text, poses, and a `preview.png` contact sheet.
 //!
-//! Glue between the cameras, render and annotate stages. It streams: each frame's files go
+//! Glue between the cameras, render, sensor and annotate stages: every choice of how a
+//! frame looks or is labelled lives in those stages (and is covered by their `VERSION`s,
+//! all in the frames key); the file names and the `poses.json` layout are the driver's. It streams: each frame's files go
 //! to the caller's `emit` as soon as they are encoded, and the frame is then dropped, so
 //! memory does not grow with the number of frames (only the COCO text does, a few hundred
 //! bytes per annotation). Pure: the driver decides where emitted files go. File names are
@@ -10,17 +12,15 @@
 
 use std::collections::BTreeMap;
 
-use ab_glyph::FontRef;
-use image::{Rgb, RgbImage, imageops};
-use imageproc::drawing::{draw_hollow_rect_mut, draw_text_mut};
-use imageproc::rect::Rect;
 use serde_json::json;
 
 use super::codec;
 use crate::annotate::{
-    self, Category, CocoWriter, DepthFile, FrameInput, ObjectLabel, Thresholds, YoloClasses,
+    self, Category, CocoWriter, ContactSheet, DepthFile, FrameInput, ObjectLabel, Thresholds,
+    YoloClasses,
 };
-use crate::model::{CameraPose, PixelBox};
+use crate::cameras::tan_half_degrees;
+use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
 use crate::sensor::{self, SensorFrame, WeatherLight};
 use crate::spec::{CameraSpec, WeatherSpec};
@@ -45,12 +45,6 @@ pub struct PathInput<'a> {
     pub weather: &'a WeatherSpec,
     /// Seed of this camera's per-frame conditions (`sensor::draw`).
     pub conditions_seed: u64,
-}
-
-/// A box drawn on the contact sheet: category and visible box.
-struct SheetBox {
-    category: u32,
-    bounds: PixelBox,
 }
 
 /// Renders every pose and annotates the frames, handing each file to `emit` (name, bytes)
@@ -83,8 +77,7 @@ pub fn render_path<E>(
         .labels
         .iter()
         .any(|l| l.text.is_some() && l.category.is_some());
-    let picks = contact_sheet_picks(poses.len());
-    let mut sheet = Vec::with_capacity(picks.len());
+    let mut sheet = ContactSheet::new(poses.len());
     let mut coco = CocoWriter::new(input.categories);
     let mut suns = Vec::with_capacity(poses.len());
     let mut conditions_json = Vec::with_capacity(poses.len());
@@ -142,7 +135,10 @@ pub fn render_path<E>(
                 .corners
                 .iter()
                 .filter_map(|(id, words)| {
-                    let quads = words.iter().map(|c| project_quad(pose, &intrinsics, c));
+                    let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
+                    let quads = words
+                        .iter()
+                        .map(|c| annotate::project_quad(pose, k, intrinsics.near, c));
                     Some((*id, quads.collect::<Option<Vec<_>>>()?))
                 })
                 .collect(),
@@ -170,21 +166,7 @@ pub fn render_path<E>(
             let text = annotate::icdar(&summary);
             emit(format!("{dir}/icdar/gt_{i:06}.txt"), text.into_bytes())?;
         }
-        if picks.contains(&i) {
-            let boxes = summary
-                .objects
-                .iter()
-                .filter(|o| o.passes && listed(o.category))
-                .filter_map(|o| {
-                    let v = &o.visible;
-                    Some(SheetBox {
-                        category: o.category?,
-                        bounds: v.bounds,
-                    })
-                })
-                .collect::<Vec<_>>();
-            sheet.push((frame.rgb, boxes));
-        }
+        sheet.offer(i, frame.rgb, &summary, input.categories);
         progress(i + 1);
     }
     emit(format!("{dir}/coco.json"), coco.finish())?;
@@ -208,7 +190,7 @@ pub fn render_path<E>(
         format!("{dir}/poses.json"),
         codec::to_pretty_json(&poses_json),
     )?;
-    let picture = contact_sheet(&sheet, input.categories);
+    let picture = sheet.draw(input.categories);
     emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
 }
 
@@ -224,126 +206,4 @@ fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
     out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
     out.ambient = out.ambient.map(|c| c * light.sky_scale);
     Some(out)
-}
-
-/// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the
-/// same bits on every platform; θ ≤ 120° keeps θ/2 ≤ 1.05 rad where 14 terms are exact to
-/// the last bit's neighbourhood).
-pub fn tan_half_degrees(degrees: f64) -> f64 {
-    let x = degrees / 2.0 * (std::f64::consts::PI / 180.0);
-    let (mut sin, mut cos) = (0.0, 0.0);
-    let (mut term_s, mut term_c) = (x, 1.0);
-    for n in 0..14 {
-        sin += term_s;
-        cos += term_c;
-        let k = 2.0 * f64::from(n);
-        term_s *= -x * x / ((k + 2.0) * (k + 3.0));
-        term_c *= -x * x / ((k + 1.0) * (k + 2.0));
-    }
-    sin / cos
-}
-
-/// The image positions of four world points, if all are in front of the camera.
-fn project_quad(
-    pose: &CameraPose,
-    k: &Intrinsics,
-    corners: &[[f64; 3]; 4],
-) -> Option<[[f64; 2]; 4]> {
-    let basis = pose.basis()?;
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let mut out = [[0.0; 2]; 4];
-    for (slot, c) in out.iter_mut().zip(corners) {
-        let d = [c[0] - pose.eye[0], c[1] - pose.eye[1], c[2] - pose.eye[2]];
-        let z = dot(basis.forward, d);
-        if z < k.near {
-            return None;
-        }
-        *slot = [
-            k.cx + k.fx * dot(basis.right, d) / z,
-            k.cy - k.fy * dot(basis.up, d) / z,
-        ];
-    }
-    Some(out)
-}
-
-/// Up to 12 frames spread over the path.
-fn contact_sheet_picks(frames: usize) -> Vec<usize> {
-    let n = frames.min(12);
-    (0..n).map(|k| k * frames / n.max(1)).collect()
-}
-
-/// The picked frames at half size in a grid, each kept annotation's box and class drawn.
-fn contact_sheet(frames: &[(RgbImage, Vec<SheetBox>)], categories: &[Category]) -> RgbImage {
-    let Some((first, _)) = frames.first() else {
-        return RgbImage::new(1, 1);
-    };
-    let (w, h) = (first.width() / 2, first.height() / 2);
-    let columns = 3u32.min(frames.len() as u32);
-    let rows = (frames.len() as u32).div_ceil(columns);
-    let mut sheet = RgbImage::from_pixel(
-        columns * w + (columns + 1) * 4,
-        rows * h + (rows + 1) * 4,
-        Rgb([20, 20, 20]),
-    );
-    let font = FontRef::try_from_slice(notosans::REGULAR_TTF).expect("the embedded font parses");
-    let names: BTreeMap<u32, &str> = categories.iter().map(|c| (c.id, c.name.as_str())).collect();
-    for (slot, (rgb, boxes)) in frames.iter().enumerate() {
-        let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
-        for b in boxes {
-            let PixelBox { x0, y0, x1, y1 } = b.bounds;
-            let (bx, by) = ((x0 / 2) as i32, (y0 / 2) as i32);
-            let (bw, bh) = (((x1 - x0) / 2).max(1), ((y1 - y0) / 2).max(1));
-            let colour = palette(b.category);
-            draw_hollow_rect_mut(&mut small, Rect::at(bx, by).of_size(bw, bh), colour);
-            let name = names.get(&b.category).copied().unwrap_or("?");
-            draw_text_mut(&mut small, colour, bx, (by - 12).max(0), 11.0, &font, name);
-        }
-        let (col, row) = (slot as u32 % columns, slot as u32 / columns);
-        imageops::overlay(
-            &mut sheet,
-            &small,
-            i64::from(4 + col * (w + 4)),
-            i64::from(4 + row * (h + 4)),
-        );
-    }
-    sheet
-}
-
-fn palette(category: u32) -> Rgb<u8> {
-    const COLOURS: [[u8; 3]; 6] = [
-        [255, 220, 0],
-        [0, 230, 255],
-        [255, 80, 200],
-        [120, 255, 80],
-        [255, 140, 0],
-        [200, 160, 255],
-    ];
-    Rgb(COLOURS[category as usize % COLOURS.len()])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn tan_half_matches_known_values() {
-        for (degrees, expected) in [
-            (90.0, 1.0),
-            (60.0, 0.577_350_269_189_625_8),
-            (120.0, 1.732_050_807_568_877_2),
-        ] {
-            let got = tan_half_degrees(degrees);
-            assert!((got - expected).abs() < 1e-12, "{degrees}: {got}");
-        }
-    }
-
-    #[test]
-    fn contact_sheet_picks_spread_over_the_path() {
-        assert_eq!(contact_sheet_picks(3), [0, 1, 2]);
-        assert_eq!(
-            contact_sheet_picks(24),
-            [0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22]
-        );
-        assert!(contact_sheet_picks(0).is_empty());
-    }
 }

@@ -19,6 +19,33 @@ use crate::objects::MeshFiles;
 use crate::spec::ObjectKind;
 use crate::spec::{self, BUILTIN_FACADES, Spec};
 
+/// Every input file a spec names, read and hashed: what the stage keys and the stages need
+/// besides the spec itself.
+pub struct SpecInputs {
+    pub layout: LayoutSource,
+    pub facades: FacadeInput,
+    /// Mesh models and word files, by the spec's string.
+    pub meshes: BTreeMap<String, MeshFiles>,
+    /// A digest of every mesh model and word file, for the export key.
+    pub meshes_digest: String,
+}
+
+impl SpecInputs {
+    /// Reads the layout image, the facade folder and the mesh and word files `spec` names
+    /// (relative to `spec_path`).
+    pub fn read(spec_path: &Path, spec: &Spec) -> Result<SpecInputs, BuildError> {
+        let layout = layout_source(spec_path, spec)?;
+        let facades = facade_input(spec_path, spec)?;
+        let (meshes, meshes_digest) = mesh_files(spec_path, spec)?;
+        Ok(SpecInputs {
+            layout,
+            facades,
+            meshes,
+            meshes_digest,
+        })
+    }
+}
+
 /// Where the layout comes from.
 pub enum LayoutSource {
     Generate,

@@ -21,26 +21,26 @@ mod out_dir;
 mod output_names;
 mod pipeline;
 mod report;
+mod spec_build;
 mod stage_key;
 mod verify;
 
 use std::collections::BTreeMap;
 use std::io;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
+/// Kept here for the tests and benches that place buildings by hand.
+pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};
-pub use pipeline::widths_px;
 pub use report::{BuildReport, StageRun, StageStatus};
+pub use spec_build::build_spec;
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
 use crate::spec::{self, FsWorld, Spec, SpecSource};
-use out_dir::OutDir;
-use pipeline::Pipeline;
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
 pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
@@ -130,104 +130,26 @@ pub fn build(path: &Path, options: &BuildOptions) -> Result<BuildReport, BuildEr
     build_spec(path, &spec, options)
 }
 
-/// Builds an already validated spec read from `path`.
-pub fn build_spec(
-    path: &Path,
-    spec: &Spec,
-    options: &BuildOptions,
-) -> Result<BuildReport, BuildError> {
-    let start = Instant::now();
-    let source = inputs::layout_source(path, spec)?;
-    let facade_input = inputs::facade_input(path, spec)?;
-    let meshes = inputs::mesh_files(path, spec)?;
-    let cache = Cache::new(&options.cache_dir);
-    let progress = |camera: &str, done: usize, total: usize| {
-        if let Some(report) = &options.progress {
-            report(&spec.name, camera, done, total);
+/// Checks a spec as `build` would before running any stage: the spec itself, every input
+/// file it names (read, hashed and parsed as the build reads them), and a facade folder's
+/// photos, boxes and floors, processed as the facades stage does. Returns the spec and the
+/// facade warnings a build would print.
+pub fn validate(path: &Path) -> Result<(Spec, Vec<String>), BuildError> {
+    let spec = load_spec(path)?;
+    let inputs = inputs::SpecInputs::read(path, &spec)?;
+    let warnings = match &inputs.facades {
+        inputs::FacadeInput::Builtin => Vec::new(),
+        inputs::FacadeInput::Folder { source, .. } => {
+            let f = &spec.facades;
+            let (_, warnings) = crate::facades::process(source, f.floor_height, f.on_error)
+                .map_err(|source| BuildError::Facades {
+                    spec: path.to_path_buf(),
+                    source,
+                })?;
+            warnings.iter().map(ToString::to_string).collect()
         }
     };
-    let mut pipeline = Pipeline::new(
-        spec,
-        path.to_path_buf(),
-        source,
-        facade_input,
-        meshes,
-        &cache,
-        &progress,
-    );
-    pipeline.strict = options.strict;
-    let waiting = |dir: &Path| {
-        if let Some(report) = &options.waiting {
-            report(dir);
-        }
-    };
-    // Held until this build returns: builds of one output folder take turns.
-    let out = OutDir::open(&options.out_root, &spec.name, &waiting)?;
-    let out_dir = out.path().to_path_buf();
-    let stages = pipeline.artifact_stages();
-    if let Some(manifest) = fresh::check(&cache, &out_dir, &spec.name, &stages) {
-        let lookup = start.elapsed();
-        let mut unchanged: Vec<String> =
-            manifest.artifacts.iter().map(|a| a.path.clone()).collect();
-        unchanged.push("manifest.json".to_owned());
-        let stages = stages
-            .iter()
-            .map(|(stage, key)| StageRun {
-                stage,
-                key: (*key).to_owned(),
-                status: StageStatus::Cached,
-                time: lookup / stages.len().max(1) as u32,
-                repaired: None,
-            })
-            .collect();
-        return Ok(BuildReport {
-            name: spec.name.clone(),
-            out_dir,
-            stages,
-            written: Vec::new(),
-            unchanged,
-            removed: Vec::new(),
-            warnings: Vec::new(),
-            triangles: None,
-            elapsed: start.elapsed(),
-        });
-    }
-    let artifacts = pipeline.artifacts()?;
-    if options.strict && !pipeline.warnings.is_empty() {
-        return Err(BuildError::Strict {
-            spec: path.to_path_buf(),
-            warnings: pipeline.warnings,
-        });
-    }
-    let mut manifest = Manifest {
-        name: spec.name.clone(),
-        artifacts: artifacts
-            .iter()
-            .map(|artifact| Artifact {
-                path: artifact.path.clone(),
-                sha256: artifact.blob.sha256(),
-                bytes: artifact.blob.size(),
-                stage: artifact.stage.to_owned(),
-                key: artifact.key.clone(),
-            })
-            .collect(),
-    };
-    manifest.artifacts.sort_by(|a, b| a.path.cmp(&b.path));
-    let bytes = manifest.to_bytes();
-    let record = fresh::load(&cache, &out_dir);
-    let synced = out.sync(&artifacts, &bytes, &cache, record.as_ref())?;
-    fresh::record(&cache, &out_dir, &manifest, &bytes);
-    Ok(BuildReport {
-        name: spec.name.clone(),
-        out_dir,
-        stages: pipeline.runs,
-        written: synced.written,
-        unchanged: synced.unchanged,
-        removed: synced.removed,
-        warnings: pipeline.warnings,
-        triangles: pipeline.triangles,
-        elapsed: start.elapsed(),
-    })
+    Ok((spec, warnings))
 }
 
 /// Writes cityspec's built-in facade set to `dir` in the CMP layout; returns how many facades.

@@ -44,7 +44,7 @@ pub fn aimed_poses(
     let check = Intrinsics::from_fov(
         (w / 4).max(16),
         (h / 4).max(16),
-        super::frames::tan_half_degrees(camera.fov),
+        cameras::tan_half_degrees(camera.fov),
     );
     let chosen: Vec<Option<CameraPose>> = candidates
         .par_iter()

@@ -18,7 +18,7 @@ use super::cache::{Blob, Cache, Load, Miss, ObjectRef, Outputs};
 use super::codec;
 use super::frame_labels;
 use super::frames;
-use super::inputs::{FacadeInput, LayoutSource};
+use super::inputs::{FacadeInput, LayoutSource, SpecInputs};
 use super::object_views;
 use super::output_names::OutputNames;
 use super::report::{StageRun, StageStatus};
@@ -30,6 +30,10 @@ use crate::{
     preview, render, rng, scene, sensor,
 };
 use rand::Rng;
+
+/// The sun stream of the overview (camera paths use their index): with `[lighting] sun`
+/// drawn, the overview's sun is a draw of its own.
+const OVERVIEW_SUN: u32 = u32::MAX;
 
 /// An artifact a build writes: name in the output folder, bytes (in memory or a cache
 /// object), producing stage and key.
@@ -107,19 +111,17 @@ impl<'a> Pipeline<'a> {
     pub fn new(
         spec: &'a Spec,
         spec_path: PathBuf,
-        source: LayoutSource,
-        facade_input: FacadeInput,
-        meshes: (BTreeMap<String, objects::MeshFiles>, String),
+        inputs: SpecInputs,
         cache: &'a Cache,
         progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     ) -> Self {
-        let keys = keys(spec, &source, &facade_input, &meshes.1);
+        let keys = keys(spec, &inputs);
         Pipeline {
             spec,
             spec_path,
-            source,
-            facade_input,
-            meshes: meshes.0,
+            source: inputs.layout,
+            facade_input: inputs.facades,
+            meshes: inputs.meshes,
             object_info: Vec::new(),
             sign_faces: BTreeMap::new(),
             cache,
@@ -284,11 +286,10 @@ impl<'a> Pipeline<'a> {
                         layout::generate(&generate, &p.spec.layout.palette, &mut stream).image
                     }
                     LayoutSource::Image { path, bytes } => {
-                        layout::decode(bytes).map_err(|e| BuildError::Input {
+                        layout::decode(bytes).map_err(|source| BuildError::Layout {
                             spec: p.spec_path.clone(),
-                            key: "layout.image",
                             file: path.clone(),
-                            message: e.to_string(),
+                            source,
                         })?
                     }
                 };
@@ -406,7 +407,7 @@ impl<'a> Pipeline<'a> {
                     (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
                     (None, None) => Vec::new(),
                 };
-                let widths = widths_px(&widths_m, mpp);
+                let widths = place::widths_px(&widths_m, mpp);
                 let gap = (p.spec.buildings.gap / mpp).round() as u32;
                 let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
                 let json = codec::to_json(&buildings);
@@ -482,9 +483,9 @@ impl<'a> Pipeline<'a> {
                 };
                 let f = &p.spec.facades;
                 let (set, warnings) = facades::process(source, f.floor_height, f.on_error)
-                    .map_err(|e| BuildError::Facades {
+                    .map_err(|source| BuildError::Facades {
                         spec: p.spec_path.clone(),
-                        message: e.to_string(),
+                        source,
                     })?;
                 let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
                 let mut outputs = codec::facade_set_outputs(&set);
@@ -543,9 +544,9 @@ impl<'a> Pipeline<'a> {
             metres_per_pixel: self.spec.layout.metres_per_pixel,
             seed: self.spec.seed,
         })
-        .map_err(|e| BuildError::Objects {
+        .map_err(|source| BuildError::Objects {
             spec: self.spec_path.clone(),
-            message: e.to_string(),
+            source,
         })?;
         // `count` is an upper bound; falling short is told, with the numbers.
         let shortfalls = inserted.shortfalls(&self.spec.objects);
@@ -567,6 +568,7 @@ impl<'a> Pipeline<'a> {
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {
             stage: "scene",
+            camera: None,
             key: String::new(),
             status: StageStatus::Ran,
             time: start.elapsed(),
@@ -616,21 +618,21 @@ impl<'a> Pipeline<'a> {
             gather,
             |p, (prepared, scene, parsed, lamps, facades)| {
                 // The spec's light; a drawn sun is drawn for the overview on its own.
-                let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, u32::MAX, 0);
+                let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, OVERVIEW_SUN, 0);
                 let lighting = lighting(p.spec, &sun, &scene, &lamps, &facades);
-                let (w, h) = (f64::from(parsed.width), f64::from(parsed.height));
-                let span = (w * w + h * h).sqrt() * p.spec.layout.metres_per_pixel;
-                // The north-east corner of an orbit, 0.6 of the city's diagonal up: the whole
-                // city in one oblique view.
-                let poses =
-                    cameras::orbit_path(&parsed, p.spec.layout.metres_per_pixel, 8, span * 0.6);
-                let frame = match poses.get(1) {
+                let shot = cameras::overview(&parsed, p.spec.layout.metres_per_pixel);
+                let frame = match &shot.pose {
                     Some(pose) => {
-                        let mut intrinsics = render::Intrinsics::from_fov(1280, 960, 0.5);
-                        intrinsics.far = span * 4.0;
-                        render::render(&prepared, pose, &intrinsics, &lighting, 2).rgb
+                        let mut intrinsics = render::Intrinsics::from_fov(
+                            shot.width,
+                            shot.height,
+                            shot.tan_half_fov,
+                        );
+                        intrinsics.far = shot.far;
+                        render::render(&prepared, pose, &intrinsics, &lighting, shot.supersample)
+                            .rgb
                     }
-                    None => image::RgbImage::new(1280, 960),
+                    None => RgbImage::new(shot.width, shot.height),
                 };
                 Ok(((), one("overview.png", codec::encode_png(&frame))))
             },
@@ -642,9 +644,9 @@ impl<'a> Pipeline<'a> {
             return Ok(Arc::clone(prepared));
         }
         let scene = self.scene()?;
-        let prepared = render::prepare(&scene).map_err(|e| BuildError::Render {
+        let prepared = render::prepare(&scene).map_err(|source| BuildError::Render {
             spec: self.spec_path.clone(),
-            message: e.to_string(),
+            source,
         })?;
         let prepared = Arc::new(prepared);
         self.prepared = Some(Arc::clone(&prepared));
@@ -852,8 +854,10 @@ impl<'a> Pipeline<'a> {
                     (slot, StageStatus::Ran, repaired, start.elapsed())
                 }
             };
+        let camera = self.camera_of(&key).map(str::to_owned);
         self.runs.push(StageRun {
             stage: name,
+            camera,
             key,
             status,
             time,
@@ -867,8 +871,13 @@ impl<'a> Pipeline<'a> {
 impl Pipeline<'_> {
     /// The names stage `stage` (of key `key`, which tells camera paths apart) writes.
     fn output_names(&self, stage: &str, key: &str) -> OutputNames {
-        let camera = self.keys.frames.iter().position(|k| k == key);
-        OutputNames::of(stage, camera.map(|i| self.spec.cameras[i].name.as_str()))
+        OutputNames::of(stage, self.camera_of(key))
+    }
+
+    /// The camera whose `frames` stage has key `key`, if any.
+    pub fn camera_of(&self, key: &str) -> Option<&str> {
+        let camera = self.keys.frames.iter().position(|k| k == key)?;
+        Some(self.spec.cameras[camera].name.as_str())
     }
 }
 
@@ -895,18 +904,10 @@ fn one(name: &str, bytes: Vec<u8>) -> Outputs {
     Outputs::from([(name.to_owned(), Blob::from(bytes))])
 }
 
-/// Building widths in layout pixels (at least one pixel each).
-pub fn widths_px(widths_m: &[f64], metres_per_pixel: f64) -> Vec<u32> {
-    widths_m
-        .iter()
-        .map(|w| (w / metres_per_pixel).round().max(1.0) as u32)
-        .collect()
-}
-
 /// Every stage's key, from the spec and the input files' hashes alone.
-fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: &str) -> Keys {
+fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
     let l = &spec.layout;
-    let layout = match source {
+    let layout = match &inputs.layout {
         LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
             .spec("generate", &l.generate.clone().unwrap_or_default())
             .spec("palette", &l.palette)
@@ -934,7 +935,7 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
     let facades = StageKey::new("facades", facades::VERSION)
         .spec("floor_height", &spec.facades.floor_height)
         .spec("on_error", &spec.facades.on_error);
-    let facades = match facade_input {
+    let facades = match &inputs.facades {
         FacadeInput::Builtin => facades.input("builtin", &facades::BUILTIN_VERSION.to_string()),
         FacadeInput::Folder { digest, .. } => facades.input("folder", digest),
     }
@@ -965,7 +966,7 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
         .spec("scene_version", &scene::VERSION)
         .spec("objects_version", &objects::VERSION)
         .spec("objects", &spec.objects)
-        .input("meshes", meshes)
+        .input("meshes", &inputs.meshes_digest)
         .spec("widths", &spec.buildings.widths)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .spec("seed", &spec.seed)

@@ -14,6 +14,8 @@ pub enum StageStatus {
 #[derive(Clone, Debug)]
 pub struct StageRun {
     pub stage: &'static str,
+    /// The camera of a `frames` stage (one per `[[cameras]]` entry), else `None`.
+    pub camera: Option<String>,
     pub key: String,
     pub status: StageStatus,
     /// Time spent on the stage (lookup and verification when cached).

@@ -14,8 +14,9 @@ use rand::RngExt;
 
 use super::cache::{Cache, Miss, Outputs};
 use super::error::BuildError;
+use super::inputs::SpecInputs;
+use super::load_spec;
 use super::pipeline::Pipeline;
-use super::{inputs, load_spec};
 use crate::spec::Spec;
 
 /// Which cached stages to recheck.
@@ -84,20 +85,10 @@ pub fn verify(
     spec: &Spec,
     options: &VerifyOptions,
 ) -> Result<VerifyReport, BuildError> {
-    let source = inputs::layout_source(path, spec)?;
-    let facade_input = inputs::facade_input(path, spec)?;
-    let meshes = inputs::mesh_files(path, spec)?;
+    let inputs = SpecInputs::read(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
     let quiet = |_: &str, _: usize, _: usize| {};
-    let mut pipeline = Pipeline::new(
-        spec,
-        path.to_path_buf(),
-        source,
-        facade_input,
-        meshes,
-        &cache,
-        &quiet,
-    );
+    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &quiet);
     let cached: Vec<(&'static str, String)> = pipeline
         .all_stages()
         .into_iter()

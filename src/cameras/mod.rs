@@ -29,17 +29,24 @@
 pub const VERSION: u32 = 3;
 
 mod aim;
+mod fov;
 mod leg;
 mod object_path;
 mod orbit_path;
+mod overview;
 mod road_path;
 mod sidewalk_path;
 
 pub use crate::model::CameraPose;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
+pub use fov::tan_half_degrees;
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
 pub use orbit_path::{orbit_length, orbit_path};
+pub use overview::{
+    OVERVIEW_FAR, OVERVIEW_HEIGHT, OVERVIEW_ORBIT_POSES, OVERVIEW_SIZE, OVERVIEW_SUPERSAMPLE,
+    OVERVIEW_TAN_HALF_FOV, Overview, overview,
+};
 pub use road_path::{ROAD_PITCH, RoadPath, road_path, tour_length};
 pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};
 

@@ -4,37 +4,44 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
-/// Turn a versioned TOML spec into a synthetic city: a layout image, the city plan with
-/// every block, road, street lamp and building, and a manifest of content-hashed artifacts.
-/// The same spec gives the same bytes on every machine.
+/// Turn a versioned TOML spec into a synthetic city dataset: a road layout, the city plan,
+/// a textured 3D city, and rendered, labelled frames. The same spec gives the same bytes
+/// on every machine.
+///
+/// Stages: layout (generated or your image) → mirror → parse (blocks, roads) → lamps and
+/// place (buildings, paper Algorithm 1) → plan → facades (built-in set or a CMP folder) →
+/// scene and objects (text, signs, meshes, trees, cars) → export (city.obj, city.glb) →
+/// overview.png → per camera: render, sensor (weather, exposure) and annotate (COCO, YOLO,
+/// ICDAR). Every stage's result is cached by the hash of what it reads, so a rebuild runs
+/// only the stages whose inputs changed.
 #[derive(Debug, Parser)]
 #[command(name = "cityspec", version, propagate_version = true)]
 #[command(
-    after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec validate specs/*.toml\n  cityspec schema > schemas/cityspec.schema.json\n\nExit codes: 0 ok, 1 build failed, 2 invalid spec, input or usage."
+    after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec validate specs/*.toml\n  cityspec verify --all specs/day.toml\n  cityspec stats out/day\n  cityspec schema > schemas/cityspec.schema.json\n\nExit codes: 0 ok, 1 build failed, 2 invalid spec, input or usage."
 )]
 pub struct Args {
     #[command(subcommand)]
     pub command: Command,
-    /// Print only errors.
-    #[arg(short, long, global = true, conflicts_with = "verbose")]
-    pub quiet: bool,
-    /// Print every stage: ran or cached, time, cache key.
+    /// Print only errors (and warnings).
     #[arg(short, long, global = true)]
-    pub verbose: bool,
+    pub quiet: bool,
 }
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Build specs into output folders of artifacts (layout.png, plan.json, plan.png,
-    /// manifest.json).
+    /// Build specs into output folders: layout.png, plan.json, plan.png, city.obj,
+    /// city.mtl, textures/, city.glb, overview.png, frames/<camera>/ (rgb/, ids/, depth/,
+    /// coco.json, poses.json, preview.png, and yolo/, icdar/ where asked), manifest.json.
     ///
     /// Each spec writes to OUT/<name>/. Stage results are cached by content hash in the
     /// cache folder, so a rebuild runs only the stages whose inputs changed, and a rebuild
     /// with nothing changed writes nothing. All specs are validated before any is built.
     #[command(
-        after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec build -j1 --out build --cache /tmp/cs-cache specs/day.toml specs/drawn.toml\n  cityspec build -v specs/day.toml     # show which stages ran and which came from the cache"
+        after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec build -j1 --out build --cache /tmp/cs-cache specs/day.toml specs/drawn.toml\n  cityspec build -v specs/day.toml     # which stages ran or came from the cache, files per folder\n  cityspec build -vv specs/day.toml    # … and every file written or removed"
     )]
     Build {
+        #[command(flatten)]
+        verbosity: Verbosity,
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
@@ -63,6 +70,8 @@ pub enum Command {
         after_help = "Examples:\n  cityspec verify specs/day.toml                 # 3 stages, a fresh seed (printed)\n  cityspec verify --all specs/day.toml           # every cached stage\n  cityspec verify --sample 5 --seed 42 specs/*.toml"
     )]
     Verify {
+        #[command(flatten)]
+        verbosity: Verbosity,
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
@@ -84,6 +93,11 @@ pub enum Command {
     },
     /// Check specs (syntax, schema, meaning, input files) without building; report every
     /// error with file:line:col and key path.
+    ///
+    /// Input files are read and checked as `build` reads them: the layout image decoded,
+    /// mesh models and word files parsed, a facade folder's photos, boxes and floors
+    /// processed (a truncated photo is refused, or skipped with a warning under
+    /// `on_error = "skip"`).
     #[command(after_help = "Example:\n  cityspec validate specs/*.toml")]
     Validate {
         /// Spec files (TOML).
@@ -111,6 +125,15 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// `-v`, where it prints more.
+#[derive(Debug, clap::Args)]
+pub struct Verbosity {
+    /// More detail: -v every stage (ran or cached, time, cache key) and files per folder;
+    /// -vv also every file.
+    #[arg(short, long, action = clap::ArgAction::Count)]
+    pub verbose: u8,
 }
 
 #[derive(Debug, Subcommand)]

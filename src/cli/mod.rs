@@ -4,6 +4,7 @@
 //! module that prints; the library returns typed errors and reports.
 
 mod args;
+mod exit_code;
 mod print;
 
 use std::io::IsTerminal;
@@ -27,21 +28,37 @@ pub fn run() -> ExitCode {
             };
         }
     };
-    let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let terminal = std::io::stderr().is_terminal();
+    let color = terminal && std::env::var_os("NO_COLOR").is_none();
+    let verbose = match &args.command {
+        Command::Build { verbosity, .. } | Command::Verify { verbosity, .. } => verbosity.verbose,
+        _ => 0,
+    };
+    if args.quiet && verbose > 0 {
+        use clap::CommandFactory;
+        Args::command()
+            .error(
+                clap::error::ErrorKind::ArgumentConflict,
+                "--quiet and --verbose cannot be used together",
+            )
+            .exit();
+    }
     let out = print::Printer {
         quiet: args.quiet,
-        verbose: args.verbose,
+        verbose,
         color,
     };
     match args.command {
         Command::Build {
+            verbosity: _,
             specs,
             out: out_root,
             cache,
             jobs,
             strict,
         } => {
-            let progress = (!args.quiet).then(|| print::progress_line(color));
+            // Drawn in place on a terminal, one line per path otherwise; colour plays no part.
+            let progress = (!args.quiet).then(|| print::progress_line(terminal));
             let options = BuildOptions {
                 out_root,
                 cache_dir: cache,
@@ -64,6 +81,7 @@ pub fn run() -> ExitCode {
             }
         }
         Command::Verify {
+            verbosity: _,
             specs,
             cache,
             all,
@@ -100,8 +118,13 @@ pub fn run() -> ExitCode {
         Command::Validate { specs } => {
             let mut errors = Vec::new();
             for path in &specs {
-                match build::load_spec(path) {
-                    Ok(spec) => out.info(&format!("{}: ok ({})", path.display(), spec.name)),
+                match build::validate(path) {
+                    Ok((spec, warnings)) => {
+                        for warning in warnings {
+                            eprintln!("warning: {}: {warning}", spec.name);
+                        }
+                        out.info(&format!("{}: ok ({})", path.display(), spec.name));
+                    }
                     Err(e) => errors.push(e),
                 }
             }
@@ -172,9 +195,5 @@ fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {
     for error in errors {
         out.error(error);
     }
-    if errors.iter().all(BuildError::is_input_error) {
-        ExitCode::from(2)
-    } else {
-        ExitCode::from(1)
-    }
+    ExitCode::from(exit_code::exit_code_of(errors))
 }

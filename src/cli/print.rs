@@ -2,9 +2,14 @@
 
 use crate::build::{BuildError, BuildReport, StageStatus, VerifyReport};
 
+use std::collections::BTreeMap;
+use std::path::Path;
+
 pub struct Printer {
     pub quiet: bool,
-    pub verbose: bool,
+    /// 0: a summary line per spec; 1: also every stage and files per folder; 2: also
+    /// every file.
+    pub verbose: u8,
     pub color: bool,
 }
 
@@ -27,7 +32,7 @@ impl Printer {
         if self.quiet {
             return;
         }
-        if self.verbose {
+        if self.verbose >= 1 {
             for run in &report.stages {
                 let status = match run.status {
                     StageStatus::Ran => "ran",
@@ -37,23 +42,20 @@ impl Printer {
                     Some(short) => format!("key {short}"),
                     None => "(not cached)".to_owned(),
                 };
+                let stage = match &run.camera {
+                    Some(camera) => format!("{} {camera}", run.stage),
+                    None => run.stage.to_owned(),
+                };
                 eprintln!(
-                    "  {status:<6} {:<8} {:>9.2} ms  {key}",
-                    run.stage,
+                    "  {status:<6} {stage:<16} {:>9.2} ms  {key}",
                     run.time.as_secs_f64() * 1e3,
                 );
             }
-            for path in &report.written {
-                eprintln!("  wrote  {}", report.out_dir.join(path).display());
+            if let Some(triangles) = report.triangles {
+                eprintln!("  scene: {triangles} triangles");
             }
-            for path in &report.removed {
-                eprintln!("  removed stale {}", report.out_dir.join(path).display());
-            }
-        }
-        if let Some(triangles) = report.triangles
-            && self.verbose
-        {
-            eprintln!("  scene: {triangles} triangles");
+            self.files("wrote", &report.out_dir, &report.written);
+            self.files("removed stale", &report.out_dir, &report.removed);
         }
         let ms = report.elapsed.as_secs_f64() * 1e3;
         let ran = report.ran().count();
@@ -66,11 +68,29 @@ impl Printer {
             );
         } else {
             eprintln!(
-                "{}: built {} ({ran} stages ran, {cached} cached; {} files written, {} unchanged) [{ms:.1} ms]",
+                "{}: built {} ({} ran, {cached} cached; {} written, {} unchanged) [{ms:.1} ms]",
                 report.name,
                 report.out_dir.display(),
-                report.written.len(),
+                plural(ran, "stage"),
+                plural(report.written.len(), "file"),
                 report.unchanged.len()
+            );
+        }
+    }
+
+    /// Files a build wrote or removed: with `-v` a count per folder, with `-vv` each file.
+    fn files(&self, what: &str, out_dir: &Path, paths: &[String]) {
+        if self.verbose >= 2 {
+            for path in paths {
+                eprintln!("  {what} {}", out_dir.join(path).display());
+            }
+            return;
+        }
+        for (folder, count) in per_folder(paths) {
+            eprintln!(
+                "  {what} {} in {}",
+                plural(count, "file"),
+                out_dir.join(folder).display()
             );
         }
     }
@@ -86,7 +106,7 @@ impl Printer {
                     verdict.stage,
                     verdict.entry.display()
                 ),
-                None if self.verbose => eprintln!(
+                None if self.verbose >= 1 => eprintln!(
                     "  ok     {:<8} key {}",
                     verdict.stage,
                     verdict.key.get(..12).unwrap_or(&verdict.key)
@@ -122,35 +142,78 @@ impl Printer {
     }
 }
 
-/// A one-line progress report of rendered frames, with frames per second, redrawn in place
-/// on a terminal (at most ten times a second) and printed once per path otherwise.
+/// A one-line progress report of rendered frames, redrawn in place on a terminal (at most
+/// ten times a second) and printed once per path otherwise. The rate is shown once it
+/// means something: measured from the first frame over at least half a second.
 pub fn progress_line(terminal: bool) -> crate::build::Progress {
     use std::sync::Mutex;
     use std::time::{Duration, Instant};
-    let state: Mutex<Option<(String, Instant, Instant)>> = Mutex::new(None);
+    /// The path being rendered, when its first frame was reported (and how many were done
+    /// then), and when the line was last drawn.
+    struct PathProgress {
+        path: String,
+        first: (Instant, usize),
+        drawn: Instant,
+    }
+    let state: Mutex<Option<PathProgress>> = Mutex::new(None);
     std::sync::Arc::new(move |spec: &str, camera: &str, done: usize, total: usize| {
         let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
         let path = format!("{spec}/{camera}");
         let now = Instant::now();
-        let (started, last) = match &*state {
-            Some((p, started, last)) if *p == path => (*started, *last),
-            _ => (now, now - Duration::from_secs(1)),
+        let current = match state.take() {
+            Some(p) if p.path == path => p,
+            _ => PathProgress {
+                path: path.clone(),
+                first: (now, done),
+                drawn: now - Duration::from_secs(1),
+            },
         };
+        let rate = frame_rate(current.first, (now, done));
         let finished = done == total;
-        let rate = done as f64 / now.duration_since(started).as_secs_f64().max(1e-9);
-        if terminal && (finished || now.duration_since(last) >= Duration::from_millis(100)) {
-            eprint!("\r  rendering {path}: {done}/{total} frames, {rate:.1} frames/s   ");
+        let mut drawn = current.drawn;
+        if terminal && (finished || now.duration_since(drawn) >= Duration::from_millis(100)) {
+            eprint!("\r  rendering {path}: {done}/{total} frames{rate}   ");
             if finished {
                 eprintln!();
             }
-            *state = Some((path, started, now));
-        } else {
-            if !terminal && finished {
-                eprintln!("  rendered {path}: {total} frames, {rate:.1} frames/s");
-            }
-            *state = Some((path, started, last));
+            drawn = now;
+        } else if !terminal && finished {
+            eprintln!("  rendered {path}: {}{rate}", plural(total, "frame"));
         }
+        *state = Some(PathProgress { drawn, ..current });
     })
+}
+
+/// ", 12.3 frames/s" from the first report to now, or nothing while too little has been
+/// seen to say (one frame, or under half a second).
+fn frame_rate(
+    (start, start_done): (std::time::Instant, usize),
+    (now, done): (std::time::Instant, usize),
+) -> String {
+    let seconds = now.duration_since(start).as_secs_f64();
+    let frames = done.saturating_sub(start_done);
+    if frames == 0 || seconds < 0.5 {
+        return String::new();
+    }
+    format!(", {:.1} frames/s", frames as f64 / seconds)
+}
+
+/// "1 file", "2 files".
+fn plural(count: usize, noun: &str) -> String {
+    match count {
+        1 => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
+    }
+}
+
+/// How many of `paths` lie directly in each folder ("" for the top), by folder.
+fn per_folder(paths: &[String]) -> BTreeMap<&str, usize> {
+    let mut counts = BTreeMap::new();
+    for path in paths {
+        let folder = path.rsplit_once('/').map_or("", |(folder, _)| folder);
+        *counts.entry(folder).or_insert(0) += 1;
+    }
+    counts
 }
 
 /// Says that this build waits for another build of the same output folder (even with
@@ -162,4 +225,42 @@ pub fn waiting_line() -> crate::build::Waiting {
             dir.display()
         );
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, Instant};
+
+    use super::*;
+
+    #[test]
+    fn plural_and_folders() {
+        assert_eq!(plural(1, "file"), "1 file");
+        assert_eq!(plural(0, "file"), "0 files");
+        assert_eq!(plural(500, "file"), "500 files");
+        let paths = [
+            "plan.png",
+            "frames/a/rgb/000000.png",
+            "frames/a/rgb/000001.png",
+            "frames/a/coco.json",
+        ]
+        .map(String::from);
+        let counts: Vec<(&str, usize)> = per_folder(&paths).into_iter().collect();
+        assert_eq!(counts, [("", 1), ("frames/a", 1), ("frames/a/rgb", 2)]);
+    }
+
+    #[test]
+    fn no_rate_until_it_means_something() {
+        let start = Instant::now();
+        // The first report: one frame done a moment ago, no time to measure.
+        assert_eq!(frame_rate((start, 1), (start, 1)), "");
+        assert_eq!(
+            frame_rate((start, 1), (start + Duration::from_millis(100), 2)),
+            ""
+        );
+        assert_eq!(
+            frame_rate((start, 1), (start + Duration::from_secs(2), 5)),
+            ", 2.0 frames/s"
+        );
+    }
 }

@@ -15,6 +15,9 @@ pub const VERSION: u32 = 1;
 
 mod block_mask;
 mod filler;
+mod widths;
+
+pub use widths::widths_px;
 
 use rayon::prelude::*;
 

@@ -1,0 +1,142 @@
+//! A camera path's `preview.png`: up to 12 of its frames, spread over the path, at half
+//! size in a grid, each kept annotation's box and class drawn on top.
+//!
+//! Part of the annotate stage's output: a change here changes `preview.png`, so bump
+//! [`super::VERSION`].
+
+use std::collections::BTreeMap;
+
+use ab_glyph::FontRef;
+use image::{Rgb, RgbImage, imageops};
+use imageproc::drawing::{draw_hollow_rect_mut, draw_text_mut};
+use imageproc::rect::Rect;
+
+use super::{Category, FrameAnnotations};
+use crate::model::PixelBox;
+
+/// Frames on a sheet, at most.
+const SHEET_FRAMES: usize = 12;
+/// Grid columns, at most.
+const COLUMNS: u32 = 3;
+/// Margin around and between frames, pixels.
+const MARGIN: u32 = 4;
+/// Background between frames.
+const BACKGROUND: Rgb<u8> = Rgb([20, 20, 20]);
+/// Box colours, by category id (cycling).
+const COLOURS: [[u8; 3]; 6] = [
+    [255, 220, 0],
+    [0, 230, 255],
+    [255, 80, 200],
+    [120, 255, 80],
+    [255, 140, 0],
+    [200, 160, 255],
+];
+
+/// A box drawn on the sheet: category and visible box.
+struct SheetBox {
+    category: u32,
+    bounds: PixelBox,
+}
+
+/// The sheet being gathered while a path renders: only the picked frames are kept.
+pub struct ContactSheet {
+    picks: Vec<usize>,
+    frames: Vec<(RgbImage, Vec<SheetBox>)>,
+}
+
+impl ContactSheet {
+    /// A sheet for a path of `frames` frames.
+    pub fn new(frames: usize) -> ContactSheet {
+        let picks = picks(frames);
+        ContactSheet {
+            frames: Vec::with_capacity(picks.len()),
+            picks,
+        }
+    }
+
+    /// Keeps frame `index` (its developed image and its annotations) if the sheet shows
+    /// it; the boxes are those of objects that pass the thresholds and have one of
+    /// `categories`.
+    pub fn offer(
+        &mut self,
+        index: usize,
+        rgb: RgbImage,
+        summary: &FrameAnnotations,
+        categories: &[Category],
+    ) {
+        if !self.picks.contains(&index) {
+            return;
+        }
+        let listed = |c: u32| categories.iter().any(|k| k.id == c);
+        let boxes = summary
+            .objects
+            .iter()
+            .filter(|o| o.passes)
+            .filter_map(|o| {
+                let category = o.category.filter(|&c| listed(c))?;
+                Some(SheetBox {
+                    category,
+                    bounds: o.visible.bounds,
+                })
+            })
+            .collect();
+        self.frames.push((rgb, boxes));
+    }
+
+    /// The sheet; a 1 × 1 black image for a path without frames.
+    pub fn draw(&self, categories: &[Category]) -> RgbImage {
+        let Some((first, _)) = self.frames.first() else {
+            return RgbImage::new(1, 1);
+        };
+        let (w, h) = (first.width() / 2, first.height() / 2);
+        let columns = COLUMNS.min(self.frames.len() as u32);
+        let rows = (self.frames.len() as u32).div_ceil(columns);
+        let mut sheet = RgbImage::from_pixel(
+            columns * w + (columns + 1) * MARGIN,
+            rows * h + (rows + 1) * MARGIN,
+            BACKGROUND,
+        );
+        let font =
+            FontRef::try_from_slice(notosans::REGULAR_TTF).expect("the embedded font parses");
+        let names: BTreeMap<u32, &str> =
+            categories.iter().map(|c| (c.id, c.name.as_str())).collect();
+        for (slot, (rgb, boxes)) in self.frames.iter().enumerate() {
+            let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
+            for b in boxes {
+                let PixelBox { x0, y0, x1, y1 } = b.bounds;
+                let (bx, by) = ((x0 / 2) as i32, (y0 / 2) as i32);
+                let (bw, bh) = (((x1 - x0) / 2).max(1), ((y1 - y0) / 2).max(1));
+                let colour = Rgb(COLOURS[b.category as usize % COLOURS.len()]);
+                draw_hollow_rect_mut(&mut small, Rect::at(bx, by).of_size(bw, bh), colour);
+                let name = names.get(&b.category).copied().unwrap_or("?");
+                draw_text_mut(&mut small, colour, bx, (by - 12).max(0), 11.0, &font, name);
+            }
+            let (col, row) = (slot as u32 % columns, slot as u32 / columns);
+            imageops::overlay(
+                &mut sheet,
+                &small,
+                i64::from(MARGIN + col * (w + MARGIN)),
+                i64::from(MARGIN + row * (h + MARGIN)),
+            );
+        }
+        sheet
+    }
+}
+
+/// Up to [`SHEET_FRAMES`] frames spread over the path.
+fn picks(frames: usize) -> Vec<usize> {
+    let n = frames.min(SHEET_FRAMES);
+    (0..n).map(|k| k * frames / n.max(1)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn picks_spread_over_the_path() {
+        assert_eq!(picks(3), [0, 1, 2]);
+        assert_eq!(picks(24), [0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22]);
+        assert!(picks(0).is_empty());
+    }
+}

@@ -1,0 +1,98 @@
+//! Spec + one camera + the scene's objects → that camera path's COCO categories, a label
+//! per scene object, and the YOLO classes.
+//!
+//! Part of the annotate stage's output (category ids and names in `coco.json`, YOLO
+//! `classes.txt`): a change here calls for a bump of [`super::VERSION`].
+
+use std::collections::BTreeMap;
+
+use super::{Category, ObjectLabel, YoloClasses};
+use crate::spec::{CameraSpec, ObjectKind, SignKind, Spec};
+
+/// The class every lamp head is labelled with.
+const LAMP_CLASS: &str = "lamp";
+
+/// One scene object as the annotations see it, before the path's categories are known:
+/// its class and its label with `category` and `sign.back_category` left unset.
+pub struct ClassedObject {
+    pub class: String,
+    pub label: ObjectLabel,
+}
+
+/// What a camera path annotates.
+pub struct PathLabels {
+    pub categories: Vec<Category>,
+    /// One per scene object, at index `instance id − 1`.
+    pub labels: Vec<ObjectLabel>,
+    /// YOLO's classes, when `[annotations] yolo` asks for YOLO files.
+    pub yolo: Option<YoloClasses>,
+}
+
+/// The classes a path annotates: the camera's own `classes`, else `[annotations]
+/// classes`, else every `[[objects]]` label and `lamp`; COCO ids from 1 in that order.
+///
+/// A traffic sign is its label's category only seen from the front; seen from behind it
+/// is `<label>_back` when that class is listed, else nothing.
+pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>) -> PathLabels {
+    let classes: Vec<String> = match (&camera.label_classes, spec.annotations.classes.is_empty()) {
+        (Some(classes), _) => classes.clone(),
+        (None, false) => spec.annotations.classes.clone(),
+        (None, true) => {
+            let mut classes: Vec<String> = Vec::new();
+            for object in &spec.objects {
+                if !classes.contains(&object.label) {
+                    classes.push(object.label.clone());
+                }
+            }
+            classes.push(LAMP_CLASS.to_owned());
+            classes
+        }
+    };
+    let categories: Vec<Category> = classes
+        .iter()
+        .enumerate()
+        .map(|(i, name)| Category {
+            id: i as u32 + 1,
+            name: name.clone(),
+        })
+        .collect();
+    let id_of = |name: &str| categories.iter().find(|c| c.name == name).map(|c| c.id);
+    let labels = objects
+        .into_iter()
+        .map(|ClassedObject { class, mut label }| {
+            label.category = id_of(&class);
+            if let Some(sign) = &mut label.sign {
+                sign.back_category = id_of(&format!("{class}_back"));
+            }
+            label
+        })
+        .collect();
+    let yolo = spec.annotations.yolo.then(|| {
+        let mut split: BTreeMap<u32, Vec<String>> = BTreeMap::new();
+        if spec.annotations.yolo_sign_types {
+            for entry in spec.objects.iter().filter(|o| o.kind == ObjectKind::Sign) {
+                let Some(id) = id_of(&entry.label) else {
+                    continue;
+                };
+                let kinds = split.entry(id).or_default();
+                for kind in SignKind::ALL {
+                    let name = kind.name().to_owned();
+                    let drawn = entry.signs.is_empty() || entry.signs.contains(&kind);
+                    if drawn && !kinds.contains(&name) {
+                        kinds.push(name);
+                    }
+                }
+            }
+            // Every entry's types in SignKind order, whatever the entries' order.
+            for kinds in split.values_mut() {
+                kinds.sort_by_key(|k| SignKind::ALL.iter().position(|s| s.name() == k));
+            }
+        }
+        YoloClasses::new(&categories, &split)
+    });
+    PathLabels {
+        categories,
+        labels,
+        yolo,
+    }
+}

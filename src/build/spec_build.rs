@@ -1,0 +1,146 @@
+//! One validated spec → its output folder: read the inputs, lock the folder, try the no-op
+//! fast path, pull the artifacts through the stage graph, write the folder, report.
+//!
+//! [`build_spec`] is that sequence of named steps; each step is a function here or in the
+//! module that owns it, so a new step (sharding, another output format) goes in between
+//! two lines of it.
+
+use std::path::Path;
+use std::time::Instant;
+
+use super::cache::Cache;
+use super::fresh;
+use super::inputs::SpecInputs;
+use super::manifest::{Artifact, Manifest};
+use super::out_dir::OutDir;
+use super::pipeline::{ArtifactOut, Pipeline};
+use super::report::{BuildReport, StageRun, StageStatus};
+use super::{BuildError, BuildOptions};
+use crate::spec::Spec;
+
+/// Builds an already validated spec read from `path`.
+pub fn build_spec(
+    path: &Path,
+    spec: &Spec,
+    options: &BuildOptions,
+) -> Result<BuildReport, BuildError> {
+    let start = Instant::now();
+    let inputs = SpecInputs::read(path, spec)?;
+    let cache = Cache::new(&options.cache_dir);
+    let progress = |camera: &str, done: usize, total: usize| {
+        if let Some(report) = &options.progress {
+            report(&spec.name, camera, done, total);
+        }
+    };
+    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
+    pipeline.strict = options.strict;
+    // Held until this build returns: builds of one output folder take turns.
+    let out = lock_output_folder(spec, options)?;
+    if let Some(report) = up_to_date(spec, &pipeline, &cache, &out, start) {
+        return Ok(report);
+    }
+    let artifacts = pipeline.artifacts()?;
+    if options.strict && !pipeline.warnings.is_empty() {
+        return Err(BuildError::Strict {
+            spec: path.to_path_buf(),
+            warnings: pipeline.warnings,
+        });
+    }
+    let manifest = manifest_of(spec, &artifacts);
+    let synced = write_output_folder(&out, &artifacts, &manifest, &cache)?;
+    Ok(BuildReport {
+        name: spec.name.clone(),
+        out_dir: out.path().to_path_buf(),
+        stages: pipeline.runs,
+        written: synced.written,
+        unchanged: synced.unchanged,
+        removed: synced.removed,
+        warnings: pipeline.warnings,
+        triangles: pipeline.triangles,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// Locks `<out>/<name>/` (saying so when another build holds it) and removes what a
+/// killed build left beside it.
+fn lock_output_folder(spec: &Spec, options: &BuildOptions) -> Result<OutDir, BuildError> {
+    let waiting = |dir: &Path| {
+        if let Some(report) = &options.waiting {
+            report(dir);
+        }
+    };
+    OutDir::open(&options.out_root, &spec.name, &waiting)
+}
+
+/// The no-op fast path ([`fresh`]): when the output folder is exactly as the last build
+/// left it and the artifact stages' entries name the same objects, the report of a build
+/// that did nothing.
+fn up_to_date(
+    spec: &Spec,
+    pipeline: &Pipeline,
+    cache: &Cache,
+    out: &OutDir,
+    start: Instant,
+) -> Option<BuildReport> {
+    let stages = pipeline.artifact_stages();
+    let manifest = fresh::check(cache, out.path(), &spec.name, &stages)?;
+    let lookup = start.elapsed();
+    let mut unchanged: Vec<String> = manifest.artifacts.iter().map(|a| a.path.clone()).collect();
+    unchanged.push("manifest.json".to_owned());
+    let stages = stages
+        .iter()
+        .map(|(stage, key)| StageRun {
+            stage,
+            camera: pipeline.camera_of(key).map(str::to_owned),
+            key: (*key).to_owned(),
+            status: StageStatus::Cached,
+            time: lookup / stages.len().max(1) as u32,
+            repaired: None,
+        })
+        .collect();
+    Some(BuildReport {
+        name: spec.name.clone(),
+        out_dir: out.path().to_path_buf(),
+        stages,
+        written: Vec::new(),
+        unchanged,
+        removed: Vec::new(),
+        warnings: Vec::new(),
+        triangles: None,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// `manifest.json`: every artifact's path, hash, size, stage and key, sorted by path.
+fn manifest_of(spec: &Spec, artifacts: &[ArtifactOut]) -> Manifest {
+    let mut manifest = Manifest {
+        name: spec.name.clone(),
+        artifacts: artifacts
+            .iter()
+            .map(|artifact| Artifact {
+                path: artifact.path.clone(),
+                sha256: artifact.blob.sha256(),
+                bytes: artifact.blob.size(),
+                stage: artifact.stage.to_owned(),
+                key: artifact.key.clone(),
+            })
+            .collect(),
+    };
+    manifest.artifacts.sort_by(|a, b| a.path.cmp(&b.path));
+    manifest
+}
+
+/// Makes the output folder hold exactly the artifacts and the manifest, then records it
+/// for the next build's fast path.
+fn write_output_folder(
+    out: &OutDir,
+    artifacts: &[ArtifactOut],
+    manifest: &Manifest,
+    cache: &Cache,
+) -> Result<super::out_dir::Synced, BuildError> {
+    let bytes = manifest.to_bytes();
+    let record = fresh::load(cache, out.path());
+    let synced = out.sync(artifacts, &bytes, cache, record.as_ref())?;
+    fresh::record(cache, out.path(), manifest, &bytes);
+    Ok(synced)
+}

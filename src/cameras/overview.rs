@@ -1,0 +1,57 @@
+//! The overview shot: parsed layout + metres per pixel → the one pose, image size and view
+//! that `overview.png` is rendered with.
+//!
+//! The numbers are choices of how the picture looks; changing any changes `overview.png`,
+//! so bump [`super::VERSION`] (it is in the overview's cache key).
+
+use super::{CameraPose, orbit_path};
+use crate::model::ParsedLayout;
+
+/// Image size: 4:3, large enough to read streets in a city of a few hundred metres.
+pub const OVERVIEW_SIZE: [u32; 2] = [1280, 960];
+/// tan of half the vertical field of view: 0.5, about 53° from top to bottom edge, a
+/// normal lens that does not bend the city's edges.
+pub const OVERVIEW_TAN_HALF_FOV: f64 = 0.5;
+/// Eye height as a share of the city's diagonal: high enough that the near blocks do not
+/// hide the far ones, low enough that facades still show.
+pub const OVERVIEW_HEIGHT: f64 = 0.6;
+/// The orbit is split into this many poses and the shot takes pose 1: one eighth of the
+/// way clockwise from due north, the north-east corner.
+pub const OVERVIEW_ORBIT_POSES: u32 = 8;
+/// Far plane as a multiple of the diagonal: beyond the farthest corner from any orbit eye.
+pub const OVERVIEW_FAR: f64 = 4.0;
+/// Samples per pixel side: smooth edges at a quarter of the frames' cost per pixel.
+pub const OVERVIEW_SUPERSAMPLE: u32 = 2;
+
+/// How to render the overview.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overview {
+    /// The eye; `None` for an empty layout (the overview is then a black image).
+    pub pose: Option<CameraPose>,
+    pub width: u32,
+    pub height: u32,
+    pub tan_half_fov: f64,
+    /// Far clipping distance, metres.
+    pub far: f64,
+    pub supersample: u32,
+}
+
+/// The whole city in one oblique view from its north-east corner.
+pub fn overview(layout: &ParsedLayout, metres_per_pixel: f64) -> Overview {
+    let (w, h) = (f64::from(layout.width), f64::from(layout.height));
+    let diagonal = (w * w + h * h).sqrt() * metres_per_pixel;
+    let poses = orbit_path(
+        layout,
+        metres_per_pixel,
+        OVERVIEW_ORBIT_POSES,
+        diagonal * OVERVIEW_HEIGHT,
+    );
+    Overview {
+        pose: poses.get(1).copied(),
+        width: OVERVIEW_SIZE[0],
+        height: OVERVIEW_SIZE[1],
+        tan_half_fov: OVERVIEW_TAN_HALF_FOV,
+        far: diagonal * OVERVIEW_FAR,
+        supersample: OVERVIEW_SUPERSAMPLE,
+    }
+}
