@@ -1,0 +1,323 @@
+//! The stage graph: for each cached stage, what it gathers (its inputs, fetched or run
+//! on demand) and how it runs; the typed values later stages read.
+
+use std::sync::Arc;
+
+use image::RgbImage;
+
+use super::super::BuildError;
+use super::super::cache::{Blob, Load};
+use super::super::codec;
+use super::super::inputs::{FacadeInput, LayoutSource};
+use super::super::report::StageStatus;
+use super::evaluate::{evaluated, one, value};
+use super::frames_stage::lighting;
+use super::{OVERVIEW_SUN, Pipeline};
+use crate::model::{Building, FacadeSet, Lamp, ParsedLayout};
+use crate::{
+    cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
+};
+
+impl Pipeline<'_> {
+    pub(super) fn need_layout(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.layout.clone();
+        self.stage(
+            "layout",
+            key,
+            Load::Bytes,
+            |p| &mut p.layout,
+            |_| Ok(()),
+            |p, ()| {
+                let image = match &p.source {
+                    LayoutSource::Generate => {
+                        let generate = p.spec.layout.generate.clone().unwrap_or_default();
+                        let mut stream = rng::stream(p.spec.seed, "layout", 0);
+                        layout::generate(&generate, &p.spec.layout.palette, &mut stream).image
+                    }
+                    LayoutSource::Image { path, bytes } => {
+                        layout::decode(bytes).map_err(|source| BuildError::Layout {
+                            spec: p.spec_path.clone(),
+                            file: path.clone(),
+                            source,
+                        })?
+                    }
+                };
+                let png = codec::encode_png(&image);
+                Ok((image, one("layout.png", png)))
+            },
+        )
+    }
+
+    pub(super) fn layout_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
+        self.need_layout()?;
+        value(&mut self.layout, "layout", |o| {
+            codec::decode_png(codec::output(o, "layout.png")?)
+        })
+    }
+
+    pub(super) fn need_mirror(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.mirror.clone();
+        self.stage(
+            "mirror",
+            key,
+            Load::Bytes,
+            |p| &mut p.mirror,
+            |p| p.layout_image(),
+            |p, layout| {
+                let image = mirror::mirror(&layout, &p.spec.layout.mirror);
+                let png = codec::encode_png(&image);
+                Ok((image, one("layout.png", png)))
+            },
+        )
+    }
+
+    pub(super) fn mirrored_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
+        self.need_mirror()?;
+        value(&mut self.mirror, "mirror", |o| {
+            codec::decode_png(codec::output(o, "layout.png")?)
+        })
+    }
+
+    pub(super) fn need_parse(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.parse.clone();
+        self.stage(
+            "parse",
+            key,
+            Load::Bytes,
+            |p| &mut p.parse,
+            |p| p.mirrored_image(),
+            |p, image| {
+                let parsed = parse::parse(&image, &p.spec.layout.palette);
+                let json = codec::to_json(&parsed);
+                Ok((parsed, one("parsed.json", json)))
+            },
+        )
+    }
+
+    pub(super) fn parsed(&mut self) -> Result<Arc<ParsedLayout>, BuildError> {
+        self.need_parse()?;
+        value(&mut self.parse, "parse", |o| {
+            codec::from_json(codec::output(o, "parsed.json")?)
+        })
+    }
+
+    pub(super) fn need_lamps(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.lamps.clone();
+        let gather = |p: &mut Self| Ok((p.mirrored_image()?, p.parsed()?));
+        self.stage(
+            "lamps",
+            key,
+            Load::Bytes,
+            |p| &mut p.lamps,
+            gather,
+            |p, (image, parsed)| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                let lamps = &p.spec.lamps;
+                let sites = lamps::site_lamps(
+                    &image,
+                    &parsed,
+                    &p.spec.layout.palette,
+                    lamps.spacing / mpp,
+                    lamps.min_distance / mpp,
+                );
+                let json = codec::to_json(&sites);
+                Ok((sites, one("lamps.json", json)))
+            },
+        )
+    }
+
+    pub(super) fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
+        self.need_lamps()?;
+        value(&mut self.lamps, "lamps", |o| {
+            codec::from_json(codec::output(o, "lamps.json")?)
+        })
+    }
+
+    pub(super) fn need_place(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.place.clone();
+        let gather = |p: &mut Self| {
+            let facades = match p.spec.buildings.widths {
+                Some(_) => None,
+                None => Some(p.facade_set()?),
+            };
+            Ok((p.parsed()?, facades))
+        };
+        self.stage(
+            "place",
+            key,
+            Load::Bytes,
+            |p| &mut p.place,
+            gather,
+            |p, (parsed, facades)| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                // Paper 3.2: without explicit widths, every facade is one building size.
+                let widths_m: Vec<f64> = match (&p.spec.buildings.widths, &facades) {
+                    (Some(widths), _) => widths.clone(),
+                    (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
+                    (None, None) => Vec::new(),
+                };
+                let widths = place::widths_px(&widths_m, mpp);
+                let gap = (p.spec.buildings.gap / mpp).round() as u32;
+                let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
+                let json = codec::to_json(&buildings);
+                Ok((buildings, one("buildings.json", json)))
+            },
+        )
+    }
+
+    pub(super) fn buildings(&mut self) -> Result<Arc<Vec<Building>>, BuildError> {
+        self.need_place()?;
+        value(&mut self.place, "place", |o| {
+            codec::from_json(codec::output(o, "buildings.json")?)
+        })
+    }
+
+    pub(super) fn need_plan(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.plan.clone();
+        let gather = |p: &mut Self| Ok((p.parsed()?, p.lamp_sites()?, p.buildings()?));
+        self.stage(
+            "plan",
+            key,
+            Load::References,
+            |p| &mut p.plan,
+            gather,
+            |p, (parsed, lamps, buildings)| {
+                let mpp = p.spec.layout.metres_per_pixel;
+                let city = plan::assemble(&parsed, &lamps, &buildings, mpp);
+                Ok(((), one("plan.json", codec::to_pretty_json(&city))))
+            },
+        )
+    }
+
+    pub(super) fn need_preview(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.preview.clone();
+        let gather = |p: &mut Self| {
+            Ok((
+                p.mirrored_image()?,
+                p.parsed()?,
+                p.lamp_sites()?,
+                p.buildings()?,
+            ))
+        };
+        self.stage(
+            "preview",
+            key,
+            Load::References,
+            |p| &mut p.preview,
+            gather,
+            |_, (image, parsed, lamps, buildings)| {
+                let picture = preview::draw(&image, &parsed, &lamps, &buildings);
+                Ok(((), one("plan.png", codec::encode_png(&picture))))
+            },
+        )
+    }
+
+    pub(super) fn need_facades(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.facades.clone();
+        let before = self.runs.len();
+        self.stage(
+            "facades",
+            key,
+            Load::Bytes,
+            |p| &mut p.facades,
+            |_| Ok(()),
+            |p, ()| {
+                let generated;
+                let source = match &p.facade_input {
+                    FacadeInput::Builtin => {
+                        generated = facades::builtin();
+                        &generated
+                    }
+                    FacadeInput::Folder { source, .. } => source,
+                };
+                let f = &p.spec.facades;
+                let (set, warnings) = facades::process(source, f.floor_height, f.on_error)
+                    .map_err(|source| BuildError::Facades {
+                        spec: p.spec_path.clone(),
+                        source,
+                    })?;
+                let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+                let mut outputs = codec::facade_set_outputs(&set);
+                outputs.insert(
+                    "warnings.json".to_owned(),
+                    Blob::from(codec::to_json(&warnings)),
+                );
+                Ok((set, outputs))
+            },
+        )?;
+        // Warnings are told when the facades are processed, not on every cached build.
+        if self.runs.len() > before && self.runs[before].status == StageStatus::Ran {
+            let outputs = &evaluated(&self.facades).outputs;
+            let warnings: Vec<String> = codec::output(outputs, "warnings.json")
+                .and_then(|bytes| codec::from_json(bytes))
+                .unwrap_or_default();
+            self.warnings.extend(warnings);
+        }
+        Ok(())
+    }
+
+    pub(super) fn facade_set(&mut self) -> Result<Arc<FacadeSet>, BuildError> {
+        self.need_facades()?;
+        value(&mut self.facades, "facades", codec::facade_set_from_outputs)
+    }
+
+    pub(super) fn need_export(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.export.clone();
+        self.stage(
+            "export",
+            key,
+            Load::References,
+            |p| &mut p.export,
+            |p| p.scene(),
+            |_, scene| {
+                let files = export::export(&scene);
+                let outputs = files
+                    .into_iter()
+                    .map(|(path, bytes)| (path, Blob::from(bytes)))
+                    .collect();
+                Ok(((), outputs))
+            },
+        )
+    }
+
+    /// `overview.png`: the textured city from the air, rendered by cityspec's renderer.
+    pub(super) fn need_overview(&mut self) -> Result<(), BuildError> {
+        let key = self.keys.overview.clone();
+        let gather = |p: &mut Self| {
+            Ok((
+                p.prepared_scene()?,
+                p.scene()?,
+                p.parsed()?,
+                p.lamp_sites()?,
+                p.facade_set()?,
+            ))
+        };
+        self.stage(
+            "overview",
+            key,
+            Load::References,
+            |p| &mut p.overview,
+            gather,
+            |p, (prepared, scene, parsed, lamps, facades)| {
+                // The spec's light; a drawn sun is drawn for the overview on its own.
+                let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, OVERVIEW_SUN, 0);
+                let lighting = lighting(p.spec, &sun, &scene, &lamps, &facades);
+                let shot = cameras::overview(&parsed, p.spec.layout.metres_per_pixel);
+                let frame = match &shot.pose {
+                    Some(pose) => {
+                        let mut intrinsics = render::Intrinsics::from_fov(
+                            shot.width,
+                            shot.height,
+                            shot.tan_half_fov,
+                        );
+                        intrinsics.far = shot.far;
+                        render::render(&prepared, pose, &intrinsics, &lighting, shot.supersample)
+                            .rgb
+                    }
+                    None => RgbImage::new(shot.width, shot.height),
+                };
+                Ok(((), one("overview.png", codec::encode_png(&frame))))
+            },
+        )
+    }
+}

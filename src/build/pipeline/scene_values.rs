@@ -1,0 +1,94 @@
+//! The scene and the prepared scene: not cached, built from cached values when a stage
+//! that reads them must run.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::super::BuildError;
+use super::super::report::{StageRun, StageStatus};
+use super::Pipeline;
+use crate::model::Scene;
+use crate::{objects, render, scene};
+
+impl Pipeline<'_> {
+    /// The 3D scene. Not cached: it is a fast function of cached values, and only the
+    /// export (and later the renderer) reads it.
+    pub(super) fn scene(&mut self) -> Result<Arc<Scene>, BuildError> {
+        if let Some(scene) = &self.scene {
+            return Ok(Arc::clone(scene));
+        }
+        let parsed = self.parsed()?;
+        let lamps = self.lamp_sites()?;
+        let buildings = self.buildings()?;
+        let facades = self.facade_set()?;
+        let start = Instant::now();
+        let built = scene::build(&scene::SceneInput {
+            layout: &parsed,
+            lamps: &lamps,
+            buildings: &buildings,
+            facades: &facades,
+            widths: self.spec.buildings.widths.as_deref(),
+            metres_per_pixel: self.spec.layout.metres_per_pixel,
+            seed: self.spec.seed,
+        });
+        let mut built = built;
+        let inserted = objects::insert(&objects::ObjectsInput {
+            specs: &self.spec.objects,
+            layout: &parsed,
+            lamps: &lamps,
+            buildings: &buildings,
+            facades: &facades,
+            widths: self.spec.buildings.widths.as_deref(),
+            meshes: &self.meshes,
+            metres_per_pixel: self.spec.layout.metres_per_pixel,
+            seed: self.spec.seed,
+        })
+        .map_err(|source| BuildError::Objects {
+            spec: self.spec_path.clone(),
+            source,
+        })?;
+        // `count` is an upper bound; falling short is told, with the numbers.
+        let shortfalls = inserted.shortfalls(&self.spec.objects);
+        if self.strict && !shortfalls.is_empty() {
+            return Err(BuildError::Strict {
+                spec: self.spec_path.clone(),
+                warnings: shortfalls,
+            });
+        }
+        self.warnings.extend(shortfalls);
+        let first = objects::merge(&mut built, &inserted);
+        self.sign_faces = inserted
+            .sign_faces
+            .iter()
+            .map(|(i, f)| (first + i, *f))
+            .collect();
+        self.object_info = vec![None; first];
+        self.object_info.extend(inserted.info.into_iter().map(Some));
+        self.triangles = Some(built.triangle_count());
+        self.runs.push(StageRun {
+            stage: "scene",
+            camera: None,
+            key: String::new(),
+            status: StageStatus::Ran,
+            time: start.elapsed(),
+            repaired: None,
+        });
+        let built = Arc::new(built);
+        self.scene = Some(Arc::clone(&built));
+        Ok(built)
+    }
+
+    pub(super) fn prepared_scene(&mut self) -> Result<Arc<render::PreparedScene>, BuildError> {
+        if let Some(prepared) = &self.prepared {
+            return Ok(Arc::clone(prepared));
+        }
+        let scene = self.scene()?;
+        let prepared = render::prepare(&scene).map_err(|source| BuildError::Render {
+            spec: self.spec_path.clone(),
+            source,
+        })?;
+        let prepared = Arc::new(prepared);
+        self.prepared = Some(Arc::clone(&prepared));
+        Ok(prepared)
+    }
+}
