@@ -33,6 +33,8 @@ use std::path::{Path, PathBuf};
 pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
+/// The driver's encodings' version (PNG settings, JSON layout), in every stage key.
+pub use codec::VERSION as CODEC_VERSION;
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};

@@ -1,0 +1,231 @@
+//! Golden digests: builds one small city and pins the SHA-256 of every stage's output next
+//! to the `VERSION` constants in that stage's key (`tests/golden/digests.toml`).
+//!
+//! The cache trusts a stage's key to name its output: a change of output bytes without a
+//! `VERSION` bump would hand every user stale cache entries. This test fails when a
+//! stage's bytes change while its versions stay, and names the constant to bump; it also
+//! fails when a version moved but the pins were not renewed. `CITYSPEC_BLESS=1 cargo test
+//! --test golden` rewrites the pins (after the bump).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use cityspec::build::{self, BuildOptions, Cache, StageStatus};
+
+const PINS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/digests.toml");
+const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/city.toml");
+const BLESS: &str = "CITYSPEC_BLESS=1 cargo test --test golden";
+
+/// The one pinned frame: small, in the sun, shadowed.
+const FRAME: &str = "frames/street/rgb/000000.png";
+
+/// Each pinned output, the stages it depends on (its digest may change because of theirs),
+/// and the `VERSION` constants in its key besides the driver's `codec::VERSION`, as
+/// `keys()` in `src/build/pipeline/mod.rs` puts them there.
+fn table() -> Vec<(
+    &'static str,
+    &'static [&'static str],
+    Vec<(&'static str, u32)>,
+)> {
+    use cityspec::*;
+    vec![
+        ("layout", &[], vec![("layout::VERSION", layout::VERSION)]),
+        (
+            "mirror",
+            &["layout"],
+            vec![("mirror::VERSION", mirror::VERSION)],
+        ),
+        (
+            "parse",
+            &["mirror"],
+            vec![("parse::VERSION", parse::VERSION)],
+        ),
+        (
+            "lamps",
+            &["mirror", "parse"],
+            vec![("lamps::VERSION", lamps::VERSION)],
+        ),
+        (
+            "facades",
+            &[],
+            vec![
+                ("facades::VERSION", facades::VERSION),
+                ("facades::BUILTIN_VERSION", facades::BUILTIN_VERSION),
+            ],
+        ),
+        (
+            "place",
+            &["parse", "facades"],
+            vec![("place::VERSION", place::VERSION)],
+        ),
+        (
+            "plan",
+            &["parse", "lamps", "place"],
+            vec![("plan::VERSION", plan::VERSION)],
+        ),
+        (
+            "preview",
+            &["mirror", "parse", "lamps", "place"],
+            vec![("preview::VERSION", preview::VERSION)],
+        ),
+        (
+            "export",
+            &["parse", "lamps", "place", "facades"],
+            vec![
+                ("export::VERSION", export::VERSION),
+                ("scene::VERSION", scene::VERSION),
+                ("objects::VERSION", objects::VERSION),
+            ],
+        ),
+        (
+            "overview",
+            &["export"],
+            vec![
+                ("render::VERSION", render::VERSION),
+                ("cameras::VERSION", cameras::VERSION),
+            ],
+        ),
+        (
+            "frames street",
+            &["export"],
+            vec![
+                ("render::VERSION", render::VERSION),
+                ("cameras::VERSION", cameras::VERSION),
+                ("annotate::VERSION", annotate::VERSION),
+                ("sensor::VERSION", sensor::VERSION),
+            ],
+        ),
+        (
+            "frame",
+            &["export"],
+            vec![
+                ("render::VERSION", render::VERSION),
+                ("cameras::VERSION", cameras::VERSION),
+                ("sensor::VERSION", sensor::VERSION),
+            ],
+        ),
+    ]
+}
+
+/// "render::VERSION 3, cameras::VERSION 3, codec::VERSION 2".
+fn versions_text(versions: &[(&str, u32)]) -> String {
+    let mut all: Vec<String> = versions.iter().map(|(n, v)| format!("{n} {v}")).collect();
+    all.push(format!("codec::VERSION {}", build::CODEC_VERSION));
+    all.join(", ")
+}
+
+/// SHA-256 over a stage's outputs: each name and its object's SHA-256, in name order.
+fn digest(outputs: &BTreeMap<String, String>) -> String {
+    let mut text = String::new();
+    for (name, sha) in outputs {
+        writeln!(text, "{name} {sha}").unwrap();
+    }
+    cityspec::hash::sha256_hex(text.as_bytes())
+}
+
+/// Builds the golden city and returns each pinned output's digest.
+fn build_digests() -> BTreeMap<String, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let options = BuildOptions {
+        out_root: dir.path().join("out"),
+        cache_dir: dir.path().join("cache"),
+        ..BuildOptions::default()
+    };
+    let report = build::build(Path::new(SPEC), &options).unwrap();
+    let cache = Cache::new(&options.cache_dir);
+    let mut digests = BTreeMap::new();
+    for run in report.stages.iter().filter(|r| !r.key.is_empty()) {
+        assert_eq!(
+            run.status,
+            StageStatus::Ran,
+            "a cold cache runs every stage"
+        );
+        let entry = cache
+            .entry(&run.key)
+            .expect("every stage that ran has an entry");
+        let outputs: BTreeMap<String, String> = entry
+            .outputs
+            .iter()
+            .map(|(name, object)| (name.clone(), object.sha256.clone()))
+            .collect();
+        let name = match &run.camera {
+            Some(camera) => format!("{} {camera}", run.stage),
+            None => run.stage.to_owned(),
+        };
+        if let Some(frame) = outputs.get(FRAME) {
+            digests.insert("frame".to_owned(), frame.clone());
+        }
+        digests.insert(name, digest(&outputs));
+    }
+    digests
+}
+
+#[test]
+fn every_stage_output_is_pinned_to_its_versions() {
+    let digests = build_digests();
+    let table = table();
+    for (stage, _, _) in &table {
+        assert!(
+            digests.contains_key(*stage),
+            "the golden city has no {stage} output"
+        );
+    }
+    if std::env::var_os("CITYSPEC_BLESS").is_some() {
+        let mut text = String::from(
+            "# Pinned by tests/golden.rs: each stage's output digest for tests/golden/city.toml\n\
+             # and the VERSION constants in its key. Rewrite with CITYSPEC_BLESS=1 cargo test\n\
+             # --test golden, only after bumping the VERSION of the stage whose bytes changed.\n",
+        );
+        for (stage, _, versions) in &table {
+            write!(
+                text,
+                "\n[{stage:?}]\nversions = {:?}\ndigest = {:?}\n",
+                versions_text(versions),
+                digests[*stage]
+            )
+            .unwrap();
+        }
+        std::fs::write(PINS, text).unwrap();
+        return;
+    }
+    let pins: toml::Table = std::fs::read_to_string(PINS)
+        .unwrap_or_else(|e| panic!("cannot read {PINS} ({e}): create it with {BLESS}"))
+        .parse()
+        .unwrap();
+    let pinned = |stage: &str, field: &str| -> Option<String> {
+        Some(pins.get(stage)?.get(field)?.as_str()?.to_owned())
+    };
+    let changed = |stage: &str| pinned(stage, "digest").as_deref() != Some(&digests[stage]);
+    let mut problems = Vec::new();
+    for (stage, inputs, versions) in &table {
+        let now = versions_text(versions);
+        let Some(was) = pinned(stage, "versions") else {
+            problems.push(format!("stage `{stage}` has no pin: run {BLESS}"));
+            continue;
+        };
+        if was != now {
+            problems.push(format!(
+                "stage `{stage}`: its versions are now [{now}] but the pins hold [{was}]: \
+                 run {BLESS} to pin its new output"
+            ));
+        } else if changed(stage) && !inputs.iter().any(|input| changed(input)) {
+            // Its inputs are as pinned, so the stage's own code changed its bytes.
+            let constants: Vec<String> = versions
+                .iter()
+                .map(|(name, value)| format!("{name} is still {value}"))
+                .collect();
+            problems.push(format!(
+                "stage `{stage}` output changed but {}: bump it (the one of the code you \
+                 changed; codec::VERSION for an encoding), then {BLESS}",
+                constants.join(", ")
+            ));
+        } else if changed(stage) {
+            problems.push(format!(
+                "stage `{stage}` output changed with its inputs (the upstream stage named \
+                 above needs the bump): after that, {BLESS}"
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "\n{}\n", problems.join("\n"));
+}
