@@ -198,6 +198,8 @@ fn every_stage_output_is_pinned_to_its_versions() {
     };
     let changed = |stage: &str| pinned(stage, "digest").as_deref() != Some(&digests[stage]);
     let mut problems = Vec::new();
+    // Per stage changed by its own code: the constants that could cover it.
+    let mut culprits: Vec<Vec<&str>> = Vec::new();
     for (stage, inputs, versions) in &table {
         let now = versions_text(versions);
         let Some(was) = pinned(stage, "versions") else {
@@ -211,20 +213,49 @@ fn every_stage_output_is_pinned_to_its_versions() {
             ));
         } else if changed(stage) && !inputs.iter().any(|input| changed(input)) {
             // Its inputs are as pinned, so the stage's own code changed its bytes.
-            let constants: Vec<String> = versions
-                .iter()
-                .map(|(name, value)| format!("{name} is still {value}"))
-                .collect();
+            culprits.push(versions.iter().map(|(name, _)| *name).collect::<Vec<_>>());
+            let advice = match &versions[..] {
+                [(name, value)] => format!("{name} is still {value}: bump it"),
+                several => format!(
+                    "none of {} moved: bump the one whose code changed",
+                    several
+                        .iter()
+                        .map(|(name, value)| format!("{name} ({value})"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            };
             problems.push(format!(
-                "stage `{stage}` output changed but {}: bump it (the one of the code you \
-                 changed; codec::VERSION for an encoding), then {BLESS}",
-                constants.join(", ")
+                "stage `{stage}` output changed but {advice} (codec::VERSION for an \
+                 encoding), then {BLESS}"
             ));
         } else if changed(stage) {
             problems.push(format!(
                 "stage `{stage}` output changed with its inputs (the upstream stage named \
                  above needs the bump): after that, {BLESS}"
             ));
+        }
+    }
+    // A constant in every such stage's key is the likely one (render for a renderer change
+    // seen by the overview and the frames alike).
+    if let Some((first, rest)) = culprits.split_first() {
+        let shared: Vec<&&str> = first
+            .iter()
+            .filter(|c| rest.iter().all(|r| r.contains(c)))
+            .collect();
+        match &shared[..] {
+            [] => {}
+            [only] => problems.push(format!(
+                "likely {only}: every stage that changed has it in its key"
+            )),
+            several => problems.push(format!(
+                "likely one of {}: every stage that changed has them in its key",
+                several
+                    .iter()
+                    .map(|c| c.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
         }
     }
     assert!(problems.is_empty(), "\n{}\n", problems.join("\n"));
