@@ -30,6 +30,17 @@ fn build_writes_artifacts_into_out_and_says_so() {
         "{}",
         stderr(&out)
     );
+    // Issue 9: no rate measured over a single frame ("1000000000.0 frames/s").
+    assert!(
+        stderr(&out).contains("rendered day/street: 4 frames"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(
+        !stderr(&out).contains("00000000.0 frames/s"),
+        "{}",
+        stderr(&out)
+    );
     for file in ["layout.png", "plan.json", "plan.png", "manifest.json"] {
         assert!(ws.path().join("out/day").join(file).is_file(), "{file}");
     }
@@ -38,6 +49,28 @@ fn build_writes_artifacts_into_out_and_says_so() {
     let text = stderr(&again);
     assert!(text.contains("up to date"), "{text}");
     assert!(!text.contains(" ran "), "{text}");
+    // Issue 9: -v names each camera's stage and counts files per folder; -vv lists them.
+    assert!(
+        text.contains("cached frames street") && text.contains("cached frames aerial"),
+        "{text}"
+    );
+    fs::remove_file(ws.path().join("out/day/plan.png")).unwrap();
+    fs::remove_dir_all(ws.path().join("out/day/frames/street/rgb")).unwrap();
+    let v = stderr(&cityspec(&ws, &["build", "-v", "specs/day.toml"]));
+    assert!(
+        v.contains("wrote 4 files in out/day/frames/street/rgb"),
+        "{v}"
+    );
+    assert!(v.contains("wrote 1 file in out/day/\n"), "{v}");
+    assert!(v.contains("; 5 files written"), "{v}");
+    fs::remove_file(ws.path().join("out/day/plan.png")).unwrap();
+    let vv = stderr(&cityspec(&ws, &["build", "-vv", "specs/day.toml"]));
+    assert!(vv.contains("wrote out/day/plan.png"), "{vv}");
+    assert!(vv.contains("; 1 file written"), "{vv}");
+    // -v is not offered where it prints nothing more.
+    for args in [&["validate", "-v", "specs/day.toml"][..], &["schema", "-v"]] {
+        assert_eq!(cityspec(&ws, args).status.code(), Some(2), "{args:?}");
+    }
 }
 
 #[test]
@@ -521,4 +554,29 @@ fn issue_8_objects_placed_short_of_count_warn_and_fail_under_strict() {
     let text = stderr(&fits);
     assert_eq!(fits.status.code(), Some(0), "{text}");
     assert!(!text.contains("warning"), "{text}");
+}
+
+/// Issue 8 leftover: `validate` read a facade folder's photos only as far as `build` did
+/// not, so a truncated photo passed `validate` and then failed (or was skipped by) `build`.
+#[test]
+fn issue_8_validate_refuses_a_truncated_facade_photo_as_build_does() {
+    let ws = Workspace::with_spec("cmp");
+    let photo = ws.path().join("assets/facades/sample/street_04.jpg");
+    let bytes = fs::read(&photo).unwrap();
+    fs::write(&photo, &bytes[..bytes.len() / 2]).unwrap();
+    // on_error = "skip": valid, with the warning the build would print.
+    let out = cityspec(&ws, &["validate", "specs/cmp.toml"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("warning") && stderr(&out).contains("street_04.jpg"),
+        "{}",
+        stderr(&out)
+    );
+    // on_error = "error": refused, naming the photo, with exit code 2.
+    ws.edit_spec("cmp", "on_error = \"skip\"", "on_error = \"error\"");
+    let out = cityspec(&ws, &["validate", "specs/cmp.toml"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("street_04.jpg"), "{}", stderr(&out));
+    let build = cityspec(&ws, &["build", "specs/cmp.toml"]);
+    assert_eq!(build.status.code(), Some(2), "{}", stderr(&build));
 }

@@ -19,8 +19,10 @@
 //! Builds of one output folder serialize on `<out>/.<name>~cityspec-lock` (an OS file
 //! lock, released when the process ends however it ends). The lock file stays.
 //!
-//! Test hook: `CITYSPEC_TEST_ABORT_AFTER_WRITES=N` aborts the process right after the
-//! N-th change the sync makes to the file system, so a test can kill a build at every step.
+//! Test hooks: `CITYSPEC_TEST_ABORT_AFTER_WRITES=N` aborts the process right after the
+//! N-th change the sync makes to the file system, so a test can kill a build at every step;
+//! `CITYSPEC_TEST_NO_EXCHANGE=1` skips the one-step exchange, so the two-rename fallback
+//! runs on systems that have the exchange too.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs::{self, File, TryLockError};
@@ -224,7 +226,7 @@ impl OutDir {
             self.faults.step();
             return Ok(());
         }
-        if exchange(stage, &self.dir)? {
+        if !self.faults.no_exchange && exchange(stage, &self.dir)? {
             self.faults.step();
             // `stage` now holds the old build.
             remove_entry(stage)?;
@@ -431,10 +433,11 @@ fn exchange(_: &Path, _: &Path) -> io::Result<bool> {
     Ok(false)
 }
 
-/// The test hook: abort after the N-th file-system change.
+/// The test hooks: abort after the N-th file-system change; do without the exchange.
 struct Faults {
     abort_after: Option<u64>,
     done: AtomicU64,
+    no_exchange: bool,
 }
 
 impl Faults {
@@ -444,6 +447,7 @@ impl Faults {
                 .ok()
                 .and_then(|v| v.parse().ok()),
             done: AtomicU64::new(0),
+            no_exchange: std::env::var_os("CITYSPEC_TEST_NO_EXCHANGE").is_some(),
         }
     }
 
@@ -483,5 +487,78 @@ mod tests {
         assert_eq!(tree.others, ["link"]);
         remove_entry(&out).unwrap();
         assert!(far.join("secret.txt").exists());
+    }
+
+    /// An output folder `<root>/city/` holding a cityspec build of `files`.
+    fn write_build(dir: &Path, files: &[(&str, &str)]) {
+        fs::create_dir_all(dir.join("sub")).unwrap();
+        for (name, text) in files {
+            fs::write(dir.join(name), text).unwrap();
+        }
+        let manifest = Manifest {
+            name: "city".to_owned(),
+            artifacts: Vec::new(),
+        };
+        fs::write(dir.join("manifest.json"), manifest.to_bytes()).unwrap();
+    }
+
+    fn read_tree(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+        walk(dir)
+            .unwrap()
+            .files
+            .keys()
+            .map(|name| (name.clone(), fs::read(dir.join(name)).unwrap()))
+            .collect()
+    }
+
+    /// What lies beside the output folder besides it and its lock.
+    fn beside(root: &Path) -> Vec<String> {
+        let mut names: Vec<String> = fs::read_dir(root)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "city" && !n.ends_with("~cityspec-lock"))
+            .collect();
+        names.sort();
+        names
+    }
+
+    const OLD: [(&str, &str); 2] = [("a.txt", "old a"), ("sub/b.txt", "old b")];
+    const NEW: [(&str, &str); 2] = [("a.txt", "new a"), ("sub/c.txt", "new c")];
+
+    #[test]
+    fn the_two_rename_fallback_puts_the_new_folder_in_whole() {
+        let root = tempfile::tempdir().unwrap();
+        write_build(&root.path().join("city"), &OLD);
+        let mut out = OutDir::open(root.path(), "city", &|_| {}).unwrap();
+        out.faults.no_exchange = true;
+        let stage = out.reserved("stage");
+        write_build(&stage, &NEW);
+        let want = read_tree(&stage);
+        out.swap(&stage, true).unwrap();
+        // The fallback's three changes (old aside, new in, old removed), not the exchange's two.
+        assert_eq!(out.faults.done.load(Ordering::Relaxed), 3);
+        assert_eq!(read_tree(&root.path().join("city")), want);
+        assert_eq!(beside(root.path()), Vec::<String>::new());
+    }
+
+    #[test]
+    fn a_kill_between_the_two_renames_is_rolled_back_by_the_next_build() {
+        let root = tempfile::tempdir().unwrap();
+        let city = root.path().join("city");
+        write_build(&city, &OLD);
+        let old = read_tree(&city);
+        let out = OutDir::open(root.path(), "city", &|_| {}).unwrap();
+        let stage = out.reserved("stage");
+        write_build(&stage, &NEW);
+        // The fallback's first rename, then the kill: no folder in place, the old one
+        // aside and the new one staged.
+        fs::rename(&city, out.reserved("old")).unwrap();
+        drop(out);
+        assert!(!city.exists());
+        assert_eq!(beside(root.path()).len(), 2);
+        // The next build's open puts the old folder back whole and drops the staging.
+        let _next = OutDir::open(root.path(), "city", &|_| {}).unwrap();
+        assert_eq!(read_tree(&city), old);
+        assert_eq!(beside(root.path()), Vec::<String>::new());
     }
 }
