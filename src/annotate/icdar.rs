@@ -19,8 +19,8 @@ pub const MIN_PX_PER_CHAR: f64 = 2.0;
 ///   word cut by the edge is therefore written as its visible part's hull, and its
 ///   transcription is kept only while at least half of it is in view (below).
 /// - The transcription is the word, or `###` (ICDAR's "do not care") when the word is
-///   mostly hidden (less than [`MOSTLY_HIDDEN`] of its quad shows the object, counting
-///   occlusion and the image edge), narrower than [`MIN_PX_PER_CHAR`] pixels per
+///   mostly hidden (less than `MOSTLY_HIDDEN` of its quad shows the object, counting
+///   occlusion and the image edge), narrower than `MIN_PX_PER_CHAR` pixels per
 ///   character, or its object misses the thresholds. A word the frame does not show at
 ///   all gets no line; every other gets one, so a detector that finds a hard word is not
 ///   counted wrong.

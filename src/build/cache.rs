@@ -139,7 +139,7 @@ impl Cache {
     }
 
     /// [`Cache::get`] for stage `stage`, whose output names must pass `names` (see
-    /// [`super::output_names`]): an entry of another stage, or one naming a file its stage
+    /// `output_names`): an entry of another stage, or one naming a file its stage
     /// never writes, is corrupt before any of its objects is read.
     pub fn get_stage(
         &self,

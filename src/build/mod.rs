@@ -2,8 +2,8 @@
 //!
 //! The only code that knows the stage order, reads and writes files and keeps the cache.
 //! For each spec it reads the TOML, validates it ([`crate::spec::load`]), computes every
-//! stage key, pulls the artifacts through the cache ([`pipeline`]) and puts them into
-//! `<out>/<name>/` ([`out_dir`]): the folder is replaced whole or not at all, under a lock
+//! stage key, pulls the artifacts through the cache (`pipeline`) and puts them into
+//! `<out>/<name>/` (`out_dir`): the folder is replaced whole or not at all, under a lock
 //! that makes builds of one folder take turns. Files that already hold the right bytes are
 //! kept, so a rebuild with nothing changed writes nothing.
 

@@ -15,7 +15,7 @@
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
 //! finds no free spot in [`ATTEMPTS`] tries is left out: `count` is an upper bound.
 //!
-//! No `sin`/`cos` from std: angles go through [`trig`], a fixed polynomial, so the output is
+//! No `sin`/`cos` from std: angles go through `trig`, a fixed polynomial, so the output is
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.

@@ -3,13 +3,13 @@
 //!
 //! Three steps, each in its own file:
 //!
-//! 1. [`ClassMap`](class_map::ClassMap): every pixel becomes road, line, block, strip or
+//! 1. `ClassMap`: every pixel becomes road, line, block, strip or
 //!    other: the nearest palette colour within `palette.tolerance`, plus faded road/line
 //!    blends as line so that anti-aliased or JPEG-saved 1-px lines survive. Rows in parallel.
-//! 2. [`find_blocks`](blocks::find_blocks): 4-connected regions of block pixels of at least
+//! 2. `find_blocks`: 4-connected regions of block pixels of at least
 //!    [`MIN_BLOCK_AREA`] px, with bounding box, area, exact pixels as bands and the outer
 //!    contour's corners; ids in raster order of each block's first pixel.
-//! 3. [`find_roads`](roads::find_roads): centre lines from line-pixel runs longer than 5 px
+//! 3. `find_roads`: centre lines from line-pixel runs longer than 5 px
 //!    (gaps up to [`LINE_GAP`] px bridged, runs on neighbouring rows/columns merged), road
 //!    edges from the road-or-line runs across each line.
 //!
