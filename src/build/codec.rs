@@ -7,6 +7,7 @@ use serde_json::Value;
 use std::sync::Arc;
 
 use super::cache::{Blob, Outputs};
+use super::decode_error::DecodeError;
 use crate::model::FacadeSet;
 
 /// Bump when any encoding here changes its bytes: it is part of every stage key.
@@ -18,10 +19,10 @@ pub fn encode_png(image: &RgbImage) -> Vec<u8> {
 }
 
 /// Decodes PNG bytes this module wrote.
-pub fn decode_png(bytes: &[u8]) -> Result<RgbImage, String> {
+pub fn decode_png(bytes: &[u8]) -> Result<RgbImage, DecodeError> {
     image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
         .map(|image| image.to_rgb8())
-        .map_err(|e| e.to_string())
+        .map_err(DecodeError::Png)
 }
 
 /// A facade set as cache outputs: `facades.json` (without pixels) and every texture as
@@ -44,7 +45,7 @@ pub fn facade_set_outputs(set: &FacadeSet) -> Outputs {
 }
 
 /// The facade set back from [`facade_set_outputs`].
-pub fn facade_set_from_outputs(outputs: &Outputs) -> Result<FacadeSet, String> {
+pub fn facade_set_from_outputs(outputs: &Outputs) -> Result<FacadeSet, DecodeError> {
     let mut set: FacadeSet = from_json(output(outputs, "facades.json")?)?;
     let textures = set.facades.iter_mut().map(|f| &mut f.texture);
     for texture in textures.chain(set.roofs.iter_mut().map(|r| &mut r.texture)) {
@@ -55,11 +56,13 @@ pub fn facade_set_from_outputs(outputs: &Outputs) -> Result<FacadeSet, String> {
 }
 
 /// The in-memory bytes of output `name`.
-pub fn output<'o>(outputs: &'o Outputs, name: &str) -> Result<&'o Arc<Vec<u8>>, String> {
+pub fn output<'o>(outputs: &'o Outputs, name: &str) -> Result<&'o Arc<Vec<u8>>, DecodeError> {
     outputs
         .get(name)
         .and_then(Blob::bytes)
-        .ok_or_else(|| format!("{name} missing"))
+        .ok_or_else(|| DecodeError::Missing {
+            name: name.to_owned(),
+        })
 }
 
 /// Compact JSON for values only the cache reads.
@@ -106,8 +109,9 @@ fn write_pretty(value: &Value, depth: usize, out: &mut String) {
     }
 }
 
-pub fn from_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, String> {
-    serde_json::from_slice(bytes).map_err(|e| e.to_string())
+/// Decodes JSON this module wrote.
+pub fn from_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, DecodeError> {
+    serde_json::from_slice(bytes).map_err(DecodeError::Json)
 }
 
 /// One line, with a space after every comma and colon.

@@ -3,6 +3,7 @@
 use std::io;
 use std::path::PathBuf;
 
+use super::decode_error::DecodeError;
 use crate::facades::FacadeError;
 use crate::layout::LayoutError;
 use crate::objects::ObjectsError;
@@ -83,9 +84,10 @@ pub enum BuildError {
     #[error("cannot write the cache at {}: {source}", path.display())]
     Cache { path: PathBuf, source: io::Error },
     /// A cached value that verified by hash still did not decode: a cityspec bug.
-    #[error("cached output of stage {stage} did not decode: {message}")]
+    #[error("cached output of stage {stage} did not decode: {source}")]
     Decode {
         stage: &'static str,
-        message: String,
+        #[source]
+        source: DecodeError,
     },
 }

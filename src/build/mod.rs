@@ -10,6 +10,7 @@
 mod atomic;
 mod cache;
 mod codec;
+mod decode_error;
 mod error;
 mod frame_labels;
 mod frames;
@@ -35,6 +36,7 @@ pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
 /// The driver's encodings' version (PNG settings, JSON layout), in every stage key.
 pub use codec::VERSION as CODEC_VERSION;
+pub use decode_error::DecodeError;
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};

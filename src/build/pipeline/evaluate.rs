@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use super::super::BuildError;
 use super::super::cache::{Blob, Load, Miss, Outputs};
+use super::super::decode_error::DecodeError;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
 use super::{Pipeline, Slot};
@@ -112,12 +113,11 @@ impl Pipeline<'_> {
 pub(super) fn value<T>(
     slot: &mut Option<Slot<T>>,
     stage: &'static str,
-    decode: impl FnOnce(&Outputs) -> Result<T, String>,
+    decode: impl FnOnce(&Outputs) -> Result<T, DecodeError>,
 ) -> Result<Arc<T>, BuildError> {
     let slot = slot.as_mut().expect("stage was evaluated");
     if slot.value.is_none() {
-        let value =
-            decode(&slot.outputs).map_err(|message| BuildError::Decode { stage, message })?;
+        let value = decode(&slot.outputs).map_err(|source| BuildError::Decode { stage, source })?;
         slot.value = Some(Arc::new(value));
     }
     Ok(Arc::clone(slot.value.as_ref().expect("just set")))
