@@ -20,14 +20,17 @@ const BLESS: &str = "CITYSPEC_BLESS=1 cargo test --test golden";
 /// The one pinned frame: small, in the sun, shadowed.
 const FRAME: &str = "frames/street/rgb/000000.png";
 
-/// Each pinned output, the stages it depends on (its digest may change because of theirs),
-/// and the `VERSION` constants in its key besides the driver's `codec::VERSION`, as
-/// `keys()` in `src/build/pipeline/mod.rs` puts them there.
-fn table() -> Vec<(
+/// A pinned output: its name, the outputs it is made from, its key's `VERSION`s.
+type Pinned = (
     &'static str,
     &'static [&'static str],
     Vec<(&'static str, u32)>,
-)> {
+);
+
+/// Each pinned output, the stages it depends on (its digest may change because of theirs),
+/// and the `VERSION` constants in its key besides the driver's `codec::VERSION`, as
+/// `keys()` in `src/build/pipeline/mod.rs` puts them there.
+fn table() -> Vec<Pinned> {
     use cityspec::*;
     vec![
         ("layout", &[], vec![("layout::VERSION", layout::VERSION)]),
