@@ -35,6 +35,7 @@ mod orbit_path;
 mod road_path;
 mod sidewalk_path;
 
+use crate::geometry::mm;
 pub use crate::model::CameraPose;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
@@ -42,9 +43,3 @@ pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath
 pub use orbit_path::{orbit_length, orbit_path};
 pub use road_path::{ROAD_PITCH, RoadPath, road_path, tour_length};
 pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};
-
-/// `v` rounded to the millimetre, with `-0` made `0`.
-fn mm(v: f64) -> f64 {
-    let r = (v * 1000.0).round() / 1000.0;
-    if r == 0.0 { 0.0 } else { r }
-}
