@@ -23,7 +23,11 @@
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
-//! Shared types live in [`model`]; stages depend on them, never on each other.
+//! Shared types live in [`model`], shared geometry (mesh building, road rectangles, facade
+//! heights, vector and trig helpers) in [`geometry`], image-file checks and encoding in
+//! [`image_file`]; stages depend on these, on [`spec`], [`rng`] and [`hash`], never on each
+//! other. `tests/stage_imports.rs` fails when a stage names another; tests that need
+//! another stage's output get it through `test_support`.
 
 pub mod annotate;
 pub mod build;
@@ -31,7 +35,9 @@ pub mod cameras;
 pub mod cli;
 pub mod export;
 pub mod facades;
+pub mod geometry;
 pub mod hash;
+pub mod image_file;
 pub mod lamps;
 pub mod layout;
 pub mod mirror;
@@ -49,3 +55,5 @@ pub mod spec;
 pub mod stats;
 #[doc(hidden)]
 pub mod test_seed;
+#[cfg(test)]
+mod test_support;

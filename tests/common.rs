@@ -5,6 +5,10 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
+#[path = "common/copy_tree.rs"]
+mod copy_tree;
+pub use copy_tree::copy_tree;
+
 /// A temp folder holding `specs/<name>.toml` copied from the repo, plus `out/` and
 /// `cache/` paths inside it.
 pub struct Workspace {
@@ -76,20 +80,6 @@ impl Workspace {
         let text = fs::read_to_string(&path).unwrap();
         assert!(text.contains(from), "{from:?} not in {}", path.display());
         fs::write(&path, text.replacen(from, to, 1)).unwrap();
-    }
-}
-
-/// Copies every file below `from` into `to`, creating folders.
-pub fn copy_tree(from: &Path, to: &Path) {
-    fs::create_dir_all(to).unwrap();
-    for entry in fs::read_dir(from).unwrap() {
-        let entry = entry.unwrap();
-        let target = to.join(entry.file_name());
-        if entry.path().is_dir() {
-            copy_tree(&entry.path(), &target);
-        } else {
-            fs::copy(entry.path(), target).unwrap();
-        }
     }
 }
 

@@ -258,7 +258,7 @@ fn a_spec_with_only_version_name_and_generate_gets_every_default() {
 fn render_points_at_every_error_of_a_file() {
     let path = Path::new("tests/fixtures/bad/several_errors.toml");
     let errors = spec::load(&source(path), &FsWorld).unwrap_err();
-    let out = spec::render(&errors, false);
+    let out = spec::report(&errors, false);
     let count = errors.diagnostics.len();
     assert!(count >= 3, "{out}");
     assert_eq!(out.matches("error: invalid `").count(), count, "{out}");

@@ -10,18 +10,10 @@ pub fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-pub fn copy_tree(from: &Path, to: &Path) {
-    fs::create_dir_all(to).unwrap();
-    for entry in fs::read_dir(from).unwrap() {
-        let path = entry.unwrap().path();
-        let target = to.join(path.file_name().unwrap());
-        if path.is_dir() {
-            copy_tree(&path, &target);
-        } else {
-            fs::copy(&path, &target).unwrap();
-        }
-    }
-}
+#[path = "../../tests/common/copy_tree.rs"]
+mod copy_tree;
+#[allow(unused_imports)] // each bench uses a part
+pub use copy_tree::copy_tree;
 
 /// `specs/day.toml` with its `[[cameras]]` entries cut: the city alone.
 pub fn day_without_cameras() -> String {

@@ -134,7 +134,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
     std::fs::create_dir_all(dir.join("instance")).unwrap();
     std::fs::write(dir.join("coco.json"), &json).unwrap();
     for (i, (image, _)) in images.iter().enumerate() {
-        crate::render::pack_ids(image)
+        crate::model::pack_ids(image)
             .save(dir.join("instance").join(format!("{i:06}.png")))
             .unwrap();
     }
@@ -165,7 +165,7 @@ fn fixture_boxes_are_tight_boxes_of_the_written_pngs() {
     for ann in anns {
         let frame = ann["image_id"].as_u64().unwrap() as usize - 1;
         let path = dir.join("instance").join(format!("{frame:06}.png"));
-        let read: Instance = crate::render::unpack_ids(&image::open(&path).unwrap().into_rgb8());
+        let read: Instance = crate::model::unpack_ids(&image::open(&path).unwrap().into_rgb8());
         assert_eq!(read, images[frame]);
         let id = ann["instance_id"].as_u64().unwrap() as u32;
         let (bbox, area) = tight_box(&read, id).unwrap();

@@ -69,10 +69,15 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
             }
             None => {
                 let b = v.bounds;
-                let quad = [[b.x0, b.y0], [b.x1, b.y0], [b.x1, b.y1], [b.x0, b.y1]]
-                    .map(|p| p.map(i64::from));
-                let wide =
-                    f64::from(b.x1 - b.x0 + 1) >= MIN_PX_PER_CHAR * text.chars().count() as f64;
+                let quad = [
+                    [b.x_min, b.y_min],
+                    [b.x_max, b.y_min],
+                    [b.x_max, b.y_max],
+                    [b.x_min, b.y_max],
+                ]
+                .map(|p| p.map(i64::from));
+                let wide = f64::from(b.x_max - b.x_min + 1)
+                    >= MIN_PX_PER_CHAR * text.chars().count() as f64;
                 let readable = words.len() == 1
                     && object.passes
                     && object.fraction.is_none_or(|f| f >= MOSTLY_HIDDEN)

@@ -59,8 +59,8 @@ pub use yolo::{YoloClasses, yolo};
 /// `v` rounded to a multiple of `1 / scale` (`scale` a power of ten; `-0` made `0`), or
 /// `None` when it is not finite.
 fn round(v: f64, scale: f64) -> Option<f64> {
-    let r = (v * scale).round() / scale;
-    r.is_finite().then_some(if r == 0.0 { 0.0 } else { r })
+    let r = crate::geometry::round_to(v, scale);
+    r.is_finite().then_some(r)
 }
 
 /// An instance image from rows of ids.

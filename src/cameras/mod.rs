@@ -37,6 +37,7 @@ mod overview;
 mod road_path;
 mod sidewalk_path;
 
+use crate::geometry::mm;
 pub use crate::model::CameraPose;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
@@ -49,9 +50,3 @@ pub use overview::{
 };
 pub use road_path::{ROAD_PITCH, RoadPath, road_path, tour_length};
 pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};
-
-/// `v` rounded to the millimetre, with `-0` made `0`.
-fn mm(v: f64) -> f64 {
-    let r = (v * 1000.0).round() / 1000.0;
-    if r == 0.0 { 0.0 } else { r }
-}

@@ -136,7 +136,7 @@ impl Printer {
 
     pub fn error(&self, error: &BuildError) {
         match error {
-            BuildError::Spec(errors) => eprint!("{}", crate::spec::render(errors, self.color)),
+            BuildError::Spec(errors) => eprint!("{}", crate::spec::report(errors, self.color)),
             other => eprintln!("error: {other}"),
         }
     }

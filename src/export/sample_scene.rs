@@ -3,6 +3,7 @@
 
 use image::RgbImage;
 
+use crate::geometry::cross;
 use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
 
 fn texture(name: &str, size: u32, salt: u8) -> Texture {
@@ -37,14 +38,6 @@ fn push_quad(mesh: &mut Mesh, p0: [f32; 3], u: [f32; 3], w: [f32; 3], us: f32) {
         .extend([[0.0, 1.0], [us, 1.0], [us, 0.0], [0.0, 0.0]]);
     mesh.indices
         .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
-}
-
-pub fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// A box on the ground from `min` to `max`: four walls of `wall` material, a roof of `roof`.

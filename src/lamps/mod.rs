@@ -20,7 +20,6 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
-mod pixel_class;
 mod road_side;
 
 use std::collections::HashMap;
@@ -136,8 +135,8 @@ fn prune(candidates: impl Iterator<Item = Lamp>, min_distance: f64) -> Vec<Lamp>
 
 #[cfg(test)]
 mod tests {
-    use super::pixel_class::PixelClass;
     use super::*;
+    use crate::model::PixelClass;
     use image::Rgb;
 
     const ROAD: [u32; 2] = [84, 116];
@@ -245,10 +244,7 @@ mod tests {
 
     fn class_under(image: &RgbImage, lamp: &Lamp) -> PixelClass {
         let [x, y] = lamp.position;
-        PixelClass::of(
-            image.get_pixel(x.floor() as u32, y.floor() as u32).0,
-            &Palette::default(),
-        )
+        Palette::default().classify(image.get_pixel(x.floor() as u32, y.floor() as u32).0)
     }
 
     fn positions(lamps: &[Lamp]) -> Vec<(u32, [f64; 2])> {

@@ -2,7 +2,7 @@
 
 use image::RgbImage;
 
-use super::pixel_class::PixelClass;
+use crate::model::PixelClass;
 use crate::model::{Axis, Road};
 use crate::spec::Palette;
 
@@ -101,6 +101,6 @@ impl<'a> RoadSide<'a> {
         };
         let x = u32::try_from(x).ok().filter(|&x| x < self.image.width())?;
         let y = u32::try_from(y).ok().filter(|&y| y < self.image.height())?;
-        Some(PixelClass::of(self.image.get_pixel(x, y).0, self.palette))
+        Some(self.palette.classify(self.image.get_pixel(x, y).0))
     }
 }

@@ -11,12 +11,8 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
-mod decode;
 mod generated_layout;
-mod image_end;
-mod layout_error;
 
-pub use decode::{MAX_PIXELS, MAX_SIDE, decode};
+// Decoding lives in `image_file` because `spec` must refuse the same images the build does.
+pub use crate::image_file::{LayoutError, MAX_PIXELS, MAX_SIDE, decode};
 pub use generated_layout::{GeneratedLayout, generate};
-pub use image_end::check_complete;
-pub use layout_error::LayoutError;

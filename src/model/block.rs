@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-/// An axis-aligned pixel rectangle `[x0, x1) × [y0, y1)`.
+/// An axis-aligned pixel rectangle `[x0, x1) × [y0, y1)`: half-open, so `x1` is one past
+/// the last column. [`crate::model::PixelBox`] is the inclusive box, with `x_min..=x_max`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct PxRect {
     pub x0: u32,

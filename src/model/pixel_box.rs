@@ -1,41 +1,41 @@
 //! Image pixels, one at a time → [`PixelBox`]: their tight inclusive box, and COCO's
 //! `[x, y, w, h]` of it.
 
-/// The tight box of some pixels, inclusive: columns `x0..=x1`, rows `y0..=y1`.
+/// The tight box of some pixels, inclusive: columns `x_min..=x_max`, rows `y_min..=y_max`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelBox {
-    pub x0: u32,
-    pub y0: u32,
-    pub x1: u32,
-    pub y1: u32,
+    pub x_min: u32,
+    pub y_min: u32,
+    pub x_max: u32,
+    pub y_max: u32,
 }
 
 impl PixelBox {
     /// The box of the one pixel `(x, y)`.
     pub fn at(x: u32, y: u32) -> PixelBox {
         PixelBox {
-            x0: x,
-            y0: y,
-            x1: x,
-            y1: y,
+            x_min: x,
+            y_min: y,
+            x_max: x,
+            y_max: y,
         }
     }
 
     /// Grows the box to hold pixel `(x, y)`.
     pub fn include(&mut self, x: u32, y: u32) {
-        self.x0 = self.x0.min(x);
-        self.y0 = self.y0.min(y);
-        self.x1 = self.x1.max(x);
-        self.y1 = self.y1.max(y);
+        self.x_min = self.x_min.min(x);
+        self.y_min = self.y_min.min(y);
+        self.x_max = self.x_max.max(x);
+        self.y_max = self.y_max.max(y);
     }
 
-    /// COCO `[x, y, w, h]` (pixel edges, so `w = x1 − x0 + 1`).
+    /// COCO `[x, y, w, h]` (pixel edges, so `w = x_max − x_min + 1`).
     pub fn bbox(&self) -> [u32; 4] {
         [
-            self.x0,
-            self.y0,
-            self.x1 - self.x0 + 1,
-            self.y1 - self.y0 + 1,
+            self.x_min,
+            self.y_min,
+            self.x_max - self.x_min + 1,
+            self.y_max - self.y_min + 1,
         ]
     }
 }
@@ -54,10 +54,10 @@ mod tests {
         assert_eq!(
             b,
             PixelBox {
-                x0: 3,
-                y0: 1,
-                x1: 7,
-                y1: 4
+                x_min: 3,
+                y_min: 1,
+                x_max: 7,
+                y_max: 4
             }
         );
         assert_eq!(b.bbox(), [3, 1, 5, 4]);

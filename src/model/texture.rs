@@ -5,8 +5,7 @@
 
 use std::sync::Arc;
 
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{ImageEncoder, RgbImage};
+use image::RgbImage;
 use serde::{Deserialize, Serialize};
 
 /// A PNG texture.
@@ -22,18 +21,11 @@ pub struct Texture {
     pub png: Arc<Vec<u8>>,
 }
 
-/// PNG bytes of an RGB image. The encoder settings are fixed, so the bytes are too.
+use crate::image_file::PngEffort;
+
+/// PNG bytes of an RGB image, as textures are stored (see [`crate::image_file::encode_png`]).
 pub fn encode_png(image: &RgbImage) -> Vec<u8> {
-    let mut png = Vec::new();
-    PngEncoder::new_with_quality(&mut png, CompressionType::Fast, FilterType::Adaptive)
-        .write_image(
-            image.as_raw(),
-            image.width(),
-            image.height(),
-            image::ExtendedColorType::Rgb8,
-        )
-        .expect("encoding a PNG into memory cannot fail");
-    png
+    crate::image_file::encode_png(image, PngEffort::Fast)
 }
 
 impl Texture {

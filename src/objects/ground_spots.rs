@@ -11,9 +11,8 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ObjectsInput;
+use crate::geometry::{RoadRect, strip_width_px};
 use crate::model::{Axis, ParsedLayout, Road};
-use crate::scene::road_rect::RoadRect;
-use crate::scene::strip_width_px;
 
 /// Metres an object keeps from a lamp site.
 pub const LAMP_CLEARANCE: f64 = 2.0;

@@ -35,7 +35,6 @@ mod text_font;
 mod text_plate;
 mod traffic_signs;
 mod tree;
-mod trig;
 mod user_mesh;
 mod vehicle_parts;
 mod wall_text;
@@ -43,10 +42,10 @@ mod word_list;
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use crate::geometry::{FacadeChoice, MaterialBook, trig};
 use crate::model::{
     Building, FacadeSet, Lamp, Material, Mesh, ParsedLayout, Scene, SceneObject, Texture,
 };
-use crate::scene::material_book::MaterialBook;
 use crate::spec::{ObjectKind, ObjectSpec};
 
 pub use objects_error::ObjectsError;
@@ -79,6 +78,18 @@ pub struct ObjectsInput<'a> {
     pub meshes: &'a BTreeMap<String, MeshFiles>,
     pub metres_per_pixel: f64,
     pub seed: u64,
+}
+
+impl ObjectsInput<'_> {
+    /// How the scene stage picks each building's facade, and so its height: text goes on
+    /// the same walls.
+    pub fn facade_choice(&self) -> FacadeChoice<'_> {
+        FacadeChoice {
+            facades: self.facades,
+            widths: self.widths,
+            seed: self.seed,
+        }
+    }
 }
 
 /// What gets inserted: objects (named `text_0003`, `sign_0012`, `<label>_0004`…, class =

@@ -8,15 +8,10 @@ use image::RgbImage;
 use super::ground_spots::travel;
 use super::wall_text::{MIN_HEIGHT, TOP_CLEARANCE, WALL_OFFSET, Walls};
 use super::*;
-use crate::build::widths_px;
-use crate::layout::generate;
+use crate::geometry::{KERB_Y, ROAD_Y, RoadRect, cross, dot, sub};
 use crate::model::{Axis, Facade, Lamp, Roof};
-use crate::rng::stream;
-use crate::scene::mesh_builder::{cross, dot, sub};
-use crate::scene::road_rect::RoadRect;
-use crate::scene::{KERB_Y, ROAD_Y};
-use crate::spec::{GenerateSpec, Ground, ObjectKind, Palette, SignKind, TextCase};
-use crate::{lamps, parse, place};
+use crate::spec::{Ground, ObjectKind, Palette, SignKind, TextCase};
+use crate::test_support::{TestCity, test_city};
 
 const SEED: u64 = 42;
 const BENCH: &str = "models/bench.obj";
@@ -59,18 +54,14 @@ fn facade_set() -> FacadeSet {
 }
 
 fn city() -> City {
-    let palette = Palette::default();
-    let image = generate(
-        &GenerateSpec::default(),
-        &palette,
-        &mut stream(SEED, "layout", 0),
-    )
-    .image;
-    let layout = parse::parse(&image, &palette);
-    let lamps = lamps::site_lamps(&image, &layout, &palette, 100.0, 20.0);
     let facades = facade_set();
     let metric: Vec<f64> = facades.facades.iter().map(|f| f.width).collect();
-    let buildings = place::place(&layout.blocks, &widths_px(&metric, 1.0), 2, SEED);
+    let TestCity {
+        image,
+        layout,
+        lamps,
+        buildings,
+    } = test_city(SEED, &metric);
     let bench = MeshFiles {
         obj: include_bytes!("../../assets/models/bench.obj").to_vec(),
         mtl: Some(include_bytes!("../../assets/models/bench.mtl").to_vec()),
@@ -648,15 +639,13 @@ fn same_seed_same_objects_and_entries_are_independent() {
 fn merge_rebases_indices() {
     let city = city();
     let inserted = run(&city, &all_kinds()).unwrap();
-    let mut scene = crate::scene::build(&crate::scene::SceneInput {
-        layout: &city.layout,
-        lamps: &city.lamps,
-        buildings: &city.buildings,
-        facades: &city.facades,
-        widths: None,
-        metres_per_pixel: 1.0,
-        seed: SEED,
-    });
+    let mut scene = crate::test_support::scene(
+        &city.layout,
+        &city.lamps,
+        &city.buildings,
+        &city.facades,
+        SEED,
+    );
     let before = scene.clone();
     let first = merge(&mut scene, &inserted);
     assert_eq!(first, before.objects.len());

@@ -6,9 +6,8 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::GroundSpots;
 use super::{ATTEMPTS, Placing, sign_face};
+use crate::geometry::{KERB_Y, MeshBuilder, cross, dot, sub};
 use crate::model::{Mesh, Texture};
-use crate::scene::KERB_Y;
-use crate::scene::mesh_builder::{MeshBuilder, cross, dot, sub};
 use crate::spec::{ObjectSpec, SignKind};
 
 /// Pole height above the sidewalk, and half its thickness, in metres.

@@ -21,8 +21,8 @@ use rand_pcg::Pcg64;
 use super::ground_spots::{Footprint, GroundSpots};
 use super::vehicle_parts::{Solid, finish_all};
 use super::{ATTEMPTS, Placing, trig};
+use crate::geometry::KERB_Y;
 use crate::model::Mesh;
-use crate::scene::KERB_Y;
 use crate::spec::{ObjectSpec, TreeSpecies};
 
 /// Largest crown radius on open paving, metres.

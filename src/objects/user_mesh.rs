@@ -14,9 +14,8 @@ use rand_pcg::Pcg64;
 use super::ground_spots::{GroundSpots, Spot};
 use super::trig::{add, cos_sin_deg};
 use super::{ATTEMPTS, MeshFiles, ObjectsError, Placing};
+use crate::geometry::{KERB_Y, ROAD_Y, cross, dot, sub};
 use crate::model::{Mesh, Texture};
-use crate::scene::mesh_builder::{cross, dot, sub};
-use crate::scene::{KERB_Y, ROAD_Y};
 use crate::spec::{Ground, ObjectSpec};
 
 /// Colour of model parts without a material (linear RGB).

@@ -24,11 +24,8 @@ use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
 use super::{ATTEMPTS, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words};
+use crate::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{SceneObject, Texture};
-use crate::scene::buildings::{building_heights, facade_choice};
-use crate::scene::mesh_builder::MeshBuilder;
-use crate::scene::road_rect::RoadRect;
-use crate::scene::{KERB_Y, SceneInput, strip_width_px};
 use crate::spec::{ObjectSpec, TextCase};
 
 /// Lowest plate edge above the block surface, in metres.
@@ -349,16 +346,8 @@ type GapToRoad<'a> = dyn Fn(&RoadRect) -> Option<f64> + 'a;
 /// Every wall of every building that faces a road, in (building, north-east-south-west)
 /// order.
 pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
-    let scene_input = SceneInput {
-        layout: input.layout,
-        lamps: input.lamps,
-        buildings: input.buildings,
-        facades: input.facades,
-        widths: input.widths,
-        metres_per_pixel: input.metres_per_pixel,
-        seed: input.seed,
-    };
-    let heights = building_heights(&scene_input);
+    let choice = input.facade_choice();
+    let heights = choice.heights(input.buildings);
     let rects: Vec<RoadRect> = input.layout.roads.iter().map(RoadRect::of).collect();
     let reach = ROAD_REACH * f64::from(strip_width_px(input.layout)) + 1.0;
     let mpp = input.metres_per_pixel;
@@ -395,7 +384,7 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
         if band[1] <= band[0] {
             continue;
         }
-        let facade = facade_choice(&scene_input, building);
+        let facade = choice.of(building);
         for (normal, corner, gap) in sides {
             // The nearest road in front must be nearer than any other building in front.
             let Some(to_road) = rects.iter().filter_map(gap).reduce(f64::min) else {

@@ -1,7 +1,8 @@
 //! Blocks: class map → the building blocks, one per 4-connected region of block pixels.
 
-use super::class_map::{Class, ClassMap};
+use super::class_map::ClassMap;
 use super::run_table::{Run, RunRule, RunTable};
+use crate::model::PixelClass;
 use crate::model::{Band, Block, PxRect};
 
 /// Regions of fewer block pixels than this are specks (JPEG noise, stray anti-aliasing) and
@@ -15,7 +16,7 @@ pub const MIN_BLOCK_AREA: u64 = 16;
 /// out directly, and no per-pixel label image is needed.
 pub fn find_blocks(map: &ClassMap) -> Vec<Block> {
     let rule = RunRule {
-        classes: &[Class::Block],
+        classes: &[PixelClass::Block],
         bridge: 0,
         min_len: 1,
     };
@@ -195,18 +196,6 @@ fn corners(points: &[[i64; 2]]) -> Vec<[i64; 2]> {
 mod tests {
     use super::*;
 
-    /// A class map drawn with characters: `#` block, anything else other.
-    fn map(rows: &[&str]) -> ClassMap {
-        let classes = rows
-            .iter()
-            .flat_map(|row| {
-                row.chars()
-                    .map(|c| if c == '#' { Class::Block } else { Class::Other })
-            })
-            .collect();
-        ClassMap::from_classes(rows[0].len() as u32, rows.len() as u32, classes)
-    }
-
     fn pixels(block: &Block, width: u32, height: u32) -> Vec<(u32, u32)> {
         (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))
@@ -224,7 +213,7 @@ mod tests {
             ".########.",
             "..........",
         ];
-        let blocks = find_blocks(&map(&rows));
+        let blocks = find_blocks(&ClassMap::drawn(&rows));
         assert_eq!(blocks.len(), 1);
         let b = &blocks[0];
         assert_eq!(
@@ -279,7 +268,7 @@ mod tests {
             "....####........",
             "....####........",
         ];
-        let blocks = find_blocks(&map(&rows));
+        let blocks = find_blocks(&ClassMap::drawn(&rows));
         let summary: Vec<(u32, PxRect, u64)> =
             blocks.iter().map(|b| (b.id, b.bbox, b.area)).collect();
         assert_eq!(
@@ -327,7 +316,7 @@ mod tests {
             "######", "###.##", // a notch from below
             "###.##",
         ];
-        let blocks = find_blocks(&map(&rows));
+        let blocks = find_blocks(&ClassMap::drawn(&rows));
         assert_eq!(blocks.len(), 1);
         let b = &blocks[0];
         assert_eq!(b.area, 30 - 4);
@@ -383,7 +372,7 @@ mod tests {
                 })
                 .collect();
             let rows: Vec<&str> = rows.iter().map(String::as_str).collect();
-            let map = map(&rows);
+            let map = ClassMap::drawn(&rows);
             for block in find_blocks(&map) {
                 let runs: Vec<(u32, Run)> = block
                     .bands
@@ -401,7 +390,11 @@ mod tests {
 
     #[test]
     fn a_single_pixel_and_a_line_have_outlines() {
-        let blocks = find_blocks(&map(&["..........", ".########.", "....#....."]));
+        let blocks = find_blocks(&ClassMap::drawn(&[
+            "..........",
+            ".########.",
+            "....#.....",
+        ]));
         // Area 9 is a speck; call the tracer directly.
         assert!(blocks.is_empty());
         let runs = [(1, [1, 9]), (2, [4, 5])];

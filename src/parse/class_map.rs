@@ -3,19 +3,8 @@
 use image::RgbImage;
 use rayon::prelude::*;
 
-use crate::spec::{Color, Palette, PaletteColour};
-
-/// What a pixel shows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u8)]
-pub enum Class {
-    /// No palette colour within tolerance.
-    Other,
-    Road,
-    Line,
-    Block,
-    Strip,
-}
+use crate::model::PixelClass;
+use crate::spec::{Color, Palette};
 
 /// Smallest share of line colour in a road/line blend that still counts as line: a 1-px
 /// line under a 3×3 box blur keeps 1/3 of its colour in each of three rows.
@@ -26,7 +15,7 @@ const LINE_BLEND_MIN: i64 = 4; // the share is at least 1 / LINE_BLEND_MIN
 pub struct ClassMap {
     width: u32,
     height: u32,
-    classes: Vec<Class>,
+    classes: Vec<PixelClass>,
 }
 
 impl ClassMap {
@@ -35,7 +24,7 @@ impl ClassMap {
     pub fn classify(image: &RgbImage, palette: &Palette) -> ClassMap {
         let (width, height) = image.dimensions();
         let (w, h) = (width as usize, height as usize);
-        let mut classes = vec![Class::Other; w * h];
+        let mut classes = vec![PixelClass::Other; w * h];
         if w > 0 {
             let classifier = Classifier::new(palette);
             let raw = &image.as_raw()[..w * h * 3];
@@ -51,10 +40,11 @@ impl ClassMap {
         }
     }
 
-    /// A map from classes given row by row (for tests and tools).
+    /// A map drawn with characters, row by row (see
+    /// [`crate::test_support::pixel_classes`]).
     #[cfg(test)]
-    pub fn from_classes(width: u32, height: u32, classes: Vec<Class>) -> ClassMap {
-        assert_eq!(classes.len(), width as usize * height as usize);
+    pub fn drawn(rows: &[&str]) -> ClassMap {
+        let (width, height, classes) = crate::test_support::pixel_classes(rows);
         ClassMap {
             width,
             height,
@@ -71,23 +61,23 @@ impl ClassMap {
     }
 
     /// The classes of row `y`.
-    pub fn row(&self, y: u32) -> &[Class] {
+    pub fn row(&self, y: u32) -> &[PixelClass] {
         let w = self.width as usize;
         &self.classes[y as usize * w..][..w]
     }
 
     #[cfg(test)]
-    pub fn get(&self, x: u32, y: u32) -> Class {
+    pub fn get(&self, x: u32, y: u32) -> PixelClass {
         self.classes[y as usize * self.width as usize + x as usize]
     }
 }
 
 /// The per-pixel rule. A pixel takes the nearest palette colour (Euclidean RGB, ties in the
 /// order road, line, block, strip) if it lies within `palette.tolerance`; otherwise it is
-/// [`Class::Other`]. One exception keeps thin lines alive: anti-aliasing, blurring or JPEG
+/// [`PixelClass::Other`]. One exception keeps thin lines alive: anti-aliasing, blurring or JPEG
 /// chroma subsampling spread a 1-px line over its neighbours at reduced strength, which the
 /// nearest-colour rule would call road. So a pixel that is road or other also counts as
-/// [`Class::Line`] when it is a blend of road and line colour with at least a quarter of line
+/// [`PixelClass::Line`] when it is a blend of road and line colour with at least a quarter of line
 /// colour, within `tolerance` of that blend.
 struct Classifier {
     palette: Palette,
@@ -113,9 +103,9 @@ impl Classifier {
         }
     }
 
-    fn classify_row(&self, row: &[u8], out: &mut [Class]) {
+    fn classify_row(&self, row: &[u8], out: &mut [PixelClass]) {
         // Layouts are mostly flat colour: reuse the previous answer for a repeated pixel.
-        let mut last: Option<([u8; 3], Class)> = None;
+        let mut last: Option<([u8; 3], PixelClass)> = None;
         for (slot, px) in out.iter_mut().zip(row.chunks_exact(3)) {
             let px = [px[0], px[1], px[2]];
             *slot = match last {
@@ -129,22 +119,16 @@ impl Classifier {
         }
     }
 
-    fn class(&self, px: [u8; 3]) -> Class {
+    fn class(&self, px: [u8; 3]) -> PixelClass {
         let p = px.map(i32::from);
-        let (colour, dist) = self.palette.nearest(px);
-        let nearest = match colour {
-            PaletteColour::Road => Class::Road,
-            PaletteColour::Line => Class::Line,
-            PaletteColour::Block => Class::Block,
-            PaletteColour::Strip => Class::Strip,
-        };
+        let (nearest, dist) = self.palette.nearest(px);
         let near = i64::from(dist) <= self.tolerance_sq;
         match nearest {
-            Class::Line if near => Class::Line,
-            Class::Block | Class::Strip if near => nearest,
-            _ if self.is_line_blend(p) => Class::Line,
-            Class::Road if near => Class::Road,
-            _ => Class::Other,
+            PixelClass::Line if near => PixelClass::Line,
+            PixelClass::Block | PixelClass::Strip if near => nearest,
+            _ if self.is_line_blend(p) => PixelClass::Line,
+            PixelClass::Road if near => PixelClass::Road,
+            _ => PixelClass::Other,
         }
     }
 
@@ -186,7 +170,7 @@ mod tests {
     use super::*;
     use image::Rgb;
 
-    fn class_of(rgb: [u8; 3]) -> Class {
+    fn class_of(rgb: [u8; 3]) -> PixelClass {
         let image = RgbImage::from_pixel(1, 1, Rgb(rgb));
         ClassMap::classify(&image, &Palette::default()).get(0, 0)
     }
@@ -201,26 +185,34 @@ mod tests {
         let p = Palette::default();
         let (road, line, block, strip) = (p.road.0, p.line.0, p.block.0, p.strip.0);
         let cases = [
-            ("road", road, Class::Road),
-            ("line", line, Class::Line),
-            ("block", block, Class::Block),
-            ("strip", strip, Class::Strip),
-            ("noisy road", [135, 121, 130], Class::Road),
-            ("noisy block", [50, 90, 200], Class::Block),
-            ("white", [255, 255, 255], Class::Other),
-            ("black", [0, 0, 0], Class::Other),
-            ("red", [255, 0, 0], Class::Other),
-            ("blue/strip half", mix(block, strip, 1, 1), Class::Other),
-            ("two-thirds block", mix(block, strip, 2, 1), Class::Block),
+            ("road", road, PixelClass::Road),
+            ("line", line, PixelClass::Line),
+            ("block", block, PixelClass::Block),
+            ("strip", strip, PixelClass::Strip),
+            ("noisy road", [135, 121, 130], PixelClass::Road),
+            ("noisy block", [50, 90, 200], PixelClass::Block),
+            ("white", [255, 255, 255], PixelClass::Other),
+            ("black", [0, 0, 0], PixelClass::Other),
+            ("red", [255, 0, 0], PixelClass::Other),
+            (
+                "blue/strip half",
+                mix(block, strip, 1, 1),
+                PixelClass::Other,
+            ),
+            (
+                "two-thirds block",
+                mix(block, strip, 2, 1),
+                PixelClass::Block,
+            ),
             (
                 "two-thirds road by strip",
                 mix(road, strip, 2, 1),
-                Class::Road,
+                PixelClass::Road,
             ),
-            ("line blurred 1/3", mix(line, road, 1, 2), Class::Line),
-            ("line blurred 1/5", mix(line, road, 1, 4), Class::Road),
-            ("half line", mix(line, road, 1, 1), Class::Line),
-            ("line over strip", mix(line, strip, 1, 2), Class::Strip),
+            ("line blurred 1/3", mix(line, road, 1, 2), PixelClass::Line),
+            ("line blurred 1/5", mix(line, road, 1, 4), PixelClass::Road),
+            ("half line", mix(line, road, 1, 1), PixelClass::Line),
+            ("line over strip", mix(line, strip, 1, 2), PixelClass::Strip),
         ];
         for (name, rgb, expected) in cases {
             assert_eq!(class_of(rgb), expected, "{name} {rgb:?}");
@@ -235,7 +227,7 @@ mod tests {
         };
         let image = RgbImage::from_pixel(2, 1, Rgb([128, 128, 128]));
         let map = ClassMap::classify(&image, &palette);
-        assert_eq!(map.row(0), &[Class::Road, Class::Road]);
+        assert_eq!(map.row(0), &[PixelClass::Road, PixelClass::Road]);
     }
 
     #[test]

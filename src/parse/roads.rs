@@ -1,7 +1,8 @@
 //! Roads: class map → the roads, one per group of centre-line runs.
 
-use super::class_map::{Class, ClassMap};
+use super::class_map::ClassMap;
 use super::run_table::{Run, RunRule, RunTable};
+use crate::model::PixelClass;
 use crate::model::{Axis, Road};
 
 /// Shortest centre-line run that makes a road: the paper's "longer than 5 pixels".
@@ -25,12 +26,12 @@ pub const LINE_GAP: u32 = 2;
 /// side road's line ends where it meets the main road.
 pub fn find_roads(map: &ClassMap) -> Vec<Road> {
     let line = RunRule {
-        classes: &[Class::Line],
+        classes: &[PixelClass::Line],
         bridge: LINE_GAP,
         min_len: MIN_LINE_RUN,
     };
     let surface = RunRule {
-        classes: &[Class::Road, Class::Line],
+        classes: &[PixelClass::Road, PixelClass::Line],
         bridge: 0,
         min_len: 1,
     };
@@ -114,21 +115,6 @@ fn median(values: &mut [u32]) -> Option<f64> {
 mod tests {
     use super::*;
 
-    /// A class map drawn with characters: `y` line, `r` road, `.` other.
-    fn map(rows: &[&str]) -> ClassMap {
-        let classes = rows
-            .iter()
-            .flat_map(|row| {
-                row.chars().map(|c| match c {
-                    'y' => Class::Line,
-                    'r' => Class::Road,
-                    _ => Class::Other,
-                })
-            })
-            .collect();
-        ClassMap::from_classes(rows[0].len() as u32, rows.len() as u32, classes)
-    }
-
     fn summary(roads: &[Road]) -> Vec<(Axis, f64, f64, f64, [f64; 2])> {
         roads
             .iter()
@@ -146,7 +132,7 @@ mod tests {
             (&["yyyyyy...yyyyyy"], 2),
         ];
         for (rows, count) in cases {
-            assert_eq!(find_roads(&map(rows)).len(), *count, "{rows:?}");
+            assert_eq!(find_roads(&ClassMap::drawn(rows)).len(), *count, "{rows:?}");
         }
     }
 
@@ -160,7 +146,7 @@ mod tests {
             "rrrrrrrrrrrrrr",
             "..............",
         ];
-        let roads = find_roads(&map(&rows));
+        let roads = find_roads(&ClassMap::drawn(&rows));
         assert_eq!(roads.len(), 1);
         let r = &roads[0];
         assert_eq!((r.axis, r.start, r.end), (Axis::Horizontal, 0.0, 13.0));
@@ -174,7 +160,7 @@ mod tests {
         let mut rows = vec!["....rryrr....."; 3];
         rows.extend(["rrrrrryrrrrrrr", "yyyyyyyyyyyyyy", "rrrrrryrrrrrrr"]);
         rows.extend(vec!["....rryrr....."; 4]);
-        let roads = find_roads(&map(&rows));
+        let roads = find_roads(&ClassMap::drawn(&rows));
         assert_eq!(
             summary(&roads),
             vec![

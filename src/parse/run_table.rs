@@ -3,7 +3,8 @@
 
 use rayon::prelude::*;
 
-use super::class_map::{Class, ClassMap};
+use super::class_map::ClassMap;
+use crate::model::PixelClass;
 
 /// A half-open run `[start, end)` along a row or column.
 pub type Run = [u32; 2];
@@ -12,7 +13,7 @@ pub type Run = [u32; 2];
 #[derive(Clone, Copy, Debug)]
 pub struct RunRule<'a> {
     /// The classes a run is made of.
-    pub classes: &'a [Class],
+    pub classes: &'a [PixelClass],
     /// Gaps of at most this many other pixels do not break a run.
     pub bridge: u32,
     /// Shortest run kept (its extent, gaps included).
@@ -162,7 +163,7 @@ impl RunTable {
 }
 
 /// A lookup table: `accepted(classes)[class as usize]`.
-fn accepted(classes: &[Class]) -> [bool; 5] {
+fn accepted(classes: &[PixelClass]) -> [bool; 5] {
     let mut table = [false; 5];
     for &class in classes {
         table[class as usize] = true;
@@ -171,7 +172,7 @@ fn accepted(classes: &[Class]) -> [bool; 5] {
 }
 
 /// The maximal runs of accepted pixels in `row`.
-fn row_runs(row: &[Class], accept: &[bool; 5]) -> Vec<Run> {
+fn row_runs(row: &[PixelClass], accept: &[bool; 5]) -> Vec<Run> {
     let mut runs = Vec::new();
     let mut x = 0;
     while x < row.len() {
@@ -247,24 +248,8 @@ impl DisjointSets {
 mod tests {
     use super::*;
 
-    /// A class map drawn with characters: `#` block, `y` line, `r` road, `.` other.
-    fn map(rows: &[&str]) -> ClassMap {
-        let classes = rows
-            .iter()
-            .flat_map(|row| {
-                row.chars().map(|c| match c {
-                    '#' => Class::Block,
-                    'y' => Class::Line,
-                    'r' => Class::Road,
-                    _ => Class::Other,
-                })
-            })
-            .collect();
-        ClassMap::from_classes(rows[0].len() as u32, rows.len() as u32, classes)
-    }
-
     const BLOCK: RunRule = RunRule {
-        classes: &[Class::Block],
+        classes: &[PixelClass::Block],
         bridge: 0,
         min_len: 1,
     };
@@ -287,11 +272,11 @@ mod tests {
         ];
         for (row, bridge, min_len, expected) in cases {
             let rule = RunRule {
-                classes: &[Class::Line],
+                classes: &[PixelClass::Line],
                 bridge,
                 min_len,
             };
-            let table = RunTable::rows(&map(&[row]), rule);
+            let table = RunTable::rows(&ClassMap::drawn(&[row]), rule);
             assert_eq!(
                 table.line(0),
                 &expected[..],
@@ -308,8 +293,8 @@ mod tests {
             .collect();
         let t: Vec<&str> = transposed.iter().map(String::as_str).collect();
         assert_eq!(
-            RunTable::columns(&map(&rows), BLOCK),
-            RunTable::rows(&map(&t), BLOCK)
+            RunTable::columns(&ClassMap::drawn(&rows), BLOCK),
+            RunTable::rows(&ClassMap::drawn(&t), BLOCK)
         );
     }
 
@@ -319,7 +304,7 @@ mod tests {
         let row: String = (0..width)
             .map(|x| if x % 3 == 0 { '#' } else { '.' })
             .collect();
-        let m = map(&[&row, &row, ".".repeat(width).as_str(), &row]);
+        let m = ClassMap::drawn(&[&row, &row, ".".repeat(width).as_str(), &row]);
         let table = RunTable::columns(&m, BLOCK);
         for x in 0..width {
             let expected: &[Run] = if x % 3 == 0 { &[[0, 2], [3, 4]] } else { &[] };
@@ -329,7 +314,7 @@ mod tests {
 
     #[test]
     fn run_at_finds_the_covering_run() {
-        let table = RunTable::rows(&map(&["..##.###"]), BLOCK);
+        let table = RunTable::rows(&ClassMap::drawn(&["..##.###"]), BLOCK);
         let found: Vec<Option<Run>> = (0..9).map(|x| table.run_at(0, x)).collect();
         let (a, b) = (Some([2, 4]), Some([5, 8]));
         assert_eq!(found, vec![None, None, a, a, None, b, b, b, None]);
@@ -338,7 +323,7 @@ mod tests {
 
     #[test]
     fn groups_follow_four_connectivity_in_raster_order() {
-        let m = map(&[
+        let m = ClassMap::drawn(&[
             "##..#..#", //
             ".#..#.#.", // the diagonal on the right does not connect
             ".####...", // joins the first two groups (a U shape)

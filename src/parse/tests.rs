@@ -5,15 +5,9 @@ use image::{Rgb, RgbImage};
 use proptest::prelude::*;
 
 use super::parse;
-use crate::layout::{GeneratedLayout, generate};
-use crate::mirror::mirror;
 use crate::model::{Axis, Band, ParsedLayout, PxRect, Road};
-use crate::rng::stream;
 use crate::spec::{Color, GenerateSpec, Palette};
-
-fn generated(spec: &GenerateSpec, seed: u64) -> GeneratedLayout {
-    generate(spec, &Palette::default(), &mut stream(seed, "layout", 0))
-}
+use crate::test_support::{GeneratedLayout, decoded, generated, mirrored};
 
 fn spec(
     size: (u32, u32),
@@ -157,7 +151,7 @@ fn jpeg_round_trip(image: &RgbImage, quality: u8) -> RgbImage {
     image::codecs::jpeg::JpegEncoder::new_with_quality(&mut bytes, quality)
         .encode_image(image)
         .unwrap();
-    crate::layout::decode(&bytes).unwrap()
+    decoded(&bytes)
 }
 
 /// Asserts that a degraded copy parses to the same layout within the stated tolerances.
@@ -386,13 +380,13 @@ fn mirrored_layouts_parse_to_the_mirrored_roads_and_blocks() {
         let size = (spec.width, spec.height);
         // [2]: a copy to the right.
         let (roads, blocks) = mirror_expectation(&layout.roads, &layout.blocks, size, true);
-        let parsed = parse(&mirror(&layout.image, &[2]), &palette);
+        let parsed = parse(&mirrored(&layout.image, &[2]), &palette);
         assert_recovers(&parsed, &roads, &blocks, &format!("{name} [2]"));
         // [2, 1]: then a copy below, a 2×2 city.
         let wide = (size.0 * 2, size.1);
         let (roads, blocks) = mirror_expectation(&roads, &blocks, wide, false);
         for ops in [&[2u8, 1][..], &[3]] {
-            let parsed = parse(&mirror(&layout.image, ops), &palette);
+            let parsed = parse(&mirrored(&layout.image, ops), &palette);
             assert_eq!((parsed.width, parsed.height), (size.0 * 2, size.1 * 2));
             assert_recovers(&parsed, &roads, &blocks, &format!("{name} {ops:?}"));
         }
@@ -402,7 +396,7 @@ fn mirrored_layouts_parse_to_the_mirrored_roads_and_blocks() {
 #[test]
 fn parse_does_not_depend_on_thread_count() {
     let layout = generated(&GenerateSpec::default(), 5);
-    let image = jpeg_round_trip(&box_blur(&mirror(&layout.image, &[2])), 80);
+    let image = jpeg_round_trip(&box_blur(&mirrored(&layout.image, &[2])), 80);
     let palette = Palette::default();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)

@@ -8,6 +8,7 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
+use crate::geometry::mm;
 use crate::model::{
     Axis, Block, Building, CityPlan, Lamp, ParsedLayout, PlanBlock, PlanBuilding, PlanLamp,
     PlanRoad, Road,
@@ -86,12 +87,6 @@ fn plan_road(road: &Road, m: f64) -> PlanRoad {
         length: mm(road.length() * m),
         width: mm(road.width() * m),
     }
-}
-
-/// Rounds to 3 decimals (the millimetre), turning `-0` into `0`.
-fn mm(v: f64) -> f64 {
-    let r = (v * 1000.0).round() / 1000.0;
-    if r == 0.0 { 0.0 } else { r }
 }
 
 #[cfg(test)]
@@ -234,20 +229,5 @@ mod tests {
             json,
             serde_json::to_string(&assemble(&layout(), &l, &buildings(), 0.1)).unwrap()
         );
-    }
-
-    #[test]
-    fn rounds_to_the_millimetre() {
-        let cases = [
-            (1.23449, 1.234),
-            (1.2345001, 1.235),
-            (-0.0004, 0.0),
-            (-2.5, -2.5),
-            (0.1 + 0.2, 0.3),
-        ];
-        for (v, want) in cases {
-            assert_eq!(mm(v), want, "{v}");
-            assert!(mm(v).is_sign_positive() || want < 0.0, "{v}");
-        }
     }
 }

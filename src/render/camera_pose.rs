@@ -1,5 +1,6 @@
 //! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward).
 
+use crate::geometry::{cross, normalize, sub};
 pub use crate::model::CameraPose;
 
 /// The camera's axes in world coordinates, right-handed: `right = forward × up`,
@@ -23,32 +24,6 @@ impl CameraPose {
         let up = cross(right, forward);
         Some(CameraBasis { right, up, forward })
     }
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// The unit vector along `a`, or `None` if it is (nearly) zero or not finite.
-pub(crate) fn normalize(a: [f64; 3]) -> Option<[f64; 3]> {
-    let len2 = dot(a, a);
-    if !len2.is_finite() || len2 <= 1e-24 {
-        return None;
-    }
-    let len = len2.sqrt();
-    Some([a[0] / len, a[1] / len, a[2] / len])
 }
 
 #[cfg(test)]

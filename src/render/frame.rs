@@ -1,8 +1,10 @@
 //! One rendered frame → its three images, and their encodings (PNG, and `.npy` for
 //! float depth).
 
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{DynamicImage, ImageBuffer, Luma, RgbImage};
+use image::{ImageBuffer, Luma, RgbImage};
+
+use crate::image_file::{PngEffort, encode_png};
+use crate::model::pack_ids;
 
 pub use crate::spec::DepthFormat;
 
@@ -39,13 +41,13 @@ impl Frame {
     /// metres in a `.npy`.
     pub fn encode(&self, depth: DepthFormat) -> FramePngs {
         let (rgb, (instance, depth)) = rayon::join(
-            || encode(DynamicImage::ImageRgb8(self.rgb.clone())),
+            || encode_png(&self.rgb, PngEffort::Fast),
             || {
                 rayon::join(
-                    || encode(DynamicImage::ImageRgb8(pack_ids(&self.instance))),
+                    || encode_png(&pack_ids(&self.instance), PngEffort::Fast),
                     || match depth {
                         DepthFormat::F32 => npy_f32(&self.depth),
-                        format => encode(DynamicImage::ImageLuma16(self.depth_u16(format))),
+                        format => encode_png(&self.depth_u16(format), PngEffort::Fast),
                     },
                 )
             },
@@ -81,28 +83,6 @@ impl Frame {
     }
 }
 
-/// Instance ids as RGB: `R = id & 255`, `G = (id >> 8) & 255`, `B = (id >> 16) & 255`.
-pub fn pack_ids(ids: &ImageBuffer<Luma<u32>, Vec<u32>>) -> RgbImage {
-    let (w, h) = ids.dimensions();
-    let raw: Vec<u8> = ids
-        .as_raw()
-        .iter()
-        .flat_map(|&id| [id as u8, (id >> 8) as u8, (id >> 16) as u8])
-        .collect();
-    RgbImage::from_raw(w, h, raw).expect("three bytes per pixel")
-}
-
-/// Instance ids from an RGB-packed image (the inverse of [`pack_ids`]).
-pub fn unpack_ids(rgb: &RgbImage) -> ImageBuffer<Luma<u32>, Vec<u32>> {
-    let (w, h) = rgb.dimensions();
-    let raw = rgb
-        .as_raw()
-        .chunks_exact(3)
-        .map(|p| u32::from(p[0]) | u32::from(p[1]) << 8 | u32::from(p[2]) << 16)
-        .collect();
-    ImageBuffer::from_raw(w, h, raw).expect("one id per pixel")
-}
-
 /// A NumPy `.npy` (format 1.0) of little-endian float32, shape `(height, width)`, C order:
 /// `numpy.load` reads it.
 fn npy_f32(image: &ImageBuffer<Luma<f32>, Vec<f32>>) -> Vec<u8> {
@@ -123,21 +103,11 @@ fn npy_f32(image: &ImageBuffer<Luma<f32>, Vec<f32>>) -> Vec<u8> {
     out
 }
 
-fn encode(image: DynamicImage) -> Vec<u8> {
-    let mut png = Vec::new();
-    image
-        .write_with_encoder(PngEncoder::new_with_quality(
-            &mut png,
-            CompressionType::Fast,
-            FilterType::Adaptive,
-        ))
-        .expect("encoding a PNG into memory cannot fail");
-    png
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::unpack_ids;
+    use image::DynamicImage;
 
     fn frame() -> Frame {
         Frame {

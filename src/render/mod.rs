@@ -70,7 +70,7 @@ mod tests;
 
 pub use camera_pose::CameraPose;
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
-pub use frame::{DepthFormat, Frame, FramePngs, pack_ids, unpack_ids};
+pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour};
 pub use lit_windows::LitWindows;

@@ -6,9 +6,9 @@ use std::sync::{Arc, Mutex};
 use rayon::prelude::*;
 
 use super::RenderError;
-use super::camera_pose::{cross, dot, normalize};
 use super::mip_texture::MipTexture;
 use super::shadow_map::ShadowMap;
+use crate::geometry::{cross, dot, normalize};
 use crate::model::Scene;
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into

@@ -7,9 +7,9 @@
 //! that edge is a top or left edge: two triangles sharing an edge never both cover a pixel,
 //! and leave no gap between them.
 
-use super::camera_pose::dot;
 use super::prepared_scene::Triangle;
 use super::view::{View, plane};
+use crate::geometry::dot;
 
 /// Fixed-point subpixel steps per pixel.
 const SUB: i64 = 256;

@@ -17,6 +17,7 @@
 use rayon::prelude::*;
 
 use super::prepared_scene::PreparedScene;
+use crate::geometry::{cross, dot};
 
 /// Largest side of the map in texels.
 pub(crate) const MAX_SIDE: f64 = 4096.0;
@@ -206,16 +207,4 @@ fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
             }
         }
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }

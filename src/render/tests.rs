@@ -9,6 +9,7 @@ use super::prepared_scene::Triangle;
 use super::screen_triangle::{self, ScreenTri};
 use super::view::View;
 use super::*;
+use crate::geometry::{cross, dot, sub};
 use crate::model::{Material, Mesh, PixelBox, Scene, SceneObject, Texture};
 
 pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {
@@ -18,22 +19,6 @@ pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3
         texture,
         emissive,
     }
-}
-
-fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// A quad through corners `c` (in order around it), wound counter-clockwise around
@@ -410,7 +395,7 @@ fn visible_box(frame: &Frame, id: u32) -> Option<(PixelBox, u64)> {
 }
 
 fn corners(b: PixelBox) -> [i64; 4] {
-    [b.x0, b.y0, b.x1, b.y1].map(i64::from)
+    [b.x_min, b.y_min, b.x_max, b.y_max].map(i64::from)
 }
 
 fn inside(a: PixelBox, b: [i64; 4]) -> bool {
@@ -482,7 +467,7 @@ fn footprints_reach_past_the_image_edge() {
             panic!("{footprints:?}")
         };
         let (shown, n) = visible_box(&frame, 1).unwrap();
-        assert_eq!(shown.x0, 0);
+        assert_eq!(shown.x_min, 0);
         assert_eq!(f.inside, n);
         assert!(f.bounds[0] < 0 && f.pixels > 2 * n, "{f:?}, {n} shown");
         // The same camera on an image three times as wide, its grid aligned: the square

@@ -1,8 +1,8 @@
 //! Blocks → `block_NNNN` objects: the block's exact pixels (one quad per band span) as a
 //! paved surface at kerb height.
 
-use super::mesh_builder::MeshBuilder;
-use super::{KERB_Y, object, procedural};
+use super::{object, procedural};
+use crate::geometry::{KERB_Y, MeshBuilder};
 use crate::model::{ParsedLayout, SceneObject};
 
 pub fn block_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {

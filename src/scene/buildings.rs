@@ -9,20 +9,15 @@
 //! never stretched vertically.
 //!
 //! Fallbacks (bad input never panics): a kind beyond the facade list takes facade
-//! `kind % n`; a facade with a non-positive height or width is treated as [`PLAIN_HEIGHT`]
+//! `kind % n`; a facade with a non-positive height or width is treated as [`PLAIN_HEIGHT`](crate::geometry::PLAIN_HEIGHT)
 //! high and spans each wall once; with no facades at all buildings are plain
-//! ([`PLAIN_HEIGHT`], material `facade_plain`); a facade whose roof index is out of range
+//! ([`PLAIN_HEIGHT`](crate::geometry::PLAIN_HEIGHT), material `facade_plain`); a facade whose roof index is out of range
 //! gets the `roof_plain` material.
 
-use rand::RngExt;
+use super::{SceneInput, object};
+use crate::geometry::{KERB_Y, MaterialBook, MeshBuilder, facade_height, usable};
+use crate::model::{Facade, SceneObject};
 
-use super::material_book::MaterialBook;
-use super::mesh_builder::MeshBuilder;
-use super::{KERB_Y, SceneInput, object};
-use crate::model::{Building, Facade, SceneObject};
-
-/// Height of a building that has no usable facade, in metres.
-pub const PLAIN_HEIGHT: f64 = 12.0;
 /// Metres one repeat of the plain roof covers (and of a roof whose `tile` is unusable).
 const PLAIN_TILE: f64 = 4.0;
 
@@ -47,7 +42,7 @@ impl Cladding {
         let choice: Vec<Option<usize>> = input
             .buildings
             .iter()
-            .map(|b| facade_choice(input, b))
+            .map(|b| input.facade_choice().of(b))
             .collect();
         let mut facade_used = vec![false; facades.len()];
         for &c in choice.iter().flatten() {
@@ -91,46 +86,6 @@ impl Cladding {
             plain_roof,
         }
     }
-}
-
-/// The facade index of `building` (None when the set has no facades).
-pub(crate) fn facade_choice(input: &SceneInput, building: &Building) -> Option<usize> {
-    let n = input.facades.facades.len();
-    if n == 0 {
-        return None;
-    }
-    Some(match input.widths {
-        None => building.kind as usize % n,
-        Some(_) => {
-            let mut rng = crate::rng::stream(input.seed, "facade", u64::from(building.id));
-            rng.random_range(0..n)
-        }
-    })
-}
-
-/// The wall height of a building clad with `facade` (see the fallbacks above).
-fn facade_height(facade: Option<&Facade>) -> f64 {
-    facade.map_or(PLAIN_HEIGHT, |f| {
-        if usable(f.height) {
-            f.height
-        } else {
-            PLAIN_HEIGHT
-        }
-    })
-}
-
-/// Every building's wall height in metres (above the block surface), in input order: the
-/// same choice of facade and the same fallbacks as [`building_objects`].
-pub(crate) fn building_heights(input: &SceneInput) -> Vec<f64> {
-    input
-        .buildings
-        .iter()
-        .map(|b| facade_height(facade_choice(input, b).map(|c| &input.facades.facades[c])))
-        .collect()
-}
-
-fn usable(v: f64) -> bool {
-    v.is_finite() && v > 0.0
 }
 
 pub fn building_objects(input: &SceneInput, clad: &Cladding) -> Vec<SceneObject> {

@@ -6,10 +6,8 @@
 //! Within each free stretch the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a
 //! stretch between two crossings looks the same from both ends.
 
-use super::mesh_builder::MeshBuilder;
-use super::road_rect::RoadRect;
-use super::street_profile::StreetProfile;
-use super::{MARKING_Y, object};
+use super::object;
+use crate::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
 /// Dash length, gap between dashes and line width, in metres.
@@ -84,7 +82,7 @@ fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, [a, b]: [f
         [x[0], MARKING_Y, z[1]],
     ];
     let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    mesh.quad(corners, super::mesh_builder::UP, uvs);
+    mesh.quad(corners, crate::geometry::UP, uvs);
 }
 
 fn metres(r: RoadRect, mpp: f64) -> RoadRect {

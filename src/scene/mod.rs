@@ -21,7 +21,12 @@
 //! roads and each other, so nothing z-fights.
 //!
 //! Heights: ground 0, roads [`ROAD_Y`], markings [`MARKING_Y`], blocks and sidewalks
-//! [`KERB_Y`]; buildings stand on the block surface.
+//! [`KERB_Y`]; buildings stand on the block surface. The heights, the mesh builder and the
+//! road rectangles live in [`crate::geometry`], since the objects stage builds on them too.
+//!
+//! [`ROAD_Y`]: crate::geometry::ROAD_Y
+//! [`MARKING_Y`]: crate::geometry::MARKING_Y
+//! [`KERB_Y`]: crate::geometry::KERB_Y
 //!
 //! Only `+ − × ÷ sqrt` are used, in f64, rounded to f32 at the end: the scene is the same
 //! bit for bit on every platform.
@@ -30,34 +35,25 @@
 pub const VERSION: u32 = 3;
 
 mod blocks;
-pub(crate) mod buildings;
+mod buildings;
 mod markings;
-pub(crate) mod material_book;
-pub(crate) mod mesh_builder;
 mod procedural;
-pub(crate) mod road_rect;
 mod roads;
 mod row_region;
 mod sidewalks;
 mod street_lamps;
-pub(crate) mod street_profile;
 mod surfaces;
 #[cfg(test)]
 mod tests;
 
+use crate::geometry::{FacadeChoice, MaterialBook, MeshBuilder};
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene, SceneObject};
-use material_book::MaterialBook;
 use surfaces::Surfaces;
 
-pub use sidewalks::strip_width_px;
+// The build driver measures the strip for its street cameras as the scene does.
+pub use crate::geometry::strip_width_px;
 pub use street_lamps::light_position;
 
-/// Height of the road surface above the ground.
-pub const ROAD_Y: f64 = 0.02;
-/// Height of the lane markings: a few millimetres above the road.
-pub const MARKING_Y: f64 = 0.025;
-/// Top of the sidewalk slabs and of the block surfaces (a curb's height).
-pub const KERB_Y: f64 = 0.15;
 /// How far the ground reaches beyond the layout on every side, in metres.
 pub const GROUND_MARGIN: f64 = 100.0;
 
@@ -74,6 +70,17 @@ pub struct SceneInput<'a> {
     pub widths: Option<&'a [f64]>,
     pub metres_per_pixel: f64,
     pub seed: u64,
+}
+
+impl SceneInput<'_> {
+    /// How this input picks each building's facade (and so its height).
+    pub fn facade_choice(&self) -> FacadeChoice<'_> {
+        FacadeChoice {
+            facades: self.facades,
+            widths: self.widths,
+            seed: self.seed,
+        }
+    }
 }
 
 /// The 3D city of `input`.
@@ -107,7 +114,7 @@ pub fn build(input: &SceneInput) -> Scene {
 
 /// One quad under the whole layout and [`GROUND_MARGIN`] around it.
 fn ground(layout: &ParsedLayout, mpp: f64, material: u32) -> SceneObject {
-    let mut mesh = mesh_builder::MeshBuilder::new(material);
+    let mut mesh = MeshBuilder::new(material);
     let x = [
         -GROUND_MARGIN,
         f64::from(layout.width) * mpp + GROUND_MARGIN,
@@ -121,14 +128,14 @@ fn ground(layout: &ParsedLayout, mpp: f64, material: u32) -> SceneObject {
 }
 
 /// A named object of the non-empty meshes among `meshes`.
-fn object(name: String, class: &str, meshes: Vec<mesh_builder::MeshBuilder>) -> SceneObject {
+fn object(name: String, class: &str, meshes: Vec<MeshBuilder>) -> SceneObject {
     SceneObject {
         name,
         class: class.to_owned(),
         meshes: meshes
             .into_iter()
             .filter(|m| !m.is_empty())
-            .map(mesh_builder::MeshBuilder::finish)
+            .map(MeshBuilder::finish)
             .collect(),
     }
 }

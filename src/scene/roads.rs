@@ -1,9 +1,8 @@
 //! Roads → `road_NNNN` objects: each road's rectangle minus the rectangles of the roads
 //! before it, so a crossing is paved once (by the road with the lower id).
 
-use super::mesh_builder::MeshBuilder;
-use super::road_rect::RoadRect;
-use super::{ROAD_Y, object, procedural};
+use super::{object, procedural};
+use crate::geometry::{MeshBuilder, ROAD_Y, RoadRect};
 use crate::model::{ParsedLayout, SceneObject};
 
 pub fn road_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {

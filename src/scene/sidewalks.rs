@@ -6,62 +6,10 @@
 //! pixel already claimed: all blocks, all road rectangles, and the sidewalks of blocks with
 //! lower ids. So no sidewalk overlaps a road, a block or another sidewalk.
 
-use super::mesh_builder::MeshBuilder;
-use super::road_rect::RoadRect;
 use super::row_region::{RowRegion, subtract};
-use super::{KERB_Y, object, procedural};
-use crate::model::{Band, Block, ParsedLayout, SceneObject};
-
-/// Strip width when the layout gives nothing to measure (the paper's 8 px).
-pub const DEFAULT_STRIP_PX: u32 = 8;
-
-/// The lamp strip's width in pixels, measured: for each block, the distance from its
-/// bounding box to the nearest road edge that runs alongside it (a road parallel to one of
-/// the box's sides, on the outside of it, overlapping it lengthwise); the lower median of
-/// those distances over all blocks, rounded. `DEFAULT_STRIP_PX` when no block has a road
-/// beside it.
-pub fn strip_width_px(layout: &ParsedLayout) -> u32 {
-    let mut gaps: Vec<f64> = layout
-        .blocks
-        .iter()
-        .filter_map(|block| nearest_road_gap(block, layout))
-        .collect();
-    if gaps.is_empty() {
-        return DEFAULT_STRIP_PX;
-    }
-    gaps.sort_by(f64::total_cmp);
-    let median = gaps[(gaps.len() - 1) / 2];
-    // Non-negative and finite by construction; the cast saturates for absurd layouts.
-    median.round() as u32
-}
-
-fn nearest_road_gap(block: &Block, layout: &ParsedLayout) -> Option<f64> {
-    let b = block.bbox;
-    let (bx, by) = (
-        [f64::from(b.x0), f64::from(b.x1)],
-        [f64::from(b.y0), f64::from(b.y1)],
-    );
-    let overlaps = |a: [f64; 2], c: [f64; 2]| a[0] < c[1] && c[0] < a[1];
-    layout
-        .roads
-        .iter()
-        .filter_map(|road| {
-            let r = RoadRect::of(road);
-            let gap = if overlaps(r.x, bx) && r.y[1] <= by[0] {
-                by[0] - r.y[1]
-            } else if overlaps(r.x, bx) && r.y[0] >= by[1] {
-                r.y[0] - by[1]
-            } else if overlaps(r.y, by) && r.x[1] <= bx[0] {
-                bx[0] - r.x[1]
-            } else if overlaps(r.y, by) && r.x[0] >= bx[1] {
-                r.x[0] - bx[1]
-            } else {
-                return None;
-            };
-            gap.is_finite().then_some(gap)
-        })
-        .min_by(f64::total_cmp)
-}
+use super::{object, procedural};
+use crate::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
+use crate::model::{Band, ParsedLayout, SceneObject};
 
 pub fn sidewalk_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
     let (w, h) = (layout.width, layout.height);
@@ -148,36 +96,7 @@ fn slab(mesh: &mut MeshBuilder, bands: &[Band], mpp: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout::generate;
-    use crate::parse::parse;
-    use crate::rng::stream;
-    use crate::scene::mesh_builder::{cross, dot, sub};
-    use crate::spec::{GenerateSpec, Palette};
-
-    #[test]
-    fn strip_width_is_measured_from_generated_layouts() {
-        for strip in [4, 8, 13] {
-            let spec = GenerateSpec {
-                strip_width: strip,
-                ..GenerateSpec::default()
-            };
-            let palette = Palette::default();
-            let image = generate(&spec, &palette, &mut stream(5, "layout", 0)).image;
-            let layout = parse(&image, &palette);
-            assert_eq!(strip_width_px(&layout), strip);
-        }
-    }
-
-    #[test]
-    fn strip_width_defaults_without_roads() {
-        let layout = ParsedLayout {
-            width: 10,
-            height: 10,
-            blocks: Vec::new(),
-            roads: Vec::new(),
-        };
-        assert_eq!(strip_width_px(&layout), DEFAULT_STRIP_PX);
-    }
+    use crate::geometry::{cross, dot, sub};
 
     #[test]
     fn a_ring_slab_has_a_top_and_curbs_on_both_rims() {

@@ -8,9 +8,9 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
-use super::mesh_builder::{MeshBuilder, UP};
+use super::object;
 use super::surfaces::Surfaces;
-use super::{KERB_Y, object};
+use crate::geometry::{KERB_Y, MeshBuilder, UP};
 use crate::model::{Lamp, SceneObject};
 
 /// Pole height above the sidewalk, its radius, the arm's reach from the pole's axis, in

@@ -1,8 +1,8 @@
 //! The fixed materials every scene has → their indices: ground, paving, asphalt, marking,
 //! concrete, lamp metal and the emissive lamp head.
 
-use super::material_book::MaterialBook;
 use super::procedural;
+use crate::geometry::MaterialBook;
 use crate::model::Texture;
 
 /// Indices of the fixed materials, registered first and always in this order.

@@ -5,17 +5,12 @@ use std::collections::BTreeSet;
 
 use image::{Rgb, RgbImage};
 
-use super::mesh_builder::{cross, dot, sub};
-use super::road_rect::RoadRect;
-use super::{KERB_Y, SceneInput, build};
-use crate::build::widths_px;
-use crate::layout::generate;
+use super::{SceneInput, build};
+use crate::geometry::{KERB_Y, RoadRect, cross, dot, sub};
 use crate::model::{
     Building, Facade, FacadeSet, Lamp, Mesh, ParsedLayout, Roof, Scene, SceneObject, Texture,
 };
-use crate::rng::stream;
-use crate::spec::{GenerateSpec, Palette};
-use crate::{lamps, parse, place};
+use crate::test_support::{TestCity, test_city};
 
 const SEED: u64 = 42;
 
@@ -66,21 +61,17 @@ struct City {
 
 /// The default city, its buildings sized by the facades (`widths` None) or by `widths`.
 fn city(widths: Option<&[f64]>) -> City {
-    let palette = Palette::default();
-    let image = generate(
-        &GenerateSpec::default(),
-        &palette,
-        &mut stream(SEED, "layout", 0),
-    )
-    .image;
-    let layout = parse::parse(&image, &palette);
-    let lamps = lamps::site_lamps(&image, &layout, &palette, 100.0, 20.0);
     let facades = facade_set();
     let metric: Vec<f64> = match widths {
         Some(w) => w.to_vec(),
         None => facades.facades.iter().map(|f| f.width).collect(),
     };
-    let buildings = place::place(&layout.blocks, &widths_px(&metric, 1.0), 2, SEED);
+    let TestCity {
+        layout,
+        lamps,
+        buildings,
+        ..
+    } = test_city(SEED, &metric);
     City {
         layout,
         lamps,
@@ -558,7 +549,7 @@ fn bad_facade_input_falls_back_without_panicking() {
     let scene = scene_of(&city, None);
     let building = of_class(&scene, "building").next().unwrap();
     let (lo, hi) = bounds(building);
-    assert!((hi[1] - lo[1] - super::buildings::PLAIN_HEIGHT).abs() < 1e-4);
+    assert!((hi[1] - lo[1] - crate::geometry::PLAIN_HEIGHT).abs() < 1e-4);
     assert_eq!(
         scene.materials[building.meshes[0].material as usize].name,
         "facade_plain"

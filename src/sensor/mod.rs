@@ -36,6 +36,7 @@ pub use weather::{WeatherLight, weather_light};
 
 use image::{ImageFormat, RgbImage};
 
+use crate::geometry::dot;
 use crate::model::CameraPose;
 use crate::spec::ExposureMode;
 use rays::Rays;
@@ -131,7 +132,6 @@ fn jpeg_round_trip(rgb: RgbImage, quality: u8) -> RgbImage {
 /// nearer the view direction wins; with none, the view direction stands in. `None` for a
 /// pose without a view direction.
 pub fn travel_direction(poses: &[CameraPose], i: usize) -> Option<[f64; 3]> {
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let step = |a: &CameraPose, b: &CameraPose| [0, 1, 2].map(|k| b.eye[k] - a.eye[k]);
     let pose = poses.get(i)?;
     let forward = pose.basis()?.forward;

@@ -1,6 +1,7 @@
 //! Camera pose + intrinsics → per-pixel view rays and projections, in f32 for the
 //! image-space passes.
 
+use crate::geometry::dot;
 use crate::model::CameraPose;
 
 /// A frame's camera: eye, axes and pinhole intrinsics.
@@ -55,11 +56,6 @@ impl Rays {
             self.cy - self.fy * dot(self.up, d) / z,
         ])
     }
-}
-
-#[inline]
-pub(crate) fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline]

@@ -33,25 +33,10 @@ pub(crate) fn check_cameras(cameras: &[CameraSpec], findings: &mut Findings<'_, 
 
 #[cfg(test)]
 mod tests {
-    use std::path::{Path, PathBuf};
+    use std::path::PathBuf;
 
-    use crate::spec::{FrameRule, SpecSource, SpecWorld, load};
-
-    struct NoFiles;
-
-    impl SpecWorld for NoFiles {
-        fn folder(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no folder {}", path.display()))
-        }
-
-        fn file(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no file {}", path.display()))
-        }
-
-        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
-            Err("no such file".to_string())
-        }
-    }
+    use crate::spec::{FrameRule, SpecSource, load};
+    use crate::test_support::FakeWorld;
 
     /// The spec's first camera's frame rule, or its problems as `key: message`.
     fn rule(cameras: &str) -> Result<FrameRule, Vec<String>> {
@@ -59,7 +44,7 @@ mod tests {
             path: PathBuf::from("city.toml"),
             text: format!("version = 1\nname = \"c\"\n[layout.generate]\n{cameras}"),
         };
-        match load(&source, &NoFiles) {
+        match load(&source, &FakeWorld::empty()) {
             Ok(spec) => Ok(spec.cameras[0].frame_rule()),
             Err(e) => Err(e
                 .diagnostics

@@ -63,25 +63,10 @@ pub(crate) fn check_camera_paths(
 
 #[cfg(test)]
 mod tests {
-    use std::path::{Path, PathBuf};
+    use std::path::PathBuf;
 
-    use crate::spec::{SpecSource, SpecWorld, load};
-
-    struct NoFiles;
-
-    impl SpecWorld for NoFiles {
-        fn folder(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no folder {}", path.display()))
-        }
-
-        fn file(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no file {}", path.display()))
-        }
-
-        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
-            Err("no such file".to_string())
-        }
-    }
+    use crate::spec::{SpecSource, load};
+    use crate::test_support::FakeWorld;
 
     /// The spec's problems as `key: message` (empty when it loads).
     fn problems(body: &str) -> Vec<String> {
@@ -92,7 +77,7 @@ mod tests {
                  label = \"text\"\n{body}"
             ),
         };
-        match load(&source, &NoFiles) {
+        match load(&source, &FakeWorld::empty()) {
             Ok(_) => Vec::new(),
             Err(e) => e
                 .diagnostics

@@ -9,8 +9,9 @@ use image::RgbImage;
 
 use super::cost_checks::LayoutExtent;
 use super::findings::Findings;
-use super::spec::{GenerateSpec, LayoutSpec, Palette, PaletteColour};
+use super::spec::{GenerateSpec, LayoutSpec, Palette};
 use super::{SpecWorld, resolve};
+use crate::model::PixelClass;
 
 /// Largest side of a layout image, drawn, generated or mirrored, in pixels.
 pub const MAX_LAYOUT_SIDE: u64 = 16384;
@@ -259,11 +260,11 @@ fn palette_counts(image: &RgbImage, palette: &Palette) -> [u64; 4] {
     let mut counts = [0u64; 4];
     for pixel in image.pixels() {
         let slot = match palette.classify(pixel.0) {
-            Some(PaletteColour::Road) => 0,
-            Some(PaletteColour::Line) => 1,
-            Some(PaletteColour::Block) => 2,
-            Some(PaletteColour::Strip) => 3,
-            None => continue,
+            PixelClass::Road => 0,
+            PixelClass::Line => 1,
+            PixelClass::Block => 2,
+            PixelClass::Strip => 3,
+            PixelClass::Other => continue,
         };
         counts[slot] += 1;
     }
@@ -323,37 +324,23 @@ fn too_large(w: u64, h: u64) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use std::path::{Path, PathBuf};
+    use std::path::PathBuf;
 
-    use crate::spec::{SpecSource, SpecWorld, load};
-
-    /// Images `a.png` (640×480) and `big.png` (9000×9000) beside `specs/city.toml`.
-    struct World;
-
-    impl SpecWorld for World {
-        fn folder(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no folder {} in this fake world", path.display()))
-        }
-
-        fn file(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no file {} in this fake world", path.display()))
-        }
-
-        fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
-            match path.to_str() {
-                Some("specs/a.png") => Ok((640, 480)),
-                Some("specs/big.png") => Ok((9000, 9000)),
-                _ => Err("no such file".to_string()),
-            }
-        }
-    }
+    use crate::spec::{SpecSource, load};
+    use crate::test_support::FakeWorld;
 
     fn problems(body: &str) -> Vec<String> {
         let source = SpecSource {
             path: PathBuf::from("specs/city.toml"),
             text: format!("version = 1\nname = \"c\"\n{body}"),
         };
-        match load(&source, &World) {
+        match load(
+            &source,
+            &FakeWorld::with_images(&[
+                ("specs/a.png", (640, 480)),
+                ("specs/big.png", (9000, 9000)),
+            ]),
+        ) {
             Ok(_) => Vec::new(),
             Err(e) => e
                 .diagnostics

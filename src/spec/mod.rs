@@ -31,7 +31,7 @@ mod limits_spec;
 mod locator;
 mod object_checks;
 mod object_spec;
-mod render;
+mod report;
 mod schema_check;
 mod sensor_ranges;
 mod sensor_spec;
@@ -62,11 +62,11 @@ pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
-pub use render::render;
+pub use report::report;
 pub use sensor_spec::{ExposureMode, SensorSpec};
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
-    OnError, Palette, PaletteColour, SPEC_VERSION, Spec,
+    OnError, Palette, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
 pub use value_range::ValueRange;
@@ -256,29 +256,14 @@ fn serde_diagnostic(text: &str, locator: &Locator<'_>, error: &toml::de::Error) 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    struct NoImages;
-
-    impl SpecWorld for NoImages {
-        fn folder(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no folder {} in this fake world", path.display()))
-        }
-
-        fn file(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no file {} in this fake world", path.display()))
-        }
-
-        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
-            Err("no such file".to_string())
-        }
-    }
+    use crate::test_support::FakeWorld;
 
     fn report(text: &str) -> String {
         let source = SpecSource {
             path: PathBuf::from("c.toml"),
             text: text.to_string(),
         };
-        match load(&source, &NoImages) {
+        match load(&source, &FakeWorld::empty()) {
             Ok(_) => String::new(),
             Err(e) => e.to_string(),
         }

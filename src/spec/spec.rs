@@ -15,6 +15,7 @@ use super::lighting_spec::LightingSpec;
 use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
 use super::weather_spec::WeatherSpec;
+use crate::model::PixelClass;
 
 /// The spec format version this build of cityspec reads.
 pub const SPEC_VERSION: u32 = 1;
@@ -177,27 +178,18 @@ impl Default for Palette {
     }
 }
 
-/// One of the palette's four colours.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PaletteColour {
-    Road,
-    Line,
-    Block,
-    Strip,
-}
-
 impl Palette {
-    /// The palette colour nearest to `rgb` (Euclidean RGB; ties go to the earlier of road,
-    /// line, block, strip) and its squared distance. The one rule every stage that reads a
-    /// layout image shares.
-    pub fn nearest(&self, rgb: [u8; 3]) -> (PaletteColour, u32) {
+    /// The class of the palette colour nearest to `rgb` (never [`PixelClass::Other`];
+    /// Euclidean RGB; ties go to the earlier of road, line, block, strip) and its squared
+    /// distance. The one rule every stage that reads a layout image shares.
+    pub fn nearest(&self, rgb: [u8; 3]) -> (PixelClass, u32) {
         let candidates = [
-            (PaletteColour::Road, self.road),
-            (PaletteColour::Line, self.line),
-            (PaletteColour::Block, self.block),
-            (PaletteColour::Strip, self.strip),
+            (PixelClass::Road, self.road),
+            (PixelClass::Line, self.line),
+            (PixelClass::Block, self.block),
+            (PixelClass::Strip, self.strip),
         ];
-        let mut best = (PaletteColour::Road, u32::MAX);
+        let mut best = (PixelClass::Road, u32::MAX);
         for (colour, Color(c)) in candidates {
             let d: u32 = (0..3)
                 .map(|i| (i32::from(rgb[i]) - i32::from(c[i])).pow(2) as u32)
@@ -209,10 +201,15 @@ impl Palette {
         best
     }
 
-    /// The palette colour `rgb` shows: the nearest one, if within `tolerance`.
-    pub fn classify(&self, rgb: [u8; 3]) -> Option<PaletteColour> {
-        let (colour, d) = self.nearest(rgb);
-        (u64::from(d) <= u64::from(self.tolerance).pow(2)).then_some(colour)
+    /// The class `rgb` shows: the nearest palette colour's if within `tolerance`, else
+    /// [`PixelClass::Other`].
+    pub fn classify(&self, rgb: [u8; 3]) -> PixelClass {
+        let (class, d) = self.nearest(rgb);
+        if u64::from(d) <= u64::from(self.tolerance).pow(2) {
+            class
+        } else {
+            PixelClass::Other
+        }
     }
 }
 
@@ -421,4 +418,32 @@ fn default_spacing() -> f64 {
 }
 fn default_min_distance() -> f64 {
     20.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn palette_classifies_by_nearest_colour_within_tolerance() {
+        let palette = Palette::default();
+        let cases = [
+            ([128, 128, 128], PixelClass::Road),
+            ([255, 220, 0], PixelClass::Line),
+            ([40, 80, 220], PixelClass::Block),
+            ([40, 170, 60], PixelClass::Strip),
+            ([50, 160, 70], PixelClass::Strip), // JPEG-ish noise
+            ([255, 255, 255], PixelClass::Other),
+            ([0, 0, 0], PixelClass::Other),
+        ];
+        for (rgb, want) in cases {
+            assert_eq!(palette.classify(rgb), want, "{rgb:?}");
+        }
+        let strict = Palette {
+            tolerance: 0,
+            ..Palette::default()
+        };
+        assert_eq!(strict.classify([41, 170, 60]), PixelClass::Other);
+        assert_eq!(strict.classify([40, 170, 60]), PixelClass::Strip);
+    }
 }

@@ -159,32 +159,17 @@ pub(crate) fn check_lamps(lamps: &LampsSpec, findings: &mut Findings<'_, '_>) {
 
 #[cfg(test)]
 mod tests {
-    use std::path::{Path, PathBuf};
+    use std::path::PathBuf;
 
-    use crate::spec::{SpecSource, SpecWorld, load};
-
-    struct NoImages;
-
-    impl SpecWorld for NoImages {
-        fn folder(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no folder {} in this fake world", path.display()))
-        }
-
-        fn file(&self, path: &Path) -> Result<(), String> {
-            Err(format!("no file {} in this fake world", path.display()))
-        }
-
-        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
-            Err("no such file".to_string())
-        }
-    }
+    use crate::spec::{SpecSource, load};
+    use crate::test_support::FakeWorld;
 
     fn problems(body: &str) -> Vec<String> {
         let source = SpecSource {
             path: PathBuf::from("city.toml"),
             text: format!("version = 1\nname = \"c\"\n[layout.generate]\n{body}"),
         };
-        match load(&source, &NoImages) {
+        match load(&source, &FakeWorld::empty()) {
             Ok(_) => Vec::new(),
             Err(e) => e
                 .diagnostics

@@ -184,7 +184,7 @@ fn count_kinds(dir: &Path, kinds: &[String]) -> Result<(u64, BTreeMap<String, u6
                 path: path.clone(),
                 message: e.to_string(),
             })?;
-            let ids = crate::render::unpack_ids(&image.into_rgb8());
+            let ids = crate::model::unpack_ids(&image.into_rgb8());
             let mut counts = vec![0u64; names.len()];
             for &id in ids.as_raw() {
                 let k = match id {
@@ -262,7 +262,7 @@ mod tests {
         for (i, ids) in frames.iter().enumerate() {
             let image =
                 image::ImageBuffer::from_fn(4, 2, |x, y| image::Luma([ids[(y * 4 + x) as usize]]));
-            crate::render::pack_ids(&image)
+            crate::model::pack_ids(&image)
                 .save(dir.join("ids").join(format!("{i:06}.png")))
                 .unwrap();
         }

@@ -14,12 +14,12 @@ mod parts;
 mod wall;
 
 use image::codecs::jpeg::JpegEncoder;
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder};
 use rayon::prelude::*;
 
 use super::cmp_box::write_cmp_xml;
 use super::{FacadeFile, FacadeSource};
+use crate::image_file::{PngEffort, encode_png};
 
 pub use design::Design;
 
@@ -59,10 +59,7 @@ fn facade_file(i: usize) -> FacadeFile {
     JpegEncoder::new_with_quality(&mut photo, QUALITY)
         .write_image(canvas.photo.as_raw(), w, h, ExtendedColorType::Rgb8)
         .expect("encoding a JPEG into memory cannot fail");
-    let mut labels = Vec::new();
-    PngEncoder::new_with_quality(&mut labels, CompressionType::Best, FilterType::Adaptive)
-        .write_image(canvas.mask.as_raw(), w, h, ExtendedColorType::L8)
-        .expect("encoding a PNG into memory cannot fail");
+    let labels = encode_png(&canvas.mask, PngEffort::Best);
     FacadeFile {
         name: name(i),
         photo,

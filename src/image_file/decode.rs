@@ -35,7 +35,7 @@ pub fn decode(bytes: &[u8]) -> Result<RgbImage, LayoutError> {
     let (width, height) = decoder.dimensions();
     check_size(width, height)?;
     // The decoder fills a cut-off JPEG with grey rows without a word: refuse it here.
-    super::image_end::check_complete(bytes).map_err(LayoutError::Truncated)?;
+    super::check_complete(bytes).map_err(LayoutError::Truncated)?;
     let image = DynamicImage::from_decoder(decoder).map_err(|e| size_error(e, bytes))?;
     Ok(flatten(image))
 }

@@ -1,5 +1,6 @@
 //! Quads and boxes (f64 metres) → one [`Mesh`] (f32), wound counter-clockwise from the front.
 
+use super::vector::{UP, cross, dot, neg, sub};
 use crate::model::Mesh;
 
 /// Accumulates the triangles of one material.
@@ -161,28 +162,6 @@ impl MeshBuilder {
     pub fn finish(self) -> Mesh {
         self.mesh
     }
-}
-
-pub const UP: [f64; 3] = [0.0, 1.0, 0.0];
-
-pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub fn neg(a: [f64; 3]) -> [f64; 3] {
-    [-a[0], -a[1], -a[2]]
-}
-
-pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn to_f32(v: [f64; 3]) -> [f32; 3] {

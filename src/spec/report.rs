@@ -1,4 +1,4 @@
-//! Render: [`SpecErrors`] → a terminal report with the source line and carets under each
+//! Report: [`SpecErrors`] → a terminal report with the source line and carets under each
 //! problem (codespan-reporting), the key path in the header, expected/found in the label.
 
 use codespan_reporting::diagnostic::{Diagnostic as Report, Label};
@@ -8,7 +8,7 @@ use codespan_reporting::term::{self, Config, termcolor::Ansi};
 use super::SpecErrors;
 
 /// The errors rendered for a terminal, ANSI-coloured when `color` is set.
-pub fn render(errors: &SpecErrors, color: bool) -> String {
+pub fn report(errors: &SpecErrors, color: bool) -> String {
     let file = SimpleFile::new(errors.path.display().to_string(), errors.text.as_str());
     let config = Config::default();
     let mut out = Vec::new();
@@ -69,7 +69,7 @@ mod tests {
 
     #[test]
     fn plain_render_shows_location_carets_key_and_message() {
-        let out = render(&errors(), false);
+        let out = report(&errors(), false);
         assert!(
             out.contains("error: invalid `layout.generate.road_width`"),
             "{out}"
@@ -89,7 +89,7 @@ mod tests {
 
     #[test]
     fn colour_render_uses_ansi_escapes() {
-        let out = render(&errors(), true);
+        let out = report(&errors(), true);
         assert!(out.contains('\u{1b}'), "{out}");
         assert!(
             out.contains("expected an integer at most 256, found 1000"),
