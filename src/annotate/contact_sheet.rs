@@ -103,7 +103,12 @@ impl ContactSheet {
         for (slot, (rgb, boxes)) in self.frames.iter().enumerate() {
             let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
             for b in boxes {
-                let PixelBox { x0, y0, x1, y1 } = b.bounds;
+                let PixelBox {
+                    x_min: x0,
+                    y_min: y0,
+                    x_max: x1,
+                    y_max: y1,
+                } = b.bounds;
                 let (bx, by) = ((x0 / 2) as i32, (y0 / 2) as i32);
                 let (bw, bh) = (((x1 - x0) / 2).max(1), ((y1 - y0) / 2).max(1));
                 let colour = Rgb(COLOURS[b.category as usize % COLOURS.len()]);

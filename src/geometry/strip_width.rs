@@ -13,7 +13,7 @@ pub const DEFAULT_STRIP_PX: u32 = 8;
 /// The lamp strip's width in pixels, measured: for each block, the distance from its
 /// bounding box to the nearest road edge that runs alongside it (a road parallel to one of
 /// the box's sides, on the outside of it, overlapping it lengthwise); the lower median of
-/// those distances over all blocks, rounded. [`DEFAULT_STRIP_PX`] when no block has a road
+/// those distances over all blocks, rounded. `DEFAULT_STRIP_PX` when no block has a road
 /// beside it.
 pub fn strip_width_px(layout: &ParsedLayout) -> u32 {
     let mut gaps: Vec<f64> = layout
