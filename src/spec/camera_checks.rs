@@ -33,25 +33,15 @@ pub(crate) fn check_cameras(cameras: &[CameraSpec], findings: &mut Findings<'_, 
 
 #[cfg(test)]
 mod tests {
-    use std::path::PathBuf;
-
-    use crate::spec::{FrameRule, SpecSource, load};
+    use crate::spec::FrameRule;
     use crate::test_support::FakeWorld;
 
     /// The spec's first camera's frame rule, or its problems as `key: message`.
     fn rule(cameras: &str) -> Result<FrameRule, Vec<String>> {
-        let source = SpecSource {
-            path: PathBuf::from("city.toml"),
-            text: format!("version = 1\nname = \"c\"\n[layout.generate]\n{cameras}"),
-        };
-        match load(&source, &FakeWorld::empty()) {
-            Ok(spec) => Ok(spec.cameras[0].frame_rule()),
-            Err(e) => Err(e
-                .diagnostics
-                .iter()
-                .map(|d| format!("{}: {}", d.key, d.message))
-                .collect()),
-        }
+        let text = format!("version = 1\nname = \"c\"\n[layout.generate]\n{cameras}");
+        FakeWorld::empty()
+            .load("city.toml", text)
+            .map(|spec| spec.cameras[0].frame_rule())
     }
 
     #[test]

@@ -63,28 +63,18 @@ pub(crate) fn check_camera_paths(
 
 #[cfg(test)]
 mod tests {
-    use std::path::PathBuf;
-
-    use crate::spec::{SpecSource, load};
     use crate::test_support::FakeWorld;
 
     /// The spec's problems as `key: message` (empty when it loads).
     fn problems(body: &str) -> Vec<String> {
-        let source = SpecSource {
-            path: PathBuf::from("city.toml"),
-            text: format!(
-                "version = 1\nname = \"c\"\n[layout.generate]\n[[objects]]\nkind = \"text\"\n\
-                 label = \"text\"\n{body}"
-            ),
-        };
-        match load(&source, &FakeWorld::empty()) {
-            Ok(_) => Vec::new(),
-            Err(e) => e
-                .diagnostics
-                .iter()
-                .map(|d| format!("{}: {}", d.key, d.message))
-                .collect(),
-        }
+        let text = format!(
+            "version = 1\nname = \"c\"\n[layout.generate]\n[[objects]]\nkind = \"text\"\n\
+             label = \"text\"\n{body}"
+        );
+        FakeWorld::empty()
+            .load("city.toml", text)
+            .err()
+            .unwrap_or_default()
     }
 
     #[test]

@@ -324,30 +324,17 @@ fn too_large(w: u64, h: u64) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use std::path::PathBuf;
-
-    use crate::spec::{SpecSource, load};
     use crate::test_support::FakeWorld;
 
+    /// Images `a.png` (640×480) and `big.png` (9000×9000) beside `specs/city.toml`.
     fn problems(body: &str) -> Vec<String> {
-        let source = SpecSource {
-            path: PathBuf::from("specs/city.toml"),
-            text: format!("version = 1\nname = \"c\"\n{body}"),
-        };
-        match load(
-            &source,
-            &FakeWorld::with_images(&[
-                ("specs/a.png", (640, 480)),
-                ("specs/big.png", (9000, 9000)),
-            ]),
-        ) {
-            Ok(_) => Vec::new(),
-            Err(e) => e
-                .diagnostics
-                .iter()
-                .map(|d| format!("{}: {}", d.key, d.message))
-                .collect(),
-        }
+        let world =
+            FakeWorld::with_images(&[("specs/a.png", (640, 480)), ("specs/big.png", (9000, 9000))]);
+        let text = format!("version = 1\nname = \"c\"\n{body}");
+        world
+            .load("specs/city.toml", text)
+            .err()
+            .unwrap_or_default()
     }
 
     #[test]

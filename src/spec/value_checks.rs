@@ -159,24 +159,14 @@ pub(crate) fn check_lamps(lamps: &LampsSpec, findings: &mut Findings<'_, '_>) {
 
 #[cfg(test)]
 mod tests {
-    use std::path::PathBuf;
-
-    use crate::spec::{SpecSource, load};
     use crate::test_support::FakeWorld;
 
     fn problems(body: &str) -> Vec<String> {
-        let source = SpecSource {
-            path: PathBuf::from("city.toml"),
-            text: format!("version = 1\nname = \"c\"\n[layout.generate]\n{body}"),
-        };
-        match load(&source, &FakeWorld::empty()) {
-            Ok(_) => Vec::new(),
-            Err(e) => e
-                .diagnostics
-                .iter()
-                .map(|d| format!("{}: {}", d.key, d.message))
-                .collect(),
-        }
+        let text = format!("version = 1\nname = \"c\"\n[layout.generate]\n{body}");
+        FakeWorld::empty()
+            .load("city.toml", text)
+            .err()
+            .unwrap_or_default()
     }
 
     #[test]

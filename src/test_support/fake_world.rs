@@ -1,8 +1,8 @@
 //! FakeWorld: a [`SpecWorld`] of fixed images and no folders or other files.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use crate::spec::SpecWorld;
+use crate::spec::{Spec, SpecSource, SpecWorld, load};
 
 /// A world that knows only the images it is given (path as the spec stage resolves it,
 /// and size); every folder and other file is missing.
@@ -22,6 +22,21 @@ impl FakeWorld {
         FakeWorld {
             images: images.to_vec(),
         }
+    }
+
+    /// Loads spec `text` as if read from `path` in this world: the spec, or its problems
+    /// as `key: message`.
+    pub fn load(&self, path: &str, text: String) -> Result<Spec, Vec<String>> {
+        let source = SpecSource {
+            path: PathBuf::from(path),
+            text,
+        };
+        load(&source, self).map_err(|e| {
+            e.diagnostics
+                .iter()
+                .map(|d| format!("{}: {}", d.key, d.message))
+                .collect()
+        })
     }
 }
 
