@@ -39,7 +39,7 @@ mod visible_object;
 mod word_quad;
 mod yolo;
 
-pub use coco::{CocoWriter, coco};
+pub use coco::{CocoLines, CocoWriter, coco, write_coco};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;

@@ -9,18 +9,21 @@
 
 mod atomic;
 mod cache;
+mod chunks;
 mod codec;
 mod error;
 mod frame_labels;
 mod frames;
 mod fresh;
 mod inputs;
+mod lock;
 mod manifest;
 mod object_views;
 mod out_dir;
 mod output_names;
 mod pipeline;
 mod report;
+mod shard;
 mod stage_key;
 mod verify;
 
@@ -36,6 +39,7 @@ pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};
 pub use pipeline::widths_px;
 pub use report::{BuildReport, StageRun, StageStatus};
+pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
 use crate::spec::{self, FsWorld, Spec, SpecSource};
@@ -62,6 +66,9 @@ pub struct BuildOptions {
     /// Warnings (objects placed fewer times than asked, facade problems) fail the build
     /// with [`BuildError::Strict`] before the output folder is touched.
     pub strict: bool,
+    /// `--locked`: artifacts that differ from the spec's lock file (or a missing lock)
+    /// fail the build with [`BuildError::Locked`] before the output folder is touched.
+    pub locked: bool,
 }
 
 impl Default for BuildOptions {
@@ -72,6 +79,7 @@ impl Default for BuildOptions {
             progress: None,
             waiting: None,
             strict: false,
+            locked: false,
         }
     }
 }
@@ -166,6 +174,9 @@ pub fn build_spec(
     let out_dir = out.path().to_path_buf();
     let stages = pipeline.artifact_stages();
     if let Some(manifest) = fresh::check(&cache, &out_dir, &spec.name, &stages) {
+        if options.locked {
+            lock::check(path, &manifest)?;
+        }
         let lookup = start.elapsed();
         let mut unchanged: Vec<String> =
             manifest.artifacts.iter().map(|a| a.path.clone()).collect();
@@ -213,6 +224,9 @@ pub fn build_spec(
             .collect(),
     };
     manifest.artifacts.sort_by(|a, b| a.path.cmp(&b.path));
+    if options.locked {
+        lock::check(path, &manifest)?;
+    }
     let bytes = manifest.to_bytes();
     let record = fresh::load(&cache, &out_dir);
     let synced = out.sync(&artifacts, &bytes, &cache, record.as_ref())?;
@@ -228,6 +242,43 @@ pub fn build_spec(
         triangles: pipeline.triangles,
         elapsed: start.elapsed(),
     })
+}
+
+/// `cityspec lock`: builds every spec, then writes each one's lock file beside it from the
+/// manifest the build wrote; returns the lock files' paths.
+pub fn lock_all(
+    paths: &[PathBuf],
+    options: &BuildOptions,
+) -> Result<Vec<PathBuf>, Vec<BuildError>> {
+    let options = BuildOptions {
+        locked: false,
+        ..options.clone()
+    };
+    let reports = build_all(paths, &options)?;
+    paths
+        .iter()
+        .zip(&reports)
+        .map(|(spec, report)| {
+            let path = report.out_dir.join("manifest.json");
+            let manifest = std::fs::read(&path)
+                .ok()
+                .and_then(|bytes| Manifest::from_bytes(&bytes))
+                .ok_or_else(|| {
+                    vec![BuildError::Output {
+                        path: path.clone(),
+                        source: io::Error::other("the manifest just written does not read back"),
+                    }]
+                })?;
+            let lock = lock::lock_path(spec);
+            write_atomic(&lock, lock::render(&manifest).as_bytes()).map_err(|source| {
+                vec![BuildError::Output {
+                    path: lock.clone(),
+                    source,
+                }]
+            })?;
+            Ok(lock)
+        })
+        .collect()
 }
 
 /// Writes cityspec's built-in facade set to `dir` in the CMP layout; returns how many facades.

@@ -14,7 +14,7 @@ use std::time::Instant;
 use image::RgbImage;
 
 use super::BuildError;
-use super::cache::{Blob, Cache, Load, Miss, ObjectRef, Outputs};
+use super::cache::{Blob, Cache, Load, Miss, Outputs};
 use super::codec;
 use super::frame_labels;
 use super::frames;
@@ -30,6 +30,9 @@ use crate::{
     preview, render, rng, scene, sensor,
 };
 use rand::Rng;
+
+// The frames stage (camera paths through their plans and chunks) and shards' work.
+mod paths;
 
 /// An artifact a build writes: name in the output folder, bytes (in memory or a cache
 /// object), producing stage and key.
@@ -649,137 +652,6 @@ impl<'a> Pipeline<'a> {
         let prepared = Arc::new(prepared);
         self.prepared = Some(Arc::clone(&prepared));
         Ok(prepared)
-    }
-
-    /// Frames and annotations of `[[cameras]]` entry `index`.
-    fn need_frames(&mut self, index: usize) -> Result<(), BuildError> {
-        let key = self.keys.frames[index].clone();
-        let gather = |p: &mut Self| {
-            Ok((
-                p.prepared_scene()?,
-                p.scene()?,
-                p.parsed()?,
-                p.lamp_sites()?,
-                p.facade_set()?,
-            ))
-        };
-        self.stage(
-            "frames",
-            key,
-            Load::References,
-            move |p| &mut p.frames[index],
-            gather,
-            |p, (prepared, scene, parsed, lamps, facades)| {
-                let spec = p.spec;
-                let camera = &spec.cameras[index];
-                let mpp = spec.layout.metres_per_pixel;
-                // Seeded by the camera's name, not its place in the list: adding or
-                // reordering cameras leaves every other camera's poses as they were.
-                let camera_seed =
-                    rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
-                let aim = cameras::Aim::of(camera);
-                let poses = match camera.path {
-                    CameraPath::Roads => cameras::road_path(
-                        &parsed,
-                        mpp,
-                        &cameras::RoadPath {
-                            frames: camera.frame_rule(),
-                            aim,
-                            look_ahead: camera.look_ahead,
-                            jitter: camera.jitter,
-                            lane_offset: camera.lane_offset,
-                        },
-                        camera_seed,
-                    ),
-                    CameraPath::Sidewalks => cameras::sidewalk_path(
-                        &parsed,
-                        mpp,
-                        &cameras::SidewalkPath {
-                            frames: camera.frame_rule(),
-                            aim,
-                            sidewalk: f64::from(scene::strip_width_px(&parsed)) * mpp,
-                        },
-                        camera_seed,
-                    ),
-                    CameraPath::Objects => object_views::aimed_poses(
-                        &prepared,
-                        &scene,
-                        &parsed,
-                        mpp,
-                        camera,
-                        camera_seed,
-                    ),
-                    CameraPath::Orbit => {
-                        let length = cameras::orbit_length(&parsed, mpp);
-                        let frames = camera.frame_rule().frames(length);
-                        // A range of heights: the orbit flies at its middle.
-                        cameras::orbit_path(&parsed, mpp, frames, camera.height.at(0.5))
-                    }
-                };
-                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
-                let lighting = lighting(spec, &sun, &scene, &lamps, &facades);
-                let relight = (spec.lighting.vary == Vary::Frame).then_some({
-                    |i: usize| {
-                        let sun =
-                            render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
-                        (self::lighting(spec, &sun, &scene, &lamps, &facades), sun)
-                    }
-                });
-                let path_labels =
-                    frame_labels::labels(spec, camera, &scene, &p.object_info, &p.sign_faces);
-                let thresholds = annotate::Thresholds {
-                    min_pixels: spec.annotations.min_pixels,
-                    min_fraction: spec.annotations.min_fraction,
-                };
-                // Per text object: its words' world corners.
-                let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = p
-                    .object_info
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners.clone())))
-                    .filter(|(_, words)| !words.is_empty())
-                    .collect();
-                let input = frames::PathInput {
-                    corners: &corners,
-                    camera,
-                    scene: &prepared,
-                    lighting: &lighting,
-                    sun,
-                    relight: relight.as_ref().map(|f| f as _),
-                    categories: &path_labels.categories,
-                    labels: &path_labels.labels,
-                    thresholds: &thresholds,
-                    yolo: path_labels.yolo.as_ref(),
-                    weather: &spec.weather,
-                    conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
-                };
-                let total = poses.len();
-                // Each file goes into the cache as it is made; only its reference stays.
-                let mut outputs = Outputs::new();
-                frames::render_path(
-                    &input,
-                    &poses,
-                    |name, bytes| {
-                        let object = if p.rechecking {
-                            ObjectRef {
-                                sha256: crate::hash::sha256_hex(&bytes),
-                                bytes: bytes.len() as u64,
-                            }
-                        } else {
-                            p.cache.put_object(&bytes)?
-                        };
-                        outputs.insert(name, Blob::Stored(object, None));
-                        Ok(())
-                    },
-                    |done| (p.progress)(&camera.name, done, total),
-                )
-                .map_err(|source| BuildError::Cache {
-                    path: p.cache.root().to_path_buf(),
-                    source,
-                })?;
-                Ok(((), outputs))
-            },
-        )
     }
 
     /// Fills `slot` from the cache, or gathers the inputs and runs the stage.

@@ -1,6 +1,7 @@
 //! Command line: arguments → build driver calls → terminal output and exit codes.
 //!
-//! Exit codes: 0 ok, 1 the build failed, 2 an invalid spec, input or usage. This is the only
+//! Exit codes: 0 ok, 1 the build failed, 2 an invalid spec, input or usage, 3 `--locked`
+//! and the artifacts differ from the lock file (or there is none). This is the only
 //! module that prints; the library returns typed errors and reports.
 
 mod args;
@@ -40,6 +41,10 @@ pub fn run() -> ExitCode {
             cache,
             jobs,
             strict,
+            shard,
+            shard_count,
+            stage,
+            locked,
         } => {
             let progress = (!args.quiet).then(|| print::progress_line(color));
             let options = BuildOptions {
@@ -48,15 +53,61 @@ pub fn run() -> ExitCode {
                 progress,
                 waiting: Some(print::waiting_line()),
                 strict,
+                locked,
             };
             let pool = match pool(jobs) {
                 Ok(pool) => pool,
                 Err(code) => return code,
             };
+            if shard.is_some() || stage.is_some() {
+                let shard = match shard.map(|s| s.resolve(shard_count, |k| std::env::var(k).ok())) {
+                    Some(Err(e)) => {
+                        eprintln!("error: --shard: {e}");
+                        return ExitCode::from(2);
+                    }
+                    Some(Ok(shard)) => Some(shard),
+                    None => None,
+                };
+                return match pool.install(|| build::build_shards(&specs, &options, shard)) {
+                    Ok(reports) => {
+                        reports.iter().for_each(|r| out.shard_report(r));
+                        ExitCode::SUCCESS
+                    }
+                    Err(errors) => exit_for(&errors, &out),
+                };
+            }
             match pool.install(|| build::build_all(&specs, &options)) {
                 Ok(reports) => {
                     for report in &reports {
                         out.report(report);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
+            }
+        }
+        Command::Lock {
+            specs,
+            out: out_root,
+            cache,
+            jobs,
+        } => {
+            let options = BuildOptions {
+                out_root,
+                cache_dir: cache,
+                progress: (!args.quiet).then(|| print::progress_line(color)),
+                waiting: Some(print::waiting_line()),
+                strict: false,
+                locked: false,
+            };
+            let pool = match pool(jobs) {
+                Ok(pool) => pool,
+                Err(code) => return code,
+            };
+            match pool.install(|| build::lock_all(&specs, &options)) {
+                Ok(locks) => {
+                    for lock in &locks {
+                        out.info(&format!("wrote {}", lock.display()));
                     }
                     ExitCode::SUCCESS
                 }
@@ -172,7 +223,12 @@ fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {
     for error in errors {
         out.error(error);
     }
-    if errors.iter().all(BuildError::is_input_error) {
+    if errors
+        .iter()
+        .any(|e| matches!(e, BuildError::Locked { .. }))
+    {
+        ExitCode::from(3)
+    } else if errors.iter().all(BuildError::is_input_error) {
         ExitCode::from(2)
     } else {
         ExitCode::from(1)

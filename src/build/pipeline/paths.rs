@@ -1,0 +1,376 @@
+//! The frames stage of each camera path, through its plan and chunks ([`super::chunks`]):
+//! a plain build renders the chunks nobody rendered yet and assembles the path; a shard
+//! ([`Pipeline::shard_work`]) renders only its own chunks and assembles nothing.
+
+use super::*;
+use crate::build::chunks::{self, PathPlan};
+use crate::build::shard::{Shard, ShardStats};
+use crate::model::CameraPose;
+
+/// What rendering a path needs besides the spec: the prepared and the plain scene, the
+/// parsed layout, the lamps and the facades.
+type Gathered = (
+    Arc<render::PreparedScene>,
+    Arc<Scene>,
+    Arc<ParsedLayout>,
+    Arc<Vec<Lamp>>,
+    Arc<FacadeSet>,
+);
+
+/// One chunk before the path runs.
+enum Chunk {
+    /// Its entry is in the cache, every object verified.
+    Cached(Outputs),
+    /// To be rendered here.
+    Render,
+    /// Another shard's.
+    Skip,
+}
+
+/// A path's plan and chunks, and the scene when a chunk must be rendered.
+pub(super) struct PathState {
+    plan: PathPlan,
+    chunks: Vec<Chunk>,
+    gathered: Option<Gathered>,
+}
+
+impl Pipeline<'_> {
+    /// Frames and annotations of `[[cameras]]` entry `index`.
+    pub(super) fn need_frames(&mut self, index: usize) -> Result<(), BuildError> {
+        let key = self.keys.frames[index].clone();
+        let recheck = self.recheck.as_deref() == Some(key.as_str());
+        self.stage(
+            "frames",
+            key,
+            Load::References,
+            move |p| &mut p.frames[index],
+            move |p| p.path_state(index, recheck, None),
+            move |p, mut state| {
+                let chunks = p.render_chunks(index, &mut state)?;
+                let store = !p.rechecking;
+                let camera = &p.spec.cameras[index];
+                let outputs = chunks::assemble(p.cache, camera, &state.plan, &chunks, store)
+                    .map_err(|source| p.cache_error(source))?;
+                Ok(((), outputs))
+            },
+        )
+    }
+
+    /// A shard's share of the spec (`shard`), or with `None` (`--stage city`) the stages
+    /// every shard shares: the city's artifact stages and every path's plan. Writes only
+    /// the cache.
+    pub fn shard_work(&mut self, shard: Option<Shard>) -> Result<ShardStats, BuildError> {
+        self.need_mirror()?;
+        self.need_plan()?;
+        self.need_preview()?;
+        self.need_export()?;
+        self.need_overview()?;
+        let mut stats = ShardStats::default();
+        for index in 0..self.spec.cameras.len() {
+            // A path already assembled needs nothing more from any shard.
+            if self.cache.entry(&self.keys.frames[index]).is_some() {
+                continue;
+            }
+            let Some(shard) = shard else {
+                self.path_plan(index, false)?;
+                continue;
+            };
+            let mut state = self.path_state(index, false, Some(shard))?;
+            for chunk in &state.chunks {
+                match chunk {
+                    Chunk::Cached(_) => stats.cached_chunks += 1,
+                    Chunk::Skip => stats.other_chunks += 1,
+                    Chunk::Render => stats.rendered_chunks += 1,
+                }
+            }
+            let start = Instant::now();
+            let rendered = self.render_chunks(index, &mut state)?;
+            stats.frames += rendered
+                .iter()
+                .map(|o| o.len().saturating_sub(1))
+                .sum::<usize>();
+            if stats.rendered_chunks > 0 {
+                self.runs.push(StageRun {
+                    stage: "frames-chunk",
+                    key: self.keys.frames[index].clone(),
+                    status: StageStatus::Ran,
+                    time: start.elapsed(),
+                    repaired: None,
+                });
+            }
+        }
+        Ok(stats)
+    }
+
+    fn cache_error(&self, source: std::io::Error) -> BuildError {
+        BuildError::Cache {
+            path: self.cache.root().to_path_buf(),
+            source,
+        }
+    }
+
+    fn gather_path(&mut self) -> Result<Gathered, BuildError> {
+        Ok((
+            self.prepared_scene()?,
+            self.scene()?,
+            self.parsed()?,
+            self.lamp_sites()?,
+            self.facade_set()?,
+        ))
+    }
+
+    /// The plan of path `index`: from the cache, or computed (and stored unless
+    /// `recheck`), with the scene it was computed from.
+    fn path_plan(
+        &mut self,
+        index: usize,
+        recheck: bool,
+    ) -> Result<(PathPlan, Option<Gathered>), BuildError> {
+        let key = chunks::plan_key(&self.keys.frames[index]);
+        let names = OutputNames::of("frames-plan", None);
+        if !recheck {
+            let cached = self
+                .cache
+                .get_stage("frames-plan", &key, Load::Bytes, &names);
+            if let Ok(plan) = cached.map_err(|_| ()).and_then(|o| {
+                let bytes = codec::output(&o, chunks::PLAN).map_err(|_| ())?;
+                codec::from_json::<PathPlan>(bytes).map_err(|_| ())
+            }) {
+                return Ok((plan, None));
+            }
+        }
+        let gathered = self.gather_path()?;
+        let start = Instant::now();
+        let plan = self.compute_plan(index, &gathered);
+        let bytes = codec::to_json(&plan);
+        if !recheck {
+            self.cache
+                .put("frames-plan", &key, &one(chunks::PLAN, bytes.clone()))
+                .map_err(|source| self.cache_error(source))?;
+            self.runs.push(StageRun {
+                stage: "frames-plan",
+                key,
+                status: StageStatus::Ran,
+                time: start.elapsed(),
+                repaired: None,
+            });
+        }
+        // Rendered from the plan as stored, exactly as a shard that finds it in the cache.
+        let plan = codec::from_json(&bytes).map_err(|message| BuildError::Decode {
+            stage: "frames-plan",
+            message,
+        })?;
+        Ok((plan, Some(gathered)))
+    }
+
+    /// The plan, the chunks (those of other shards skipped) and, when a chunk must be
+    /// rendered, the scene. With `recheck` every chunk is rendered again.
+    fn path_state(
+        &mut self,
+        index: usize,
+        recheck: bool,
+        shard: Option<Shard>,
+    ) -> Result<PathState, BuildError> {
+        let (plan, mut gathered) = self.path_plan(index, recheck)?;
+        let frames_key = &self.keys.frames[index];
+        let names = OutputNames::of("frames-chunk", Some(&self.spec.cameras[index].name));
+        let chunks: Vec<Chunk> = chunks::ranges(plan.poses.len())
+            .iter()
+            .enumerate()
+            .map(|(k, range)| {
+                if shard.is_some_and(|s| chunks::owner(index, k, s.count) != s.index) {
+                    return Chunk::Skip;
+                }
+                if recheck {
+                    return Chunk::Render;
+                }
+                let key = chunks::chunk_key(frames_key, range);
+                match self
+                    .cache
+                    .get_stage("frames-chunk", &key, Load::References, &names)
+                {
+                    Ok(outputs) => Chunk::Cached(outputs),
+                    Err(_) => Chunk::Render,
+                }
+            })
+            .collect();
+        if gathered.is_none() && chunks.iter().any(|c| matches!(c, Chunk::Render)) {
+            gathered = Some(self.gather_path()?);
+        }
+        Ok(PathState {
+            plan,
+            chunks,
+            gathered,
+        })
+    }
+
+    /// Renders the chunks marked so (storing each unless rechecking) and returns every
+    /// chunk's outputs but the skipped ones', in frame order.
+    fn render_chunks(
+        &self,
+        index: usize,
+        state: &mut PathState,
+    ) -> Result<Vec<Outputs>, BuildError> {
+        let camera = &self.spec.cameras[index];
+        let frames_key = &self.keys.frames[index];
+        let ranges = chunks::ranges(state.plan.poses.len());
+        let total: usize = ranges
+            .iter()
+            .zip(&state.chunks)
+            .filter(|(_, c)| !matches!(c, Chunk::Skip))
+            .map(|(r, _)| r.len())
+            .sum();
+        let store = !self.rechecking;
+        let poses = &state.plan.poses;
+        let done = std::cell::Cell::new(0);
+        let mut out = Vec::with_capacity(ranges.len());
+        let chunk_list = std::mem::take(&mut state.chunks);
+        let render =
+            |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
+                let key = chunks::chunk_key(frames_key, &range);
+                let outputs = self.with_path_input(index, gathered, |input| {
+                    let path = frames::PathFrames::new(input, poses);
+                    chunks::render_chunk(self.cache, &path, poses.len(), range, store, || {
+                        done.set(done.get() + 1);
+                        (self.progress)(&camera.name, done.get(), total);
+                    })
+                });
+                let outputs = outputs.map_err(|source| self.cache_error(source))?;
+                if store {
+                    self.cache
+                        .put("frames-chunk", &key, &outputs)
+                        .map_err(|source| self.cache_error(source))?;
+                }
+                Ok(outputs)
+            };
+        for (chunk, range) in chunk_list.into_iter().zip(ranges) {
+            match chunk {
+                Chunk::Skip => {}
+                Chunk::Cached(outputs) => {
+                    done.set(done.get() + range.len());
+                    out.push(outputs);
+                }
+                Chunk::Render => {
+                    let gathered = state
+                        .gathered
+                        .as_ref()
+                        .expect("path_state gathers the scene for chunks to render");
+                    out.push(render(range, gathered)?);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Poses, categories and YOLO classes of path `index`.
+    fn compute_plan(&self, index: usize, g: &Gathered) -> PathPlan {
+        let (prepared, scene, parsed, _, _) = g;
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let poses = self.poses(index, prepared, scene, parsed);
+        let labels = frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        PathPlan {
+            poses,
+            categories: labels.categories,
+            yolo: labels.yolo.map(|classes| classes.names_file()),
+        }
+    }
+
+    fn poses(
+        &self,
+        index: usize,
+        prepared: &render::PreparedScene,
+        scene: &Scene,
+        parsed: &ParsedLayout,
+    ) -> Vec<CameraPose> {
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let mpp = spec.layout.metres_per_pixel;
+        // Seeded by the camera's name, not its place in the list: adding or reordering
+        // cameras leaves every other camera's poses as they were.
+        let camera_seed = rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
+        let aim = cameras::Aim::of(camera);
+        match camera.path {
+            CameraPath::Roads => cameras::road_path(
+                parsed,
+                mpp,
+                &cameras::RoadPath {
+                    frames: camera.frame_rule(),
+                    aim,
+                    look_ahead: camera.look_ahead,
+                    jitter: camera.jitter,
+                    lane_offset: camera.lane_offset,
+                },
+                camera_seed,
+            ),
+            CameraPath::Sidewalks => cameras::sidewalk_path(
+                parsed,
+                mpp,
+                &cameras::SidewalkPath {
+                    frames: camera.frame_rule(),
+                    aim,
+                    sidewalk: f64::from(scene::strip_width_px(parsed)) * mpp,
+                },
+                camera_seed,
+            ),
+            CameraPath::Objects => {
+                object_views::aimed_poses(prepared, scene, parsed, mpp, camera, camera_seed)
+            }
+            CameraPath::Orbit => {
+                let length = cameras::orbit_length(parsed, mpp);
+                let frames = camera.frame_rule().frames(length);
+                // A range of heights: the orbit flies at its middle.
+                cameras::orbit_path(parsed, mpp, frames, camera.height.at(0.5))
+            }
+        }
+    }
+
+    /// Calls `f` with path `index`'s rendering input.
+    fn with_path_input<R>(
+        &self,
+        index: usize,
+        g: &Gathered,
+        f: impl FnOnce(&frames::PathInput) -> R,
+    ) -> R {
+        let (prepared, scene, _, lamps, facades) = g;
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
+        let lighting = lighting(spec, &sun, scene, lamps, facades);
+        let relight = (spec.lighting.vary == Vary::Frame).then_some({
+            |i: usize| {
+                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
+                (super::lighting(spec, &sun, scene, lamps, facades), sun)
+            }
+        });
+        let path_labels =
+            frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        let thresholds = annotate::Thresholds {
+            min_pixels: spec.annotations.min_pixels,
+            min_fraction: spec.annotations.min_fraction,
+        };
+        // Per text object: its words' world corners.
+        let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = self
+            .object_info
+            .iter()
+            .enumerate()
+            .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners.clone())))
+            .filter(|(_, words)| !words.is_empty())
+            .collect();
+        let input = frames::PathInput {
+            corners: &corners,
+            camera,
+            scene: prepared,
+            lighting: &lighting,
+            sun,
+            relight: relight.as_ref().map(|f| f as _),
+            categories: &path_labels.categories,
+            labels: &path_labels.labels,
+            thresholds: &thresholds,
+            yolo: path_labels.yolo.as_ref(),
+            weather: &spec.weather,
+            conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
+        };
+        f(&input)
+    }
+}
