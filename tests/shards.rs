@@ -12,66 +12,8 @@ use common::tree;
 
 /// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
 /// a 12-frame orbit (2 chunks) with float depth; text, signs and cars so COCO, ICDAR and
-/// YOLO files all have something in them.
-const SPEC: &str = r#"
-version = 1
-name = "small"
-seed = 11
-
-[layout.generate]
-width = 256
-height = 256
-road_width = 24
-strip_width = 6
-horizontal_roads = 2
-vertical_roads = 2
-min_block = 48
-
-[buildings]
-widths = [12, 16, 20]
-gap = 2
-
-[[objects]]
-kind = "text"
-label = "text"
-count = 40
-
-[[objects]]
-kind = "sign"
-label = "traffic_sign"
-count = 20
-
-[[objects]]
-kind = "car"
-count = 30
-
-[[cameras]]
-name = "street"
-path = "roads"
-frames = 43
-height = [1.4, 2.2]
-heading = [-60, 60]
-resolution = [64, 48]
-
-[[cameras]]
-name = "aerial"
-path = "orbit"
-frames = 12
-height = 200
-resolution = [48, 36]
-depth = "f32"
-
-[lighting]                # a sun drawn per frame: poses.json's suns come from the records
-sun_elevation = [30, 60]
-sun_azimuth = [90, 270]
-vary = "frame"
-shadows = false
-
-[annotations]
-classes = ["text", "traffic_sign", "car"]
-min_pixels = 4
-yolo = true
-"#;
+/// YOLO files all have something in them. (.ci/run builds it on Slurm too.)
+const SPEC: &str = include_str!("fixtures/shards.toml");
 
 fn options(dir: &Path, out: &str, cache: &str) -> BuildOptions {
     BuildOptions {
@@ -200,4 +142,114 @@ fn shards_as_concurrent_processes_share_one_cache_and_a_merge_finds_everything()
             .unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
     }
+}
+
+/// The members of a tar: (name, mtime field, bytes), checking each header's fixed fields.
+fn tar_members(tar: &[u8]) -> Vec<(String, Vec<u8>)> {
+    let mut members = Vec::new();
+    let mut at = 0;
+    while at + 512 <= tar.len() && tar[at..at + 512].iter().any(|&b| b != 0) {
+        let header = &tar[at..at + 512];
+        let field = |from: usize, to: usize| {
+            String::from_utf8(header[from..to].to_vec())
+                .unwrap()
+                .trim_end_matches('\0')
+                .to_owned()
+        };
+        let name = field(0, 100);
+        assert_eq!(field(100, 108), "0000644", "{name}: mode");
+        assert_eq!(field(108, 124), "0000000\u{0}0000000", "{name}: uid, gid");
+        assert_eq!(field(136, 148), "00000000000", "{name}: mtime");
+        assert_eq!(field(257, 263), "ustar", "{name}: magic");
+        let size = usize::from_str_radix(&field(124, 136), 8).unwrap();
+        members.push((name, tar[at + 512..at + 512 + size].to_vec()));
+        at += 512 + size.div_ceil(512) * 512;
+    }
+    assert_eq!(tar.len(), at + 1024, "two zero blocks end the tar");
+    members
+}
+
+#[test]
+fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let files_spec = spec(dir);
+    let files = build::build(&files_spec, &options(dir, "files", "cache")).unwrap();
+    let wds_spec = dir.join("wds.toml");
+    fs::write(
+        &wds_spec,
+        format!("{SPEC}\n[output]\nlayout = \"webdataset\"\nsamples_per_shard = 20\n"),
+    )
+    .unwrap();
+    // The frames' content keys ignore the layout: only the paths are assembled again.
+    let wds = build::build(&wds_spec, &options(dir, "wds", "cache")).unwrap();
+    let ran: Vec<&str> = wds
+        .stages
+        .iter()
+        .filter(|s| s.status == StageStatus::Ran)
+        .map(|s| s.stage)
+        .collect();
+    assert_eq!(ran, ["frames", "frames"]);
+    let out = tree(&wds.out_dir);
+    let tars: Vec<&String> = out.keys().filter(|p| p.ends_with(".tar")).collect();
+    assert_eq!(
+        tars,
+        [
+            "frames/aerial/wds/000000.tar",
+            "frames/street/wds/000000.tar",
+            "frames/street/wds/000001.tar",
+            "frames/street/wds/000002.tar"
+        ]
+    );
+    assert!(
+        !out.keys().any(|p| p.contains("/rgb/")),
+        "frames are in the tars"
+    );
+    let coco: serde_json::Value = serde_json::from_slice(&out["frames/street/coco.json"]).unwrap();
+    let files = tree(&files.out_dir);
+    let mut frame = 0;
+    for n in 0..3 {
+        let members = tar_members(&out[&format!("frames/street/wds/{n:06}.tar")]);
+        let names: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
+        let mut sorted = names.clone();
+        sorted.sort();
+        assert_eq!(names, sorted, "members in name order");
+        for (name, bytes) in &members {
+            let (stem, kind) = name.split_once('.').unwrap();
+            let i: usize = stem.parse().unwrap();
+            assert!(i / 20 == n, "{name} in tar {n}");
+            frame = frame.max(i + 1);
+            let file = match kind {
+                "rgb.png" => format!("rgb/{stem}.png"),
+                "ids.png" => format!("ids/{stem}.png"),
+                "depth.png" => format!("depth/{stem}.png"),
+                "yolo.txt" => format!("yolo/{stem}.txt"),
+                "icdar.txt" => format!("icdar/gt_{stem}.txt"),
+                "json" => {
+                    let sample: serde_json::Value = serde_json::from_slice(bytes).unwrap();
+                    assert_eq!(sample["image"], coco["images"][i]);
+                    let expected: Vec<&serde_json::Value> = coco["annotations"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .filter(|a| a["image_id"] == i as u64 + 1)
+                        .collect();
+                    let got: Vec<&serde_json::Value> =
+                        sample["annotations"].as_array().unwrap().iter().collect();
+                    assert_eq!(got, expected, "{name}");
+                    assert!(sample["sun"].is_object() && sample["conditions"].is_object());
+                    continue;
+                }
+                other => panic!("unexpected member {other}"),
+            };
+            assert!(
+                files[&format!("frames/street/{file}")] == *bytes,
+                "{name} differs from {file}"
+            );
+        }
+    }
+    assert_eq!(frame, 43);
+    // Rendered from scratch into another cache: the same tar bytes.
+    let fresh = build::build(&wds_spec, &options(dir, "wds2", "cache2")).unwrap();
+    assert!(tree(&fresh.out_dir) == out, "the tars are not reproducible");
 }

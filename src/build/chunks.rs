@@ -23,9 +23,10 @@ use super::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
 use super::codec;
 use super::frames::{self, FrameRecord, PathFrames};
 use super::stage_key::StageKey;
+use super::webdataset;
 use crate::annotate::{self, Category};
 use crate::model::CameraPose;
-use crate::spec::CameraSpec;
+use crate::spec::{CameraSpec, OutputLayout, OutputSpec};
 
 /// Frames per chunk. Fixed (never derived from the number of shards): chunk keys must be
 /// the same whoever renders them. Ten frames of a 200-frame path give 20 chunks, enough to
@@ -74,25 +75,25 @@ pub fn chunk_key(frames_key: &str, range: &Range<usize>) -> String {
 
 /// Renders the frames of `range`: each file into the cache as it is made (or, with
 /// `store` false, as `cityspec verify` reruns a stage, only hashed; the RGB images the
-/// contact sheet picks are then kept in memory), then `summary.jsonl`. `progress` is told
-/// of each frame done.
+/// contact sheet picks, or with `keep_all` every file, for WebDataset tars, are then kept
+/// in memory), then `summary.jsonl`. `progress` is told of each frame done.
 pub fn render_chunk(
     cache: &Cache,
     path: &PathFrames,
     total: usize,
     range: Range<usize>,
-    store: bool,
+    (store, keep_all): (bool, bool),
     mut progress: impl FnMut(),
 ) -> io::Result<Outputs> {
     let picks = frames::contact_sheet_picks(total);
     let mut outputs = Outputs::new();
     let mut summary = Vec::new();
     for i in range {
-        let keep = !store && picks.contains(&i);
+        let keep = !store && (keep_all || picks.contains(&i));
         let record = path.render(i, |name, bytes| {
             let blob = if store {
                 Blob::Stored(cache.put_object(&bytes)?, None)
-            } else if keep && name.contains("/rgb/") {
+            } else if keep && (keep_all || name.contains("/rgb/")) {
                 Blob::from(bytes)
             } else {
                 Blob::Stored(reference(&bytes), None)
@@ -115,18 +116,23 @@ pub fn render_chunk(
 
 /// The path's outputs from its chunks' (in frame order): their frame files, and
 /// `coco.json`, `poses.json`, `preview.png`, `yolo/classes.txt` assembled from their
-/// records. With `store` false nothing is written to the cache.
+/// records; with `[output] layout = "webdataset"` the frames' files go into tar shards
+/// instead ([`webdataset`]). With `store` false nothing is written to the cache.
 pub fn assemble(
     cache: &Cache,
     camera: &CameraSpec,
     plan: &PathPlan,
     chunks: &[Outputs],
     store: bool,
+    output: &OutputSpec,
 ) -> io::Result<Outputs> {
     let dir = format!("frames/{}", camera.name);
+    let webdataset = output.layout == OutputLayout::Webdataset;
+    // With WebDataset the frames' files go into the tars, not the folder.
     let mut outputs: Outputs = chunks
         .iter()
         .flat_map(|chunk| chunk.iter().filter(|(name, _)| name.as_str() != SUMMARY))
+        .filter(|_| !webdataset)
         .map(|(name, blob)| (name.clone(), without_bytes(blob)))
         .collect();
     let read = |blob: &Blob| -> io::Result<Arc<Vec<u8>>> {
@@ -173,7 +179,12 @@ pub fn assemble(
     let picks = frames::contact_sheet_picks(plan.poses.len());
     let mut drawn = Vec::with_capacity(plan.poses.len());
     let mut sheet = Vec::with_capacity(picks.len());
+    // Per frame, the id of its first annotation in coco.json (for the WebDataset samples).
+    let mut first_ids = Vec::with_capacity(plan.poses.len());
+    let mut annotations = 1u64;
     each_record(&mut |i, record| {
+        first_ids.push(annotations);
+        annotations += record.coco.annotations.len() as u64;
         if picks.contains(&i) {
             let name = format!("{dir}/rgb/{i:06}.png");
             let blob = chunks
@@ -209,6 +220,27 @@ pub fn assemble(
             classes.clone().into_bytes(),
         ));
     }
+    if webdataset {
+        let frames = plan.poses.len();
+        let tars = Tars {
+            dir: &dir,
+            chunks,
+            first_ids: &first_ids,
+            per_tar: output.samples_per_shard.max(1) as usize,
+            read: &read,
+        };
+        for (n, start) in (0..frames).step_by(tars.per_tar).enumerate() {
+            let range = start..(start + tars.per_tar).min(frames);
+            let object = if store {
+                cache.put_object_with(|out| tars.write(range, out))?
+            } else {
+                let mut sink = Hashing::new(io::sink());
+                tars.write(range, &mut sink)?;
+                sink.finish()
+            };
+            outputs.insert(format!("{dir}/wds/{n:06}.tar"), Blob::Stored(object, None));
+        }
+    }
     for (name, bytes) in files {
         let object = if store {
             cache.put_object(&bytes)?
@@ -218,6 +250,66 @@ pub fn assemble(
         outputs.insert(name, Blob::Stored(object, None));
     }
     Ok(outputs)
+}
+
+/// A path's WebDataset tars, from its chunks.
+struct Tars<'a> {
+    /// `frames/<camera>`.
+    dir: &'a str,
+    chunks: &'a [Outputs],
+    /// Per frame, the id of its first annotation in `coco.json`.
+    first_ids: &'a [u64],
+    per_tar: usize,
+    /// A blob's bytes, from memory or the cache.
+    read: &'a dyn Fn(&Blob) -> io::Result<Arc<Vec<u8>>>,
+}
+
+impl Tars<'_> {
+    /// Writes the tar of frames `range` to `out`, one frame's files in memory at a time.
+    fn write(&self, range: Range<usize>, out: &mut dyn Write) -> io::Result<()> {
+        let mut out = io::BufWriter::new(out);
+        for k in range.start / CHUNK_FRAMES..range.end.div_ceil(CHUNK_FRAMES) {
+            let chunk = &self.chunks[k];
+            let summary = chunk
+                .get(SUMMARY)
+                .ok_or_else(|| io::Error::other("a chunk lacks its summary"))?;
+            let summary = (self.read)(summary)?;
+            let records = summary.split(|&b| b == b'\n').filter(|l| !l.is_empty());
+            for (i, line) in (k * CHUNK_FRAMES..).zip(records) {
+                if !range.contains(&i) {
+                    continue;
+                }
+                let record: FrameRecord = serde_json::from_slice(line)?;
+                let mut members = Vec::new();
+                for (name, blob) in chunk {
+                    let Some(rest) = name
+                        .strip_prefix(self.dir)
+                        .and_then(|r| r.strip_prefix('/'))
+                    else {
+                        continue;
+                    };
+                    if let Some(member) = webdataset::member_name(rest)
+                        && webdataset::member_frame(&member) == Some(i)
+                    {
+                        members.push((member, (self.read)(blob)?));
+                    }
+                }
+                let json = webdataset::sample_json(
+                    &record.coco,
+                    self.first_ids[i],
+                    &record.sun,
+                    &record.conditions,
+                );
+                members.push((format!("{i:06}.json"), Arc::new(json)));
+                members.sort_by(|a, b| a.0.cmp(&b.0));
+                for (member, bytes) in &members {
+                    webdataset::append(&mut out, member, bytes)?;
+                }
+            }
+        }
+        webdataset::finish(&mut out)?;
+        out.flush()
+    }
 }
 
 /// The reference `bytes` would have as an object, without storing them.

@@ -26,6 +26,7 @@ mod report;
 mod shard;
 mod stage_key;
 mod verify;
+mod webdataset;
 
 use std::collections::BTreeMap;
 use std::io;

@@ -126,10 +126,14 @@ fn is_texture(name: &str) -> bool {
 
 /// A file of one camera path, relative to `frames/<camera>/`.
 fn is_frame_file(rest: &str) -> bool {
+    let tar = rest
+        .strip_prefix("wds/")
+        .and_then(|s| s.strip_suffix(".tar"));
     matches!(
         rest,
         "coco.json" | "poses.json" | "preview.png" | "yolo/classes.txt"
     ) || is_numbered_frame_file(rest)
+        || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// A file of one frame, relative to `frames/<camera>/`.

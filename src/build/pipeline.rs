@@ -24,7 +24,7 @@ use super::output_names::OutputNames;
 use super::report::{StageRun, StageStatus};
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{CameraPath, Spec, Vary};
+use crate::spec::{CameraPath, OutputLayout, Spec, Vary};
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
     preview, render, rng, scene, sensor,
@@ -56,6 +56,9 @@ struct Keys {
     overview: String,
     /// One per `[[cameras]]` entry.
     frames: Vec<String>,
+    /// Per camera, the key of its frames' content, whatever `[output]` says: its plan
+    /// and chunks are keyed by it, so a change of layout renders nothing again.
+    paths: Vec<String>,
 }
 
 /// A stage's outputs, and its typed value once computed or decoded.
@@ -852,7 +855,7 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
         .spec("seed", &spec.seed)
         .input("export", &export)
         .finish();
-    let frames = spec
+    let paths: Vec<String> = spec
         .cameras
         .iter()
         .map(|camera| {
@@ -868,8 +871,19 @@ fn keys(spec: &Spec, source: &LayoutSource, facade_input: &FacadeInput, meshes: 
                 .finish()
         })
         .collect();
+    let frames = paths
+        .iter()
+        .map(|path| match spec.output.layout {
+            OutputLayout::Files => path.clone(),
+            OutputLayout::Webdataset => StageKey::new("frames", super::webdataset::VERSION)
+                .spec("output", &spec.output)
+                .input("path", path)
+                .finish(),
+        })
+        .collect();
     Keys {
         frames,
+        paths,
         overview,
         layout,
         mirror,

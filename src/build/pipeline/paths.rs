@@ -6,6 +6,7 @@ use super::*;
 use crate::build::chunks::{self, PathPlan};
 use crate::build::shard::{Shard, ShardStats};
 use crate::model::CameraPose;
+use crate::spec::OutputLayout;
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
 /// parsed layout, the lamps and the facades.
@@ -49,8 +50,9 @@ impl Pipeline<'_> {
                 let chunks = p.render_chunks(index, &mut state)?;
                 let store = !p.rechecking;
                 let camera = &p.spec.cameras[index];
-                let outputs = chunks::assemble(p.cache, camera, &state.plan, &chunks, store)
-                    .map_err(|source| p.cache_error(source))?;
+                let outputs =
+                    chunks::assemble(p.cache, camera, &state.plan, &chunks, store, &p.spec.output)
+                        .map_err(|source| p.cache_error(source))?;
                 Ok(((), outputs))
             },
         )
@@ -76,20 +78,22 @@ impl Pipeline<'_> {
                 continue;
             };
             let mut state = self.path_state(index, false, Some(shard))?;
-            for chunk in &state.chunks {
+            let ranges = chunks::ranges(state.plan.poses.len());
+            let mut render = 0;
+            for (chunk, range) in state.chunks.iter().zip(ranges) {
                 match chunk {
                     Chunk::Cached(_) => stats.cached_chunks += 1,
                     Chunk::Skip => stats.other_chunks += 1,
-                    Chunk::Render => stats.rendered_chunks += 1,
+                    Chunk::Render => {
+                        render += 1;
+                        stats.frames += range.len();
+                    }
                 }
             }
+            stats.rendered_chunks += render;
             let start = Instant::now();
-            let rendered = self.render_chunks(index, &mut state)?;
-            stats.frames += rendered
-                .iter()
-                .map(|o| o.len().saturating_sub(1))
-                .sum::<usize>();
-            if stats.rendered_chunks > 0 {
+            self.render_chunks(index, &mut state)?;
+            if render > 0 {
                 self.runs.push(StageRun {
                     stage: "frames-chunk",
                     key: self.keys.frames[index].clone(),
@@ -126,7 +130,7 @@ impl Pipeline<'_> {
         index: usize,
         recheck: bool,
     ) -> Result<(PathPlan, Option<Gathered>), BuildError> {
-        let key = chunks::plan_key(&self.keys.frames[index]);
+        let key = chunks::plan_key(&self.keys.paths[index]);
         let names = OutputNames::of("frames-plan", None);
         if !recheck {
             let cached = self
@@ -172,7 +176,7 @@ impl Pipeline<'_> {
         shard: Option<Shard>,
     ) -> Result<PathState, BuildError> {
         let (plan, mut gathered) = self.path_plan(index, recheck)?;
-        let frames_key = &self.keys.frames[index];
+        let frames_key = &self.keys.paths[index];
         let names = OutputNames::of("frames-chunk", Some(&self.spec.cameras[index].name));
         let chunks: Vec<Chunk> = chunks::ranges(plan.poses.len())
             .iter()
@@ -212,7 +216,7 @@ impl Pipeline<'_> {
         state: &mut PathState,
     ) -> Result<Vec<Outputs>, BuildError> {
         let camera = &self.spec.cameras[index];
-        let frames_key = &self.keys.frames[index];
+        let frames_key = &self.keys.paths[index];
         let ranges = chunks::ranges(state.plan.poses.len());
         let total: usize = ranges
             .iter()
@@ -230,7 +234,9 @@ impl Pipeline<'_> {
                 let key = chunks::chunk_key(frames_key, &range);
                 let outputs = self.with_path_input(index, gathered, |input| {
                     let path = frames::PathFrames::new(input, poses);
-                    chunks::render_chunk(self.cache, &path, poses.len(), range, store, || {
+                    let keep_all = self.spec.output.layout == OutputLayout::Webdataset;
+                    let modes = (store, keep_all);
+                    chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
                         done.set(done.get() + 1);
                         (self.progress)(&camera.name, done.get(), total);
                     })
