@@ -209,7 +209,9 @@ impl Cache {
         };
         let path = self.object_path(&object.sha256);
         let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
-        if !intact {
+        if intact {
+            touch(&path);
+        } else {
             write_atomic(&path, bytes)?;
         }
         Ok(object)
@@ -241,6 +243,7 @@ impl Cache {
         let path = self.object_path(&object.sha256);
         let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
         let placed = if intact {
+            touch(&path);
             fs::remove_file(&temp)
         } else {
             fs::create_dir_all(path.parent().expect("objects have a folder"))
@@ -287,6 +290,16 @@ impl Cache {
     /// Where the entry of `key` lives.
     pub fn entry_path(&self, key: &str) -> PathBuf {
         self.root.join("entries").join(format!("{key}.json"))
+    }
+}
+
+/// Sets an object's mtime to now: `cache gc` removes nothing younger than its grace
+/// period, so an object a running build reuses (instead of writing it) is kept until
+/// the build has written the entry that names it. Best effort: a read-only cache still
+/// builds.
+fn touch(path: &Path) {
+    if let Ok(file) = fs::File::options().append(true).open(path) {
+        let _ = file.set_modified(std::time::SystemTime::now());
     }
 }
 

@@ -60,6 +60,15 @@ pub fn check(spec: &Path, manifest: &Manifest) -> Result<(), super::BuildError> 
     }
 }
 
+/// The SHA-256 of every artifact a lock file lists (for `cache gc`).
+pub fn hashes(text: &str) -> Result<Vec<String>, String> {
+    Ok(parse(text)?
+        .artifacts
+        .into_values()
+        .map(|(sha, _)| sha)
+        .collect())
+}
+
 /// What a lock file records.
 #[derive(Debug, PartialEq, Eq)]
 struct Lock {

@@ -9,6 +9,7 @@
 
 mod atomic;
 mod cache;
+mod cache_gc;
 mod chunks;
 mod codec;
 mod error;
@@ -35,6 +36,7 @@ use std::time::Instant;
 
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
+pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
 pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};

@@ -131,6 +131,9 @@ pub enum Command {
     /// Work with facade sets (paper 3.2).
     #[command(subcommand)]
     Facades(FacadesCommand),
+    /// Work with the stage cache.
+    #[command(subcommand)]
+    Cache(CacheCommand),
     /// Print the spec's JSON schema (Draft 2020-12), as committed in schemas/.
     ///
     /// Editors that read `#:schema` comments (Taplo, Even Better TOML) complete and check
@@ -148,6 +151,34 @@ pub enum Command {
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum CacheCommand {
+    /// Remove what the given specs (and lock files) do not need: every other entry and
+    /// object, or with --max-age only those older, with --max-size only the oldest until
+    /// the cache fits. Safe while builds run: nothing younger than --grace-minutes goes.
+    #[command(
+        after_help = "Examples:\n  cityspec cache gc specs/*.toml\n  cityspec cache gc --max-size 20G --cache /shared/cache specs/day.toml specs/night.lock"
+    )]
+    Gc {
+        /// Spec files (TOML) or lock files (`.lock`) whose artifacts to keep.
+        #[arg(required = true, value_name = "SPEC")]
+        specs: Vec<PathBuf>,
+        /// Stage cache folder.
+        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        cache: PathBuf,
+        /// Remove unneeded files, oldest first, only until the cache holds at most SIZE
+        /// (bytes, or 500M, 20G, …).
+        #[arg(long, value_name = "SIZE", value_parser = crate::build::parse_size)]
+        max_size: Option<u64>,
+        /// Remove only unneeded files older than DAYS.
+        #[arg(long, value_name = "DAYS")]
+        max_age: Option<f64>,
+        /// Never remove a file modified within this many minutes (a running build's).
+        #[arg(long, value_name = "MINUTES", default_value_t = 60.0)]
+        grace_minutes: f64,
     },
 }
 

@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::build::{self, BuildError, BuildOptions};
-use args::{Args, Command, FacadesCommand};
+use args::{Args, CacheCommand, Command, FacadesCommand};
 
 /// Runs the command line and returns the process exit code.
 pub fn run() -> ExitCode {
@@ -172,6 +172,44 @@ pub fn run() -> ExitCode {
                     ExitCode::SUCCESS
                 }
                 Err(e) => exit_for(&[e], &out),
+            }
+        }
+        Command::Cache(CacheCommand::Gc {
+            specs,
+            cache,
+            max_size,
+            max_age,
+            grace_minutes,
+        }) => {
+            let seconds = |s: f64| std::time::Duration::try_from_secs_f64(s.max(0.0));
+            let (Ok(grace), Ok(max_age)) = (
+                seconds(grace_minutes * 60.0),
+                max_age.map(|d| seconds(d * 86_400.0)).transpose(),
+            ) else {
+                eprintln!("error: --max-age and --grace-minutes take a number");
+                return ExitCode::from(2);
+            };
+            let options = build::GcOptions {
+                cache_dir: cache,
+                max_size,
+                max_age,
+                grace,
+            };
+            match build::gc(&specs, &options) {
+                Ok(r) => {
+                    out.info(&format!(
+                        "kept {} entries and {} objects; removed {} entries, {} objects, {} temporaries ({:.1} MiB); the cache holds {:.1} MiB",
+                        r.kept_entries,
+                        r.kept_objects,
+                        r.removed_entries,
+                        r.removed_objects,
+                        r.removed_temporaries,
+                        r.removed_bytes as f64 / 1048576.0,
+                        r.bytes as f64 / 1048576.0
+                    ));
+                    ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
             }
         }
         Command::Schema => {

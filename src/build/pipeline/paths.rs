@@ -106,6 +106,32 @@ impl Pipeline<'_> {
         Ok(stats)
     }
 
+    /// Every cache key this spec's build reads or writes: its stages', and each camera
+    /// path's plan and (when the plan is cached, which says how many frames) chunks.
+    pub fn cache_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = self.all_stages().into_iter().map(|(_, k)| k).collect();
+        let names = OutputNames::of("frames-plan", None);
+        for path in &self.keys.paths {
+            let plan_key = chunks::plan_key(path);
+            let plan = self
+                .cache
+                .get_stage("frames-plan", &plan_key, Load::Bytes, &names)
+                .ok()
+                .and_then(|o| {
+                    codec::from_json::<PathPlan>(codec::output(&o, chunks::PLAN).ok()?).ok()
+                });
+            if let Some(plan) = plan {
+                keys.extend(
+                    chunks::ranges(plan.poses.len())
+                        .iter()
+                        .map(|range| chunks::chunk_key(path, range)),
+                );
+            }
+            keys.push(plan_key);
+        }
+        keys
+    }
+
     fn cache_error(&self, source: std::io::Error) -> BuildError {
         BuildError::Cache {
             path: self.cache.root().to_path_buf(),
