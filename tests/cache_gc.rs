@@ -65,7 +65,7 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
         .unwrap()
     };
     // Within the grace period nothing but the stale temporary goes.
-    let safe = gc(&[small.clone()], 3600, None);
+    let safe = gc(std::slice::from_ref(&small), 3600, None);
     assert_eq!(
         (
             safe.removed_entries,
@@ -76,7 +76,7 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
     );
     assert!(!stale.exists() && young.exists());
     // With --max-age, young unneeded files stay too.
-    let aged = gc(&[small.clone()], 0, Some(86_400));
+    let aged = gc(std::slice::from_ref(&small), 0, Some(86_400));
     assert_eq!((aged.removed_entries, aged.removed_objects), (0, 0));
 
     // The other spec's lock file keeps its artifacts' objects, not its entries.
