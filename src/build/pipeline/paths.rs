@@ -158,15 +158,22 @@ impl Pipeline<'_> {
     ) -> Result<(PathPlan, Option<Gathered>), BuildError> {
         let key = chunks::plan_key(&self.keys.paths[index]);
         let names = OutputNames::of("frames-plan", None);
+        // Why a cached plan was not used, when it was there.
+        let mut repaired = None;
         if !recheck {
             let cached = self
                 .cache
                 .get_stage("frames-plan", &key, Load::Bytes, &names);
-            if let Ok(plan) = cached.map_err(|_| ()).and_then(|o| {
-                let bytes = codec::output(&o, chunks::PLAN).map_err(|_| ())?;
-                codec::from_json::<PathPlan>(bytes).map_err(|_| ())
-            }) {
-                return Ok((plan, None));
+            match cached {
+                Ok(outputs) => {
+                    let bytes = codec::output(&outputs, chunks::PLAN);
+                    match bytes.and_then(|b| codec::from_json::<PathPlan>(b)) {
+                        Ok(plan) => return Ok((plan, None)),
+                        Err(why) => repaired = Some(why),
+                    }
+                }
+                Err(Miss::Corrupt(why)) => repaired = Some(why),
+                Err(Miss::Absent) => {}
             }
         }
         let gathered = self.gather_path()?;
@@ -182,7 +189,7 @@ impl Pipeline<'_> {
                 key,
                 status: StageStatus::Ran,
                 time: start.elapsed(),
-                repaired: None,
+                repaired,
             });
         }
         // Rendered from the plan as stored, exactly as a shard that finds it in the cache.
