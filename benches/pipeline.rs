@@ -116,6 +116,7 @@ fn noop_case(label: &str, text: &str, runs: usize) {
         cache_dir: dir.path().join("cache"),
         waiting: None,
         strict: false,
+        locked: false,
     };
     let cold = Instant::now();
     build::build(&spec, &options).unwrap();

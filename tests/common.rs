@@ -71,6 +71,7 @@ impl Workspace {
             cache_dir: self.cache(),
             waiting: None,
             strict: false,
+            locked: false,
         }
     }
 

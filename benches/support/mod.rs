@@ -41,6 +41,7 @@ pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::build::Bui
             cache_dir: cache.to_path_buf(),
             waiting: None,
             strict: false,
+            locked: false,
         },
     )
     .unwrap()

@@ -1,5 +1,8 @@
 //! Frames of one camera path → COCO JSON bytes that pycocotools loads.
 
+use std::io::{self, Write};
+
+use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
 use super::frame_annotations::{FrameAnnotations, summarize};
@@ -57,33 +60,28 @@ pub fn coco(
 /// non-finite number becomes `null`.
 pub struct CocoWriter {
     categories: Vec<Category>,
-    images: String,
-    annotations: String,
-    frames: u64,
-    annotated: u64,
+    frames: Vec<CocoLines>,
 }
 
-impl CocoWriter {
-    pub fn new(categories: &[Category]) -> CocoWriter {
-        CocoWriter {
-            categories: categories.to_vec(),
-            images: String::new(),
-            annotations: String::new(),
-            frames: 0,
-            annotated: 0,
-        }
-    }
+/// One frame's part of a COCO document: its image line, and its annotation lines without
+/// their `id` (which counts annotations over all earlier frames, so a frame rendered on
+/// its own cannot know it; [`write_coco`] puts it in front).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CocoLines {
+    pub image: String,
+    /// Each a JSON object's text, `{"image_id":…}`, the `id` key left out.
+    pub annotations: Vec<String>,
+}
 
-    /// Appends the next frame (image ids follow the order of the calls).
-    pub fn push(&mut self, frame: &FrameAnnotations) {
-        self.push_with_conditions(frame, &Value::Null);
-    }
-
-    /// [`CocoWriter::push`], recording `conditions` (the weather and sensor values the
-    /// frame drew) as the image entry's `conditions` after its `pose`, unless it is null.
-    pub fn push_with_conditions(&mut self, frame: &FrameAnnotations, conditions: &Value) {
-        self.frames += 1;
-        let image_id = self.frames;
+impl CocoLines {
+    /// Frame `frame`'s lines; its image id is `image_id` (frame index + 1), `conditions`
+    /// is recorded as the image's `conditions` after its `pose` unless it is null.
+    pub fn of(
+        categories: &[Category],
+        frame: &FrameAnnotations,
+        conditions: &Value,
+        image_id: u64,
+    ) -> CocoLines {
         let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
         let mut pose = json!({
             "eye": frame.pose.eye.map(|v| round(v, 1e3)),
@@ -117,18 +115,16 @@ impl CocoWriter {
         if let (false, Value::Object(map)) = (conditions.is_null(), &mut image) {
             map.insert("conditions".into(), conditions.clone());
         }
-        line(&mut self.images, &image);
+        let mut annotations = Vec::new();
         for object in &frame.objects {
             let Some(category) = object.category else {
                 continue;
             };
-            if !self.categories.iter().any(|c| c.id == category) {
+            if !categories.iter().any(|c| c.id == category) {
                 continue;
             }
-            self.annotated += 1;
             let v = &object.visible;
             let mut annotation = json!({
-                "id": self.annotated,
                 "image_id": image_id,
                 "category_id": category,
                 "bbox": v.bounds.bbox(),
@@ -152,42 +148,90 @@ impl CocoWriter {
                     map.insert("attributes".into(), json!(attributes));
                 }
             }
-            line(&mut self.annotations, &annotation);
+            annotations.push(annotation.to_string());
         }
+        CocoLines {
+            image: image.to_string(),
+            annotations,
+        }
+    }
+}
+
+impl CocoWriter {
+    pub fn new(categories: &[Category]) -> CocoWriter {
+        CocoWriter {
+            categories: categories.to_vec(),
+            frames: Vec::new(),
+        }
+    }
+
+    /// Appends the next frame (image ids follow the order of the calls).
+    pub fn push(&mut self, frame: &FrameAnnotations) {
+        self.push_with_conditions(frame, &Value::Null);
+    }
+
+    /// [`CocoWriter::push`], recording `conditions` (the weather and sensor values the
+    /// frame drew) as the image entry's `conditions` after its `pose`, unless it is null.
+    pub fn push_with_conditions(&mut self, frame: &FrameAnnotations, conditions: &Value) {
+        let image_id = self.frames.len() as u64 + 1;
+        self.frames
+            .push(CocoLines::of(&self.categories, frame, conditions, image_id));
     }
 
     /// The whole document.
     pub fn finish(self) -> Vec<u8> {
-        let categories = self.categories.iter().fold(String::new(), |mut out, c| {
-            line(&mut out, &json!({"id": c.id, "name": c.name}));
-            out
-        });
-        let mut out = String::new();
-        out.push_str("{\"info\":");
-        out.push_str(
-            &json!({"description": "cityspec annotations", "version": super::VERSION}).to_string(),
-        );
-        out.push_str(",\n\"licenses\":[]");
-        for (key, list) in [
-            ("images", &self.images),
-            ("categories", &categories),
-            ("annotations", &self.annotations),
-        ] {
-            out.push_str(",\n\"");
-            out.push_str(key);
-            out.push_str("\":[");
-            out.push_str(list);
-            out.push(']');
-        }
-        out.push_str("}\n");
-        out.into_bytes()
+        let mut out = Vec::new();
+        write_coco(&mut out, &self.categories, |pass| {
+            self.frames.iter().try_for_each(pass)
+        })
+        .expect("writing to memory does not fail");
+        out
     }
 }
 
-/// Appends `item` to a JSON list's text: a newline, after a comma unless it is the first.
-fn line(list: &mut String, item: &Value) {
-    list.push_str(if list.is_empty() { "\n" } else { ",\n" });
-    list.push_str(&item.to_string());
+/// Writes a COCO document to `out` from per-frame lines that `frames` hands, in frame
+/// order, to the function it is given. `frames` is called twice (images come before the
+/// categories, annotations after them), so the caller can read its frames from disk each
+/// time and memory does not grow with their number.
+pub fn write_coco<W: Write>(
+    out: &mut W,
+    categories: &[Category],
+    mut frames: impl FnMut(&mut dyn FnMut(&CocoLines) -> io::Result<()>) -> io::Result<()>,
+) -> io::Result<()> {
+    write!(
+        out,
+        "{{\"info\":{},\n\"licenses\":[]",
+        json!({"description": "cityspec annotations", "version": super::VERSION})
+    )?;
+    out.write_all(b",\n\"images\":[")?;
+    let mut first = true;
+    frames(&mut |lines| item(out, &mut first, &lines.image))?;
+    out.write_all(b"],\n\"categories\":[")?;
+    let mut first = true;
+    for c in categories {
+        let text = json!({"id": c.id, "name": c.name}).to_string();
+        item(out, &mut first, &text)?;
+    }
+    out.write_all(b"],\n\"annotations\":[")?;
+    let mut first = true;
+    let mut id = 0u64;
+    frames(&mut |lines| {
+        for body in &lines.annotations {
+            id += 1;
+            // `{"image_id":…}` → `{"id":N,"image_id":…}`.
+            let rest = body.strip_prefix('{').unwrap_or(body);
+            item(out, &mut first, &format!("{{\"id\":{id},{rest}"))?;
+        }
+        Ok(())
+    })?;
+    out.write_all(b"]}\n")
+}
+
+/// Writes one item of a JSON list: a newline, after a comma unless it is the first.
+fn item<W: Write>(out: &mut W, first: &mut bool, text: &str) -> io::Result<()> {
+    let sep: &[u8] = if std::mem::take(first) { b"\n" } else { b",\n" };
+    out.write_all(sep)?;
+    out.write_all(text.as_bytes())
 }
 
 #[cfg(test)]

@@ -54,33 +54,39 @@ impl ContactSheet {
         }
     }
 
-    /// Keeps frame `index` (its developed image and its annotations) if the sheet shows
-    /// it; the boxes are those of objects that pass the thresholds and have one of
-    /// `categories`.
-    pub fn offer(
-        &mut self,
-        index: usize,
-        rgb: RgbImage,
-        summary: &FrameAnnotations,
-        categories: &[Category],
-    ) {
-        if !self.picks.contains(&index) {
-            return;
-        }
-        let listed = |c: u32| categories.iter().any(|k| k.id == c);
-        let boxes = summary
-            .objects
-            .iter()
-            .filter(|o| o.passes)
-            .filter_map(|o| {
-                let category = o.category.filter(|&c| listed(c))?;
-                Some(SheetBox {
-                    category,
-                    bounds: o.visible.bounds,
-                })
+    /// Whether the sheet shows frame `index`.
+    pub fn wants(&self, index: usize) -> bool {
+        self.picks.contains(&index)
+    }
+
+    /// Adds the next shown frame: its developed image and its boxes
+    /// (`[category, x_min, y_min, x_max, y_max]`, from [`ContactSheet::boxes`]).
+    pub fn add(&mut self, rgb: RgbImage, boxes: Vec<[u32; 5]>) {
+        let boxes = boxes
+            .into_iter()
+            .map(|[category, x_min, y_min, x_max, y_max]| SheetBox {
+                category,
+                bounds: PixelBox {
+                    x_min,
+                    y_min,
+                    x_max,
+                    y_max,
+                },
             })
             .collect();
         self.frames.push((rgb, boxes));
+    }
+
+    /// The boxes a frame shows on the sheet: those of objects that pass the thresholds and
+    /// have one of `categories`.
+    pub fn boxes(summary: &FrameAnnotations, categories: &[Category]) -> Vec<(u32, PixelBox)> {
+        let listed = |c: u32| categories.iter().any(|k| k.id == c);
+        summary
+            .objects
+            .iter()
+            .filter(|o| o.passes)
+            .filter_map(|o| Some((o.category.filter(|&c| listed(c))?, o.visible.bounds)))
+            .collect()
     }
 
     /// The sheet; a 1 × 1 black image for a path without frames.
@@ -128,8 +134,9 @@ impl ContactSheet {
     }
 }
 
-/// Up to [`SHEET_FRAMES`] frames spread over the path.
-fn picks(frames: usize) -> Vec<usize> {
+/// The frames a path of `frames` frames shows on its sheet: up to [`SHEET_FRAMES`],
+/// spread over the path.
+pub fn picks(frames: usize) -> Vec<usize> {
     let n = frames.min(SHEET_FRAMES);
     (0..n).map(|k| k * frames / n.max(1)).collect()
 }

@@ -42,8 +42,8 @@ mod visible_object;
 mod word_quad;
 mod yolo;
 
-pub use coco::{CocoWriter, coco};
-pub use contact_sheet::ContactSheet;
+pub use coco::{CocoLines, CocoWriter, coco, write_coco};
+pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;

@@ -60,7 +60,7 @@ pub fn sweep_temporaries(dir: &Path) -> io::Result<usize> {
     Ok(removed)
 }
 
-fn temp_path(dir: &Path, path: &Path) -> PathBuf {
+pub(super) fn temp_path(dir: &Path, path: &Path) -> PathBuf {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let name = path
         .file_name()

@@ -13,11 +13,12 @@
 
 use std::collections::BTreeMap;
 use std::fs;
-use std::io;
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
 
 use super::atomic::write_atomic;
 use crate::hash::sha256_hex;
@@ -208,10 +209,50 @@ impl Cache {
         };
         let path = self.object_path(&object.sha256);
         let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
-        if !intact {
+        if intact {
+            touch(&path);
+        } else {
             write_atomic(&path, bytes)?;
         }
         Ok(object)
+    }
+
+    /// Stores one object whose bytes `fill` writes, without holding them in memory: they
+    /// go to a temporary file in `objects/`, hashed as they pass, which is then renamed to
+    /// its hash's name (or removed, when an intact copy is there already).
+    pub fn put_object_with(
+        &self,
+        fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> io::Result<ObjectRef> {
+        let dir = self.root.join("objects");
+        fs::create_dir_all(&dir)?;
+        let temp = super::atomic::temp_path(&dir, Path::new("stream"));
+        let written = (|| {
+            let mut out = Hashing::new(io::BufWriter::new(fs::File::create(&temp)?));
+            fill(&mut out)?;
+            out.inner.flush()?;
+            Ok::<_, io::Error>(out.finish())
+        })();
+        let object = match written {
+            Ok(object) => object,
+            Err(e) => {
+                let _ = fs::remove_file(&temp);
+                return Err(e);
+            }
+        };
+        let path = self.object_path(&object.sha256);
+        let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
+        let placed = if intact {
+            touch(&path);
+            fs::remove_file(&temp)
+        } else {
+            fs::create_dir_all(path.parent().expect("objects have a folder"))
+                .and_then(|()| fs::rename(&temp, &path))
+        };
+        if placed.is_err() {
+            let _ = fs::remove_file(&temp);
+        }
+        placed.map(|()| object)
     }
 
     /// Records `outputs` under `key`: objects first (those in memory are stored now; stored
@@ -249,6 +290,55 @@ impl Cache {
     /// Where the entry of `key` lives.
     pub fn entry_path(&self, key: &str) -> PathBuf {
         self.root.join("entries").join(format!("{key}.json"))
+    }
+}
+
+/// Sets an object's mtime to now: `cache gc` removes nothing younger than its grace
+/// period, so an object a running build reuses (instead of writing it) is kept until
+/// the build has written the entry that names it. Best effort: a read-only cache still
+/// builds.
+fn touch(path: &Path) {
+    if let Ok(file) = fs::File::options().append(true).open(path) {
+        let _ = file.set_modified(std::time::SystemTime::now());
+    }
+}
+
+/// A writer that hashes and counts what passes through it; with `io::sink()` it only
+/// hashes (the reference bytes would have, without storing them).
+pub struct Hashing<W> {
+    inner: W,
+    hasher: Sha256,
+    bytes: u64,
+}
+
+impl<W: Write> Hashing<W> {
+    pub fn new(inner: W) -> Hashing<W> {
+        Hashing {
+            inner,
+            hasher: Sha256::new(),
+            bytes: 0,
+        }
+    }
+
+    /// The reference of everything written.
+    pub fn finish(self) -> ObjectRef {
+        ObjectRef {
+            sha256: crate::hash::hex(&self.hasher.finalize()),
+            bytes: self.bytes,
+        }
+    }
+}
+
+impl<W: Write> Write for Hashing<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.hasher.update(&buf[..n]);
+        self.bytes += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
     }
 }
 
@@ -343,5 +433,31 @@ mod tests {
             cache.get("k3", Load::Bytes),
             Err(Miss::Corrupt(_))
         ));
+    }
+
+    #[test]
+    fn streamed_object_is_stored_under_its_hash() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = Cache::new(dir.path());
+        let object = cache
+            .put_object_with(|out| {
+                out.write_all(b"coco ")?;
+                out.write_all(b"text")
+            })
+            .unwrap();
+        assert_eq!(object, cache.put_object(b"coco text").unwrap());
+        assert_eq!(cache.read_object(&object).unwrap(), b"coco text");
+        // Again, with the object in place: the same reference, no temporary left.
+        let again = cache.put_object_with(|out| out.write_all(b"coco text"));
+        assert_eq!(again.unwrap(), object);
+        let left: Vec<_> = fs::read_dir(dir.path().join("objects"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(left.len(), 1, "{left:?}");
+        // A failing writer leaves nothing.
+        let failed = cache.put_object_with(|_| Err(io::Error::other("no")));
+        assert!(failed.is_err());
+        assert_eq!(fs::read_dir(dir.path().join("objects")).unwrap().count(), 1);
     }
 }

@@ -83,6 +83,12 @@ pub enum BuildError {
     /// Writing the cache failed.
     #[error("cannot write the cache at {}: {source}", path.display())]
     Cache { path: PathBuf, source: io::Error },
+    /// `--locked`: the build's artifacts differ from the spec's lock file, or there is none.
+    #[error("{}: the build differs from the lock:\n  {}", lock.display(), differences.join("\n  "))]
+    Locked {
+        lock: PathBuf,
+        differences: Vec<String>,
+    },
     /// A cached value that verified by hash still did not decode: a cityspec bug.
     #[error("cached output of stage {stage} did not decode: {source}")]
     Decode {

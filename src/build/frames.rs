@@ -2,21 +2,23 @@
 //! ids, depth in the camera's format), COCO, optional YOLO (with `yolo/classes.txt`), ICDAR
 //! for text, poses, and a `preview.png` contact sheet.
 //!
-//! Glue between the cameras, render, sensor and annotate stages: every choice of how a
-//! frame looks or is labelled lives in those stages (and is covered by their `VERSION`s,
-//! all in the frames key); the file names and the `poses.json` layout are the driver's. It streams: each frame's files go
-//! to the caller's `emit` as soon as they are encoded, and the frame is then dropped, so
-//! memory does not grow with the number of frames (only the COCO text does, a few hundred
-//! bytes per annotation). Pure: the driver decides where emitted files go. File names are
-//! relative to the output folder.
+//! Glue between the cameras, render and annotate stages. Frames are rendered one at a time
+//! ([`PathFrames::render`]): each frame's files go to the caller's `emit` as soon as they
+//! are encoded, and the frame is then dropped; what the path's own files need of it comes
+//! back as a small [`FrameRecord`]. The path's files (`poses.json`, `preview.png`; COCO
+//! through [`annotate::write_coco`]) are assembled from those records, so the frames can be
+//! rendered on different machines ([`super::chunks`]). Pure: the driver decides where
+//! emitted files go. File names are relative to the output folder.
 
 use std::collections::BTreeMap;
 
-use serde_json::json;
+use image::RgbImage;
+use serde::{Deserialize, Serialize};
+use serde_json::{Value, json};
 
 use super::codec;
 use crate::annotate::{
-    self, Category, CocoWriter, ContactSheet, DepthFile, FrameInput, ObjectLabel, Thresholds,
+    self, Category, CocoLines, ContactSheet, DepthFile, FrameInput, ObjectLabel, Thresholds,
     YoloClasses,
 };
 use crate::cameras::tan_half_degrees;
@@ -47,47 +49,81 @@ pub struct PathInput<'a> {
     pub conditions_seed: u64,
 }
 
-/// Renders every pose and annotates the frames, handing each file to `emit` (name, bytes)
-/// as soon as it is ready; stops at the first error `emit` returns. `progress` is told
-/// the number of frames done.
-pub fn render_path<E>(
-    input: &PathInput,
-    poses: &[CameraPose],
-    mut emit: impl FnMut(String, Vec<u8>) -> Result<(), E>,
-    mut progress: impl FnMut(usize),
-) -> Result<(), E> {
-    let camera = input.camera;
-    let (width, height) = (camera.resolution[0], camera.resolution[1]);
-    let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
-    let dir = format!("frames/{}", camera.name);
-    let depth_format = camera.depth;
-    // Objects whose visible fraction matters: those that may be annotated (a sign by its
-    // front or its back).
-    let listed = |c: Option<u32>| c.is_some_and(|c| input.categories.iter().any(|k| k.id == c));
-    let measured: Vec<u32> = input
-        .labels
-        .iter()
-        .zip(1u32..)
-        .filter(|(label, _)| {
-            listed(label.category) || listed(label.sign.as_ref().and_then(|s| s.back_category))
-        })
-        .map(|(_, id)| id)
-        .collect();
-    let has_text = input
-        .labels
-        .iter()
-        .any(|l| l.text.is_some() && l.category.is_some());
-    let mut sheet = ContactSheet::new(poses.len());
-    let mut coco = CocoWriter::new(input.categories);
-    let mut suns = Vec::with_capacity(poses.len());
-    let mut conditions_json = Vec::with_capacity(poses.len());
-    for (i, pose) in poses.iter().enumerate() {
+/// A camera path ready to render its frames one at a time, in any order and on any
+/// machine ([`super::chunks`] groups them): each frame's files go to `emit`, and what the
+/// path's own files need of the frame comes back as a [`FrameRecord`].
+pub struct PathFrames<'a> {
+    input: &'a PathInput<'a>,
+    poses: &'a [CameraPose],
+    intrinsics: Intrinsics,
+    /// Objects whose visible fraction matters: those that may be annotated (a sign by its
+    /// front or its back).
+    measured: Vec<u32>,
+    has_text: bool,
+    dir: String,
+}
+
+/// What one rendered frame leaves for its path's `coco.json`, `poses.json` and
+/// `preview.png`: a few hundred bytes per annotation, kept in the cache beside the frame's
+/// images so that a path can be assembled without rendering anything.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct FrameRecord {
+    pub coco: CocoLines,
+    pub sun: Sun,
+    /// The weather and sensor values the frame drew.
+    pub conditions: Value,
+    /// The contact sheet's boxes: `[category, x_min, y_min, x_max, y_max]` of each kept
+    /// annotation.
+    pub sheet: Vec<[u32; 5]>,
+}
+
+impl<'a> PathFrames<'a> {
+    pub fn new(input: &'a PathInput<'a>, poses: &'a [CameraPose]) -> PathFrames<'a> {
+        let camera = input.camera;
+        let (width, height) = (camera.resolution[0], camera.resolution[1]);
+        let measured = input
+            .labels
+            .iter()
+            .zip(1u32..)
+            .filter(|(label, _)| {
+                listed(input.categories, label.category)
+                    || listed(
+                        input.categories,
+                        label.sign.as_ref().and_then(|s| s.back_category),
+                    )
+            })
+            .map(|(_, id)| id)
+            .collect();
+        PathFrames {
+            input,
+            poses,
+            intrinsics: Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov)),
+            measured,
+            has_text: input
+                .labels
+                .iter()
+                .any(|l| l.text.is_some() && l.category.is_some()),
+            dir: format!("frames/{}", camera.name),
+        }
+    }
+
+    /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
+    /// as soon as it is ready; stops at the first error `emit` returns.
+    pub fn render<E>(
+        &self,
+        i: usize,
+        mut emit: impl FnMut(String, Vec<u8>) -> Result<(), E>,
+    ) -> Result<FrameRecord, E> {
+        let (input, intrinsics, dir) = (self.input, &self.intrinsics, &self.dir);
+        let camera = input.camera;
+        let (width, height) = (camera.resolution[0], camera.resolution[1]);
+        let depth_format = camera.depth;
+        let pose = &self.poses[i];
         let drawn_sun = input.relight.map(|f| f(i));
         let (lighting, sun) = match &drawn_sun {
             Some((lighting, sun)) => (lighting, *sun),
             None => (input.lighting, input.sun),
         };
-        suns.push(sun);
         let conditions = sensor::draw(
             input.weather,
             &camera.sensor,
@@ -99,10 +135,10 @@ pub fn render_path<E>(
         let (mut frame, footprints) = render::render_measuring(
             input.scene,
             pose,
-            &intrinsics,
+            intrinsics,
             lighting,
             camera.supersample,
-            &measured,
+            &self.measured,
         );
         // The sensor stage replaces the RGB image only: ids, depth and labels stay as
         // rendered.
@@ -114,7 +150,7 @@ pub fn render_path<E>(
                 depth: frame.depth.as_raw(),
                 pose: *pose,
                 intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
-                motion: sensor::travel_direction(poses, i),
+                motion: sensor::travel_direction(self.poses, i),
                 horizon: lighting.sky.horizon(),
                 scene_exposure: lighting.exposure,
             },
@@ -156,42 +192,62 @@ pub fn render_path<E>(
             format: depth_format.name(),
             scale: depth_format.scale(),
         });
-        coco.push_with_conditions(&summary, &drawn);
-        conditions_json.push(drawn);
         if let Some(classes) = input.yolo {
             let text = annotate::yolo(classes, &summary);
             emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
         }
-        if has_text {
+        if self.has_text {
             let text = annotate::icdar(&summary);
             emit(format!("{dir}/icdar/gt_{i:06}.txt"), text.into_bytes())?;
         }
-        sheet.offer(i, frame.rgb, &summary, input.categories);
-        progress(i + 1);
+        let sheet = ContactSheet::boxes(&summary, input.categories)
+            .into_iter()
+            .map(|(category, b)| [category, b.x_min, b.y_min, b.x_max, b.y_max])
+            .collect();
+        Ok(FrameRecord {
+            coco: CocoLines::of(input.categories, &summary, &drawn, i as u64 + 1),
+            sun,
+            conditions: drawn,
+            sheet,
+        })
     }
-    emit(format!("{dir}/coco.json"), coco.finish())?;
-    if let Some(classes) = input.yolo {
-        emit(
-            format!("{dir}/yolo/classes.txt"),
-            classes.names_file().into_bytes(),
-        )?;
-    }
+}
+
+/// Whether category `c` is one the path annotates.
+fn listed(categories: &[Category], c: Option<u32>) -> bool {
+    c.is_some_and(|c| categories.iter().any(|k| k.id == c))
+}
+
+/// `poses.json`: the intrinsics, the depth format and every frame's pose, sun and drawn
+/// conditions (`frames` in frame order).
+pub fn poses_json(
+    camera: &CameraSpec,
+    poses: &[CameraPose],
+    frames: impl IntoIterator<Item = (Sun, Value)>,
+) -> Vec<u8> {
+    let (width, height) = (camera.resolution[0], camera.resolution[1]);
+    let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
+    let depth_format = camera.depth;
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(&suns).zip(conditions_json).enumerate().map(|(i, ((p, sun), c))| json!({
+        "frames": poses.iter().zip(frames).enumerate().map(|(i, (p, (sun, c)))| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
             "up": p.up, "angles": p.angles, "sun": sun, "conditions": c
         })).collect::<Vec<_>>(),
     });
-    emit(
-        format!("{dir}/poses.json"),
-        codec::to_pretty_json(&poses_json),
-    )?;
-    let picture = sheet.draw(input.categories);
-    emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
+    codec::to_pretty_json(&poses_json)
+}
+
+/// `preview.png` from the picked frames' RGB images and their records' boxes.
+pub fn preview_png(frames: Vec<(RgbImage, Vec<[u32; 5]>)>, categories: &[Category]) -> Vec<u8> {
+    let mut sheet = ContactSheet::new(frames.len());
+    for (rgb, boxes) in frames {
+        sheet.add(rgb, boxes);
+    }
+    codec::encode_png(&sheet.draw(categories))
 }
 
 /// The frame's linear radiance, for the sensor stage.

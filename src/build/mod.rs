@@ -9,6 +9,8 @@
 
 mod atomic;
 mod cache;
+mod cache_gc;
+mod chunks;
 mod codec;
 mod decode_error;
 mod error;
@@ -16,15 +18,18 @@ mod frame_labels;
 mod frames;
 mod fresh;
 mod inputs;
+mod lock;
 mod manifest;
 mod object_views;
 mod out_dir;
 mod output_names;
 mod pipeline;
 mod report;
+mod shard;
 mod spec_build;
 mod stage_key;
 mod verify;
+mod webdataset;
 
 use std::collections::BTreeMap;
 use std::io;
@@ -34,6 +39,7 @@ use std::path::{Path, PathBuf};
 pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
+pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
 /// The driver's encodings' version (PNG settings, JSON layout), in every stage key.
 pub use codec::VERSION as CODEC_VERSION;
 pub use decode_error::DecodeError;
@@ -41,6 +47,7 @@ pub use error::BuildError;
 pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};
 pub use report::{BuildReport, StageRun, StageStatus};
+pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
 pub use spec_build::build_spec;
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
@@ -66,6 +73,9 @@ pub struct BuildOptions {
     /// Warnings (objects placed fewer times than asked, facade problems) fail the build
     /// with [`BuildError::Strict`] before the output folder is touched.
     pub strict: bool,
+    /// `--locked`: artifacts that differ from the spec's lock file (or a missing lock)
+    /// fail the build with [`BuildError::Locked`] before the output folder is touched.
+    pub locked: bool,
 }
 
 impl Default for BuildOptions {
@@ -76,6 +86,7 @@ impl Default for BuildOptions {
             progress: None,
             waiting: None,
             strict: false,
+            locked: false,
         }
     }
 }
@@ -154,6 +165,43 @@ pub fn validate(path: &Path) -> Result<(Spec, Vec<String>), BuildError> {
         }
     };
     Ok((spec, warnings))
+}
+
+/// `cityspec lock`: builds every spec, then writes each one's lock file beside it from the
+/// manifest the build wrote; returns the lock files' paths.
+pub fn lock_all(
+    paths: &[PathBuf],
+    options: &BuildOptions,
+) -> Result<Vec<PathBuf>, Vec<BuildError>> {
+    let options = BuildOptions {
+        locked: false,
+        ..options.clone()
+    };
+    let reports = build_all(paths, &options)?;
+    paths
+        .iter()
+        .zip(&reports)
+        .map(|(spec, report)| {
+            let path = report.out_dir.join("manifest.json");
+            let manifest = std::fs::read(&path)
+                .ok()
+                .and_then(|bytes| Manifest::from_bytes(&bytes))
+                .ok_or_else(|| {
+                    vec![BuildError::Output {
+                        path: path.clone(),
+                        source: io::Error::other("the manifest just written does not read back"),
+                    }]
+                })?;
+            let lock = lock::lock_path(spec);
+            write_atomic(&lock, lock::render(&manifest).as_bytes()).map_err(|source| {
+                vec![BuildError::Output {
+                    path: lock.clone(),
+                    source,
+                }]
+            })?;
+            Ok(lock)
+        })
+        .collect()
 }
 
 /// Writes cityspec's built-in facade set to `dir` in the CMP layout; returns how many facades.

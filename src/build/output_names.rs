@@ -18,6 +18,8 @@ pub enum OutputNames {
     Export,
     /// Everything under `frames/<camera>/` a camera path writes.
     Frames(String),
+    /// A chunk of a camera path: its frames' files and `summary.jsonl`.
+    Chunk(String),
 }
 
 impl OutputNames {
@@ -34,6 +36,8 @@ impl OutputNames {
             "facades" => OutputNames::Facades,
             "export" => OutputNames::Export,
             "frames" => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
+            "frames-chunk" => OutputNames::Chunk(camera.unwrap_or_default().to_owned()),
+            "frames-plan" => OutputNames::Fixed(&["path.json"]),
             _ => OutputNames::Fixed(&[]),
         }
     }
@@ -56,6 +60,14 @@ impl OutputNames {
                 .and_then(|rest| rest.strip_prefix(camera.as_str()))
                 .and_then(|rest| rest.strip_prefix('/'))
                 .is_some_and(is_frame_file),
+            OutputNames::Chunk(camera) => {
+                name == "summary.jsonl"
+                    || name
+                        .strip_prefix("frames/")
+                        .and_then(|rest| rest.strip_prefix(camera.as_str()))
+                        .and_then(|rest| rest.strip_prefix('/'))
+                        .is_some_and(is_numbered_frame_file)
+            }
         }
     }
 
@@ -66,6 +78,7 @@ impl OutputNames {
             OutputNames::Facades => &["facades.json", "warnings.json"],
             OutputNames::Export => &["city.glb", "city.mtl", "city.obj"],
             OutputNames::Frames(_) => &[],
+            OutputNames::Chunk(_) => &["summary.jsonl"],
         }
     }
 
@@ -113,24 +126,31 @@ fn is_texture(name: &str) -> bool {
 
 /// A file of one camera path, relative to `frames/<camera>/`.
 fn is_frame_file(rest: &str) -> bool {
+    let tar = rest
+        .strip_prefix("wds/")
+        .and_then(|s| s.strip_suffix(".tar"));
+    matches!(
+        rest,
+        "coco.json" | "poses.json" | "preview.png" | "yolo/classes.txt"
+    ) || is_numbered_frame_file(rest)
+        || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// A file of one frame, relative to `frames/<camera>/`.
+fn is_numbered_frame_file(rest: &str) -> bool {
     let numbered =
         |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
-    match rest {
-        "coco.json" | "poses.json" | "preview.png" | "yolo/classes.txt" => true,
-        _ => {
-            let png = rest.strip_suffix(".png");
-            let txt = rest.strip_suffix(".txt");
-            ["rgb/", "ids/", "depth/"]
-                .iter()
-                .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
-                || numbered(
-                    rest.strip_suffix(".npy")
-                        .and_then(|s| s.strip_prefix("depth/")),
-                )
-                || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
-                || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
-        }
-    }
+    let png = rest.strip_suffix(".png");
+    let txt = rest.strip_suffix(".txt");
+    ["rgb/", "ids/", "depth/"]
+        .iter()
+        .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
+        || numbered(
+            rest.strip_suffix(".npy")
+                .and_then(|s| s.strip_prefix("depth/")),
+        )
+        || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
+        || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use super::cache::Cache;
 use super::fresh;
+use super::lock;
 use super::inputs::SpecInputs;
 use super::manifest::{Artifact, Manifest};
 use super::out_dir::OutDir;
@@ -36,7 +37,8 @@ pub fn build_spec(
     pipeline.strict = options.strict;
     // Held until this build returns: builds of one output folder take turns.
     let out = lock_output_folder(spec, options)?;
-    if let Some(report) = up_to_date(spec, &pipeline, &cache, &out, start) {
+    if let Some((manifest, report)) = up_to_date(spec, &pipeline, &cache, &out, start) {
+        check_lock(path, &manifest, options)?;
         return Ok(report);
     }
     let artifacts = pipeline.artifacts()?;
@@ -47,6 +49,7 @@ pub fn build_spec(
         });
     }
     let manifest = manifest_of(spec, &artifacts);
+    check_lock(path, &manifest, options)?;
     let synced = write_output_folder(&out, &artifacts, &manifest, &cache)?;
     Ok(BuildReport {
         name: spec.name.clone(),
@@ -74,14 +77,14 @@ fn lock_output_folder(spec: &Spec, options: &BuildOptions) -> Result<OutDir, Bui
 
 /// The no-op fast path ([`fresh`]): when the output folder is exactly as the last build
 /// left it and the artifact stages' entries name the same objects, the report of a build
-/// that did nothing.
+/// that did nothing, with the manifest it found.
 fn up_to_date(
     spec: &Spec,
     pipeline: &Pipeline,
     cache: &Cache,
     out: &OutDir,
     start: Instant,
-) -> Option<BuildReport> {
+) -> Option<(Manifest, BuildReport)> {
     let stages = pipeline.artifact_stages();
     let manifest = fresh::check(cache, out.path(), &spec.name, &stages)?;
     let lookup = start.elapsed();
@@ -98,7 +101,7 @@ fn up_to_date(
             repaired: None,
         })
         .collect();
-    Some(BuildReport {
+    let report = BuildReport {
         name: spec.name.clone(),
         out_dir: out.path().to_path_buf(),
         stages,
@@ -108,7 +111,17 @@ fn up_to_date(
         warnings: Vec::new(),
         triangles: None,
         elapsed: start.elapsed(),
-    })
+    };
+    Some((manifest, report))
+}
+
+/// `--locked`: the artifacts must match the spec's lock file, checked before the output
+/// folder is touched.
+fn check_lock(path: &Path, manifest: &Manifest, options: &BuildOptions) -> Result<(), BuildError> {
+    if options.locked {
+        lock::check(path, manifest)?;
+    }
+    Ok(())
 }
 
 /// `manifest.json`: every artifact's path, hash, size, stage and key, sorted by path.

@@ -29,7 +29,6 @@
 pub const VERSION: u32 = 3;
 
 mod aim;
-mod fov;
 mod leg;
 mod object_path;
 mod orbit_path;
@@ -41,7 +40,9 @@ use crate::geometry::mm;
 pub use crate::model::CameraPose;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
-pub use fov::tan_half_degrees;
+/// A camera's field of view → the tangent of its half angle (shared with the renderer's
+/// intrinsics).
+pub use crate::geometry::tan_half_degrees;
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
 pub use orbit_path::{orbit_length, orbit_path};
 pub use overview::{

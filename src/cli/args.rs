@@ -17,7 +17,7 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "cityspec", version, propagate_version = true)]
 #[command(
-    after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec validate specs/*.toml\n  cityspec verify --all specs/day.toml\n  cityspec stats out/day\n  cityspec schema > schemas/cityspec.schema.json\n\nExit codes: 0 ok, 1 build failed, 2 invalid spec, input or usage."
+    after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec validate specs/*.toml\n  cityspec verify --all specs/day.toml\n  cityspec stats out/day\n  cityspec schema > schemas/cityspec.schema.json\n\nExit codes: 0 ok, 1 build failed, 2 invalid spec, input or usage, 3 --locked and an artifact differs from the lock file."
 )]
 pub struct Args {
     #[command(subcommand)]
@@ -58,6 +58,44 @@ pub enum Command {
         /// as errors: exit code 2, and the output folder is left as it was.
         #[arg(long)]
         strict: bool,
+        /// Build only shard I of N (0-based) into the cache, no output folder: the city's
+        /// stages and every I-th chunk of each camera path. `auto` reads
+        /// SLURM_ARRAY_TASK_ID/_COUNT or JOB_COMPLETION_INDEX. A plain build afterwards
+        /// (the merge) writes the output folder from the cache.
+        #[arg(long, value_name = "I/N|auto", value_parser = crate::build::ShardArg::parse)]
+        shard: Option<crate::build::ShardArg>,
+        /// The number of shards, for `--shard auto` under Kubernetes (or
+        /// CITYSPEC_SHARD_COUNT).
+        #[arg(long, value_name = "N", requires = "shard")]
+        shard_count: Option<u32>,
+        /// Build only the stages every shard shares (the city, the camera paths' poses)
+        /// into the cache, before an array of shards starts.
+        #[arg(long, value_name = "STAGE", value_parser = ["city"], conflicts_with = "shard")]
+        stage: Option<String>,
+        /// Fail with exit code 3, before the output folder is touched, when any artifact
+        /// differs from the spec's lock file (`cityspec lock`), or there is none.
+        #[arg(long, conflicts_with_all = ["shard", "stage"])]
+        locked: bool,
+    },
+    /// Build specs and write each one's lock file beside it (`day.toml` → `day.lock`):
+    /// the cityspec version and every artifact's SHA-256, size and path. Commit it, and
+    /// build with `--locked` in CI.
+    #[command(
+        after_help = "Example:\n  cityspec lock specs/day.toml && git add specs/day.lock\n  cityspec build --locked specs/day.toml   # exit 3 when an artifact changed"
+    )]
+    Lock {
+        /// Spec files (TOML).
+        #[arg(required = true, value_name = "SPEC")]
+        specs: Vec<PathBuf>,
+        /// Parent folder of the output folders: each spec writes OUT/<name>/.
+        #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Stage cache folder.
+        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        cache: PathBuf,
+        /// Worker threads (default: one per core). Output bytes never depend on it.
+        #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
+        jobs: Option<u16>,
     },
     /// Check the cache: rerun a seeded sample of a spec's cached stages (or all of them)
     /// and compare their bytes with the cached ones, like Nix's `--check`.
@@ -107,6 +145,9 @@ pub enum Command {
     /// Work with facade sets (paper 3.2).
     #[command(subcommand)]
     Facades(FacadesCommand),
+    /// Work with the stage cache.
+    #[command(subcommand)]
+    Cache(CacheCommand),
     /// Print the spec's JSON schema (Draft 2020-12), as committed in schemas/.
     ///
     /// Editors that read `#:schema` comments (Taplo, Even Better TOML) complete and check
@@ -134,6 +175,34 @@ pub struct Verbosity {
     /// -vv also every file.
     #[arg(short, long, action = clap::ArgAction::Count)]
     pub verbose: u8,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum CacheCommand {
+    /// Remove what the given specs (and lock files) do not need: every other entry and
+    /// object, or with --max-age only those older, with --max-size only the oldest until
+    /// the cache fits. Safe while builds run: nothing younger than --grace-minutes goes.
+    #[command(
+        after_help = "Examples:\n  cityspec cache gc specs/*.toml\n  cityspec cache gc --max-size 20G --cache /shared/cache specs/day.toml specs/night.lock"
+    )]
+    Gc {
+        /// Spec files (TOML) or lock files (`.lock`) whose artifacts to keep.
+        #[arg(required = true, value_name = "SPEC")]
+        specs: Vec<PathBuf>,
+        /// Stage cache folder.
+        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        cache: PathBuf,
+        /// Remove unneeded files, oldest first, only until the cache holds at most SIZE
+        /// (bytes, or 500M, 20G, …).
+        #[arg(long, value_name = "SIZE", value_parser = crate::build::parse_size)]
+        max_size: Option<u64>,
+        /// Remove only unneeded files older than DAYS.
+        #[arg(long, value_name = "DAYS")]
+        max_age: Option<f64>,
+        /// Never remove a file modified within this many minutes (a running build's).
+        #[arg(long, value_name = "MINUTES", default_value_t = 60.0)]
+        grace_minutes: f64,
+    },
 }
 
 #[derive(Debug, Subcommand)]

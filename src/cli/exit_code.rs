@@ -6,6 +6,8 @@ use crate::render::RenderError;
 
 /// Exit code 2: invalid spec, input or usage.
 pub const INPUT: u8 = 2;
+/// Exit code 3: `--locked`, and the artifacts differ from the lock file (or there is none).
+pub const LOCKED: u8 = 3;
 /// Exit code 1: the build failed (an unwritable folder, a damaged cache, a cityspec bug).
 pub const BUILD: u8 = 1;
 
@@ -26,6 +28,7 @@ pub fn exit_code(error: &BuildError) -> u8 {
             ..
         } => INPUT,
         // Anything else the renderer refuses is a scene cityspec built wrong.
+        BuildError::Locked { .. } => LOCKED,
         BuildError::Render { .. }
         | BuildError::Output { .. }
         | BuildError::OutputFolder { .. }
@@ -34,10 +37,12 @@ pub fn exit_code(error: &BuildError) -> u8 {
     }
 }
 
-/// The exit code of a command that failed with `errors`: 2 only when every one is the
-/// input's fault.
+/// The exit code of a command that failed with `errors`: 3 when any artifact differs from
+/// its lock, 2 only when every one is the input's fault.
 pub fn exit_code_of(errors: &[BuildError]) -> u8 {
-    if errors.iter().all(|e| exit_code(e) == INPUT) {
+    if errors.iter().any(|e| exit_code(e) == LOCKED) {
+        LOCKED
+    } else if errors.iter().all(|e| exit_code(e) == INPUT) {
         INPUT
     } else {
         BUILD

@@ -1,6 +1,7 @@
 //! Command line: arguments → build driver calls → terminal output and exit codes.
 //!
-//! Exit codes: 0 ok, 1 the build failed, 2 an invalid spec, input or usage. This is the only
+//! Exit codes: 0 ok, 1 the build failed, 2 an invalid spec, input or usage, 3 `--locked`
+//! and the artifacts differ from the lock file (or there is none). This is the only
 //! module that prints; the library returns typed errors and reports.
 
 mod args;
@@ -13,7 +14,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::build::{self, BuildError, BuildOptions};
-use args::{Args, Command, FacadesCommand};
+use args::{Args, CacheCommand, Command, FacadesCommand};
 
 /// Runs the command line and returns the process exit code.
 pub fn run() -> ExitCode {
@@ -56,6 +57,10 @@ pub fn run() -> ExitCode {
             cache,
             jobs,
             strict,
+            shard,
+            shard_count,
+            stage,
+            locked,
         } => {
             // Drawn in place on a terminal, one line per path otherwise; colour plays no part.
             let progress = (!args.quiet).then(|| print::progress_line(terminal));
@@ -65,15 +70,61 @@ pub fn run() -> ExitCode {
                 progress,
                 waiting: Some(print::waiting_line()),
                 strict,
+                locked,
             };
             let pool = match pool(jobs) {
                 Ok(pool) => pool,
                 Err(code) => return code,
             };
+            if shard.is_some() || stage.is_some() {
+                let shard = match shard.map(|s| s.resolve(shard_count, |k| std::env::var(k).ok())) {
+                    Some(Err(e)) => {
+                        eprintln!("error: --shard: {e}");
+                        return ExitCode::from(2);
+                    }
+                    Some(Ok(shard)) => Some(shard),
+                    None => None,
+                };
+                return match pool.install(|| build::build_shards(&specs, &options, shard)) {
+                    Ok(reports) => {
+                        reports.iter().for_each(|r| out.shard_report(r));
+                        ExitCode::SUCCESS
+                    }
+                    Err(errors) => exit_for(&errors, &out),
+                };
+            }
             match pool.install(|| build::build_all(&specs, &options)) {
                 Ok(reports) => {
                     for report in &reports {
                         out.report(report);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
+            }
+        }
+        Command::Lock {
+            specs,
+            out: out_root,
+            cache,
+            jobs,
+        } => {
+            let options = BuildOptions {
+                out_root,
+                cache_dir: cache,
+                progress: (!args.quiet).then(|| print::progress_line(color)),
+                waiting: Some(print::waiting_line()),
+                strict: false,
+                locked: false,
+            };
+            let pool = match pool(jobs) {
+                Ok(pool) => pool,
+                Err(code) => return code,
+            };
+            match pool.install(|| build::lock_all(&specs, &options)) {
+                Ok(locks) => {
+                    for lock in &locks {
+                        out.info(&format!("wrote {}", lock.display()));
                     }
                     ExitCode::SUCCESS
                 }
@@ -144,6 +195,44 @@ pub fn run() -> ExitCode {
                     ExitCode::SUCCESS
                 }
                 Err(e) => exit_for(&[e], &out),
+            }
+        }
+        Command::Cache(CacheCommand::Gc {
+            specs,
+            cache,
+            max_size,
+            max_age,
+            grace_minutes,
+        }) => {
+            let seconds = |s: f64| std::time::Duration::try_from_secs_f64(s.max(0.0));
+            let (Ok(grace), Ok(max_age)) = (
+                seconds(grace_minutes * 60.0),
+                max_age.map(|d| seconds(d * 86_400.0)).transpose(),
+            ) else {
+                eprintln!("error: --max-age and --grace-minutes take a number");
+                return ExitCode::from(2);
+            };
+            let options = build::GcOptions {
+                cache_dir: cache,
+                max_size,
+                max_age,
+                grace,
+            };
+            match build::gc(&specs, &options) {
+                Ok(r) => {
+                    out.info(&format!(
+                        "kept {} entries and {} objects; removed {} entries, {} objects, {} temporaries ({:.1} MiB); the cache holds {:.1} MiB",
+                        r.kept_entries,
+                        r.kept_objects,
+                        r.removed_entries,
+                        r.removed_objects,
+                        r.removed_temporaries,
+                        r.removed_bytes as f64 / 1048576.0,
+                        r.bytes as f64 / 1048576.0
+                    ));
+                    ExitCode::SUCCESS
+                }
+                Err(errors) => exit_for(&errors, &out),
             }
         }
         Command::Schema => {

@@ -20,6 +20,30 @@ impl Printer {
         }
     }
 
+    /// One line per spec a shard (or `--stage city`) worked on.
+    pub fn shard_report(&self, report: &crate::build::ShardReport) {
+        let s = &report.stats;
+        let line = match report.shard {
+            Some(shard) => format!(
+                "{}: shard {}/{}: rendered {} chunks ({} frames), {} already cached, {} left to other shards, in {:.2} s",
+                report.name,
+                shard.index,
+                shard.count,
+                s.rendered_chunks,
+                s.frames,
+                s.cached_chunks,
+                s.other_chunks,
+                report.elapsed.as_secs_f64()
+            ),
+            None => format!(
+                "{}: shared stages in the cache, in {:.2} s",
+                report.name,
+                report.elapsed.as_secs_f64()
+            ),
+        };
+        self.info(&line);
+    }
+
     pub fn report(&self, report: &BuildReport) {
         for run in &report.stages {
             if let Some(why) = &run.repaired {

@@ -31,6 +31,7 @@ mod limits_spec;
 mod locator;
 mod object_checks;
 mod object_spec;
+mod output_spec;
 mod report;
 mod schema_check;
 mod sensor_ranges;
@@ -62,6 +63,7 @@ pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
+pub use output_spec::{OutputLayout, OutputSpec};
 pub use report::report;
 pub use sensor_spec::{ExposureMode, SensorSpec};
 pub use spec::{

@@ -14,6 +14,7 @@ use super::camera_spec::{AnnotationsSpec, CameraSpec};
 use super::lighting_spec::LightingSpec;
 use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
+use super::output_spec::OutputSpec;
 use super::weather_spec::WeatherSpec;
 use crate::model::PixelClass;
 
@@ -65,6 +66,9 @@ pub struct Spec {
     /// What a build may cost (memory, frame bytes) before validation refuses it.
     #[serde(default)]
     pub limits: LimitsSpec,
+    /// How the frames are written: one file per image, or WebDataset tar shards.
+    #[serde(default)]
+    pub output: OutputSpec,
 }
 
 /// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).

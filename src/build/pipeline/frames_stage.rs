@@ -1,150 +1,434 @@
-//! The frames stage of one `[[cameras]]` entry: poses, lighting, labels → the streamed
-//! frames and annotations (`super::super::frames`), each file put in the cache as it is made.
+//! The frames stage of each camera path, through its plan and chunks (`build::chunks`):
+//! a plain build renders the chunks nobody rendered yet and assembles the path; a shard
+//! ([`Pipeline::shard_work`]) renders only its own chunks and assembles nothing.
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
+use std::time::Instant;
 
 use rand::Rng;
 
 use super::super::BuildError;
-use super::super::cache::{Blob, Load, ObjectRef, Outputs};
+use super::super::cache::{Load, Miss, Outputs};
+use super::super::codec;
 use super::super::frame_labels;
 use super::super::frames;
 use super::super::object_views;
+use super::super::output_names::OutputNames;
+use super::super::report::{StageRun, StageStatus};
 use super::Pipeline;
-use crate::model::{FacadeSet, Lamp, Scene};
-use crate::spec::{CameraPath, Spec, Vary};
+use super::evaluate::one;
+use crate::build::chunks::{self, PathPlan};
+use crate::build::shard::{Shard, ShardStats};
+use crate::model::{CameraPose, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::spec::{CameraPath, OutputLayout, Spec, Vary};
 use crate::{annotate, cameras, render, rng, scene};
+
+/// What rendering a path needs besides the spec: the prepared and the plain scene, the
+/// parsed layout, the lamps and the facades.
+type Gathered = (
+    Arc<render::PreparedScene>,
+    Arc<Scene>,
+    Arc<ParsedLayout>,
+    Arc<Vec<Lamp>>,
+    Arc<FacadeSet>,
+);
+
+/// One chunk before the path runs.
+enum Chunk {
+    /// Its entry is in the cache, every object verified.
+    Cached(Outputs),
+    /// To be rendered here.
+    Render,
+    /// Another shard's.
+    Skip,
+}
+
+/// A path's plan and chunks, and the scene when a chunk must be rendered.
+pub(super) struct PathState {
+    plan: PathPlan,
+    chunks: Vec<Chunk>,
+    gathered: Option<Gathered>,
+}
 
 impl Pipeline<'_> {
     /// Frames and annotations of `[[cameras]]` entry `index`.
     pub(super) fn need_frames(&mut self, index: usize) -> Result<(), BuildError> {
         let key = self.keys.frames[index].clone();
-        let gather = |p: &mut Self| {
-            Ok((
-                p.prepared_scene()?,
-                p.scene()?,
-                p.parsed()?,
-                p.lamp_sites()?,
-                p.facade_set()?,
-            ))
-        };
+        let recheck = self.recheck.as_deref() == Some(key.as_str());
         self.stage(
             "frames",
             key,
             Load::References,
             move |p| &mut p.frames[index],
-            gather,
-            |p, (prepared, scene, parsed, lamps, facades)| {
-                let spec = p.spec;
-                let camera = &spec.cameras[index];
-                let mpp = spec.layout.metres_per_pixel;
-                // Seeded by the camera's name, not its place in the list: adding or
-                // reordering cameras leaves every other camera's poses as they were.
-                let camera_seed =
-                    rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
-                let aim = cameras::Aim::of(camera);
-                let poses = match camera.path {
-                    CameraPath::Roads => cameras::road_path(
-                        &parsed,
-                        mpp,
-                        &cameras::RoadPath {
-                            frames: camera.frame_rule(),
-                            aim,
-                            look_ahead: camera.look_ahead,
-                            jitter: camera.jitter,
-                            lane_offset: camera.lane_offset,
-                        },
-                        camera_seed,
-                    ),
-                    CameraPath::Sidewalks => cameras::sidewalk_path(
-                        &parsed,
-                        mpp,
-                        &cameras::SidewalkPath {
-                            frames: camera.frame_rule(),
-                            aim,
-                            sidewalk: f64::from(scene::strip_width_px(&parsed)) * mpp,
-                        },
-                        camera_seed,
-                    ),
-                    CameraPath::Objects => object_views::aimed_poses(
-                        &prepared,
-                        &scene,
-                        &parsed,
-                        mpp,
-                        camera,
-                        camera_seed,
-                    ),
-                    CameraPath::Orbit => {
-                        let length = cameras::orbit_length(&parsed, mpp);
-                        let frames = camera.frame_rule().frames(length);
-                        // A range of heights: the orbit flies at its middle.
-                        cameras::orbit_path(&parsed, mpp, frames, camera.height.at(0.5))
-                    }
-                };
-                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
-                let lighting = lighting(spec, &sun, &scene, &lamps, &facades);
-                let relight = (spec.lighting.vary == Vary::Frame).then_some({
-                    |i: usize| {
-                        let sun =
-                            render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
-                        (self::lighting(spec, &sun, &scene, &lamps, &facades), sun)
-                    }
-                });
-                let path_labels =
-                    frame_labels::labels(spec, camera, &scene, &p.object_info, &p.sign_faces);
-                let thresholds = annotate::Thresholds {
-                    min_pixels: spec.annotations.min_pixels,
-                    min_fraction: spec.annotations.min_fraction,
-                };
-                // Per text object: its words' world corners.
-                let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = p
-                    .object_info
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners.clone())))
-                    .filter(|(_, words)| !words.is_empty())
-                    .collect();
-                let input = frames::PathInput {
-                    corners: &corners,
-                    camera,
-                    scene: &prepared,
-                    lighting: &lighting,
-                    sun,
-                    relight: relight.as_ref().map(|f| f as _),
-                    categories: &path_labels.categories,
-                    labels: &path_labels.labels,
-                    thresholds: &thresholds,
-                    yolo: path_labels.yolo.as_ref(),
-                    weather: &spec.weather,
-                    conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
-                };
-                let total = poses.len();
-                // Each file goes into the cache as it is made; only its reference stays.
-                let mut outputs = Outputs::new();
-                frames::render_path(
-                    &input,
-                    &poses,
-                    |name, bytes| {
-                        let object = if p.rechecking {
-                            ObjectRef {
-                                sha256: crate::hash::sha256_hex(&bytes),
-                                bytes: bytes.len() as u64,
-                            }
-                        } else {
-                            p.cache.put_object(&bytes)?
-                        };
-                        outputs.insert(name, Blob::Stored(object, None));
-                        Ok(())
-                    },
-                    |done| (p.progress)(&camera.name, done, total),
-                )
-                .map_err(|source| BuildError::Cache {
-                    path: p.cache.root().to_path_buf(),
-                    source,
-                })?;
+            move |p| p.path_state(index, recheck, None),
+            move |p, mut state| {
+                let chunks = p.render_chunks(index, &mut state)?;
+                let store = !p.rechecking;
+                let camera = &p.spec.cameras[index];
+                let outputs =
+                    chunks::assemble(p.cache, camera, &state.plan, &chunks, store, &p.spec.output)
+                        .map_err(|source| p.cache_error(source))?;
                 Ok(((), outputs))
             },
         )
+    }
+
+    /// A shard's share of the spec (`shard`), or with `None` (`--stage city`) the stages
+    /// every shard shares: the city's artifact stages and every path's plan. Writes only
+    /// the cache.
+    pub fn shard_work(&mut self, shard: Option<Shard>) -> Result<ShardStats, BuildError> {
+        self.need_mirror()?;
+        self.need_plan()?;
+        self.need_preview()?;
+        self.need_export()?;
+        self.need_overview()?;
+        let mut stats = ShardStats::default();
+        for index in 0..self.spec.cameras.len() {
+            // A path already assembled needs nothing more from any shard.
+            if self.cache.entry(&self.keys.frames[index]).is_some() {
+                continue;
+            }
+            let Some(shard) = shard else {
+                self.path_plan(index, false)?;
+                continue;
+            };
+            let mut state = self.path_state(index, false, Some(shard))?;
+            let ranges = chunks::ranges(state.plan.poses.len());
+            let mut render = 0;
+            for (chunk, range) in state.chunks.iter().zip(ranges) {
+                match chunk {
+                    Chunk::Cached(_) => stats.cached_chunks += 1,
+                    Chunk::Skip => stats.other_chunks += 1,
+                    Chunk::Render => {
+                        render += 1;
+                        stats.frames += range.len();
+                    }
+                }
+            }
+            stats.rendered_chunks += render;
+            let start = Instant::now();
+            self.render_chunks(index, &mut state)?;
+            if render > 0 {
+                self.runs.push(StageRun {
+                    stage: "frames-chunk",
+                    camera: Some(self.spec.cameras[index].name.clone()),
+                    key: self.keys.frames[index].clone(),
+                    status: StageStatus::Ran,
+                    time: start.elapsed(),
+                    repaired: None,
+                });
+            }
+        }
+        Ok(stats)
+    }
+
+    /// Every cache key this spec's build reads or writes: its stages', and each camera
+    /// path's plan and (when the plan is cached, which says how many frames) chunks.
+    pub fn cache_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = self.all_stages().into_iter().map(|(_, k)| k).collect();
+        let names = OutputNames::of("frames-plan", None);
+        for path in &self.keys.paths {
+            let plan_key = chunks::plan_key(path);
+            let plan = self
+                .cache
+                .get_stage("frames-plan", &plan_key, Load::Bytes, &names)
+                .ok()
+                .and_then(|o| {
+                    codec::from_json::<PathPlan>(codec::output(&o, chunks::PLAN).ok()?).ok()
+                });
+            if let Some(plan) = plan {
+                keys.extend(
+                    chunks::ranges(plan.poses.len())
+                        .iter()
+                        .map(|range| chunks::chunk_key(path, range)),
+                );
+            }
+            keys.push(plan_key);
+        }
+        keys
+    }
+
+    fn cache_error(&self, source: std::io::Error) -> BuildError {
+        BuildError::Cache {
+            path: self.cache.root().to_path_buf(),
+            source,
+        }
+    }
+
+    fn gather_path(&mut self) -> Result<Gathered, BuildError> {
+        Ok((
+            self.prepared_scene()?,
+            self.scene()?,
+            self.parsed()?,
+            self.lamp_sites()?,
+            self.facade_set()?,
+        ))
+    }
+
+    /// The plan of path `index`: from the cache, or computed (and stored unless
+    /// `recheck`), with the scene it was computed from.
+    fn path_plan(
+        &mut self,
+        index: usize,
+        recheck: bool,
+    ) -> Result<(PathPlan, Option<Gathered>), BuildError> {
+        let key = chunks::plan_key(&self.keys.paths[index]);
+        let names = OutputNames::of("frames-plan", None);
+        // Why a cached plan was not used, when it was there.
+        let mut repaired = None;
+        if !recheck {
+            let cached = self
+                .cache
+                .get_stage("frames-plan", &key, Load::Bytes, &names);
+            match cached {
+                Ok(outputs) => {
+                    let bytes = codec::output(&outputs, chunks::PLAN);
+                    match bytes.and_then(|b| codec::from_json::<PathPlan>(b)) {
+                        Ok(plan) => return Ok((plan, None)),
+                        Err(why) => repaired = Some(why.to_string()),
+                    }
+                }
+                Err(Miss::Corrupt(why)) => repaired = Some(why),
+                Err(Miss::Absent) => {}
+            }
+        }
+        let gathered = self.gather_path()?;
+        let start = Instant::now();
+        let plan = self.compute_plan(index, &gathered);
+        let bytes = codec::to_json(&plan);
+        if !recheck {
+            self.cache
+                .put("frames-plan", &key, &one(chunks::PLAN, bytes.clone()))
+                .map_err(|source| self.cache_error(source))?;
+            self.runs.push(StageRun {
+                stage: "frames-plan",
+                camera: Some(self.spec.cameras[index].name.clone()),
+                key,
+                status: StageStatus::Ran,
+                time: start.elapsed(),
+                repaired,
+            });
+        }
+        // Rendered from the plan as stored, exactly as a shard that finds it in the cache.
+        let plan = codec::from_json(&bytes).map_err(|source| BuildError::Decode {
+            stage: "frames-plan",
+            source,
+        })?;
+        Ok((plan, Some(gathered)))
+    }
+
+    /// The plan, the chunks (those of other shards skipped) and, when a chunk must be
+    /// rendered, the scene. With `recheck` every chunk is rendered again.
+    fn path_state(
+        &mut self,
+        index: usize,
+        recheck: bool,
+        shard: Option<Shard>,
+    ) -> Result<PathState, BuildError> {
+        let (plan, mut gathered) = self.path_plan(index, recheck)?;
+        let frames_key = &self.keys.paths[index];
+        let names = OutputNames::of("frames-chunk", Some(&self.spec.cameras[index].name));
+        let chunks: Vec<Chunk> = chunks::ranges(plan.poses.len())
+            .iter()
+            .enumerate()
+            .map(|(k, range)| {
+                if shard.is_some_and(|s| chunks::owner(index, k, s.count) != s.index) {
+                    return Chunk::Skip;
+                }
+                if recheck {
+                    return Chunk::Render;
+                }
+                let key = chunks::chunk_key(frames_key, range);
+                match self
+                    .cache
+                    .get_stage("frames-chunk", &key, Load::References, &names)
+                {
+                    Ok(outputs) => Chunk::Cached(outputs),
+                    Err(_) => Chunk::Render,
+                }
+            })
+            .collect();
+        if gathered.is_none() && chunks.iter().any(|c| matches!(c, Chunk::Render)) {
+            gathered = Some(self.gather_path()?);
+        }
+        Ok(PathState {
+            plan,
+            chunks,
+            gathered,
+        })
+    }
+
+    /// Renders the chunks marked so (storing each unless rechecking) and returns every
+    /// chunk's outputs but the skipped ones', in frame order.
+    fn render_chunks(
+        &self,
+        index: usize,
+        state: &mut PathState,
+    ) -> Result<Vec<Outputs>, BuildError> {
+        let camera = &self.spec.cameras[index];
+        let frames_key = &self.keys.paths[index];
+        let ranges = chunks::ranges(state.plan.poses.len());
+        let total: usize = ranges
+            .iter()
+            .zip(&state.chunks)
+            .filter(|(_, c)| !matches!(c, Chunk::Skip))
+            .map(|(r, _)| r.len())
+            .sum();
+        let store = !self.rechecking;
+        let poses = &state.plan.poses;
+        let done = std::cell::Cell::new(0);
+        let mut out = Vec::with_capacity(ranges.len());
+        let chunk_list = std::mem::take(&mut state.chunks);
+        let render =
+            |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
+                let key = chunks::chunk_key(frames_key, &range);
+                let outputs = self.with_path_input(index, gathered, |input| {
+                    let path = frames::PathFrames::new(input, poses);
+                    let keep_all = self.spec.output.layout == OutputLayout::Webdataset;
+                    let modes = (store, keep_all);
+                    chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
+                        done.set(done.get() + 1);
+                        (self.progress)(&camera.name, done.get(), total);
+                    })
+                });
+                let outputs = outputs.map_err(|source| self.cache_error(source))?;
+                if store {
+                    self.cache
+                        .put("frames-chunk", &key, &outputs)
+                        .map_err(|source| self.cache_error(source))?;
+                }
+                Ok(outputs)
+            };
+        for (chunk, range) in chunk_list.into_iter().zip(ranges) {
+            match chunk {
+                Chunk::Skip => {}
+                Chunk::Cached(outputs) => {
+                    done.set(done.get() + range.len());
+                    out.push(outputs);
+                }
+                Chunk::Render => {
+                    let gathered = state
+                        .gathered
+                        .as_ref()
+                        .expect("path_state gathers the scene for chunks to render");
+                    out.push(render(range, gathered)?);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Poses, categories and YOLO classes of path `index`.
+    fn compute_plan(&self, index: usize, g: &Gathered) -> PathPlan {
+        let (prepared, scene, parsed, _, _) = g;
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let poses = self.poses(index, prepared, scene, parsed);
+        let labels = frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        PathPlan {
+            poses,
+            categories: labels.categories,
+            yolo: labels.yolo.map(|classes| classes.names_file()),
+        }
+    }
+
+    fn poses(
+        &self,
+        index: usize,
+        prepared: &render::PreparedScene,
+        scene: &Scene,
+        parsed: &ParsedLayout,
+    ) -> Vec<CameraPose> {
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let mpp = spec.layout.metres_per_pixel;
+        // Seeded by the camera's name, not its place in the list: adding or reordering
+        // cameras leaves every other camera's poses as they were.
+        let camera_seed = rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
+        let aim = cameras::Aim::of(camera);
+        match camera.path {
+            CameraPath::Roads => cameras::road_path(
+                parsed,
+                mpp,
+                &cameras::RoadPath {
+                    frames: camera.frame_rule(),
+                    aim,
+                    look_ahead: camera.look_ahead,
+                    jitter: camera.jitter,
+                    lane_offset: camera.lane_offset,
+                },
+                camera_seed,
+            ),
+            CameraPath::Sidewalks => cameras::sidewalk_path(
+                parsed,
+                mpp,
+                &cameras::SidewalkPath {
+                    frames: camera.frame_rule(),
+                    aim,
+                    sidewalk: f64::from(scene::strip_width_px(parsed)) * mpp,
+                },
+                camera_seed,
+            ),
+            CameraPath::Objects => {
+                object_views::aimed_poses(prepared, scene, parsed, mpp, camera, camera_seed)
+            }
+            CameraPath::Orbit => {
+                let length = cameras::orbit_length(parsed, mpp);
+                let frames = camera.frame_rule().frames(length);
+                // A range of heights: the orbit flies at its middle.
+                cameras::orbit_path(parsed, mpp, frames, camera.height.at(0.5))
+            }
+        }
+    }
+
+    /// Calls `f` with path `index`'s rendering input.
+    fn with_path_input<R>(
+        &self,
+        index: usize,
+        g: &Gathered,
+        f: impl FnOnce(&frames::PathInput) -> R,
+    ) -> R {
+        let (prepared, scene, _, lamps, facades) = g;
+        let spec = self.spec;
+        let camera = &spec.cameras[index];
+        let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
+        let lighting = lighting(spec, &sun, scene, lamps, facades);
+        let relight = (spec.lighting.vary == Vary::Frame).then_some({
+            |i: usize| {
+                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
+                (self::lighting(spec, &sun, scene, lamps, facades), sun)
+            }
+        });
+        let path_labels =
+            frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        let thresholds = annotate::Thresholds {
+            min_pixels: spec.annotations.min_pixels,
+            min_fraction: spec.annotations.min_fraction,
+        };
+        // Per text object: its words' world corners.
+        let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = self
+            .object_info
+            .iter()
+            .enumerate()
+            .filter_map(|(i, info)| Some((i as u32 + 1, info.as_ref()?.corners.clone())))
+            .filter(|(_, words)| !words.is_empty())
+            .collect();
+        let input = frames::PathInput {
+            corners: &corners,
+            camera,
+            scene: prepared,
+            lighting: &lighting,
+            sun,
+            relight: relight.as_ref().map(|f| f as _),
+            categories: &path_labels.categories,
+            labels: &path_labels.labels,
+            thresholds: &thresholds,
+            yolo: path_labels.yolo.as_ref(),
+            weather: &spec.weather,
+            conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
+        };
+        f(&input)
     }
 }
 

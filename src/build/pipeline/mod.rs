@@ -31,7 +31,7 @@ use super::inputs::{FacadeInput, LayoutSource, SpecInputs};
 use super::report::StageRun;
 use super::stage_key::StageKey;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::Spec;
+use crate::spec::{OutputLayout, Spec};
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
     preview, render, scene, sensor,
@@ -63,6 +63,9 @@ struct Keys {
     overview: String,
     /// One per `[[cameras]]` entry.
     frames: Vec<String>,
+    /// Per camera, the key of its frames' content, whatever `[output]` says: its plan
+    /// and chunks are keyed by it, so a change of layout renders nothing again.
+    paths: Vec<String>,
 }
 
 /// A stage's outputs, and its typed value once computed or decoded.
@@ -354,7 +357,7 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
         .spec("seed", &spec.seed)
         .input("export", &export)
         .finish();
-    let frames = spec
+    let paths: Vec<String> = spec
         .cameras
         .iter()
         .map(|camera| {
@@ -370,8 +373,19 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
                 .finish()
         })
         .collect();
+    let frames = paths
+        .iter()
+        .map(|path| match spec.output.layout {
+            OutputLayout::Files => path.clone(),
+            OutputLayout::Webdataset => StageKey::new("frames", super::webdataset::VERSION)
+                .spec("output", &spec.output)
+                .input("path", path)
+                .finish(),
+        })
+        .collect();
     Keys {
         frames,
+        paths,
         overview,
         layout,
         mirror,

@@ -1,0 +1,370 @@
+//! A camera path cut into chunks, so that its frames can be rendered by several machines
+//! (shards) sharing one cache, and the path's files assembled afterwards from what they
+//! left there, without rendering anything.
+//!
+//! - The path's **plan** (`frames-plan`, one per camera): its poses, categories and YOLO
+//!   classes ([`PathPlan`]). Everything that needs the whole path, computed once.
+//! - Its **chunks** (`frames-chunk`): frames `[k·CHUNK_FRAMES, (k+1)·CHUNK_FRAMES)`, each
+//!   an entry naming the frames' files and `summary.jsonl`, one [`FrameRecord`] per frame.
+//!   A chunk's key is the path's key and the chunk's frame range, nothing else: not the
+//!   number of shards, so one machine, 4 shards and 16 shards share chunks.
+//! - The **path** (`frames`, the artifact stage): every chunk's frame files plus
+//!   `coco.json` (streamed into the cache from the records, two passes, memory flat in the
+//!   number of frames), `poses.json`, `preview.png` and `yolo/classes.txt`. A one-machine
+//!   build goes through the same chunks, so its bytes are a sharded build's bytes.
+
+use std::io::{self, Write};
+use std::ops::Range;
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
+use super::codec;
+use super::frames::{self, FrameRecord, PathFrames};
+use super::stage_key::StageKey;
+use super::webdataset;
+use crate::annotate::{self, Category};
+use crate::model::CameraPose;
+use crate::spec::{CameraSpec, OutputLayout, OutputSpec};
+
+/// Frames per chunk. Fixed (never derived from the number of shards): chunk keys must be
+/// the same whoever renders them. Ten frames of a 200-frame path give 20 chunks, enough to
+/// balance 2 to 7 shards within one chunk of each other.
+pub const CHUNK_FRAMES: usize = 10;
+
+/// Version of the chunk and plan formats (`summary.jsonl`, `path.json`).
+pub const VERSION: u32 = 1;
+
+/// The name of a chunk's records among its outputs.
+pub const SUMMARY: &str = "summary.jsonl";
+
+/// The name of a plan's only output.
+pub const PLAN: &str = "path.json";
+
+/// What a camera path's files need besides its frames: decided once for the whole path.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct PathPlan {
+    pub poses: Vec<CameraPose>,
+    pub categories: Vec<Category>,
+    /// `yolo/classes.txt`, when the path writes YOLO files.
+    pub yolo: Option<String>,
+}
+
+/// The frame ranges of a path of `frames` frames.
+pub fn ranges(frames: usize) -> Vec<Range<usize>> {
+    (0..frames.div_ceil(CHUNK_FRAMES))
+        .map(|k| k * CHUNK_FRAMES..((k + 1) * CHUNK_FRAMES).min(frames))
+        .collect()
+}
+
+/// The plan's key: the path's.
+pub fn plan_key(frames_key: &str) -> String {
+    StageKey::new("frames-plan", VERSION)
+        .input("frames", frames_key)
+        .finish()
+}
+
+/// A chunk's key: the path's key and its frame range.
+pub fn chunk_key(frames_key: &str, range: &Range<usize>) -> String {
+    StageKey::new("frames-chunk", VERSION)
+        .spec("frames", &[range.start, range.end])
+        .input("frames", frames_key)
+        .finish()
+}
+
+/// Renders the frames of `range`: each file into the cache as it is made (or, with
+/// `store` false, as `cityspec verify` reruns a stage, only hashed; the RGB images the
+/// contact sheet picks, or with `keep_all` every file, for WebDataset tars, are then kept
+/// in memory), then `summary.jsonl`. `progress` is told of each frame done.
+pub fn render_chunk(
+    cache: &Cache,
+    path: &PathFrames,
+    total: usize,
+    range: Range<usize>,
+    (store, keep_all): (bool, bool),
+    mut progress: impl FnMut(),
+) -> io::Result<Outputs> {
+    let picks = crate::annotate::contact_sheet_picks(total);
+    let mut outputs = Outputs::new();
+    let mut summary = Vec::new();
+    for i in range {
+        let keep = !store && (keep_all || picks.contains(&i));
+        let record = path.render(i, |name, bytes| {
+            let blob = if store {
+                Blob::Stored(cache.put_object(&bytes)?, None)
+            } else if keep && (keep_all || name.contains("/rgb/")) {
+                Blob::from(bytes)
+            } else {
+                Blob::Stored(reference(&bytes), None)
+            };
+            outputs.insert(name, blob);
+            Ok::<_, io::Error>(())
+        })?;
+        serde_json::to_writer(&mut summary, &record)?;
+        summary.push(b'\n');
+        progress();
+    }
+    let blob = if store {
+        Blob::Stored(cache.put_object(&summary)?, None)
+    } else {
+        Blob::from(summary)
+    };
+    outputs.insert(SUMMARY.to_owned(), blob);
+    Ok(outputs)
+}
+
+/// The path's outputs from its chunks' (in frame order): their frame files, and
+/// `coco.json`, `poses.json`, `preview.png`, `yolo/classes.txt` assembled from their
+/// records; with `[output] layout = "webdataset"` the frames' files go into tar shards
+/// instead ([`webdataset`]). With `store` false nothing is written to the cache.
+pub fn assemble(
+    cache: &Cache,
+    camera: &CameraSpec,
+    plan: &PathPlan,
+    chunks: &[Outputs],
+    store: bool,
+    output: &OutputSpec,
+) -> io::Result<Outputs> {
+    let dir = format!("frames/{}", camera.name);
+    let webdataset = output.layout == OutputLayout::Webdataset;
+    // With WebDataset the frames' files go into the tars, not the folder.
+    let mut outputs: Outputs = chunks
+        .iter()
+        .flat_map(|chunk| chunk.iter().filter(|(name, _)| name.as_str() != SUMMARY))
+        .filter(|_| !webdataset)
+        .map(|(name, blob)| (name.clone(), without_bytes(blob)))
+        .collect();
+    let read = |blob: &Blob| -> io::Result<Arc<Vec<u8>>> {
+        match blob {
+            Blob::Stored(object, None) => cache
+                .read_object(object)
+                .map(Arc::new)
+                .map_err(io::Error::other),
+            Blob::Bytes(bytes) | Blob::Stored(_, Some(bytes)) => Ok(Arc::clone(bytes)),
+        }
+    };
+    // Every chunk's records, one chunk in memory at a time.
+    let each_record = |f: &mut dyn FnMut(usize, FrameRecord) -> io::Result<()>| {
+        let mut i = 0;
+        for chunk in chunks {
+            let summary = chunk
+                .get(SUMMARY)
+                .ok_or_else(|| io::Error::other("a chunk lacks its summary"))?;
+            for line in read(summary)?
+                .split(|&b| b == b'\n')
+                .filter(|l| !l.is_empty())
+            {
+                f(i, serde_json::from_slice(line)?)?;
+                i += 1;
+            }
+        }
+        Ok::<_, io::Error>(())
+    };
+    let coco = |out: &mut dyn Write| {
+        let mut out = io::BufWriter::new(out);
+        annotate::write_coco(&mut out, &plan.categories, |pass| {
+            each_record(&mut |_, record| pass(&record.coco))
+        })?;
+        out.flush()
+    };
+    let coco = if store {
+        cache.put_object_with(coco)?
+    } else {
+        let mut sink = Hashing::new(io::sink());
+        coco(&mut sink)?;
+        sink.finish()
+    };
+    outputs.insert(format!("{dir}/coco.json"), Blob::Stored(coco, None));
+    let picks = crate::annotate::contact_sheet_picks(plan.poses.len());
+    let mut drawn = Vec::with_capacity(plan.poses.len());
+    let mut sheet = Vec::with_capacity(picks.len());
+    // Per frame, the id of its first annotation in coco.json (for the WebDataset samples).
+    let mut first_ids = Vec::with_capacity(plan.poses.len());
+    let mut annotations = 1u64;
+    each_record(&mut |i, record| {
+        first_ids.push(annotations);
+        annotations += record.coco.annotations.len() as u64;
+        if picks.contains(&i) {
+            let name = format!("{dir}/rgb/{i:06}.png");
+            let blob = chunks
+                .get(i / CHUNK_FRAMES)
+                .and_then(|chunk| chunk.get(&name))
+                .ok_or_else(|| io::Error::other(format!("a chunk lacks {name}")))?;
+            let rgb = codec::decode_png(&read(blob)?).map_err(io::Error::other)?;
+            sheet.push((rgb, record.sheet));
+        }
+        drawn.push((record.sun, record.conditions));
+        Ok(())
+    })?;
+    if drawn.len() != plan.poses.len() {
+        return Err(io::Error::other(format!(
+            "the chunks hold {} frames, the path {}",
+            drawn.len(),
+            plan.poses.len()
+        )));
+    }
+    let mut files = vec![
+        (
+            format!("{dir}/poses.json"),
+            frames::poses_json(camera, &plan.poses, drawn),
+        ),
+        (
+            format!("{dir}/preview.png"),
+            frames::preview_png(sheet, &plan.categories),
+        ),
+    ];
+    if let Some(classes) = &plan.yolo {
+        files.push((
+            format!("{dir}/yolo/classes.txt"),
+            classes.clone().into_bytes(),
+        ));
+    }
+    if webdataset {
+        let frames = plan.poses.len();
+        let tars = Tars {
+            dir: &dir,
+            chunks,
+            first_ids: &first_ids,
+            per_tar: output.samples_per_shard.max(1) as usize,
+            read: &read,
+        };
+        for (n, start) in (0..frames).step_by(tars.per_tar).enumerate() {
+            let range = start..(start + tars.per_tar).min(frames);
+            let object = if store {
+                cache.put_object_with(|out| tars.write(range, out))?
+            } else {
+                let mut sink = Hashing::new(io::sink());
+                tars.write(range, &mut sink)?;
+                sink.finish()
+            };
+            outputs.insert(format!("{dir}/wds/{n:06}.tar"), Blob::Stored(object, None));
+        }
+    }
+    for (name, bytes) in files {
+        let object = if store {
+            cache.put_object(&bytes)?
+        } else {
+            reference(&bytes)
+        };
+        outputs.insert(name, Blob::Stored(object, None));
+    }
+    Ok(outputs)
+}
+
+/// A path's WebDataset tars, from its chunks.
+struct Tars<'a> {
+    /// `frames/<camera>`.
+    dir: &'a str,
+    chunks: &'a [Outputs],
+    /// Per frame, the id of its first annotation in `coco.json`.
+    first_ids: &'a [u64],
+    per_tar: usize,
+    /// A blob's bytes, from memory or the cache.
+    read: &'a dyn Fn(&Blob) -> io::Result<Arc<Vec<u8>>>,
+}
+
+impl Tars<'_> {
+    /// Writes the tar of frames `range` to `out`, one frame's files in memory at a time.
+    fn write(&self, range: Range<usize>, out: &mut dyn Write) -> io::Result<()> {
+        let mut out = io::BufWriter::new(out);
+        for k in range.start / CHUNK_FRAMES..range.end.div_ceil(CHUNK_FRAMES) {
+            let chunk = &self.chunks[k];
+            let summary = chunk
+                .get(SUMMARY)
+                .ok_or_else(|| io::Error::other("a chunk lacks its summary"))?;
+            let summary = (self.read)(summary)?;
+            let records = summary.split(|&b| b == b'\n').filter(|l| !l.is_empty());
+            for (i, line) in (k * CHUNK_FRAMES..).zip(records) {
+                if !range.contains(&i) {
+                    continue;
+                }
+                let record: FrameRecord = serde_json::from_slice(line)?;
+                let mut members = Vec::new();
+                for (name, blob) in chunk {
+                    let Some(rest) = name
+                        .strip_prefix(self.dir)
+                        .and_then(|r| r.strip_prefix('/'))
+                    else {
+                        continue;
+                    };
+                    if let Some(member) = webdataset::member_name(rest)
+                        && webdataset::member_frame(&member) == Some(i)
+                    {
+                        members.push((member, (self.read)(blob)?));
+                    }
+                }
+                let json = webdataset::sample_json(
+                    &record.coco,
+                    self.first_ids[i],
+                    &record.sun,
+                    &record.conditions,
+                );
+                members.push((format!("{i:06}.json"), Arc::new(json)));
+                members.sort_by(|a, b| a.0.cmp(&b.0));
+                for (member, bytes) in &members {
+                    webdataset::append(&mut out, member, bytes)?;
+                }
+            }
+        }
+        webdataset::finish(&mut out)?;
+        out.flush()
+    }
+}
+
+/// The reference `bytes` would have as an object, without storing them.
+fn reference(bytes: &[u8]) -> ObjectRef {
+    ObjectRef {
+        sha256: crate::hash::sha256_hex(bytes),
+        bytes: bytes.len() as u64,
+    }
+}
+
+/// A frame file's blob as the path keeps it: a reference only.
+fn without_bytes(blob: &Blob) -> Blob {
+    match blob {
+        Blob::Stored(object, _) => Blob::Stored(object.clone(), None),
+        Blob::Bytes(bytes) => Blob::Stored(reference(bytes), None),
+    }
+}
+
+/// Which of `shards` shards renders chunk `chunk` of the spec's camera `camera`: round
+/// robin, each camera starting one shard further, so short paths do not all land on
+/// shard 0.
+pub fn owner(camera: usize, chunk: usize, shards: u32) -> u32 {
+    ((camera + chunk) % shards as usize) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_cover_the_path_in_fixed_chunks() {
+        assert!(ranges(0).is_empty());
+        assert_eq!((ranges(3).len(), ranges(3)[0].clone()), (1, 0..3));
+        assert_eq!(ranges(20), [0..10, 10..20]);
+        assert_eq!(ranges(21), [0..10, 10..20, 20..21]);
+    }
+
+    #[test]
+    fn chunk_keys_depend_on_path_and_range_only() {
+        let a = chunk_key("path", &(0..10));
+        assert_eq!(a, chunk_key("path", &(0..10)));
+        assert_ne!(a, chunk_key("path", &(10..20)));
+        assert_ne!(a, chunk_key("other", &(0..10)));
+        assert_ne!(plan_key("path"), plan_key("other"));
+    }
+
+    #[test]
+    fn owners_spread_chunks_evenly() {
+        for shards in [1u32, 2, 4, 7] {
+            let mut counts = vec![0; shards as usize];
+            for chunk in 0..20 {
+                counts[owner(0, chunk, shards) as usize] += 1;
+            }
+            let (lo, hi) = (counts.iter().min(), counts.iter().max());
+            assert!(hi.unwrap() - lo.unwrap() <= 1, "{shards}: {counts:?}");
+        }
+    }
+}

@@ -1,0 +1,255 @@
+//! Issue 12: a build split into shards sharing one cache, then merged by a plain build,
+//! gives the bytes of a one-machine build; the merge renders nothing.
+
+mod common;
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use cityspec::build::{self, BuildOptions, Shard, StageStatus};
+use common::tree;
+
+/// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
+/// a 12-frame orbit (2 chunks) with float depth; text, signs and cars so COCO, ICDAR and
+/// YOLO files all have something in them. (.ci/run builds it on Slurm too.)
+const SPEC: &str = include_str!("fixtures/shards.toml");
+
+fn options(dir: &Path, out: &str, cache: &str) -> BuildOptions {
+    BuildOptions {
+        out_root: dir.join(out),
+        cache_dir: dir.join(cache),
+        progress: None,
+        waiting: None,
+        strict: false,
+        locked: false,
+    }
+}
+
+fn spec(dir: &Path) -> PathBuf {
+    let path = dir.join("small.toml");
+    fs::write(&path, SPEC).unwrap();
+    path
+}
+
+/// Builds `shards` shards (in this process, one after another) into `cache`, then
+/// merges into `out`; checks the shards wrote no output folder and the merge rendered
+/// nothing; returns the merged folder's files.
+fn sharded(dir: &Path, spec: &Path, shards: u32, city_first: bool) -> Vec<(String, Vec<u8>)> {
+    let (out, cache) = (format!("out{shards}"), format!("cache{shards}"));
+    let options = options(dir, &out, &cache);
+    let specs = [spec.to_path_buf()];
+    if city_first {
+        build::build_shards(&specs, &options, None).unwrap();
+    }
+    let mut rendered = 0;
+    for index in 0..shards {
+        let shard = Shard::new(index, shards).unwrap();
+        let reports = build::build_shards(&specs, &options, Some(shard)).unwrap();
+        rendered += reports[0].stats.rendered_chunks;
+        assert!(!dir.join(&out).exists(), "shard {index} wrote the output");
+    }
+    assert_eq!(rendered, 5 + 2, "every chunk rendered exactly once");
+    merge(dir, &options, spec)
+}
+
+/// The merge: a plain build that must find every chunk and plan in the cache.
+fn merge(dir: &Path, options: &BuildOptions, spec: &Path) -> Vec<(String, Vec<u8>)> {
+    let report = build::build(spec, options).unwrap();
+    let ran: Vec<&str> = report
+        .stages
+        .iter()
+        .filter(|s| s.status == StageStatus::Ran)
+        .map(|s| s.stage)
+        .collect();
+    assert_eq!(ran, ["frames", "frames"], "the merge only assembles");
+    let _ = dir;
+    tree(&report.out_dir).into_iter().collect()
+}
+
+#[test]
+fn one_machine_and_2_4_7_shards_give_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let spec = spec(dir);
+    let one = build::build(&spec, &options(dir, "one", "cache1")).unwrap();
+    let one = tree(&one.out_dir).into_iter().collect::<Vec<_>>();
+    assert!(one.iter().any(|(p, _)| p == "frames/street/coco.json"));
+    assert!(one.iter().any(|(p, _)| p == "frames/street/rgb/000042.png"));
+    assert!(
+        one.iter()
+            .any(|(p, _)| p == "frames/aerial/depth/000011.npy")
+    );
+    for (shards, city_first) in [(2, true), (4, false), (7, false)] {
+        let merged = sharded(dir, &spec, shards, city_first);
+        let names = |files: &[(String, Vec<u8>)]| files.iter().map(|f| f.0.clone()).collect();
+        let (a, b): (Vec<String>, Vec<String>) = (names(&one), names(&merged));
+        assert_eq!(a, b, "{shards} shards: other files");
+        for ((path, x), (_, y)) in one.iter().zip(&merged) {
+            assert!(x == y, "{shards} shards: {path} differs");
+        }
+    }
+}
+
+#[test]
+fn shards_as_concurrent_processes_share_one_cache_and_a_merge_finds_everything() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let spec = spec(dir);
+    // Four processes at once, no `--stage city` first: they race for the city stages.
+    let children: Vec<_> = (0..4)
+        .map(|i| {
+            Command::new(env!("CARGO_BIN_EXE_cityspec"))
+                .current_dir(dir)
+                .args(["build", "-q", "-j1", "--cache", "cache", "--out", "out"])
+                .args(["--shard", &format!("{i}/4"), "small.toml"])
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for mut child in children {
+        assert!(child.wait().unwrap().success());
+    }
+    assert!(!dir.join("out").exists());
+    // `--shard auto` from a Kubernetes index finds its chunks done.
+    let auto = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(dir)
+        .env("JOB_COMPLETION_INDEX", "2")
+        .args(["build", "--cache", "cache", "--out", "out"])
+        .args(["--shard", "auto", "--shard-count", "4", "small.toml"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&auto.stderr);
+    assert!(auto.status.success(), "{text}");
+    assert!(text.contains("shard 2/4: rendered 0 chunks"), "{text}");
+    let merged = merge(dir, &options(dir, "out", "cache"), &spec);
+    let one = build::build(&spec, &options(dir, "one", "cache1")).unwrap();
+    let one: Vec<_> = tree(&one.out_dir).into_iter().collect();
+    assert!(
+        one == merged,
+        "the merged folder differs from one machine's"
+    );
+    // Bad shard arguments are usage errors.
+    for args in [&["--shard", "4/4"][..], &["--shard", "auto"]] {
+        let out = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+            .current_dir(dir)
+            .env_remove("SLURM_ARRAY_TASK_ID")
+            .env_remove("JOB_COMPLETION_INDEX")
+            .args(["build", "--cache", "cache"])
+            .args(args)
+            .arg("small.toml")
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+    }
+}
+
+/// The members of a tar: (name, mtime field, bytes), checking each header's fixed fields.
+fn tar_members(tar: &[u8]) -> Vec<(String, Vec<u8>)> {
+    let mut members = Vec::new();
+    let mut at = 0;
+    while at + 512 <= tar.len() && tar[at..at + 512].iter().any(|&b| b != 0) {
+        let header = &tar[at..at + 512];
+        let field = |from: usize, to: usize| {
+            String::from_utf8(header[from..to].to_vec())
+                .unwrap()
+                .trim_end_matches('\0')
+                .to_owned()
+        };
+        let name = field(0, 100);
+        assert_eq!(field(100, 108), "0000644", "{name}: mode");
+        assert_eq!(field(108, 124), "0000000\u{0}0000000", "{name}: uid, gid");
+        assert_eq!(field(136, 148), "00000000000", "{name}: mtime");
+        assert_eq!(field(257, 263), "ustar", "{name}: magic");
+        let size = usize::from_str_radix(&field(124, 136), 8).unwrap();
+        members.push((name, tar[at + 512..at + 512 + size].to_vec()));
+        at += 512 + size.div_ceil(512) * 512;
+    }
+    assert_eq!(tar.len(), at + 1024, "two zero blocks end the tar");
+    members
+}
+
+#[test]
+fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let files_spec = spec(dir);
+    let files = build::build(&files_spec, &options(dir, "files", "cache")).unwrap();
+    let wds_spec = dir.join("wds.toml");
+    fs::write(
+        &wds_spec,
+        format!("{SPEC}\n[output]\nlayout = \"webdataset\"\nsamples_per_shard = 20\n"),
+    )
+    .unwrap();
+    // The frames' content keys ignore the layout: only the paths are assembled again.
+    let wds = build::build(&wds_spec, &options(dir, "wds", "cache")).unwrap();
+    let ran: Vec<&str> = wds
+        .stages
+        .iter()
+        .filter(|s| s.status == StageStatus::Ran)
+        .map(|s| s.stage)
+        .collect();
+    assert_eq!(ran, ["frames", "frames"]);
+    let out = tree(&wds.out_dir);
+    let tars: Vec<&String> = out.keys().filter(|p| p.ends_with(".tar")).collect();
+    assert_eq!(
+        tars,
+        [
+            "frames/aerial/wds/000000.tar",
+            "frames/street/wds/000000.tar",
+            "frames/street/wds/000001.tar",
+            "frames/street/wds/000002.tar"
+        ]
+    );
+    assert!(
+        !out.keys().any(|p| p.contains("/rgb/")),
+        "frames are in the tars"
+    );
+    let coco: serde_json::Value = serde_json::from_slice(&out["frames/street/coco.json"]).unwrap();
+    let files = tree(&files.out_dir);
+    let mut frame = 0;
+    for n in 0..3 {
+        let members = tar_members(&out[&format!("frames/street/wds/{n:06}.tar")]);
+        let names: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
+        let mut sorted = names.clone();
+        sorted.sort();
+        assert_eq!(names, sorted, "members in name order");
+        for (name, bytes) in &members {
+            let (stem, kind) = name.split_once('.').unwrap();
+            let i: usize = stem.parse().unwrap();
+            assert!(i / 20 == n, "{name} in tar {n}");
+            frame = frame.max(i + 1);
+            let file = match kind {
+                "rgb.png" => format!("rgb/{stem}.png"),
+                "ids.png" => format!("ids/{stem}.png"),
+                "depth.png" => format!("depth/{stem}.png"),
+                "yolo.txt" => format!("yolo/{stem}.txt"),
+                "icdar.txt" => format!("icdar/gt_{stem}.txt"),
+                "json" => {
+                    let sample: serde_json::Value = serde_json::from_slice(bytes).unwrap();
+                    assert_eq!(sample["image"], coco["images"][i]);
+                    let expected: Vec<&serde_json::Value> = coco["annotations"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .filter(|a| a["image_id"] == i as u64 + 1)
+                        .collect();
+                    let got: Vec<&serde_json::Value> =
+                        sample["annotations"].as_array().unwrap().iter().collect();
+                    assert_eq!(got, expected, "{name}");
+                    assert!(sample["sun"].is_object() && sample["conditions"].is_object());
+                    continue;
+                }
+                other => panic!("unexpected member {other}"),
+            };
+            assert!(
+                files[&format!("frames/street/{file}")] == *bytes,
+                "{name} differs from {file}"
+            );
+        }
+    }
+    assert_eq!(frame, 43);
+    // Rendered from scratch into another cache: the same tar bytes.
+    let fresh = build::build(&wds_spec, &options(dir, "wds2", "cache2")).unwrap();
+    assert!(tree(&fresh.out_dir) == out, "the tars are not reproducible");
+}
