@@ -8,8 +8,9 @@
 //! window). A wall with another building between it and the road does not face the road.
 //! Each plate draws a style ([`PlateStyle::WALL_MIX`]), a font ([`TextFont::ALL`]) and a
 //! colour pair ([`text_colours`]); painted text is drawn straight onto the wall's own
-//! pixels. An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material
-//! per page, each plate's uvs covering its own rectangle.
+//! pixels, primed where the raw wall fails the contrast floor ([`text_colours::primed`]).
+//! An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material per
+//! page, each plate's uvs covering its own rectangle.
 
 use std::collections::BTreeMap;
 
@@ -70,15 +71,15 @@ pub struct Wall {
 }
 
 /// A plate placed on a wall, waiting for its place on an atlas page.
-struct Placed {
-    name: String,
-    wall: usize,
-    rect: [f64; 4],
-    plate: TextPlate,
-    background: Background,
-    ink: [u8; 3],
-    text: String,
-    corners: Vec<[[f64; 3]; 4]>,
+pub(crate) struct Placed {
+    pub name: String,
+    pub wall: usize,
+    pub rect: [f64; 4],
+    pub plate: TextPlate,
+    pub background: Background,
+    pub ink: [u8; 3],
+    pub text: String,
+    pub corners: Vec<[[f64; 3]; 4]>,
 }
 
 /// The walls facing roads, and the plates placed on each so far: `[u0, y0, u1, y1]`.
@@ -111,22 +112,8 @@ impl Walls {
         rng: &mut Pcg64,
         placing: &mut Placing,
     ) -> Result<(), ObjectsError> {
-        let user: Option<Vec<String>> = match &spec.words_file {
-            None => None,
-            Some(file) => {
-                let missing = || ObjectsError::MissingWords { file: file.clone() };
-                let bytes = &placing.input.meshes.get(file).ok_or_else(missing)?.obj;
-                let words = parse_words(&String::from_utf8_lossy(bytes));
-                if words.is_empty() {
-                    return Err(missing());
-                }
-                Some(words)
-            }
-        };
-        let list: Vec<&str> = match &user {
-            Some(words) => words.iter().map(String::as_str).collect(),
-            None => WORDS.to_vec(),
-        };
+        let source = word_source(spec, placing)?;
+        let list: Vec<&str> = source.iter().map(String::as_str).collect();
         if self.walls.is_empty() {
             return Ok(());
         }
@@ -154,7 +141,9 @@ impl Walls {
                 (PlateStyle::Painted, Some(patch)) => {
                     let hard = rng.random::<f64>() < HARD_SHARE;
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
-                    (Background::Wall(patch), ink)
+                    // The floor holds against the wall pixels behind the letters, not only
+                    // their mean: brick with light mortar is primed first.
+                    (Background::Wall(text_colours::primed(patch, ink, hard)), ink)
                 }
                 _ => {
                     let (paper, ink) = text_colours::pair(rng);
@@ -181,51 +170,7 @@ impl Walls {
                 corners,
             });
         }
-        // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
-        // all in parallel, each result in its own slot.
-        let images: Vec<RgbImage> = placed
-            .par_iter()
-            .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
-            .collect();
-        let sizes: Vec<[u32; 2]> = placed
-            .iter()
-            .map(|p| [p.plate.width, p.plate.height])
-            .collect();
-        let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
-        let pages: Vec<Texture> = (0..atlas.pages.len())
-            .into_par_iter()
-            .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
-            .collect();
-        let materials: Vec<u32> = pages
-            .iter()
-            .enumerate()
-            .map(|(i, page)| {
-                let name = format!("{}_atlas_{i}", spec.label);
-                placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
-            })
-            .collect();
-        for (i, p) in placed.into_iter().enumerate() {
-            let material = materials[atlas.slots[i].page];
-            let object = SceneObject {
-                name: p.name,
-                class: spec.label.clone(),
-                meshes: vec![plate_mesh(
-                    &self.walls[p.wall],
-                    p.rect,
-                    material,
-                    atlas.uv_spans(i),
-                )],
-            };
-            placing.push(
-                object,
-                ObjectInfo {
-                    label: spec.label.clone(),
-                    text: Some(p.text),
-                    corners: p.corners,
-                    attributes: text_attributes(&p.plate),
-                },
-            );
-        }
+        finish_plates(spec, &self.walls, placed, &format!("{}_atlas", spec.label), placing);
         Ok(())
     }
 
@@ -294,6 +239,79 @@ impl Walls {
             let tv = 1.0 - (height - KERB_Y) / wall.height;
             bilinear(image, tu * iw - 0.5, tv * ih - 0.5)
         }))
+    }
+}
+
+/// Draws the `placed` plates (their `wall` indexing `walls`), packs them onto atlas pages
+/// named `<page_name>_<i>`, one material per page, and pushes one text object per plate.
+pub(crate) fn finish_plates(
+    spec: &ObjectSpec,
+    walls: &[Wall],
+    placed: Vec<Placed>,
+    page_name: &str,
+    placing: &mut Placing,
+) {
+        // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
+        // all in parallel, each result in its own slot.
+        let images: Vec<RgbImage> = placed
+            .par_iter()
+            .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
+            .collect();
+        let sizes: Vec<[u32; 2]> = placed
+            .iter()
+            .map(|p| [p.plate.width, p.plate.height])
+            .collect();
+        let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
+        let pages: Vec<Texture> = (0..atlas.pages.len())
+            .into_par_iter()
+            .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
+            .collect();
+        let materials: Vec<u32> = pages
+            .iter()
+            .enumerate()
+            .map(|(i, page)| {
+                let name = format!("{page_name}_{i}");
+                placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
+            })
+            .collect();
+        for (i, p) in placed.into_iter().enumerate() {
+            let material = materials[atlas.slots[i].page];
+            let object = SceneObject {
+                name: p.name,
+                class: spec.label.clone(),
+                meshes: vec![plate_mesh(
+                    &walls[p.wall],
+                    p.rect,
+                    material,
+                    atlas.uv_spans(i),
+                )],
+            };
+            placing.push(
+                object,
+                ObjectInfo {
+                    label: spec.label.clone(),
+                    text: Some(p.text),
+                    corners: p.corners,
+                    attributes: text_attributes(&p.plate),
+                },
+            );
+        }
+}
+
+/// The words an entry draws from: its `words_file`'s, else the built-in list. Errors when
+/// the file is missing from the driver's reads or holds no word.
+pub(crate) fn word_source(spec: &ObjectSpec, placing: &Placing) -> Result<Vec<String>, ObjectsError> {
+    match &spec.words_file {
+        None => Ok(WORDS.iter().map(|w| (*w).to_owned()).collect()),
+        Some(file) => {
+            let missing = || ObjectsError::MissingWords { file: file.clone() };
+            let bytes = &placing.input.meshes.get(file).ok_or_else(missing)?.obj;
+            let words = parse_words(&String::from_utf8_lossy(bytes));
+            if words.is_empty() {
+                return Err(missing());
+            }
+            Ok(words)
+        }
     }
 }
 
@@ -494,7 +512,7 @@ fn plate_mesh(
 
 /// Every word's ink box corners: top-left, top-right, bottom-right, bottom-left from the
 /// front.
-fn word_corners(
+pub(crate) fn word_corners(
     wall: &Wall,
     rect: [f64; 4],
     plate: &TextPlate,
