@@ -278,4 +278,36 @@ mod tests {
         );
         assert!(object_views(&layout(), 1.0, &[], &turned, 9).is_empty());
     }
+
+    #[test]
+    fn high_objects_are_seen_from_far_enough_back_or_not_at_all() {
+        // A plate 12 m up: from 4–8 m away the sight would be 48–65° steep; stepping back
+        // to 30° needs 18.2 m, beyond the range, so none of these views exist…
+        let high = ObjectTarget {
+            centre: [50.0, 12.0, 40.0],
+            ..TEXT
+        };
+        let near = path(ValueRange::Fixed(0.0));
+        let views = object_views(&layout(), 1.0, &[high], &near, 4);
+        assert!(views.iter().all(|f| f.is_empty()));
+        // …while a range reaching 25 m gives views, none steeper than 30°.
+        let far = ObjectsPath {
+            distance: ValueRange::Between([4.0, 25.0]),
+            ..near
+        };
+        let views = object_views(&layout(), 1.0, &[high], &far, 4);
+        let mut n = 0;
+        for v in views.iter().flatten() {
+            let p = v.pose;
+            let flat = ((p.eye[0] - 50.0).powi(2) + (p.eye[2] - 40.0).powi(2)).sqrt();
+            let rise = 12.0 - p.eye[1];
+            assert!(
+                rise <= flat * libm::tan(MAX_ELEVATION.to_radians()) + 1e-6,
+                "{p:?}"
+            );
+            assert!(flat <= 25.0 + 1e-6);
+            n += 1;
+        }
+        assert!(n > 50, "{n}");
+    }
 }

@@ -219,11 +219,7 @@ impl<'a> GroundSpots<'a> {
             let px = image_point(road, along, across);
             // One pixel past the strip's far edge must be a block: a real strip, not a gap.
             let beyond = strip - offset + 1.0;
-            let behind = image_point(
-                road,
-                along,
-                across + if high { beyond } else { -beyond },
-            );
+            let behind = image_point(road, along, across + if high { beyond } else { -beyond });
             if !self.inside_image(px) || self.on_road(px, 0.0) || !self.in_block(behind) {
                 return None;
             }
@@ -276,10 +272,20 @@ impl<'a> GroundSpots<'a> {
                     continue;
                 }
                 for (sz, sx) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
-                    let x = if sx < 0.0 { vr.x[0] - half } else { vr.x[1] + half };
-                    let z = if sz < 0.0 { hr.y[0] - half } else { hr.y[1] + half };
+                    let x = if sx < 0.0 {
+                        vr.x[0] - half
+                    } else {
+                        vr.x[1] + half
+                    };
+                    let z = if sz < 0.0 {
+                        hr.y[0] - half
+                    } else {
+                        hr.y[1] + half
+                    };
                     let behind = [x + sx * (half + 1.0), z + sz * (half + 1.0)];
-                    if self.inside_image([x, z]) && !self.on_road([x, z], 0.0) && self.in_block(behind)
+                    if self.inside_image([x, z])
+                        && !self.on_road([x, z], 0.0)
+                        && self.in_block(behind)
                     {
                         out.push(Corner {
                             position: [x * self.mpp, z * self.mpp],

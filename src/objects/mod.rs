@@ -14,7 +14,9 @@
 //! Every object's class is its spec entry's `label`. Entry `i` draws from
 //! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
-//! finds no free spot in [`ATTEMPTS`] tries is left out: `count` is an upper bound.
+//! finds no free spot in [`ATTEMPTS`] tries is drawn again (text: new words, size, style;
+//! cars: a new body; trees: a new species and size) a few times, then left out: `count` is
+//! met until the walls, curbs or strips are nearly full, and is an upper bound.
 //!
 //! No `sin`/`cos` from std: angles go through [`trig`], a fixed polynomial, so the output is
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
@@ -246,7 +248,12 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::StreetName => {
-                poles = Some(street_names::place(spec, &mut rng, &mut spots, &mut placing)?);
+                poles = Some(street_names::place(
+                    spec,
+                    &mut rng,
+                    &mut spots,
+                    &mut placing,
+                )?);
             }
         }
         // A street-name entry counts poles (each carries four text faces); the others

@@ -119,7 +119,12 @@ pub fn place(
         let order: [usize; 2] = if upper_first { [1, 0] } else { [0, 1] };
         let [x, z] = corner.position;
         let mut pole = MeshBuilder::new(pole_material);
-        pole.oriented_box([x, KERB_Y, z], [1.0, 0.0], [POLE_HALF, POLE_HALF], POLE_HEIGHT);
+        pole.oriented_box(
+            [x, KERB_Y, z],
+            [1.0, 0.0],
+            [POLE_HALF, POLE_HALF],
+            POLE_HEIGHT,
+        );
         let mut bottom = KERB_Y + POLE_HEIGHT;
         for (k, &p) in order.iter().enumerate() {
             let (plate, text, axis) = &plates[p];

@@ -971,7 +971,11 @@ fn cars_and_trees_never_overlap_anything_standing() {
         for (b, top) in &car_tops {
             if c[0] < b[1] && b[0] < c[1] && c[2] < b[3] && b[2] < c[3] {
                 over_cars += 1;
-                assert!(y[0] >= top + 0.5, "crown from {} over a car {top} tall", y[0]);
+                assert!(
+                    y[0] >= top + 0.5,
+                    "crown from {} over a car {top} tall",
+                    y[0]
+                );
             }
         }
     }
@@ -1029,7 +1033,11 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
     }];
     let inserted = run(&city, &specs).unwrap();
     assert_eq!(inserted.placed, [12]);
-    let poles = inserted.objects.iter().filter(|o| o.class == "pole").count();
+    let poles = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "pole")
+        .count();
     let texts: Vec<usize> = (0..inserted.objects.len())
         .filter(|&i| inserted.objects[i].class == "text")
         .collect();

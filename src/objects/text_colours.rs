@@ -94,7 +94,12 @@ pub fn primed(patch: RgbImage, ink: [u8; 3], hard: bool) -> RgbImage {
     }
     let coat: [u8; 3] = std::array::from_fn(|c| {
         let v = f64::from(mean[c]);
-        if dark_ink { v + (255.0 - v) * 0.8 } else { v * 0.2 }.round() as u8
+        if dark_ink {
+            v + (255.0 - v) * 0.8
+        } else {
+            v * 0.2
+        }
+        .round() as u8
     });
     for a in PRIMER_STEPS {
         let mut faded = patch.clone();
@@ -117,7 +122,11 @@ fn worst_contrast(patch: &RgbImage, ink: f64, dark_ink: bool) -> f64 {
     lums.sort_by(f64::total_cmp);
     let k = ((lums.len() - 1) as f64 * PATCH_QUANTILE) as usize;
     // Dark ink is hurt by the darkest background pixels, light ink by the lightest.
-    let near = if dark_ink { lums[k] } else { lums[lums.len() - 1 - k] };
+    let near = if dark_ink {
+        lums[k]
+    } else {
+        lums[lums.len() - 1 - k]
+    };
     contrast(ink, near)
 }
 
@@ -156,7 +165,11 @@ mod tests {
     fn primed_patches_keep_the_floor_and_hard_ones_stay_raw() {
         // Brick: dark red courses with light mortar lines, one row in four.
         let brick = RgbImage::from_fn(60, 40, |_, y| {
-            Rgb(if y % 4 == 0 { [200, 195, 185] } else { [110, 45, 30] })
+            Rgb(if y % 4 == 0 {
+                [200, 195, 185]
+            } else {
+                [110, 45, 30]
+            })
         });
         let mut rng = crate::rng::stream(3, "text_colours_test", 1);
         let mut primed_some = 0;

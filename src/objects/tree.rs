@@ -37,6 +37,8 @@ use crate::spec::{ObjectSpec, TreeSpecies};
 pub const MAX_PLAZA_CROWN: f64 = 3.5;
 /// Room a plaza tree's crown keeps from a building, metres.
 pub const BUILDING_CLEARANCE: f64 = 0.3;
+/// Draws of a tree tried before one is left out.
+pub const REDRAWS: u32 = 4;
 /// Lowest a crown reaching over the road may hang, metres above the sidewalk: over a bus.
 pub const CLEAR_HEIGHT: f64 = 4.5;
 /// Distance of a curbside tree's trunk from the curb, metres.
@@ -80,63 +82,68 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
     // Crowns of this entry's curbside trees: (centre, radius).
     let mut canopies: Vec<([f64; 2], f64)> = Vec::new();
     for _ in 0..spec.count {
-        let kind = species[rng.random_range(0..species.len())];
-        let t: f64 = rng.random();
-        let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
-        let shade = rng.random_range(0..3usize);
-        let in_plaza = rng.random::<f64>() < spec.plazas;
-        let kerbside = crown_radius(kind, height)
-            .min(street_crown)
-            .min(clear_crown(kind, height));
-        let curbside = !in_plaza && kerbside > strip_crown;
-        let max_crown = if in_plaza {
-            MAX_PLAZA_CROWN
-        } else if curbside {
-            kerbside
-        } else {
-            strip_crown
-        };
-        if max_crown.is_nan() || max_crown <= 0.5 {
-            continue;
+        // A tree that finds no room is drawn again (species, height, strip or plaza) up to
+        // REDRAWS times: the strips' room bounds `count`, not the first draw's luck.
+        for _ in 0..REDRAWS {
+            let kind = species[rng.random_range(0..species.len())];
+            let t: f64 = rng.random();
+            let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
+            let shade = rng.random_range(0..3usize);
+            let in_plaza = rng.random::<f64>() < spec.plazas;
+            let kerbside = crown_radius(kind, height)
+                .min(street_crown)
+                .min(clear_crown(kind, height));
+            let curbside = !in_plaza && kerbside > strip_crown;
+            let max_crown = if in_plaza {
+                MAX_PLAZA_CROWN
+            } else if curbside {
+                kerbside
+            } else {
+                strip_crown
+            };
+            if max_crown.is_nan() || max_crown <= 0.5 {
+                continue;
+            }
+            let crown = crown_radius(kind, height).min(max_crown);
+            let foot = if in_plaza {
+                plaza_spot(rng, crown, spots, placing)
+            } else if curbside {
+                (0..ATTEMPTS).find_map(|_| {
+                    let spot = spots.strip_at(rng, TRUNK_ROOM, CURB_SETBACK, 1)?;
+                    let p = spot.position;
+                    let far = |q: [f64; 2], room: f64| {
+                        let (dx, dz) = (p[0] - q[0], p[1] - q[1]);
+                        dx * dx + dz * dz >= room * room
+                    };
+                    let free = lamps.iter().all(|&l| far(l, crown + LAMP_ROOM))
+                        && canopies.iter().all(|&(c, r)| far(c, crown + r));
+                    if free {
+                        canopies.push((p, crown));
+                        Some(p)
+                    } else {
+                        spots.release(spot);
+                        None
+                    }
+                })
+            } else {
+                spots.strip(rng, crown + 0.1, ATTEMPTS).map(|s| s.position)
+            };
+            let Some(foot) = foot else {
+                continue;
+            };
+            let k = TreeSpecies::ALL
+                .iter()
+                .position(|&s| s == kind)
+                .unwrap_or(0);
+            let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
+                (LEAVES[k][shade], None)
+            });
+            let bark = placing.material("tree_bark", || (BARK, None));
+            let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
+            let name = placing.name("tree");
+            placing.push_plain(name, &spec.label, meshes);
+            break;
         }
-        let crown = crown_radius(kind, height).min(max_crown);
-        let foot = if in_plaza {
-            plaza_spot(rng, crown, spots, placing)
-        } else if curbside {
-            (0..ATTEMPTS).find_map(|_| {
-                let spot = spots.strip_at(rng, TRUNK_ROOM, CURB_SETBACK, 1)?;
-                let p = spot.position;
-                let far = |q: [f64; 2], room: f64| {
-                    let (dx, dz) = (p[0] - q[0], p[1] - q[1]);
-                    dx * dx + dz * dz >= room * room
-                };
-                let free = lamps.iter().all(|&l| far(l, crown + LAMP_ROOM))
-                    && canopies.iter().all(|&(c, r)| far(c, crown + r));
-                if free {
-                    canopies.push((p, crown));
-                    Some(p)
-                } else {
-                    spots.release(spot);
-                    None
-                }
-            })
-        } else {
-            spots.strip(rng, crown + 0.1, ATTEMPTS).map(|s| s.position)
-        };
-        let Some(foot) = foot else {
-            continue;
-        };
-        let k = TreeSpecies::ALL
-            .iter()
-            .position(|&s| s == kind)
-            .unwrap_or(0);
-        let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
-            (LEAVES[k][shade], None)
-        });
-        let bark = placing.material("tree_bark", || (BARK, None));
-        let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
-        let name = placing.name("tree");
-        placing.push_plain(name, &spec.label, meshes);
     }
 }
 
@@ -148,9 +155,7 @@ fn clear_crown(kind: TreeSpecies, height: f64) -> f64 {
     let room = h - CLEAR_HEIGHT;
     match kind {
         // Lowest point h − 1.85·ry with ry = min(0.95 r, 0.45 h).
-        TreeSpecies::Round if h - 1.85 * 0.45 * h < CLEAR_HEIGHT => {
-            (room / (1.85 * 0.95)).max(0.0)
-        }
+        TreeSpecies::Round if h - 1.85 * 0.45 * h < CLEAR_HEIGHT => (room / (1.85 * 0.95)).max(0.0),
         TreeSpecies::Round => f64::INFINITY,
         // Lowest point h − 2·ry with ry = min(0.45 r, 0.3 h).
         TreeSpecies::Spreading if h - 2.0 * 0.3 * h < CLEAR_HEIGHT => (room / 0.9).max(0.0),

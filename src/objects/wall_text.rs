@@ -44,6 +44,8 @@ pub const SPACING: f64 = 0.2;
 pub const ROAD_REACH: f64 = 2.0;
 /// Gap kept between a plate and a window box, in metres.
 pub const WINDOW_MARGIN: f64 = 0.15;
+/// Draws of a plate (words, size, style, font) tried before a plate is left out.
+pub const REDRAWS: u32 = 24;
 /// Share of hard (low-contrast) painted text, as for plates.
 const HARD_SHARE: f64 = text_colours::HARD_SHARE;
 
@@ -119,21 +121,31 @@ impl Walls {
         }
         let mut placed: Vec<Placed> = Vec::new();
         for _ in 0..spec.count {
-            let text = words(spec, &list, rng);
-            let height = uniform(rng, spec.letter_height);
-            let style = pick_style(rng);
-            let font = match TextFont::ALL[rng.random_range(0..TextFont::ALL.len())] {
-                // Hairline serifs painted on brick do not read: paint the slab serif instead.
-                TextFont::Serif if style == PlateStyle::Painted => TextFont::Slab,
-                font => font,
-            };
-            let plate = TextPlate::measure(&text, text_plate::letter_px(height), font, style);
-            let metres_per_px = height / f64::from(plate.letter_px);
-            let size = [
-                f64::from(plate.width) * metres_per_px,
-                f64::from(plate.height) * metres_per_px,
-            ];
-            let Some((w, rect)) = self.find_spot(rng, size, style) else {
+            // A plate that fits no free wall is drawn again, new words, size, style and
+            // font, up to REDRAWS times: the walls' free room bounds `count`, not the first
+            // draw's luck (the redraws favour smaller plates a little).
+            let mut fitted = None;
+            for _ in 0..REDRAWS {
+                let text = words(spec, &list, rng);
+                let height = uniform(rng, spec.letter_height);
+                let style = pick_style(rng);
+                let font = match TextFont::ALL[rng.random_range(0..TextFont::ALL.len())] {
+                    // Hairline serifs painted on brick do not read: paint the slab serif.
+                    TextFont::Serif if style == PlateStyle::Painted => TextFont::Slab,
+                    font => font,
+                };
+                let plate = TextPlate::measure(&text, text_plate::letter_px(height), font, style);
+                let metres_per_px = height / f64::from(plate.letter_px);
+                let size = [
+                    f64::from(plate.width) * metres_per_px,
+                    f64::from(plate.height) * metres_per_px,
+                ];
+                if let Some((w, rect)) = self.find_spot(rng, size, style) {
+                    fitted = Some((text, style, plate, metres_per_px, w, rect));
+                    break;
+                }
+            }
+            let Some((text, style, plate, metres_per_px, w, rect)) = fitted else {
                 continue;
             };
             self.placed.entry(w).or_default().push(rect);
@@ -143,7 +155,10 @@ impl Walls {
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
                     // The floor holds against the wall pixels behind the letters, not only
                     // their mean: brick with light mortar is primed first.
-                    (Background::Wall(text_colours::primed(patch, ink, hard)), ink)
+                    (
+                        Background::Wall(text_colours::primed(patch, ink, hard)),
+                        ink,
+                    )
                 }
                 _ => {
                     let (paper, ink) = text_colours::pair(rng);
@@ -170,7 +185,13 @@ impl Walls {
                 corners,
             });
         }
-        finish_plates(spec, &self.walls, placed, &format!("{}_atlas", spec.label), placing);
+        finish_plates(
+            spec,
+            &self.walls,
+            placed,
+            &format!("{}_atlas", spec.label),
+            placing,
+        );
         Ok(())
     }
 
@@ -251,56 +272,59 @@ pub(crate) fn finish_plates(
     page_name: &str,
     placing: &mut Placing,
 ) {
-        // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
-        // all in parallel, each result in its own slot.
-        let images: Vec<RgbImage> = placed
-            .par_iter()
-            .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
-            .collect();
-        let sizes: Vec<[u32; 2]> = placed
-            .iter()
-            .map(|p| [p.plate.width, p.plate.height])
-            .collect();
-        let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
-        let pages: Vec<Texture> = (0..atlas.pages.len())
-            .into_par_iter()
-            .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
-            .collect();
-        let materials: Vec<u32> = pages
-            .iter()
-            .enumerate()
-            .map(|(i, page)| {
-                let name = format!("{page_name}_{i}");
-                placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
-            })
-            .collect();
-        for (i, p) in placed.into_iter().enumerate() {
-            let material = materials[atlas.slots[i].page];
-            let object = SceneObject {
-                name: p.name,
-                class: spec.label.clone(),
-                meshes: vec![plate_mesh(
-                    &walls[p.wall],
-                    p.rect,
-                    material,
-                    atlas.uv_spans(i),
-                )],
-            };
-            placing.push(
-                object,
-                ObjectInfo {
-                    label: spec.label.clone(),
-                    text: Some(p.text),
-                    corners: p.corners,
-                    attributes: text_attributes(&p.plate),
-                },
-            );
-        }
+    // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
+    // all in parallel, each result in its own slot.
+    let images: Vec<RgbImage> = placed
+        .par_iter()
+        .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
+        .collect();
+    let sizes: Vec<[u32; 2]> = placed
+        .iter()
+        .map(|p| [p.plate.width, p.plate.height])
+        .collect();
+    let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
+    let pages: Vec<Texture> = (0..atlas.pages.len())
+        .into_par_iter()
+        .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
+        .collect();
+    let materials: Vec<u32> = pages
+        .iter()
+        .enumerate()
+        .map(|(i, page)| {
+            let name = format!("{page_name}_{i}");
+            placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
+        })
+        .collect();
+    for (i, p) in placed.into_iter().enumerate() {
+        let material = materials[atlas.slots[i].page];
+        let object = SceneObject {
+            name: p.name,
+            class: spec.label.clone(),
+            meshes: vec![plate_mesh(
+                &walls[p.wall],
+                p.rect,
+                material,
+                atlas.uv_spans(i),
+            )],
+        };
+        placing.push(
+            object,
+            ObjectInfo {
+                label: spec.label.clone(),
+                text: Some(p.text),
+                corners: p.corners,
+                attributes: text_attributes(&p.plate),
+            },
+        );
+    }
 }
 
 /// The words an entry draws from: its `words_file`'s, else the built-in list. Errors when
 /// the file is missing from the driver's reads or holds no word.
-pub(crate) fn word_source(spec: &ObjectSpec, placing: &Placing) -> Result<Vec<String>, ObjectsError> {
+pub(crate) fn word_source(
+    spec: &ObjectSpec,
+    placing: &Placing,
+) -> Result<Vec<String>, ObjectsError> {
     match &spec.words_file {
         None => Ok(WORDS.iter().map(|w| (*w).to_owned()).collect()),
         Some(file) => {

@@ -6,8 +6,10 @@ use serde::{Deserialize, Serialize};
 
 /// One class of inserted objects. Keys that do not apply to the `kind` are ignored.
 ///
-/// `count` objects are attempted; when the city has no room for them all (walls too short,
-/// strips too crowded), fewer are placed and the build reports the shortfall.
+/// `count` objects are attempted; one that does not fit is drawn again a few times (other
+/// words and size, another body, another species); when the city still has no room for
+/// them all (walls, curbs or strips nearly full), fewer are placed and the build reports
+/// the shortfall.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
