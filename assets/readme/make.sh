@@ -16,7 +16,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
 bin="${1:-$repo/target/release/cityspec}"
 work="${WORK:-/dev/shm/readme-pictures}"
-frame="${FRAME:-000003}"
+frame="${FRAME:-000010}"
 if ! convert -version 2>/dev/null | grep -q ImageMagick; then
     echo "make.sh: needs ImageMagick's convert (apt-get install imagemagick)" >&2
     exit 1
