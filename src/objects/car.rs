@@ -19,7 +19,7 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::{GroundSpots, RoadSlot};
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
-use super::{ATTEMPTS, Placing, trig};
+use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
 use crate::scene::ROAD_Y;
 use crate::scene::street_profile::StreetProfile;
@@ -247,7 +247,11 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
     } else {
         &spec.bodies
     };
+    let mut misses = 0;
     for _ in 0..spec.count {
+        if misses >= GIVE_UP {
+            break;
+        }
         // A vehicle that finds no room (a bus needs a 12 m gap at the curb) is drawn again,
         // body, paint and lane, up to REDRAWS times: the streets' room bounds `count`, not
         // the first draw's luck (so buses and trucks thin out a little on full streets).
@@ -296,8 +300,10 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             }
         }
         let Some((spot, shape, half, paint, cargo)) = fitted else {
+            misses += 1;
             continue;
         };
+        misses = 0;
         let paints = Paints {
             paint: paint_material(placing, paint),
             cargo: paint_material(placing, cargo),

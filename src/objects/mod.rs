@@ -60,6 +60,11 @@ pub use word_list::{WORDS, parse_words};
 /// How many random spots an object tries before it is left out.
 pub const ATTEMPTS: u32 = 40;
 
+/// Text, car and tree entries stop after this many objects in a row found no room even
+/// with their redraws: the walls, curbs or strips are full, and trying the rest of a huge
+/// `count` would only burn time (the shortfall is reported as ever).
+pub const GIVE_UP: u32 = 16;
+
 /// A file set an object entry names, as the build driver read it: a user model's OBJ, MTL
 /// and textures, or a text entry's word file (its bytes in `obj`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

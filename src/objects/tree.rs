@@ -28,7 +28,7 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::{Footprint, GroundSpots};
 use super::vehicle_parts::{Solid, finish_all};
-use super::{ATTEMPTS, Placing, trig};
+use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
 use crate::scene::KERB_Y;
 use crate::spec::{ObjectSpec, TreeSpecies};
@@ -81,9 +81,14 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         .collect();
     // Crowns of this entry's curbside trees: (centre, radius).
     let mut canopies: Vec<([f64; 2], f64)> = Vec::new();
+    let mut misses = 0;
     for _ in 0..spec.count {
+        if misses >= GIVE_UP {
+            break;
+        }
         // A tree that finds no room is drawn again (species, height, strip or plaza) up to
         // REDRAWS times: the strips' room bounds `count`, not the first draw's luck.
+        misses += 1;
         for _ in 0..REDRAWS {
             let kind = species[rng.random_range(0..species.len())];
             let t: f64 = rng.random();
@@ -142,6 +147,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
             let name = placing.name("tree");
             placing.push_plain(name, &spec.label, meshes);
+            misses = 0;
             break;
         }
     }

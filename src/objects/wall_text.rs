@@ -24,7 +24,9 @@ use super::plate_style::{PlateStyle, SHOP_BAND};
 use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
-use super::{ATTEMPTS, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words};
+use super::{
+    ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
+};
 use crate::model::{SceneObject, Texture};
 use crate::scene::buildings::{building_heights, facade_choice};
 use crate::scene::mesh_builder::MeshBuilder;
@@ -120,7 +122,11 @@ impl Walls {
             return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
+        let mut misses = 0;
         for _ in 0..spec.count {
+            if misses >= GIVE_UP {
+                break;
+            }
             // A plate that fits no free wall is drawn again, new words, size, style and
             // font, up to REDRAWS times: the walls' free room bounds `count`, not the first
             // draw's luck (the redraws favour smaller plates a little).
@@ -146,8 +152,10 @@ impl Walls {
                 }
             }
             let Some((text, style, plate, metres_per_px, w, rect)) = fitted else {
+                misses += 1;
                 continue;
             };
+            misses = 0;
             self.placed.entry(w).or_default().push(rect);
             let (background, ink) = match (style, self.wall_patch(w, rect, &plate, placing)) {
                 (PlateStyle::Painted, Some(patch)) => {
