@@ -51,8 +51,8 @@ pub fn coco(
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
 ///   it; or `null`) and, for text objects, `text` (the plate's whole text: COCO stays one
 ///   annotation per plate, whose mask is the plate; ICDAR has the words) and `attributes`
-///   `{text_font, text_style}` (style `shop`, `banner` or `painted`); for a sign seen from the
-///   front `attributes` `{"sign_type": "stop"}`. A sign seen from behind is not its
+///   `{text_font, text_style}` (style `shop`, `banner`, `painted` or `street`); for a sign
+///   seen from the front `attributes` `{"sign_type": "stop"}`. A sign seen from behind is not its
 ///   category: it takes the category `<label>_back` when that is listed, else it is left out.
 ///
 /// Keys are written in that order, one image, category or annotation per line. Intrinsics

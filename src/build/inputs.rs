@@ -212,7 +212,9 @@ pub fn mesh_files(
     let mut meshes = BTreeMap::new();
     let mut digest = Sha256::new();
     for (index, object) in spec.objects.iter().enumerate() {
-        if let (ObjectKind::Text, Some(words)) = (object.kind, &object.words_file) {
+        if let (ObjectKind::Text | ObjectKind::StreetName, Some(words)) =
+            (object.kind, &object.words_file)
+        {
             if !meshes.contains_key(words) {
                 let bytes = words_file(spec_path, words, index)?;
                 for part in [words.as_bytes(), &bytes[..]] {

@@ -21,6 +21,12 @@ pub const ATTEMPTS: u32 = 12;
 /// road or a sidewalk, never in a wall.
 pub const CLEARANCE: f64 = 0.75;
 
+/// Steepest line of sight from the eye up (or down) to the object, degrees. A person or a
+/// car camera looks at a shop sign from across the street, not from under it: an eye that
+/// would see its object steeper steps back along its bearing (within the path's distance
+/// range) until the sight is this steep, or is dropped.
+pub const MAX_ELEVATION: f64 = 20.0;
+
 /// An object a camera may aim at.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ObjectTarget {
@@ -56,8 +62,10 @@ pub struct ObjectView {
 /// Up to [`ATTEMPTS`] candidate views for each of `path.frames` frames. Attempt `a` of
 /// frame `i` draws from `rng::stream(seed, "cameras/objects", i · ATTEMPTS + a)`, in order:
 /// the object (uniformly among `targets`), the distance, the bearing, then the aim. A
-/// candidate whose eye is outside the layout or within [`CLEARANCE`] of a block is
-/// dropped, so a frame may get fewer candidates, or none. The pose's recorded heading and
+/// candidate whose line of sight is steeper than [`MAX_ELEVATION`] steps back to that
+/// elevation if the distance range allows, else it is dropped; a candidate whose eye is
+/// outside the layout or within [`CLEARANCE`] of a block is dropped, so a frame may get
+/// fewer candidates, or none. The pose's recorded heading and
 /// pitch are the aim's turn off the line of sight.
 ///
 /// No candidates at all without targets or with a parameter out of range
@@ -80,6 +88,7 @@ pub fn object_views(
         return Vec::new();
     }
     let attempts = u64::from(ATTEMPTS);
+    let tan_max_elevation = libm::tan(MAX_ELEVATION.to_radians());
     (0..u64::from(path.frames))
         .map(|frame| {
             (0..attempts)
@@ -87,18 +96,23 @@ pub fn object_views(
                     let mut stream = rng::stream(seed, "cameras/objects", frame * attempts + a);
                     let pick = (unit(stream.next_u64()) * targets.len() as f64) as usize;
                     let target = &targets[pick.min(targets.len() - 1)];
-                    let distance = path.distance.at(unit(stream.next_u64()));
+                    let drawn = path.distance.at(unit(stream.next_u64()));
                     let turn = unit(stream.next_u64());
                     let (bearing, from) = match target.front {
                         Some(front) => (path.angle.at(turn), front),
                         None => (360.0 * turn - 180.0, [0.0, -1.0]),
                     };
                     let out = turned(from, bearing);
+                    let angles = path.aim.draw(&mut stream);
+                    let rise = (target.centre[1] - angles.height).abs();
+                    let distance = drawn.max(rise / tan_max_elevation);
+                    if distance > path.distance.ends()[1] * (1.0 + 1e-9) {
+                        return None;
+                    }
                     let ground = [
                         target.centre[0] + out[0] * distance,
                         target.centre[2] + out[1] * distance,
                     ];
-                    let angles = path.aim.draw(&mut stream);
                     if !free(layout, m, ground) {
                         return None;
                     }
@@ -263,5 +277,38 @@ mod tests {
             object_views(&layout(), 1.0, &[lamp, TEXT], &turned, 9)
         );
         assert!(object_views(&layout(), 1.0, &[], &turned, 9).is_empty());
+    }
+
+    #[test]
+    fn high_objects_are_seen_from_far_enough_back_or_not_at_all() {
+        // A plate 12 m up: from 4–8 m away the sight would be 52–69° steep; stepping back
+        // to 20° needs 28.6 m, beyond the range, so none of these views exist…
+        let high = ObjectTarget {
+            centre: [50.0, 12.0, 40.0],
+            ..TEXT
+        };
+        let near = path(ValueRange::Fixed(0.0));
+        let views = object_views(&layout(), 1.0, &[high], &near, 4);
+        assert!(views.iter().all(|f| f.is_empty()));
+        // …while a range reaching 35 m gives views, none steeper than 20°.
+        let far = ObjectsPath {
+            distance: ValueRange::Between([4.0, 35.0]),
+            ..near
+        };
+        let views = object_views(&layout(), 1.0, &[high], &far, 4);
+        let mut n = 0;
+        for v in views.iter().flatten() {
+            let p = v.pose;
+            let flat = ((p.eye[0] - 50.0).powi(2) + (p.eye[2] - 40.0).powi(2)).sqrt();
+            let rise = 12.0 - p.eye[1];
+            // Poses are written to the millimetre.
+            assert!(
+                rise <= flat * libm::tan(MAX_ELEVATION.to_radians()) + 5e-3,
+                "{p:?}"
+            );
+            assert!(flat <= 35.0 + 5e-3);
+            n += 1;
+        }
+        assert!(n > 20, "{n}");
     }
 }

@@ -19,7 +19,7 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::{GroundSpots, RoadSlot};
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
-use super::{ATTEMPTS, Placing, trig};
+use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::geometry::{ROAD_Y, StreetProfile};
 use crate::model::Mesh;
 use crate::spec::{CarBody, ObjectSpec};
@@ -28,6 +28,8 @@ use crate::spec::{CarBody, ObjectSpec};
 pub const CAMERA_LANE: f64 = 4.0;
 /// Room a lane car keeps from that line, metres.
 pub const CAMERA_CLEARANCE: f64 = 1.0;
+/// Draws of a vehicle (body, paint, parked or not) tried before one is left out.
+pub const REDRAWS: u32 = 12;
 /// Gap a parked car keeps from the curb, metres.
 pub const CURB_GAP: f64 = 0.25;
 
@@ -244,47 +246,63 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
     } else {
         &spec.bodies
     };
+    let mut misses = 0;
     for _ in 0..spec.count {
-        let body = bodies[rng.random_range(0..bodies.len())];
-        let paint = rng.random_range(0..PAINTS.len());
-        let cargo = if rng.random::<f64>() < 0.6 {
-            0
-        } else {
-            rng.random_range(0..PAINTS.len())
-        };
-        let parked = rng.random::<f64>() < spec.parked;
-        let lane_pick: f64 = rng.random();
-        let shape = Shape::of(body);
-        let half = [shape.length / 2.0, shape.width / 2.0];
-        let slot = |width: f64| {
-            let profile = StreetProfile::of(width);
-            if parked {
-                let offset = profile.half - CURB_GAP - half[1];
-                (offset > half[1]).then_some(RoadSlot {
-                    half,
-                    offset,
-                    crossing_clearance: 5.0,
-                    gap: 0.4,
-                })
+        if misses >= GIVE_UP {
+            break;
+        }
+        // A vehicle that finds no room (a bus needs a 12 m gap at the curb) is drawn again,
+        // body, paint and lane, up to REDRAWS times: the streets' room bounds `count`, not
+        // the first draw's luck (so buses and trucks thin out a little on full streets).
+        let mut fitted = None;
+        for _ in 0..REDRAWS {
+            let body = bodies[rng.random_range(0..bodies.len())];
+            let paint = rng.random_range(0..PAINTS.len());
+            let cargo = if rng.random::<f64>() < 0.6 {
+                0
             } else {
-                let free: Vec<f64> = (0..profile.lanes)
-                    .map(|k| profile.lane_centre(k))
-                    .filter(|c| (c - CAMERA_LANE).abs() >= half[1] + CAMERA_CLEARANCE)
-                    .filter(|c| c + half[1] <= profile.half - profile.parking)
-                    .collect();
-                // `lane_pick` < 1, so the index is in range.
-                let offset = *free.get((lane_pick * free.len() as f64) as usize)?;
-                Some(RoadSlot {
-                    half,
-                    offset,
-                    crossing_clearance: 1.0,
-                    gap: 2.5,
-                })
+                rng.random_range(0..PAINTS.len())
+            };
+            let parked = rng.random::<f64>() < spec.parked;
+            let lane_pick: f64 = rng.random();
+            let shape = Shape::of(body);
+            let half = [shape.length / 2.0, shape.width / 2.0];
+            let slot = |width: f64| {
+                let profile = StreetProfile::of(width);
+                if parked {
+                    let offset = profile.half - CURB_GAP - half[1];
+                    (offset > half[1]).then_some(RoadSlot {
+                        half,
+                        offset,
+                        crossing_clearance: 5.0,
+                        gap: 0.4,
+                    })
+                } else {
+                    let free: Vec<f64> = (0..profile.lanes)
+                        .map(|k| profile.lane_centre(k))
+                        .filter(|c| (c - CAMERA_LANE).abs() >= half[1] + CAMERA_CLEARANCE)
+                        .filter(|c| c + half[1] <= profile.half - profile.parking)
+                        .collect();
+                    // `lane_pick` < 1, so the index is in range.
+                    let offset = *free.get((lane_pick * free.len() as f64) as usize)?;
+                    Some(RoadSlot {
+                        half,
+                        offset,
+                        crossing_clearance: 1.0,
+                        gap: 2.5,
+                    })
+                }
+            };
+            if let Some(spot) = spots.road(rng, ATTEMPTS, slot) {
+                fitted = Some((spot, shape, half, paint, cargo));
+                break;
             }
-        };
-        let Some(spot) = spots.road(rng, ATTEMPTS, slot) else {
+        }
+        let Some((spot, shape, half, paint, cargo)) = fitted else {
+            misses += 1;
             continue;
         };
+        misses = 0;
         let paints = Paints {
             paint: paint_material(placing, paint),
             cargo: paint_material(placing, cargo),

@@ -37,6 +37,14 @@ pub struct GroundSpots<'a> {
     taken: Vec<Footprint>,
 }
 
+/// A street corner, in metres (x east, z south), and the horizontal and vertical road that
+/// meet there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Corner {
+    pub position: [f64; 2],
+    pub roads: [u32; 2],
+}
+
 /// Ground an object takes, in metres (x east, z south).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Footprint {
@@ -99,6 +107,14 @@ impl<'a> GroundSpots<'a> {
     /// Half the strip's width, in metres.
     pub fn strip_half(&self) -> f64 {
         self.strip_px / 2.0 * self.mpp
+    }
+
+    /// Gives back the ground `spot` took (the last taken): its caller found it unfit.
+    pub fn release(&mut self, spot: Spot) {
+        let last = self.taken.last();
+        if matches!(last, Some(Footprint::Circle(p, _)) if *p == spot.position) {
+            self.taken.pop();
+        }
     }
 
     /// Takes `footprint` if it overlaps nothing taken; whether it did.
@@ -177,9 +193,23 @@ impl<'a> GroundSpots<'a> {
 
     /// A free mid-strip spot for an object of `radius` metres, or None after `attempts`.
     pub fn strip(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
+        let mid = self.strip_half();
+        self.strip_at(rng, radius, mid, attempts)
+    }
+
+    /// A free strip spot `from_curb` metres from the curb for an object of `radius`
+    /// metres, or None after `attempts`.
+    pub fn strip_at(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: f64,
+        attempts: u32,
+    ) -> Option<Spot> {
+        let strip = self.strip_px;
+        let offset = from_curb / self.mpp;
         (0..attempts).find_map(|_| {
             let (road, high, along) = self.pick_road(rng)?;
-            let offset = self.strip_px / 2.0;
             let across = if high {
                 road.edges[1] + offset
             } else {
@@ -187,11 +217,8 @@ impl<'a> GroundSpots<'a> {
             };
             let px = image_point(road, along, across);
             // One pixel past the strip's far edge must be a block: a real strip, not a gap.
-            let behind = image_point(
-                road,
-                along,
-                across + if high { offset + 1.0 } else { -offset - 1.0 },
-            );
+            let beyond = strip - offset + 1.0;
+            let behind = image_point(road, along, across + if high { beyond } else { -beyond });
             if !self.inside_image(px) || self.on_road(px, 0.0) || !self.in_block(behind) {
                 return None;
             }
@@ -227,6 +254,47 @@ impl<'a> GroundSpots<'a> {
             }
             self.take(road, high, px, radius)
         })
+    }
+
+    /// The street corners: where the strips of a horizontal and a vertical road that cross
+    /// (or meet) touch, half a strip from both curbs, with a block pixel diagonally behind.
+    /// In (horizontal road, vertical road, north-west, north-east, south-west, south-east)
+    /// order. Nothing is taken.
+    pub fn corners(&self) -> Vec<Corner> {
+        let roads = &self.layout.roads;
+        let half = self.strip_px / 2.0;
+        let mut out = Vec::new();
+        for h in roads.iter().filter(|r| r.axis == Axis::Horizontal) {
+            for v in roads.iter().filter(|r| r.axis == Axis::Vertical) {
+                let (hr, vr) = (&self.rects[h.id as usize], &self.rects[v.id as usize]);
+                if !hr.overlaps(vr) {
+                    continue;
+                }
+                for (sz, sx) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+                    let x = if sx < 0.0 {
+                        vr.x[0] - half
+                    } else {
+                        vr.x[1] + half
+                    };
+                    let z = if sz < 0.0 {
+                        hr.y[0] - half
+                    } else {
+                        hr.y[1] + half
+                    };
+                    let behind = [x + sx * (half + 1.0), z + sz * (half + 1.0)];
+                    if self.inside_image([x, z])
+                        && !self.on_road([x, z], 0.0)
+                        && self.in_block(behind)
+                    {
+                        out.push(Corner {
+                            position: [x * self.mpp, z * self.mpp],
+                            roads: [h.id, v.id],
+                        });
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// A road (uniform among the roads), a side and an along-position on it.

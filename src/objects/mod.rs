@@ -9,17 +9,20 @@
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
 //! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
 //! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of four species (`tree` module) |
+//! | street_name | `street_pole_0002` (class `pole`) + four `text_0140`… | at a street corner, half a strip from both curbs | a pole and two stacked double-sided plates naming the two streets (`street_names` module) |
 //!
 //! Every object's class is its spec entry's `label`. Entry `i` draws from
 //! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
-//! finds no free spot in [`ATTEMPTS`] tries is left out: `count` is an upper bound.
+//! finds no free spot in [`ATTEMPTS`] tries is drawn again (text: new words, size, style;
+//! cars: a new body; trees: a new species and size) a few times, then left out: `count` is
+//! met until the walls, curbs or strips are nearly full, and is an upper bound.
 //!
 //! No `sin`/`cos` from std: angles go through `trig`, a fixed polynomial, so the output is
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
 mod atlas_layout;
 mod car;
@@ -28,6 +31,7 @@ pub mod obj_lines;
 mod objects_error;
 mod plate_style;
 mod sign_face;
+mod street_names;
 #[cfg(test)]
 mod tests;
 mod text_colours;
@@ -54,6 +58,11 @@ pub use word_list::{WORDS, parse_words};
 
 /// How many random spots an object tries before it is left out.
 pub const ATTEMPTS: u32 = 40;
+
+/// Text, car and tree entries stop after this many objects in a row found no room even
+/// with their redraws: the walls, curbs or strips are full, and trying the rest of a huge
+/// `count` would only burn time (the shortfall is reported as ever).
+pub const GIVE_UP: u32 = 16;
 
 /// A file set an object entry names, as the build driver read it: a user model's OBJ, MTL
 /// and textures, or a text entry's word file (its bytes in `obj`).
@@ -105,7 +114,8 @@ pub struct Inserted {
     pub info: Vec<ObjectInfo>,
     /// The faces of the traffic signs, by index in `objects`.
     pub sign_faces: BTreeMap<usize, SignFace>,
-    /// Per spec entry, how many objects it placed (at most its `count`).
+    /// Per spec entry, how many objects it placed (at most its `count`); poles for a
+    /// street-name entry.
     pub placed: Vec<u32>,
 }
 
@@ -244,6 +254,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
         let before = placing.out.objects.len();
+        let mut poles = None;
         match spec.kind {
             ObjectKind::Text => walls.place(spec, &mut rng, &mut placing)?,
             ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
@@ -252,9 +263,19 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             }
             ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::StreetName => {
+                poles = Some(street_names::place(
+                    spec,
+                    &mut rng,
+                    &mut spots,
+                    &mut placing,
+                )?);
+            }
         }
-        let placed = placing.out.objects.len() - before;
-        placing.out.placed.push(placed as u32);
+        // A street-name entry counts poles (each carries four text faces); the others
+        // count objects.
+        let placed = poles.unwrap_or((placing.out.objects.len() - before) as u32);
+        placing.out.placed.push(placed);
     }
     let (textures, materials) = placing.book.finish();
     placing.out.textures = textures;

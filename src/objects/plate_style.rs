@@ -5,6 +5,7 @@
 //! | `shop` | a framed sign board | low on the wall, its bottom edge within [`SHOP_BAND`] of [`super::wall_text::MIN_HEIGHT`]: above the shop windows and doors |
 //! | `banner` | a cloth strip with coloured hems top and bottom | anywhere on the free wall |
 //! | `painted` | letters painted straight on the wall, no plate | anywhere on the free wall |
+//! | `street` | a street-name plate with a thin border near its edge | on a pole at a street corner (`street_name` entries) |
 
 use image::{Rgb, RgbImage};
 
@@ -17,6 +18,7 @@ pub enum PlateStyle {
     Shop,
     Banner,
     Painted,
+    Street,
 }
 
 impl PlateStyle {
@@ -32,6 +34,7 @@ impl PlateStyle {
             PlateStyle::Shop => "shop",
             PlateStyle::Banner => "banner",
             PlateStyle::Painted => "painted",
+            PlateStyle::Street => "street",
         }
     }
 
@@ -41,6 +44,7 @@ impl PlateStyle {
             PlateStyle::Shop => [0.45, 0.35],
             PlateStyle::Banner => [0.4, 0.5],
             PlateStyle::Painted => [0.15, 0.1],
+            PlateStyle::Street => [0.4, 0.3],
         }
     }
 
@@ -74,6 +78,16 @@ impl PlateStyle {
                 fill(0, 0, w, hem, mix);
                 fill(0, h - hem, w, h, mix);
             }
+            PlateStyle::Street => {
+                // A thin border in the ink colour close to the plate's edge.
+                let t = (letter / 16).max(1);
+                let inset = t;
+                let [x0, y0, x1, y1] = [inset, inset, w - inset, h - inset];
+                fill(x0, y0, x1, y0 + t, ink);
+                fill(x0, y1 - t, x1, y1, ink);
+                fill(x0, y0, x0 + t, y1, ink);
+                fill(x1 - t, y0, x1, y1, ink);
+            }
             PlateStyle::Painted => {}
         }
     }
@@ -85,7 +99,12 @@ mod tests {
 
     #[test]
     fn decorations_stay_outside_the_text_box() {
-        for style in [PlateStyle::Shop, PlateStyle::Banner, PlateStyle::Painted] {
+        for style in [
+            PlateStyle::Shop,
+            PlateStyle::Banner,
+            PlateStyle::Painted,
+            PlateStyle::Street,
+        ] {
             let [px, py] = style.padding().map(|p| (40.0 * p) as u32);
             let text_box = [px, py, px + 200, py + 40];
             let mut image = RgbImage::from_pixel(200 + 2 * px, 40 + 2 * py, Rgb([250; 3]));

@@ -86,6 +86,7 @@ fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
             ObjectKind::Mesh => "mesh",
             ObjectKind::Car => "car",
             ObjectKind::Tree => "tree",
+            ObjectKind::StreetName => "street_name",
         }
     ))
     .unwrap()
@@ -907,25 +908,67 @@ fn cars_and_trees_never_overlap_anything_standing() {
         spec(ObjectKind::Tree, "tree", 200),
         spec(ObjectKind::Car, "car", 400),
     ];
-    let inserted = run(&city, &specs).unwrap();
-    // Ground boxes (x0, x1, z0, z1) of every object, from its vertices.
+    // At the example specs' scale: 4.4 m strips, so big crowns stand at the curb.
+    let mpp = 0.55;
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    // Ground boxes (x0, x1, z0, z1) and heights (y0, y1) of meshes, from their vertices.
+    let bounds = |meshes: &[crate::model::Mesh]| {
+        let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+        let mut y = [f64::MAX, f64::MIN];
+        for p in meshes.iter().flat_map(|m| &m.positions) {
+            let p = p.map(f64::from);
+            b = [
+                b[0].min(p[0]),
+                b[1].max(p[0]),
+                b[2].min(p[2]),
+                b[3].max(p[2]),
+            ];
+            y = [y[0].min(p[1]), y[1].max(p[1])];
+        }
+        (b, y)
+    };
+    // A tree stands on its trunk (its first mesh): a curbside crown reaches over the
+    // parking lane, above the cars (checked below).
     let boxes: Vec<(&str, [f64; 4])> = inserted
         .objects
         .iter()
         .map(|o| {
-            let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-            for p in o.meshes.iter().flat_map(|m| &m.positions) {
-                let p = p.map(f64::from);
-                b = [
-                    b[0].min(p[0]),
-                    b[1].max(p[0]),
-                    b[2].min(p[2]),
-                    b[3].max(p[2]),
-                ];
-            }
-            (o.class.as_str(), b)
+            let standing = if o.class == "tree" {
+                &o.meshes[..1]
+            } else {
+                &o.meshes[..]
+            };
+            (o.class.as_str(), bounds(standing).0)
         })
         .collect();
+    let car_tops: Vec<([f64; 4], f64)> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "car")
+        .map(|o| {
+            let (b, y) = bounds(&o.meshes);
+            (b, y[1])
+        })
+        .collect();
+    let mut over_cars = 0;
+    for crown in inserted.objects.iter().filter(|o| o.class == "tree") {
+        let (c, y) = bounds(&crown.meshes[1..]);
+        for (b, top) in &car_tops {
+            if c[0] < b[1] && b[0] < c[1] && c[2] < b[3] && b[2] < c[3] {
+                over_cars += 1;
+                assert!(
+                    y[0] >= top + 0.5,
+                    "crown from {} over a car {top} tall",
+                    y[0]
+                );
+            }
+        }
+    }
+    assert!(over_cars > 0, "no crown reaches over a parked car");
     let cars: Vec<[f64; 4]> = boxes.iter().filter(|b| b.0 == "car").map(|b| b.1).collect();
     let trees = boxes.iter().filter(|b| b.0 == "tree").count();
     assert!(
@@ -956,7 +999,11 @@ fn cars_and_trees_never_overlap_anything_standing() {
     // Every car stands wholly on a road.
     for c in &cars {
         let on_road = city.layout.roads.iter().any(|r| {
-            let rect = RoadRect::of(r);
+            let px = RoadRect::of(r);
+            let rect = RoadRect {
+                x: px.x.map(|v| v * mpp),
+                y: px.y.map(|v| v * mpp),
+            };
             rect.x[0] <= c[0] + 0.05
                 && c[1] - 0.05 <= rect.x[1]
                 && rect.y[0] <= c[2] + 0.05
@@ -964,4 +1011,50 @@ fn cars_and_trees_never_overlap_anything_standing() {
         });
         assert!(on_road, "{c:?}");
     }
+}
+
+#[test]
+fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
+    let city = city();
+    let specs = [ObjectSpec {
+        letter_height: [0.18, 0.24],
+        ..spec(ObjectKind::StreetName, "text", 12)
+    }];
+    let inserted = run(&city, &specs).unwrap();
+    assert_eq!(inserted.placed, [12]);
+    let poles = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "pole")
+        .count();
+    let texts: Vec<usize> = (0..inserted.objects.len())
+        .filter(|&i| inserted.objects[i].class == "text")
+        .collect();
+    assert_eq!((poles, texts.len()), (12, 48));
+    // Each plate face: a name and a suffix, two word quads, above the pole's top, the
+    // street style; the two faces of a plate look opposite ways.
+    let mut names = BTreeSet::new();
+    for &i in &texts {
+        let info = &inserted.info[i];
+        let text = info.text.as_deref().unwrap();
+        let (word, suffix) = text.split_once(' ').unwrap();
+        assert!(super::street_names::SUFFIXES.contains(&suffix), "{text}");
+        assert!(!word.is_empty());
+        names.insert(text.to_owned());
+        assert_eq!(info.corners.len(), 2, "{text}");
+        assert_eq!(info.attributes["text_style"], "street");
+        for quad in &info.corners {
+            for p in quad {
+                assert!(p[1] > KERB_Y + super::street_names::POLE_HEIGHT, "{p:?}");
+            }
+        }
+    }
+    // One name per road: at most as many names as roads.
+    assert!(names.len() <= city.layout.roads.len(), "{names:?}");
+    assert!(names.len() >= 2);
+    // Placing is deterministic; a larger count than corners falls short, never panics.
+    assert_eq!(run(&city, &specs).unwrap(), inserted);
+    let many = [spec(ObjectKind::StreetName, "text", 10_000)];
+    let all = run(&city, &many).unwrap();
+    assert!(all.placed[0] > 12 && all.placed[0] < 10_000);
 }

@@ -6,6 +6,7 @@
 //! the same bits on every platform); next to WCAG's exact curve it moves a ratio by a few
 //! percent at most, which does not matter for a floor.
 
+use image::{Rgb, RgbImage};
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
@@ -62,6 +63,73 @@ pub fn ink_for(rng: &mut Pcg64, background: f64, hard: bool) -> [u8; 3] {
     }
 }
 
+/// Share of a wall patch's pixels allowed below the floor against the ink (mortar lines,
+/// window reveals): the floor holds against the rest.
+pub const PATCH_QUANTILE: f64 = 0.1;
+
+/// How far a painted patch is faded towards a flat ground coat when the raw wall does not
+/// keep the floor against the ink: the first of these that does is used.
+const PRIMER_STEPS: [f64; 4] = [0.35, 0.6, 0.8, 1.0];
+
+/// The wall patch behind painted text, primed where the raw wall fails the floor: the
+/// contrast of `ink` against the patch pixel at [`PATCH_QUANTILE`] from the ink's side
+/// (the darkest tenth for light ink, the lightest for dark) must reach
+/// [`CONTRAST_FLOOR`]. Where it does not, the patch is faded towards a ground coat (the
+/// patch's mean colour lightened behind dark ink, darkened behind light ink), as sign
+/// painters prime a brick wall, in [`PRIMER_STEPS`]; a plain white or black coat if even the
+/// full coat fails. A hard pair keeps the raw wall.
+pub fn primed(patch: RgbImage, ink: [u8; 3], hard: bool) -> RgbImage {
+    if hard || patch.width() == 0 || patch.height() == 0 {
+        return patch;
+    }
+    let ink_l = luminance(ink);
+    let n = f64::from(patch.width() * patch.height());
+    let mean: [u8; 3] = std::array::from_fn(|c| {
+        (patch.pixels().map(|p| f64::from(p.0[c])).sum::<f64>() / n).round() as u8
+    });
+    let mean_l = patch.pixels().map(|p| luminance(p.0)).sum::<f64>() / n;
+    let dark_ink = ink_l < mean_l;
+    if worst_contrast(&patch, ink_l, dark_ink) >= CONTRAST_FLOOR {
+        return patch;
+    }
+    let coat: [u8; 3] = std::array::from_fn(|c| {
+        let v = f64::from(mean[c]);
+        if dark_ink {
+            v + (255.0 - v) * 0.8
+        } else {
+            v * 0.2
+        }
+        .round() as u8
+    });
+    for a in PRIMER_STEPS {
+        let mut faded = patch.clone();
+        for p in faded.pixels_mut() {
+            p.0 = std::array::from_fn(|c| {
+                (f64::from(p.0[c]) * (1.0 - a) + f64::from(coat[c]) * a).round() as u8
+            });
+        }
+        if worst_contrast(&faded, ink_l, dark_ink) >= CONTRAST_FLOOR {
+            return faded;
+        }
+    }
+    let plain = if dark_ink { [255; 3] } else { [0; 3] };
+    RgbImage::from_pixel(patch.width(), patch.height(), Rgb(plain))
+}
+
+/// The ink's contrast against the patch pixel [`PATCH_QUANTILE`] in from the ink's side.
+fn worst_contrast(patch: &RgbImage, ink: f64, dark_ink: bool) -> f64 {
+    let mut lums: Vec<f64> = patch.pixels().map(|p| luminance(p.0)).collect();
+    lums.sort_by(f64::total_cmp);
+    let k = ((lums.len() - 1) as f64 * PATCH_QUANTILE) as usize;
+    // Dark ink is hurt by the darkest background pixels, light ink by the lightest.
+    let near = if dark_ink {
+        lums[k]
+    } else {
+        lums[lums.len() - 1 - k]
+    };
+    contrast(ink, near)
+}
+
 /// A colour: mostly saturated hues at any lightness, some greys and near-whites/blacks, as
 /// signs and paints come.
 fn colour(rng: &mut Pcg64) -> [u8; 3] {
@@ -91,6 +159,34 @@ mod tests {
         let low = ratios.iter().filter(|&&c| c < CONTRAST_FLOOR).count();
         assert!(low > n / 20 && low < n / 6, "{low} of {n} below the floor");
         assert!(ratios.iter().all(|&c| c >= HARD_RANGE[0]));
+    }
+
+    #[test]
+    fn primed_patches_keep_the_floor_and_hard_ones_stay_raw() {
+        // Brick: dark red courses with light mortar lines, one row in four.
+        let brick = RgbImage::from_fn(60, 40, |_, y| {
+            Rgb(if y % 4 == 0 {
+                [200, 195, 185]
+            } else {
+                [110, 45, 30]
+            })
+        });
+        let mut rng = crate::rng::stream(3, "text_colours_test", 1);
+        let mut primed_some = 0;
+        for _ in 0..200 {
+            let mean_l = brick.pixels().map(|p| luminance(p.0)).sum::<f64>() / 2400.0;
+            let ink = ink_for(&mut rng, mean_l, false);
+            let out = primed(brick.clone(), ink, false);
+            let dark = luminance(ink) < mean_l;
+            assert!(
+                worst_contrast(&out, luminance(ink), dark) >= CONTRAST_FLOOR,
+                "{ink:?}"
+            );
+            primed_some += usize::from(out != brick);
+            assert_eq!(primed(brick.clone(), ink, true), brick);
+        }
+        // Light ink on dark brick keeps the raw wall only when the mortar allows it.
+        assert!(primed_some > 0);
     }
 
     #[test]

@@ -10,17 +10,25 @@
 //!
 //! Lobes are subdivided octahedra (32 faces) whose corners are pushed in or out at random,
 //! so no two crowns are alike. A `plazas` share of the trees stands on the blocks' open
-//! paving, clear of every building by its crown; the rest stand mid-strip beside a road,
-//! their crowns kept inside the strip (never over the road or a block). Trees take a
-//! circle as wide as their crown ([`super::ground_spots::Footprint::Circle`]), so they never
-//! overlap lamps, signs, cars, benches or each other.
+//! paving, clear of every building by its crown, taking a circle as wide as the crown
+//! ([`super::ground_spots::Footprint::Circle`]). The rest line the streets:
+//!
+//! - a broadleaf tree whose crown can stay [`CLEAR_HEIGHT`] above the ground stands
+//!   [`CURB_SETBACK`] from the curb, as street trees do, and its crown (up to
+//!   [`MAX_STREET_CROWN`]) reaches over the parking lane, high above cars, vans and buses,
+//!   never past the strip's far side; it takes a [`TRUNK_ROOM`] circle of ground, and its
+//!   crown keeps clear of the lamps' arms and of other crowns;
+//! - any other (conifers, small or young trees) stands mid-strip, its crown inside the
+//!   strip, taking a circle as wide as the crown.
+//!
+//! So trees never overlap lamps, signs, cars, benches or each other.
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ground_spots::{Footprint, GroundSpots};
 use super::vehicle_parts::{Solid, finish_all};
-use super::{ATTEMPTS, Placing, trig};
+use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::geometry::KERB_Y;
 use crate::model::Mesh;
 use crate::spec::{ObjectSpec, TreeSpecies};
@@ -29,6 +37,18 @@ use crate::spec::{ObjectSpec, TreeSpecies};
 pub const MAX_PLAZA_CROWN: f64 = 3.5;
 /// Room a plaza tree's crown keeps from a building, metres.
 pub const BUILDING_CLEARANCE: f64 = 0.3;
+/// Draws of a tree tried before one is left out.
+pub const REDRAWS: u32 = 4;
+/// Lowest a crown reaching over the road may hang, metres above the sidewalk: over a bus.
+pub const CLEAR_HEIGHT: f64 = 4.5;
+/// Distance of a curbside tree's trunk from the curb, metres.
+pub const CURB_SETBACK: f64 = 1.0;
+/// Largest crown radius of a curbside tree, metres.
+pub const MAX_STREET_CROWN: f64 = 3.3;
+/// Ground a curbside tree's trunk takes (its tree pit), radius in metres.
+pub const TRUNK_ROOM: f64 = 0.6;
+/// Room a curbside crown keeps from a lamp's pole (its arm runs over the road), metres.
+pub const LAMP_ROOM: f64 = 0.6;
 
 const BARK: [f32; 3] = [0.08, 0.055, 0.035];
 /// Three leaf shades per species (linear RGB), in [`TreeSpecies::ALL`] order.
@@ -50,40 +70,103 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         &spec.species
     };
     let strip_crown = spots.strip_half() - 0.15;
+    // The far side of the strip bounds a curbside crown as well.
+    let street_crown = MAX_STREET_CROWN.min(2.0 * spots.strip_half() - CURB_SETBACK - 0.15);
+    let mpp = placing.input.metres_per_pixel;
+    let lamps: Vec<[f64; 2]> = placing
+        .input
+        .lamps
+        .iter()
+        .map(|l| [l.position[0] * mpp, l.position[1] * mpp])
+        .collect();
+    // Crowns of this entry's curbside trees: (centre, radius).
+    let mut canopies: Vec<([f64; 2], f64)> = Vec::new();
+    let mut misses = 0;
     for _ in 0..spec.count {
-        let kind = species[rng.random_range(0..species.len())];
-        let t: f64 = rng.random();
-        let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
-        let shade = rng.random_range(0..3usize);
-        let in_plaza = rng.random::<f64>() < spec.plazas;
-        let max_crown = if in_plaza {
-            MAX_PLAZA_CROWN
-        } else {
-            strip_crown
-        };
-        if max_crown.is_nan() || max_crown <= 0.5 {
-            continue;
+        if misses >= GIVE_UP {
+            break;
         }
-        let crown = crown_radius(kind, height).min(max_crown);
-        let foot = if in_plaza {
-            plaza_spot(rng, crown, spots, placing)
-        } else {
-            spots.strip(rng, crown + 0.1, ATTEMPTS).map(|s| s.position)
-        };
-        let Some(foot) = foot else {
-            continue;
-        };
-        let k = TreeSpecies::ALL
-            .iter()
-            .position(|&s| s == kind)
-            .unwrap_or(0);
-        let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
-            (LEAVES[k][shade], None)
-        });
-        let bark = placing.material("tree_bark", || (BARK, None));
-        let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
-        let name = placing.name("tree");
-        placing.push_plain(name, &spec.label, meshes);
+        // A tree that finds no room is drawn again (species, height, strip or plaza) up to
+        // REDRAWS times: the strips' room bounds `count`, not the first draw's luck.
+        misses += 1;
+        for _ in 0..REDRAWS {
+            let kind = species[rng.random_range(0..species.len())];
+            let t: f64 = rng.random();
+            let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
+            let shade = rng.random_range(0..3usize);
+            let in_plaza = rng.random::<f64>() < spec.plazas;
+            let kerbside = crown_radius(kind, height)
+                .min(street_crown)
+                .min(clear_crown(kind, height));
+            let curbside = !in_plaza && kerbside > strip_crown;
+            let max_crown = if in_plaza {
+                MAX_PLAZA_CROWN
+            } else if curbside {
+                kerbside
+            } else {
+                strip_crown
+            };
+            if max_crown.is_nan() || max_crown <= 0.5 {
+                continue;
+            }
+            let crown = crown_radius(kind, height).min(max_crown);
+            let foot = if in_plaza {
+                plaza_spot(rng, crown, spots, placing)
+            } else if curbside {
+                (0..ATTEMPTS).find_map(|_| {
+                    let spot = spots.strip_at(rng, TRUNK_ROOM, CURB_SETBACK, 1)?;
+                    let p = spot.position;
+                    let far = |q: [f64; 2], room: f64| {
+                        let (dx, dz) = (p[0] - q[0], p[1] - q[1]);
+                        dx * dx + dz * dz >= room * room
+                    };
+                    let free = lamps.iter().all(|&l| far(l, crown + LAMP_ROOM))
+                        && canopies.iter().all(|&(c, r)| far(c, crown + r));
+                    if free {
+                        canopies.push((p, crown));
+                        Some(p)
+                    } else {
+                        spots.release(spot);
+                        None
+                    }
+                })
+            } else {
+                spots.strip(rng, crown + 0.1, ATTEMPTS).map(|s| s.position)
+            };
+            let Some(foot) = foot else {
+                continue;
+            };
+            let k = TreeSpecies::ALL
+                .iter()
+                .position(|&s| s == kind)
+                .unwrap_or(0);
+            let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
+                (LEAVES[k][shade], None)
+            });
+            let bark = placing.material("tree_bark", || (BARK, None));
+            let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
+            let name = placing.name("tree");
+            placing.push_plain(name, &spec.label, meshes);
+            misses = 0;
+            break;
+        }
+    }
+}
+
+/// The largest crown radius a tree of `kind` and `height` may have with its crown's lowest
+/// point at least [`CLEAR_HEIGHT`] up (from the lobe layout in [`tree_meshes`]); 0 when
+/// none does (conifers reach down to a fifth of their height, columnar crowns to 0.28).
+fn clear_crown(kind: TreeSpecies, height: f64) -> f64 {
+    let h = height;
+    let room = h - CLEAR_HEIGHT;
+    match kind {
+        // Lowest point h − 1.85·ry with ry = min(0.95 r, 0.45 h).
+        TreeSpecies::Round if h - 1.85 * 0.45 * h < CLEAR_HEIGHT => (room / (1.85 * 0.95)).max(0.0),
+        TreeSpecies::Round => f64::INFINITY,
+        // Lowest point h − 2·ry with ry = min(0.45 r, 0.3 h).
+        TreeSpecies::Spreading if h - 2.0 * 0.3 * h < CLEAR_HEIGHT => (room / 0.9).max(0.0),
+        TreeSpecies::Spreading => f64::INFINITY,
+        TreeSpecies::Columnar | TreeSpecies::Conifer => 0.0,
     }
 }
 

@@ -8,8 +8,9 @@
 //! window). A wall with another building between it and the road does not face the road.
 //! Each plate draws a style ([`PlateStyle::WALL_MIX`]), a font ([`TextFont::ALL`]) and a
 //! colour pair ([`text_colours`]); painted text is drawn straight onto the wall's own
-//! pixels. An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material
-//! per page, each plate's uvs covering its own rectangle.
+//! pixels, primed where the raw wall fails the contrast floor ([`text_colours::primed`]).
+//! An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material per
+//! page, each plate's uvs covering its own rectangle.
 
 use std::collections::BTreeMap;
 
@@ -23,7 +24,9 @@ use super::plate_style::{PlateStyle, SHOP_BAND};
 use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
-use super::{ATTEMPTS, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words};
+use super::{
+    ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
+};
 use crate::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{SceneObject, Texture};
 use crate::spec::{ObjectSpec, TextCase};
@@ -40,6 +43,8 @@ pub const SPACING: f64 = 0.2;
 pub const ROAD_REACH: f64 = 2.0;
 /// Gap kept between a plate and a window box, in metres.
 pub const WINDOW_MARGIN: f64 = 0.15;
+/// Draws of a plate (words, size, style, font) tried before a plate is left out.
+pub const REDRAWS: u32 = 24;
 /// Share of hard (low-contrast) painted text, as for plates.
 const HARD_SHARE: f64 = text_colours::HARD_SHARE;
 
@@ -67,15 +72,15 @@ pub struct Wall {
 }
 
 /// A plate placed on a wall, waiting for its place on an atlas page.
-struct Placed {
-    name: String,
-    wall: usize,
-    rect: [f64; 4],
-    plate: TextPlate,
-    background: Background,
-    ink: [u8; 3],
-    text: String,
-    corners: Vec<[[f64; 3]; 4]>,
+pub(crate) struct Placed {
+    pub name: String,
+    pub wall: usize,
+    pub rect: [f64; 4],
+    pub plate: TextPlate,
+    pub background: Background,
+    pub ink: [u8; 3],
+    pub text: String,
+    pub corners: Vec<[[f64; 3]; 4]>,
 }
 
 /// The walls facing roads, and the plates placed on each so far: `[u0, y0, u1, y1]`.
@@ -108,50 +113,57 @@ impl Walls {
         rng: &mut Pcg64,
         placing: &mut Placing,
     ) -> Result<(), ObjectsError> {
-        let user: Option<Vec<String>> = match &spec.words_file {
-            None => None,
-            Some(file) => {
-                let missing = || ObjectsError::MissingWords { file: file.clone() };
-                let bytes = &placing.input.meshes.get(file).ok_or_else(missing)?.obj;
-                let words = parse_words(&String::from_utf8_lossy(bytes));
-                if words.is_empty() {
-                    return Err(missing());
-                }
-                Some(words)
-            }
-        };
-        let list: Vec<&str> = match &user {
-            Some(words) => words.iter().map(String::as_str).collect(),
-            None => WORDS.to_vec(),
-        };
+        let source = word_source(spec, placing)?;
+        let list: Vec<&str> = source.iter().map(String::as_str).collect();
         if self.walls.is_empty() {
             return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
+        let mut misses = 0;
         for _ in 0..spec.count {
-            let text = words(spec, &list, rng);
-            let height = uniform(rng, spec.letter_height);
-            let style = pick_style(rng);
-            let font = match TextFont::ALL[rng.random_range(0..TextFont::ALL.len())] {
-                // Hairline serifs painted on brick do not read: paint the slab serif instead.
-                TextFont::Serif if style == PlateStyle::Painted => TextFont::Slab,
-                font => font,
-            };
-            let plate = TextPlate::measure(&text, text_plate::letter_px(height), font, style);
-            let metres_per_px = height / f64::from(plate.letter_px);
-            let size = [
-                f64::from(plate.width) * metres_per_px,
-                f64::from(plate.height) * metres_per_px,
-            ];
-            let Some((w, rect)) = self.find_spot(rng, size, style) else {
+            if misses >= GIVE_UP {
+                break;
+            }
+            // A plate that fits no free wall is drawn again, new words, size, style and
+            // font, up to REDRAWS times: the walls' free room bounds `count`, not the first
+            // draw's luck (the redraws favour smaller plates a little).
+            let mut fitted = None;
+            for _ in 0..REDRAWS {
+                let text = words(spec, &list, rng);
+                let height = uniform(rng, spec.letter_height);
+                let style = pick_style(rng);
+                let font = match TextFont::ALL[rng.random_range(0..TextFont::ALL.len())] {
+                    // Hairline serifs painted on brick do not read: paint the slab serif.
+                    TextFont::Serif if style == PlateStyle::Painted => TextFont::Slab,
+                    font => font,
+                };
+                let plate = TextPlate::measure(&text, text_plate::letter_px(height), font, style);
+                let metres_per_px = height / f64::from(plate.letter_px);
+                let size = [
+                    f64::from(plate.width) * metres_per_px,
+                    f64::from(plate.height) * metres_per_px,
+                ];
+                if let Some((w, rect)) = self.find_spot(rng, size, style) {
+                    fitted = Some((text, style, plate, metres_per_px, w, rect));
+                    break;
+                }
+            }
+            let Some((text, style, plate, metres_per_px, w, rect)) = fitted else {
+                misses += 1;
                 continue;
             };
+            misses = 0;
             self.placed.entry(w).or_default().push(rect);
             let (background, ink) = match (style, self.wall_patch(w, rect, &plate, placing)) {
                 (PlateStyle::Painted, Some(patch)) => {
                     let hard = rng.random::<f64>() < HARD_SHARE;
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
-                    (Background::Wall(patch), ink)
+                    // The floor holds against the wall pixels behind the letters, not only
+                    // their mean: brick with light mortar is primed first.
+                    (
+                        Background::Wall(text_colours::primed(patch, ink, hard)),
+                        ink,
+                    )
                 }
                 _ => {
                     let (paper, ink) = text_colours::pair(rng);
@@ -178,51 +190,13 @@ impl Walls {
                 corners,
             });
         }
-        // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
-        // all in parallel, each result in its own slot.
-        let images: Vec<RgbImage> = placed
-            .par_iter()
-            .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
-            .collect();
-        let sizes: Vec<[u32; 2]> = placed
-            .iter()
-            .map(|p| [p.plate.width, p.plate.height])
-            .collect();
-        let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
-        let pages: Vec<Texture> = (0..atlas.pages.len())
-            .into_par_iter()
-            .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
-            .collect();
-        let materials: Vec<u32> = pages
-            .iter()
-            .enumerate()
-            .map(|(i, page)| {
-                let name = format!("{}_atlas_{i}", spec.label);
-                placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
-            })
-            .collect();
-        for (i, p) in placed.into_iter().enumerate() {
-            let material = materials[atlas.slots[i].page];
-            let object = SceneObject {
-                name: p.name,
-                class: spec.label.clone(),
-                meshes: vec![plate_mesh(
-                    &self.walls[p.wall],
-                    p.rect,
-                    material,
-                    atlas.uv_spans(i),
-                )],
-            };
-            placing.push(
-                object,
-                ObjectInfo {
-                    label: spec.label.clone(),
-                    text: Some(p.text),
-                    corners: p.corners,
-                    attributes: text_attributes(&p.plate),
-                },
-            );
-        }
+        finish_plates(
+            spec,
+            &self.walls,
+            placed,
+            &format!("{}_atlas", spec.label),
+            placing,
+        );
         Ok(())
     }
 
@@ -291,6 +265,82 @@ impl Walls {
             let tv = 1.0 - (height - KERB_Y) / wall.height;
             bilinear(image, tu * iw - 0.5, tv * ih - 0.5)
         }))
+    }
+}
+
+/// Draws the `placed` plates (their `wall` indexing `walls`), packs them onto atlas pages
+/// named `<page_name>_<i>`, one material per page, and pushes one text object per plate.
+pub(crate) fn finish_plates(
+    spec: &ObjectSpec,
+    walls: &[Wall],
+    placed: Vec<Placed>,
+    page_name: &str,
+    placing: &mut Placing,
+) {
+    // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
+    // all in parallel, each result in its own slot.
+    let images: Vec<RgbImage> = placed
+        .par_iter()
+        .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
+        .collect();
+    let sizes: Vec<[u32; 2]> = placed
+        .iter()
+        .map(|p| [p.plate.width, p.plate.height])
+        .collect();
+    let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
+    let pages: Vec<Texture> = (0..atlas.pages.len())
+        .into_par_iter()
+        .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
+        .collect();
+    let materials: Vec<u32> = pages
+        .iter()
+        .enumerate()
+        .map(|(i, page)| {
+            let name = format!("{page_name}_{i}");
+            placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
+        })
+        .collect();
+    for (i, p) in placed.into_iter().enumerate() {
+        let material = materials[atlas.slots[i].page];
+        let object = SceneObject {
+            name: p.name,
+            class: spec.label.clone(),
+            meshes: vec![plate_mesh(
+                &walls[p.wall],
+                p.rect,
+                material,
+                atlas.uv_spans(i),
+            )],
+        };
+        placing.push(
+            object,
+            ObjectInfo {
+                label: spec.label.clone(),
+                text: Some(p.text),
+                corners: p.corners,
+                attributes: text_attributes(&p.plate),
+            },
+        );
+    }
+}
+
+/// The words an entry draws from: its `words_file`'s, else the built-in list. Errors when
+/// the file is missing from the driver's reads or holds no word.
+pub(crate) fn word_source(
+    spec: &ObjectSpec,
+    placing: &Placing,
+) -> Result<Vec<String>, ObjectsError> {
+    match &spec.words_file {
+        None => Ok(WORDS.iter().map(|w| (*w).to_owned()).collect()),
+        Some(file) => {
+            let missing = || ObjectsError::MissingWords { file: file.clone() };
+            let bytes = &placing.input.meshes.get(file).ok_or_else(missing)?.obj;
+            let words = parse_words(&String::from_utf8_lossy(bytes));
+            if words.is_empty() {
+                return Err(missing());
+            }
+            Ok(words)
+        }
     }
 }
 
@@ -483,7 +533,7 @@ fn plate_mesh(
 
 /// Every word's ink box corners: top-left, top-right, bottom-right, bottom-left from the
 /// front.
-fn word_corners(
+pub(crate) fn word_corners(
     wall: &Wall,
     rect: [f64; 4],
     plate: &TextPlate,

@@ -20,7 +20,7 @@ pub(crate) fn check_objects(
     for (i, object) in objects.iter().enumerate() {
         let key = |name: &str| format!("objects[{i}].{name}");
         match object.kind {
-            ObjectKind::Text => {
+            ObjectKind::Text | ObjectKind::StreetName => {
                 check_range(&key("letter_height"), object.letter_height, findings);
                 check_range(&key("words"), object.words, findings);
                 if let Some(words) = &object.words_file {

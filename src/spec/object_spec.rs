@@ -6,15 +6,19 @@ use serde::{Deserialize, Serialize};
 
 /// One class of inserted objects. Keys that do not apply to the `kind` are ignored.
 ///
-/// `count` objects are attempted; when the city has no room for them all (walls too short,
-/// strips too crowded), fewer are placed and the build reports the shortfall.
+/// `count` objects are attempted; one that does not fit is drawn again a few times (other
+/// words and size, another body, another species); when the city still has no room for
+/// them all (walls, curbs or strips nearly full), fewer are placed and the build reports
+/// the shortfall.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
     /// What to insert: `"text"` (words on walls facing a road), `"sign"` (traffic signs on
     /// poles beside the roads), `"mesh"` (a user OBJ model), `"car"` (cars, vans, buses
-    /// and trucks parked at the curbs and standing in the lanes) or `"tree"` (street trees
-    /// in the sidewalk strips and on the blocks' open paving).
+    /// and trucks parked at the curbs and standing in the lanes), `"tree"` (street trees
+    /// in the sidewalk strips and on the blocks' open paving) or `"street_name"`
+    /// (street-name signs on poles at the street corners: two double-sided plates naming
+    /// the two streets, four text objects; `count` counts poles).
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`); a mesh needs one.
@@ -25,18 +29,18 @@ pub struct ObjectSpec {
     #[serde(default = "default_count")]
     #[schemars(range(max = 100000))]
     pub count: u32,
-    /// text: letter height range `[low, high]` in metres.
+    /// text, street_name: letter height range `[low, high]` in metres.
     #[serde(default = "default_letter_height")]
     #[schemars(inner(range(min = 0.05, max = 20.0)))]
     pub letter_height: [f64; 2],
-    /// text: letter case of the words.
+    /// text, street_name: letter case of the words.
     #[serde(default)]
     pub case: TextCase,
     /// text: words per sign, range `[low, high]`.
     #[serde(default = "default_words")]
     #[schemars(inner(range(min = 1, max = 8)))]
     pub words: [u32; 2],
-    /// text: a UTF-8 word file (words separated by spaces or line breaks, lines starting
+    /// text, street_name: a UTF-8 word file (words separated by spaces or line breaks, lines starting
     /// with `#` skipped, at most 1 MiB), relative to the spec's folder; its bytes are part
     /// of the build's cache key. The built-in list of 401 common English words when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -89,7 +93,7 @@ impl ObjectSpec {
     /// The label an entry of `kind` gets when the spec gives none; mesh entries have none.
     pub fn default_label(kind: ObjectKind) -> Option<&'static str> {
         match kind {
-            ObjectKind::Text => Some("text"),
+            ObjectKind::Text | ObjectKind::StreetName => Some("text"),
             ObjectKind::Sign => Some("traffic_sign"),
             ObjectKind::Car => Some("car"),
             ObjectKind::Tree => Some("tree"),
@@ -173,6 +177,7 @@ pub enum ObjectKind {
     Mesh,
     Car,
     Tree,
+    StreetName,
 }
 
 /// Letter case of text objects.
@@ -288,7 +293,7 @@ mod tests {
 
     #[test]
     fn labels_default_to_the_kind_except_for_meshes() {
-        let mut specs: Vec<ObjectSpec> = ["car", "tree", "sign", "text", "mesh"]
+        let mut specs: Vec<ObjectSpec> = ["car", "tree", "sign", "text", "mesh", "street_name"]
             .iter()
             .map(|kind| toml::from_str(&format!("kind = {kind:?}\n")).unwrap())
             .collect();
@@ -297,7 +302,7 @@ mod tests {
         let labels: Vec<&str> = specs.iter().map(|s| s.label.as_str()).collect();
         assert_eq!(
             labels,
-            ["car", "tree", "traffic_sign", "text", "", "vehicle"]
+            ["car", "tree", "traffic_sign", "text", "", "text", "vehicle"]
         );
         assert_eq!(specs[0].parked, 0.75);
         assert_eq!(specs[1].height, [5.0, 10.0]);
