@@ -32,7 +32,7 @@ pub struct PathInput<'a> {
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
-    /// The sun `lighting` was made for, written into poses.json.
+    /// The sun `lighting` was made for, recorded in each frame's `conditions`.
     pub sun: Sun,
     /// With `[lighting] vary = "frame"`: the lighting and sun of frame `i` (instead of
     /// `lighting` and `sun`).
@@ -86,7 +86,6 @@ pub fn render_path<E>(
     let picks = contact_sheet_picks(poses.len());
     let mut sheet = Vec::with_capacity(picks.len());
     let mut coco = CocoWriter::new(input.categories);
-    let mut suns = Vec::with_capacity(poses.len());
     let mut conditions_json = Vec::with_capacity(poses.len());
     for (i, pose) in poses.iter().enumerate() {
         let drawn_sun = input.relight.map(|f| f(i));
@@ -94,7 +93,6 @@ pub fn render_path<E>(
             Some((lighting, sun)) => (lighting, *sun),
             None => (input.lighting, input.sun),
         };
-        suns.push(sun);
         let conditions = sensor::draw(
             input.weather,
             &camera.sensor,
@@ -128,7 +126,8 @@ pub fn render_path<E>(
             &conditions,
         );
         frame.rgb = developed.rgb;
-        let drawn = conditions.to_json(developed.exposure);
+        let mut drawn = conditions.to_json(developed.exposure);
+        drawn["sun"] = sun_json(&sun);
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance: &frame.instance,
@@ -199,9 +198,9 @@ pub fn render_path<E>(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(&suns).zip(conditions_json).enumerate().map(|(i, ((p, sun), c))| json!({
+        "frames": poses.iter().zip(conditions_json).enumerate().map(|(i, (p, c))| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
-            "up": p.up, "angles": p.angles, "sun": sun, "conditions": c
+            "up": p.up, "angles": p.angles, "conditions": c
         })).collect::<Vec<_>>(),
     });
     emit(
@@ -212,18 +211,28 @@ pub fn render_path<E>(
     emit(format!("{dir}/preview.png"), codec::encode_png(&picture))
 }
 
-/// The frame's linear radiance, for the sensor stage.
-///
 /// The lighting under a frame's weather, when it differs from the path's: the sun and
-/// the sky light scaled. (`shadow_strength` is for the renderer's shadows.)
+/// the sky light scaled, shadows weakened.
 fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
-    if light.sun_scale == 1.0 && light.sky_scale == 1.0 {
+    if light.sun_scale == 1.0 && light.sky_scale == 1.0 && light.shadow_strength == 1.0 {
         return None;
     }
     let mut out = lighting.clone();
     out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
     out.ambient = out.ambient.map(|c| c * light.sky_scale);
+    out.shadow_strength *= light.shadow_strength;
     Some(out)
+}
+
+/// The sun a frame was lit by, as its `conditions` record it (degrees, 6 decimals; the
+/// hour only when the sun was set by one).
+fn sun_json(sun: &Sun) -> serde_json::Value {
+    let r = |v: f64| (v * 1e6).round() / 1e6;
+    let mut out = json!({"elevation": r(sun.elevation), "azimuth": r(sun.azimuth)});
+    if let Some(hour) = sun.hour {
+        out["hour"] = json!(r(hour));
+    }
+    out
 }
 
 /// tan(θ/2) for θ in degrees, from Taylor series of sin and cos (only + − × ÷, so the
