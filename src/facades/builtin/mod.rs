@@ -60,7 +60,9 @@ fn facade_file(i: usize) -> FacadeFile {
         .write_image(canvas.photo.as_raw(), w, h, ExtendedColorType::Rgb8)
         .expect("encoding a JPEG into memory cannot fail");
     let mut labels = Vec::new();
-    PngEncoder::new_with_quality(&mut labels, CompressionType::Best, FilterType::Adaptive)
+    // Fast: the loader decodes these masks straight away (the same pixels at any level);
+    // the best compression cost a cold build more time than the rest of the mask's life.
+    PngEncoder::new_with_quality(&mut labels, CompressionType::Fast, FilterType::Adaptive)
         .write_image(canvas.mask.as_raw(), w, h, ExtendedColorType::L8)
         .expect("encoding a PNG into memory cannot fail");
     FacadeFile {
