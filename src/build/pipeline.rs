@@ -628,8 +628,7 @@ impl<'a> Pipeline<'a> {
                     Some(pose) => {
                         let mut intrinsics = render::Intrinsics::from_fov(1280, 960, 0.5);
                         intrinsics.far = span * 4.0;
-                        // One sample per pixel: edges are antialiased from coverage.
-                        render::render(&prepared, pose, &intrinsics, &lighting, 1).rgb
+                        render::render(&prepared, pose, &intrinsics, &lighting, 2).rgb
                     }
                     None => image::RgbImage::new(1280, 960),
                 };
