@@ -617,7 +617,12 @@ impl<'a> Pipeline<'a> {
             |p, (prepared, scene, parsed, lamps, facades)| {
                 // The spec's light; a drawn sun is drawn for the overview on its own.
                 let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, u32::MAX, 0);
-                let lighting = lighting(p.spec, &sun, &scene, &lamps, &facades);
+                // Without ambient occlusion: its metre-wide creases are a pixel or two
+                // from the air, and it would cost the cold build a tenth of a second.
+                let lighting = render::Lighting {
+                    ambient_occlusion: 0.0,
+                    ..lighting(p.spec, &sun, &scene, &lamps, &facades)
+                };
                 let (w, h) = (f64::from(parsed.width), f64::from(parsed.height));
                 let span = (w * w + h * h).sqrt() * p.spec.layout.metres_per_pixel;
                 // The north-east corner of an orbit, 0.6 of the city's diagonal up: the whole

@@ -194,6 +194,15 @@ pub fn render_measuring(
         tiles_x,
         q_range,
     };
+    if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
+        // Nothing reads across tiles: each tile shades as soon as it is rasterized, and
+        // its samples are dropped (a supersampled frame's would be tens of megabytes).
+        let tiles: Vec<TileOut> = (0..bins.len())
+            .into_par_iter()
+            .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx, t), None))
+            .collect();
+        return (assemble(&ctx, &[], &tiles), footprints);
+    }
     let rasters: Vec<TileRaster> = (0..bins.len())
         .into_par_iter()
         .map(|t| tile::raster_tile(&ctx, t))
@@ -271,8 +280,8 @@ fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
         .collect()
 }
 
-/// The frame from its tiles: colours mixed across edges (at one sample per pixel), then
-/// developed; ids and depth as the tiles resolved them.
+/// The frame from its tiles: colours mixed across edges (at one sample per pixel, which
+/// reads `rasters`), then developed; ids and depth as the tiles resolved them.
 fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Frame {
     let (width, height) = (ctx.width, ctx.height);
     let n = width as usize * height as usize;
