@@ -88,5 +88,11 @@ fn weather_and_sensor_change_rgb_only() {
         let quality = conditions["jpeg_quality"].as_f64().unwrap();
         assert!((60.0..=95.0).contains(&quality), "{quality}");
         assert_eq!(&frame["conditions"], conditions);
+        // The sun it was lit by, too.
+        let sun = &conditions["sun"];
+        assert!(
+            sun["elevation"].is_number() && sun["azimuth"].is_number(),
+            "{sun}"
+        );
     }
 }

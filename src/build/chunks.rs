@@ -194,7 +194,7 @@ pub fn assemble(
             let rgb = codec::decode_png(&read(blob)?).map_err(io::Error::other)?;
             sheet.push((rgb, record.sheet));
         }
-        drawn.push((record.sun, record.conditions));
+        drawn.push(record.conditions);
         Ok(())
     })?;
     if drawn.len() != plan.poses.len() {
@@ -297,7 +297,6 @@ impl Tars<'_> {
                 let json = webdataset::sample_json(
                     &record.coco,
                     self.first_ids[i],
-                    &record.sun,
                     &record.conditions,
                 );
                 members.push((format!("{i:06}.json"), Arc::new(json)));

@@ -34,7 +34,7 @@ pub struct PathInput<'a> {
     pub camera: &'a CameraSpec,
     pub scene: &'a PreparedScene,
     pub lighting: &'a Lighting,
-    /// The sun `lighting` was made for, written into poses.json.
+    /// The sun `lighting` was made for, recorded in each frame's `conditions`.
     pub sun: Sun,
     /// With `[lighting] vary = "frame"`: the lighting and sun of frame `i` (instead of
     /// `lighting` and `sun`).
@@ -69,8 +69,7 @@ pub struct PathFrames<'a> {
 #[derive(Debug, Serialize, Deserialize)]
 pub struct FrameRecord {
     pub coco: CocoLines,
-    pub sun: Sun,
-    /// The weather and sensor values the frame drew.
+    /// The weather, sensor and sun values the frame drew.
     pub conditions: Value,
     /// The contact sheet's boxes: `[category, x_min, y_min, x_max, y_max]` of each kept
     /// annotation.
@@ -157,7 +156,8 @@ impl<'a> PathFrames<'a> {
             &conditions,
         );
         frame.rgb = developed.rgb;
-        let drawn = conditions.to_json(developed.exposure);
+        let mut drawn = conditions.to_json(developed.exposure);
+        drawn["sun"] = sun_json(&sun);
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance: &frame.instance,
@@ -206,7 +206,6 @@ impl<'a> PathFrames<'a> {
             .collect();
         Ok(FrameRecord {
             coco: CocoLines::of(input.categories, &summary, &drawn, i as u64 + 1),
-            sun,
             conditions: drawn,
             sheet,
         })
@@ -218,12 +217,12 @@ fn listed(categories: &[Category], c: Option<u32>) -> bool {
     c.is_some_and(|c| categories.iter().any(|k| k.id == c))
 }
 
-/// `poses.json`: the intrinsics, the depth format and every frame's pose, sun and drawn
-/// conditions (`frames` in frame order).
+/// `poses.json`: the intrinsics, the depth format and every frame's pose and drawn
+/// conditions, the sun among them (`conditions` in frame order).
 pub fn poses_json(
     camera: &CameraSpec,
     poses: &[CameraPose],
-    frames: impl IntoIterator<Item = (Sun, Value)>,
+    conditions: impl IntoIterator<Item = Value>,
 ) -> Vec<u8> {
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
     let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
@@ -233,9 +232,9 @@ pub fn poses_json(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(frames).enumerate().map(|(i, (p, (sun, c)))| json!({
+        "frames": poses.iter().zip(conditions).enumerate().map(|(i, (p, c))| json!({
             "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
-            "up": p.up, "angles": p.angles, "sun": sun, "conditions": c
+            "up": p.up, "angles": p.angles, "conditions": c
         })).collect::<Vec<_>>(),
     });
     codec::to_pretty_json(&poses_json)
@@ -250,16 +249,26 @@ pub fn preview_png(frames: Vec<(RgbImage, Vec<[u32; 5]>)>, categories: &[Categor
     codec::encode_png(&sheet.draw(categories))
 }
 
-/// The frame's linear radiance, for the sensor stage.
-///
 /// The lighting under a frame's weather, when it differs from the path's: the sun and
-/// the sky light scaled. (`shadow_strength` is for the renderer's shadows.)
+/// the sky light scaled, shadows weakened.
 fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
-    if light.sun_scale == 1.0 && light.sky_scale == 1.0 {
+    if light.sun_scale == 1.0 && light.sky_scale == 1.0 && light.shadow_strength == 1.0 {
         return None;
     }
     let mut out = lighting.clone();
     out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
     out.ambient = out.ambient.map(|c| c * light.sky_scale);
+    out.shadow_strength *= light.shadow_strength;
     Some(out)
+}
+
+/// The sun a frame was lit by, as its `conditions` record it (degrees, 6 decimals; the
+/// hour only when the sun was set by one).
+fn sun_json(sun: &Sun) -> serde_json::Value {
+    let r = |v: f64| (v * 1e6).round() / 1e6;
+    let mut out = json!({"elevation": r(sun.elevation), "azimuth": r(sun.azimuth)});
+    if let Some(hour) = sun.hour {
+        out["hour"] = json!(r(hour));
+    }
+    out
 }

@@ -14,7 +14,6 @@ use std::io::{self, Write};
 use serde_json::Value;
 
 use crate::annotate::CocoLines;
-use crate::render::Sun;
 
 /// Version of the tar and sample layout (in the path's key with this layout).
 pub const VERSION: u32 = 1;
@@ -40,7 +39,7 @@ pub fn member_frame(member: &str) -> Option<usize> {
 
 /// `NNNNNN.json`: the frame's COCO image entry, its annotations (numbered from
 /// `first_id`, as in `coco.json`), sun and conditions.
-pub fn sample_json(coco: &CocoLines, first_id: u64, sun: &Sun, conditions: &Value) -> Vec<u8> {
+pub fn sample_json(coco: &CocoLines, first_id: u64, conditions: &Value) -> Vec<u8> {
     let mut text = String::from("{\"image\":");
     text.push_str(&coco.image);
     text.push_str(",\"annotations\":[");
@@ -51,9 +50,7 @@ pub fn sample_json(coco: &CocoLines, first_id: u64, sun: &Sun, conditions: &Valu
         let rest = body.strip_prefix('{').unwrap_or(body);
         text.push_str(&format!("{{\"id\":{},{rest}", first_id + n as u64));
     }
-    text.push_str("],\"sun\":");
-    text.push_str(&serde_json::to_string(sun).expect("suns serialize"));
-    text.push_str(",\"conditions\":");
+    text.push_str("],\"conditions\":");
     text.push_str(&conditions.to_string());
     text.push_str("}\n");
     text.into_bytes()

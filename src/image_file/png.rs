@@ -10,7 +10,7 @@ use image::{EncodableLayout, ImageBuffer, Pixel, PixelWithColorType};
 pub enum PngEffort {
     /// For what is written on every build (textures, frames): quick, larger files.
     Fast,
-    /// For what is made once and kept (the builtin facades' label masks): small files.
+    /// Small files, slow: for what is written once and kept long.
     Best,
 }
 

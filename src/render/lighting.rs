@@ -35,6 +35,11 @@ pub struct Lighting {
     pub sun_colour: [f32; 3],
     /// Whether the sun casts shadows (a shadow map of the whole scene).
     pub shadows: bool,
+    /// How dark shadows are: 1 keeps none of the sun in shadow, 0 casts none. Overcast,
+    /// fog and rain lower it (the sun's disk is diffused; see `sensor::weather_light`).
+    pub shadow_strength: f32,
+    /// Strength of the screen-space ambient occlusion on the ambient light, 0–1 (0 is off).
+    pub ambient_occlusion: f32,
     /// Lamp lights after dusk (empty by day).
     pub lights: Vec<Light>,
     /// Scale of the materials' emissive colours: 1 at night (lamp heads glow), 0 by day.
@@ -51,6 +56,8 @@ pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
 const GROUND_ALBEDO: f32 = 0.2;
 /// Colour of a street lamp at full strength.
 pub const LAMP_COLOUR: [f32; 3] = [1.6, 1.25, 0.8];
+/// Default strength of the ambient occlusion.
+pub const AMBIENT_OCCLUSION: f32 = 1.0;
 /// Colour of a lit window.
 pub const WINDOW_COLOUR: [f32; 3] = [1.0, 0.82, 0.5];
 
@@ -110,6 +117,8 @@ impl Lighting {
             sun_direction: d.map(|v| v as f32),
             sun_colour,
             shadows: true,
+            shadow_strength: 1.0,
+            ambient_occlusion: AMBIENT_OCCLUSION,
             lights,
             emission: dark,
             windows,

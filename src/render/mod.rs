@@ -16,11 +16,12 @@
 //! - **Instance ids**: object index in [`crate::model::Scene::objects`] + 1, up to 24 bits
 //!   ([`MAX_OBJECTS`]); 0 = sky. The ids PNG packs them into RGB as COCO panoptic does:
 //!   `id = R + 256·G + 256²·B`.
-//! - **Colour**: `albedo · (ambient + sun_colour · max(0, n·sun) + Σ lights colour ·
-//!   (1 − (d/r)²)² · max(0, n·l)) + emissive · emission`, plus a glow on lit windows, in
-//!   linear light; `albedo = base colour · texture`. Written as 8-bit sRGB through a fixed
-//!   table. (The lamp term is multiplied by the albedo like the sun: a red wall under a
-//!   white lamp looks red.)
+//! - **Colour**: `albedo · (ambient · ao + sun_colour · max(0, n·sun) · lit + Σ lights
+//!   colour · (1 − (d/r)²)² · max(0, n·l)) + emissive · emission`, plus a glow on lit
+//!   windows, in linear light; `ao` is the ambient occlusion, `lit = 1 − shadow_strength ·
+//!   (1 − the shadow map's share of the sun)`; `albedo = base colour · texture`. Written
+//!   as 8-bit sRGB through a fixed table. (The lamp term is multiplied by the albedo
+//!   like the sun: a red wall under a white lamp looks red.)
 //!
 //! # Pipeline of one frame
 //!
@@ -34,18 +35,26 @@
 //!    (rayon), each owning its pixels: depth test on interpolated 1/w, then each visible
 //!    sample is shaded once, with perspective-correct uv and trilinear mipmapped texture
 //!    sampling whose level comes from the per-pixel screen-space derivatives of u/w, v/w and
-//!    1/w. Textures repeat.
-//! 5. With supersampling `s`, each pixel holds `s × s` samples: colour is their mean,
-//!    instance id and depth come from the sample nearest the centre, so ids stay exact.
+//!    1/w. Textures repeat. Visibility (step 4's depth test) runs for every tile first,
+//!    then the ambient occlusion `ao` of each pixel is measured on the whole frame's
+//!    depth buffer (`ambient_occlusion`: screen space, why in its docs), then tiles shade.
+//! 5. At one sample per pixel (the default), edges are antialiased from coverage: where a
+//!    real edge (two objects, an object and the sky, a fold) crosses a pixel, its colour
+//!    mixes with the neighbour's across the edge by the share of the pixel beyond it
+//!    (`edge_aa`). With supersampling `s`, each pixel holds `s × s` samples instead:
+//!    colour is their mean. Either way, instance id and depth come from the sample
+//!    nearest the centre, so ids stay exact.
 //!
 //! Floating-point work uses only + − × ÷, sqrt, floor/ceil/round, min/max: the bytes are
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
+mod ambient_occlusion;
 mod camera_pose;
 pub mod develop;
+mod edge_aa;
 mod footprint;
 mod frame;
 mod intrinsics;
@@ -72,7 +81,9 @@ pub use camera_pose::CameraPose;
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
-pub use lighting::{LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour};
+pub use lighting::{
+    AMBIENT_OCCLUSION, LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour,
+};
 pub use lit_windows::LitWindows;
 pub use prepared_scene::{MAX_OBJECTS, PreparedScene, prepare};
 pub use render_error::RenderError;
@@ -80,19 +91,22 @@ pub use scene_lighting::lighting_for;
 pub use sky::Sky;
 pub use sun::{Sun, solar_position};
 
-use image::{ImageBuffer, Luma, Rgb, RgbImage};
+use image::{ImageBuffer, Luma, RgbImage};
 use rayon::prelude::*;
 
+use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
 use screen_triangle::ScreenTri;
-use tile::{FrameContext, FrameLight, TILE, TileOut};
+use tile::{FrameContext, FrameLight, TILE, TileOut, TileRaster};
 use view::View;
 
 /// Largest supersampling factor; larger requests are clamped to it.
 pub const MAX_SUPERSAMPLE: u32 = 4;
 
-/// Renders one frame. `supersample` 1 = none, 2 = 2×2 per pixel (colour averaged; instance
-/// and depth from the sample nearest the pixel centre, so ids stay exact); 0 counts as 1,
+/// Renders one frame. `supersample` 1 = one sample per pixel with edges antialiased from
+/// coverage, 2 = 2×2 per pixel (colour averaged; instance and depth from the sample
+/// nearest the pixel centre, so ids stay exact either way); 0 = one sample per pixel
+/// without antialiasing (hard, jagged edges: for comparison and measurement);
 /// more than [`MAX_SUPERSAMPLE`] as that. Unusable intrinsics (non-positive focal length
 /// or near distance, far ≤ near) or a pose whose eye is its target give a frame of sky.
 pub fn render(
@@ -118,6 +132,7 @@ pub fn render_measuring(
     measure: &[u32],
 ) -> (Frame, Vec<Footprint>) {
     let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
+    let antialias_edges = supersample == 1;
     let (width, height) = (intrinsics.width, intrinsics.height);
     let Some(view) = View::new(pose, intrinsics, samples) else {
         return (sky_frame(width, height, lighting), Vec::new());
@@ -173,16 +188,32 @@ pub fn render_measuring(
         windows: windows.as_ref(),
         shadows: shadows.as_deref(),
         samples,
+        antialias_edges,
         width,
         height,
         tiles_x,
         q_range,
     };
-    let tiles: Vec<TileOut> = (0..bins.len())
+    if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
+        // Nothing reads across tiles: each tile shades as soon as it is rasterized, and
+        // its samples are dropped (a supersampled frame's would be tens of megabytes).
+        let tiles: Vec<TileOut> = (0..bins.len())
+            .into_par_iter()
+            .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx, t), None))
+            .collect();
+        return (assemble(&ctx, &[], &tiles), footprints);
+    }
+    let rasters: Vec<TileRaster> = (0..bins.len())
         .into_par_iter()
-        .map(|t| tile::render_tile(&ctx, t))
+        .map(|t| tile::raster_tile(&ctx, t))
         .collect();
-    (assemble(width, height, &tiles), footprints)
+    let ao = (lighting.ambient_occlusion > 0.0)
+        .then(|| ambient_occlusion::visibility(&ctx, &rasters, lighting.ambient_occlusion));
+    let tiles: Vec<TileOut> = rasters
+        .par_iter()
+        .map(|r| tile::shade_tile(&ctx, r, ao.as_deref()))
+        .collect();
+    (assemble(&ctx, &rasters, &tiles), footprints)
 }
 
 /// Triangle indices per tile, in scene order.
@@ -249,9 +280,17 @@ fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
         .collect()
 }
 
-fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
-    let mut rgb = RgbImage::new(width, height);
-    let mut linear = vec![[0f32; 3]; width as usize * height as usize];
+/// The frame from its tiles: colours mixed across edges (at one sample per pixel, which
+/// reads `rasters`), then developed; ids and depth as the tiles resolved them.
+fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Frame {
+    let (width, height) = (ctx.width, ctx.height);
+    let n = width as usize * height as usize;
+    let mut linear = vec![[0f32; 3]; n];
+    let mut edges = if ctx.antialias_edges {
+        vec![EdgeHint::NONE; n]
+    } else {
+        Vec::new()
+    };
     let mut instance = ImageBuffer::new(width, height);
     let mut depth = ImageBuffer::new(width, height);
     for t in tiles {
@@ -261,18 +300,55 @@ fn assemble(width: u32, height: u32, tiles: &[TileOut]) -> Frame {
             .enumerate()
         {
             debug_assert_eq!(k, ((y - t.rect[1]) * tw + (x - t.rect[0])) as usize);
-            rgb.put_pixel(
-                x,
-                y,
-                Rgb([t.rgb[3 * k], t.rgb[3 * k + 1], t.rgb[3 * k + 2]]),
-            );
-            linear[(y * width + x) as usize] = t.linear[k];
+            let p = (y * width + x) as usize;
+            linear[p] = t.linear[k];
+            if let Some(&e) = t.edges.get(k) {
+                edges[p] = e;
+            }
             instance.put_pixel(x, y, Luma([t.instance[k]]));
             depth.put_pixel(x, y, Luma([t.depth[k]]));
         }
     }
+    if !edges.is_empty() {
+        let w = width as usize;
+        // The triangle at output pixel p's centre (one sample per pixel).
+        let triangle = |p: usize| {
+            let (x, y) = (p % w, p / w);
+            let tile = y / TILE as usize * ctx.tiles_x as usize + x / TILE as usize;
+            let r = &rasters[tile];
+            r.id[r.centre(x - r.rect[0] as usize, y - r.rect[1] as usize, 1)]
+        };
+        let ids = instance.as_raw();
+        // A real edge: two objects, an object and the sky, or a fold of one surface.
+        let real = |p: usize, q: usize| {
+            if ids[p] != ids[q] {
+                return true;
+            }
+            let (a, b) = (triangle(p), triangle(q));
+            if a == b || a == tile::NOTHING || b == tile::NOTHING {
+                return a != b;
+            }
+            let normal = |t: u32| ctx.scene.triangles[ctx.tris[t as usize].source as usize].normal;
+            let (m, n) = (normal(a), normal(b));
+            m[0] * n[0] + m[1] * n[1] + m[2] * n[2] < 0.999
+        };
+        linear = edge_aa::resolve(&linear, &edges, w, real);
+    }
+    let table = srgb::srgb();
+    let exposure = ctx.lighting.exposure;
+    let mut bytes = vec![0u8; n * 3];
+    bytes
+        .par_chunks_mut(width as usize * 3)
+        .zip(linear.par_chunks(width as usize))
+        .for_each(|(out, row)| {
+            for (o, c) in out.chunks_exact_mut(3).zip(row) {
+                for k in 0..3 {
+                    o[k] = table.to_srgb8(develop::tone(c[k] * exposure));
+                }
+            }
+        });
     Frame {
-        rgb,
+        rgb: RgbImage::from_raw(width, height, bytes).expect("width × height pixels"),
         linear,
         instance,
         depth,

@@ -12,7 +12,7 @@ use super::view::{View, plane};
 use crate::geometry::dot;
 
 /// Fixed-point subpixel steps per pixel.
-const SUB: i64 = 256;
+pub(crate) const SUB: i64 = 256;
 
 /// A triangle ready to rasterize at the internal resolution.
 pub(crate) struct ScreenTri {

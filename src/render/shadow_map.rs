@@ -6,7 +6,8 @@
 //!   least [`MIN_TEXEL`]). Every frame under the same sun reads the same map, so shadows
 //!   cannot crawl as the camera moves.
 //! - **Content**: per texel, the largest `p · sun` (the surface nearest the sun) over every
-//!   triangle covering the texel centre, both faces. A max does not depend on the order
+//!   triangle covering the texel centre, both faces, except flat ground at the scene's
+//!   lowest level (it can shade nothing). A max does not depend on the order
 //!   of the triangles, and bands of rows are rasterized in parallel, each owning its rows.
 //! - **Test** at a surface point `p` with normal `n`: `p` is moved one texel along `n`
 //!   (normal offset), then compared with a bias of `texel · (0.5 + 2 · tan θ)` (slope
@@ -98,9 +99,23 @@ impl ShadowMap {
                 })
             })
             .collect();
+        // Flat ground at the scene's lowest level shades nothing (nothing lies below it to
+        // receive its shadow) and is the largest area to fill: left out, its texels read
+        // as lit, as anything at or above it found them anyway.
+        let floor = scene
+            .objects
+            .iter()
+            .map(|o| o.min[1])
+            .fold(f64::INFINITY, f64::min);
+        let is_floor = |t: &super::prepared_scene::Triangle| {
+            t.normal[1] > 0.999 && t.p.iter().all(|p| f64::from(p[1]) <= floor + 1e-4)
+        };
         let bands = height.div_ceil(BAND);
         let mut bins = vec![Vec::new(); bands];
         for (i, t) in tris.iter().enumerate() {
+            if is_floor(&scene.triangles[i]) {
+                continue;
+            }
             let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);
             let y1 = t.iter().map(|v| v[1]).fold(f64::NEG_INFINITY, f64::max);
             let (b0, b1) = (

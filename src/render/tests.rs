@@ -109,6 +109,8 @@ pub(super) fn flat() -> Lighting {
         sun_direction: [0.0, 1.0, 0.0],
         sun_colour: [0.0; 3],
         shadows: false,
+        shadow_strength: 1.0,
+        ambient_occlusion: 0.0,
         lights: Vec::new(),
         emission: 0.0,
         windows: None,
@@ -254,7 +256,8 @@ fn a_quad_in_front_of_the_camera_covers_the_expected_pixels() {
     };
     let prepared = prepare(&scene).unwrap();
     let k = coverage_view_intrinsics();
-    let frame = render(&prepared, &pose([0.0; 3], [0.0, 0.0, -1.0]), &k, &flat(), 1);
+    // Without antialiasing (0): the rasterizer's own coverage, pixel by pixel.
+    let frame = render(&prepared, &pose([0.0; 3], [0.0, 0.0, -1.0]), &k, &flat(), 0);
     for (x, y, p) in frame.instance.enumerate_pixels() {
         let inside = (16..48).contains(&x) && (16..48).contains(&y);
         assert_eq!(p.0[0] != 0, inside, "({x}, {y})");
@@ -781,8 +784,55 @@ fn supersampling_smooths_colour_but_keeps_ids_exact() {
     let k = Intrinsics::from_fov(32, 32, 0.5);
     let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
     let grey = |f: &Frame| f.linear.iter().filter(|p| p[0] > 0.0 && p[0] < 1.0).count();
-    assert_eq!(grey(&render(&prepared, &eye, &k, &flat(), 1)), 0);
+    assert_eq!(grey(&render(&prepared, &eye, &k, &flat(), 0)), 0);
     assert!(grey(&render(&prepared, &eye, &k, &flat(), 2)) > 10);
+}
+
+#[test]
+fn edge_antialiasing_greys_edges_and_keeps_ids_and_depth_exact() {
+    // A white square on black, edges off the pixel grid.
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([1.0; 3], None, [0.0; 3])],
+        objects: vec![object("square", vec![wall(-3.0, 0.77)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(32, 32, 0.5);
+    let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
+    let hard = render(&prepared, &eye, &k, &flat(), 0);
+    let soft = render(&prepared, &eye, &k, &flat(), 1);
+    assert_eq!(hard.instance, soft.instance);
+    assert_eq!(hard.depth, soft.depth);
+    // Only pixels along the square's outline change, each towards its neighbour across it.
+    let mut changed = 0;
+    for (i, (a, b)) in hard.linear.iter().zip(&soft.linear).enumerate() {
+        if a == b {
+            continue;
+        }
+        changed += 1;
+        assert!(b[0] > 0.0 && b[0] < 1.0, "{i}: {b:?}");
+        let (x, y) = ((i % 32) as u32, (i / 32) as u32);
+        let id = hard.instance.get_pixel(x, y).0[0];
+        let differs = |nx: i64, ny: i64| {
+            (0..32).contains(&nx)
+                && (0..32).contains(&ny)
+                && hard.instance.get_pixel(nx as u32, ny as u32).0[0] != id
+        };
+        let (x, y) = (i64::from(x), i64::from(y));
+        assert!(
+            differs(x - 1, y) || differs(x + 1, y) || differs(x, y - 1) || differs(x, y + 1),
+            "({x}, {y}) is not on an edge"
+        );
+    }
+    assert!(changed > 10, "{changed}");
+    // The same for the street: ids and depth are the rasterizer's.
+    let prepared = prepare(&street_scene()).unwrap();
+    let k = Intrinsics::from_fov(96, 64, 0.6);
+    let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
+    let hard = render(&prepared, &eye, &k, &Lighting::day(), 0);
+    let soft = render(&prepared, &eye, &k, &Lighting::day(), 1);
+    assert_eq!((&hard.instance, &hard.depth), (&soft.instance, &soft.depth));
+    assert_ne!(hard.rgb, soft.rgb);
 }
 
 // ---- night ------------------------------------------------------------------------------

@@ -1,16 +1,16 @@
 //! One tile of the frame: binned screen triangles → depth and triangle ids per sample →
-//! shaded linear colour → resolved pixels (RGB, instance id, depth in metres).
+//! shaded linear colour → resolved pixels (linear colour, instance id, depth in metres,
+//! and where the pixel's triangle ends).
 //!
 //! A tile owns its pixels, reads shared data only, and visits its triangles in scene
 //! order, so its output does not depend on which thread runs it or when.
 
 use super::Lighting;
-use super::develop::tone;
+use super::edge_aa::EdgeHint;
 use super::lit_windows::WindowLookup;
 use super::prepared_scene::PreparedScene;
-use super::screen_triangle::{ScreenTri, at};
+use super::screen_triangle::{SUB, ScreenTri, at};
 use super::shadow_map::ShadowMap;
-use super::srgb::srgb;
 use super::view::View;
 
 /// Tile side in output pixels.
@@ -37,6 +37,8 @@ pub(crate) struct FrameContext<'a> {
     pub shadows: Option<&'a ShadowMap>,
     /// Samples per pixel side.
     pub samples: u32,
+    /// Whether edges are antialiased from coverage (at one sample per pixel).
+    pub antialias_edges: bool,
     /// Output size.
     pub width: u32,
     pub height: u32,
@@ -49,16 +51,44 @@ pub(crate) struct FrameContext<'a> {
 /// A finished tile: its rectangle in output pixels and its pixels, row-major.
 pub(crate) struct TileOut {
     pub rect: [u32; 4],
-    pub rgb: Vec<u8>,
     pub linear: Vec<[f32; 3]>,
+    /// Per pixel, at one sample per pixel (empty when supersampled): its triangle's
+    /// nearest edge, for the edge antialiasing.
+    pub edges: Vec<EdgeHint>,
     pub instance: Vec<u32>,
     pub depth: Vec<f32>,
 }
 
-const NOTHING: u32 = u32::MAX;
+/// No triangle at a sample: the sky.
+pub(crate) const NOTHING: u32 = u32::MAX;
 
-/// Renders tile number `tile` (row-major over the tile grid).
-pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
+/// A tile's visibility: 1/w and triangle (index into the frame's screen triangles, or
+/// [`NOTHING`]) per internal sample, row-major over `inner`.
+pub(crate) struct TileRaster {
+    /// Output pixels `[x0, y0, x1, y1)`.
+    pub rect: [u32; 4],
+    /// Internal pixels `[x0, y0, x1, y1)`.
+    pub inner: [u32; 4],
+    pub depth: Vec<f64>,
+    pub id: Vec<u32>,
+}
+
+impl TileRaster {
+    /// Width of `inner`.
+    pub(crate) fn inner_width(&self) -> usize {
+        (self.inner[2] - self.inner[0]) as usize
+    }
+
+    /// Index of the sample nearest the centre of output pixel `(ox, oy)` (tile-local),
+    /// the upper-left of the central ones when `s` is even.
+    pub(crate) fn centre(&self, ox: usize, oy: usize, s: usize) -> usize {
+        let mid = (s - 1) / 2;
+        (oy * s + mid) * self.inner_width() + ox * s + mid
+    }
+}
+
+/// Rasterizes tile number `tile` (row-major over the tile grid): depth test only.
+pub(crate) fn raster_tile(ctx: &FrameContext, tile: usize) -> TileRaster {
     let s = ctx.samples;
     let (tx, ty) = (tile as u32 % ctx.tiles_x, tile as u32 / ctx.tiles_x);
     let rect = [
@@ -86,7 +116,21 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
             }
         });
     }
+    TileRaster {
+        rect,
+        inner,
+        depth,
+        id,
+    }
+}
 
+/// Shades and resolves a rasterized tile. `ao` is the frame's ambient visibility per
+/// output pixel (row-major, 1 = open sky), when ambient occlusion is on.
+pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f32]>) -> TileOut {
+    let s = ctx.samples;
+    let (rect, inner) = (raster.rect, raster.inner);
+    let iw = raster.inner_width();
+    let (depth, id) = (&raster.depth, &raster.id);
     let lights: Vec<&FrameLight> = ctx
         .lights
         .iter()
@@ -103,26 +147,33 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
     // the centre's triangle and at its first sample otherwise, and weighted by its share
     // of the samples. Instance and depth come from the sample nearest the pixel centre
     // (the upper-left of the central ones when s is even).
-    let table = srgb();
-    let exposure = ctx.lighting.exposure;
     let (ow, oh) = ((rect[2] - rect[0]) as usize, (rect[3] - rect[1]) as usize);
     let su = s as usize;
     let mid = (su - 1) / 2;
     let norm = 1.0 / (su * su) as f32;
     let mut out = TileOut {
         rect,
-        rgb: Vec::with_capacity(ow * oh * 3),
         linear: Vec::with_capacity(ow * oh),
+        edges: Vec::with_capacity(if ctx.antialias_edges { ow * oh } else { 0 }),
         instance: Vec::with_capacity(ow * oh),
         depth: Vec::with_capacity(ow * oh),
     };
     let scale = f64::from(s);
-    let shade_sample = |i: usize| -> [f32; 3] {
+    let shade_sample = |i: usize, open: f32| -> [f32; 3] {
         let x = inner[0] + (i % iw) as u32;
         let y = inner[1] + (i / iw) as u32;
         match id[i] {
             NOTHING => sky(ctx, x, y),
-            t => shade(ctx, &ctx.tris[t as usize], x, y, depth[i], &lights, scale),
+            t => shade(
+                ctx,
+                &ctx.tris[t as usize],
+                x,
+                y,
+                depth[i],
+                &lights,
+                scale,
+                open,
+            ),
         }
     };
     // (triangle, samples, sample to shade) per distinct triangle of a pixel.
@@ -130,8 +181,11 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
     for oy in 0..oh {
         for ox in 0..ow {
             let centre = (oy * su + mid) * iw + ox * su + mid;
+            let open = ao.map_or(1.0, |ao| {
+                ao[(rect[1] as usize + oy) * ctx.width as usize + rect[0] as usize + ox]
+            });
             let c = if su == 1 {
-                shade_sample(centre)
+                shade_sample(centre, open)
             } else {
                 seen.clear();
                 seen.push((id[centre], 0, centre));
@@ -146,15 +200,12 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
                 }
                 let mut sum = [0f32; 3];
                 for &(_, count, i) in &seen {
-                    let c = shade_sample(i);
+                    let c = shade_sample(i, open);
                     let w = count as f32 * norm;
                     sum = [sum[0] + c[0] * w, sum[1] + c[1] * w, sum[2] + c[2] * w];
                 }
                 sum
             };
-            for v in c {
-                out.rgb.push(table.to_srgb8(tone(v * exposure)));
-            }
             out.linear.push(c);
             match id[centre] {
                 NOTHING => {
@@ -167,6 +218,16 @@ pub(crate) fn render_tile(ctx: &FrameContext, tile: usize) -> TileOut {
                         .push(ctx.scene.triangles[tri.source as usize].instance);
                     out.depth.push(depth_metres(depth[centre]));
                 }
+            }
+            if ctx.antialias_edges {
+                out.edges.push(match id[centre] {
+                    NOTHING => EdgeHint::NONE,
+                    t => {
+                        let (x, y) = (inner[0] as usize + ox, inner[1] as usize + oy);
+                        let fixed = |v: usize| v as i64 * SUB + SUB / 2;
+                        EdgeHint::of(&ctx.tris[t as usize].edges, fixed(x), fixed(y), SUB)
+                    }
+                });
             }
         }
     }
@@ -193,7 +254,9 @@ fn sky(ctx: &FrameContext, x: u32, y: u32) -> [f32; 3] {
     ctx.lighting.sky.radiance(d.map(|c| c / len))
 }
 
-/// Linear colour of the surface of `tri` at internal pixel `(x, y)`, where 1/w = `q`.
+/// Linear colour of the surface of `tri` at internal pixel `(x, y)`, where 1/w = `q`;
+/// `open` scales its ambient light (ambient occlusion).
+#[allow(clippy::too_many_arguments)]
 fn shade(
     ctx: &FrameContext,
     tri: &ScreenTri,
@@ -202,6 +265,7 @@ fn shade(
     q: f64,
     lights: &[&FrameLight],
     scale: f64,
+    open: f32,
 ) -> [f32; 3] {
     let scene = ctx.scene;
     let source = &scene.triangles[tri.source as usize];
@@ -245,16 +309,19 @@ fn shade(
     let sun = if sun <= 0.0 {
         0.0
     } else if let Some(map) = ctx.shadows {
-        sun * map.light(p, n.map(f64::from))
+        let shade = 1.0 - map.light(p, n.map(f64::from));
+        sun * (1.0 - l.shadow_strength.clamp(0.0, 1.0) * shade)
     } else {
         sun
     };
     // Ambient: the sky from above, the ground's bounce from below, blended by the normal.
     let up = 0.5 + 0.5 * n[1];
+    let ambient =
+        |k: usize| (l.ground_ambient[k] + (l.ambient[k] - l.ground_ambient[k]) * up) * open;
     let mut light = [
-        l.ground_ambient[0] + (l.ambient[0] - l.ground_ambient[0]) * up + l.sun_colour[0] * sun,
-        l.ground_ambient[1] + (l.ambient[1] - l.ground_ambient[1]) * up + l.sun_colour[1] * sun,
-        l.ground_ambient[2] + (l.ambient[2] - l.ground_ambient[2]) * up + l.sun_colour[2] * sun,
+        ambient(0) + l.sun_colour[0] * sun,
+        ambient(1) + l.sun_colour[1] * sun,
+        ambient(2) + l.sun_colour[2] * sun,
     ];
     for lamp in lights {
         let d = [

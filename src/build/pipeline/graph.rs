@@ -301,7 +301,12 @@ impl Pipeline<'_> {
             |p, (prepared, scene, parsed, lamps, facades)| {
                 // The spec's light; a drawn sun is drawn for the overview on its own.
                 let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, OVERVIEW_SUN, 0);
-                let lighting = lighting(p.spec, &sun, &scene, &lamps, &facades);
+                // Without ambient occlusion: its metre-wide creases are a pixel or two
+                // from the air, and it would cost the cold build a tenth of a second.
+                let lighting = render::Lighting {
+                    ambient_occlusion: 0.0,
+                    ..lighting(p.spec, &sun, &scene, &lamps, &facades)
+                };
                 let shot = cameras::overview(&parsed, p.spec.layout.metres_per_pixel);
                 let frame = match &shot.pose {
                     Some(pose) => {

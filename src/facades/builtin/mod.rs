@@ -59,7 +59,9 @@ fn facade_file(i: usize) -> FacadeFile {
     JpegEncoder::new_with_quality(&mut photo, QUALITY)
         .write_image(canvas.photo.as_raw(), w, h, ExtendedColorType::Rgb8)
         .expect("encoding a JPEG into memory cannot fail");
-    let labels = encode_png(&canvas.mask, PngEffort::Best);
+    // Fast: the loader decodes these masks straight away (the same pixels at any level);
+    // the best compression cost a cold build more time than the rest of the mask's life.
+    let labels = encode_png(&canvas.mask, PngEffort::Fast);
     FacadeFile {
         name: name(i),
         photo,
