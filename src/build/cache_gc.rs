@@ -24,8 +24,8 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use super::cache::Cache;
-use super::pipeline::Pipeline;
 use super::inputs::SpecInputs;
+use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
 
 /// What `cache gc` may remove.
@@ -179,13 +179,7 @@ fn spec_keys(path: &Path, cache: &Cache) -> Result<Vec<String>, BuildError> {
     let spec = load_spec(path)?;
     let inputs = SpecInputs::read(path, &spec)?;
     let progress = |_: &str, _: usize, _: usize| {};
-    let pipeline = Pipeline::new(
-        &spec,
-        path.to_path_buf(),
-        inputs,
-        cache,
-        &progress,
-    );
+    let pipeline = Pipeline::new(&spec, path.to_path_buf(), inputs, cache, &progress);
     Ok(pipeline.cache_keys())
 }
 

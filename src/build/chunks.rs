@@ -294,11 +294,8 @@ impl Tars<'_> {
                         members.push((member, (self.read)(blob)?));
                     }
                 }
-                let json = webdataset::sample_json(
-                    &record.coco,
-                    self.first_ids[i],
-                    &record.conditions,
-                );
+                let json =
+                    webdataset::sample_json(&record.coco, self.first_ids[i], &record.conditions);
                 members.push((format!("{i:06}.json"), Arc::new(json)));
                 members.sort_by(|a, b| a.0.cmp(&b.0));
                 for (member, bytes) in &members {

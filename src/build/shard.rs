@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::cache::Cache;
-use super::pipeline::Pipeline;
 use super::inputs::SpecInputs;
+use super::pipeline::Pipeline;
 use super::{BuildError, BuildOptions, load_spec};
 
 /// Shard `index` of `count` (0-based).
@@ -169,13 +169,7 @@ fn shard_spec(
             report(&spec.name, camera, done, total);
         }
     };
-    let mut pipeline = Pipeline::new(
-        spec,
-        path.to_path_buf(),
-        inputs,
-        &cache,
-        &progress,
-    );
+    let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;
     let stats = pipeline.shard_work(shard)?;
     if options.strict && !pipeline.warnings.is_empty() {

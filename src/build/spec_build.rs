@@ -10,8 +10,8 @@ use std::time::Instant;
 
 use super::cache::Cache;
 use super::fresh;
-use super::lock;
 use super::inputs::SpecInputs;
+use super::lock;
 use super::manifest::{Artifact, Manifest};
 use super::out_dir::OutDir;
 use super::pipeline::{ArtifactOut, Pipeline};

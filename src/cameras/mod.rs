@@ -37,12 +37,12 @@ mod road_path;
 mod sidewalk_path;
 
 use crate::geometry::mm;
-pub use crate::model::CameraPose;
-pub use crate::spec::FrameRule;
-pub use aim::Aim;
 /// A camera's field of view → the tangent of its half angle (shared with the renderer's
 /// intrinsics).
 pub use crate::geometry::tan_half_degrees;
+pub use crate::model::CameraPose;
+pub use crate::spec::FrameRule;
+pub use aim::Aim;
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
 pub use orbit_path::{orbit_length, orbit_path};
 pub use overview::{
