@@ -134,7 +134,7 @@ impl ContactSheet {
     }
 }
 
-/// The frames a path of `frames` frames shows on its sheet: up to [`SHEET_FRAMES`],
+/// The frames a path of `frames` frames shows on its sheet: up to `SHEET_FRAMES`,
 /// spread over the path.
 pub fn picks(frames: usize) -> Vec<usize> {
     let n = frames.min(SHEET_FRAMES);

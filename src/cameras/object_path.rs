@@ -62,7 +62,7 @@ pub struct ObjectView {
 /// Up to [`ATTEMPTS`] candidate views for each of `path.frames` frames. Attempt `a` of
 /// frame `i` draws from `rng::stream(seed, "cameras/objects", i · ATTEMPTS + a)`, in order:
 /// the object (uniformly among `targets`), the distance, the bearing, then the aim. A
-/// candidate whose line of sight is steeper than [`MAX_ELEVATION`] steps back to that
+/// candidate whose line of sight is steeper than `MAX_ELEVATION` steps back to that
 /// elevation if the distance range allows, else it is dropped; a candidate whose eye is
 /// outside the layout or within [`CLEARANCE`] of a block is dropped, so a frame may get
 /// fewer candidates, or none. The pose's recorded heading and
