@@ -106,6 +106,29 @@ pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
     spec::load(&source, &FsWorld).map_err(BuildError::Spec)
 }
 
+/// Loads and validates every spec first, reporting all their errors together; then runs
+/// `each` on each spec in order, stopping at the first failure.
+pub(crate) fn each_valid_spec<R>(
+    paths: &[PathBuf],
+    mut each: impl FnMut(&Path, &Spec) -> Result<R, BuildError>,
+) -> Result<Vec<R>, Vec<BuildError>> {
+    let mut specs = Vec::new();
+    let mut errors = Vec::new();
+    for path in paths {
+        match load_spec(path) {
+            Ok(spec) => specs.push((path, spec)),
+            Err(e) => errors.push(e),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    specs
+        .iter()
+        .map(|(path, spec)| each(path, spec).map_err(|e| vec![e]))
+        .collect()
+}
+
 /// Validates every spec first (so all their errors show at once), then builds each in turn.
 /// Stops at the first spec whose build fails.
 pub fn build_all(

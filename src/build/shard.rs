@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use super::cache::Cache;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
-use super::{BuildError, BuildOptions, load_spec};
+use super::{BuildError, BuildOptions, each_valid_spec, spec_build};
 
 /// Shard `index` of `count` (0-based).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,21 +138,7 @@ pub fn build_shards(
     options: &BuildOptions,
     shard: Option<Shard>,
 ) -> Result<Vec<ShardReport>, Vec<BuildError>> {
-    let mut specs = Vec::new();
-    let mut errors = Vec::new();
-    for path in paths {
-        match load_spec(path) {
-            Ok(spec) => specs.push((path, spec)),
-            Err(e) => errors.push(e),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    specs
-        .iter()
-        .map(|(path, spec)| shard_spec(path, spec, options, shard).map_err(|e| vec![e]))
-        .collect()
+    each_valid_spec(paths, |path, spec| shard_spec(path, spec, options, shard))
 }
 
 fn shard_spec(
@@ -164,20 +150,11 @@ fn shard_spec(
     let start = Instant::now();
     let inputs = SpecInputs::read(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
-    let progress = |camera: &str, done: usize, total: usize| {
-        if let Some(report) = &options.progress {
-            report(&spec.name, camera, done, total);
-        }
-    };
+    let progress = spec_build::progress_of(spec, options);
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;
     let stats = pipeline.shard_work(shard)?;
-    if options.strict && !pipeline.warnings.is_empty() {
-        return Err(BuildError::Strict {
-            spec: path.to_path_buf(),
-            warnings: pipeline.warnings,
-        });
-    }
+    spec_build::strict_check(path, pipeline, options)?;
     Ok(ShardReport {
         name: spec.name.clone(),
         shard,

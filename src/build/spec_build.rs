@@ -28,11 +28,7 @@ pub fn build_spec(
     let start = Instant::now();
     let inputs = SpecInputs::read(path, spec)?;
     let cache = Cache::new(&options.cache_dir);
-    let progress = |camera: &str, done: usize, total: usize| {
-        if let Some(report) = &options.progress {
-            report(&spec.name, camera, done, total);
-        }
-    };
+    let progress = progress_of(spec, options);
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;
     // Held until this build returns: builds of one output folder take turns.
@@ -42,12 +38,7 @@ pub fn build_spec(
         return Ok(report);
     }
     let artifacts = pipeline.artifacts()?;
-    if options.strict && !pipeline.warnings.is_empty() {
-        return Err(BuildError::Strict {
-            spec: path.to_path_buf(),
-            warnings: pipeline.warnings,
-        });
-    }
+    let pipeline = strict_check(path, pipeline, options)?;
     let manifest = manifest_of(spec, &artifacts);
     check_lock(path, &manifest, options)?;
     let synced = write_output_folder(&out, &artifacts, &manifest, &cache)?;
@@ -62,6 +53,34 @@ pub fn build_spec(
         triangles: pipeline.triangles,
         elapsed: start.elapsed(),
     })
+}
+
+/// The pipeline's progress callback: `options.progress`, told the spec's name.
+pub(super) fn progress_of<'a>(
+    spec: &'a Spec,
+    options: &'a BuildOptions,
+) -> impl Fn(&str, usize, usize) + 'a {
+    move |camera: &str, done: usize, total: usize| {
+        if let Some(report) = &options.progress {
+            report(&spec.name, camera, done, total);
+        }
+    }
+}
+
+/// `--strict`: the pipeline back when it warned of nothing, [`BuildError::Strict`] with
+/// its warnings otherwise (before the output folder is touched).
+pub(super) fn strict_check<'a>(
+    path: &Path,
+    pipeline: Pipeline<'a>,
+    options: &BuildOptions,
+) -> Result<Pipeline<'a>, BuildError> {
+    if options.strict && !pipeline.warnings.is_empty() {
+        return Err(BuildError::Strict {
+            spec: path.to_path_buf(),
+            warnings: pipeline.warnings,
+        });
+    }
+    Ok(pipeline)
 }
 
 /// Locks `<out>/<name>/` (saying so when another build holds it) and removes what a

@@ -13,9 +13,9 @@ use std::path::{Path, PathBuf};
 use rand::RngExt;
 
 use super::cache::{Cache, Miss, Outputs};
+use super::each_valid_spec;
 use super::error::BuildError;
 use super::inputs::SpecInputs;
-use super::load_spec;
 use super::pipeline::Pipeline;
 use crate::spec::Spec;
 
@@ -62,21 +62,7 @@ pub fn verify_all(
     paths: &[PathBuf],
     options: &VerifyOptions,
 ) -> Result<Vec<VerifyReport>, Vec<BuildError>> {
-    let mut specs = Vec::new();
-    let mut errors = Vec::new();
-    for path in paths {
-        match load_spec(path) {
-            Ok(spec) => specs.push((path, spec)),
-            Err(e) => errors.push(e),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    specs
-        .iter()
-        .map(|(path, spec)| verify(path, spec, options).map_err(|e| vec![e]))
-        .collect()
+    each_valid_spec(paths, |path, spec| verify(path, spec, options))
 }
 
 /// Reruns the chosen cached stages of `spec` and compares their outputs with the cache's.
