@@ -23,9 +23,9 @@
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
-//! Shared types live in [`model`], shared geometry (mesh building, road rectangles, facade
-//! heights, vector and trig helpers) in [`geometry`], image-file checks and encoding in
-//! [`image_file`]; stages depend on these, on [`spec`], [`rng`] and [`hash`], never on each
+//! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,
+//! facade heights, vector and trig helpers) in [`model::geometry`] and image-file checks and
+//! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`] and [`hash`], never on each
 //! other. `tests/stage_imports.rs` fails when a stage names another; tests that need
 //! another stage's output get it through `test_support`.
 
@@ -35,9 +35,7 @@ pub mod cameras;
 pub mod cli;
 pub mod export;
 pub mod facades;
-pub mod geometry;
 pub mod hash;
-pub mod image_file;
 pub mod lamps;
 pub mod layout;
 pub mod mirror;

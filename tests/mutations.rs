@@ -191,7 +191,7 @@ fn mutated_layout_pngs_decode_or_fail_cleanly() {
         }
         let what = format!("PNG case {case} (seed {seed})");
         let result = bounded(&what, Duration::from_secs(2), || {
-            cityspec::image_file::check_complete(&bytes)
+            cityspec::model::image_file::check_complete(&bytes)
                 .map_err(|e| e.to_string())
                 .and_then(|()| cityspec::layout::decode(&bytes).map_err(|e| e.to_string()))
         });

@@ -21,17 +21,9 @@ const STAGES: &[&str] = &[
     "objects", "export", "cameras", "render", "annotate", "sensor", "stats",
 ];
 
-/// What every stage may use: types, geometry, the spec, seeded randomness, hashing and
+/// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing and
 /// image-file checks.
-const SHARED: &[&str] = &[
-    "model",
-    "geometry",
-    "image_file",
-    "spec",
-    "rng",
-    "hash",
-    "test_seed",
-];
+const SHARED: &[&str] = &["model", "spec", "rng", "hash", "test_seed"];
 
 /// Test fakes and fixtures: shared by every stage's tests, and the one place (besides the
 /// driver) that may run stages, to hand one stage's tests another stage's output.

@@ -59,7 +59,7 @@ pub use yolo::{YoloClasses, yolo};
 /// `v` rounded to a multiple of `1 / scale` (`scale` a power of ten; `-0` made `0`), or
 /// `None` when it is not finite.
 fn round(v: f64, scale: f64) -> Option<f64> {
-    let r = crate::geometry::round_to(v, scale);
+    let r = crate::model::geometry::round_to(v, scale);
     r.is_finite().then_some(r)
 }
 

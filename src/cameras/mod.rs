@@ -36,11 +36,11 @@ mod overview;
 mod road_path;
 mod sidewalk_path;
 
-use crate::geometry::mm;
+pub use crate::model::CameraPose;
+use crate::model::geometry::mm;
 /// A camera's field of view → the tangent of its half angle (shared with the renderer's
 /// intrinsics).
-pub use crate::geometry::tan_half_degrees;
-pub use crate::model::CameraPose;
+pub use crate::model::geometry::tan_half_degrees;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};

@@ -3,7 +3,7 @@
 
 use image::RgbImage;
 
-use crate::geometry::cross;
+use crate::model::geometry::cross;
 use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
 
 fn texture(name: &str, size: u32, salt: u8) -> Texture {

@@ -141,7 +141,7 @@ fn decode_photo(bytes: &[u8], path: impl Fn() -> String) -> Result<RgbImage, Fac
             .map_err(|e| bad(image::ImageError::IoError(e)))
     };
     // A cut-off JPEG decodes without complaint (grey rows): refuse it by its missing end.
-    if let Err(why) = crate::image_file::check_complete(bytes) {
+    if let Err(why) = crate::model::image_file::check_complete(bytes) {
         return Err(FacadeError::Truncated { file: path(), why });
     }
     let (width, height) = reader()?.into_dimensions().map_err(bad)?;

@@ -5,6 +5,9 @@
 //! `[i, i + 1) × [j, j + 1)`, x to the right, y down. [`CityPlan`] is the same geometry in
 //! metres, with x east (= image x) and z south (= image y).
 
+pub mod geometry;
+pub mod image_file;
+
 mod block;
 mod building;
 mod camera_pose;

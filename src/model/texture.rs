@@ -21,11 +21,11 @@ pub struct Texture {
     pub png: Arc<Vec<u8>>,
 }
 
-use crate::image_file::PngEffort;
+use crate::model::image_file::PngEffort;
 
-/// PNG bytes of an RGB image, as textures are stored (see [`crate::image_file::encode_png`]).
+/// PNG bytes of an RGB image, as textures are stored (see [`crate::model::image_file::encode_png`]).
 pub fn encode_png(image: &RgbImage) -> Vec<u8> {
-    crate::image_file::encode_png(image, PngEffort::Fast)
+    crate::model::image_file::encode_png(image, PngEffort::Fast)
 }
 
 impl Texture {

@@ -20,8 +20,8 @@ use rand_pcg::Pcg64;
 use super::ground_spots::{GroundSpots, RoadSlot};
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
-use crate::geometry::{ROAD_Y, StreetProfile};
 use crate::model::Mesh;
+use crate::model::geometry::{ROAD_Y, StreetProfile};
 use crate::spec::{CarBody, ObjectSpec};
 
 /// The roads camera's default `lane_offset`, metres right of the centre line.

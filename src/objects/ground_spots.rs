@@ -11,7 +11,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ObjectsInput;
-use crate::geometry::{RoadRect, strip_width_px};
+use crate::model::geometry::{RoadRect, strip_width_px};
 use crate::model::{Axis, ParsedLayout, Road};
 
 /// Metres an object keeps from a lamp site.

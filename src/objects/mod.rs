@@ -46,7 +46,7 @@ mod word_list;
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use crate::geometry::{FacadeChoice, MaterialBook, trig};
+use crate::model::geometry::{FacadeChoice, MaterialBook, trig};
 use crate::model::{
     Building, FacadeSet, Lamp, Material, Mesh, ParsedLayout, Scene, SceneObject, Texture,
 };

@@ -20,8 +20,8 @@ use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
 use super::wall_text::{self, Placed, Wall};
 use super::{ObjectsError, Placing};
-use crate::geometry::{KERB_Y, MeshBuilder};
 use crate::model::Axis;
+use crate::model::geometry::{KERB_Y, MeshBuilder};
 use crate::spec::{ObjectSpec, TextCase};
 
 /// Height of the pole's top (the lower plate's bottom edge) above the sidewalk, metres.

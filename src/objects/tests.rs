@@ -8,7 +8,7 @@ use image::RgbImage;
 use super::ground_spots::travel;
 use super::wall_text::{MIN_HEIGHT, TOP_CLEARANCE, WALL_OFFSET, Walls};
 use super::*;
-use crate::geometry::{KERB_Y, ROAD_Y, RoadRect, cross, dot, sub};
+use crate::model::geometry::{KERB_Y, ROAD_Y, RoadRect, cross, dot, sub};
 use crate::model::{Axis, Facade, Lamp, Roof};
 use crate::spec::{Ground, ObjectKind, Palette, SignKind, TextCase};
 use crate::test_support::{TestCity, test_city};

@@ -6,7 +6,7 @@ use rand_pcg::Pcg64;
 
 use super::ground_spots::GroundSpots;
 use super::{ATTEMPTS, Placing, sign_face};
-use crate::geometry::{KERB_Y, MeshBuilder, cross, dot, sub};
+use crate::model::geometry::{KERB_Y, MeshBuilder, cross, dot, sub};
 use crate::model::{Mesh, Texture};
 use crate::spec::{ObjectSpec, SignKind};
 

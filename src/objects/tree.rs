@@ -29,8 +29,8 @@ use rand_pcg::Pcg64;
 use super::ground_spots::{Footprint, GroundSpots};
 use super::vehicle_parts::{Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
-use crate::geometry::KERB_Y;
 use crate::model::Mesh;
+use crate::model::geometry::KERB_Y;
 use crate::spec::{ObjectSpec, TreeSpecies};
 
 /// Largest crown radius on open paving, metres.

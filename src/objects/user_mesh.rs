@@ -14,7 +14,7 @@ use rand_pcg::Pcg64;
 use super::ground_spots::{GroundSpots, Spot};
 use super::trig::{add, cos_sin_deg};
 use super::{ATTEMPTS, MeshFiles, ObjectsError, Placing};
-use crate::geometry::{KERB_Y, ROAD_Y, cross, dot, sub};
+use crate::model::geometry::{KERB_Y, ROAD_Y, cross, dot, sub};
 use crate::model::{Mesh, Texture};
 use crate::spec::{Ground, ObjectSpec};
 

@@ -6,8 +6,8 @@
 //! normal: the renderer shades faces flat, so low-poly solids read as solids. No uv: these
 //! materials are plain colours.
 
-use crate::geometry::{cross, dot, sub};
 use crate::model::Mesh;
+use crate::model::geometry::{cross, dot, sub};
 
 /// A local frame on the ground: `origin` (x, y, z), horizontal unit `forward` (x, z). Local
 /// coordinates are `(u, y, v)`: `u` along forward, `y` up, `v` to the right of forward.

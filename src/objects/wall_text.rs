@@ -27,7 +27,7 @@ use super::text_plate::{self, Background, TextPlate};
 use super::{
     ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
 };
-use crate::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
+use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{SceneObject, Texture};
 use crate::spec::{ObjectSpec, TextCase};
 

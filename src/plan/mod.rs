@@ -8,7 +8,7 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
-use crate::geometry::mm;
+use crate::model::geometry::mm;
 use crate::model::{
     Axis, Block, Building, CityPlan, Lamp, ParsedLayout, PlanBlock, PlanBuilding, PlanLamp,
     PlanRoad, Road,

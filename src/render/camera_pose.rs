@@ -1,7 +1,7 @@
 //! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward).
 
-use crate::geometry::{cross, normalize, sub};
 pub use crate::model::CameraPose;
+use crate::model::geometry::{cross, normalize, sub};
 
 /// The camera's axes in world coordinates, right-handed: `right = forward × up`,
 /// `up = right × forward`.

@@ -3,7 +3,7 @@
 
 use image::{ImageBuffer, Luma, RgbImage};
 
-use crate::image_file::{PngEffort, encode_png};
+use crate::model::image_file::{PngEffort, encode_png};
 use crate::model::pack_ids;
 
 pub use crate::spec::DepthFormat;

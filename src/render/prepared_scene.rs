@@ -8,8 +8,8 @@ use rayon::prelude::*;
 use super::RenderError;
 use super::mip_texture::MipTexture;
 use super::shadow_map::ShadowMap;
-use crate::geometry::{cross, dot, normalize};
 use crate::model::Scene;
+use crate::model::geometry::{cross, dot, normalize};
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
 /// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.

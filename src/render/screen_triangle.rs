@@ -9,7 +9,7 @@
 
 use super::prepared_scene::Triangle;
 use super::view::{View, plane};
-use crate::geometry::dot;
+use crate::model::geometry::dot;
 
 /// Fixed-point subpixel steps per pixel.
 pub(crate) const SUB: i64 = 256;

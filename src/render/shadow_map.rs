@@ -18,7 +18,7 @@
 use rayon::prelude::*;
 
 use super::prepared_scene::PreparedScene;
-use crate::geometry::{cross, dot};
+use crate::model::geometry::{cross, dot};
 
 /// Largest side of the map in texels.
 pub(crate) const MAX_SIDE: f64 = 4096.0;

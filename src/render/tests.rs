@@ -9,7 +9,7 @@ use super::prepared_scene::Triangle;
 use super::screen_triangle::{self, ScreenTri};
 use super::view::View;
 use super::*;
-use crate::geometry::{cross, dot, sub};
+use crate::model::geometry::{cross, dot, sub};
 use crate::model::{Material, Mesh, PixelBox, Scene, SceneObject, Texture};
 
 pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {

@@ -5,7 +5,7 @@
 
 use super::camera_pose::CameraBasis;
 use super::{CameraPose, Intrinsics};
-use crate::geometry::{dot, sub};
+use crate::model::geometry::{dot, sub};
 
 /// Pixels beyond each image edge that projected vertices may reach before triangles are
 /// clipped (keeps fixed-point edge functions far from overflow).

@@ -2,7 +2,7 @@
 //! paved surface at kerb height.
 
 use super::{object, procedural};
-use crate::geometry::{KERB_Y, MeshBuilder};
+use crate::model::geometry::{KERB_Y, MeshBuilder};
 use crate::model::{ParsedLayout, SceneObject};
 
 pub fn block_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {

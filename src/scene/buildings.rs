@@ -9,13 +9,13 @@
 //! never stretched vertically.
 //!
 //! Fallbacks (bad input never panics): a kind beyond the facade list takes facade
-//! `kind % n`; a facade with a non-positive height or width is treated as [`PLAIN_HEIGHT`](crate::geometry::PLAIN_HEIGHT)
+//! `kind % n`; a facade with a non-positive height or width is treated as [`PLAIN_HEIGHT`](crate::model::geometry::PLAIN_HEIGHT)
 //! high and spans each wall once; with no facades at all buildings are plain
-//! ([`PLAIN_HEIGHT`](crate::geometry::PLAIN_HEIGHT), material `facade_plain`); a facade whose roof index is out of range
+//! ([`PLAIN_HEIGHT`](crate::model::geometry::PLAIN_HEIGHT), material `facade_plain`); a facade whose roof index is out of range
 //! gets the `roof_plain` material.
 
 use super::{SceneInput, object};
-use crate::geometry::{KERB_Y, MaterialBook, MeshBuilder, facade_height, usable};
+use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, facade_height, usable};
 use crate::model::{Facade, SceneObject};
 
 /// Metres one repeat of the plain roof covers (and of a roof whose `tile` is unusable).

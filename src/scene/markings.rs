@@ -7,7 +7,7 @@
 //! stretch between two crossings looks the same from both ends.
 
 use super::object;
-use crate::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile};
+use crate::model::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
 /// Dash length, gap between dashes and line width, in metres.
@@ -82,7 +82,7 @@ fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, [a, b]: [f
         [x[0], MARKING_Y, z[1]],
     ];
     let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-    mesh.quad(corners, crate::geometry::UP, uvs);
+    mesh.quad(corners, crate::model::geometry::UP, uvs);
 }
 
 fn metres(r: RoadRect, mpp: f64) -> RoadRect {

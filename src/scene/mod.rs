@@ -22,11 +22,11 @@
 //!
 //! Heights: ground 0, roads [`ROAD_Y`], markings [`MARKING_Y`], blocks and sidewalks
 //! [`KERB_Y`]; buildings stand on the block surface. The heights, the mesh builder and the
-//! road rectangles live in [`crate::geometry`], since the objects stage builds on them too.
+//! road rectangles live in [`crate::model::geometry`], since the objects stage builds on them too.
 //!
-//! [`ROAD_Y`]: crate::geometry::ROAD_Y
-//! [`MARKING_Y`]: crate::geometry::MARKING_Y
-//! [`KERB_Y`]: crate::geometry::KERB_Y
+//! [`ROAD_Y`]: crate::model::geometry::ROAD_Y
+//! [`MARKING_Y`]: crate::model::geometry::MARKING_Y
+//! [`KERB_Y`]: crate::model::geometry::KERB_Y
 //!
 //! Only `+ − × ÷ sqrt` are used, in f64, rounded to f32 at the end: the scene is the same
 //! bit for bit on every platform.
@@ -46,12 +46,12 @@ mod surfaces;
 #[cfg(test)]
 mod tests;
 
-use crate::geometry::{FacadeChoice, MaterialBook, MeshBuilder};
+use crate::model::geometry::{FacadeChoice, MaterialBook, MeshBuilder};
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene, SceneObject};
 use surfaces::Surfaces;
 
 // The build driver measures the strip for its street cameras as the scene does.
-pub use crate::geometry::strip_width_px;
+pub use crate::model::geometry::strip_width_px;
 pub use street_lamps::light_position;
 
 /// How far the ground reaches beyond the layout on every side, in metres.

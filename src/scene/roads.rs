@@ -2,7 +2,7 @@
 //! before it, so a crossing is paved once (by the road with the lower id).
 
 use super::{object, procedural};
-use crate::geometry::{MeshBuilder, ROAD_Y, RoadRect};
+use crate::model::geometry::{MeshBuilder, ROAD_Y, RoadRect};
 use crate::model::{ParsedLayout, SceneObject};
 
 pub fn road_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {

@@ -8,7 +8,7 @@
 
 use super::row_region::{RowRegion, subtract};
 use super::{object, procedural};
-use crate::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
+use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{Band, ParsedLayout, SceneObject};
 
 pub fn sidewalk_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
@@ -96,7 +96,7 @@ fn slab(mesh: &mut MeshBuilder, bands: &[Band], mpp: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{cross, dot, sub};
+    use crate::model::geometry::{cross, dot, sub};
 
     #[test]
     fn a_ring_slab_has_a_top_and_curbs_on_both_rims() {

@@ -10,7 +10,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::object;
 use super::surfaces::Surfaces;
-use crate::geometry::{KERB_Y, MeshBuilder, UP};
+use crate::model::geometry::{KERB_Y, MeshBuilder, UP};
 use crate::model::{Lamp, SceneObject};
 
 /// Pole height above the sidewalk, its radius, the arm's reach from the pole's axis, in

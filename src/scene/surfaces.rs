@@ -2,8 +2,8 @@
 //! concrete, lamp metal and the emissive lamp head.
 
 use super::procedural;
-use crate::geometry::MaterialBook;
 use crate::model::Texture;
+use crate::model::geometry::MaterialBook;
 
 /// Indices of the fixed materials, registered first and always in this order.
 pub struct Surfaces {

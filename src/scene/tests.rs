@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use image::{Rgb, RgbImage};
 
 use super::{SceneInput, build};
-use crate::geometry::{KERB_Y, RoadRect, cross, dot, sub};
+use crate::model::geometry::{KERB_Y, RoadRect, cross, dot, sub};
 use crate::model::{
     Building, Facade, FacadeSet, Lamp, Mesh, ParsedLayout, Roof, Scene, SceneObject, Texture,
 };
@@ -549,7 +549,7 @@ fn bad_facade_input_falls_back_without_panicking() {
     let scene = scene_of(&city, None);
     let building = of_class(&scene, "building").next().unwrap();
     let (lo, hi) = bounds(building);
-    assert!((hi[1] - lo[1] - crate::geometry::PLAIN_HEIGHT).abs() < 1e-4);
+    assert!((hi[1] - lo[1] - crate::model::geometry::PLAIN_HEIGHT).abs() < 1e-4);
     assert_eq!(
         scene.materials[building.meshes[0].material as usize].name,
         "facade_plain"

@@ -36,8 +36,8 @@ pub use weather::{WeatherLight, weather_light};
 
 use image::{ImageFormat, RgbImage};
 
-use crate::geometry::dot;
 use crate::model::CameraPose;
+use crate::model::geometry::dot;
 use crate::spec::ExposureMode;
 use rays::Rays;
 

@@ -1,8 +1,8 @@
 //! Camera pose + intrinsics → per-pixel view rays and projections, in f32 for the
 //! image-space passes.
 
-use crate::geometry::dot;
 use crate::model::CameraPose;
+use crate::model::geometry::dot;
 
 /// A frame's camera: eye, axes and pinhole intrinsics.
 #[derive(Clone, Copy, Debug)]

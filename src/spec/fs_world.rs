@@ -60,8 +60,8 @@ impl SpecWorld for FsWorld {
         // The same reading and decoding as the build's, so `validate` refuses what `build`
         // would (a truncated or corrupt image).
         Some(read_capped(path, MAX_IMAGE_BYTES).and_then(|bytes| {
-            crate::image_file::decode(&bytes).map_err(|e| match e {
-                crate::image_file::LayoutError::Truncated(why) => why,
+            crate::model::image_file::decode(&bytes).map_err(|e| match e {
+                crate::model::image_file::LayoutError::Truncated(why) => why,
                 other => other.to_string(),
             })
         }))

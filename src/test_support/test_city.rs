@@ -3,8 +3,8 @@
 
 use image::RgbImage;
 
-use crate::geometry::widths_px;
 use crate::layout::GeneratedLayout;
+use crate::model::geometry::widths_px;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::rng::stream;
 use crate::spec::{GenerateSpec, Palette};
@@ -26,7 +26,7 @@ pub fn mirrored(image: &RgbImage, ops: &[u8]) -> RgbImage {
 
 /// PNG or JPEG bytes decoded as the layout stage decodes a user's image.
 pub fn decoded(bytes: &[u8]) -> RgbImage {
-    crate::image_file::decode(bytes).expect("a decodable test image")
+    crate::model::image_file::decode(bytes).expect("a decodable test image")
 }
 
 /// The default 768 × 768 city at 1 m per pixel: its layout image, parsed layout, lamps

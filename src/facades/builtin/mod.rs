@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use super::cmp_box::write_cmp_xml;
 use super::{FacadeFile, FacadeSource};
-use crate::image_file::{PngEffort, encode_png};
+use crate::model::image_file::{PngEffort, encode_png};
 
 pub use design::Design;
 
