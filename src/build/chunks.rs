@@ -17,6 +17,7 @@ use std::io::{self, Write};
 use std::ops::Range;
 use std::sync::Arc;
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
@@ -83,27 +84,40 @@ pub fn render_chunk(
     total: usize,
     range: Range<usize>,
     (store, keep_all): (bool, bool),
-    mut progress: impl FnMut(),
+    progress: impl Fn() + Sync,
 ) -> io::Result<Outputs> {
     let picks = crate::annotate::contact_sheet_picks(total);
+    // A chunk's frames render side by side: a frame's serial tail (sensor, PNG encoding,
+    // hashing, storing) overlaps another frame's tiles, where one frame at a time left a
+    // core idle. Each frame's files and record are collected per frame and joined in frame
+    // order, so the outputs do not depend on which frame finished first.
+    let frames: Vec<io::Result<(Vec<(String, Blob)>, FrameRecord)>> = range
+        .into_par_iter()
+        .map(|i| {
+            let keep = !store && (keep_all || picks.contains(&i));
+            let mut files = Vec::new();
+            let record = path.render(i, |name, bytes| {
+                let blob = if store {
+                    Blob::Stored(cache.put_object(&bytes)?, None)
+                } else if keep && (keep_all || name.contains("/rgb/")) {
+                    Blob::from(bytes)
+                } else {
+                    Blob::Stored(reference(&bytes), None)
+                };
+                files.push((name, blob));
+                Ok::<_, io::Error>(())
+            })?;
+            progress();
+            Ok((files, record))
+        })
+        .collect();
     let mut outputs = Outputs::new();
     let mut summary = Vec::new();
-    for i in range {
-        let keep = !store && (keep_all || picks.contains(&i));
-        let record = path.render(i, |name, bytes| {
-            let blob = if store {
-                Blob::Stored(cache.put_object(&bytes)?, None)
-            } else if keep && (keep_all || name.contains("/rgb/")) {
-                Blob::from(bytes)
-            } else {
-                Blob::Stored(reference(&bytes), None)
-            };
-            outputs.insert(name, blob);
-            Ok::<_, io::Error>(())
-        })?;
+    for frame in frames {
+        let (files, record) = frame?;
+        outputs.extend(files);
         serde_json::to_writer(&mut summary, &record)?;
         summary.push(b'\n');
-        progress();
     }
     let blob = if store {
         Blob::Stored(cache.put_object(&summary)?, None)

@@ -9,6 +9,7 @@
 use image::RgbImage;
 
 use super::srgb::{Srgb, srgb};
+use crate::model::geometry::rounding::{ceil, floor};
 
 /// Most trilinear taps one sample spreads along a slanted footprint (and the largest
 /// footprint aspect ratio filtered without blur).
@@ -74,7 +75,7 @@ impl MipTexture {
         let ratio = (major2 / minor2.max(1e-300))
             .sqrt()
             .clamp(1.0, MAX_ANISOTROPY);
-        let taps = ratio.ceil() as u32;
+        let taps = ceil(ratio) as u32;
         if !ratio.is_finite() || taps <= 1 {
             return self.trilinear(u, v, 0.5 * log2_approx(major2));
         }
@@ -101,7 +102,7 @@ impl MipTexture {
         if lod >= top {
             return self.levels[self.levels.len() - 1].bilinear(u, v, table);
         }
-        let base = lod.floor();
+        let base = floor(lod);
         let t = (lod - base) as f32;
         let i = base as usize;
         let a = self.levels[i].bilinear(u, v, table);
@@ -157,11 +158,11 @@ impl Level {
         let (w, h) = (i64::from(self.width), i64::from(self.height));
         let tx = u * w as f64 - 0.5;
         let ty = v * h as f64 - 0.5;
-        let (fx0, fy0) = (tx.floor(), ty.floor());
+        let (fx0, fy0) = (floor(tx), floor(ty));
         let (ax, ay) = ((tx - fx0) as f32, (ty - fy0) as f32);
-        // `as i64` saturates; rem_euclid then wraps into the texture.
-        let x0 = (fx0 as i64).rem_euclid(w);
-        let y0 = (fy0 as i64).rem_euclid(h);
+        // `as i64` saturates; `wrap` then brings it into the texture.
+        let x0 = wrap(fx0 as i64, w);
+        let y0 = wrap(fy0 as i64, h);
         let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
         let y1 = if y0 + 1 == h { 0 } else { y0 + 1 };
         let row0 = (y0 * w) as usize;
@@ -182,6 +183,19 @@ impl Level {
             out[c] = top + (bottom - top) * ay;
         }
         out
+    }
+}
+
+/// `i.rem_euclid(n)`, without the division for the usual case of `i` already in range or
+/// one texture repeat outside it.
+#[inline]
+fn wrap(i: i64, n: i64) -> i64 {
+    if (0..n).contains(&i) {
+        i
+    } else if (-n..0).contains(&i) {
+        i + n
+    } else {
+        i.rem_euclid(n)
     }
 }
 

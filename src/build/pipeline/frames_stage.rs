@@ -277,7 +277,7 @@ impl Pipeline<'_> {
             .sum();
         let store = !self.rechecking;
         let poses = &state.plan.poses;
-        let done = std::cell::Cell::new(0);
+        let done = std::sync::atomic::AtomicUsize::new(0);
         let mut out = Vec::with_capacity(ranges.len());
         let chunk_list = std::mem::take(&mut state.chunks);
         let render =
@@ -288,8 +288,8 @@ impl Pipeline<'_> {
                     let keep_all = self.spec.output.layout == OutputLayout::Webdataset;
                     let modes = (store, keep_all);
                     chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
-                        done.set(done.get() + 1);
-                        (self.progress)(&camera.name, done.get(), total);
+                        let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        (self.progress)(&camera.name, n, total);
                     })
                 });
                 let outputs = outputs.map_err(|source| self.cache_error(source))?;
@@ -304,7 +304,7 @@ impl Pipeline<'_> {
             match chunk {
                 Chunk::Skip => {}
                 Chunk::Cached(outputs) => {
-                    done.set(done.get() + range.len());
+                    done.fetch_add(range.len(), std::sync::atomic::Ordering::Relaxed);
                     out.push(outputs);
                 }
                 Chunk::Render => {

@@ -1,0 +1,71 @@
+//! `floor` and `ceil` for the per-pixel loops, bit-identical to `f64::floor`/`f64::ceil`.
+//!
+//! On the x86-64 baseline (no SSE4.1 `roundsd`) the standard ones are calls into the
+//! soft-float routine of `compiler_builtins`; in texture sampling, shadow lookups and
+//! sRGB encoding they cost about 5 % of a frame. These convert through `i64` instead,
+//! which is exact wherever `|x| < 2^52` (every value there is either an integer or has a
+//! fraction), and fall back to the standard functions elsewhere (huge values, which are
+//! already integers, infinities and NaN).
+
+/// Bit-identical to `x.floor()`.
+#[inline]
+pub fn floor(x: f64) -> f64 {
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let t = x as i64 as f64;
+        // Truncation rounds toward zero: one below for negative fractions. `t - 1.0` is
+        // exact, and -0.0 stays -0.0 (t = 0.0 > -0.0 is false).
+        if t > x { t - 1.0 } else { t.copysign(x) }
+    } else {
+        x.floor()
+    }
+}
+
+/// Bit-identical to `x.ceil()`.
+#[inline]
+pub fn ceil(x: f64) -> f64 {
+    -floor(-x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matches_the_standard_functions_bit_for_bit() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            0.49999999999999994,
+            -0.49999999999999994,
+            1.0e-300,
+            -1.0e-300,
+            2.5,
+            -2.5,
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            4_503_599_627_370_496.0,
+            9.0e18,
+            -9.3e18,
+            1.0e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+        ];
+        // A sweep of ordinary magnitudes, both signs.
+        let mut x = 1.0e-6;
+        while x < 1.0e17 {
+            values.extend([x, -x, x + 0.5, -x - 0.5]);
+            x *= 1.37;
+        }
+        for v in values {
+            assert_eq!(floor(v).to_bits(), v.floor().to_bits(), "floor({v:e})");
+            assert_eq!(ceil(v).to_bits(), v.ceil().to_bits(), "ceil({v:e})");
+        }
+        assert!(floor(f64::NAN).is_nan() && ceil(f64::NAN).is_nan());
+    }
+}
