@@ -91,7 +91,7 @@ pub fn render_chunk(
     // hashing, storing) overlaps another frame's tiles, where one frame at a time left a
     // core idle. Each frame's files and record are collected per frame and joined in frame
     // order, so the outputs do not depend on which frame finished first.
-    let frames: Vec<io::Result<(Vec<(String, Blob)>, FrameRecord)>> = range
+    let frames: Vec<io::Result<RenderedFrame>> = range
         .into_par_iter()
         .map(|i| {
             let keep = !store && (keep_all || picks.contains(&i));
@@ -127,6 +127,9 @@ pub fn render_chunk(
     outputs.insert(SUMMARY.to_owned(), blob);
     Ok(outputs)
 }
+
+/// A rendered frame's files (name, blob) and its record.
+type RenderedFrame = (Vec<(String, Blob)>, FrameRecord);
 
 /// The path's outputs from its chunks' (in frame order): their frame files, and
 /// `coco.json`, `poses.json`, `preview.png`, `yolo/classes.txt` assembled from their

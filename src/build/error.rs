@@ -4,31 +4,43 @@ use std::io;
 use std::path::PathBuf;
 
 use super::decode_error::DecodeError;
+use super::input_problem::InputProblem;
 use crate::facades::FacadeError;
 use crate::layout::LayoutError;
 use crate::objects::ObjectsError;
 use crate::render::RenderError;
-use crate::spec::SpecErrors;
+use crate::spec::{InputFileError, SpecErrors};
 
 /// A failed build. Each stage's error is kept whole as the [`source`](std::error::Error::source),
 /// so the CLI can tell bad input (exit code 2) from failures of the build itself (exit
 /// code 1) by the cause, not by the message.
 #[derive(Debug, thiserror::Error)]
 pub enum BuildError {
-    /// The spec file could not be read.
+    /// The spec file could not be read (missing, a folder or device, too large, not
+    /// UTF-8).
+    #[error("cannot read spec {}: expected a spec file, found {source}", path.display())]
+    SpecFile {
+        path: PathBuf,
+        #[source]
+        source: InputFileError,
+    },
+    /// A file given in place of a spec (a lock file) could not be read.
     #[error("cannot read spec {}: {source}", path.display())]
     ReadSpec { path: PathBuf, source: io::Error },
     /// The spec is invalid; every error is inside.
     #[error("{0}")]
     Spec(SpecErrors),
-    /// An input file the spec names cannot be read (missing, too large, not a regular
-    /// file, not UTF-8): the reading helpers say why in words.
-    #[error("{}: {key} = {}: {message}", spec.display(), file.display())]
+    /// An input file the spec names cannot be read or used (missing, too large, not a
+    /// regular file, not UTF-8, a model that does not parse): `entry` names the spec entry
+    /// when the key is a list's (`objects[2].model`).
+    #[error("{}: {key} = {}: {source}{}", spec.display(), file.display(), entry.as_deref().map(|e| format!(" ({e})")).unwrap_or_default())]
     Input {
         spec: PathBuf,
         key: &'static str,
         file: PathBuf,
-        message: String,
+        entry: Option<String>,
+        #[source]
+        source: Box<InputProblem>,
     },
     /// The layout image the spec names does not decode.
     #[error("{}: layout.image = {}: {source}", spec.display(), file.display())]

@@ -11,13 +11,14 @@ use std::path::{Component, Path, PathBuf};
 use sha2::{Digest, Sha256};
 
 use super::BuildError;
+use super::input_problem::InputProblem;
 use std::collections::BTreeMap;
 
 use crate::facades::{FacadeFile, FacadeSource};
 use crate::hash::hex;
 use crate::objects::MeshFiles;
 use crate::spec::ObjectKind;
-use crate::spec::{self, BUILTIN_FACADES, Spec};
+use crate::spec::{self, BUILTIN_FACADES, InputFileError, Spec};
 
 /// Every input file a spec names, read and hashed: what the stage keys and the stages need
 /// besides the spec itself.
@@ -74,11 +75,15 @@ pub fn layout_source(spec_path: &Path, spec: &Spec) -> Result<LayoutSource, Buil
     };
     let file = spec::resolve(spec_path, relative);
     let bytes =
-        spec::read_capped(&file, spec::MAX_IMAGE_BYTES).map_err(|why| BuildError::Input {
+        spec::read_capped(&file, spec::MAX_IMAGE_BYTES).map_err(|source| BuildError::Input {
             spec: spec_path.to_path_buf(),
             key: "layout.image",
             file: file.clone(),
-            message: format!("expected a layout image, found {why}"),
+            entry: None,
+            source: Box::new(InputProblem::Read {
+                expected: "a layout image",
+                source,
+            }),
         })?;
     Ok(LayoutSource::Image { path: file, bytes })
 }
@@ -91,14 +96,18 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
         return Ok(FacadeInput::Builtin);
     }
     let folder = spec::resolve(spec_path, &facades.source);
-    let input_error = |file: &Path, message: String| BuildError::Input {
+    let input_error = |file: &Path, source: InputProblem| BuildError::Input {
         spec: spec_path.to_path_buf(),
         key: "facades.source",
         file: file.to_path_buf(),
-        message,
+        entry: None,
+        source: Box::new(source),
+    };
+    let read_error = |file: &Path, expected: &'static str, source| {
+        input_error(file, InputProblem::Read { expected, source })
     };
     let mut names: Vec<String> = fs::read_dir(&folder)
-        .map_err(|e| input_error(&folder, e.to_string()))?
+        .map_err(|e| input_error(&folder, InputProblem::Folder(e)))?
         .filter_map(|entry| entry.ok())
         .filter_map(|entry| {
             let name = entry.file_name().to_string_lossy().into_owned();
@@ -111,10 +120,7 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
     names.sort();
     names.dedup();
     if names.is_empty() {
-        return Err(input_error(
-            &folder,
-            "expected facade photos (<name>.jpg), found none".into(),
-        ));
+        return Err(input_error(&folder, InputProblem::NoPhotos));
     }
     let mut digest = Sha256::new();
     let mut files = Vec::with_capacity(names.len());
@@ -124,13 +130,11 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
             .map(|ext| folder.join(format!("{name}.{ext}")))
             .find(|p| p.is_file())
             .unwrap_or_else(|| folder.join(format!("{name}.jpg")));
-        let photo = spec::read_capped(&photo_path, spec::MAX_TEXTURE_BYTES).map_err(|why| {
-            input_error(&photo_path, format!("expected a facade photo, found {why}"))
-        })?;
+        let photo = spec::read_capped(&photo_path, spec::MAX_TEXTURE_BYTES)
+            .map_err(|e| read_error(&photo_path, "a facade photo", e))?;
         let optional = |ext: &str| {
             let path = folder.join(format!("{name}.{ext}"));
-            read_optional(&path)
-                .map_err(|why| input_error(&path, format!("expected a facade file, found {why}")))
+            read_optional(&path).map_err(|e| read_error(&path, "a facade file", e))
         };
         let xml = optional("xml")?.map(|bytes| String::from_utf8_lossy(&bytes).into_owned());
         let labels = optional("png")?;
@@ -158,12 +162,16 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
     let floors = match &facades.floors {
         Some(relative) => {
             let file = folder.join(relative);
-            let text = spec::read_text_capped(&file, spec::MAX_FLOORS_BYTES).map_err(|why| {
+            let text = spec::read_text_capped(&file, spec::MAX_FLOORS_BYTES).map_err(|source| {
                 BuildError::Input {
                     spec: spec_path.to_path_buf(),
                     key: "facades.floors",
                     file: file.clone(),
-                    message: format!("expected a floors file, found {why}"),
+                    entry: None,
+                    source: Box::new(InputProblem::Read {
+                        expected: "a floors file",
+                        source,
+                    }),
                 }
             })?;
             digest.update((text.len() as u64 + 1).to_le_bytes());
@@ -185,9 +193,9 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
 
 /// The file's bytes if it exists; a file that is there but not a regular file, or over the
 /// cap, is an error rather than "absent".
-fn read_optional(path: &Path) -> Result<Option<Vec<u8>>, String> {
+fn read_optional(path: &Path) -> Result<Option<Vec<u8>>, InputFileError> {
     match spec::check_file(path, spec::MAX_TEXTURE_BYTES) {
-        Err(why) if why == "no such file" => Ok(None),
+        Err(InputFileError::NotFound) => Ok(None),
         Err(why) => Err(why),
         Ok(_) => spec::read_capped(path, spec::MAX_TEXTURE_BYTES).map(Some),
     }
@@ -236,15 +244,16 @@ pub fn mesh_files(
             continue;
         }
         let file = spec::resolve(spec_path, model);
-        let fail = |path: &Path, message: String| BuildError::Input {
+        let fail = |path: &Path, source: InputProblem| BuildError::Input {
             spec: spec_path.to_path_buf(),
             key: "objects.model",
             file: path.to_path_buf(),
-            message: format!("{message} (objects[{index}].model)"),
+            entry: Some(format!("objects[{index}].model")),
+            source: Box::new(source),
         };
-        let read = |path: &Path, cap: u64, what: &str| {
+        let read = |path: &Path, cap: u64, expected: &'static str| {
             spec::read_capped(path, cap)
-                .map_err(|why| fail(path, format!("expected {what}, found {why}")))
+                .map_err(|source| fail(path, InputProblem::Read { expected, source }))
         };
         let obj = read(&file, spec::MAX_MODEL_BYTES, "an OBJ model")?;
         let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -263,11 +272,8 @@ pub fn mesh_files(
         })
         .map(|_| ())
         .map_err(|e| {
-            let at = crate::objects::obj_lines::obj_error_line(&obj_text, &e);
-            fail(
-                &file,
-                line_message(at, &format!("not a valid OBJ model: {e}")),
-            )
+            let line = crate::objects::obj_lines::obj_error_line(&obj_text, &e);
+            fail(&file, InputProblem::Obj { line, source: e })
         })?;
         let mtl_name = mtl_names.into_inner().into_iter().next();
         let mtl = match &mtl_name {
@@ -282,11 +288,8 @@ pub fn mesh_files(
             let mtl_path = folder.join(mtl_name);
             let (materials, _) = tobj::load_mtl_buf(&mut Cursor::new(&mtl[..])).map_err(|e| {
                 let text = String::from_utf8_lossy(mtl);
-                let at = crate::objects::obj_lines::mtl_error_line(&text, &e);
-                fail(
-                    &mtl_path,
-                    line_message(at, &format!("not a valid MTL file: {e}")),
-                )
+                let line = crate::objects::obj_lines::mtl_error_line(&text, &e);
+                fail(&mtl_path, InputProblem::Mtl { line, source: e })
             })?;
             let names = materials.iter().flat_map(|m| {
                 [&m.diffuse_texture, &m.ambient_texture, &m.dissolve_texture]
@@ -326,48 +329,42 @@ pub fn mesh_files(
 /// least one word.
 fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, BuildError> {
     let file = spec::resolve(spec_path, words);
-    let error = |message: String| BuildError::Input {
+    let error = |source: InputProblem| BuildError::Input {
         spec: spec_path.to_path_buf(),
         key: "objects.words_file",
         file: file.clone(),
-        message: format!("{message} (objects[{index}].words_file)"),
+        entry: Some(format!("objects[{index}].words_file")),
+        source: Box::new(source),
     };
-    let size = fs::metadata(&file).map_err(|e| error(e.to_string()))?.len();
+    let size = fs::metadata(&file)
+        .map_err(|e| error(InputProblem::WordsUnreadable(e)))?
+        .len();
     if size > MAX_WORDS_FILE {
-        return Err(error(format!(
-            "the word file is {size} bytes, more than the {MAX_WORDS_FILE} allowed"
-        )));
+        return Err(error(InputProblem::WordsTooLarge {
+            size,
+            cap: MAX_WORDS_FILE,
+        }));
     }
-    let bytes = fs::read(&file).map_err(|e| error(e.to_string()))?;
+    let bytes = fs::read(&file).map_err(|e| error(InputProblem::WordsUnreadable(e)))?;
     match std::str::from_utf8(&bytes) {
-        Err(e) => Err(error(format!("the word file is not UTF-8: {e}"))),
+        Err(e) => Err(error(InputProblem::WordsNotUtf8(e))),
         Ok(text) if crate::objects::parse_words(text).is_empty() => {
-            Err(error("the word file holds no words".to_owned()))
+            Err(error(InputProblem::NoWords))
         }
         Ok(_) => Ok(bytes),
     }
 }
 
-/// `message`, prefixed `line N: ` when the line is known (the error names the file).
-fn line_message(line: Option<usize>, message: &str) -> String {
-    match line {
-        Some(n) => format!("line {n}: {message}"),
-        None => message.to_owned(),
-    }
-}
-
 /// `name` (from an OBJ or MTL) resolved in `folder`, if it stays inside it: relative, no
 /// `..`, and not leading out through a symlink.
-fn inside(folder: &Path, name: &str) -> Result<PathBuf, String> {
+fn inside(folder: &Path, name: &str) -> Result<PathBuf, InputProblem> {
     let relative = Path::new(name);
     let escapes = relative.is_absolute()
         || relative
             .components()
             .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir));
     if escapes {
-        return Err(format!(
-            "expected a file name inside the model's folder, found {name:?}"
-        ));
+        return Err(InputProblem::Escapes(name.to_owned()));
     }
     let path = folder.join(relative);
     let base = fs::canonicalize(if folder.as_os_str().is_empty() {
@@ -378,10 +375,10 @@ fn inside(folder: &Path, name: &str) -> Result<PathBuf, String> {
     if let (Ok(base), Ok(real)) = (base, fs::canonicalize(&path))
         && !real.starts_with(&base)
     {
-        return Err(format!(
-            "expected a file inside the model's folder, found {name:?}, a link to {}",
-            real.display()
-        ));
+        return Err(InputProblem::LinksOut {
+            name: name.to_owned(),
+            target: real.display().to_string(),
+        });
     }
     Ok(path)
 }

@@ -17,6 +17,7 @@ mod error;
 mod frame_labels;
 mod frames;
 mod fresh;
+mod input_problem;
 mod inputs;
 mod lock;
 mod manifest;
@@ -94,11 +95,12 @@ impl Default for BuildOptions {
 /// Reads and validates one spec file.
 pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
     // Capped, and refused unless a regular file: a spec that is `/dev/zero` fails at once.
-    let text =
-        spec::read_text_capped(path, spec::MAX_SPEC_BYTES).map_err(|why| BuildError::ReadSpec {
+    let text = spec::read_text_capped(path, spec::MAX_SPEC_BYTES).map_err(|source| {
+        BuildError::SpecFile {
             path: path.to_path_buf(),
-            source: io::Error::other(format!("expected a spec file, found {why}")),
-        })?;
+            source,
+        }
+    })?;
     let source = SpecSource {
         path: path.to_path_buf(),
         text,

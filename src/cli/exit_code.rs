@@ -15,6 +15,7 @@ pub const BUILD: u8 = 1;
 pub fn exit_code(error: &BuildError) -> u8 {
     match error {
         BuildError::ReadSpec { .. }
+        | BuildError::SpecFile { .. }
         | BuildError::Spec(_)
         | BuildError::Input { .. }
         | BuildError::Layout { .. }

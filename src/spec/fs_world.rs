@@ -7,7 +7,9 @@ use std::path::Path;
 use image::ImageReader;
 
 use super::SpecWorld;
-use super::input_file::{MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, read_capped};
+use super::input_file::{
+    InputFileError, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, read_capped,
+};
 
 /// The real file system: reads only the header of each image.
 #[derive(Clone, Copy, Debug, Default)]
@@ -26,19 +28,17 @@ impl SpecWorld for FsWorld {
 
     fn file(&self, path: &Path) -> Result<(), String> {
         // Every file a spec names is read through a cap; the largest cap is the model's.
-        check_file(path, MAX_MODEL_BYTES).map(|_| ())
+        check_file(path, MAX_MODEL_BYTES)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
     }
 
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
         if path.is_dir() {
             return Err("a directory".to_string());
         }
-        check_file(path, MAX_IMAGE_BYTES)?;
-        let unreadable = |e: std::io::Error| match e.kind() {
-            ErrorKind::NotFound => "no such file".to_string(),
-            ErrorKind::PermissionDenied => "a file it may not read".to_string(),
-            _ => format!("an unreadable file ({e})"),
-        };
+        check_file(path, MAX_IMAGE_BYTES).map_err(|e| e.to_string())?;
+        let unreadable = |e: std::io::Error| InputFileError::of_io(e).to_string();
         // Judge by content, not by name: `with_guessed_format` would fall back to the
         // extension and blame a garbage `.png` on the PNG decoder.
         let mut head = Vec::with_capacity(32);
@@ -59,12 +59,16 @@ impl SpecWorld for FsWorld {
     fn layout_pixels(&self, path: &Path) -> Option<Result<image::RgbImage, String>> {
         // The same reading and decoding as the build's, so `validate` refuses what `build`
         // would (a truncated or corrupt image).
-        Some(read_capped(path, MAX_IMAGE_BYTES).and_then(|bytes| {
-            crate::model::image_file::decode(&bytes).map_err(|e| match e {
-                crate::model::image_file::LayoutError::Truncated(why) => why,
-                other => other.to_string(),
-            })
-        }))
+        Some(
+            read_capped(path, MAX_IMAGE_BYTES)
+                .map_err(|e| e.to_string())
+                .and_then(|bytes| {
+                    crate::model::image_file::decode(&bytes).map_err(|e| match e {
+                        crate::model::image_file::LayoutError::Truncated(why) => why,
+                        other => other.to_string(),
+                    })
+                }),
+        )
     }
 }
 

@@ -6,7 +6,7 @@
 //! out. Symlinks to regular files are followed: a user may link a model in.
 
 use std::fs::{self, File};
-use std::io::{ErrorKind, Read};
+use std::io::{self, ErrorKind, Read};
 use std::path::Path;
 
 /// Largest spec file.
@@ -22,57 +22,78 @@ pub const MAX_TEXTURE_BYTES: u64 = 64 << 20;
 /// Largest facade floors file.
 pub const MAX_FLOORS_BYTES: u64 = 4 << 20;
 
-/// Why `path` cannot be read as a regular file of at most `cap` bytes, completing
-/// "expected …, found {why}"; Ok with its size otherwise.
-pub fn check_file(path: &Path, cap: u64) -> Result<u64, String> {
-    let meta = fs::metadata(path).map_err(|e| unreadable(&e))?;
+/// Why a file a spec names cannot be read. Its text completes "expected …, found {it}".
+#[derive(Debug, thiserror::Error)]
+pub enum InputFileError {
+    #[error("no such file")]
+    NotFound,
+    #[error("a file it may not read")]
+    PermissionDenied,
+    #[error("an unreadable file ({0})")]
+    Unreadable(#[source] io::Error),
+    #[error("a folder, not a file")]
+    Folder,
+    #[error("not a regular file (a device, pipe or socket)")]
+    NotRegular,
+    #[error("a file of {size} bytes, over the limit of {cap} bytes for this kind of input")]
+    TooLarge { size: u64, cap: u64 },
+    #[error("a file that is not UTF-8 text (byte {valid_up_to})")]
+    NotUtf8 { valid_up_to: usize },
+}
+
+impl InputFileError {
+    /// The error of a failed open, read or metadata call.
+    pub fn of_io(e: io::Error) -> InputFileError {
+        match e.kind() {
+            ErrorKind::NotFound => InputFileError::NotFound,
+            ErrorKind::PermissionDenied => InputFileError::PermissionDenied,
+            _ => InputFileError::Unreadable(e),
+        }
+    }
+}
+
+/// Why `path` cannot be read as a regular file of at most `cap` bytes; Ok with its size
+/// otherwise.
+pub fn check_file(path: &Path, cap: u64) -> Result<u64, InputFileError> {
+    let meta = fs::metadata(path).map_err(InputFileError::of_io)?;
     if meta.is_dir() {
-        return Err("a folder, not a file".to_owned());
+        return Err(InputFileError::Folder);
     }
     if !meta.is_file() {
-        return Err("not a regular file (a device, pipe or socket)".to_owned());
+        return Err(InputFileError::NotRegular);
     }
     if meta.len() > cap {
-        return Err(too_large(meta.len(), cap));
+        return Err(InputFileError::TooLarge {
+            size: meta.len(),
+            cap,
+        });
     }
     Ok(meta.len())
 }
 
 /// The bytes of the regular file `path`, refused (see [`check_file`]) when it is not a
 /// regular file or holds more than `cap` bytes.
-pub fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
+pub fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, InputFileError> {
     let size = check_file(path, cap)?;
     let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
     File::open(path)
         .and_then(|f| f.take(cap + 1).read_to_end(&mut bytes))
-        .map_err(|e| unreadable(&e))?;
+        .map_err(InputFileError::of_io)?;
     // It may have grown since it was measured.
     if bytes.len() as u64 > cap {
-        return Err(too_large(bytes.len() as u64, cap));
+        return Err(InputFileError::TooLarge {
+            size: bytes.len() as u64,
+            cap,
+        });
     }
     Ok(bytes)
 }
 
 /// [`read_capped`] as UTF-8 text.
-pub fn read_text_capped(path: &Path, cap: u64) -> Result<String, String> {
-    String::from_utf8(read_capped(path, cap)?).map_err(|e| {
-        format!(
-            "a file that is not UTF-8 text (byte {})",
-            e.utf8_error().valid_up_to()
-        )
+pub fn read_text_capped(path: &Path, cap: u64) -> Result<String, InputFileError> {
+    String::from_utf8(read_capped(path, cap)?).map_err(|e| InputFileError::NotUtf8 {
+        valid_up_to: e.utf8_error().valid_up_to(),
     })
-}
-
-fn unreadable(e: &std::io::Error) -> String {
-    match e.kind() {
-        ErrorKind::NotFound => "no such file".to_owned(),
-        ErrorKind::PermissionDenied => "a file it may not read".to_owned(),
-        _ => format!("an unreadable file ({e})"),
-    }
-}
-
-fn too_large(size: u64, cap: u64) -> String {
-    format!("a file of {size} bytes, over the limit of {cap} bytes for this kind of input")
 }
 
 #[cfg(test)]
@@ -86,20 +107,24 @@ mod tests {
         std::fs::write(&small, b"hello").unwrap();
         assert_eq!(read_capped(&small, 5).unwrap(), b"hello");
         assert_eq!(
-            read_capped(&small, 4).unwrap_err(),
+            read_capped(&small, 4).unwrap_err().to_string(),
             "a file of 5 bytes, over the limit of 4 bytes for this kind of input"
         );
         assert_eq!(
-            read_capped(dir.path(), 9).unwrap_err(),
+            read_capped(dir.path(), 9).unwrap_err().to_string(),
             "a folder, not a file"
         );
         assert_eq!(
-            read_capped(&dir.path().join("b"), 9).unwrap_err(),
+            read_capped(&dir.path().join("b"), 9)
+                .unwrap_err()
+                .to_string(),
             "no such file"
         );
         let started = std::time::Instant::now();
         assert_eq!(
-            read_capped(Path::new("/dev/zero"), MAX_MODEL_BYTES).unwrap_err(),
+            read_capped(Path::new("/dev/zero"), MAX_MODEL_BYTES)
+                .unwrap_err()
+                .to_string(),
             "not a regular file (a device, pipe or socket)"
         );
         assert!(started.elapsed().as_secs() < 1);
@@ -107,6 +132,7 @@ mod tests {
         assert!(
             read_text_capped(&small, 9)
                 .unwrap_err()
+                .to_string()
                 .contains("not UTF-8")
         );
     }
