@@ -3,6 +3,7 @@
 
 use image::{ImageBuffer, Luma, RgbImage};
 
+use crate::model::geometry::rounding::round;
 use crate::model::image_file::{PngEffort, encode_png};
 use crate::model::pack_ids;
 
@@ -70,7 +71,7 @@ impl Frame {
         ImageBuffer::from_fn(w, h, |x, y| {
             let d = self.depth.get_pixel(x, y).0[0];
             Luma([if d > 0.0 {
-                (f64::from(d) * per_metre).round().clamp(1.0, 65535.0) as u16
+                round(f64::from(d) * per_metre).clamp(1.0, 65535.0) as u16
             } else {
                 0
             }])

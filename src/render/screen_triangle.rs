@@ -10,6 +10,7 @@
 use super::prepared_scene::Triangle;
 use super::view::{View, plane};
 use crate::model::geometry::dot;
+use crate::model::geometry::rounding::round;
 
 /// Fixed-point subpixel steps per pixel.
 pub(crate) const SUB: i64 = 256;
@@ -162,10 +163,7 @@ fn emit(v: &[ClipVert; 3], source: u32, view: &View, out: &mut Vec<ScreenTri>) {
             return;
         }
         pix[i] = [x, y];
-        fixed[i] = [
-            (x * SUB as f64).round() as i64,
-            (y * SUB as f64).round() as i64,
-        ];
+        fixed[i] = [round(x * SUB as f64) as i64, round(y * SUB as f64) as i64];
         let q = 1.0 / v[i].c[2];
         attr[i] = [q, v[i].uv[0] * q, v[i].uv[1] * q];
     }

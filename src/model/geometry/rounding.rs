@@ -1,4 +1,5 @@
-//! `floor` and `ceil` for the per-pixel loops, bit-identical to `f64::floor`/`f64::ceil`.
+//! `floor`, `ceil` and `round` for the per-pixel loops, bit-identical to `f64::floor`,
+//! `f64::ceil` and `f64::round`.
 //!
 //! On the x86-64 baseline (no SSE4.1 `roundsd`) the standard ones are calls into the
 //! soft-float routine of `compiler_builtins`; in texture sampling, shadow lookups and
@@ -26,6 +27,25 @@ pub fn ceil(x: f64) -> f64 {
     -floor(-x)
 }
 
+/// Bit-identical to `x.round()` (halves away from zero).
+#[inline]
+pub fn round(x: f64) -> f64 {
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let t = x as i64 as f64;
+        // The fraction x − trunc(x) is exact: it keeps only bits x already has.
+        let f = x - t;
+        if f >= 0.5 {
+            t + 1.0
+        } else if f <= -0.5 {
+            t - 1.0
+        } else {
+            t.copysign(x)
+        }
+    } else {
+        x.round()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -41,6 +61,10 @@ mod tests {
             -1.0,
             0.49999999999999994,
             -0.49999999999999994,
+            0.5000000000000001,
+            1.5,
+            -1.5,
+            2.4999999999999996,
             1.0e-300,
             -1.0e-300,
             2.5,
@@ -65,7 +89,8 @@ mod tests {
         for v in values {
             assert_eq!(floor(v).to_bits(), v.floor().to_bits(), "floor({v:e})");
             assert_eq!(ceil(v).to_bits(), v.ceil().to_bits(), "ceil({v:e})");
+            assert_eq!(round(v).to_bits(), v.round().to_bits(), "round({v:e})");
         }
-        assert!(floor(f64::NAN).is_nan() && ceil(f64::NAN).is_nan());
+        assert!(floor(f64::NAN).is_nan() && ceil(f64::NAN).is_nan() && round(f64::NAN).is_nan());
     }
 }
