@@ -119,6 +119,8 @@ impl Walls {
             return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
+        // Per placed plate: `Some(hard)` when its background is the raw wall, to be primed.
+        let mut primers: Vec<Option<bool>> = Vec::new();
         let mut misses = 0;
         for _ in 0..spec.count {
             if misses >= GIVE_UP {
@@ -158,15 +160,12 @@ impl Walls {
                 (PlateStyle::Painted, Some(patch)) => {
                     let hard = rng.random::<f64>() < HARD_SHARE;
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
-                    // The floor holds against the wall pixels behind the letters, not only
-                    // their mean: brick with light mortar is primed first.
-                    (
-                        Background::Wall(text_colours::primed(patch, ink, hard)),
-                        ink,
-                    )
+                    primers.push(Some(hard));
+                    (Background::Wall(patch), ink)
                 }
                 _ => {
                     let (paper, ink) = text_colours::pair(rng);
+                    primers.push(None);
                     (Background::Paper(paper), ink)
                 }
             };
@@ -190,6 +189,14 @@ impl Walls {
                 corners,
             });
         }
+        // The floor holds against the wall pixels behind the letters, not only their mean:
+        // brick with light mortar is primed first. Priming draws nothing from the stream,
+        // so it runs after the (serial) placing, every plate in parallel.
+        placed.par_iter_mut().zip(&primers).for_each(|(p, primer)| {
+            if let (Some(hard), Background::Wall(patch)) = (primer, &mut p.background) {
+                *patch = text_colours::primed(std::mem::take(patch), p.ink, *hard);
+            }
+        });
         finish_plates(
             spec,
             &self.walls,
