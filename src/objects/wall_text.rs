@@ -27,6 +27,7 @@ use super::text_plate::{self, Background, TextPlate};
 use super::{
     ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
 };
+use crate::model::geometry::rounding::{floor, round};
 use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{SceneObject, Texture};
 use crate::spec::{ObjectSpec, TextCase};
@@ -382,7 +383,7 @@ fn mean_luminance(image: &RgbImage) -> f64 {
 /// edges.
 fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
     let (w, h) = (image.width() as i64, image.height() as i64);
-    let (fx, fy) = (x.floor(), y.floor());
+    let (fx, fy) = (floor(x), floor(y));
     let (ax, ay) = (x - fx, y - fy);
     let at = |dx: i64, dy: i64| {
         let px = (fx as i64 + dx).clamp(0, w - 1) as u32;
@@ -393,7 +394,7 @@ fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
     image::Rgb(std::array::from_fn(|c| {
         let top = f64::from(p00[c]) * (1.0 - ax) + f64::from(p10[c]) * ax;
         let bottom = f64::from(p01[c]) * (1.0 - ax) + f64::from(p11[c]) * ax;
-        (top * (1.0 - ay) + bottom * ay).round() as u8
+        round(top * (1.0 - ay) + bottom * ay) as u8
     }))
 }
 

@@ -8,6 +8,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use crate::model::PxRect;
+pub use crate::model::geometry::rounding::round;
 
 use super::super::cmp_box::CmpBox;
 use super::super::cmp_label::CmpLabel;
@@ -150,22 +151,6 @@ pub fn mix(a: Colour, b: Colour, t: f64) -> Colour {
     out
 }
 
-/// `v.round()` (halves away from zero) for `|v| < 2^52`, the painter's range, without
-/// the library call `f64::round` compiles to on baseline x86-64: truncation is one
-/// instruction and `v − trunc(v)` is exact. Casts of the result to an integer agree
-/// with `f64::round`'s for every input (NaN reads 0 in both; −0 and 0 cast alike).
-pub fn round(v: f64) -> f64 {
-    let whole = (v as i64) as f64;
-    let rest = v - whole;
-    if rest >= 0.5 {
-        whole + 1.0
-    } else if rest <= -0.5 {
-        whole - 1.0
-    } else {
-        whole
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -188,21 +173,5 @@ mod tests {
         canvas.shade(rect(0, 0, 1, 1), 0.5);
         assert_eq!(canvas.photo.get_pixel(0, 0).0, [5, 10, 15]);
         assert_eq!(canvas.photo.get_pixel(1, 1).0, [10, 20, 30]);
-    }
-
-    #[test]
-    fn round_agrees_with_the_library_round() {
-        let mut v = -300.0;
-        while v < 300.0 {
-            for x in [v, v + 0.5, v - 1e-9, v + 0.5 - 1e-12, 0.49999999999999994] {
-                assert_eq!(round(x) as i32, x.round() as i32, "{x}");
-                assert_eq!(
-                    round(x).clamp(0.0, 255.0) as u8,
-                    x.round().clamp(0.0, 255.0) as u8
-                );
-            }
-            v += 0.125;
-        }
-        assert_eq!(round(f64::NAN) as u8, f64::NAN.round() as u8);
     }
 }

@@ -13,11 +13,13 @@
 //! | [`vector`] helpers: `sub`, `dot`, `cross`, `normalize` | scene, objects, render, export, sensor |
 //! | [`trig`]: bit-exact cos/sin and tan(θ/2) | objects, build |
 //! | [`units`]: metres ↔ pixels, millimetre rounding | plan, cameras, annotate, build |
+//! | [`rounding`]: `round`/`floor` without a library call, for per-pixel loops | facades, objects |
 
 mod facade_choice;
 mod material_book;
 mod mesh_builder;
 mod road_rect;
+pub mod rounding;
 mod street_profile;
 mod strip_width;
 pub mod trig;
