@@ -27,9 +27,11 @@ pub struct Texture {
     pixels: Pixels,
 }
 
-/// The decoded pixels a texture may carry beside its PNG.
+/// The decoded pixels a texture may carry beside its PNG, with the very PNG they were
+/// encoded to: they stand for `png` only while `png` is still that allocation (one who
+/// swaps the bytes gets them decoded; the shared `Arc` cannot be changed in place).
 #[derive(Clone, Default)]
-struct Pixels(Option<Arc<RgbImage>>);
+struct Pixels(Option<(Arc<Vec<u8>>, Arc<RgbImage>)>);
 
 impl PartialEq for Pixels {
     /// Always equal: the pixels are a copy of what the PNG holds, not part of the value.
@@ -60,13 +62,13 @@ pub fn encode_png(image: &RgbImage) -> Vec<u8> {
 impl Texture {
     /// Encodes `image` as a PNG with fixed settings, so the same pixels give the same bytes.
     pub fn from_rgb(name: impl Into<String>, image: &RgbImage) -> Texture {
-        let png = encode_png(image);
+        let png = Arc::new(encode_png(image));
         Texture {
             name: name.into(),
             width: image.width(),
             height: image.height(),
-            png: Arc::new(png),
-            pixels: Pixels(Some(Arc::new(image.clone()))),
+            pixels: Pixels(Some((Arc::clone(&png), Arc::new(image.clone())))),
+            png,
         }
     }
 
@@ -82,8 +84,8 @@ impl Texture {
     /// the PNG decoded.
     pub fn decode(&self) -> Result<RgbImage, image::ImageError> {
         match &self.pixels.0 {
-            Some(pixels) => Ok(RgbImage::clone(pixels)),
-            None => image::load_from_memory_with_format(&self.png, image::ImageFormat::Png)
+            Some((png, pixels)) if Arc::ptr_eq(png, &self.png) => Ok(RgbImage::clone(pixels)),
+            _ => image::load_from_memory_with_format(&self.png, image::ImageFormat::Png)
                 .map(|i| i.to_rgb8()),
         }
     }
@@ -109,5 +111,9 @@ mod tests {
         };
         assert_eq!(cached, a);
         assert_eq!(cached.decode().unwrap(), image);
+        // Other bytes put in its place are what decodes, not the pixels kept beside.
+        let mut swapped = a.clone();
+        swapped.png = Arc::new(vec![1, 2, 3]);
+        assert!(swapped.decode().is_err());
     }
 }

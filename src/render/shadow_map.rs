@@ -320,10 +320,8 @@ mod tests {
             match case % 5 {
                 // Slivers: a vertex nearly on the opposite edge.
                 1 => {
-                    let s = 0.3;
-                    for k in 0..3 {
-                        t[2][k] = t[0][k] + (t[1][k] - t[0][k]) * s;
-                    }
+                    let (a, b) = (t[0], t[1]);
+                    t[2] = std::array::from_fn(|k| a[k] + (b[k] - a[k]) * 0.3);
                     t[2][1] += 1e-7;
                 }
                 // Nearly horizontal and vertical edges, vertices on texel centres.
