@@ -13,7 +13,7 @@
 //! | [`vector`] helpers: `sub`, `dot`, `cross`, `normalize` | scene, objects, render, export, sensor |
 //! | [`trig`]: bit-exact cos/sin and tan(θ/2) | objects, build |
 //! | [`units`]: metres ↔ pixels, millimetre rounding | plan, cameras, annotate, build |
-//! | [`rounding`]: `round`/`floor` without a library call, for per-pixel loops | facades, objects |
+//! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render, sensor, facades, objects |
 
 mod facade_choice;
 mod material_book;
