@@ -22,6 +22,7 @@ use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut, draw_text_mut};
 use support::{
     bench_runs, build_into, child_args, day_without_cameras, median, peak_kib, repo, run_child,
+    with_layout_key,
 };
 
 const CASES: [(&str, &str); 3] = [
@@ -137,13 +138,12 @@ impl Sample {
 fn write_spec(dir: &Path, name: &str, day: &str, mirror: &str) -> PathBuf {
     // Paths in the spec are relative to specs/; this copy lives elsewhere.
     let assets = format!("\"{}/assets/", repo().display());
-    let text = day
-        .replace("\"../assets/", &assets)
-        .replace("name = \"day\"", &format!("name = \"{name}\""))
-        .replace(
-            "[layout.generate]",
-            &format!("[layout]\nmirror = {mirror}\n\n[layout.generate]"),
-        );
+    let text = with_layout_key(
+        &day.replace("\"../assets/", &assets)
+            .replace("name = \"day\"", &format!("name = \"{name}\"")),
+        "mirror",
+        mirror,
+    );
     let path = dir.join(format!("{name}.toml"));
     fs::write(&path, text).unwrap();
     path

@@ -24,6 +24,28 @@ pub fn day_without_cameras() -> String {
     }
 }
 
+/// `spec` with `key = value` added to its `[layout]` table. The day spec already opens
+/// `[layout]` (for `metres_per_pixel`), so a second `[layout]` header would be a TOML
+/// "duplicate key" error; a spec without the table gets one before `[layout.generate]`.
+pub fn with_layout_key(spec: &str, key: &str, value: &str) -> String {
+    let line = format!("{key} = {value}\n");
+    match spec.find("\n[layout]") {
+        Some(at) => {
+            let after_header = at
+                + 1
+                + spec[at + 1..]
+                    .find('\n')
+                    .map_or(spec.len() - at - 1, |n| n + 1);
+            format!("{}{line}{}", &spec[..after_header], &spec[after_header..])
+        }
+        None => spec.replacen(
+            "[layout.generate]",
+            &format!("[layout]\n{line}\n[layout.generate]"),
+            1,
+        ),
+    }
+}
+
 /// `--child SPEC CACHE OUT`: the arguments of a bench's child build process, if it is one.
 pub fn child_args() -> Option<[PathBuf; 3]> {
     let args: Vec<String> = std::env::args().collect();

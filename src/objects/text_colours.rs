@@ -119,14 +119,11 @@ pub fn primed(patch: RgbImage, ink: [u8; 3], hard: bool) -> RgbImage {
 /// The ink's contrast against the patch pixel [`PATCH_QUANTILE`] in from the ink's side.
 fn worst_contrast(patch: &RgbImage, ink: f64, dark_ink: bool) -> f64 {
     let mut lums: Vec<f64> = patch.pixels().map(|p| luminance(p.0)).collect();
-    lums.sort_by(f64::total_cmp);
     let k = ((lums.len() - 1) as f64 * PATCH_QUANTILE) as usize;
-    // Dark ink is hurt by the darkest background pixels, light ink by the lightest.
-    let near = if dark_ink {
-        lums[k]
-    } else {
-        lums[lums.len() - 1 - k]
-    };
+    // Dark ink is hurt by the darkest background pixels, light ink by the lightest. Only
+    // that one rank is needed: selected, not sorted (the same value a sort puts there).
+    let rank = if dark_ink { k } else { lums.len() - 1 - k };
+    let near = *lums.select_nth_unstable_by(rank, f64::total_cmp).1;
     contrast(ink, near)
 }
 

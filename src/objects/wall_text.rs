@@ -27,6 +27,7 @@ use super::text_plate::{self, Background, TextPlate};
 use super::{
     ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
 };
+use crate::model::geometry::rounding::{floor, round};
 use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{SceneObject, Texture};
 use crate::spec::{ObjectSpec, TextCase};
@@ -119,6 +120,8 @@ impl Walls {
             return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
+        // Per placed plate: `Some(hard)` when its background is the raw wall, to be primed.
+        let mut primers: Vec<Option<bool>> = Vec::new();
         let mut misses = 0;
         for _ in 0..spec.count {
             if misses >= GIVE_UP {
@@ -158,15 +161,12 @@ impl Walls {
                 (PlateStyle::Painted, Some(patch)) => {
                     let hard = rng.random::<f64>() < HARD_SHARE;
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
-                    // The floor holds against the wall pixels behind the letters, not only
-                    // their mean: brick with light mortar is primed first.
-                    (
-                        Background::Wall(text_colours::primed(patch, ink, hard)),
-                        ink,
-                    )
+                    primers.push(Some(hard));
+                    (Background::Wall(patch), ink)
                 }
                 _ => {
                     let (paper, ink) = text_colours::pair(rng);
+                    primers.push(None);
                     (Background::Paper(paper), ink)
                 }
             };
@@ -190,6 +190,14 @@ impl Walls {
                 corners,
             });
         }
+        // The floor holds against the wall pixels behind the letters, not only their mean:
+        // brick with light mortar is primed first. Priming draws nothing from the stream,
+        // so it runs after the (serial) placing, every plate in parallel.
+        placed.par_iter_mut().zip(&primers).for_each(|(p, primer)| {
+            if let (Some(hard), Background::Wall(patch)) = (primer, &mut p.background) {
+                *patch = text_colours::primed(std::mem::take(patch), p.ink, *hard);
+            }
+        });
         finish_plates(
             spec,
             &self.walls,
@@ -375,7 +383,7 @@ fn mean_luminance(image: &RgbImage) -> f64 {
 /// edges.
 fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
     let (w, h) = (image.width() as i64, image.height() as i64);
-    let (fx, fy) = (x.floor(), y.floor());
+    let (fx, fy) = (floor(x), floor(y));
     let (ax, ay) = (x - fx, y - fy);
     let at = |dx: i64, dy: i64| {
         let px = (fx as i64 + dx).clamp(0, w - 1) as u32;
@@ -386,7 +394,7 @@ fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
     image::Rgb(std::array::from_fn(|c| {
         let top = f64::from(p00[c]) * (1.0 - ax) + f64::from(p10[c]) * ax;
         let bottom = f64::from(p01[c]) * (1.0 - ax) + f64::from(p11[c]) * ax;
-        (top * (1.0 - ay) + bottom * ay).round() as u8
+        round(top * (1.0 - ay) + bottom * ay) as u8
     }))
 }
 

@@ -126,18 +126,20 @@ impl ShadowMap {
                 bin.push(i as u32);
             }
         }
-        let depth: Vec<f32> = bins
-            .par_iter()
+        // Zeroed memory comes from the system untouched; each band fills its own rows, in
+        // parallel, straight into the map (no per-band buffers to copy).
+        let mut depth = vec![0.0f32; width * height];
+        depth
+            .par_chunks_mut(BAND * width)
+            .zip(&bins)
             .enumerate()
-            .flat_map_iter(|(b, bin)| {
+            .for_each(|(b, (band, bin))| {
+                band.fill(f32::NEG_INFINITY);
                 let rows = [b * BAND, ((b + 1) * BAND).min(height)];
-                let mut band = vec![f32::NEG_INFINITY; (rows[1] - rows[0]) * width];
                 for &i in bin {
-                    raster(&tris[i as usize], rows, width, &mut band);
+                    raster(&tris[i as usize], rows, width, band);
                 }
-                band
-            })
-            .collect();
+            });
         Some(ShadowMap {
             dir,
             right,
@@ -207,8 +209,15 @@ fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
     let inv = 1.0 / area;
     for y in y0..y1 {
         let py = y as f64 + 0.5;
+        // Only the texels near the triangle's span on this row are tested (a slanted or
+        // thin triangle covers a small part of its box); the test itself is unchanged,
+        // and the span is padded far beyond its rounding (see `row_span`).
+        let Some((xa, xb)) = row_span(t, py) else {
+            continue;
+        };
+        let (xa, xb) = (xa.max(x0), xb.min(x1));
         let row = &mut band[(y - rows[0]) * width..][..width];
-        for (x, slot) in row.iter_mut().enumerate().take(x1).skip(x0) {
+        for (x, slot) in row.iter_mut().enumerate().take(xb).skip(xa) {
             let px = x as f64 + 0.5;
             // Barycentric weights; a texel centre on an edge counts for both sides.
             let w0 = ((b[0] - px) * (c[1] - py) - (b[1] - py) * (c[0] - px)) * inv;
@@ -220,6 +229,118 @@ fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
                     *slot = z;
                 }
             }
+        }
+    }
+}
+
+/// Texels `[xa, xb)` of the row whose centres lie at `py` that can pass [`raster`]'s
+/// inside test: the x extent of the triangle within one texel of the row (clipped to the
+/// slab `py ± 1`), padded by two texels. The test's rounding errs by far less than a
+/// texel, so a centre it accepts always lies in the slab and inside the padding.
+fn row_span(t: &[[f64; 3]; 3], py: f64) -> Option<(usize, usize)> {
+    let (lo, hi) = (py - 1.0, py + 1.0);
+    let (mut x_min, mut x_max) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..3 {
+        let (p, q) = (t[k], t[(k + 1) % 3]);
+        let (y_min, y_max) = (p[1].min(q[1]), p[1].max(q[1]));
+        if y_max < lo || y_min > hi {
+            continue;
+        }
+        // The part of edge p→q inside the slab: its ends' x.
+        let dy = q[1] - p[1];
+        let (t0, t1) = if dy == 0.0 {
+            (0.0, 1.0)
+        } else {
+            let (a, b) = ((lo - p[1]) / dy, (hi - p[1]) / dy);
+            (a.min(b).max(0.0), a.max(b).min(1.0))
+        };
+        for s in [t0, t1] {
+            let x = p[0] + (q[0] - p[0]) * s;
+            x_min = x_min.min(x);
+            x_max = x_max.max(x);
+        }
+    }
+    if x_min > x_max {
+        return None;
+    }
+    let xa = (x_min - 2.0).floor().max(0.0) as usize;
+    let xb = (x_max + 2.0).ceil().max(0.0) as usize;
+    Some((xa, xb))
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::RngExt;
+
+    use super::*;
+
+    /// [`raster`] as it was before rows were cut to their spans: every texel of the box.
+    fn raster_whole_box(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
+        let [a, b, c] = *t;
+        let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if area.is_nan() || area.abs() <= 1e-12 {
+            return;
+        }
+        let x0 = a[0].min(b[0]).min(c[0]).floor().max(0.0) as usize;
+        let x1 = (a[0].max(b[0]).max(c[0]).ceil().max(0.0) as usize).min(width);
+        let y0 = (a[1].min(b[1]).min(c[1]).floor().max(0.0) as usize).max(rows[0]);
+        let y1 = (a[1].max(b[1]).max(c[1]).ceil().max(0.0) as usize).min(rows[1]);
+        let inv = 1.0 / area;
+        for y in y0..y1 {
+            let py = y as f64 + 0.5;
+            let row = &mut band[(y - rows[0]) * width..][..width];
+            for (x, slot) in row.iter_mut().enumerate().take(x1).skip(x0) {
+                let px = x as f64 + 0.5;
+                let w0 = ((b[0] - px) * (c[1] - py) - (b[1] - py) * (c[0] - px)) * inv;
+                let w1 = ((c[0] - px) * (a[1] - py) - (c[1] - py) * (a[0] - px)) * inv;
+                let w2 = 1.0 - w0 - w1;
+                if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
+                    let z = (w0 * a[2] + w1 * b[2] + w2 * c[2]) as f32;
+                    if z > *slot {
+                        *slot = z;
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn row_spans_fill_exactly_the_texels_the_whole_box_test_fills() {
+        let mut rng = crate::rng::stream(5, "shadow-map-spans", 0);
+        let (width, rows) = (64usize, [8usize, 56usize]);
+        for case in 0..4000 {
+            let mut v = || -> [f64; 3] {
+                [
+                    rng.random::<f64>() * 80.0 - 8.0,
+                    rng.random::<f64>() * 80.0 - 8.0,
+                    rng.random::<f64>(),
+                ]
+            };
+            let mut t = [v(), v(), v()];
+            match case % 5 {
+                // Slivers: a vertex nearly on the opposite edge.
+                1 => {
+                    let (a, b) = (t[0], t[1]);
+                    t[2] = std::array::from_fn(|k| a[k] + (b[k] - a[k]) * 0.3);
+                    t[2][1] += 1e-7;
+                }
+                // Nearly horizontal and vertical edges, vertices on texel centres.
+                2 => t[1][1] = t[0][1] + 1e-9,
+                3 => t[1][0] = t[0][0] - 1e-9,
+                4 => t = t.map(|p| [p[0].floor() + 0.5, p[1].floor() + 0.5, p[2]]),
+                _ => {}
+            }
+            let mut spans = vec![f32::NEG_INFINITY; (rows[1] - rows[0]) * width];
+            let mut whole = spans.clone();
+            raster(&t, rows, width, &mut spans);
+            raster_whole_box(&t, rows, width, &mut whole);
+            assert!(
+                spans
+                    .iter()
+                    .zip(&whole)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "triangle {t:?}"
+            );
         }
     }
 }

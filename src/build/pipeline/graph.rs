@@ -13,7 +13,8 @@ use super::super::report::StageStatus;
 use super::evaluate::{evaluated, one, value};
 use super::frames_stage::lighting;
 use super::{OVERVIEW_SUN, Pipeline};
-use crate::model::{Building, FacadeSet, Lamp, ParsedLayout};
+use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::spec::Spec;
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
 };
@@ -268,9 +269,15 @@ impl Pipeline<'_> {
             key,
             Load::References,
             |p| &mut p.export,
-            |p| p.scene(),
-            |_, scene| {
-                let files = export::export(&scene);
+            |p| Ok((p.scene()?, p.lamp_sites()?, p.facade_set()?)),
+            |p, (scene, lamps, facades)| {
+                // Writing the OBJ and GLB is mostly serial: the renderer's preparation and
+                // the overview's shadow map, which the overview (run next, its key holds
+                // this stage's) needs, are made beside it on the other cores.
+                let (files, ()) = rayon::join(
+                    || export::export(&scene),
+                    || p.prepare_for_overview(&scene, &lamps, &facades),
+                );
                 let outputs = files
                     .into_iter()
                     .map(|(path, bytes)| (path, Blob::from(bytes)))
@@ -278,6 +285,19 @@ impl Pipeline<'_> {
                 Ok(((), outputs))
             },
         )
+    }
+
+    /// The prepared scene, and the shadow map of the overview's sun in it, made ahead of
+    /// the overview stage. Nothing when preparing fails: `prepared_scene` then reports it.
+    fn prepare_for_overview(&self, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) {
+        let Ok(prepared) = render::prepare(scene) else {
+            return;
+        };
+        let lighting = overview_lighting(self.spec, scene, lamps, facades);
+        if lighting.shadows {
+            prepared.shadow_map(lighting.sun_direction);
+        }
+        let _ = self.prepared.set(Arc::new(prepared));
     }
 
     /// `overview.png`: the textured city from the air, rendered by cityspec's renderer.
@@ -299,14 +319,7 @@ impl Pipeline<'_> {
             |p| &mut p.overview,
             gather,
             |p, (prepared, scene, parsed, lamps, facades)| {
-                // The spec's light; a drawn sun is drawn for the overview on its own.
-                let sun = render::Sun::draw(&p.spec.lighting, p.spec.seed, OVERVIEW_SUN, 0);
-                // Without ambient occlusion: its metre-wide creases are a pixel or two
-                // from the air, and it would cost the cold build a tenth of a second.
-                let lighting = render::Lighting {
-                    ambient_occlusion: 0.0,
-                    ..lighting(p.spec, &sun, &scene, &lamps, &facades)
-                };
+                let lighting = overview_lighting(p.spec, &scene, &lamps, &facades);
                 let shot = cameras::overview(&parsed, p.spec.layout.metres_per_pixel);
                 let frame = match &shot.pose {
                     Some(pose) => {
@@ -324,5 +337,22 @@ impl Pipeline<'_> {
                 Ok(((), one("overview.png", codec::encode_png(&frame))))
             },
         )
+    }
+}
+
+/// The overview's lighting: the spec's light, a drawn sun drawn for the overview on its
+/// own.
+fn overview_lighting(
+    spec: &Spec,
+    scene: &Scene,
+    lamps: &[Lamp],
+    facades: &FacadeSet,
+) -> render::Lighting {
+    let sun = render::Sun::draw(&spec.lighting, spec.seed, OVERVIEW_SUN, 0);
+    // Without ambient occlusion: its metre-wide creases are a pixel or two from the air,
+    // and it would cost the cold build a tenth of a second.
+    render::Lighting {
+        ambient_occlusion: 0.0,
+        ..lighting(spec, &sun, scene, lamps, facades)
     }
 }

@@ -14,7 +14,7 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use image::RgbImage;
 
@@ -99,7 +99,8 @@ pub struct Pipeline<'a> {
     export: Option<Slot<()>>,
     overview: Option<Slot<()>>,
     frames: Vec<Option<Slot<()>>>,
-    prepared: Option<Arc<render::PreparedScene>>,
+    /// Set once: made beside the export when it runs (see `need_export`), else on demand.
+    prepared: OnceLock<Arc<render::PreparedScene>>,
     /// Reports frames rendered: (camera name, frames done, frames in the path).
     progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     layout: Option<Slot<RgbImage>>,
@@ -147,7 +148,7 @@ impl<'a> Pipeline<'a> {
                 .into_iter()
                 .map(|_: Option<()>| None)
                 .collect(),
-            prepared: None,
+            prepared: OnceLock::new(),
             progress,
             layout: None,
             mirror: None,

@@ -79,7 +79,7 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn prepared_scene(&mut self) -> Result<Arc<render::PreparedScene>, BuildError> {
-        if let Some(prepared) = &self.prepared {
+        if let Some(prepared) = self.prepared.get() {
             return Ok(Arc::clone(prepared));
         }
         let scene = self.scene()?;
@@ -88,7 +88,7 @@ impl Pipeline<'_> {
             source,
         })?;
         let prepared = Arc::new(prepared);
-        self.prepared = Some(Arc::clone(&prepared));
+        let _ = self.prepared.set(Arc::clone(&prepared));
         Ok(prepared)
     }
 }

@@ -3,11 +3,12 @@
 //! Every labelled part is drawn through [`Canvas::part`], which records its box for the XML
 //! and paints its class into the mask, so the annotations cannot drift from the pixels.
 
-use image::{GrayImage, Luma, Rgb, RgbImage};
+use image::{GrayImage, Luma, RgbImage};
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use crate::model::PxRect;
+pub use crate::model::geometry::rounding::round;
 
 use super::super::cmp_box::CmpBox;
 use super::super::cmp_label::CmpLabel;
@@ -69,26 +70,39 @@ impl Canvas {
     /// Fills `rect` with a vertical gradient from `top` to `bottom`.
     pub fn gradient(&mut self, rect: PxRect, top: Colour, bottom: Colour) {
         let span = rect.height().max(2) - 1;
+        // One colour a row, mixed once.
+        let mut row = (u32::MAX, [0; 3]);
         self.each(rect, |_, y, _| {
-            let t = f64::from(y - rect.y0) / f64::from(span);
-            mix(top, bottom, t)
+            if row.0 != y {
+                let t = f64::from(y - rect.y0) / f64::from(span);
+                row = (y, mix(top, bottom, t));
+            }
+            row.1
         });
     }
 
     /// Multiplies the pixels of `rect` by `factor` (below 1 darkens, above 1 lightens).
     pub fn shade(&mut self, rect: PxRect, factor: f64) {
-        self.each(rect, |_, _, p| {
-            p.map(|c| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8)
-        });
+        // Each of the 256 channel values scaled once: the same numbers as per pixel.
+        let table: [u8; 256] = std::array::from_fn(|c| scale_channel(c as u8, factor));
+        self.each(rect, |_, _, p| p.map(|c| table[usize::from(c)]));
     }
 
     /// Calls `f(x, y, current)` for every pixel of `rect` (clipped) and stores its result.
     pub fn each(&mut self, rect: PxRect, mut f: impl FnMut(u32, u32, Colour) -> Colour) {
         let rect = self.clip(rect);
+        if rect.x0 >= rect.x1 {
+            return;
+        }
+        // Row slices, not `get_pixel`/`put_pixel`: a facade is painted over many times.
+        let width = self.photo.width() as usize;
+        let buffer: &mut [u8] = &mut self.photo;
         for y in rect.y0..rect.y1 {
-            for x in rect.x0..rect.x1 {
-                let p = self.photo.get_pixel(x, y).0;
-                self.photo.put_pixel(x, y, Rgb(f(x, y, p)));
+            let start = (y as usize * width + rect.x0 as usize) * 3;
+            let end = (y as usize * width + rect.x1 as usize) * 3;
+            for (x, pixel) in (rect.x0..).zip(buffer[start..end].chunks_exact_mut(3)) {
+                let out = f(x, y, [pixel[0], pixel[1], pixel[2]]);
+                pixel.copy_from_slice(&out);
             }
         }
     }
@@ -121,14 +135,18 @@ pub fn add(c: u8, delta: i32) -> u8 {
 
 /// `colour` scaled by `factor`, clamped.
 pub fn scale(colour: Colour, factor: f64) -> Colour {
-    colour.map(|c| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8)
+    colour.map(|c| scale_channel(c, factor))
+}
+
+fn scale_channel(c: u8, factor: f64) -> u8 {
+    round(f64::from(c) * factor).clamp(0.0, 255.0) as u8
 }
 
 /// Linear mix of two colours, `t` in 0–1.
 pub fn mix(a: Colour, b: Colour, t: f64) -> Colour {
     let mut out = [0u8; 3];
     for c in 0..3 {
-        out[c] = (f64::from(a[c]) * (1.0 - t) + f64::from(b[c]) * t).round() as u8;
+        out[c] = round(f64::from(a[c]) * (1.0 - t) + f64::from(b[c]) * t) as u8;
     }
     out
 }

@@ -30,10 +30,7 @@ impl MaterialBook {
     ) -> u32 {
         let name = self.unique(&sanitise(name));
         let texture = texture.map(|t| {
-            self.textures.push(Texture {
-                name: name.clone(),
-                ..t.clone()
-            });
+            self.textures.push(t.renamed(name.clone()));
             (self.textures.len() - 1) as u32
         });
         self.materials.push(Material {

@@ -13,7 +13,7 @@
 //! | [`vector`] helpers: `sub`, `dot`, `cross`, `normalize` | scene, objects, render, export, sensor |
 //! | [`trig`]: bit-exact cos/sin and tan(θ/2) | objects, build |
 //! | [`units`]: metres ↔ pixels, millimetre rounding | plan, cameras, annotate, build |
-//! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render |
+//! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render, facades, objects |
 
 mod facade_choice;
 mod material_book;
