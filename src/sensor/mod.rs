@@ -21,7 +21,7 @@
 //! counter-based hash of the frame's seed, transcendental functions come from `libm`.
 
 /// Bump when this stage's output bytes change: it is part of the frames stage's key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 mod conditions;
 mod noise;
