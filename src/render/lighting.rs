@@ -93,11 +93,11 @@ pub struct Lighting {
 pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
 /// Albedo of the ground, for the light it bounces up.
 const GROUND_ALBEDO: f32 = 0.2;
-/// Colour of a street lamp at full strength: with [`LAMP_NEAR`], about 1 (the noon sun's
-/// strength) on the pavement under the head, a sixth of that 8 m to the side.
-pub const LAMP_COLOUR: [f32; 3] = [2.6, 2.0, 1.3];
-/// Near field of a street lamp, metres: about the height of its head.
-pub const LAMP_NEAR: f32 = 6.0;
+/// Colour of a street lamp at full strength: with [`LAMP_NEAR`], about 0.8 (most of the
+/// noon sun's strength) on the pavement under the head, an eighth of that 8 m to the side.
+pub const LAMP_COLOUR: [f32; 3] = [3.4, 2.6, 1.7];
+/// Near field of a street lamp, metres.
+pub const LAMP_NEAR: f32 = 4.0;
 /// Default strength of the ambient occlusion.
 pub const AMBIENT_OCCLUSION: f32 = 1.0;
 /// Colour of a lit window.

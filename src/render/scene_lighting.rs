@@ -104,3 +104,51 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Material, Mesh, SceneObject};
+
+    fn lamp_mesh(material: u32, x: f32) -> Mesh {
+        Mesh {
+            material,
+            positions: vec![[x, 0.7, -0.5], [x, 0.7, 0.5], [x, 0.9, 0.0]],
+            normals: vec![[1.0, 0.0, 0.0]; 3],
+            uvs: Vec::new(),
+            indices: vec![0, 1, 2],
+        }
+    }
+
+    #[test]
+    fn headlights_beam_forward_and_tail_lights_glow_all_round() {
+        let material = |name: &str| Material {
+            name: name.into(),
+            colour: [1.0; 3],
+            texture: None,
+            emissive: [1.0; 3],
+        };
+        // A car facing +x: headlights at its front (x = 2), tail lights at its back.
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![material("car_headlight"), material("car_taillight")],
+            objects: vec![SceneObject {
+                name: "car_0000".into(),
+                class: "car".into(),
+                meshes: vec![lamp_mesh(0, 2.0), lamp_mesh(1, -2.0)],
+            }],
+        };
+        let lights = vehicle_lights(&scene);
+        assert_eq!(lights.len(), 2);
+        let (head, tail) = (&lights[0], &lights[1]);
+        assert!((head.position[0] - 2.0).abs() < 1e-6, "{:?}", head.position);
+        assert_eq!(head.aim, [1.0, -HEAD_DIP as f32, 0.0]);
+        assert!(head.range > 20.0 && head.edge > 0.5);
+        assert_eq!(tail.aim, [0.0; 3]);
+        assert!(
+            tail.colour[0] > 10.0 * tail.colour[1],
+            "red: {:?}",
+            tail.colour
+        );
+    }
+}
