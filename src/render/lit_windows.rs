@@ -128,7 +128,7 @@ impl LitWindows {
                     ];
                     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
                     // Walls only: a window texture on a slope or a roof spills nothing.
-                    if !(len > 1e-9) || (n[1] / len).abs() > 0.3 {
+                    if len.is_nan() || len <= 1e-9 || (n[1] / len).abs() > 0.3 {
                         continue;
                     }
                     let n = n.map(|v| v / len);
@@ -137,7 +137,7 @@ impl LitWindows {
                         [t[2][0] - t[0][0], t[2][1] - t[0][1]],
                     );
                     let det = f1[0] * f2[1] - f1[1] * f2[0];
-                    if !(det.abs() > 1e-12) {
+                    if det.is_nan() || det.abs() <= 1e-12 {
                         continue;
                     }
                     let lo =

@@ -160,7 +160,7 @@ pub(crate) fn tile_lights<'a>(
             let c = l.camera;
             let d = [gap(c[0], x), gap(c[1], y), gap(c[2], [z0, z1])];
             let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if !(d2 < l.range2) {
+            if d2.is_nan() || d2 >= l.range2 {
                 return None;
             }
             // The most the light can give any point of the box.
