@@ -1046,3 +1046,76 @@ fn a_street_lamp_lights_a_pool_below_it_and_nothing_above() {
         .unwrap();
     assert_eq!(lum_at(&lit, 32, high), lum_at(&dark, 32, high));
 }
+
+#[test]
+fn a_lit_window_spills_light_onto_the_ground_in_front_of_it() {
+    let ground = quad(
+        0,
+        [
+            [-40.0, 0.0, -40.0],
+            [40.0, 0.0, -40.0],
+            [40.0, 0.0, 40.0],
+            [-40.0, 0.0, 40.0],
+        ],
+        UNIT_UV,
+        [0.0, 1.0, 0.0],
+    );
+    let facade = Texture::from_rgb("facade_a", &RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
+    let scene = Scene {
+        textures: vec![facade],
+        materials: vec![
+            material([0.5; 3], None, [0.0; 3]),
+            material([1.0; 3], Some(0), [0.0; 3]),
+        ],
+        objects: vec![
+            object("ground", vec![ground]),
+            object("building", vec![quad_material(wall(-10.0, 4.0), 1)]),
+        ],
+    };
+    // One window, its centre 1.6 m above the ground (the wall spans y −4 to 4, v down).
+    let windows = LitWindows {
+        boxes: BTreeMap::from([(0, vec![[0.3, 0.2, 0.7, 0.4]])]),
+        share: 1.0,
+        seed: 1,
+        colour: WINDOW_COLOUR,
+    };
+    let spill = windows.spill_lights(&scene);
+    assert_eq!(spill.len(), 1);
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(64, 48, 1.2);
+    let eye = pose([0.0, 1.5, 0.0], [0.0, 1.5, -10.0]);
+    let off = render(
+        &prepared,
+        &eye,
+        &k,
+        &Lighting::night(Vec::new(), Some(windows.clone())),
+        1,
+    );
+    let on = render(
+        &prepared,
+        &eye,
+        &k,
+        &Lighting::night(spill, Some(windows)),
+        1,
+    );
+    let row = |z: f32| {
+        (24..48)
+            .min_by(|&a, &b| {
+                let d = |y| (on.depth.get_pixel(32, y).0[0] - z).abs();
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap()
+    };
+    let gain = |y| lum_at(&on, 32, y) - lum_at(&off, 32, y);
+    // 2 m in front of the wall: a warm pool; 8 m in front: next to nothing.
+    let near = gain(row(8.0));
+    assert!(near > 0.1, "{near}");
+    assert!(gain(row(2.0)) < near / 20.0, "{near} {}", gain(row(2.0)));
+    let p = on.linear[(row(8.0) * 64 + 32) as usize];
+    assert!(p[0] > p[2], "warm: {p:?}");
+}
+
+fn quad_material(mut mesh: Mesh, material: u32) -> Mesh {
+    mesh.material = material;
+    mesh
+}
