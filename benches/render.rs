@@ -65,6 +65,9 @@ fn main() {
         seed: 1,
         colour: [1.0, 0.8, 0.45],
     };
+    // As `render::lighting_for` does: lamps, then the light the lit windows spill.
+    let mut lamps = lamps;
+    lamps.extend(windows.spill_lights(&scene));
     let dusk = Lighting::from_sun(
         &Sun {
             elevation: 2.0,
@@ -362,11 +365,11 @@ fn city() -> (Scene, Vec<Light>) {
                     class: "lamp".into(),
                     meshes: vec![head],
                 });
-                lamps.push(Light {
-                    position: [lx + 0.25, 5.8, lz + 0.25],
-                    colour: [2.0, 1.7, 1.2],
-                    range: 18.0,
-                });
+                lamps.push(Light::street_lamp(
+                    [lx + 0.25, 5.8, lz + 0.25],
+                    render::LAMP_COLOUR,
+                    18.0,
+                ));
             }
         }
     }

@@ -11,13 +11,52 @@ use super::sky::{Sky, smoothstep};
 use super::sun::{self, Sun};
 use super::{LitWindows, develop};
 
-/// A point light with a smooth falloff to zero at `range`:
-/// `colour · (1 − (d / range)²)²` at distance `d < range`.
+/// A point light, all round or in a beam (what it adds: [`point_lights`](super::point_lights)).
+/// On its axis, facing it and much nearer than `near`, a surface receives `colour`;
+/// farther, inverse-square, `colour · near² / (near² + d²)`, smoothly cut to zero at
+/// `range` by `(1 − (d / range)²)²`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Light {
     pub position: [f32; 3],
     pub colour: [f32; 3],
     pub range: f32,
+    /// Metres within which the light stops brightening (about the size of the source
+    /// and its glare); 0 for no inverse-square falloff.
+    pub near: f32,
+    /// The beam's axis (any length), or zero for a light shining all round.
+    pub aim: [f32; 3],
+    /// Cosine of the angle from the axis at which the beam reaches zero; it brightens
+    /// linearly in the cosine towards the axis. Ignored without an `aim`.
+    pub edge: f32,
+}
+
+impl Light {
+    /// A light shining all round, without inverse-square falloff (only the cut to zero at
+    /// `range`).
+    pub fn point(position: [f32; 3], colour: [f32; 3], range: f32) -> Light {
+        Light {
+            position,
+            colour,
+            range,
+            near: 0.0,
+            aim: [0.0; 3],
+            edge: -1.0,
+        }
+    }
+
+    /// A street lamp's shielded head at `position`: a downward beam that still reaches
+    /// a little above the horizontal (the head's diffuser) and nothing higher, so the
+    /// crowns of the trees above it stay dark; [`LAMP_NEAR`] of near field.
+    pub fn street_lamp(position: [f32; 3], colour: [f32; 3], range: f32) -> Light {
+        Light {
+            position,
+            colour,
+            range,
+            near: LAMP_NEAR,
+            aim: [0.0, -1.0, 0.0],
+            edge: -0.25,
+        }
+    }
 }
 
 /// Everything about a frame's light; all colours linear RGB.
@@ -54,8 +93,11 @@ pub struct Lighting {
 pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
 /// Albedo of the ground, for the light it bounces up.
 const GROUND_ALBEDO: f32 = 0.2;
-/// Colour of a street lamp at full strength.
-pub const LAMP_COLOUR: [f32; 3] = [1.6, 1.25, 0.8];
+/// Colour of a street lamp at full strength: with [`LAMP_NEAR`], about 0.8 (most of the
+/// noon sun's strength) on the pavement under the head, an eighth of that 8 m to the side.
+pub const LAMP_COLOUR: [f32; 3] = [3.4, 2.6, 1.7];
+/// Near field of a street lamp, metres.
+pub const LAMP_NEAR: f32 = 4.0;
 /// Default strength of the ambient occlusion.
 pub const AMBIENT_OCCLUSION: f32 = 1.0;
 /// Colour of a lit window.
@@ -106,10 +148,8 @@ impl Lighting {
             colour: w.colour.map(|c| c * dark),
             ..w
         });
-        // The default development exposes for the light falling on the scene: about 1 by
-        // day, more at dusk, at most 2.5 at night (lamps then fill the frame's highlights).
         let key = develop::luminance(ambient) + develop::luminance(sun_colour) * rise;
-        let exposure = (0.9 / key.max(0.01)).clamp(0.75, 2.5);
+        let exposure = scene_exposure(key);
         Lighting {
             sky,
             ambient,
@@ -124,6 +164,24 @@ impl Lighting {
             windows,
             exposure,
         }
+    }
+}
+
+/// Daylight (the `key`: luminance of the light on an upward surface) above which the
+/// exposure brings the key to 0.9, as a camera by day does.
+const BRIGHT_KEY: f32 = 0.36;
+
+/// The default development's exposure for daylight `key`: `0.9 / key` (about 1 by day, at
+/// least 0.75) down to [`BRIGHT_KEY`], where it reaches 2.5; in dimmer light it falls again
+/// as the fourth root of the key, to about 1.6 at dusk and 1.2 at night. A camera at night
+/// exposes for the lamps, not for the dark: unlit walls and the sky stay near black, the
+/// lamps' pools (about 1, the noon sun's strength) bright, lit windows glowing.
+pub fn scene_exposure(key: f32) -> f32 {
+    let key = if key.is_finite() { key.max(1e-4) } else { 1.0 };
+    if key >= BRIGHT_KEY {
+        (0.9 / key).max(0.75)
+    } else {
+        0.9 / BRIGHT_KEY * libm::sqrtf(libm::sqrtf(key / BRIGHT_KEY))
     }
 }
 
@@ -167,6 +225,23 @@ mod tests {
         );
         assert!(n.iter().zip(s).all(|(n, d)| *n < d));
         assert!(day.ambient.iter().all(|&a| a > 0.1), "{:?}", day.ambient);
+    }
+
+    #[test]
+    fn exposure_lifts_dusk_and_night_less_than_their_darkness() {
+        let day = Lighting::day().exposure;
+        let dusk = Lighting::from_sun(&sun::DUSK, 3.0, Vec::new(), None).exposure;
+        let night = Lighting::night(Vec::new(), None).exposure;
+        assert!((0.75..1.0).contains(&day), "{day}");
+        // Continuous at the bright key, and falling on both sides of it.
+        let peak = scene_exposure(BRIGHT_KEY);
+        assert!((scene_exposure(BRIGHT_KEY * 0.999) - peak).abs() < 1e-3);
+        assert!(scene_exposure(0.2) < peak && scene_exposure(0.5) < peak);
+        assert!(night < dusk && dusk < peak, "{night} {dusk} {peak}");
+        assert!((1.0..1.5).contains(&night), "{night}");
+        // The night ambient ends near black: below 1 % after exposure.
+        assert!(develop::luminance(Lighting::night(Vec::new(), None).ambient) * night < 0.03);
+        assert_eq!(scene_exposure(f32::NAN), scene_exposure(1.0));
     }
 
     #[test]

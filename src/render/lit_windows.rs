@@ -5,11 +5,27 @@
 //! read as a number in [0, 1), is below `share`: every pixel of a window agrees, the same
 //! windows are lit in every frame, and the choice does not depend on the camera.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use serde::{Deserialize, Serialize};
 
+use super::Light;
 use crate::model::{FacadeSet, Scene};
+
+/// Light a lit window spills out, as a multiple of its glow colour: with [`SPILL_NEAR`],
+/// about 0.3 on the pavement 3 m in front of a ground-floor window.
+const SPILL: f32 = 4.5;
+/// Near field of a window's light, metres: about a window's size.
+const SPILL_NEAR: f32 = 1.5;
+/// How far a window's light reaches, metres.
+const SPILL_RANGE: f32 = 10.0;
+/// Only windows whose centre is at most this high above their wall's foot spill light
+/// (the lowest three floors): higher ones add little below and would only cost.
+const SPILL_HEIGHT: f64 = 9.0;
+/// The light sits this far in front of the window, so the wall around it stays unlit.
+const SPILL_OFFSET: f64 = 0.15;
+/// Texture repeats per side of one triangle a wall may hold before it is skipped.
+const MAX_REPEATS: f64 = 256.0;
 
 /// Lit windows at night: window boxes per texture, the share lit, a seed, their colour.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -49,6 +65,134 @@ impl LitWindows {
             seed,
             colour,
         }
+    }
+}
+
+impl LitWindows {
+    /// A light in front of every lit window of `scene` low enough to light the pavement,
+    /// beamed out of the wall (Lambert-like: strongest straight out, none along the wall),
+    /// in scene order. Windows are found as [`WindowLookup::is_lit`] finds them: each box
+    /// centre of each texture repeat that lies in a wall triangle of a window texture.
+    pub fn spill_lights(&self, scene: &Scene) -> Vec<Light> {
+        let lookup = WindowLookup::new(self, scene.textures.len());
+        let colour = self.colour.map(|c| c * SPILL);
+        let mut out = Vec::new();
+        for (o, object) in scene.objects.iter().enumerate() {
+            let instance = o as u32 + 1;
+            for mesh in &object.meshes {
+                let Some(texture) = scene
+                    .materials
+                    .get(mesh.material as usize)
+                    .and_then(|m| m.texture)
+                else {
+                    continue;
+                };
+                let Some(Some(grid)) = lookup.per_texture.get(texture as usize) else {
+                    continue;
+                };
+                if mesh.uvs.len() != mesh.positions.len() {
+                    continue;
+                }
+                let foot = mesh
+                    .positions
+                    .iter()
+                    .map(|p| f64::from(p[1]))
+                    .fold(f64::INFINITY, f64::min);
+                // A window on the diagonal of a wall's two triangles counts once.
+                let mut seen = BTreeSet::new();
+                for tri in mesh.indices.chunks_exact(3) {
+                    let Some(corners) = tri
+                        .iter()
+                        .map(|&i| {
+                            let i = i as usize;
+                            Some((*mesh.positions.get(i)?, *mesh.uvs.get(i)?))
+                        })
+                        .collect::<Option<Vec<_>>>()
+                    else {
+                        continue;
+                    };
+                    let p = corners
+                        .iter()
+                        .map(|c| c.0.map(f64::from))
+                        .collect::<Vec<_>>();
+                    let t = corners
+                        .iter()
+                        .map(|c| c.1.map(f64::from))
+                        .collect::<Vec<_>>();
+                    let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+                    let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+                    let n = [
+                        e1[1] * e2[2] - e1[2] * e2[1],
+                        e1[2] * e2[0] - e1[0] * e2[2],
+                        e1[0] * e2[1] - e1[1] * e2[0],
+                    ];
+                    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                    // Walls only: a window texture on a slope or a roof spills nothing.
+                    if len.is_nan() || len <= 1e-9 || (n[1] / len).abs() > 0.3 {
+                        continue;
+                    }
+                    let n = n.map(|v| v / len);
+                    let (f1, f2) = (
+                        [t[1][0] - t[0][0], t[1][1] - t[0][1]],
+                        [t[2][0] - t[0][0], t[2][1] - t[0][1]],
+                    );
+                    let det = f1[0] * f2[1] - f1[1] * f2[0];
+                    if det.is_nan() || det.abs() <= 1e-12 {
+                        continue;
+                    }
+                    let lo =
+                        |k: usize| t.iter().map(|t| t[k]).fold(f64::INFINITY, f64::min).floor();
+                    let hi = |k: usize| {
+                        t.iter()
+                            .map(|t| t[k])
+                            .fold(f64::NEG_INFINITY, f64::max)
+                            .ceil()
+                    };
+                    let (u0, u1, v0, v1) = (lo(0), hi(0), lo(1), hi(1));
+                    if !(u1 - u0 <= MAX_REPEATS && v1 - v0 <= MAX_REPEATS) {
+                        continue;
+                    }
+                    let mut rv = v0;
+                    while rv < v1 {
+                        let mut ru = u0;
+                        while ru < u1 {
+                            for (i, b) in grid.boxes.iter().enumerate() {
+                                let cu = ru + f64::from(b[0] + b[2]) * 0.5;
+                                let cv = rv + f64::from(b[1] + b[3]) * 0.5;
+                                let (du, dv) = (cu - t[0][0], cv - t[0][1]);
+                                let a = (du * f2[1] - dv * f2[0]) / det;
+                                let c = (f1[0] * dv - f1[1] * du) / det;
+                                if a < 0.0 || c < 0.0 || a + c > 1.0 {
+                                    continue;
+                                }
+                                let at = std::array::from_fn::<f64, 3, _>(|k| {
+                                    p[0][k] + a * e1[k] + c * e2[k]
+                                });
+                                if at[1] - foot > SPILL_HEIGHT
+                                    || !seen.insert((ru as i64, rv as i64, i))
+                                    || !lookup.is_lit(texture, instance, cu, cv)
+                                {
+                                    continue;
+                                }
+                                out.push(Light {
+                                    position: std::array::from_fn(|k| {
+                                        (at[k] + n[k] * SPILL_OFFSET) as f32
+                                    }),
+                                    colour,
+                                    range: SPILL_RANGE,
+                                    near: SPILL_NEAR,
+                                    aim: n.map(|v| v as f32),
+                                    edge: 0.0,
+                                });
+                            }
+                            ru += 1.0;
+                        }
+                        rv += 1.0;
+                    }
+                }
+            }
+        }
+        out
     }
 }
 
@@ -164,6 +308,56 @@ mod tests {
         assert!(!all.is_lit(9, 5, 0.2, 0.2), "texture out of range");
         let none = WindowLookup::new(&windows(0.0), 3);
         assert!(!none.is_lit(1, 5, 0.2, 0.2));
+    }
+
+    /// A 12 m high wall facing +z, 8 m wide with two texture repeats, as two triangles;
+    /// texture 1 (the windows' texture) with v down from its top.
+    fn wall_scene() -> Scene {
+        use crate::model::{Material, Mesh, SceneObject, Texture};
+        let texture = Texture::from_rgb("facade", &image::RgbImage::new(2, 2));
+        Scene {
+            textures: vec![texture.clone(), texture],
+            materials: vec![Material {
+                name: "wall".into(),
+                colour: [1.0; 3],
+                texture: Some(1),
+                emissive: [0.0; 3],
+            }],
+            objects: vec![SceneObject {
+                name: "building_0000".into(),
+                class: "building".into(),
+                meshes: vec![Mesh {
+                    material: 0,
+                    positions: vec![
+                        [0.0, 0.0, 0.0],
+                        [8.0, 0.0, 0.0],
+                        [8.0, 12.0, 0.0],
+                        [0.0, 12.0, 0.0],
+                    ],
+                    normals: vec![[0.0, 0.0, 1.0]; 4],
+                    uvs: vec![[0.0, 1.0], [2.0, 1.0], [2.0, 0.0], [0.0, 0.0]],
+                    indices: vec![0, 1, 2, 0, 2, 3],
+                }],
+            }],
+        }
+    }
+
+    #[test]
+    fn low_lit_windows_spill_light_out_of_the_wall() {
+        let lights = windows(1.0).spill_lights(&wall_scene());
+        // Per repeat: box 0 (centre v 0.2, 9.6 m up) is too high; box 1 (centre v 0.7,
+        // 3.6 m up) spills. Its centre is at u = 0.75 of each 4 m repeat.
+        assert_eq!(lights.len(), 2, "{lights:?}");
+        for (light, x) in lights.iter().zip([3.0, 7.0]) {
+            let p = light.position;
+            assert!(
+                (p[0] - x).abs() < 1e-4 && (p[1] - 3.6).abs() < 1e-4,
+                "{p:?}"
+            );
+            assert!(p[2] > 0.0 && p[2] < 0.5, "in front of the wall: {p:?}");
+            assert_eq!(light.aim, [0.0, 0.0, 1.0]);
+        }
+        assert!(windows(0.0).spill_lights(&wall_scene()).is_empty());
     }
 
     #[test]

@@ -17,11 +17,14 @@
 //!   ([`MAX_OBJECTS`]); 0 = sky. The ids PNG packs them into RGB as COCO panoptic does:
 //!   `id = R + 256·G + 256²·B`.
 //! - **Colour**: `albedo · (ambient · ao + sun_colour · max(0, n·sun) · lit + Σ lights
-//!   colour · (1 − (d/r)²)² · max(0, n·l)) + emissive · emission`, plus a glow on lit
-//!   windows, in linear light; `ao` is the ambient occlusion, `lit = 1 − shadow_strength ·
-//!   (1 − the shadow map's share of the sun)`; `albedo = base colour · texture`. Written
-//!   as 8-bit sRGB through a fixed table. (The lamp term is multiplied by the albedo
-//!   like the sun: a red wall under a white lamp looks red.)
+//!   colour · (1 − (d/r)²)² · near² / (near² + d²) · beam · max(0, n·l)) + emissive ·
+//!   emission`, plus a glow on lit windows, in linear light; `ao` is the ambient
+//!   occlusion, `lit = 1 − shadow_strength · (1 − the shadow map's share of the sun)`;
+//!   `albedo = base colour · texture`; the lights (lamps, car lights, the light lit
+//!   windows spill) and their `beam` are `point_lights`'; each tile shades with at most
+//!   `MAX_TILE_LIGHTS` of them. Written as 8-bit sRGB through a fixed table. (The lamp
+//!   term is multiplied by the albedo like the sun: a red wall under a white lamp looks
+//!   red.)
 //!
 //! # Pipeline of one frame
 //!
@@ -49,7 +52,7 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 
 mod ambient_occlusion;
 mod camera_pose;
@@ -61,6 +64,7 @@ mod intrinsics;
 mod lighting;
 mod lit_windows;
 mod mip_texture;
+mod point_lights;
 mod prepared_scene;
 mod render_error;
 mod scene_lighting;
@@ -97,7 +101,7 @@ use rayon::prelude::*;
 use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
 use screen_triangle::ScreenTri;
-use tile::{FrameContext, FrameLight, TILE, TileOut, TileRaster};
+use tile::{FrameContext, TILE, TileOut, TileRaster};
 use view::View;
 
 /// Largest supersampling factor; larger requests are clamped to it.
@@ -168,7 +172,7 @@ pub fn render_measuring(
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
     let bins = bin(&tris, tiles_x, tiles_y, TILE * samples);
-    let lights = frame_lights(lighting, &view);
+    let lights = point_lights::frame_lights(&lighting.lights, &view);
     let windows = lighting
         .windows
         .as_ref()
@@ -228,56 +232,6 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
         }
     }
     bins
-}
-
-/// The frame's point lights with the internal-pixel rectangles they may light; lights
-/// wholly off screen or behind the camera are dropped.
-fn frame_lights(lighting: &Lighting, view: &View) -> Vec<FrameLight> {
-    let (w, h) = (view.width, view.height);
-    lighting
-        .lights
-        .iter()
-        .filter_map(|l| {
-            let r = f64::from(l.range);
-            let position = l.position.map(f64::from);
-            if !r.is_finite() || r <= 0.0 || !position.iter().all(|v| v.is_finite()) {
-                return None;
-            }
-            let c = view.to_camera(position);
-            if c[2] + r < view.near {
-                return None;
-            }
-            let rect = if c[2] - r <= view.near {
-                [0, 0, w, h]
-            } else {
-                // The sphere lies in the box c ± r, with depth > 0: its projection lies
-                // between the extreme projections of the box's corners.
-                let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-                for dx in [-r, r] {
-                    for dy in [-r, r] {
-                        for dz in [-r, r] {
-                            let [x, y] = view.project([c[0] + dx, c[1] + dy, c[2] + dz]);
-                            (x0, x1) = (x0.min(x), x1.max(x));
-                            (y0, y1) = (y0.min(y), y1.max(y));
-                        }
-                    }
-                }
-                let clamp = |v: f64, max: u32| v.clamp(0.0, f64::from(max)) as u32;
-                [
-                    clamp(x0.floor(), w),
-                    clamp(y0.floor(), h),
-                    clamp(x1.ceil() + 1.0, w),
-                    clamp(y1.ceil() + 1.0, h),
-                ]
-            };
-            (rect[0] < rect[2] && rect[1] < rect[3]).then_some(FrameLight {
-                position,
-                colour: l.colour,
-                range2: r * r,
-                rect,
-            })
-        })
-        .collect()
 }
 
 /// The frame from its tiles: colours mixed across edges (at one sample per pixel, which

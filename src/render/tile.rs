@@ -8,6 +8,7 @@
 use super::Lighting;
 use super::edge_aa::EdgeHint;
 use super::lit_windows::WindowLookup;
+use super::point_lights::{self, FrameLight};
 use super::prepared_scene::PreparedScene;
 use super::screen_triangle::{SUB, ScreenTri, at};
 use super::shadow_map::ShadowMap;
@@ -15,15 +16,6 @@ use super::view::View;
 
 /// Tile side in output pixels.
 pub(crate) const TILE: u32 = 32;
-
-/// A point light of this frame, with its conservative footprint in internal pixels.
-pub(crate) struct FrameLight {
-    pub position: [f64; 3],
-    pub colour: [f32; 3],
-    pub range2: f64,
-    /// `[x0, y0, x1, y1)` internal pixels the light may reach.
-    pub rect: [u32; 4],
-}
 
 /// What every tile of a frame shares.
 pub(crate) struct FrameContext<'a> {
@@ -131,16 +123,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
     let (rect, inner) = (raster.rect, raster.inner);
     let iw = raster.inner_width();
     let (depth, id) = (&raster.depth, &raster.id);
-    let lights: Vec<&FrameLight> = ctx
-        .lights
-        .iter()
-        .filter(|l| {
-            l.rect[0] < inner[2]
-                && inner[0] < l.rect[2]
-                && l.rect[1] < inner[3]
-                && inner[1] < l.rect[3]
-        })
-        .collect();
+    let lights = point_lights::tile_lights(ctx.lights, ctx.view, raster);
 
     // Resolve, shading once per pixel and triangle: each distinct triangle (or the sky)
     // among a pixel's s × s samples is shaded once, at the sample nearest the centre for
@@ -323,27 +306,7 @@ fn shade(
         ambient(1) + l.sun_colour[1] * sun,
         ambient(2) + l.sun_colour[2] * sun,
     ];
-    for lamp in lights {
-        let d = [
-            lamp.position[0] - p[0],
-            lamp.position[1] - p[1],
-            lamp.position[2] - p[2],
-        ];
-        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if d2.is_nan() || d2 >= lamp.range2 || d2 <= 0.0 {
-            continue;
-        }
-        let n_dot =
-            (f64::from(n[0]) * d[0] + f64::from(n[1]) * d[1] + f64::from(n[2]) * d[2]) / d2.sqrt();
-        if n_dot <= 0.0 {
-            continue;
-        }
-        let t = 1.0 - d2 / lamp.range2;
-        let k = (t * t * n_dot) as f32;
-        for (l, c) in light.iter_mut().zip(lamp.colour) {
-            *l += c * k;
-        }
-    }
+    point_lights::add_lights(&mut light, lights, p, n);
     let e = l.emission;
     let mut out = [
         albedo[0] * light[0] + material.emissive[0] * e,

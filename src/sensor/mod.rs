@@ -10,7 +10,7 @@
 //! | weather: overcast sky, fog, wet surfaces and rain streaks | `weather` | scene radiance |
 //! | motion blur from the camera's travel | `optics` | scene radiance |
 //! | chromatic aberration, vignetting | `optics` | on the sensor |
-//! | exposure (auto: log-average luminance → mid grey; or fixed), × 2^ev | `tone` | exposed |
+//! | exposure (scene: the lighting's; auto: log-average luminance → mid grey, less in dim frames; or fixed), × 2^ev | `tone` | exposed |
 //! | shot and read noise | `noise` | exposed |
 //! | filmic tone curve, sRGB | `tone` | display |
 //! | JPEG round trip | here | 8-bit |
@@ -21,7 +21,7 @@
 //! counter-based hash of the frame's seed, transcendental functions come from `libm`.
 
 /// Bump when this stage's output bytes change: it is part of the frames stage's key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 mod conditions;
 mod noise;

@@ -12,7 +12,8 @@ use std::sync::OnceLock;
 use image::{Rgb, RgbImage};
 use rayon::prelude::*;
 
-/// Mid grey: automatic exposure maps the frame's log-average luminance here.
+/// Mid grey: automatic exposure maps the frame's log-average luminance here, in frames at
+/// least as bright as [`DIM`].
 const KEY: f32 = 0.18;
 /// Automatic exposure stays within these multipliers, as a camera's does within its
 /// shortest and longest shutter and its ISO range: it may darken a bright frame by 4 stops
@@ -20,6 +21,12 @@ const KEY: f32 = 0.18;
 /// 20, which a night street's mean asks for, turns night into a grey day) and a black
 /// frame is not amplified into noise.
 const AUTO_RANGE: (f32, f32) = (1.0 / 16.0, 2.0);
+/// Log-average luminance at which the full gain ([`AUTO_RANGE`]'s 2) is reached. In
+/// dimmer frames the key itself falls, faster than the frame: the gain drops as the fourth
+/// root of the frame's brightness (about 1.3 on a night street), so a night frame stays a
+/// night frame (dark walls, bright lamp pools) instead of sitting at the 2 limit, however
+/// dark, and dusk darkens continuously into night.
+const DIM: f32 = KEY / AUTO_RANGE.1;
 /// Entries of the encoding table, indexed by sqrt(value).
 const ENCODE_ENTRIES: usize = 4096;
 
@@ -29,8 +36,9 @@ pub(crate) fn luminance(c: [f32; 3]) -> f32 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
-/// The multiplier that maps the log-average luminance of `linear` to mid grey, from every
-/// 4th pixel of every 4th row (summed in a fixed order, in f64).
+/// The multiplier that maps the log-average luminance of `linear` to mid grey (to less in
+/// frames dimmer than [`DIM`]), from every 4th pixel of every 4th row (summed in a fixed
+/// order, in f64).
 pub fn auto_exposure(linear: &[[f32; 3]], width: u32) -> f32 {
     let w = width.max(1) as usize;
     let rows = linear.len() / w;
@@ -46,7 +54,12 @@ pub fn auto_exposure(linear: &[[f32; 3]], width: u32) -> f32 {
         return 1.0;
     }
     let mean = libm::exp(sum / f64::from(n)) as f32;
-    (KEY / mean).clamp(AUTO_RANGE.0, AUTO_RANGE.1)
+    let gain = if mean >= DIM {
+        KEY / mean
+    } else {
+        AUTO_RANGE.1 * libm::sqrtf(libm::sqrtf(mean / DIM))
+    };
+    gain.clamp(AUTO_RANGE.0, AUTO_RANGE.1)
 }
 
 /// The filmic curve: exposed linear → display linear in 0–1.
@@ -152,9 +165,15 @@ mod tests {
         let frame = vec![[0.12f32; 3]; 64 * 48];
         let e = auto_exposure(&frame, 64);
         assert!((e * 0.12 - KEY).abs() < 0.001, "{e}");
-        // A night street (mean 0.009) is brightened by one stop only; a glare darkened.
-        assert_eq!(auto_exposure(&vec![[0.009; 3]; 64], 8), AUTO_RANGE.1);
-        assert_eq!(auto_exposure(&vec![[0.0; 3]; 64], 8), AUTO_RANGE.1);
+        // Full gain at the dim limit; a night street (mean 0.009) gets less, not more,
+        // and a black frame less still; a glare is darkened.
+        let dim = auto_exposure(&vec![[DIM; 3]; 64], 8);
+        assert!((dim - AUTO_RANGE.1).abs() < 0.01, "{dim}");
+        let night = auto_exposure(&vec![[0.009; 3]; 64], 8);
+        assert!((1.0..1.4).contains(&night), "{night}");
+        let black = auto_exposure(&vec![[0.0; 3]; 64], 8);
+        assert!(black < night && black >= AUTO_RANGE.0, "{black}");
+        assert!(auto_exposure(&vec![[0.05; 3]; 64], 8) > night);
         let e = auto_exposure(&vec![[1.44f32; 3]; 64], 8);
         assert!((e - 0.125).abs() < 0.001, "{e}");
     }
