@@ -10,6 +10,7 @@ pub mod image_file;
 
 mod block;
 mod building;
+mod camera_basis;
 mod camera_pose;
 mod city_plan;
 mod facade_set;
@@ -24,6 +25,7 @@ mod texture;
 
 pub use block::{Band, Block, PxRect};
 pub use building::Building;
+pub use camera_basis::CameraBasis;
 pub use camera_pose::{CameraPose, PoseAngles};
 pub use city_plan::{CityPlan, PlanBlock, PlanBuilding, PlanLamp, PlanRoad};
 pub use facade_set::{Facade, FacadeSet, Roof};

@@ -55,7 +55,6 @@
 pub const VERSION: u32 = 5;
 
 mod ambient_occlusion;
-mod camera_pose;
 pub mod develop;
 mod edge_aa;
 mod footprint;
@@ -81,7 +80,7 @@ mod shadow_tests;
 #[cfg(test)]
 mod tests;
 
-pub use camera_pose::CameraPose;
+pub use crate::model::CameraPose;
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};

@@ -3,8 +3,8 @@
 //! All of it works at the internal (supersampled) resolution: `s` samples per pixel side
 //! scale the focal lengths and the principal point by `s`.
 
-use super::camera_pose::CameraBasis;
 use super::{CameraPose, Intrinsics};
+use crate::model::CameraBasis;
 use crate::model::geometry::{dot, sub};
 
 /// Pixels beyond each image edge that projected vertices may reach before triangles are

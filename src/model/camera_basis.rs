@@ -1,12 +1,14 @@
-//! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward).
+//! Camera pose (eye, target) → an orthonormal look-at basis (right, up, forward): what the
+//! renderer projects with and the annotator projects text corners with, so it lives with
+//! the pose in `model`, not in either stage.
 
-pub use crate::model::CameraPose;
-use crate::model::geometry::{cross, normalize, sub};
+use super::CameraPose;
+use super::geometry::{cross, normalize, sub};
 
 /// The camera's axes in world coordinates, right-handed: `right = forward × up`,
 /// `up = right × forward`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct CameraBasis {
+pub struct CameraBasis {
     pub right: [f64; 3],
     pub up: [f64; 3],
     pub forward: [f64; 3],
@@ -17,7 +19,7 @@ impl CameraPose {
     /// camera's is turned about the view direction). A camera looking along its up, e.g.
     /// a level camera straight up or down, uses −z (north) as its up instead, so the top
     /// of the image is north. `None` when eye and target coincide or are not finite.
-    pub(crate) fn basis(&self) -> Option<CameraBasis> {
+    pub fn basis(&self) -> Option<CameraBasis> {
         let forward = normalize(sub(self.target, self.eye))?;
         let right = normalize(cross(forward, self.up))
             .or_else(|| normalize(cross(forward, [0.0, 0.0, -1.0])))?;
