@@ -39,6 +39,17 @@ pub(super) fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [
     }
 }
 
+/// A flat ground quad (material 0) reaching `half` metres from the origin each way, up.
+fn ground_quad(half: f32) -> Mesh {
+    let c = [
+        [-half, 0.0, -half],
+        [half, 0.0, -half],
+        [half, 0.0, half],
+        [-half, 0.0, half],
+    ];
+    quad(0, c, UNIT_UV, [0.0, 1.0, 0.0])
+}
+
 pub(super) const UNIT_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 
 /// A closed box, every face wound counter-clockwise seen from outside.
@@ -557,17 +568,7 @@ fn closed_boxes_show_from_every_side_and_single_walls_only_from_the_front() {
 
 #[test]
 fn a_ground_plane_reaching_behind_the_camera_clips_cleanly() {
-    let ground = quad(
-        0,
-        [
-            [-100.0, 0.0, -100.0],
-            [100.0, 0.0, -100.0],
-            [100.0, 0.0, 100.0],
-            [-100.0, 0.0, 100.0],
-        ],
-        UNIT_UV,
-        [0.0, 1.0, 0.0],
-    );
+    let ground = ground_quad(100.0);
     let scene = Scene {
         textures: Vec::new(),
         materials: vec![material([0.5; 3], None, [0.0; 3])],
@@ -989,17 +990,7 @@ fn unusable_cameras_render_sky() {
 
 /// A grey ground plane and a wall facing the eye 30 m ahead, under `lights` at night.
 fn night_street(lights: Vec<Light>, windows: Option<LitWindows>) -> Frame {
-    let ground = quad(
-        0,
-        [
-            [-40.0, 0.0, -40.0],
-            [40.0, 0.0, -40.0],
-            [40.0, 0.0, 40.0],
-            [-40.0, 0.0, 40.0],
-        ],
-        UNIT_UV,
-        [0.0, 1.0, 0.0],
-    );
+    let ground = ground_quad(40.0);
     let scene = Scene {
         textures: Vec::new(),
         materials: vec![material([0.5; 3], None, [0.0; 3])],
@@ -1049,17 +1040,7 @@ fn a_street_lamp_lights_a_pool_below_it_and_nothing_above() {
 
 #[test]
 fn a_lit_window_spills_light_onto_the_ground_in_front_of_it() {
-    let ground = quad(
-        0,
-        [
-            [-40.0, 0.0, -40.0],
-            [40.0, 0.0, -40.0],
-            [40.0, 0.0, 40.0],
-            [-40.0, 0.0, 40.0],
-        ],
-        UNIT_UV,
-        [0.0, 1.0, 0.0],
-    );
+    let ground = ground_quad(40.0);
     let facade = Texture::from_rgb("facade_a", &RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
     let scene = Scene {
         textures: vec![facade],
