@@ -10,6 +10,10 @@
 //! An entry is written only after all its objects are whole, so an interrupted build never
 //! leaves an entry that points at missing bytes. Every read re-hashes the object: a cached
 //! object whose bytes no longer match its name counts as a miss and is rebuilt, never used.
+//!
+//! The same layout lives either in a local folder (atomic renames) or under a bucket's
+//! prefix (`--cache s3://…`, [`RemoteStore`]: whole-object PUTs). Only storage differs:
+//! what is verified, and when, is the same for both.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -21,6 +25,8 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use super::atomic::write_atomic;
+use super::cache_remote::{RemoteLocation, RemoteStore};
+use super::error::BuildError;
 use crate::hash::sha256_hex;
 
 /// A stage's outputs: file name → bytes, in memory or already stored as cache objects.
@@ -112,25 +118,78 @@ pub enum Miss {
     Corrupt(String),
 }
 
-/// The cache rooted at one folder.
+/// The cache rooted at one folder, or at a bucket's prefix.
 #[derive(Debug, Clone)]
 pub struct Cache {
+    /// The folder, or the URL (only named in messages then).
     root: PathBuf,
+    /// Set for `s3://`, `gs://` and `az://` caches.
+    remote: Option<Arc<RemoteStore>>,
 }
 
 impl Cache {
+    /// The cache in a local folder.
     pub fn new(root: impl Into<PathBuf>) -> Cache {
-        Cache { root: root.into() }
+        Cache {
+            root: root.into(),
+            remote: None,
+        }
     }
 
+    /// The cache `--cache` names: a folder, or an `s3://`, `gs://` or `az://` URL, which is
+    /// connected to (credentials from the environment) and listed once, so a store that
+    /// cannot be reached fails here.
+    pub fn open(location: &Path) -> Result<Cache, BuildError> {
+        let text = location.to_string_lossy();
+        let failed = |message: String| BuildError::Cache {
+            path: location.to_path_buf(),
+            source: io::Error::other(message),
+        };
+        match RemoteLocation::parse(&text).map_err(failed)? {
+            None => Ok(Cache::new(location)),
+            Some(remote) => Ok(Cache {
+                root: location.to_path_buf(),
+                remote: Some(Arc::new(RemoteStore::open(&remote).map_err(failed)?)),
+            }),
+        }
+    }
+
+    /// The folder, or the remote cache's URL.
     pub fn root(&self) -> &Path {
         &self.root
     }
 
+    /// The folder of a local cache; `None` for a remote one.
+    pub fn local_root(&self) -> Option<&Path> {
+        self.remote.is_none().then_some(self.root.as_path())
+    }
+
+    /// The remote store, for a remote cache.
+    pub(super) fn remote(&self) -> Option<&RemoteStore> {
+        self.remote.as_deref()
+    }
+
     /// The entry recorded under `key`, without reading or verifying its objects.
     pub fn entry(&self, key: &str) -> Option<Entry> {
-        let entry: Entry = serde_json::from_slice(&fs::read(self.entry_path(key)).ok()?).ok()?;
+        let entry: Entry = serde_json::from_slice(&self.read_entry(key).ok()??).ok()?;
         (entry.key == key).then_some(entry)
+    }
+
+    /// Whether an entry is recorded under `key` (whatever it holds).
+    pub fn has_entry(&self, key: &str) -> bool {
+        self.read_entry(key).is_ok_and(|text| text.is_some())
+    }
+
+    /// The bytes of `key`'s entry; `None` when there is none.
+    fn read_entry(&self, key: &str) -> io::Result<Option<Vec<u8>>> {
+        match &self.remote {
+            Some(remote) => remote.get(&entry_name(key)),
+            None => match fs::read(self.entry_path(key)) {
+                Ok(text) => Ok(Some(text)),
+                Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
+                Err(e) => Err(e),
+            },
+        }
     }
 
     /// The outputs recorded under `key`, each verified against its hash, read into memory
@@ -164,9 +223,18 @@ impl Cache {
         accept: impl FnOnce(&Entry) -> Result<(), String>,
     ) -> Result<Outputs, Miss> {
         let entry_path = self.entry_path(key);
-        let text = match fs::read(&entry_path) {
-            Ok(text) => text,
-            Err(_) => return Err(Miss::Absent),
+        let text = match self.read_entry(key) {
+            Ok(Some(text)) => text,
+            Ok(None) => return Err(Miss::Absent),
+            // A local entry that cannot be read is as good as none (as before); a remote
+            // store that fails to answer is worth a warning.
+            Err(_) if self.remote.is_none() => return Err(Miss::Absent),
+            Err(e) => {
+                return Err(Miss::Corrupt(format!(
+                    "{} cannot be read: {e}",
+                    entry_path.display()
+                )));
+            }
         };
         let entry: Entry = serde_json::from_slice(&text)
             .map_err(|_| Miss::Corrupt(format!("{} is not a cache entry", entry_path.display())))?;
@@ -194,7 +262,14 @@ impl Cache {
     /// The bytes of a stored object, verified against its size and hash.
     pub fn read_object(&self, object: &ObjectRef) -> Result<Vec<u8>, String> {
         let path = self.object_path(&object.sha256);
-        let bytes = fs::read(&path).map_err(|_| format!("{} is missing", path.display()))?;
+        let bytes = match &self.remote {
+            Some(remote) => match remote.get(&object_name(&object.sha256)) {
+                Ok(Some(bytes)) => bytes,
+                Ok(None) => return Err(format!("{} is missing", path.display())),
+                Err(e) => return Err(format!("{} cannot be read: {e}", path.display())),
+            },
+            None => fs::read(&path).map_err(|_| format!("{} is missing", path.display()))?,
+        };
         if bytes.len() as u64 != object.bytes || sha256_hex(&bytes) != object.sha256 {
             return Err(format!("{} no longer matches its hash", path.display()));
         }
@@ -207,6 +282,13 @@ impl Cache {
             sha256: sha256_hex(bytes),
             bytes: bytes.len() as u64,
         };
+        if let Some(remote) = &self.remote {
+            // Always uploaded, without reading what is there first: one request instead
+            // of two, a damaged copy is replaced unseen, and the new Last-Modified keeps
+            // `cache gc` off it (what `touch` does locally).
+            remote.put(&object_name(&object.sha256), bytes)?;
+            return Ok(object);
+        }
         let path = self.object_path(&object.sha256);
         let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
         if intact {
@@ -224,7 +306,11 @@ impl Cache {
         &self,
         fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> io::Result<ObjectRef> {
-        let dir = self.root.join("objects");
+        // A remote cache stages the bytes in a local temporary file, then uploads it.
+        let dir = match &self.remote {
+            Some(_) => std::env::temp_dir(),
+            None => self.root.join("objects"),
+        };
         fs::create_dir_all(&dir)?;
         let temp = super::atomic::temp_path(&dir, Path::new("stream"));
         let written = (|| {
@@ -240,6 +326,11 @@ impl Cache {
                 return Err(e);
             }
         };
+        if let Some(remote) = &self.remote {
+            let uploaded = remote.put_file(&object_name(&object.sha256), &temp);
+            let _ = fs::remove_file(&temp);
+            return uploaded.map(|()| object);
+        }
         let path = self.object_path(&object.sha256);
         let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
         let placed = if intact {
@@ -278,19 +369,33 @@ impl Cache {
         };
         let mut text = serde_json::to_vec_pretty(&entry).map_err(io::Error::other)?;
         text.push(b'\n');
-        write_atomic(&self.entry_path(key), &text)?;
+        match &self.remote {
+            // One whole-object PUT: readers see the old entry or the new one.
+            Some(remote) => remote.put(&entry_name(key), &text)?,
+            None => write_atomic(&self.entry_path(key), &text)?,
+        }
         Ok(refs)
     }
 
-    /// Where the object with this hash lives.
+    /// Where the object with this hash lives (for a remote cache, its URL).
     pub fn object_path(&self, sha256: &str) -> PathBuf {
-        self.root.join("objects").join(&sha256[..2]).join(sha256)
+        self.root.join(object_name(sha256))
     }
 
-    /// Where the entry of `key` lives.
+    /// Where the entry of `key` lives (for a remote cache, its URL).
     pub fn entry_path(&self, key: &str) -> PathBuf {
-        self.root.join("entries").join(format!("{key}.json"))
+        self.root.join(entry_name(key))
     }
+}
+
+/// An object's path in the cache: `objects/ab/abcdef…`.
+fn object_name(sha256: &str) -> String {
+    format!("objects/{}/{sha256}", &sha256[..2])
+}
+
+/// An entry's path in the cache: `entries/<key>.json`.
+fn entry_name(key: &str) -> String {
+    format!("entries/{key}.json")
 }
 
 /// Sets an object's mtime to now: `cache gc` removes nothing younger than its grace

@@ -14,6 +14,10 @@
 //! build that needs something gc removed finds it missing and builds it again: a miss,
 //! never a wrong result.
 //!
+//! A remote cache (`s3://…`) is listed and pruned the same way, by each object's
+//! Last-Modified: a build re-uploads an object it reuses (see [`Cache::put_object`]), so
+//! the grace period protects it there too. It holds no temporaries (uploads are whole).
+//!
 //! No fsync anywhere in the cache, by choice: every read re-hashes the object and parses
 //! the entry, so what a power loss leaves torn is a miss, rebuilt, never used.
 
@@ -55,16 +59,22 @@ pub struct GcReport {
 
 /// A file gc may remove.
 struct Candidate {
+    file: CacheFile,
+    entry: bool,
+}
+
+/// A file of the cache: its path in a local folder, or under a remote cache's prefix.
+struct CacheFile {
     path: PathBuf,
+    name: String,
     bytes: u64,
     modified: SystemTime,
-    entry: bool,
 }
 
 /// Collects what `specs` (spec files, or lock files ending in `.lock`) need, then removes
 /// the rest of the cache as [`GcOptions`] allow.
 pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildError>> {
-    let cache = Cache::new(&options.cache_dir);
+    let cache = Cache::open(&options.cache_dir).map_err(|e| vec![e])?;
     let mut entries = BTreeSet::new();
     let mut objects = BTreeSet::new();
     let mut errors = Vec::new();
@@ -97,77 +107,60 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
     let mut candidates = Vec::new();
     let mut total = 0u64;
     let mut temporaries = Vec::new();
-    let files = files_of(&cache.root().join("entries"))
-        .and_then(|mut e| {
-            e.extend(files_of_nested(&cache.root().join("objects"))?);
-            Ok(e)
-        })
-        .map_err(io_error)?;
-    for (path, meta) in files {
-        let name = path
-            .file_name()
-            .unwrap_or_default()
-            .to_string_lossy()
-            .into_owned();
-        let modified = meta.modified().unwrap_or(now);
-        let young = now.duration_since(modified).unwrap_or_default() < options.grace;
-        total += meta.len();
-        if name.contains(".cityspec-tmp-") {
+    for (entry, file) in cache_files(&cache, now).map_err(io_error)? {
+        let young = now.duration_since(file.modified).unwrap_or_default() < options.grace;
+        total += file.bytes;
+        if file.name.contains(".cityspec-tmp-") {
             if !young {
-                temporaries.push((path, meta.len()));
+                temporaries.push(file);
             }
             continue;
         }
-        let entry = path.parent().is_some_and(|p| p.ends_with("entries"));
         let needed = if entry {
-            name.strip_suffix(".json")
+            file.name
+                .strip_suffix(".json")
                 .is_some_and(|k| entries.contains(k))
         } else {
-            objects.contains(&name)
+            objects.contains(&file.name)
         };
         match (needed, entry) {
             (true, true) => report.kept_entries += 1,
             (true, false) => report.kept_objects += 1,
             (false, _) if young => {}
-            (false, _) => candidates.push(Candidate {
-                path,
-                bytes: meta.len(),
-                modified,
-                entry,
-            }),
+            (false, _) => candidates.push(Candidate { file, entry }),
         }
     }
-    for (path, bytes) in temporaries {
-        if fs::remove_file(&path).is_ok() {
+    for file in temporaries {
+        if remove(&cache, &file) {
             report.removed_temporaries += 1;
-            report.removed_bytes += bytes;
-            total -= bytes;
+            report.removed_bytes += file.bytes;
+            total -= file.bytes;
         }
     }
     if let Some(age) = options.max_age {
-        candidates.retain(|c| now.duration_since(c.modified).unwrap_or_default() >= age);
+        candidates.retain(|c| now.duration_since(c.file.modified).unwrap_or_default() >= age);
     }
     // Oldest first, entries before objects of the same age.
-    candidates.sort_by_key(|c| (c.modified, !c.entry));
+    candidates.sort_by_key(|c| (c.file.modified, !c.entry));
     if let Some(limit) = options.max_size {
         let mut over = total.saturating_sub(limit);
         candidates.retain(|c| {
             let take = over > 0;
-            over = over.saturating_sub(c.bytes);
+            over = over.saturating_sub(c.file.bytes);
             take
         });
     }
     // Entries first: a kept entry never names a removed object.
     candidates.sort_by_key(|c| !c.entry);
     for c in candidates {
-        if fs::remove_file(&c.path).is_ok() {
+        if remove(&cache, &c.file) {
             if c.entry {
                 report.removed_entries += 1;
             } else {
                 report.removed_objects += 1;
             }
-            report.removed_bytes += c.bytes;
-            total -= c.bytes;
+            report.removed_bytes += c.file.bytes;
+            total -= c.file.bytes;
         }
     }
     report.bytes = total;
@@ -193,6 +186,60 @@ fn lock_objects(path: &Path) -> Result<Vec<String>, BuildError> {
         path: path.to_path_buf(),
         source: io::Error::other(why),
     })
+}
+
+/// Every entry (`true`) and object (`false`) file of the cache, local or remote.
+fn cache_files(cache: &Cache, now: SystemTime) -> io::Result<Vec<(bool, CacheFile)>> {
+    let Some(remote) = cache.remote() else {
+        let root = cache.root();
+        let entries = files_of(&root.join("entries"))?
+            .into_iter()
+            .map(|f| (true, f));
+        let objects = files_of_nested(&root.join("objects"))?;
+        let local = |(path, meta): (PathBuf, fs::Metadata)| CacheFile {
+            name: path
+                .file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned(),
+            bytes: meta.len(),
+            modified: meta.modified().unwrap_or(now),
+            path,
+        };
+        return Ok(entries
+            .chain(objects.into_iter().map(|f| (false, f)))
+            .map(|(entry, file)| (entry, local(file)))
+            .collect());
+    };
+    let mut files = Vec::new();
+    for (folder, entry) in [("entries", true), ("objects", false)] {
+        for listed in remote.list(folder)? {
+            let name = listed
+                .name
+                .rsplit('/')
+                .next()
+                .unwrap_or_default()
+                .to_owned();
+            files.push((
+                entry,
+                CacheFile {
+                    path: PathBuf::from(listed.name),
+                    name,
+                    bytes: listed.bytes,
+                    modified: listed.modified,
+                },
+            ));
+        }
+    }
+    Ok(files)
+}
+
+/// Removes one file of the cache; whether it went.
+fn remove(cache: &Cache, file: &CacheFile) -> bool {
+    match cache.remote() {
+        Some(remote) => remote.delete(&file.path.to_string_lossy()).is_ok(),
+        None => fs::remove_file(&file.path).is_ok(),
+    }
 }
 
 /// The files of a folder (none when it is missing).

@@ -43,9 +43,16 @@ pub struct FileStamp {
     pub sha256: String,
 }
 
-fn record_path(cache: &Cache, out_dir: &Path) -> std::path::PathBuf {
+/// Where the record lives: local state, so only a local cache has one (a build with a
+/// remote cache always takes the full path, which verifies every artifact).
+fn record_path(cache: &Cache, out_dir: &Path) -> Option<std::path::PathBuf> {
     let name = sha256_hex(out_dir.to_string_lossy().as_bytes());
-    cache.root().join("fresh").join(format!("{name}.json"))
+    Some(
+        cache
+            .local_root()?
+            .join("fresh")
+            .join(format!("{name}.json")),
+    )
 }
 
 /// Size and mtime of a regular file, or of a folder (`dir`), never through a symbolic link
@@ -58,7 +65,7 @@ fn stamp(path: &Path, dir: bool) -> Option<(u64, u128)> {
 
 /// The record of the last build into `out_dir`, if any.
 pub fn load(cache: &Cache, out_dir: &Path) -> Option<FreshRecord> {
-    serde_json::from_slice(&fs::read(record_path(cache, out_dir)).ok()?).ok()
+    serde_json::from_slice(&fs::read(record_path(cache, out_dir)?).ok()?).ok()
 }
 
 /// The manifest of an up-to-date output folder, or `None` when anything may have changed.
@@ -151,7 +158,10 @@ pub fn record(cache: &Cache, out_dir: &Path, manifest: &Manifest, manifest_bytes
         };
         dirs.insert(dir, mtime_ns);
     }
-    if let Ok(text) = serde_json::to_vec(&FreshRecord { files, dirs }) {
-        let _ = write_atomic(&record_path(cache, out_dir), &text);
+    if let (Some(path), Ok(text)) = (
+        record_path(cache, out_dir),
+        serde_json::to_vec(&FreshRecord { files, dirs }),
+    ) {
+        let _ = write_atomic(&path, &text);
     }
 }

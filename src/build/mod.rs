@@ -10,6 +10,7 @@
 mod atomic;
 mod cache;
 mod cache_gc;
+mod cache_remote;
 mod chunks;
 mod codec;
 mod decode_error;
@@ -41,6 +42,7 @@ pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use cache::{Blob, Cache, Load, Miss};
 pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
+pub use cache_remote::cache_location;
 /// The driver's encodings' version (PNG settings, JSON layout), in every stage key.
 pub use codec::VERSION as CODEC_VERSION;
 pub use decode_error::DecodeError;

@@ -149,7 +149,7 @@ fn shard_spec(
 ) -> Result<ShardReport, BuildError> {
     let start = Instant::now();
     let inputs = SpecInputs::read(path, spec)?;
-    let cache = Cache::new(&options.cache_dir);
+    let cache = Cache::open(&options.cache_dir)?;
     let progress = spec_build::progress_of(spec, options);
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;

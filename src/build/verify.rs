@@ -72,13 +72,13 @@ pub fn verify(
     options: &VerifyOptions,
 ) -> Result<VerifyReport, BuildError> {
     let inputs = SpecInputs::read(path, spec)?;
-    let cache = Cache::new(&options.cache_dir);
+    let cache = Cache::open(&options.cache_dir)?;
     let quiet = |_: &str, _: usize, _: usize| {};
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &quiet);
     let cached: Vec<(&'static str, String)> = pipeline
         .all_stages()
         .into_iter()
-        .filter(|(_, key)| cache.entry_path(key).exists())
+        .filter(|(_, key)| cache.has_entry(key))
         .collect();
     let mut chosen: Vec<usize> = (0..cached.len()).collect();
     if !options.all {

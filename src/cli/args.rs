@@ -37,7 +37,7 @@ pub enum Command {
     /// cache folder, so a rebuild runs only the stages whose inputs changed, and a rebuild
     /// with nothing changed writes nothing. All specs are validated before any is built.
     #[command(
-        after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec build -j1 --out build --cache /tmp/cs-cache specs/day.toml specs/drawn.toml\n  cityspec build -v specs/day.toml     # which stages ran or came from the cache, files per folder\n  cityspec build -vv specs/day.toml    # … and every file written or removed"
+        after_help = "Examples:\n  cityspec build specs/day.toml\n  cityspec build -j1 --out build --cache /tmp/cs-cache specs/day.toml specs/drawn.toml\n  cityspec build -v specs/day.toml     # which stages ran or came from the cache, files per folder\n  cityspec build -vv specs/day.toml    # … and every file written or removed\n  AWS_REGION=eu-west-1 cityspec build --shard auto --cache s3://my-bucket/cityspec specs/day.toml"
     )]
     Build {
         #[command(flatten)]
@@ -48,8 +48,11 @@ pub enum Command {
         /// Parent folder of the output folders: each spec writes OUT/<name>/.
         #[arg(long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
-        /// Stage cache folder.
-        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
+        /// by several machines (credentials and endpoint from the environment as the
+        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
+        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
+        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
         cache: PathBuf,
         /// Worker threads (default: one per core). Output bytes never depend on it.
         #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
@@ -90,8 +93,11 @@ pub enum Command {
         /// Parent folder of the output folders: each spec writes OUT/<name>/.
         #[arg(long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
-        /// Stage cache folder.
-        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
+        /// by several machines (credentials and endpoint from the environment as the
+        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
+        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
+        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
         cache: PathBuf,
         /// Worker threads (default: one per core). Output bytes never depend on it.
         #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
@@ -113,8 +119,11 @@ pub enum Command {
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Stage cache folder.
-        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
+        /// by several machines (credentials and endpoint from the environment as the
+        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
+        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
+        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
         cache: PathBuf,
         /// Recheck every cached stage.
         #[arg(long, conflicts_with = "sample")]
@@ -183,14 +192,17 @@ pub enum CacheCommand {
     /// object, or with --max-age only those older, with --max-size only the oldest until
     /// the cache fits. Safe while builds run: nothing younger than --grace-minutes goes.
     #[command(
-        after_help = "Examples:\n  cityspec cache gc specs/*.toml\n  cityspec cache gc --max-size 20G --cache /shared/cache specs/day.toml specs/night.lock"
+        after_help = "Examples:\n  cityspec cache gc specs/*.toml\n  cityspec cache gc --max-size 20G --cache /shared/cache specs/day.toml specs/night.lock\n  cityspec cache gc --max-age 30 --cache s3://my-bucket/cityspec specs/*.toml"
     )]
     Gc {
         /// Spec files (TOML) or lock files (`.lock`) whose artifacts to keep.
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Stage cache folder.
-        #[arg(long, value_name = "DIR", default_value = ".cityspec-cache")]
+        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
+        /// by several machines (credentials and endpoint from the environment as the
+        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
+        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
+        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
         cache: PathBuf,
         /// Remove unneeded files, oldest first, only until the cache holds at most SIZE
         /// (bytes, or 500M, 20G, …).
