@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+use super::shared_args::{CacheArg, JobsArg, OutArg};
+
 /// Turn a versioned TOML spec into a synthetic city dataset: a road layout, the city plan,
 /// a textured 3D city, and rendered, labelled frames. The same spec gives the same bytes
 /// on every machine.
@@ -45,18 +47,12 @@ pub enum Command {
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Parent folder of the output folders: each spec writes OUT/<name>/.
-        #[arg(long, value_name = "DIR", default_value = "out")]
-        out: PathBuf,
-        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
-        /// by several machines (credentials and endpoint from the environment as the
-        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
-        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
-        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
-        cache: PathBuf,
-        /// Worker threads (default: one per core). Output bytes never depend on it.
-        #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
-        jobs: Option<u16>,
+        #[command(flatten)]
+        out: OutArg,
+        #[command(flatten)]
+        cache: CacheArg,
+        #[command(flatten)]
+        jobs: JobsArg,
         /// Treat warnings (objects placed fewer times than `count` asks, facade problems)
         /// as errors: exit code 2, and the output folder is left as it was.
         #[arg(long)]
@@ -90,18 +86,12 @@ pub enum Command {
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Parent folder of the output folders: each spec writes OUT/<name>/.
-        #[arg(long, value_name = "DIR", default_value = "out")]
-        out: PathBuf,
-        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
-        /// by several machines (credentials and endpoint from the environment as the
-        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
-        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
-        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
-        cache: PathBuf,
-        /// Worker threads (default: one per core). Output bytes never depend on it.
-        #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
-        jobs: Option<u16>,
+        #[command(flatten)]
+        out: OutArg,
+        #[command(flatten)]
+        cache: CacheArg,
+        #[command(flatten)]
+        jobs: JobsArg,
     },
     /// Check the cache: rerun a seeded sample of a spec's cached stages (or all of them)
     /// and compare their bytes with the cached ones, like Nix's `--check`.
@@ -119,12 +109,8 @@ pub enum Command {
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
-        /// by several machines (credentials and endpoint from the environment as the
-        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
-        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
-        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
-        cache: PathBuf,
+        #[command(flatten)]
+        cache: CacheArg,
         /// Recheck every cached stage.
         #[arg(long, conflicts_with = "sample")]
         all: bool,
@@ -134,9 +120,8 @@ pub enum Command {
         /// Seed of the sample (default: from the clock, printed so a run can be repeated).
         #[arg(long, value_name = "N")]
         seed: Option<u64>,
-        /// Worker threads (default: one per core).
-        #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
-        jobs: Option<u16>,
+        #[command(flatten)]
+        jobs: JobsArg,
     },
     /// Check specs (syntax, schema, meaning, input files) without building; report every
     /// error with file:line:col and key path.
@@ -198,12 +183,8 @@ pub enum CacheCommand {
         /// Spec files (TOML) or lock files (`.lock`) whose artifacts to keep.
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
-        /// Stage cache: a folder, or s3://BUCKET/PREFIX, gs://… or az://CONTAINER/… shared
-        /// by several machines (credentials and endpoint from the environment as the
-        /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
-        /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
-        #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
-        cache: PathBuf,
+        #[command(flatten)]
+        cache: CacheArg,
         /// Remove unneeded files, oldest first, only until the cache holds at most SIZE
         /// (bytes, or 500M, 20G, …).
         #[arg(long, value_name = "SIZE", value_parser = crate::build::parse_size)]

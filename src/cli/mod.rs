@@ -7,6 +7,7 @@
 mod args;
 mod exit_code;
 mod print;
+mod shared_args;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;
@@ -15,6 +16,7 @@ use clap::Parser;
 
 use crate::build::{self, BuildError, BuildOptions};
 use args::{Args, CacheCommand, Command, FacadesCommand};
+use shared_args::{CacheArg, JobsArg, OutArg};
 
 /// Runs the command line and returns the process exit code.
 pub fn run() -> ExitCode {
@@ -53,9 +55,9 @@ pub fn run() -> ExitCode {
         Command::Build {
             verbosity: _,
             specs,
-            out: out_root,
-            cache,
-            jobs,
+            out: OutArg { out: out_root },
+            cache: CacheArg { cache },
+            jobs: JobsArg { jobs },
             strict,
             shard,
             shard_count,
@@ -105,14 +107,14 @@ pub fn run() -> ExitCode {
         }
         Command::Lock {
             specs,
-            out: out_root,
-            cache,
-            jobs,
+            out: OutArg { out: out_root },
+            cache: CacheArg { cache },
+            jobs: JobsArg { jobs },
         } => {
             let options = BuildOptions {
                 out_root,
                 cache_dir: cache,
-                progress: (!args.quiet).then(|| print::progress_line(color)),
+                progress: (!args.quiet).then(|| print::progress_line(terminal)),
                 waiting: Some(print::waiting_line()),
                 strict: false,
                 locked: false,
@@ -134,11 +136,11 @@ pub fn run() -> ExitCode {
         Command::Verify {
             verbosity: _,
             specs,
-            cache,
+            cache: CacheArg { cache },
             all,
             sample,
             seed,
-            jobs,
+            jobs: JobsArg { jobs },
         } => {
             let seed = seed.unwrap_or_else(clock_seed);
             let options = build::VerifyOptions {
@@ -199,7 +201,7 @@ pub fn run() -> ExitCode {
         }
         Command::Cache(CacheCommand::Gc {
             specs,
-            cache,
+            cache: CacheArg { cache },
             max_size,
             max_age,
             grace_minutes,
