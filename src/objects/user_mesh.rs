@@ -66,20 +66,17 @@ impl Model {
                 None => Err(tobj::LoadError::OpenFileFailed),
             },
         )
-        .map_err(|e| ObjectsError::BadObj {
+        .map_err(|source| ObjectsError::BadObj {
             model: model.to_owned(),
-            message: e.to_string(),
+            source,
         })?;
         let materials = match materials {
             Ok(m) => m,
-            Err(e) => {
-                let message = match files.mtl {
-                    None => "the OBJ names an MTL file the build did not read".to_owned(),
-                    Some(_) => e.to_string(),
-                };
-                return Err(ObjectsError::BadMtl {
-                    model: model.to_owned(),
-                    message,
+            Err(source) => {
+                let model = model.to_owned();
+                return Err(match files.mtl {
+                    None => ObjectsError::MtlNotRead { model },
+                    Some(_) => ObjectsError::BadMtl { model, source },
                 });
             }
         };
@@ -141,10 +138,10 @@ fn load_texture(model: &str, name: &str, files: &MeshFiles) -> Result<Texture, O
             model: model.to_owned(),
             texture: name.to_owned(),
         })?;
-    let image = image::load_from_memory(bytes).map_err(|e| ObjectsError::BadTexture {
+    let image = image::load_from_memory(bytes).map_err(|source| ObjectsError::BadTexture {
         model: model.to_owned(),
         texture: name.to_owned(),
-        message: e.to_string(),
+        source: Box::new(source),
     })?;
     Ok(Texture::from_rgb(name, &image.to_rgb8()))
 }

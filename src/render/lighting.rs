@@ -11,7 +11,7 @@ use super::sky::{Sky, smoothstep};
 use super::sun::{self, Sun};
 use super::{LitWindows, develop};
 
-/// A point light, all round or in a beam (what it adds: [`point_lights`](super::point_lights)).
+/// A point light, all round or in a beam (what it adds: `render::point_lights`).
 /// On its axis, facing it and much nearer than `near`, a surface receives `colour`;
 /// farther, inverse-square, `colour · near² / (near² + d²)`, smoothly cut to zero at
 /// `range` by `(1 − (d / range)²)²`.
@@ -46,7 +46,7 @@ impl Light {
 
     /// A street lamp's shielded head at `position`: a downward beam that still reaches
     /// a little above the horizontal (the head's diffuser) and nothing higher, so the
-    /// crowns of the trees above it stay dark; [`LAMP_NEAR`] of near field.
+    /// crowns of the trees above it stay dark; `LAMP_NEAR` of near field.
     pub fn street_lamp(position: [f32; 3], colour: [f32; 3], range: f32) -> Light {
         Light {
             position,
@@ -93,7 +93,7 @@ pub struct Lighting {
 pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
 /// Albedo of the ground, for the light it bounces up.
 const GROUND_ALBEDO: f32 = 0.2;
-/// Colour of a street lamp at full strength: with [`LAMP_NEAR`], about 0.8 (most of the
+/// Colour of a street lamp at full strength: with `LAMP_NEAR`, about 0.8 (most of the
 /// noon sun's strength) on the pavement under the head, an eighth of that 8 m to the side.
 pub const LAMP_COLOUR: [f32; 3] = [3.4, 2.6, 1.7];
 /// Near field of a street lamp, metres.

@@ -71,7 +71,7 @@ impl LitWindows {
 impl LitWindows {
     /// A light in front of every lit window of `scene` low enough to light the pavement,
     /// beamed out of the wall (Lambert-like: strongest straight out, none along the wall),
-    /// in scene order. Windows are found as [`WindowLookup::is_lit`] finds them: each box
+    /// in scene order. Windows are found as `WindowLookup::is_lit` finds them: each box
     /// centre of each texture repeat that lies in a wall triangle of a window texture.
     pub fn spill_lights(&self, scene: &Scene) -> Vec<Light> {
         let lookup = WindowLookup::new(self, scene.textures.len());

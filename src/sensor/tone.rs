@@ -37,7 +37,7 @@ pub(crate) fn luminance(c: [f32; 3]) -> f32 {
 }
 
 /// The multiplier that maps the log-average luminance of `linear` to mid grey (to less in
-/// frames dimmer than [`DIM`]), from every 4th pixel of every 4th row (summed in a fixed
+/// frames dimmer than `DIM`), from every 4th pixel of every 4th row (summed in a fixed
 /// order, in f64).
 pub fn auto_exposure(linear: &[[f32; 3]], width: u32) -> f32 {
     let w = width.max(1) as usize;
