@@ -1,22 +1,12 @@
-//! GeneratedLayout: `GenerateSpec` + palette + the layout stream → a random layout image
-//! (paper 3.1) with the roads and blue blocks it drew.
+//! `generate`: `GenerateSpec` + palette + the layout stream → a random layout image
+//! (paper 3.1) with the roads and blue blocks it drew ([`GeneratedLayout`]).
 
 use image::{Rgb, RgbImage};
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
-use crate::model::{Axis, PxRect, Road};
+use crate::model::{Axis, GeneratedLayout, PxRect, Road};
 use crate::spec::{Color, GenerateSpec, Palette};
-
-/// A generated layout and what was drawn on it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GeneratedLayout {
-    pub image: RgbImage,
-    /// The roads, as the parse stage reports them: horizontal first, each group by position.
-    pub roads: Vec<Road>,
-    /// The blue rectangles, in raster order of their top-left pixel.
-    pub blocks: Vec<PxRect>,
-}
 
 /// Paper 3.1. `rng` is the layout stage's stream.
 ///

@@ -14,5 +14,6 @@ pub const VERSION: u32 = 1;
 mod generated_layout;
 
 // Decoding lives in `image_file` because `spec` must refuse the same images the build does.
+pub use crate::model::GeneratedLayout;
 pub use crate::model::image_file::{LayoutError, MAX_PIXELS, MAX_SIDE, decode};
-pub use generated_layout::{GeneratedLayout, generate};
+pub use generated_layout::generate;

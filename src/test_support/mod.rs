@@ -12,5 +12,5 @@ mod test_city;
 pub use fake_world::FakeWorld;
 pub use pixel_rows::pixel_classes;
 // The layout stage's output with the roads and blocks it drew, for the parse tests.
-pub use crate::layout::GeneratedLayout;
+pub use crate::model::GeneratedLayout;
 pub use test_city::{TestCity, decoded, generated, mirrored, parsed, scene, test_city};

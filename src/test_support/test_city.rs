@@ -3,9 +3,8 @@
 
 use image::RgbImage;
 
-use crate::layout::GeneratedLayout;
 use crate::model::geometry::widths_px;
-use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::model::{Building, FacadeSet, GeneratedLayout, Lamp, ParsedLayout, Scene};
 use crate::rng::stream;
 use crate::spec::{GenerateSpec, Palette};
 
