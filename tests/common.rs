@@ -9,6 +9,18 @@ use std::path::{Path, PathBuf};
 mod copy_tree;
 pub use copy_tree::copy_tree;
 
+/// Options for a quiet, non-strict, unlocked build of `out_root` with `cache_dir`.
+pub fn quiet_options(out_root: PathBuf, cache_dir: PathBuf) -> cityspec::build::BuildOptions {
+    cityspec::build::BuildOptions {
+        out_root,
+        cache_dir,
+        progress: None,
+        waiting: None,
+        strict: false,
+        locked: false,
+    }
+}
+
 /// A temp folder holding `specs/<name>.toml` copied from the repo, plus `out/` and
 /// `cache/` paths inside it.
 pub struct Workspace {
@@ -65,14 +77,7 @@ impl Workspace {
     }
 
     pub fn options(&self) -> cityspec::build::BuildOptions {
-        cityspec::build::BuildOptions {
-            progress: None,
-            out_root: self.out(),
-            cache_dir: self.cache(),
-            waiting: None,
-            strict: false,
-            locked: false,
-        }
+        quiet_options(self.out(), self.cache())
     }
 
     /// Replaces `from` with `to` in a spec file (panics if `from` is absent).

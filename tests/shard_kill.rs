@@ -66,14 +66,7 @@ fn chunk_entries(cache: &Path) -> usize {
 }
 
 fn options(dir: &Path, out: &str, cache: &str) -> BuildOptions {
-    BuildOptions {
-        out_root: dir.join(out),
-        cache_dir: dir.join(cache),
-        progress: None,
-        waiting: None,
-        strict: false,
-        locked: false,
-    }
+    common::quiet_options(dir.join(out), dir.join(cache))
 }
 
 #[test]

@@ -16,14 +16,7 @@ use common::tree;
 const SPEC: &str = include_str!("fixtures/shards.toml");
 
 fn options(dir: &Path, out: &str, cache: &str) -> BuildOptions {
-    BuildOptions {
-        out_root: dir.join(out),
-        cache_dir: dir.join(cache),
-        progress: None,
-        waiting: None,
-        strict: false,
-        locked: false,
-    }
+    common::quiet_options(dir.join(out), dir.join(cache))
 }
 
 fn spec(dir: &Path) -> PathBuf {
