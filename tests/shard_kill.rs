@@ -1,20 +1,43 @@
 //! Issue 12: killing a shard at any moment and running it again loses nothing and
-//! duplicates nothing. A shard process is SIGKILLed at several moments of its run (during
-//! the city's stages, between and inside chunks), run again, then merged: the rerun renders
-//! exactly the chunks the killed run had not recorded, and the merge gives the bytes of a
-//! one-machine build without rendering a frame.
+//! duplicates nothing. A shard process is SIGKILLed at several moments of its run (while it
+//! loads the city, and as soon as its first and second chunks are recorded, inside the
+//! next chunk), run again, then merged: the rerun renders exactly the chunks the killed run
+//! had not recorded, and the merge gives the bytes of a one-machine build without rendering
+//! a frame.
+//!
+//! The kills inside the run wait for chunk entries to appear in the cache, not for a
+//! fraction of a timed run: on a busy 2-core CI machine the chunks of a small spec all land
+//! within a few milliseconds of each other, and a timed kill missed them (CI, stop 15).
 
 mod common;
 
 use std::fs;
 use std::path::Path;
 use std::process::{Command, Output};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use cityspec::build::{self, BuildOptions, StageStatus};
 use common::tree;
 
 const SPEC: &str = include_str!("fixtures/shards.toml");
+
+/// The street frames of the shared fixture are 64 × 48, rendered in a few milliseconds a
+/// chunk. At 256 × 192 a chunk takes about 170 ms in a debug build: a wide window for a
+/// kill that polls every millisecond to land inside the next chunk.
+fn spec_text() -> String {
+    let spec = SPEC.replace("resolution = [64, 48]", "resolution = [256, 192]");
+    assert_ne!(spec, SPEC, "the fixture's street resolution changed");
+    spec
+}
+
+/// When a shard is killed.
+#[derive(Clone, Copy, Debug)]
+enum Kill {
+    /// This long after it starts: while it loads the city, before any chunk.
+    After(Duration),
+    /// As soon as this many chunk entries are in its cache: inside the next chunk.
+    OnChunk(usize),
+}
 
 fn shard(dir: &Path, cache: &str, shard: &str) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_cityspec"));
@@ -74,7 +97,7 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     let spec = dir.join("small.toml");
-    fs::write(&spec, SPEC).unwrap();
+    fs::write(&spec, spec_text()).unwrap();
     let one = build::build(&spec, &options(dir, "one", "one-cache")).unwrap();
     let one = tree(&one.out_dir);
 
@@ -94,27 +117,45 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
         .status()
         .unwrap();
     assert!(city.success());
-    // An undisturbed shard 0/2, timed: the kills land at fractions of its run.
+    // An undisturbed shard 0/2: how many chunks it renders.
     common::copy_tree(&dir.join("city"), &dir.join("whole"));
-    let start = Instant::now();
     let whole = shard(dir, "whole", "0/2").output().unwrap();
-    let run = start.elapsed();
     let (mine, none) = counts(&whole);
     assert_eq!(none, 0);
     assert!(mine >= 3, "shard 0/2 renders {mine} chunks");
 
     let mut mid_render = 0;
-    for (n, fraction) in [0.05, 0.6, 0.8, 0.87, 0.93, 0.97].into_iter().enumerate() {
+    let kills = [
+        Kill::After(Duration::from_millis(20)),
+        Kill::OnChunk(1),
+        Kill::OnChunk(2),
+    ];
+    for (n, kill) in kills.into_iter().enumerate() {
         let cache = format!("cache{n}");
-        if n > 0 {
-            common::copy_tree(&dir.join("city"), &dir.join(&cache));
-        }
+        common::copy_tree(&dir.join("city"), &dir.join(&cache));
         let mut child = shard(dir, &cache, "0/2").spawn().unwrap();
-        std::thread::sleep(run.mul_f64(fraction));
-        child.kill().unwrap(); // SIGKILL
+        match kill {
+            Kill::After(delay) => std::thread::sleep(delay),
+            Kill::OnChunk(chunks) => {
+                let start = Instant::now();
+                while chunk_entries(&dir.join(&cache)) < chunks
+                    && child.try_wait().unwrap().is_none()
+                {
+                    assert!(start.elapsed() < Duration::from_secs(120), "shard hung");
+                    std::thread::sleep(Duration::from_millis(1));
+                }
+            }
+        }
+        child.kill().unwrap(); // SIGKILL; a no-op when the shard has already finished
         child.wait().unwrap();
         let survived = chunk_entries(&dir.join(&cache));
-        eprintln!("killed at {fraction}: {survived} of {mine} chunks recorded");
+        eprintln!("killed {kill:?}: {survived} of {mine} chunks recorded");
+        if let Kill::OnChunk(chunks) = kill {
+            assert!(
+                survived >= chunks,
+                "killed {kill:?} with {survived} recorded"
+            );
+        }
         if 0 < survived && survived < mine {
             mid_render += 1;
         }
@@ -123,7 +164,7 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
         assert_eq!(
             (rendered, cached),
             (mine - survived, survived),
-            "killed at {fraction} of the run with {survived} chunks recorded"
+            "killed {kill:?} with {survived} chunks recorded"
         );
         let other = shard(dir, &cache, "1/2").output().unwrap();
         assert_eq!(counts(&other).0 + mine, 5 + 2, "shard 1/2 renders the rest");
@@ -139,19 +180,14 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
         assert_eq!(
             one.keys().collect::<Vec<_>>(),
             merged.keys().collect::<Vec<_>>(),
-            "killed at {fraction}: other files"
+            "killed {kill:?}: other files"
         );
         for (path, bytes) in &one {
-            assert!(
-                bytes == &merged[path],
-                "killed at {fraction}: {path} differs"
-            );
+            assert!(bytes == &merged[path], "killed {kill:?}: {path} differs");
         }
         fs::remove_dir_all(dir.join(&cache)).unwrap();
     }
-    // Timing on a loaded machine varies; at least one kill must have cut the chunks.
-    assert!(
-        mid_render > 0,
-        "no kill landed between chunks (the run took {run:?})"
-    );
+    // A kill polls every millisecond and a chunk takes about 170 ms: only a test thread
+    // stalled for a whole chunk on both kills misses.
+    assert!(mid_render > 0, "no kill landed between chunks");
 }
