@@ -1,6 +1,7 @@
 //! Car specs + road slots → `car_NNNN` objects: low-poly sedans, hatchbacks, SUVs, vans,
-//! buses and trucks with seeded paint, dark glass, wheels, and head and tail lights that
-//! glow at night (emissive, like the lamp heads).
+//! buses and trucks with seeded paint, dark glass, wheels, and head and tail lights. A car
+//! in a driving lane has its lights on: they glow at night (emissive, like the lamp heads)
+//! and the renderer lights the road from them. A parked car's lights are off.
 //!
 //! A car is a side profile extruded across its width (the lower body), a narrower cabin on
 //! it whose windscreen and rear window are glass, inset side windows, octagonal wheels and
@@ -75,6 +76,10 @@ const HEAD_COLOUR: [f32; 3] = [0.85, 0.85, 0.8];
 const HEAD_GLOW: [f32; 3] = [1.0, 0.93, 0.78];
 const TAIL_COLOUR: [f32; 3] = [0.35, 0.01, 0.01];
 const TAIL_GLOW: [f32; 3] = [0.9, 0.04, 0.02];
+/// A parked car's lights are off: its lenses are materials of their own
+/// (`car_headlight_off`, `car_taillight_off`) that neither glow nor become point lights.
+const HEAD_OFF_COLOUR: [f32; 3] = [0.6, 0.6, 0.58];
+const TAIL_OFF_COLOUR: [f32; 3] = [0.25, 0.02, 0.02];
 
 /// A body's dimensions, metres: `u` from the rear (0) to the front (`length`), `y` up from
 /// the ground.
@@ -294,11 +299,11 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
                 }
             };
             if let Some(spot) = spots.road(rng, ATTEMPTS, slot) {
-                fitted = Some((spot, shape, half, paint, cargo));
+                fitted = Some((spot, shape, half, paint, cargo, parked));
                 break;
             }
         }
-        let Some((spot, shape, half, paint, cargo)) = fitted else {
+        let Some((spot, shape, half, paint, cargo, parked)) = fitted else {
             misses += 1;
             continue;
         };
@@ -308,8 +313,16 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             cargo: paint_material(placing, cargo),
             glass: placing.material("car_glass", || (GLASS, None)),
             tyre: placing.material("car_tyre", || (TYRE, None)),
-            head: placing.glowing("car_headlight", HEAD_COLOUR, HEAD_GLOW),
-            tail: placing.glowing("car_taillight", TAIL_COLOUR, TAIL_GLOW),
+            head: if parked {
+                placing.material("car_headlight_off", || (HEAD_OFF_COLOUR, None))
+            } else {
+                placing.glowing("car_headlight", HEAD_COLOUR, HEAD_GLOW)
+            },
+            tail: if parked {
+                placing.material("car_taillight_off", || (TAIL_OFF_COLOUR, None))
+            } else {
+                placing.glowing("car_taillight", TAIL_COLOUR, TAIL_GLOW)
+            },
         };
         let frame = Frame {
             origin: [

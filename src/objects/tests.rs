@@ -1056,3 +1056,32 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] > 12 && all.placed[0] < 10_000);
 }
+
+#[test]
+fn only_cars_in_the_driving_lanes_have_their_lights_on() {
+    let city = city();
+    for (parked, on) in [(1.0, false), (0.0, true)] {
+        let specs = [ObjectSpec {
+            parked,
+            ..spec(ObjectKind::Car, "car", 30)
+        }];
+        let inserted = run(&city, &specs).unwrap();
+        assert!(inserted.objects.len() > 5, "{}", inserted.objects.len());
+        let material = |name: &str| inserted.materials.iter().find(|m| m.name == name);
+        for lens in ["car_headlight", "car_taillight"] {
+            let lit = material(lens);
+            let off = material(&format!("{lens}_off"));
+            assert_eq!(
+                (lit.is_some(), off.is_some()),
+                (on, !on),
+                "{lens}, parked {parked}"
+            );
+            if let Some(lit) = lit {
+                assert!(lit.emissive.iter().any(|&e| e > 0.0));
+            }
+            if let Some(off) = off {
+                assert_eq!(off.emissive, [0.0; 3]);
+            }
+        }
+    }
+}

@@ -1,7 +1,8 @@
 //! `[lighting]` + the drawn [`Sun`] + lamp heads + facades → the [`Lighting`] of a camera
 //! path (or frame): the spec's sun, sky and shadows, a point light at every lamp head and
 //! a seeded share of lit windows once the sun is low with the light they spill onto the
-//! pavement, and every vehicle's headlight beam and tail-light glow.
+//! pavement, and the headlight beam and tail-light glow of every car in a driving lane
+//! (a parked car's lights are off: its lenses are other materials).
 
 use super::lighting::{LAMP_COLOUR, WINDOW_COLOUR};
 use super::{Light, Lighting, LitWindows, Sun};
