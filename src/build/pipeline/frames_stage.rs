@@ -319,6 +319,34 @@ impl Pipeline<'_> {
         Ok(out)
     }
 
+    /// Path `index`'s prepared scene, poses and first frame's lighting, for
+    /// [`crate::build::path_render_input`]: the city stages run or load as in a build.
+    pub fn path_render_input(
+        &mut self,
+        index: usize,
+    ) -> Result<
+        (
+            Arc<render::PreparedScene>,
+            Vec<CameraPose>,
+            render::Lighting,
+        ),
+        BuildError,
+    > {
+        let g = self.gather_path()?;
+        let poses = self.poses(index, &g.0, &g.1, &g.2);
+        let (lighting, _) = self.first_lighting(index, &g);
+        Ok((g.0, poses, lighting))
+    }
+
+    /// The lighting of path `index`'s first frame (of every frame unless `vary = "frame"`)
+    /// and the sun it was drawn with.
+    fn first_lighting(&self, index: usize, g: &Gathered) -> (render::Lighting, render::Sun) {
+        let (_, scene, _, lamps, facades) = g;
+        let spec = self.spec;
+        let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
+        (lighting(spec, &sun, scene, lamps, facades), sun)
+    }
+
     /// Poses, categories and YOLO classes of path `index`.
     fn compute_plan(&self, index: usize, g: &Gathered) -> PathPlan {
         let (prepared, scene, parsed, _, _) = g;
@@ -392,8 +420,7 @@ impl Pipeline<'_> {
         let (prepared, scene, _, lamps, facades) = g;
         let spec = self.spec;
         let camera = &spec.cameras[index];
-        let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
-        let lighting = lighting(spec, &sun, scene, lamps, facades);
+        let (lighting, sun) = self.first_lighting(index, g);
         let relight = (spec.lighting.vary == Vary::Frame).then_some({
             |i: usize| {
                 let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
