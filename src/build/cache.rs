@@ -252,21 +252,33 @@ impl Cache {
                 .map_err(|why| Miss::Corrupt(format!("{why} ({name})")))?;
             let blob = match load {
                 Load::Bytes => Blob::Stored(object, Some(Arc::new(bytes))),
-                Load::References => Blob::Stored(object, None),
+                Load::References => {
+                    // Downloaded once: the folder write takes these bytes (see
+                    // `verified_memo`).
+                    if let Some(remote) = &self.remote {
+                        remote.verified.keep(&object.sha256, bytes);
+                    }
+                    Blob::Stored(object, None)
+                }
             };
             outputs.insert(name, blob);
         }
         Ok(outputs)
     }
 
-    /// The bytes of a stored object, verified against its size and hash.
+    /// The bytes of a stored object, verified against its size and hash (in this process:
+    /// a remote object checked with its entry moments ago is not downloaded again).
     pub fn read_object(&self, object: &ObjectRef) -> Result<Vec<u8>, String> {
         let path = self.object_path(&object.sha256);
         let bytes = match &self.remote {
-            Some(remote) => match remote.get(&object_name(&object.sha256)) {
-                Ok(Some(bytes)) => bytes,
-                Ok(None) => return Err(format!("{} is missing", path.display())),
-                Err(e) => return Err(format!("{} cannot be read: {e}", path.display())),
+            Some(remote) => match remote.verified.take(&object.sha256) {
+                // Hashed when kept: the memo holds only bytes that matched their name.
+                Some(bytes) => return Ok(bytes),
+                None => match remote.get(&object_name(&object.sha256)) {
+                    Ok(Some(bytes)) => bytes,
+                    Ok(None) => return Err(format!("{} is missing", path.display())),
+                    Err(e) => return Err(format!("{} cannot be read: {e}", path.display())),
+                },
             },
             None => fs::read(&path).map_err(|_| format!("{} is missing", path.display()))?,
         };

@@ -22,6 +22,8 @@ use futures_util::StreamExt;
 use object_store::path::Path as Key;
 use object_store::{ObjectStore, ObjectStoreExt, RetryConfig, WriteMultipart};
 
+use super::verified_memo::VerifiedMemo;
+
 /// A parsed `--cache` URL.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RemoteLocation {
@@ -96,6 +98,8 @@ pub struct RemoteStore {
     store: Arc<dyn ObjectStore>,
     prefix: String,
     runtime: tokio::runtime::Runtime,
+    /// Objects verified while checking entries, for the folder writes that follow.
+    pub(super) verified: VerifiedMemo,
 }
 
 impl std::fmt::Debug for RemoteStore {
@@ -164,6 +168,7 @@ impl RemoteStore {
             store,
             prefix: location.prefix.clone(),
             runtime,
+            verified: VerifiedMemo::default(),
         };
         let probe = remote.key("entries");
         remote

@@ -31,6 +31,7 @@ mod report;
 mod shard;
 mod spec_build;
 mod stage_key;
+mod verified_memo;
 mod verify;
 mod webdataset;
 
