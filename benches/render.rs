@@ -48,8 +48,7 @@ fn main() {
         // For a look at what is being timed: the first pose, by day, at dusk and by night.
         for (name, input) in [("day", &day), ("dusk", &dusk), ("night", &night)] {
             let pose = &spread(input, runs)[0];
-            let png = render::render(&input.scene, pose, k, &input.lighting, 1)
-                .encode(render::DepthFormat::Mm16);
+            let png = render::render(&input.scene, pose, k, &input.lighting, 1).encode(input.depth);
             let dir = Path::new(&dir);
             std::fs::write(dir.join(format!("{name}_rgb.png")), &png.rgb).unwrap();
             std::fs::write(dir.join(format!("{name}_instance.png")), &png.instance).unwrap();

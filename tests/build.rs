@@ -654,3 +654,42 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
     assert_eq!(poses(&ws, "street"), street);
     assert_eq!(poses(&ws, "words"), words);
 }
+
+#[test]
+fn path_render_input_renders_the_ids_and_depth_a_build_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("small.toml");
+    fs::write(&spec, include_str!("fixtures/shards.toml")).unwrap();
+    let cache = dir.path().join("cache");
+    let options = common::quiet_options(dir.path().join("out"), cache.clone());
+    let out = build::build(&spec, &options).unwrap().out_dir;
+    // From the cache the build filled: the same scene, poses and intrinsics.
+    let input = build::path_render_input(&spec, "street", &cache)
+        .unwrap()
+        .expect("the fixture has a street camera");
+    assert_eq!(input.poses.len(), 43);
+    for i in [0, 21, 42] {
+        let frame = cityspec::render::render(
+            &input.scene,
+            &input.poses[i],
+            &input.intrinsics,
+            &input.lighting,
+            input.supersample,
+        );
+        let pngs = frame.encode(input.depth);
+        let written = |kind: &str| fs::read(out.join(format!("frames/street/{kind}/{i:06}.png")));
+        assert!(
+            pngs.instance == written("ids").unwrap(),
+            "frame {i}: ids differ"
+        );
+        assert!(
+            pngs.depth == written("depth").unwrap(),
+            "frame {i}: depth differs"
+        );
+    }
+    assert!(
+        build::path_render_input(&spec, "nowhere", &cache)
+            .unwrap()
+            .is_none()
+    );
+}

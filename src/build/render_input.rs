@@ -15,7 +15,7 @@ use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
 use crate::model::CameraPose;
 use crate::model::geometry::tan_half_degrees;
-use crate::render::{Intrinsics, Lighting, PreparedScene};
+use crate::render::{DepthFormat, Intrinsics, Lighting, PreparedScene};
 
 /// What rendering one camera path takes.
 pub struct PathRenderInput {
@@ -28,6 +28,8 @@ pub struct PathRenderInput {
     pub lighting: Lighting,
     /// The camera's `supersample` (1: one sample per pixel with edge antialiasing).
     pub supersample: u32,
+    /// How the camera's depth images are written.
+    pub depth: DepthFormat,
 }
 
 /// The render input of the camera named `camera` in the spec at `path`, with the city
@@ -54,5 +56,6 @@ pub fn path_render_input(
         intrinsics: Intrinsics::from_fov(width, height, tan_half_degrees(c.fov)),
         lighting,
         supersample: c.supersample,
+        depth: c.depth,
     }))
 }
