@@ -6,16 +6,11 @@ mod common;
 use std::fs;
 use std::time::{Duration, SystemTime};
 
-use cityspec::build::{self, GcOptions, StageStatus};
+use cityspec::build::{self, GcOptions};
 use common::Workspace;
 
 fn ran(report: &build::BuildReport) -> Vec<&'static str> {
-    report
-        .stages
-        .iter()
-        .filter(|s| s.status == StageStatus::Ran)
-        .map(|s| s.stage)
-        .collect()
+    report.ran().map(|s| s.stage).collect()
 }
 
 #[test]

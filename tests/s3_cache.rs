@@ -286,21 +286,25 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
         rt.block_on(client.put(stray, PutPayload::from_static(b"{}")))
             .unwrap();
     }
-    let gc = cityspec(
-        &dir,
-        &env,
-        &[
-            "cache",
-            "gc",
-            "--grace-minutes",
-            "0",
-            "--cache",
-            &format!("s3://{BUCKET}/run2"),
-            "small.toml",
-        ],
-    );
-    let said =
-        String::from_utf8_lossy(&gc.stdout).into_owned() + &String::from_utf8_lossy(&gc.stderr);
+    // `cache gc` of the run2 prefix for `spec` (strays old enough: --grace-minutes 0):
+    // what it says.
+    let gc = |spec: &str| {
+        let gc = cityspec(
+            &dir,
+            &env,
+            &[
+                "cache",
+                "gc",
+                "--grace-minutes",
+                "0",
+                "--cache",
+                &format!("s3://{BUCKET}/run2"),
+                spec,
+            ],
+        );
+        String::from_utf8_lossy(&gc.stdout).into_owned() + &String::from_utf8_lossy(&gc.stderr)
+    };
+    let said = gc("small.toml");
     assert!(said.contains("removed 1 entries, 1 objects"), "{said}");
     for stray in [&stray_entry, &stray_object] {
         assert!(
@@ -337,21 +341,7 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
         SPEC.replace("seed = 11", "seed = 12"),
     )
     .unwrap();
-    let gc = cityspec(
-        &dir,
-        &env,
-        &[
-            "cache",
-            "gc",
-            "--grace-minutes",
-            "0",
-            "--cache",
-            &format!("s3://{BUCKET}/run2"),
-            "other.toml",
-        ],
-    );
-    let said =
-        String::from_utf8_lossy(&gc.stdout).into_owned() + &String::from_utf8_lossy(&gc.stderr);
+    let said = gc("other.toml");
     // It shares a stage or two (the built-in facades) with small.toml: what the bucket
     // still holds is exactly what gc says it kept.
     let left = rt.block_on(async {

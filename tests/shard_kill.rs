@@ -16,7 +16,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-use cityspec::build::{self, BuildOptions, StageStatus};
+use cityspec::build::{self, BuildOptions};
 use common::tree;
 
 const SPEC: &str = include_str!("fixtures/shards.toml");
@@ -169,12 +169,7 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
         let other = shard(dir, &cache, "1/2").output().unwrap();
         assert_eq!(counts(&other).0 + mine, 5 + 2, "shard 1/2 renders the rest");
         let merged = build::build(&spec, &options(dir, &format!("out{n}"), &cache)).unwrap();
-        let ran: Vec<&str> = merged
-            .stages
-            .iter()
-            .filter(|s| s.status == StageStatus::Ran)
-            .map(|s| s.stage)
-            .collect();
+        let ran: Vec<&str> = merged.ran().map(|s| s.stage).collect();
         assert_eq!(ran, ["frames", "frames"], "the merge only assembles");
         let merged = tree(&merged.out_dir);
         assert_eq!(

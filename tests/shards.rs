@@ -7,7 +7,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use cityspec::build::{self, BuildOptions, Shard, StageStatus};
+use cityspec::build::{self, BuildOptions, Shard};
 use common::tree;
 
 /// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
@@ -49,12 +49,7 @@ fn sharded(dir: &Path, spec: &Path, shards: u32, city_first: bool) -> Vec<(Strin
 /// The merge: a plain build that must find every chunk and plan in the cache.
 fn merge(dir: &Path, options: &BuildOptions, spec: &Path) -> Vec<(String, Vec<u8>)> {
     let report = build::build(spec, options).unwrap();
-    let ran: Vec<&str> = report
-        .stages
-        .iter()
-        .filter(|s| s.status == StageStatus::Ran)
-        .map(|s| s.stage)
-        .collect();
+    let ran: Vec<&str> = report.ran().map(|s| s.stage).collect();
     assert_eq!(ran, ["frames", "frames"], "the merge only assembles");
     let _ = dir;
     tree(&report.out_dir).into_iter().collect()
@@ -176,12 +171,7 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     .unwrap();
     // The frames' content keys ignore the layout: only the paths are assembled again.
     let wds = build::build(&wds_spec, &options(dir, "wds", "cache")).unwrap();
-    let ran: Vec<&str> = wds
-        .stages
-        .iter()
-        .filter(|s| s.status == StageStatus::Ran)
-        .map(|s| s.stage)
-        .collect();
+    let ran: Vec<&str> = wds.ran().map(|s| s.stage).collect();
     assert_eq!(ran, ["frames", "frames"]);
     let out = tree(&wds.out_dir);
     let tars: Vec<&String> = out.keys().filter(|p| p.ends_with(".tar")).collect();
