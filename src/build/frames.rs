@@ -79,7 +79,6 @@ pub struct FrameRecord {
 impl<'a> PathFrames<'a> {
     pub fn new(input: &'a PathInput<'a>, poses: &'a [CameraPose]) -> PathFrames<'a> {
         let camera = input.camera;
-        let (width, height) = (camera.resolution[0], camera.resolution[1]);
         let measured = input
             .labels
             .iter()
@@ -96,7 +95,7 @@ impl<'a> PathFrames<'a> {
         PathFrames {
             input,
             poses,
-            intrinsics: Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov)),
+            intrinsics: camera_intrinsics(camera),
             measured,
             has_text: input
                 .labels
@@ -217,6 +216,12 @@ fn listed(categories: &[Category], c: Option<u32>) -> bool {
     c.is_some_and(|c| categories.iter().any(|k| k.id == c))
 }
 
+/// A camera's intrinsics: its resolution and field of view, the default clip planes.
+pub(super) fn camera_intrinsics(camera: &CameraSpec) -> Intrinsics {
+    let (width, height) = (camera.resolution[0], camera.resolution[1]);
+    Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov))
+}
+
 /// `poses.json`: the intrinsics, the depth format and every frame's pose and drawn
 /// conditions, the sun among them (`conditions` in frame order).
 pub fn poses_json(
@@ -225,7 +230,7 @@ pub fn poses_json(
     conditions: impl IntoIterator<Item = Value>,
 ) -> Vec<u8> {
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
-    let intrinsics = Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov));
+    let intrinsics = camera_intrinsics(camera);
     let depth_format = camera.depth;
     let poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,

@@ -10,11 +10,11 @@ use std::path::Path;
 use std::sync::Arc;
 
 use super::cache::Cache;
+use super::frames::camera_intrinsics;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
 use crate::model::CameraPose;
-use crate::model::geometry::tan_half_degrees;
 use crate::render::{DepthFormat, Intrinsics, Lighting, PreparedScene};
 
 /// What rendering one camera path takes.
@@ -49,11 +49,10 @@ pub fn path_render_input(
     let mut pipeline = Pipeline::new(&spec, path.to_path_buf(), inputs, &cache, &quiet);
     let (scene, poses, lighting) = pipeline.path_render_input(index)?;
     let c = &spec.cameras[index];
-    let (width, height) = (c.resolution[0], c.resolution[1]);
     Ok(Some(PathRenderInput {
         scene,
         poses,
-        intrinsics: Intrinsics::from_fov(width, height, tan_half_degrees(c.fov)),
+        intrinsics: camera_intrinsics(c),
         lighting,
         supersample: c.supersample,
         depth: c.depth,
