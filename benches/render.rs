@@ -14,7 +14,8 @@
 //! ambient occlusion and the tone curve. Besides the clock (median frames/s, fastest and
 //! slowest frame), each case prints the CPU time per frame of all threads, which a busy
 //! machine inflates far less than the clock (with `RAYON_NUM_THREADS=1` it is also free of
-//! the pool's idle spinning). Timings are printed, never asserted.
+//! the pool's idle spinning). Timings are printed, never asserted. `BENCH_CASES` picks
+//! cases by parts of their labels (`BENCH_CASES="+ AO,night"`).
 
 mod support;
 
@@ -48,7 +49,8 @@ fn main() {
         // For a look at what is being timed: the first pose, by day, at dusk and by night.
         for (name, input) in [("day", &day), ("dusk", &dusk), ("night", &night)] {
             let pose = &spread(input, runs)[0];
-            let png = render::render(&input.scene, pose, k, &input.lighting, 1).encode(input.depth);
+            let frame = render::render(&input.scene, pose, k, &input.lighting, 1);
+            let png = frame.encode(&frame.rgb(), input.depth);
             let dir = Path::new(&dir);
             std::fs::write(dir.join(format!("{name}_rgb.png")), &png.rgb).unwrap();
             std::fs::write(dir.join(format!("{name}_instance.png")), &png.instance).unwrap();
@@ -110,6 +112,9 @@ fn main() {
             night.supersample,
         ),
     ] {
+        if !selected(label) {
+            continue;
+        }
         let poses = spread(input, runs);
         let k = &input.intrinsics;
         let cpu = cpu_ms();
@@ -117,12 +122,16 @@ fn main() {
             .iter()
             .map(|pose| {
                 let t = Instant::now();
-                black_box(render::render(&input.scene, pose, k, &lighting, ss));
+                // Developed as `Frame::rgb` does: exposure, tone curve, sRGB.
+                black_box(render::render(&input.scene, pose, k, &lighting, ss).rgb());
                 t.elapsed().as_secs_f64() * 1000.0
             })
             .collect();
         let cpu = (cpu_ms() - cpu) / poses.len() as f64;
         report(label, ms, cpu);
+    }
+    if !selected("640x480 tone curve + sRGB alone") {
+        return;
     }
     let (w, h) = (k.width, k.height);
     let frame = render::render(&day.scene, &poses[0], k, &all, 1);
@@ -136,6 +145,16 @@ fn main() {
         .collect();
     let cpu = (cpu_ms() - cpu) / runs as f64;
     report("640x480 tone curve + sRGB alone", ms, cpu);
+}
+
+/// Whether a case runs: every case, or with `BENCH_CASES` set, those whose label contains
+/// one of its comma-separated parts (`BENCH_CASES="AO,night"`).
+fn selected(label: &str) -> bool {
+    std::env::var("BENCH_CASES").map_or(true, |cases| {
+        cases
+            .split(',')
+            .any(|c| !c.trim().is_empty() && label.contains(c.trim()))
+    })
 }
 
 /// `runs` of the path's poses, spread evenly over the drive.

@@ -676,7 +676,7 @@ fn path_render_input_renders_the_ids_and_depth_a_build_writes() {
             &input.lighting,
             input.supersample,
         );
-        let pngs = frame.encode(input.depth);
+        let pngs = frame.encode(&frame.rgb(), input.depth);
         let written = |kind: &str| fs::read(out.join(format!("frames/street/{kind}/{i:06}.png")));
         assert!(
             pngs.instance == written("ids").unwrap(),

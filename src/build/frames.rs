@@ -130,7 +130,7 @@ impl<'a> PathFrames<'a> {
         );
         let weathered = weathered(lighting, &sensor::weather_light(&conditions));
         let lighting = weathered.as_ref().unwrap_or(lighting);
-        let (mut frame, footprints) = render::render_measuring(
+        let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
             intrinsics,
@@ -154,7 +154,6 @@ impl<'a> PathFrames<'a> {
             },
             &conditions,
         );
-        frame.rgb = developed.rgb;
         let mut drawn = conditions.to_json(developed.exposure);
         drawn["sun"] = sun_json(&sun);
         let frame_input = FrameInput {
@@ -179,7 +178,7 @@ impl<'a> PathFrames<'a> {
                 .collect(),
         };
         let (pngs, mut summary) = rayon::join(
-            || frame.encode(depth_format),
+            || frame.encode(&developed.rgb, depth_format),
             || annotate::summarize(input.labels, &frame_input, input.thresholds),
         );
         let depth_name = format!("depth/{i:06}.{}", depth_format.extension());

@@ -9,18 +9,18 @@ use crate::model::pack_ids;
 
 pub use crate::spec::DepthFormat;
 
-/// A rendered frame: sRGB colour, instance ids (0 = sky, object index + 1 otherwise, at
-/// most 24 bits) and depth along the view axis in metres (0 = sky).
+/// A rendered frame: linear colour, instance ids (0 = sky, object index + 1 otherwise, at
+/// most 24 bits) and depth along the view axis in metres (0 = sky). [`Frame::rgb`]
+/// develops the colour; a camera path develops it through its sensor instead.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
-    /// The default development of `linear`: the lighting's exposure, the filmic tone
-    /// curve, sRGB ([`super::develop`]).
-    pub rgb: RgbImage,
     /// Linear scene radiance per pixel, row-major, before exposure and tone mapping,
     /// unclamped (HDR).
     pub linear: Vec<[f32; 3]>,
     pub instance: ImageBuffer<Luma<u32>, Vec<u32>>,
     pub depth: ImageBuffer<Luma<f32>, Vec<f32>>,
+    /// The lighting's exposure, for [`Frame::rgb`].
+    pub exposure: f32,
 }
 
 /// Encoded files of a frame: 8-bit RGB PNG, RGB-packed instance ids PNG, and the depth in
@@ -33,16 +33,24 @@ pub struct FramePngs {
 }
 
 impl Frame {
-    /// Encodes the three images (in parallel) with fixed settings: the same frame gives
+    /// The default development of `linear`: the lighting's exposure, the filmic tone
+    /// curve, sRGB ([`super::develop`]).
+    pub fn rgb(&self) -> RgbImage {
+        let (w, h) = self.instance.dimensions();
+        super::develop::develop(&self.linear, w, h, self.exposure)
+    }
+
+    /// Encodes `rgb` (this frame's colour, as [`Frame::rgb`] or a sensor develops it) and
+    /// the other two images (in parallel) with fixed settings: the same frame gives
     /// the same bytes.
     ///
     /// Instance ids are packed into an 8-bit RGB PNG as COCO panoptic does:
     /// `id = R + 256·G + 256²·B`. Depth follows `depth`: millimetres or centimetres
     /// rounded and clamped to 1–65535 in a 16-bit grey PNG (0 stays the sky), or float32
     /// metres in a `.npy`.
-    pub fn encode(&self, depth: DepthFormat) -> FramePngs {
+    pub fn encode(&self, rgb: &RgbImage, depth: DepthFormat) -> FramePngs {
         let (rgb, (instance, depth)) = rayon::join(
-            || encode_png(&self.rgb, PngEffort::Fast),
+            || encode_png(rgb, PngEffort::Fast),
             || {
                 rayon::join(
                     || encode_png(&pack_ids(&self.instance), PngEffort::Fast),
@@ -112,7 +120,6 @@ mod tests {
 
     fn frame() -> Frame {
         Frame {
-            rgb: RgbImage::new(5, 3),
             linear: vec![[0.0; 3]; 15],
             instance: ImageBuffer::from_fn(5, 3, |x, y| {
                 Luma([[0, 1, 255, 256, 65_535, 65_536, 16_777_215][((x + y) % 7) as usize]])
@@ -121,14 +128,15 @@ mod tests {
                 Luma([[0.0, 0.0004, 1.0, 65.5354, 65.536, 655.36, 2500.25]
                     [((x + 2 * y) % 7) as usize]])
             }),
+            exposure: 1.0,
         }
     }
 
     #[test]
     fn ids_round_trip_through_the_rgb_png_beyond_sixteen_bits() {
         let frame = frame();
-        let files = frame.encode(DepthFormat::Cm16);
-        assert_eq!(files, frame.encode(DepthFormat::Cm16));
+        let files = frame.encode(&frame.rgb(), DepthFormat::Cm16);
+        assert_eq!(files, frame.encode(&frame.rgb(), DepthFormat::Cm16));
         let rgb = image::load_from_memory(&files.instance).unwrap();
         assert!(matches!(rgb, DynamicImage::ImageRgb8(_)));
         assert_eq!(unpack_ids(&rgb.into_rgb8()), frame.instance);
@@ -147,7 +155,7 @@ mod tests {
             ),
             (DepthFormat::Cm16, [0, 1, 100, 6554, 6554, 65535, 65535]),
         ] {
-            let png = frame.encode(format).depth;
+            let png = frame.encode(&frame.rgb(), format).depth;
             let back = image::load_from_memory(&png).unwrap().into_luma16();
             assert_eq!(back, frame.depth_u16(format));
             let first_row: Vec<u16> = (0..5).map(|x| back.get_pixel(x, 0).0[0]).collect();
@@ -161,7 +169,7 @@ mod tests {
     #[test]
     fn float_depth_is_a_numpy_file() {
         let frame = frame();
-        let npy = frame.encode(DepthFormat::F32).depth;
+        let npy = frame.encode(&frame.rgb(), DepthFormat::F32).depth;
         assert_eq!(&npy[..8], b"\x93NUMPY\x01\x00");
         let len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
         assert_eq!((10 + len) % 64, 0);

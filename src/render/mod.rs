@@ -94,7 +94,7 @@ pub use scene_lighting::lighting_for;
 pub use sky::Sky;
 pub use sun::{Sun, solar_position};
 
-use image::{ImageBuffer, Luma, RgbImage};
+use image::{ImageBuffer, Luma};
 use rayon::prelude::*;
 
 use edge_aa::EdgeHint;
@@ -234,7 +234,7 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
 }
 
 /// The frame from its tiles: colours mixed across edges (at one sample per pixel, which
-/// reads `rasters`), then developed; ids and depth as the tiles resolved them.
+/// reads `rasters`); ids and depth as the tiles resolved them. [`Frame::rgb`] develops it.
 fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Frame {
     let (width, height) = (ctx.width, ctx.height);
     let n = width as usize * height as usize;
@@ -287,24 +287,11 @@ fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Fr
         };
         linear = edge_aa::resolve(&linear, &edges, w, real);
     }
-    let table = srgb::srgb();
-    let exposure = ctx.lighting.exposure;
-    let mut bytes = vec![0u8; n * 3];
-    bytes
-        .par_chunks_mut(width as usize * 3)
-        .zip(linear.par_chunks(width as usize))
-        .for_each(|(out, row)| {
-            for (o, c) in out.chunks_exact_mut(3).zip(row) {
-                for k in 0..3 {
-                    o[k] = table.to_srgb8(develop::tone(c[k] * exposure));
-                }
-            }
-        });
     Frame {
-        rgb: RgbImage::from_raw(width, height, bytes).expect("width × height pixels"),
         linear,
         instance,
         depth,
+        exposure: ctx.lighting.exposure,
     }
 }
 
@@ -313,9 +300,9 @@ fn sky_frame(width: u32, height: u32, lighting: &Lighting) -> Frame {
     let sky = lighting.sky.radiance([0.0, 0.0, -1.0]);
     let linear = vec![sky; width as usize * height as usize];
     Frame {
-        rgb: develop::develop(&linear, width, height, lighting.exposure),
         linear,
         instance: ImageBuffer::new(width, height),
         depth: ImageBuffer::new(width, height),
+        exposure: lighting.exposure,
     }
 }

@@ -171,7 +171,7 @@ fn a_shadowed_frame_is_pinned() {
     let k = Intrinsics::from_fov(64, 48, 0.6);
     let eye = pose([-6.0, 2.0, 7.0], [0.0, 1.0, 0.0]);
     let frame = render(&prepared, &eye, &k, &Lighting::day(), 2);
-    let digest = crate::hash::sha256_hex(frame.rgb.as_raw());
+    let digest = crate::hash::sha256_hex(frame.rgb().as_raw());
     assert_eq!(
         (VERSION, digest.as_str()),
         (

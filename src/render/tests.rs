@@ -133,7 +133,7 @@ pub(super) fn flat() -> Lighting {
 /// curve): the albedo, under [`flat`] lighting.
 fn clipped(frame: &Frame, x: u32, y: u32) -> [u8; 3] {
     let table = super::srgb::srgb();
-    frame.linear[(y * frame.rgb.width() + x) as usize].map(|c| table.to_srgb8(c))
+    frame.linear[(y * frame.rgb().width() + x) as usize].map(|c| table.to_srgb8(c))
 }
 
 fn count(frame: &Frame, id: u32) -> usize {
@@ -730,8 +730,8 @@ fn output_bytes_do_not_depend_on_the_thread_count() {
             let one = run(1);
             let four = run(4);
             assert_eq!(
-                one.encode(DepthFormat::Mm16),
-                four.encode(DepthFormat::Mm16),
+                one.encode(&one.rgb(), DepthFormat::Mm16),
+                four.encode(&four.rgb(), DepthFormat::Mm16),
                 "samples {samples}"
             );
             assert_eq!(one, four);
@@ -751,8 +751,8 @@ fn supersampling_smooths_colour_but_keeps_ids_exact() {
     let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
     let plain = render(&prepared, &eye, &k, &Lighting::day(), 1);
     let smooth = render(&prepared, &eye, &k, &Lighting::day(), 2);
-    assert_eq!(smooth.rgb.dimensions(), (96, 64));
-    assert_ne!(plain.rgb, smooth.rgb);
+    assert_eq!(smooth.rgb().dimensions(), (96, 64));
+    assert_ne!(plain.rgb(), smooth.rgb());
     // Ids of the supersampled frame come from single samples: each is an object's id,
     // and they mostly agree with the plain frame.
     let same = plain
@@ -829,7 +829,7 @@ fn edge_antialiasing_greys_edges_and_keeps_ids_and_depth_exact() {
     let hard = render(&prepared, &eye, &k, &Lighting::day(), 0);
     let soft = render(&prepared, &eye, &k, &Lighting::day(), 1);
     assert_eq!((&hard.instance, &hard.depth), (&soft.instance, &soft.depth));
-    assert_ne!(hard.rgb, soft.rgb);
+    assert_ne!(hard.rgb(), soft.rgb());
 }
 
 // ---- night ------------------------------------------------------------------------------
@@ -848,7 +848,7 @@ fn a_point_light_brightens_near_pixels_only() {
     let lamp = Light::point([-5.0, 0.0, -9.0], [2.0, 2.0, 2.0], 4.0);
     let lit = render(&prepared, &eye, &k, &Lighting::night(vec![lamp], None), 1);
     // The light is 1 m in front of the wall at x = −5: pixel x = 32 − 24 · 0.5 = 20.
-    let near = |f: &Frame| f.rgb.get_pixel(20, 24).0[0];
+    let near = |f: &Frame| f.rgb().get_pixel(20, 24).0[0];
     assert!(
         near(&lit) > near(&dark) + 50,
         "{} vs {}",
@@ -859,8 +859,8 @@ fn a_point_light_brightens_near_pixels_only() {
     for x in 32..64 {
         for y in 0..48 {
             assert_eq!(
-                lit.rgb.get_pixel(x, y),
-                dark.rgb.get_pixel(x, y),
+                lit.rgb().get_pixel(x, y),
+                dark.rgb().get_pixel(x, y),
                 "({x}, {y})"
             );
         }
@@ -918,9 +918,9 @@ fn lit_windows_glow_inside_their_boxes_only() {
         1,
     );
     // The wall spans pixels 4–27; its middle half (the window) is pixels 10–21.
-    assert!(on.rgb.get_pixel(16, 16).0[0] > off.rgb.get_pixel(16, 16).0[0] + 100);
-    assert_eq!(on.rgb.get_pixel(6, 16), off.rgb.get_pixel(6, 16));
-    assert_eq!(on.rgb.get_pixel(16, 25), off.rgb.get_pixel(16, 25));
+    assert!(on.rgb().get_pixel(16, 16).0[0] > off.rgb().get_pixel(16, 16).0[0] + 100);
+    assert_eq!(on.rgb().get_pixel(6, 16), off.rgb().get_pixel(6, 16));
+    assert_eq!(on.rgb().get_pixel(16, 25), off.rgb().get_pixel(16, 25));
 }
 
 // ---- preparing -------------------------------------------------------------------------
@@ -984,7 +984,7 @@ fn unusable_cameras_render_sky() {
         &Lighting::day(),
         0,
     );
-    assert_eq!(frame.rgb.dimensions(), (8, 6));
+    assert_eq!(frame.rgb().dimensions(), (8, 6));
     assert!(frame.depth_mm().pixels().all(|p| p.0[0] == 0));
 }
 
@@ -1007,7 +1007,7 @@ fn night_street(lights: Vec<Light>, windows: Option<LitWindows>) -> Frame {
 
 /// The frame's luminance at output pixel `(x, y)`, linear.
 fn lum_at(f: &Frame, x: u32, y: u32) -> f32 {
-    develop::luminance(f.linear[(y * f.rgb.width() + x) as usize])
+    develop::luminance(f.linear[(y * f.rgb().width() + x) as usize])
 }
 
 #[test]

@@ -330,7 +330,7 @@ impl Pipeline<'_> {
                         );
                         intrinsics.far = shot.far;
                         render::render(&prepared, pose, &intrinsics, &lighting, shot.supersample)
-                            .rgb
+                            .rgb()
                     }
                     None => RgbImage::new(shot.width, shot.height),
                 };
