@@ -140,7 +140,13 @@ pub(crate) fn visibility(ctx: &FrameContext, rasters: &[TileRaster], strength: f
                 if l2 >= r2 || l2 <= 1e-8 {
                     continue;
                 }
-                let rise = (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]) / l2.sqrt() - BIAS;
+                let above = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+                // Scores nothing unless `above / |v| > BIAS`: most taps (flat ground, open
+                // walls) are settled here, without the square root and the division.
+                if above <= 0.0 || above * above <= BIAS * BIAS * l2 {
+                    continue;
+                }
+                let rise = above / l2.sqrt() - BIAS;
                 best = best.max(rise * (1.0 - l2 / r2));
             }
             sum += best;

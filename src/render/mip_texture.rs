@@ -4,7 +4,9 @@
 //! (rounding down, at least 1) and averages 2 × 2 texels in linear light, stored again as
 //! 8-bit sRGB through the fixed table. Sampling converts texels to linear through the
 //! 256-entry table and blends in linear; slanted footprints are filtered anisotropically
-//! (up to [`MAX_ANISOTROPY`] trilinear taps along their long side).
+//! (up to [`MAX_ANISOTROPY`] trilinear taps along their long side). Trilinear blends two
+//! levels only across the middle half of a level step and reads one level elsewhere
+//! ("brilinear"): half the texel reads, with no band a frame shows.
 
 use image::RgbImage;
 
@@ -58,9 +60,9 @@ impl MipTexture {
     /// A pixel's footprint on a wall seen at a slant is long and thin. Choosing the mip
     /// level from its long side (plain trilinear) blurs text across the short side; from its
     /// short side alone it shimmers along the long one. So the level comes from the long
-    /// side ÷ the anisotropy (at most [`MAX_ANISOTROPY`]), and that many trilinear taps are
-    /// spread along the long side and averaged.
-    pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4]) -> [f32; 3] {
+    /// side ÷ the anisotropy (at most `max_taps`, itself at most [`MAX_ANISOTROPY`]), and
+    /// that many trilinear taps are spread along the long side and averaged.
+    pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4], max_taps: f64) -> [f32; 3] {
         let (w, h) = (
             f64::from(self.levels[0].width),
             f64::from(self.levels[0].height),
@@ -74,7 +76,7 @@ impl MipTexture {
         };
         let ratio = (major2 / minor2.max(1e-300))
             .sqrt()
-            .clamp(1.0, MAX_ANISOTROPY);
+            .clamp(1.0, max_taps.clamp(1.0, MAX_ANISOTROPY));
         let taps = ceil(ratio) as u32;
         if !ratio.is_finite() || taps <= 1 {
             return self.trilinear(u, v, 0.5 * log2_approx(major2));
@@ -103,8 +105,16 @@ impl MipTexture {
             return self.levels[self.levels.len() - 1].bilinear(u, v, table);
         }
         let base = floor(lod);
-        let t = (lod - base) as f32;
         let i = base as usize;
+        // Blended only across the middle half of a level step; the outer quarters read one
+        // level.
+        let t = ((lod - base) as f32 - 0.25) * 2.0;
+        if t <= 0.0 {
+            return self.levels[i].bilinear(u, v, table);
+        }
+        if t >= 1.0 {
+            return self.levels[i + 1].bilinear(u, v, table);
+        }
         let a = self.levels[i].bilinear(u, v, table);
         let b = self.levels[i + 1].bilinear(u, v, table);
         [
@@ -264,7 +274,7 @@ mod tests {
             (-0.25, 0.25, false),
             (0.75, -1.25, true),
         ] {
-            let c = t.sample(u, v, still);
+            let c = t.sample(u, v, still, MAX_ANISOTROPY);
             assert_eq!(c, if white { [1.0; 3] } else { [0.0; 3] }, "({u}, {v})");
         }
     }
@@ -283,8 +293,18 @@ mod tests {
         });
         let t = MipTexture::new(&stripes);
         let texel = 1.0 / 64.0;
-        let white = t.sample(0.5 * texel, 0.5, [texel, 0.0, 0.0, 4.0 * texel]);
-        let black = t.sample(1.5 * texel, 0.5, [texel, 0.0, 0.0, 4.0 * texel]);
+        let white = t.sample(
+            0.5 * texel,
+            0.5,
+            [texel, 0.0, 0.0, 4.0 * texel],
+            MAX_ANISOTROPY,
+        );
+        let black = t.sample(
+            1.5 * texel,
+            0.5,
+            [texel, 0.0, 0.0, 4.0 * texel],
+            MAX_ANISOTROPY,
+        );
         assert!(white[0] > 0.99 && black[0] < 0.01, "{white:?} {black:?}");
     }
 
@@ -292,10 +312,15 @@ mod tests {
     fn large_footprints_read_coarse_levels() {
         let t = MipTexture::new(&checker(64, 1));
         // One screen pixel spans 64 texels: the 1 × 1 level, grey.
-        let c = t.sample(0.3, 0.6, [1.0, 0.0, 0.0, 1.0]);
+        let c = t.sample(0.3, 0.6, [1.0, 0.0, 0.0, 1.0], MAX_ANISOTROPY);
         assert!((c[0] - srgb().to_linear(188)).abs() < 1e-6, "{c:?}");
         // Half a texel per pixel: level 0, a pure texel at its centre.
-        let c = t.sample(0.5 / 64.0, 0.5 / 64.0, [0.5 / 64.0, 0.0, 0.0, 0.5 / 64.0]);
+        let c = t.sample(
+            0.5 / 64.0,
+            0.5 / 64.0,
+            [0.5 / 64.0, 0.0, 0.0, 0.5 / 64.0],
+            MAX_ANISOTROPY,
+        );
         assert_eq!(c, [1.0; 3]);
     }
 }

@@ -175,7 +175,7 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            5,
+            6,
             "20990b66578337ff3c24e061837bf963f08ff3e31f5aceda879e956e4e35b25a"
         ),
         "lighting output changed: bump render::VERSION and update this digest"
