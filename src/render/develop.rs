@@ -8,7 +8,8 @@
 //! instead of clipping them. Only `+ − × ÷`: the same bytes on every machine.
 
 use image::RgbImage;
-use rayon::prelude::*;
+
+use crate::model::image_file::rgb8_by_channel;
 
 use super::srgb::srgb;
 
@@ -30,19 +31,9 @@ pub fn tone(x: f32) -> f32 {
 pub fn develop(linear: &[[f32; 3]], width: u32, height: u32, exposure: f32) -> RgbImage {
     assert_eq!(linear.len(), width as usize * height as usize);
     let table = srgb();
-    let mut bytes = vec![0u8; linear.len() * 3];
-    // Rows in parallel: each byte depends on its own pixel only.
-    bytes
-        .par_chunks_mut(width.max(1) as usize * 3)
-        .zip(linear.par_chunks(width.max(1) as usize))
-        .for_each(|(out, row)| {
-            for (o, c) in out.chunks_exact_mut(3).zip(row) {
-                for k in 0..3 {
-                    o[k] = table.to_srgb8(tone(c[k] * exposure));
-                }
-            }
-        });
-    RgbImage::from_raw(width, height, bytes).expect("the buffer has width × height pixels")
+    rgb8_by_channel(linear, width, height, |c| {
+        table.to_srgb8(tone(c * exposure))
+    })
 }
 
 /// Luminance (Rec. 709 weights) of a linear colour.

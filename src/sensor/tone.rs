@@ -10,7 +10,8 @@
 use std::sync::OnceLock;
 
 use image::{Rgb, RgbImage};
-use rayon::prelude::*;
+
+use crate::model::image_file::rgb8_by_channel;
 
 /// Mid grey: automatic exposure maps the frame's log-average luminance here, in frames at
 /// least as bright as [`DIM`].
@@ -72,18 +73,7 @@ pub(crate) fn filmic(x: f32) -> f32 {
 /// Exposed linear RGB (row-major, `width` wide) → 8-bit sRGB through the filmic curve.
 pub fn tone_map(exposed: &[[f32; 3]], width: u32, height: u32) -> RgbImage {
     let table = encode_table();
-    let mut bytes = vec![0u8; exposed.len() * 3];
-    bytes
-        .par_chunks_mut(width.max(1) as usize * 3)
-        .zip(exposed.par_chunks(width.max(1) as usize))
-        .for_each(|(out, row)| {
-            for (o, c) in out.chunks_exact_mut(3).zip(row) {
-                for k in 0..3 {
-                    o[k] = encode(table, filmic(c[k]));
-                }
-            }
-        });
-    RgbImage::from_raw(width, height, bytes).unwrap_or_else(|| RgbImage::new(width, height))
+    rgb8_by_channel(exposed, width, height, |c| encode(table, filmic(c)))
 }
 
 #[inline]

@@ -2,7 +2,7 @@
 //! image decoded within size limits, and PNG encoding with fixed settings.
 //!
 //! Shared because more than one stage needs each: the layout stage and the spec's checks
-//! decode layout images the same way, the facades stage refuses cut-off photos with the
+//! decode layout images the same way, the renderer and the sensor develop colour alike, the facades stage refuses cut-off photos with the
 //! same end check, and textures, builtin facade labels and rendered frames are all PNGs
 //! whose bytes must not depend on who wrote them.
 
@@ -10,8 +10,10 @@ mod decode;
 mod image_end;
 mod layout_error;
 mod png;
+mod rgb8;
 
 pub use decode::{MAX_PIXELS, MAX_SIDE, decode};
 pub use image_end::check_complete;
 pub use layout_error::LayoutError;
 pub use png::{PngEffort, encode_png};
+pub use rgb8::rgb8_by_channel;
