@@ -323,4 +323,44 @@ mod tests {
         );
         assert_eq!(c, [1.0; 3]);
     }
+
+    #[test]
+    fn levels_blend_only_across_the_middle_half_of_a_step() {
+        // A checker of single texels: level 0 is white at this texel, level 1 grey.
+        let t = MipTexture::new(&checker(64, 1));
+        let (u, v) = (0.5 / 64.0, 0.5 / 64.0);
+        let (fine, coarse) = (t.trilinear(u, v, 0.0), t.trilinear(u, v, 1.0));
+        assert_ne!(fine, coarse);
+        // The outer quarters of the step read one level; its middle is their mean.
+        assert_eq!(t.trilinear(u, v, 0.2), fine);
+        assert_eq!(t.trilinear(u, v, 0.8), coarse);
+        let mid = t.trilinear(u, v, 0.5);
+        assert!(
+            (mid[0] - 0.5 * (fine[0] + coarse[0])).abs() < 1e-6,
+            "{mid:?}"
+        );
+    }
+
+    #[test]
+    fn fewer_taps_read_a_coarser_level_along_the_short_side() {
+        // The stripes of `slanted_footprints_keep_detail…` under a footprint 4 texels long
+        // and 1 across: 4 taps resolve them (level 0); 2 taps read level 1, where a
+        // stripe pair is one grey texel.
+        let stripes = RgbImage::from_fn(64, 64, |x, _| {
+            if x % 2 == 0 {
+                Rgb([255; 3])
+            } else {
+                Rgb([0; 3])
+            }
+        });
+        let t = MipTexture::new(&stripes);
+        let texel = 1.0 / 64.0;
+        let d = [texel, 0.0, 0.0, 4.0 * texel];
+        let four = t.sample(0.5 * texel, 0.5, d, 4.0);
+        let two = t.sample(0.5 * texel, 0.5, d, 2.0);
+        assert!(four[0] > 0.99, "{four:?}");
+        assert!((0.3..0.7).contains(&two[0]), "{two:?}");
+        // More than MAX_ANISOTROPY asks for no more than it.
+        assert_eq!(t.sample(0.5 * texel, 0.5, d, 16.0), four);
+    }
 }
