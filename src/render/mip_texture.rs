@@ -240,6 +240,17 @@ mod tests {
         })
     }
 
+    /// Vertical stripes one texel wide, white on the even columns, 64 × 64.
+    fn stripes() -> RgbImage {
+        RgbImage::from_fn(64, 64, |x, _| {
+            if x % 2 == 0 {
+                Rgb([255; 3])
+            } else {
+                Rgb([0; 3])
+            }
+        })
+    }
+
     #[test]
     fn log2_is_exact_at_powers_of_two_and_close_between() {
         for (x, expected) in [(1.0, 0.0), (2.0, 1.0), (0.25, -2.0), (1024.0, 10.0)] {
@@ -284,14 +295,7 @@ mod tests {
         // Vertical stripes one texel wide, 64 texels: a footprint 4 texels long along the
         // stripes and 1 across still resolves the stripes (level 0); plain trilinear from
         // the long side would read level 2, flat grey.
-        let stripes = RgbImage::from_fn(64, 64, |x, _| {
-            if x % 2 == 0 {
-                Rgb([255; 3])
-            } else {
-                Rgb([0; 3])
-            }
-        });
-        let t = MipTexture::new(&stripes);
+        let t = MipTexture::new(&stripes());
         let texel = 1.0 / 64.0;
         let white = t.sample(
             0.5 * texel,
@@ -346,14 +350,7 @@ mod tests {
         // The stripes of `slanted_footprints_keep_detail…` under a footprint 4 texels long
         // and 1 across: 4 taps resolve them (level 0); 2 taps read level 1, where a
         // stripe pair is one grey texel.
-        let stripes = RgbImage::from_fn(64, 64, |x, _| {
-            if x % 2 == 0 {
-                Rgb([255; 3])
-            } else {
-                Rgb([0; 3])
-            }
-        });
-        let t = MipTexture::new(&stripes);
+        let t = MipTexture::new(&stripes());
         let texel = 1.0 / 64.0;
         let d = [texel, 0.0, 0.0, 4.0 * texel];
         let four = t.sample(0.5 * texel, 0.5, d, 4.0);
