@@ -266,12 +266,24 @@ impl Walls {
             return None;
         }
         let (pw, ph) = (f64::from(plate.width), f64::from(plate.height));
+        // A column's u and a row's height are the same all along it: their taps are found
+        // once, not once a pixel.
+        let columns: Vec<Tap> = (0..plate.width)
+            .map(|x| {
+                let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
+                let tu = (u / wall.repeat).rem_euclid(1.0);
+                Tap::new(tu * iw - 0.5, image.width())
+            })
+            .collect();
+        let rows: Vec<Tap> = (0..plate.height)
+            .map(|y| {
+                let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
+                let tv = 1.0 - (height - KERB_Y) / wall.height;
+                Tap::new(tv * ih - 0.5, image.height())
+            })
+            .collect();
         Some(RgbImage::from_fn(plate.width, plate.height, |x, y| {
-            let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
-            let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
-            let tu = (u / wall.repeat).rem_euclid(1.0);
-            let tv = 1.0 - (height - KERB_Y) / wall.height;
-            bilinear(image, tu * iw - 0.5, tv * ih - 0.5)
+            bilinear(image, &columns[x as usize], &rows[y as usize])
         }))
     }
 }
@@ -379,18 +391,36 @@ fn mean_luminance(image: &RgbImage) -> f64 {
     image.pixels().map(|p| luminance(p.0)).sum::<f64>() / f64::from(n)
 }
 
-/// Bilinear sample of `image` at texel coordinates (centres on integers), clamped at the
-/// edges.
-fn bilinear(image: &RgbImage, x: f64, y: f64) -> image::Rgb<u8> {
-    let (w, h) = (image.width() as i64, image.height() as i64);
-    let (fx, fy) = (floor(x), floor(y));
-    let (ax, ay) = (x - fx, y - fy);
-    let at = |dx: i64, dy: i64| {
-        let px = (fx as i64 + dx).clamp(0, w - 1) as u32;
-        let py = (fy as i64 + dy).clamp(0, h - 1) as u32;
-        image.get_pixel(px, py).0
-    };
-    let (p00, p10, p01, p11) = (at(0, 0), at(1, 0), at(0, 1), at(1, 1));
+/// One axis of a bilinear tap: the two texels either side of a texel coordinate (centres
+/// on integers), clamped at the image edges, and the second one's weight.
+struct Tap {
+    near: u32,
+    far: u32,
+    weight: f64,
+}
+
+impl Tap {
+    /// The tap at coordinate `t` along an axis of `size` texels (at least 1).
+    fn new(t: f64, size: u32) -> Tap {
+        let f = floor(t);
+        let last = i64::from(size) - 1;
+        Tap {
+            near: (f as i64).clamp(0, last) as u32,
+            far: (f as i64).saturating_add(1).clamp(0, last) as u32,
+            weight: t - f,
+        }
+    }
+}
+
+/// Bilinear sample of `image` at the taps `x` and `y`.
+fn bilinear(image: &RgbImage, x: &Tap, y: &Tap) -> image::Rgb<u8> {
+    let (ax, ay) = (x.weight, y.weight);
+    let (p00, p10, p01, p11) = (
+        image.get_pixel(x.near, y.near).0,
+        image.get_pixel(x.far, y.near).0,
+        image.get_pixel(x.near, y.far).0,
+        image.get_pixel(x.far, y.far).0,
+    );
     image::Rgb(std::array::from_fn(|c| {
         let top = f64::from(p00[c]) * (1.0 - ax) + f64::from(p10[c]) * ax;
         let bottom = f64::from(p01[c]) * (1.0 - ax) + f64::from(p11[c]) * ax;
