@@ -14,7 +14,7 @@ use super::BuildError;
 use super::input_problem::InputProblem;
 use std::collections::BTreeMap;
 
-use crate::facades::{FacadeFile, FacadeSource};
+use crate::facades::{FacadeFile, FacadeSource, Photo};
 use crate::hash::hex;
 use crate::objects::MeshFiles;
 use crate::spec::ObjectKind;
@@ -154,7 +154,7 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
         }
         files.push(FacadeFile {
             name,
-            photo,
+            photo: Photo::File(photo),
             xml,
             labels,
         });

@@ -6,6 +6,7 @@
 //! (attics, dormers) are dropped. The molding colour is the mean of the topmost molding
 //! box's pixels, or of the top 5 % of the rows when there is no molding.
 
+use std::borrow::Cow;
 use std::io::Cursor;
 
 use image::{ImageReader, Limits, RgbImage};
@@ -16,7 +17,7 @@ use super::cmp_box::{CmpBox, parse_cmp_xml};
 use super::cmp_label::CmpLabel;
 use super::roof_set::{mean_colour, nearest_roof};
 use super::window_rows::estimate_floors;
-use super::{FacadeError, FacadeFile, FacadeSource};
+use super::{FacadeError, FacadeFile, FacadeSource, Photo};
 
 /// Largest accepted width or height of a facade photo.
 pub const MAX_SIDE: u32 = 8192;
@@ -37,7 +38,13 @@ pub fn crop_facade(
         .xml
         .as_deref()
         .ok_or_else(|| FacadeError::MissingXml { file: xml_path() })?;
-    let photo = decode_photo(&file.photo, photo_path)?;
+    let photo = match &file.photo {
+        Photo::File(bytes) => Cow::Owned(decode_photo(bytes, photo_path)?),
+        Photo::Painted(image) => {
+            check_size(image.width(), image.height(), photo_path)?;
+            Cow::Borrowed(image)
+        }
+    };
     let (width, height) = photo.dimensions();
     let boxes = parse_cmp_xml(xml, width, height).map_err(|message| FacadeError::BadXml {
         file: xml_path(),
@@ -145,6 +152,18 @@ fn decode_photo(bytes: &[u8], path: impl Fn() -> String) -> Result<RgbImage, Fac
         return Err(FacadeError::Truncated { file: path(), why });
     }
     let (width, height) = reader()?.into_dimensions().map_err(bad)?;
+    check_size(width, height, &path)?;
+    let mut reader = reader()?;
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_SIDE);
+    limits.max_image_height = Some(MAX_SIDE);
+    limits.max_alloc = Some(u64::from(MAX_SIDE) * u64::from(MAX_SIDE) * 8);
+    reader.limits(limits);
+    Ok(reader.decode().map_err(bad)?.to_rgb8())
+}
+
+/// Refuses a photo with a side outside [MIN_SIDE, MAX_SIDE].
+fn check_size(width: u32, height: u32, path: impl Fn() -> String) -> Result<(), FacadeError> {
     if !(MIN_SIDE..=MAX_SIDE).contains(&width) || !(MIN_SIDE..=MAX_SIDE).contains(&height) {
         return Err(FacadeError::BadSize {
             file: path(),
@@ -153,13 +172,7 @@ fn decode_photo(bytes: &[u8], path: impl Fn() -> String) -> Result<RgbImage, Fac
             max_side: MAX_SIDE,
         });
     }
-    let mut reader = reader()?;
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_SIDE);
-    limits.max_image_height = Some(MAX_SIDE);
-    limits.max_alloc = Some(u64::from(MAX_SIDE) * u64::from(MAX_SIDE) * 8);
-    reader.limits(limits);
-    Ok(reader.decode().map_err(bad)?.to_rgb8())
+    Ok(())
 }
 
 /// Keeps ASCII letters, digits, `-` and `_`; anything else becomes `_`.

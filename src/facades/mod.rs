@@ -19,7 +19,7 @@
 //! same code.
 
 /// Bump when the builtin set's bytes change: part of the facades stage's cache key.
-pub const BUILTIN_VERSION: u32 = 1;
+pub const BUILTIN_VERSION: u32 = 2;
 /// Bump when [`process`]'s output changes for the same input.
 pub const VERSION: u32 = 1;
 
@@ -45,7 +45,7 @@ pub use builtin::builtin;
 pub use cmp_box::{CmpBox, parse_cmp_xml, write_cmp_xml};
 pub use cmp_label::CmpLabel;
 pub use facade_error::{FacadeError, Warning};
-pub use facade_source::{FacadeFile, FacadeSource};
+pub use facade_source::{FacadeFile, FacadeSource, Photo};
 pub use floors_file::FloorsFile;
 pub use roof_set::{builtin_roofs, nearest_roof};
 

@@ -52,7 +52,7 @@ fn builtin_set_loads_with_the_floors_the_generator_drew() {
             facade.width
         );
 
-        let photo = image::load_from_memory(&file.photo).unwrap().to_rgb8();
+        let photo = painted(&file.photo);
         // The crop removes the sky, parapet and top molding, and keeps everything below.
         assert_eq!(facade.texture.width, photo.width());
         assert_eq!(facade.texture.height, photo.height() - builtin_crop_top());
@@ -68,10 +68,22 @@ fn builtin_set_loads_with_the_floors_the_generator_drew() {
         }
         assert!((facade.roof as usize) < set.roofs.len());
     }
-    let mut photos: Vec<&Vec<u8>> = source.files.iter().map(|f| &f.photo).collect();
+    let mut photos: Vec<&[u8]> = source
+        .files
+        .iter()
+        .map(|f| painted(&f.photo).as_raw().as_slice())
+        .collect();
     photos.sort();
     photos.dedup();
     assert_eq!(photos.len(), COUNT, "builtin facades are distinct");
+}
+
+/// The pixels of a builtin photo (painted, never encoded).
+fn painted(photo: &Photo) -> &RgbImage {
+    match photo {
+        Photo::Painted(image) => image,
+        Photo::File(_) => panic!("a builtin photo is painted pixels"),
+    }
 }
 
 fn builtin_crop_top() -> u32 {
@@ -81,7 +93,7 @@ fn builtin_crop_top() -> u32 {
 #[test]
 fn builtin_boxes_lie_inside_their_images_and_match_the_label_masks() {
     for file in &builtin_cached().files {
-        let photo = image::load_from_memory(&file.photo).unwrap();
+        let photo = painted(&file.photo);
         let (w, h) = (photo.width(), photo.height());
         let xml = file.xml.as_deref().unwrap();
         // Every normalised coordinate written lies in 0–1 (the parser would clamp it).
@@ -140,7 +152,7 @@ fn builtin_boxes_lie_inside_their_images_and_match_the_label_masks() {
         .files
         .iter()
         .flat_map(|f| {
-            let photo = image::load_from_memory(&f.photo).unwrap();
+            let photo = painted(&f.photo);
             parse_cmp_xml(f.xml.as_deref().unwrap(), photo.width(), photo.height()).unwrap()
         })
         .map(|b| b.label)
@@ -217,7 +229,7 @@ fn small_file(name: &str, rows: u32) -> FacadeFile {
         .unwrap();
     FacadeFile {
         name: name.to_string(),
-        photo,
+        photo: Photo::File(photo),
         xml: Some(write_cmp_xml(&boxes, w, h)),
         labels: None,
     }
@@ -284,9 +296,12 @@ fn bad_facade_data_errors_or_is_skipped_as_the_spec_says() {
     no_xml.xml = None;
     let no_windows = small_file("no_windows", 0);
     let mut garbage = small_file("garbage", 2);
-    garbage.photo = b"this is not a JPEG".to_vec();
+    garbage.photo = Photo::File(b"this is not a JPEG".to_vec());
     let mut truncated = small_file("truncated", 2);
-    truncated.photo.truncate(truncated.photo.len() / 3);
+    let Photo::File(bytes) = &mut truncated.photo else {
+        panic!("small_file makes a file photo");
+    };
+    bytes.truncate(bytes.len() / 3);
     let mut bad_xml = small_file("bad_xml", 2);
     bad_xml.xml = Some("<object><points>".into());
     let mut low_molding = small_file("low_molding", 2);
@@ -303,8 +318,24 @@ fn bad_facade_data_errors_or_is_skipped_as_the_spec_says() {
         80,
         110,
     ));
+    let mut tiny = small_file("tiny", 2);
+    let mut tiny_jpeg = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut tiny_jpeg, 90)
+        .encode_image(&RgbImage::new(4, 6))
+        .unwrap();
+    tiny.photo = Photo::File(tiny_jpeg);
+    let mut tiny_painted = small_file("tiny_painted", 2);
+    tiny_painted.photo = Photo::Painted(RgbImage::new(4, 6));
     let cases = [
         (no_xml, "data/cmp/no_xml.xml: missing"),
+        (
+            tiny,
+            "data/cmp/tiny.jpg: the photo is 4×6 px; 8 to 8192 px a side",
+        ),
+        (
+            tiny_painted,
+            "data/cmp/tiny_painted.jpg: the photo is 4×6 px; 8 to 8192 px a side",
+        ),
         (
             no_windows,
             "data/cmp/no_windows.xml: no window boxes below the first molding",

@@ -1,5 +1,6 @@
-//! Builtin facade set: fixed seeds → cityspec's own facades as CMP-layout files (photo JPEG,
-//! XML boxes, label PNG), loaded by the same code as a user's CMP folder.
+//! Builtin facade set: fixed seeds → cityspec's own facades as CMP-layout files (painted
+//! photo, XML boxes, label PNG), loaded by the same code as a user's CMP folder. The photo
+//! stays pixels ([`Photo::Painted`]); `cityspec facades export` writes it as a JPEG.
 //!
 //! Facade `i` is designed from `crate::rng::stream(0, "builtin-facades", i)` (see
 //! `design`) and painted with noise from `stream(0, "builtin-facades-paint", i)` (see
@@ -13,20 +14,16 @@ mod painter;
 mod parts;
 mod wall;
 
-use image::codecs::jpeg::JpegEncoder;
-use image::{ExtendedColorType, ImageEncoder};
 use rayon::prelude::*;
 
 use super::cmp_box::write_cmp_xml;
-use super::{FacadeFile, FacadeSource};
+use super::{FacadeFile, FacadeSource, Photo};
 use crate::model::image_file::{PngEffort, encode_png};
 
 pub use design::Design;
 
 /// How many facades the builtin set has.
 pub const COUNT: usize = 30;
-/// JPEG quality of the photos.
-const QUALITY: u8 = 90;
 
 /// cityspec's own facade set, as CMP-layout files. The same bytes on every call.
 pub fn builtin() -> FacadeSource {
@@ -55,16 +52,12 @@ fn facade_file(i: usize) -> FacadeFile {
     let mut rng = crate::rng::stream(0, "builtin-facades-paint", i as u64);
     let canvas = painter::paint(&design, &mut rng);
     let (w, h) = canvas.photo.dimensions();
-    let mut photo = Vec::new();
-    JpegEncoder::new_with_quality(&mut photo, QUALITY)
-        .write_image(canvas.photo.as_raw(), w, h, ExtendedColorType::Rgb8)
-        .expect("encoding a JPEG into memory cannot fail");
     // Fast: the loader decodes these masks straight away (the same pixels at any level);
     // the best compression cost a cold build more time than the rest of the mask's life.
     let labels = encode_png(&canvas.mask, PngEffort::Fast);
     FacadeFile {
         name: name(i),
-        photo,
+        photo: Photo::Painted(canvas.photo),
         xml: Some(write_cmp_xml(&canvas.boxes, w, h)),
         labels: Some(labels),
     }
