@@ -157,7 +157,12 @@ impl Walls {
             };
             misses = 0;
             self.placed.entry(w).or_default().push(rect);
-            let (background, ink) = match (style, self.wall_patch(w, rect, &plate, placing)) {
+            // Only painted text shows the wall behind it.
+            let patch = match style {
+                PlateStyle::Painted => self.wall_patch(w, rect, &plate, placing),
+                _ => None,
+            };
+            let (background, ink) = match (style, patch) {
                 (PlateStyle::Painted, Some(patch)) => {
                     let hard = rng.random::<f64>() < HARD_SHARE;
                     let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
