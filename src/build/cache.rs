@@ -21,6 +21,7 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
@@ -366,14 +367,30 @@ impl Cache {
         key: &str,
         outputs: &Outputs,
     ) -> io::Result<BTreeMap<String, ObjectRef>> {
-        let mut refs = BTreeMap::new();
-        for (name, blob) in outputs {
+        let store = |(name, blob): (&String, &Blob)| {
             let object = match blob {
                 Blob::Bytes(bytes) => self.put_object(bytes)?,
                 Blob::Stored(object, _) => object.clone(),
             };
-            refs.insert(name.clone(), object);
-        }
+            Ok::<_, io::Error>((name.clone(), object))
+        };
+        // A local cache hashes and writes the objects in parallel (the export's OBJ and GLB
+        // are 24 MB each); a remote one uploads them one by one from this thread.
+        let refs: BTreeMap<String, ObjectRef> = match &self.remote {
+            Some(_) => outputs.iter().map(store).collect::<io::Result<_>>()?,
+            None => {
+                // Largest first, one output a task, so the two biggest go to two threads.
+                let mut largest_first: Vec<(&String, &Blob)> = outputs.iter().collect();
+                largest_first.sort_by_key(|(_, blob)| std::cmp::Reverse(blob.size()));
+                largest_first
+                    .into_par_iter()
+                    .with_max_len(1)
+                    .map(store)
+                    .collect::<io::Result<Vec<_>>>()?
+                    .into_iter()
+                    .collect()
+            }
+        };
         let entry = Entry {
             stage: stage.to_owned(),
             key: key.to_owned(),
