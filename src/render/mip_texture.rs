@@ -31,7 +31,7 @@ struct Level {
 
 impl MipTexture {
     /// The mip chain of `image` (an empty image samples as black).
-    pub(crate) fn new(image: &RgbImage) -> MipTexture {
+    pub(crate) fn new(image: RgbImage) -> MipTexture {
         let table = srgb();
         let mut levels = vec![Level {
             width: image.width().max(1),
@@ -39,7 +39,7 @@ impl MipTexture {
             texels: if image.width() == 0 || image.height() == 0 {
                 vec![0; 3]
             } else {
-                image.as_raw().clone()
+                image.into_raw()
             },
         }];
         loop {
@@ -134,19 +134,22 @@ impl Level {
     fn halve(&self, table: &Srgb) -> Level {
         let width = (self.width / 2).max(1);
         let height = (self.height / 2).max(1);
-        let mut texels = Vec::with_capacity((width * height * 3) as usize);
-        for y in 0..height {
-            let y0 = (2 * y).min(self.height - 1);
-            let y1 = (2 * y + 1).min(self.height - 1);
-            for x in 0..width {
-                let x0 = (2 * x).min(self.width - 1);
-                let x1 = (2 * x + 1).min(self.width - 1);
+        let (sw, sh) = (self.width as usize, self.height as usize);
+        let mut texels = vec![0u8; width as usize * height as usize * 3];
+        // Row by row, reading the two source rows as slices (a texel's bounds are checked
+        // once per row, not four times per channel).
+        for (y, out_row) in texels.chunks_exact_mut(width as usize * 3).enumerate() {
+            let row = |y: usize| &self.texels[y.min(sh - 1) * sw * 3..][..sw * 3];
+            let (r0, r1) = (row(2 * y), row(2 * y + 1));
+            for (x, out) in out_row.chunks_exact_mut(3).enumerate() {
+                let x0 = (2 * x).min(sw - 1) * 3;
+                let x1 = (2 * x + 1).min(sw - 1) * 3;
                 for c in 0..3 {
-                    let sum = table.to_linear(self.texel(x0, y0, c))
-                        + table.to_linear(self.texel(x1, y0, c))
-                        + table.to_linear(self.texel(x0, y1, c))
-                        + table.to_linear(self.texel(x1, y1, c));
-                    texels.push(table.to_srgb8(sum * 0.25));
+                    let sum = table.to_linear(r0[x0 + c])
+                        + table.to_linear(r0[x1 + c])
+                        + table.to_linear(r1[x0 + c])
+                        + table.to_linear(r1[x1 + c]);
+                    out[c] = table.to_srgb8(sum * 0.25);
                 }
             }
         }
@@ -155,11 +158,6 @@ impl Level {
             height,
             texels,
         }
-    }
-
-    #[inline]
-    fn texel(&self, x: u32, y: u32, c: usize) -> u8 {
-        self.texels[(y * self.width + x) as usize * 3 + c]
     }
 
     /// Bilinear sample at texel centres `+0.5`, wrapping at both edges.
@@ -264,18 +262,18 @@ mod tests {
 
     #[test]
     fn chain_halves_down_to_one_texel_and_averages_in_linear() {
-        let t = MipTexture::new(&checker(4, 1));
+        let t = MipTexture::new(checker(4, 1));
         assert_eq!(t.level_count(), 3);
         // Half white, half black in linear light is sRGB 188, not 128.
         assert_eq!(t.levels[2].texels, vec![188, 188, 188]);
-        let odd = MipTexture::new(&RgbImage::new(5, 3));
+        let odd = MipTexture::new(RgbImage::new(5, 3));
         let sizes: Vec<_> = odd.levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(sizes, vec![(5, 3), (2, 1), (1, 1)]);
     }
 
     #[test]
     fn magnified_samples_hit_texels_and_repeat() {
-        let t = MipTexture::new(&checker(2, 1));
+        let t = MipTexture::new(checker(2, 1));
         let still = [0.0; 4];
         // Texel centres of the 2 × 2 checker, also one repeat away and below zero.
         for (u, v, white) in [
@@ -295,7 +293,7 @@ mod tests {
         // Vertical stripes one texel wide, 64 texels: a footprint 4 texels long along the
         // stripes and 1 across still resolves the stripes (level 0); plain trilinear from
         // the long side would read level 2, flat grey.
-        let t = MipTexture::new(&stripes());
+        let t = MipTexture::new(stripes());
         let texel = 1.0 / 64.0;
         let white = t.sample(
             0.5 * texel,
@@ -314,7 +312,7 @@ mod tests {
 
     #[test]
     fn large_footprints_read_coarse_levels() {
-        let t = MipTexture::new(&checker(64, 1));
+        let t = MipTexture::new(checker(64, 1));
         // One screen pixel spans 64 texels: the 1 × 1 level, grey.
         let c = t.sample(0.3, 0.6, [1.0, 0.0, 0.0, 1.0], MAX_ANISOTROPY);
         assert!((c[0] - srgb().to_linear(188)).abs() < 1e-6, "{c:?}");
@@ -331,7 +329,7 @@ mod tests {
     #[test]
     fn levels_blend_only_across_the_middle_half_of_a_step() {
         // A checker of single texels: level 0 is white at this texel, level 1 grey.
-        let t = MipTexture::new(&checker(64, 1));
+        let t = MipTexture::new(checker(64, 1));
         let (u, v) = (0.5 / 64.0, 0.5 / 64.0);
         let (fine, coarse) = (t.trilinear(u, v, 0.0), t.trilinear(u, v, 1.0));
         assert_ne!(fine, coarse);
@@ -350,7 +348,7 @@ mod tests {
         // The stripes of `slanted_footprints_keep_detail…` under a footprint 4 texels long
         // and 1 across: 4 taps resolve them (level 0); 2 taps read level 1, where a
         // stripe pair is one grey texel.
-        let t = MipTexture::new(&stripes());
+        let t = MipTexture::new(stripes());
         let texel = 1.0 / 64.0;
         let d = [texel, 0.0, 0.0, 4.0 * texel];
         let four = t.sample(0.5 * texel, 0.5, d, 4.0);

@@ -237,33 +237,50 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
 /// reads `rasters`); ids and depth as the tiles resolved them. [`Frame::rgb`] develops it.
 fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Frame {
     let (width, height) = (ctx.width, ctx.height);
-    let n = width as usize * height as usize;
+    let (w, n) = (width as usize, width as usize * height as usize);
     let mut linear = vec![[0f32; 3]; n];
     let mut edges = if ctx.antialias_edges {
         vec![EdgeHint::NONE; n]
     } else {
         Vec::new()
     };
-    let mut instance = ImageBuffer::new(width, height);
-    let mut depth = ImageBuffer::new(width, height);
-    for t in tiles {
-        let tw = t.rect[2] - t.rect[0];
-        for (k, (x, y)) in (t.rect[1]..t.rect[3])
-            .flat_map(|y| (t.rect[0]..t.rect[2]).map(move |x| (x, y)))
-            .enumerate()
-        {
-            debug_assert_eq!(k, ((y - t.rect[1]) * tw + (x - t.rect[0])) as usize);
-            let p = (y * width + x) as usize;
-            linear[p] = t.linear[k];
-            if let Some(&e) = t.edges.get(k) {
-                edges[p] = e;
+    let mut instance = vec![0u32; n];
+    let mut depth = vec![0f32; n];
+    // Each band of TILE rows is copied from its row of tiles, the bands in parallel.
+    let band = TILE as usize * w;
+    let tile_rows = tiles.chunks(ctx.tiles_x as usize);
+    let edge_bands: Vec<&mut [EdgeHint]> = if edges.is_empty() {
+        std::iter::repeat_with(|| &mut [][..])
+            .take(height.div_ceil(TILE) as usize)
+            .collect()
+    } else {
+        edges.chunks_mut(band).collect()
+    };
+    linear
+        .par_chunks_mut(band)
+        .zip(instance.par_chunks_mut(band))
+        .zip(depth.par_chunks_mut(band))
+        .zip(edge_bands)
+        .zip(tile_rows.collect::<Vec<_>>())
+        .for_each(|((((linear, instance), depth), edges), row)| {
+            for t in row {
+                let (x0, tw) = (t.rect[0] as usize, (t.rect[2] - t.rect[0]) as usize);
+                for y in 0..(t.rect[3] - t.rect[1]) as usize {
+                    let (from, to) = (y * tw..(y + 1) * tw, y * w + x0..y * w + x0 + tw);
+                    linear[to.clone()].copy_from_slice(&t.linear[from.clone()]);
+                    instance[to.clone()].copy_from_slice(&t.instance[from.clone()]);
+                    depth[to.clone()].copy_from_slice(&t.depth[from.clone()]);
+                    if !t.edges.is_empty() {
+                        edges[to].copy_from_slice(&t.edges[from]);
+                    }
+                }
             }
-            instance.put_pixel(x, y, Luma([t.instance[k]]));
-            depth.put_pixel(x, y, Luma([t.depth[k]]));
-        }
-    }
+        });
+    let instance: ImageBuffer<Luma<u32>, Vec<u32>> =
+        ImageBuffer::from_raw(width, height, instance).expect("one id a pixel");
+    let depth: ImageBuffer<Luma<f32>, Vec<f32>> =
+        ImageBuffer::from_raw(width, height, depth).expect("one depth a pixel");
     if !edges.is_empty() {
-        let w = width as usize;
         // The triangle at output pixel p's centre (one sample per pixel).
         let triangle = |p: usize| {
             let (x, y) = (p % w, p / w);

@@ -116,7 +116,7 @@ pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
         .par_iter()
         .map(|t| {
             t.decode()
-                .map(|image| MipTexture::new(&image))
+                .map(MipTexture::new)
                 .map_err(|source| RenderError::Texture {
                     name: t.name.clone(),
                     source,
