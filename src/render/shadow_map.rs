@@ -18,6 +18,7 @@
 use rayon::prelude::*;
 
 use super::prepared_scene::PreparedScene;
+use crate::model::geometry::rounding::floor;
 use crate::model::geometry::{cross, dot};
 
 /// Largest side of the map in texels.
@@ -170,11 +171,14 @@ impl ShadowMap {
         if !(fx.is_finite() && fy.is_finite()) {
             return 1.0;
         }
-        let (ix, iy) = (fx.floor(), fy.floor());
+        let (ix, iy) = (floor(fx), floor(fy));
         let (tx, ty) = (fx - ix, fy - iy);
         // A 3-texel box centred on the point: texels ix−1 … ix+2, the outer two partly.
         let wx = [(1.0 - tx) / 3.0, 1.0 / 3.0, 1.0 / 3.0, tx / 3.0];
         let wy = [(1.0 - ty) / 3.0, 1.0 / 3.0, 1.0 / 3.0, ty / 3.0];
+        // `f64::from(depth) <= z` for an f32 depth is `depth <= zf`, zf the largest f32 not
+        // above z: the same test without widening 16 texels.
+        let zf = at_most(z);
         let mut lit = 0.0;
         for (j, wy) in wy.iter().enumerate() {
             let y = iy as i64 - 1 + j as i64;
@@ -185,13 +189,20 @@ impl ShadowMap {
             let row = &self.depth[y as usize * self.width..][..self.width];
             for (i, wx) in wx.iter().enumerate() {
                 let x = ix as i64 - 1 + i as i64;
-                if x < 0 || x >= self.width as i64 || f64::from(row[x as usize]) <= z {
+                if x < 0 || x >= self.width as i64 || row[x as usize] <= zf {
                     lit += wy * wx;
                 }
             }
         }
         lit as f32
     }
+}
+
+/// The largest `f32` not above `z` (NaN stays NaN, so every test against it fails, as
+/// against `z`).
+fn at_most(z: f64) -> f32 {
+    let f = z as f32;
+    if f64::from(f) > z { f.next_down() } else { f }
 }
 
 /// Writes the max depth of triangle `t` (texel coordinates and depth) at the texel centres
@@ -273,6 +284,48 @@ mod tests {
     use rand::RngExt;
 
     use super::*;
+
+    /// The shadow test on f32 depths against [`at_most`] decides as the widened test
+    /// against the f64 depth did, for depths near, at and far from f32 values.
+    #[test]
+    fn f32_test_against_at_most_is_the_f64_test() {
+        let mut rng = crate::rng::stream(3, "at-most", 0);
+        let mut depths: Vec<f32> = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MIN_POSITIVE,
+        ];
+        depths.extend((0..2000).map(|_| (rng.random::<f64>() * 400.0 - 200.0) as f32));
+        for &d in &depths.clone() {
+            depths.push(d.next_up());
+            depths.push(d.next_down());
+        }
+        let mut zs: Vec<f64> = depths.iter().map(|&d| f64::from(d)).collect();
+        for &d in &depths {
+            let d = f64::from(d);
+            zs.extend([
+                d + 1e-12,
+                d - 1e-12,
+                d * (1.0 + 1e-9),
+                f64::MAX,
+                -f64::MAX,
+                f64::NAN,
+            ]);
+        }
+        zs.extend([f64::INFINITY, f64::NEG_INFINITY, 1e300, -1e300]);
+        for &z in &zs {
+            let zf = at_most(z);
+            for &d in depths.iter().step_by(7) {
+                assert_eq!(d <= zf, f64::from(d) <= z, "depth {d:e}, z {z:e}");
+            }
+        }
+    }
 
     /// [`raster`] as it was before rows were cut to their spans: every texel of the box.
     fn raster_whole_box(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
