@@ -88,7 +88,7 @@ pub use lighting::{
     AMBIENT_OCCLUSION, LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour,
 };
 pub use lit_windows::LitWindows;
-pub use prepared_scene::{MAX_OBJECTS, PreparedScene, prepare};
+pub use prepared_scene::{MAX_OBJECTS, PreparedScene, TextureMips, prepare, prepare_with};
 pub use render_error::RenderError;
 pub use scene_lighting::lighting_for;
 pub use sky::Sky;

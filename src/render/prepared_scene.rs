@@ -8,8 +8,8 @@ use rayon::prelude::*;
 use super::RenderError;
 use super::mip_texture::MipTexture;
 use super::shadow_map::ShadowMap;
-use crate::model::Scene;
 use crate::model::geometry::{cross, dot, normalize};
+use crate::model::{Scene, Texture};
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
 /// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.
@@ -18,7 +18,7 @@ pub const MAX_OBJECTS: u32 = (1 << 24) - 1;
 /// A scene ready to render many frames: decoded textures with mip chains, flattened
 /// triangles, per-object instance ids (object index + 1; 0 = sky) and bounding boxes.
 pub struct PreparedScene {
-    pub(crate) textures: Vec<MipTexture>,
+    pub(crate) textures: Vec<Arc<MipTexture>>,
     pub(crate) materials: Vec<ShadeMaterial>,
     pub(crate) objects: Vec<ObjectBounds>,
     pub(crate) triangles: Vec<Triangle>,
@@ -82,13 +82,59 @@ impl PreparedScene {
     }
 }
 
-/// Decodes textures (in parallel) and flattens the meshes.
+/// Mip chains made ahead of [`prepare_with`] (beside other work), each with the PNG
+/// allocation it was decoded from: a scene texture that still holds that very allocation
+/// takes the chain instead of decoding and halving its pixels again.
+#[derive(Default)]
+pub struct TextureMips(Vec<(Arc<Vec<u8>>, Arc<MipTexture>)>);
+
+impl TextureMips {
+    /// The mip chains of `textures`, made in parallel. A texture that does not decode is
+    /// left out: [`prepare_with`] reports it.
+    pub fn of(textures: &[Texture]) -> TextureMips {
+        TextureMips(
+            textures
+                .par_iter()
+                .filter_map(|t| {
+                    let image = t.decode().ok()?;
+                    Some((Arc::clone(&t.png), Arc::new(MipTexture::new(image))))
+                })
+                .collect(),
+        )
+    }
+
+    /// The chain made from this very PNG allocation, if any.
+    fn find(&self, png: &Arc<Vec<u8>>) -> Option<Arc<MipTexture>> {
+        self.0
+            .iter()
+            .find(|(made_from, _)| Arc::ptr_eq(made_from, png))
+            .map(|(_, mips)| Arc::clone(mips))
+    }
+
+    /// How many chains are held.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether none is held.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+/// [`prepare_with`] with no chains made ahead.
+pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
+    prepare_with(scene, &TextureMips::default())
+}
+
+/// Decodes textures (in parallel; those with a chain in `mips` take it) and flattens the
+/// meshes.
 ///
 /// The winding decides the front face, except where a mesh's vertex normals disagree
 /// with it: then the normals win and the triangle is turned round, so a wall wound the
 /// wrong way still shows its outside. Degenerate triangles and those with non-finite
 /// coordinates are dropped; missing uvs read as (0, 0).
-pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
+pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, RenderError> {
     if scene.objects.len() > MAX_OBJECTS as usize {
         return Err(RenderError::TooManyObjects {
             count: scene.objects.len(),
@@ -115,8 +161,11 @@ pub fn prepare(scene: &Scene) -> Result<PreparedScene, RenderError> {
         .textures
         .par_iter()
         .map(|t| {
+            if let Some(made) = mips.find(&t.png) {
+                return Ok(made);
+            }
             t.decode()
-                .map(MipTexture::new)
+                .map(|image| Arc::new(MipTexture::new(image)))
                 .map_err(|source| RenderError::Texture {
                     name: t.name.clone(),
                     source,

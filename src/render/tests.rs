@@ -969,6 +969,30 @@ fn bad_scenes_are_errors_not_panics() {
     assert_eq!(prepare(&many).unwrap().object_count(), 65_537);
 }
 
+/// Chains made ahead are taken for the very PNGs they were made from and for no other:
+/// the frame is the one `prepare` gives, and a texture whose bytes were swapped since is
+/// decoded afresh.
+#[test]
+fn mip_chains_made_ahead_serve_only_their_own_textures() {
+    let scene = street_scene();
+    assert!(scene.textures.len() >= 2, "a textured street");
+    let mips = TextureMips::of(&scene.textures);
+    assert_eq!(mips.len(), scene.textures.len());
+    let k = Intrinsics::from_fov(96, 64, 1.0);
+    let eye = pose([0.0, 1.7, 6.0], [0.0, 1.5, -10.0]);
+    let frame = |prepared: &PreparedScene| render(prepared, &eye, &k, &flat(), 1).rgb();
+    let fresh = frame(&prepare(&scene).unwrap());
+    assert_eq!(frame(&prepare_with(&scene, &mips).unwrap()), fresh);
+
+    let mut swapped = scene.clone();
+    for t in &mut swapped.textures {
+        *t = checker_texture(8, 1).renamed(t.name.clone());
+    }
+    let expected = frame(&prepare(&swapped).unwrap());
+    assert_ne!(expected, fresh, "the swap shows");
+    assert_eq!(frame(&prepare_with(&swapped, &mips).unwrap()), expected);
+}
+
 #[test]
 fn unusable_cameras_render_sky() {
     let prepared = prepare(&street_scene()).unwrap();

@@ -290,7 +290,7 @@ impl Pipeline<'_> {
     /// The prepared scene, and the shadow map of the overview's sun in it, made ahead of
     /// the overview stage. Nothing when preparing fails: `prepared_scene` then reports it.
     fn prepare_for_overview(&self, scene: &Scene, lamps: &[Lamp], facades: &FacadeSet) {
-        let Ok(prepared) = render::prepare(scene) else {
+        let Ok(prepared) = render::prepare_with(scene, &self.mips) else {
             return;
         };
         let lighting = overview_lighting(self.spec, scene, lamps, facades);

@@ -101,6 +101,9 @@ pub struct Pipeline<'a> {
     frames: Vec<Option<Slot<()>>>,
     /// Set once: made beside the export when it runs (see `need_export`), else on demand.
     prepared: OnceLock<Arc<render::PreparedScene>>,
+    /// Mip chains of the city's own textures, made beside the objects' insertion when the
+    /// scene is built.
+    mips: render::TextureMips,
     /// Reports frames rendered: (camera name, frames done, frames in the path).
     progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     layout: Option<Slot<RgbImage>>,
@@ -149,6 +152,7 @@ impl<'a> Pipeline<'a> {
                 .map(|_: Option<()>| None)
                 .collect(),
             prepared: OnceLock::new(),
+            mips: render::TextureMips::default(),
             progress,
             layout: None,
             mirror: None,

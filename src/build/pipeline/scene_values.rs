@@ -32,18 +32,27 @@ impl Pipeline<'_> {
             seed: self.spec.seed,
         });
         let mut built = built;
-        let inserted = objects::insert(&objects::ObjectsInput {
-            specs: &self.spec.objects,
-            layout: &parsed,
-            lamps: &lamps,
-            buildings: &buildings,
-            facades: &facades,
-            widths: self.spec.buildings.widths.as_deref(),
-            meshes: &self.meshes,
-            metres_per_pixel: self.spec.layout.metres_per_pixel,
-            seed: self.spec.seed,
-        })
-        .map_err(|source| BuildError::Objects {
+        // Inserting objects is mostly serial (each entry's placing follows its stream): the
+        // other cores make the mip chains of the city's own textures (facades, roofs,
+        // ground) meanwhile, which the renderer's preparation then takes.
+        let (inserted, mips) = rayon::join(
+            || {
+                objects::insert(&objects::ObjectsInput {
+                    specs: &self.spec.objects,
+                    layout: &parsed,
+                    lamps: &lamps,
+                    buildings: &buildings,
+                    facades: &facades,
+                    widths: self.spec.buildings.widths.as_deref(),
+                    meshes: &self.meshes,
+                    metres_per_pixel: self.spec.layout.metres_per_pixel,
+                    seed: self.spec.seed,
+                })
+            },
+            || render::TextureMips::of(&built.textures),
+        );
+        self.mips = mips;
+        let inserted = inserted.map_err(|source| BuildError::Objects {
             spec: self.spec_path.clone(),
             source,
         })?;
@@ -83,10 +92,11 @@ impl Pipeline<'_> {
             return Ok(Arc::clone(prepared));
         }
         let scene = self.scene()?;
-        let prepared = render::prepare(&scene).map_err(|source| BuildError::Render {
-            spec: self.spec_path.clone(),
-            source,
-        })?;
+        let prepared =
+            render::prepare_with(&scene, &self.mips).map_err(|source| BuildError::Render {
+                spec: self.spec_path.clone(),
+                source,
+            })?;
         let prepared = Arc::new(prepared);
         let _ = self.prepared.set(Arc::clone(&prepared));
         Ok(prepared)
