@@ -74,6 +74,9 @@ pub struct Lighting {
     pub sun_colour: [f32; 3],
     /// Whether the sun casts shadows (a shadow map of the whole scene).
     pub shadows: bool,
+    /// Largest side of the shadow map, texels ([`MAX_SHADOW_MAP_SIDE`] for street frames;
+    /// an image that sees the whole city at a coarser ground sampling needs fewer).
+    pub shadow_map_side: u32,
     /// How dark shadows are: 1 keeps none of the sun in shadow, 0 casts none. Overcast,
     /// fog and rain lower it (the sun's disk is diffused; see `sensor::weather_light`).
     pub shadow_strength: f32,
@@ -88,6 +91,8 @@ pub struct Lighting {
     /// Exposure of the default development ([`develop::develop`]) of `Frame::rgb`.
     pub exposure: f32,
 }
+
+pub use super::shadow_map::MAX_SIDE as MAX_SHADOW_MAP_SIDE;
 
 /// The night sky's colour.
 pub const NIGHT_SKY: [f32; 3] = [0.005, 0.007, 0.02];
@@ -157,6 +162,7 @@ impl Lighting {
             sun_direction: d.map(|v| v as f32),
             sun_colour,
             shadows: true,
+            shadow_map_side: MAX_SHADOW_MAP_SIDE,
             shadow_strength: 1.0,
             ambient_occlusion: AMBIENT_OCCLUSION,
             lights,

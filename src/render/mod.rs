@@ -85,7 +85,8 @@ pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{
-    AMBIENT_OCCLUSION, LAMP_COLOUR, Light, Lighting, NIGHT_SKY, WINDOW_COLOUR, sun_colour,
+    AMBIENT_OCCLUSION, LAMP_COLOUR, Light, Lighting, MAX_SHADOW_MAP_SIDE, NIGHT_SKY, WINDOW_COLOUR,
+    sun_colour,
 };
 pub use lit_windows::LitWindows;
 pub use prepared_scene::{MAX_OBJECTS, PreparedScene, TextureMips, prepare, prepare_with};
@@ -177,7 +178,7 @@ pub fn render_measuring(
         .as_ref()
         .map(|w| WindowLookup::new(w, scene.textures.len()));
     let shadows = if lighting.shadows {
-        scene.shadow_map(lighting.sun_direction)
+        scene.shadow_map(lighting.sun_direction, lighting.shadow_map_side)
     } else {
         None
     };

@@ -27,8 +27,8 @@ pub struct PreparedScene {
     shadows: Mutex<Option<LastShadowMap>>,
 }
 
-/// A sun direction's bits and its shadow map (`None`: the sun is down).
-type LastShadowMap = ([u32; 3], Option<Arc<ShadowMap>>);
+/// A sun direction's bits, the map's side and the map (`None`: the sun is down).
+type LastShadowMap = ([u32; 3], u32, Option<Arc<ShadowMap>>);
 
 /// What shading needs of a material.
 pub(crate) struct ShadeMaterial {
@@ -61,18 +61,19 @@ impl PreparedScene {
         self.objects.len()
     }
 
-    /// The shadow map for the sun in direction `sun` (built now, or the last one if it was
-    /// built for the same direction). `None` when the sun is at or below the horizon.
-    pub(crate) fn shadow_map(&self, sun: [f32; 3]) -> Option<Arc<ShadowMap>> {
+    /// The shadow map for the sun in direction `sun`, at most `side` texels a side (built
+    /// now, or the last one if it was built for the same direction and side). `None` when
+    /// the sun is at or below the horizon.
+    pub(crate) fn shadow_map(&self, sun: [f32; 3], side: u32) -> Option<Arc<ShadowMap>> {
         let bits = sun.map(f32::to_bits);
         let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((key, map)) = slot.as_ref()
-            && *key == bits
+        if let Some((key, built_side, map)) = slot.as_ref()
+            && (*key, *built_side) == (bits, side)
         {
             return map.clone();
         }
-        let map = ShadowMap::build(self, sun.map(f64::from)).map(Arc::new);
-        *slot = Some((bits, map.clone()));
+        let map = ShadowMap::build(self, sun.map(f64::from), side).map(Arc::new);
+        *slot = Some((bits, side, map.clone()));
         map
     }
 

@@ -2,7 +2,7 @@
 //! the whole scene seen from the sun, and the soft shadow test against it.
 //!
 //! - **Extent and resolution** come from the scene's bounds only: the map covers the
-//!   scene's box as seen from the sun, with square texels of `max extent / MAX_SIDE` (at
+//!   scene's box as seen from the sun, with square texels of `max extent / side` (at
 //!   least [`MIN_TEXEL`]). Every frame under the same sun reads the same map, so shadows
 //!   cannot crawl as the camera moves.
 //! - **Content**: per texel, the largest `p · sun` (the surface nearest the sun) over every
@@ -21,8 +21,9 @@ use super::prepared_scene::PreparedScene;
 use crate::model::geometry::rounding::floor;
 use crate::model::geometry::{cross, dot};
 
-/// Largest side of the map in texels.
-pub(crate) const MAX_SIDE: f64 = 4096.0;
+/// Largest side of the map in texels, unless the lighting asks for less
+/// ([`super::Lighting::shadow_map_side`]).
+pub const MAX_SIDE: u32 = 4096;
 /// Smallest texel, metres.
 pub(crate) const MIN_TEXEL: f64 = 0.005;
 /// Rows per parallel band.
@@ -42,9 +43,10 @@ pub(crate) struct ShadowMap {
 }
 
 impl ShadowMap {
-    /// The map of `scene` for the sun in direction `dir` (unit, towards the sun). `None`
-    /// for an empty scene or a sun at or below the horizon.
-    pub(crate) fn build(scene: &PreparedScene, dir: [f64; 3]) -> Option<ShadowMap> {
+    /// The map of `scene` for the sun in direction `dir` (unit, towards the sun), at most
+    /// `side` texels a side (1 to [`MAX_SIDE`]). `None` for an empty scene or a sun at or
+    /// below the horizon.
+    pub(crate) fn build(scene: &PreparedScene, dir: [f64; 3], side: u32) -> Option<ShadowMap> {
         if dir[1].is_nan() || dir[1] <= 1e-3 || scene.triangles.is_empty() {
             return None;
         }
@@ -79,7 +81,7 @@ impl ShadowMap {
             return None;
         }
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        let texel = (extent / MAX_SIDE).max(MIN_TEXEL);
+        let texel = (extent / f64::from(side.clamp(1, MAX_SIDE))).max(MIN_TEXEL);
         // One texel of margin on every side, for the filter.
         let origin = [lo[0] - texel, lo[1] - texel];
         let width = ((hi[0] - lo[0]) / texel).ceil() as usize + 2;

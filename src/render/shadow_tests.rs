@@ -157,9 +157,28 @@ fn shadows_do_not_change_with_the_camera() {
         1,
     );
     assert_eq!(a, b);
-    let map = prepared.shadow_map(lighting.sun_direction).unwrap();
-    let again = prepared.shadow_map(lighting.sun_direction).unwrap();
+    let map = prepared
+        .shadow_map(lighting.sun_direction, lighting.shadow_map_side)
+        .unwrap();
+    let again = prepared
+        .shadow_map(lighting.sun_direction, lighting.shadow_map_side)
+        .unwrap();
     assert!(std::sync::Arc::ptr_eq(&map, &again), "one map per sun");
+    // A map of another side is another map, with texels as much coarser, and the one of
+    // the first side is built again when asked for after it.
+    let half = prepared
+        .shadow_map(lighting.sun_direction, lighting.shadow_map_side / 2)
+        .unwrap();
+    assert!(
+        (half.texel / map.texel - 2.0).abs() < 1e-9,
+        "{} {}",
+        half.texel,
+        map.texel
+    );
+    let full = prepared
+        .shadow_map(lighting.sun_direction, lighting.shadow_map_side)
+        .unwrap();
+    assert_eq!(full.texel, map.texel);
 }
 
 /// A small shadowed street-like frame under the day preset (sky, sun, shadows, tone

@@ -120,6 +120,7 @@ pub(super) fn flat() -> Lighting {
         sun_direction: [0.0, 1.0, 0.0],
         sun_colour: [0.0; 3],
         shadows: false,
+        shadow_map_side: MAX_SHADOW_MAP_SIDE,
         shadow_strength: 1.0,
         ambient_occlusion: 0.0,
         lights: Vec::new(),

@@ -295,7 +295,7 @@ impl Pipeline<'_> {
         };
         let lighting = overview_lighting(self.spec, scene, lamps, facades);
         if lighting.shadows {
-            prepared.shadow_map(lighting.sun_direction);
+            prepared.shadow_map(lighting.sun_direction, lighting.shadow_map_side);
         }
         let _ = self.prepared.set(Arc::new(prepared));
     }
@@ -353,6 +353,7 @@ fn overview_lighting(
     // and it would cost the cold build a tenth of a second.
     render::Lighting {
         ambient_occlusion: 0.0,
+        shadow_map_side: cameras::OVERVIEW_SHADOW_MAP_SIDE,
         ..lighting(spec, &sun, scene, lamps, facades)
     }
 }
