@@ -120,8 +120,8 @@ impl Walls {
             return Ok(());
         }
         let mut placed: Vec<Placed> = Vec::new();
-        // Per placed plate: `Some(hard)` when its background is the raw wall, to be primed.
-        let mut primers: Vec<Option<bool>> = Vec::new();
+        // Per placed plate: for painted text, the seed of the stream that picks its ink.
+        let mut inks: Vec<Option<u64>> = Vec::new();
         let mut misses = 0;
         for _ in 0..spec.count {
             if misses >= GIVE_UP {
@@ -157,27 +157,21 @@ impl Walls {
             };
             misses = 0;
             self.placed.entry(w).or_default().push(rect);
-            // Only painted text shows the wall behind it.
-            let patch = match style {
-                PlateStyle::Painted => self.wall_patch(w, rect, &plate, placing),
-                _ => None,
+            // Painted text shows the wall behind it: its wall patch, ink and priming are
+            // made after the (serial) placing, every plate in parallel, from a stream of
+            // its own seeded here. A painted plate on a wall without a facade image is
+            // drawn as a banner.
+            let painted = style == PlateStyle::Painted && self.wall_image(w, placing).is_some();
+            let (background, ink) = if painted {
+                inks.push(Some(rng.random::<u64>()));
+                (Background::Wall(RgbImage::new(0, 0)), [0; 3])
+            } else {
+                let (paper, ink) = text_colours::pair(rng);
+                inks.push(None);
+                (Background::Paper(paper), ink)
             };
-            let (background, ink) = match (style, patch) {
-                (PlateStyle::Painted, Some(patch)) => {
-                    let hard = rng.random::<f64>() < HARD_SHARE;
-                    let ink = text_colours::ink_for(rng, mean_luminance(&patch), hard);
-                    primers.push(Some(hard));
-                    (Background::Wall(patch), ink)
-                }
-                _ => {
-                    let (paper, ink) = text_colours::pair(rng);
-                    primers.push(None);
-                    (Background::Paper(paper), ink)
-                }
-            };
-            // A painted plate on a wall without a facade image is drawn as a banner.
-            let plate = match (&background, style) {
-                (Background::Paper(_), PlateStyle::Painted) => TextPlate {
+            let plate = match style {
+                PlateStyle::Painted if !painted => TextPlate {
                     style: PlateStyle::Banner,
                     ..plate
                 },
@@ -195,13 +189,21 @@ impl Walls {
                 corners,
             });
         }
-        // The floor holds against the wall pixels behind the letters, not only their mean:
-        // brick with light mortar is primed first. Priming draws nothing from the stream,
-        // so it runs after the (serial) placing, every plate in parallel.
-        placed.par_iter_mut().zip(&primers).for_each(|(p, primer)| {
-            if let (Some(hard), Background::Wall(patch)) = (primer, &mut p.background) {
-                *patch = text_colours::primed(std::mem::take(patch), p.ink, *hard);
-            }
+        // The ink keeps the contrast floor against the patch's mean (a seeded minority
+        // below it), and the floor holds against the wall pixels behind the letters, not
+        // only their mean: brick with light mortar is primed first.
+        let (walls, images) = (&self.walls, &self.images);
+        placed.par_iter_mut().zip(&inks).for_each(|(p, seed)| {
+            let wall = &walls[p.wall];
+            let image = wall.facade.and_then(|f| images.get(&f)?.as_ref());
+            let (Some(seed), Some(image)) = (seed, image) else {
+                return;
+            };
+            let patch = wall_patch(image, wall, p.rect, &p.plate);
+            let mut rng = crate::rng::stream(*seed, "painted-text-ink", 0);
+            let hard = rng.random::<f64>() < HARD_SHARE;
+            p.ink = text_colours::ink_for(&mut rng, mean_luminance(&patch), hard);
+            p.background = Background::Wall(text_colours::primed(patch, p.ink, hard));
         });
         finish_plates(
             spec,
@@ -250,47 +252,44 @@ impl Walls {
         })
     }
 
-    /// The wall's own pixels under `rect`, at the plate's size: the background of painted
-    /// text. `None` when the wall has no facade or its image does not decode.
-    fn wall_patch(
-        &mut self,
-        w: usize,
-        rect: [f64; 4],
-        plate: &TextPlate,
-        placing: &Placing,
-    ) -> Option<RgbImage> {
-        let wall = &self.walls[w];
-        let f = wall.facade?;
-        let image = self
-            .images
+    /// The facade image cladding wall `w` (decoded when first asked for). `None` when the
+    /// wall has no facade or its image does not decode or is empty.
+    fn wall_image(&mut self, w: usize, placing: &Placing) -> Option<&RgbImage> {
+        let f = self.walls[w].facade?;
+        self.images
             .entry(f)
-            .or_insert_with(|| placing.input.facades.facades[f].texture.decode().ok())
-            .as_ref()?;
-        let (iw, ih) = (f64::from(image.width()), f64::from(image.height()));
-        if iw < 1.0 || ih < 1.0 {
-            return None;
-        }
-        let (pw, ph) = (f64::from(plate.width), f64::from(plate.height));
-        // A column's u and a row's height are the same all along it: their taps are found
-        // once, not once a pixel.
-        let columns: Vec<Tap> = (0..plate.width)
-            .map(|x| {
-                let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
-                let tu = (u / wall.repeat).rem_euclid(1.0);
-                Tap::new(tu * iw - 0.5, image.width())
+            .or_insert_with(|| {
+                let image = placing.input.facades.facades[f].texture.decode().ok()?;
+                (image.width() > 0 && image.height() > 0).then_some(image)
             })
-            .collect();
-        let rows: Vec<Tap> = (0..plate.height)
-            .map(|y| {
-                let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
-                let tv = 1.0 - (height - KERB_Y) / wall.height;
-                Tap::new(tv * ih - 0.5, image.height())
-            })
-            .collect();
-        Some(RgbImage::from_fn(plate.width, plate.height, |x, y| {
-            bilinear(image, &columns[x as usize], &rows[y as usize])
-        }))
+            .as_ref()
     }
+}
+
+/// The wall's own pixels under `rect` (`image` is the facade cladding `wall`), at the
+/// plate's size: the background of painted text.
+fn wall_patch(image: &RgbImage, wall: &Wall, rect: [f64; 4], plate: &TextPlate) -> RgbImage {
+    let (iw, ih) = (f64::from(image.width()), f64::from(image.height()));
+    let (pw, ph) = (f64::from(plate.width), f64::from(plate.height));
+    // A column's u and a row's height are the same all along it: their taps are found
+    // once, not once a pixel.
+    let columns: Vec<Tap> = (0..plate.width)
+        .map(|x| {
+            let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
+            let tu = (u / wall.repeat).rem_euclid(1.0);
+            Tap::new(tu * iw - 0.5, image.width())
+        })
+        .collect();
+    let rows: Vec<Tap> = (0..plate.height)
+        .map(|y| {
+            let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
+            let tv = 1.0 - (height - KERB_Y) / wall.height;
+            Tap::new(tv * ih - 0.5, image.height())
+        })
+        .collect();
+    RgbImage::from_fn(plate.width, plate.height, |x, y| {
+        bilinear(image, &columns[x as usize], &rows[y as usize])
+    })
 }
 
 /// Draws the `placed` plates (their `wall` indexing `walls`), packs them onto atlas pages
