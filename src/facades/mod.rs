@@ -38,7 +38,7 @@ mod tests;
 
 use rayon::prelude::*;
 
-use crate::model::FacadeSet;
+use crate::model::{Facade, FacadeSet, Roof};
 use crate::spec::OnError;
 
 pub use builtin::builtin;
@@ -65,7 +65,8 @@ pub fn process(
         .par_iter()
         .map(|file| {
             let floors = side.floors.get(&file.name).copied();
-            crop::crop_facade(source, file, floors, floor_height, &roofs)
+            let facade = crop::crop_facade(source, file, floors, floor_height, &roofs);
+            (file.name.clone(), facade)
         })
         .collect();
 
@@ -78,22 +79,54 @@ pub fn process(
             )));
         }
     }
+    gather(&source.origin, results, roofs, on_error, warnings)
+}
+
+/// [`process`] of [`builtin`], each facade painted and processed in one task: no wait
+/// for the whole set to be painted before the first is cropped and encoded.
+pub fn process_builtin(
+    floor_height: f64,
+    on_error: OnError,
+) -> Result<(FacadeSet, Vec<Warning>), FacadeError> {
+    let source = builtin::source_without_files();
+    let roofs = builtin_roofs();
+    let results: Vec<_> = (0..builtin::COUNT)
+        .into_par_iter()
+        .map(|i| {
+            let file = builtin::facade_file(i);
+            let facade = crop::crop_facade(&source, &file, None, floor_height, &roofs);
+            (file.name, facade)
+        })
+        .collect();
+    gather(&source.origin, results, roofs, on_error, Vec::new())
+}
+
+/// The set from each file's result, in file order, as `on_error` says; `warnings` are the
+/// source's own so far.
+fn gather(
+    origin: &str,
+    results: Vec<(String, Result<Facade, FacadeError>)>,
+    roofs: Vec<Roof>,
+    on_error: OnError,
+    mut warnings: Vec<Warning>,
+) -> Result<(FacadeSet, Vec<Warning>), FacadeError> {
+    let found = results.len();
     let mut facades = Vec::new();
     let mut skipped = 0;
-    for (file, result) in source.files.iter().zip(results) {
+    for (name, result) in results {
         match (result, on_error) {
             (Ok(facade), _) => facades.push(facade),
             (Err(error), OnError::Error) => return Err(error),
             (Err(error), OnError::Skip) => {
                 skipped += 1;
-                warnings.push(Warning(format!("skipped facade {}: {error}", file.name)));
+                warnings.push(Warning(format!("skipped facade {name}: {error}")));
             }
         }
     }
     if facades.is_empty() {
         return Err(FacadeError::Empty {
-            origin: source.origin.clone(),
-            found: source.files.len(),
+            origin: origin.to_owned(),
+            found,
             skipped,
         });
     }

@@ -86,6 +86,16 @@ fn painted(photo: &Photo) -> &RgbImage {
     }
 }
 
+#[test]
+fn builtin_painted_and_processed_in_one_pass_is_the_same_set() {
+    let (set, warnings) = process_builtin(3.0, OnError::Error).unwrap();
+    assert_eq!(warnings, vec![]);
+    assert_eq!(&set, processed_builtin());
+    for (a, b) in set.facades.iter().zip(&processed_builtin().facades) {
+        assert_eq!(a.texture.png, b.texture.png, "{}", a.name);
+    }
+}
+
 fn builtin_crop_top() -> u32 {
     super::builtin::crop_top()
 }

@@ -223,20 +223,17 @@ impl Pipeline<'_> {
             |p| &mut p.facades,
             |_| Ok(()),
             |p, ()| {
-                let generated;
-                let source = match &p.facade_input {
-                    FacadeInput::Builtin => {
-                        generated = facades::builtin();
-                        &generated
-                    }
-                    FacadeInput::Folder { source, .. } => source,
-                };
                 let f = &p.spec.facades;
-                let (set, warnings) = facades::process(source, f.floor_height, f.on_error)
-                    .map_err(|source| BuildError::Facades {
-                        spec: p.spec_path.clone(),
-                        source,
-                    })?;
+                let processed = match &p.facade_input {
+                    FacadeInput::Builtin => facades::process_builtin(f.floor_height, f.on_error),
+                    FacadeInput::Folder { source, .. } => {
+                        facades::process(source, f.floor_height, f.on_error)
+                    }
+                };
+                let (set, warnings) = processed.map_err(|source| BuildError::Facades {
+                    spec: p.spec_path.clone(),
+                    source,
+                })?;
                 let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
                 let mut outputs = codec::facade_set_outputs(&set);
                 outputs.insert(

@@ -27,10 +27,17 @@ pub const COUNT: usize = 30;
 
 /// cityspec's own facade set, as CMP-layout files. The same bytes on every call.
 pub fn builtin() -> FacadeSource {
-    let files = (0..COUNT).into_par_iter().map(facade_file).collect();
+    FacadeSource {
+        files: (0..COUNT).into_par_iter().map(facade_file).collect(),
+        ..source_without_files()
+    }
+}
+
+/// The builtin source's name and side files, without its photos (for messages).
+pub(super) fn source_without_files() -> FacadeSource {
     FacadeSource {
         origin: "builtin".to_string(),
-        files,
+        files: Vec::new(),
         floors: None,
     }
 }
@@ -47,7 +54,7 @@ pub fn name(i: usize) -> String {
 }
 
 /// Designs, paints and encodes builtin facade `i`.
-fn facade_file(i: usize) -> FacadeFile {
+pub(super) fn facade_file(i: usize) -> FacadeFile {
     let design = Design::new(i);
     let mut rng = crate::rng::stream(0, "builtin-facades-paint", i as u64);
     let canvas = painter::paint(&design, &mut rng);

@@ -4,8 +4,9 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use crate::model::PxRect;
+use crate::model::geometry::rounding::round_i32;
 
-use super::canvas::{Canvas, Colour, add, mix, rect, round, scale};
+use super::canvas::{Canvas, Colour, add, mix, rect, scale};
 use super::design::Wall;
 
 /// Brick course height and brick length, mortar joints included.
@@ -71,7 +72,7 @@ fn plaster(c: &mut Canvas, r: PxRect, colour: Colour, rng: &mut Pcg64) {
         let at = |gx: u32, gy: u32| grid[(gy * gw + gx) as usize];
         let top = at(ix, iy) * (1.0 - tx) + at(ix + 1, iy) * tx;
         let bottom = at(ix, iy + 1) * (1.0 - tx) + at(ix + 1, iy + 1) * tx;
-        let blotch = round(top * (1.0 - ty) + bottom * ty) as i32;
+        let blotch = round_i32(top * (1.0 - ty) + bottom * ty);
         let grain = rng.random_range(-3..=3);
         colour.map(|v| add(v, blotch + grain))
     });

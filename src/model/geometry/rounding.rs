@@ -48,6 +48,23 @@ pub fn round(x: f64) -> f64 {
     }
 }
 
+/// `x.round() as i32` (halves away from zero) for `|x| < 2^31`: the facade painter's
+/// per-pixel blotches, without [`round`]'s range check and sign copy. Outside that range
+/// the result saturates like `as i32` but may be one off.
+#[inline]
+pub fn round_i32(x: f64) -> i32 {
+    let t = x as i32;
+    // Exact: x and its truncation differ by less than 1 (and NaN truncates to 0, rest NaN).
+    let rest = x - f64::from(t);
+    if rest >= 0.5 {
+        t + 1
+    } else if rest <= -0.5 {
+        t - 1
+    } else {
+        t
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,5 +118,29 @@ mod tests {
             }
         }
         assert!(floor(f64::NAN).is_nan() && ceil(f64::NAN).is_nan() && round(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn round_i32_is_round_as_i32_in_its_range() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.49999999999999994,
+            -0.49999999999999994,
+            f64::NAN,
+        ];
+        for i in -4000..4000 {
+            let v = f64::from(i) / 8.0;
+            values.extend([v, v - 1e-9, v + 1e-12, v * 1e5 + 0.5, v * 5e5 - 0.5]);
+        }
+        values.extend([
+            2_147_483_646.5,
+            -2_147_483_647.5,
+            2_147_483_646.4,
+            -2_147_483_648.0,
+        ]);
+        for v in values {
+            assert_eq!(round_i32(v), v.round() as i32, "round_i32({v:e})");
+        }
     }
 }
