@@ -7,6 +7,8 @@
 //! A mesh without triangles writes nothing; a mesh whose uvs or normals do not match its
 //! positions in number writes faces without them (`a//c`, `a/b`, `a`).
 
+use rayon::prelude::*;
+
 use super::fixed::{push_fixed, push_u64};
 use super::texture_files::TextureFiles;
 use crate::model::{Mesh, Scene};
@@ -35,26 +37,66 @@ pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
     push_u64(&mut out, triangles as u64);
     out.extend_from_slice(b"\nmtllib city.mtl\n");
 
-    // Next 1-based index of each vertex kind.
+    let material = |mesh: &Mesh| scene.materials.get(mesh.material as usize);
+    let textured = |mesh: &Mesh| material(mesh).is_some_and(|m| textures.file(m.texture).is_some());
+    // Each object's first 1-based index of each vertex kind, then the objects written in
+    // parallel runs (the text is most of a cold build's export), joined in order.
+    let mut firsts = Vec::with_capacity(scene.objects.len());
     let mut next = Bases { v: 1, vt: 1, vn: 1 };
     for object in &scene.objects {
-        out.extend_from_slice(b"o ");
-        push_name(&mut out, &object.name);
-        out.push(b'\n');
+        firsts.push(next);
         for mesh in &object.meshes {
-            let material = scene.materials.get(mesh.material as usize);
-            let textured = material.is_some_and(|m| textures.file(m.texture).is_some());
-            let name = material.map(|m| &m.name[..]);
-            write_mesh(&mut out, mesh, name, textured, &mut next);
+            next.advance(mesh, textured(mesh));
         }
+    }
+    let runs: Vec<Vec<u8>> = scene
+        .objects
+        .par_chunks(OBJECTS_PER_RUN)
+        .zip(firsts.par_chunks(OBJECTS_PER_RUN))
+        .map(|(objects, firsts)| {
+            let mut run = Vec::new();
+            for (object, &first) in objects.iter().zip(firsts) {
+                run.extend_from_slice(b"o ");
+                push_name(&mut run, &object.name);
+                run.push(b'\n');
+                let mut next = first;
+                for mesh in &object.meshes {
+                    let name = material(mesh).map(|m| &m.name[..]);
+                    write_mesh(&mut run, mesh, name, textured(mesh), &mut next);
+                }
+            }
+            run
+        })
+        .collect();
+    for run in runs {
+        out.extend_from_slice(&run);
     }
     out
 }
 
+/// Objects a parallel run of [`write_obj`] writes.
+const OBJECTS_PER_RUN: usize = 256;
+
+#[derive(Clone, Copy)]
 struct Bases {
     v: u64,
     vt: u64,
     vn: u64,
+}
+
+impl Bases {
+    /// Past the vertices `mesh` writes (none for a mesh without triangles or positions).
+    fn advance(&mut self, mesh: &Mesh, textured: bool) {
+        if mesh.indices.len() / 3 == 0 || mesh.positions.is_empty() {
+            return;
+        }
+        let has_uv = mesh.uvs.len() == mesh.positions.len() || textured;
+        let has_normal = mesh.normals.len() == mesh.positions.len();
+        let count = mesh.positions.len() as u64;
+        self.v += count;
+        self.vt += if has_uv { count } else { 0 };
+        self.vn += if has_normal { count } else { 0 };
+    }
 }
 
 fn write_mesh(
@@ -126,10 +168,7 @@ fn write_mesh(
         }
         out.push(b'\n');
     }
-    let count = mesh.positions.len() as u64;
-    next.v += count;
-    next.vt += if has_uv { count } else { 0 };
-    next.vn += if has_normal { count } else { 0 };
+    next.advance(mesh, textured);
 }
 
 /// Appends a name as OBJ and MTL can hold it: one token, so whitespace and control
