@@ -34,8 +34,8 @@ pub enum Photo {
 }
 
 impl Photo {
-    /// The photo as file bytes: a file's own, or painted pixels as a JPEG of
-    /// [`EXPORT_JPEG_QUALITY`].
+    /// The photo as file bytes: a file's own, or painted pixels as a JPEG of quality
+    /// `EXPORT_JPEG_QUALITY` (90).
     pub fn file_bytes(&self) -> Vec<u8> {
         match self {
             Photo::File(bytes) => bytes.clone(),
