@@ -14,26 +14,32 @@
 //!
 //! # Method
 //!
-//! At each pixel's centre sample: its camera-space point `P` (from the depth) and the face
-//! normal `n` of its triangle (exact, from the triangle id; no reconstruction). Along 8
-//! fixed screen directions, 2 steps out to the projection of [`RADIUS`] metres, each step
-//! reads the point `S` of that pixel and scores `max(0, n·(S − P)/|S − P| − BIAS) ·
-//! (1 − |S − P|²/R²)`: how far above `P`'s tangent plane a nearby surface rises, fading to
-//! nothing at `R` (so a foreground object far in front of `P` casts no halo). A
-//! direction's occlusion is its largest score, the pixel's [`GAIN`] times their mean (at most
-//! 1).
-//! The steps start at a per-2 × 2-block offset from a fixed 4 × 4 pattern (ordered
-//! dither), so the two rings blend into a smooth falloff instead of bands. It is
-//! measured at one pixel of each 2 × 2 block; the others share that value where they lie on
-//! the same surface, and are measured themselves at edges: a quarter of the work, and no
-//! blur across silhouettes.
+//! At each pixel's centre sample ([`CentreSamples`]): its camera-space point `P` (from the
+//! depth) and the face normal `n` of its triangle (exact, from the triangle id; no
+//! reconstruction). Along 8 fixed screen directions, 2 steps out to the projection of
+//! [`RADIUS`] metres, each step reads the point `S` of that pixel and scores `max(0,
+//! n·(S − P)/|S − P| − BIAS) · (1 − |S − P|²/R²)`: how far above `P`'s tangent plane a
+//! nearby surface rises, fading to nothing at `R` (so a foreground object far in front of
+//! `P` casts no halo). A direction's occlusion is its largest score, the pixel's [`GAIN`]
+//! times their mean (at most 1).
+//!
+//! It is measured at every [`GRID`]-th pixel of every `GRID`-th row, the steps starting at
+//! an offset per grid cell from a fixed 4 × 4 pattern (ordered dither), so the two rings
+//! blend into a smooth falloff instead of bands. Every pixel then blends the four grid
+//! samples around it by their bilinear weights, keeping those on its own surface (its own
+//! triangle, or a point in its plane with a normal within ~25°), and is measured itself
+//! only where none is: at silhouettes and on surfaces thinner than the grid. A sixteenth
+//! of the measuring, no blur across silhouettes, and a smooth gradient where a crease is
+//! wider than the grid. The taps are what costs: they read scattered pixels of the depth
+//! buffer, so a measured pixel costs as much as its cache misses.
 //!
 //! Each pixel reads only the frame's buffers and writes only itself, in `f32` with
 //! + − × ÷ and sqrt: the bytes do not depend on threads.
 
 use rayon::prelude::*;
 
-use super::tile::{FrameContext, NOTHING, TILE, TileRaster};
+use super::centre_samples::CentreSamples;
+use super::tile::{FrameContext, NOTHING};
 
 /// Reach of the occlusion, metres: the crease along a wall's foot, a car's or a bench's
 /// shadowless contact darkening.
@@ -50,49 +56,48 @@ const DITHER: [u8; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
 /// Occlusion per unit of the mean score: a ground point beside a wall scores in about a
 /// third of its directions.
 const GAIN: f32 = 2.0;
+/// Spacing of the pixels measured, output pixels (see [`visibility`]).
+const GRID: usize = 4;
 /// Largest reach on screen, output pixels (very near surfaces).
 const MAX_PIXELS: f32 = 48.0;
 
 /// Ambient visibility per output pixel, row-major: `1 − strength · occlusion`.
-pub(crate) fn visibility(ctx: &FrameContext, rasters: &[TileRaster], strength: f32) -> Vec<f32> {
-    let (w, h) = (ctx.width as usize, ctx.height as usize);
-    let s = ctx.samples as usize;
+pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: f32) -> Vec<f32> {
+    let (w, h) = (centres.width, centres.height);
     let view = ctx.view;
     let scale = ctx.samples as f32;
     // Output-pixel intrinsics.
     let (fx, fy) = (view.fx as f32 / scale, view.fy as f32 / scale);
     let (cx, cy) = (view.cx as f32 / scale, view.cy as f32 / scale);
     let basis = &view.basis;
-    // Camera-space point (z = 0: sky) and normal of every pixel's centre sample.
-    let mut points = vec![[0f32; 3]; w * h];
-    let mut normals = vec![[0f32; 3]; w * h];
-    points
-        .par_chunks_mut(w)
-        .zip(normals.par_chunks_mut(w))
-        .enumerate()
-        .for_each(|(y, (prow, nrow))| {
-            let ty = y / TILE as usize;
-            // Neighbouring pixels mostly show the same triangle: its normal is kept.
-            let mut last = (NOTHING, [0f32; 3]);
-            for (x, (p, n)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
-                let raster = &rasters[ty * ctx.tiles_x as usize + x / TILE as usize];
-                let i = raster.centre(x - raster.rect[0] as usize, y - raster.rect[1] as usize, s);
-                let t = raster.id[i];
-                if t == NOTHING {
-                    continue;
-                }
-                let z = (1.0 / raster.depth[i]) as f32;
-                let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
-                *p = [(px - cx) / fx * z, -(py - cy) / fy * z, z];
-                if last.0 != t {
-                    let source = &ctx.scene.triangles[ctx.tris[t as usize].source as usize];
-                    let m = source.normal.map(f64::from);
-                    let d = |a: [f64; 3]| (a[0] * m[0] + a[1] * m[1] + a[2] * m[2]) as f32;
-                    last = (t, [d(basis.right), d(basis.up), d(basis.forward)]);
-                }
-                *n = last.1;
+    // A pixel's camera-space point is `[across[x] · z, down[y] · z, z]`.
+    let across: Vec<f32> = (0..w).map(|x| (x as f32 + 0.5 - cx) / fx).collect();
+    let down: Vec<f32> = (0..h).map(|y| -(y as f32 + 0.5 - cy) / fy).collect();
+    let (tri, z) = (&centres.tri, &centres.z);
+    let point = |x: usize, y: usize| {
+        let z = z[y * w + x];
+        [across[x] * z, down[y] * z, z]
+    };
+    // Camera-space face normals of the triangles the pixels show, by screen triangle.
+    let mut shown = vec![false; ctx.tris.len()];
+    for &t in tri {
+        if t != NOTHING {
+            shown[t as usize] = true;
+        }
+    }
+    let normals: Vec<[f32; 3]> = ctx
+        .tris
+        .par_iter()
+        .zip(shown)
+        .map(|(t, shown)| {
+            if !shown {
+                return [0.0; 3];
             }
-        });
+            let m = ctx.scene.triangles[t.source as usize].normal.map(f64::from);
+            let d = |a: [f64; 3]| (a[0] * m[0] + a[1] * m[1] + a[2] * m[2]) as f32;
+            [d(basis.right), d(basis.up), d(basis.forward)]
+        })
+        .collect();
 
     let dirs: [[f32; 2]; DIRECTIONS] = std::array::from_fn(|k| {
         // cos and sin of k · 45°, exactly.
@@ -110,17 +115,17 @@ pub(crate) fn visibility(ctx: &FrameContext, rasters: &[TileRaster], strength: f
     });
     let r2 = RADIUS * RADIUS;
     let occlusion = |x: usize, y: usize| -> f32 {
-        let p = points[y * w + x];
+        let p = point(x, y);
         if p[2] <= 0.0 {
             return 1.0;
         }
-        let n = normals[y * w + x];
+        let n = normals[tri[y * w + x] as usize];
         let reach = (RADIUS * fx / p[2]).min(MAX_PIXELS);
         if reach < 2.0 {
             // Creases under two pixels wide: too small to show, and far away.
             return 1.0;
         }
-        let jitter = f32::from(DITHER[(y / 2 % 4) * 4 + x / 2 % 4]) / 16.0;
+        let jitter = f32::from(DITHER[(y / GRID % 4) * 4 + x / GRID % 4]) / 16.0;
         let mut sum = 0.0;
         for d in &dirs {
             let mut best = 0f32;
@@ -131,7 +136,7 @@ pub(crate) fn visibility(ctx: &FrameContext, rasters: &[TileRaster], strength: f
                 if sx < 0.0 || sy < 0.0 || sx >= w as f32 || sy >= h as f32 {
                     break;
                 }
-                let q = points[sy as usize * w + sx as usize];
+                let q = point(sx as usize, sy as usize);
                 if q[2] <= 0.0 {
                     continue;
                 }
@@ -153,29 +158,55 @@ pub(crate) fn visibility(ctx: &FrameContext, rasters: &[TileRaster], strength: f
         }
         1.0 - strength * (GAIN * sum / DIRECTIONS as f32).min(1.0)
     };
-    // Measured at the even pixels of even rows; the others take their 2 × 2 block's
-    // value where they lie on the same surface (the block's point within 1 % of the depth
-    // of this pixel's plane, normals within ~25°), and are measured themselves at edges
-    // and creases.
-    let (w2, h2) = (w.div_ceil(2), h.div_ceil(2));
-    let mut coarse = vec![1f32; w2 * h2];
-    coarse.par_chunks_mut(w2).enumerate().for_each(|(j, row)| {
+    // Measured on the grid, then blended per pixel (see the module's docs).
+    let (wc, hc) = ((w - 1) / GRID + 1, (h - 1) / GRID + 1);
+    let mut coarse = vec![1f32; wc * hc];
+    coarse.par_chunks_mut(wc).enumerate().for_each(|(j, row)| {
         for (i, slot) in row.iter_mut().enumerate() {
-            *slot = occlusion(2 * i, 2 * j);
+            *slot = occlusion(GRID * i, GRID * j);
         }
     });
     let mut out = vec![1f32; w * h];
     out.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        let (j0, fy) = (y / GRID, y % GRID);
         for (x, slot) in row.iter_mut().enumerate() {
-            let (rx, ry) = (x & !1, y & !1);
-            let (p, r) = (points[y * w + x], points[ry * w + rx]);
-            let (n, m) = (normals[y * w + x], normals[ry * w + rx]);
-            let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
-            let same = r[2] > 0.0
-                && (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs() <= 0.01 * p[2]
-                && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] >= 0.9;
-            *slot = if same {
-                coarse[(y / 2) * w2 + x / 2]
+            let t = tri[y * w + x];
+            if t == NOTHING {
+                continue;
+            }
+            // This pixel's point and normal, worked out at the first sample on another
+            // triangle (most pixels have none around them).
+            let mut own = None;
+            let (i0, fx) = (x / GRID, x % GRID);
+            let (mut sum, mut weight) = (0f32, 0usize);
+            for (i, j, k) in [
+                (i0, j0, (GRID - fx) * (GRID - fy)),
+                (i0 + 1, j0, fx * (GRID - fy)),
+                (i0, j0 + 1, (GRID - fx) * fy),
+                (i0 + 1, j0 + 1, fx * fy),
+            ] {
+                if k == 0 || i >= wc || j >= hc {
+                    continue;
+                }
+                let (gx, gy) = (GRID * i, GRID * j);
+                let u = tri[gy * w + gx];
+                // A sample on this pixel's own triangle is on its surface; another
+                // triangle's is when it lies in this pixel's plane and faces its way.
+                let same = u == t
+                    || u != NOTHING && {
+                        let (p, n) = *own.get_or_insert_with(|| (point(x, y), normals[t as usize]));
+                        let (r, m) = (point(gx, gy), normals[u as usize]);
+                        let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
+                        (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs() <= 0.01 * p[2]
+                            && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] >= 0.9
+                    };
+                if same {
+                    sum += k as f32 * coarse[j * wc + i];
+                    weight += k;
+                }
+            }
+            *slot = if weight > 0 {
+                sum / weight as f32
             } else {
                 occlusion(x, y)
             };

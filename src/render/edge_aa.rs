@@ -65,6 +65,37 @@ impl EdgeHint {
     }
 }
 
+/// Every pixel's hint, row-major, `width` wide, from the triangle at each pixel's centre
+/// (`tri`, [`super::tile::NOTHING`] for the sky): `hint(p)` where a 4-neighbour of pixel `p`
+/// shows another triangle, [`EdgeHint::NONE`] elsewhere. A hint acts only across a real
+/// edge, between two pixels of different triangles; a pixel whose four neighbours show its
+/// own triangle has none beside it, so its hint is never read, and is not worked out.
+pub(crate) fn hints(
+    tri: &[u32],
+    width: usize,
+    hint: impl Fn(usize) -> EdgeHint + Sync,
+) -> Vec<EdgeHint> {
+    let height = tri.len() / width.max(1);
+    let mut out = vec![EdgeHint::NONE; tri.len()];
+    out.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        for (x, slot) in row.iter_mut().enumerate() {
+            let p = y * width + x;
+            let t = tri[p];
+            if t == super::tile::NOTHING {
+                continue;
+            }
+            let differs = (x > 0 && tri[p - 1] != t)
+                || (x + 1 < width && tri[p + 1] != t)
+                || (y > 0 && tri[p - width] != t)
+                || (y + 1 < height && tri[p + width] != t);
+            if differs {
+                *slot = hint(p);
+            }
+        }
+    });
+    out
+}
+
 /// Mixes `linear` (row-major, `width` wide) across the real edges that `hints` mark;
 /// `real(p, q)` says whether the boundary between pixels `p` and `q` (indices) is one.
 pub(crate) fn resolve(

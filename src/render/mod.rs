@@ -52,9 +52,10 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 mod ambient_occlusion;
+mod centre_samples;
 pub mod develop;
 mod edge_aa;
 mod footprint;
@@ -98,9 +99,10 @@ pub use sun::{Sun, solar_position};
 use image::{ImageBuffer, Luma};
 use rayon::prelude::*;
 
+use centre_samples::CentreSamples;
 use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
-use screen_triangle::ScreenTri;
+use screen_triangle::{SUB, ScreenTri};
 use tile::{FrameContext, TILE, TileOut, TileRaster};
 use view::View;
 
@@ -205,19 +207,20 @@ pub fn render_measuring(
             .into_par_iter()
             .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx, t), None))
             .collect();
-        return (assemble(&ctx, &[], &tiles), footprints);
+        return (assemble(&ctx, None, &tiles), footprints);
     }
     let rasters: Vec<TileRaster> = (0..bins.len())
         .into_par_iter()
         .map(|t| tile::raster_tile(&ctx, t))
         .collect();
+    let centres = CentreSamples::new(&ctx, &rasters);
     let ao = (lighting.ambient_occlusion > 0.0)
-        .then(|| ambient_occlusion::visibility(&ctx, &rasters, lighting.ambient_occlusion));
+        .then(|| ambient_occlusion::visibility(&ctx, &centres, lighting.ambient_occlusion));
     let tiles: Vec<TileOut> = rasters
         .par_iter()
         .map(|r| tile::shade_tile(&ctx, r, ao.as_deref()))
         .collect();
-    (assemble(&ctx, &rasters, &tiles), footprints)
+    (assemble(&ctx, Some(&centres), &tiles), footprints)
 }
 
 /// Triangle indices per tile, in scene order.
@@ -235,45 +238,30 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
 }
 
 /// The frame from its tiles: colours mixed across edges (at one sample per pixel, which
-/// reads `rasters`); ids and depth as the tiles resolved them. [`Frame::rgb`] develops it.
-fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Frame {
+/// reads the frame's `centres`); ids and depth as the tiles resolved them. [`Frame::rgb`]
+/// develops it.
+fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOut]) -> Frame {
     let (width, height) = (ctx.width, ctx.height);
     let (w, n) = (width as usize, width as usize * height as usize);
     let mut linear = vec![[0f32; 3]; n];
-    let mut edges = if ctx.antialias_edges {
-        vec![EdgeHint::NONE; n]
-    } else {
-        Vec::new()
-    };
     let mut instance = vec![0u32; n];
     let mut depth = vec![0f32; n];
     // Each band of TILE rows is copied from its row of tiles, the bands in parallel.
     let band = TILE as usize * w;
     let tile_rows = tiles.chunks(ctx.tiles_x as usize);
-    let edge_bands: Vec<&mut [EdgeHint]> = if edges.is_empty() {
-        std::iter::repeat_with(|| &mut [][..])
-            .take(height.div_ceil(TILE) as usize)
-            .collect()
-    } else {
-        edges.chunks_mut(band).collect()
-    };
     linear
         .par_chunks_mut(band)
         .zip(instance.par_chunks_mut(band))
         .zip(depth.par_chunks_mut(band))
-        .zip(edge_bands)
         .zip(tile_rows.collect::<Vec<_>>())
-        .for_each(|((((linear, instance), depth), edges), row)| {
+        .for_each(|(((linear, instance), depth), row)| {
             for t in row {
                 let (x0, tw) = (t.rect[0] as usize, (t.rect[2] - t.rect[0]) as usize);
                 for y in 0..(t.rect[3] - t.rect[1]) as usize {
                     let (from, to) = (y * tw..(y + 1) * tw, y * w + x0..y * w + x0 + tw);
                     linear[to.clone()].copy_from_slice(&t.linear[from.clone()]);
                     instance[to.clone()].copy_from_slice(&t.instance[from.clone()]);
-                    depth[to.clone()].copy_from_slice(&t.depth[from.clone()]);
-                    if !t.edges.is_empty() {
-                        edges[to].copy_from_slice(&t.edges[from]);
-                    }
+                    depth[to].copy_from_slice(&t.depth[from]);
                 }
             }
         });
@@ -281,21 +269,25 @@ fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Fr
         ImageBuffer::from_raw(width, height, instance).expect("one id a pixel");
     let depth: ImageBuffer<Luma<f32>, Vec<f32>> =
         ImageBuffer::from_raw(width, height, depth).expect("one depth a pixel");
-    if !edges.is_empty() {
-        // The triangle at output pixel p's centre (one sample per pixel).
-        let triangle = |p: usize| {
-            let (x, y) = (p % w, p / w);
-            let tile = y / TILE as usize * ctx.tiles_x as usize + x / TILE as usize;
-            let r = &rasters[tile];
-            r.id[r.centre(x - r.rect[0] as usize, y - r.rect[1] as usize, 1)]
-        };
+    if let Some(centres) = centres.filter(|_| ctx.antialias_edges) {
+        // The triangle at each output pixel's centre (one sample per pixel).
+        let tri = &centres.tri;
+        let hints = edge_aa::hints(tri, w, |p| {
+            let fixed = |v: usize| v as i64 * SUB + SUB / 2;
+            EdgeHint::of(
+                &ctx.tris[tri[p] as usize].edges,
+                fixed(p % w),
+                fixed(p / w),
+                SUB,
+            )
+        });
         let ids = instance.as_raw();
         // A real edge: two objects, an object and the sky, or a fold of one surface.
         let real = |p: usize, q: usize| {
             if ids[p] != ids[q] {
                 return true;
             }
-            let (a, b) = (triangle(p), triangle(q));
+            let (a, b) = (tri[p], tri[q]);
             if a == b || a == tile::NOTHING || b == tile::NOTHING {
                 return a != b;
             }
@@ -303,7 +295,7 @@ fn assemble(ctx: &FrameContext, rasters: &[TileRaster], tiles: &[TileOut]) -> Fr
             let (m, n) = (normal(a), normal(b));
             m[0] * n[0] + m[1] * n[1] + m[2] * n[2] < 0.999
         };
-        linear = edge_aa::resolve(&linear, &edges, w, real);
+        linear = edge_aa::resolve(&linear, &hints, w, real);
     }
     Frame {
         linear,

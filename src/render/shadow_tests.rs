@@ -194,8 +194,8 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            6,
-            "20990b66578337ff3c24e061837bf963f08ff3e31f5aceda879e956e4e35b25a"
+            7,
+            "5a7635175ce0eb1a6d33686139ac835078e5c634ca6ee9efdc2b1e7b75ad294c"
         ),
         "lighting output changed: bump render::VERSION and update this digest"
     );

@@ -6,12 +6,11 @@
 //! order, so its output does not depend on which thread runs it or when.
 
 use super::Lighting;
-use super::edge_aa::EdgeHint;
 use super::lit_windows::WindowLookup;
 use super::mip_texture::MAX_ANISOTROPY;
 use super::point_lights::{self, FrameLight};
 use super::prepared_scene::PreparedScene;
-use super::screen_triangle::{SUB, ScreenTri, at};
+use super::screen_triangle::{ScreenTri, at};
 use super::shadow_map::ShadowMap;
 use super::view::View;
 
@@ -52,9 +51,6 @@ pub(crate) struct FrameContext<'a> {
 pub(crate) struct TileOut {
     pub rect: [u32; 4],
     pub linear: Vec<[f32; 3]>,
-    /// Per pixel, at one sample per pixel (empty when supersampled): its triangle's
-    /// nearest edge, for the edge antialiasing.
-    pub edges: Vec<EdgeHint>,
     pub instance: Vec<u32>,
     pub depth: Vec<f32>,
 }
@@ -145,7 +141,6 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
     let mut out = TileOut {
         rect,
         linear: Vec::with_capacity(ow * oh),
-        edges: Vec::with_capacity(if ctx.antialias_edges { ow * oh } else { 0 }),
         instance: Vec::with_capacity(ow * oh),
         depth: Vec::with_capacity(ow * oh),
     };
@@ -209,16 +204,6 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
                         .push(ctx.scene.triangles[tri.source as usize].instance);
                     out.depth.push(depth_metres(depth[centre]));
                 }
-            }
-            if ctx.antialias_edges {
-                out.edges.push(match id[centre] {
-                    NOTHING => EdgeHint::NONE,
-                    t => {
-                        let (x, y) = (inner[0] as usize + ox, inner[1] as usize + oy);
-                        let fixed = |v: usize| v as i64 * SUB + SUB / 2;
-                        EdgeHint::of(&ctx.tris[t as usize].edges, fixed(x), fixed(y), SUB)
-                    }
-                });
             }
         }
     }
