@@ -74,8 +74,12 @@ impl MipTexture {
         } else {
             (y2, x2, [d[2], d[3]])
         };
+        // Taps one texel apart at most: a footprint shorter than `ratio` level-0 texels
+        // (a magnified texture, seen from near) reads level 0 with one tap per texel of
+        // its length, and one under a texel long is a single bilinear tap.
         let ratio = (major2 / minor2.max(1e-300))
             .sqrt()
+            .min(major2.sqrt())
             .clamp(1.0, max_taps.clamp(1.0, MAX_ANISOTROPY));
         let taps = ceil(ratio) as u32;
         if !ratio.is_finite() || taps <= 1 {
@@ -166,11 +170,10 @@ impl Level {
         let (w, h) = (i64::from(self.width), i64::from(self.height));
         let tx = u * w as f64 - 0.5;
         let ty = v * h as f64 - 0.5;
-        let (fx0, fy0) = (floor(tx), floor(ty));
-        let (ax, ay) = ((tx - fx0) as f32, (ty - fy0) as f32);
-        // `as i64` saturates; `wrap` then brings it into the texture.
-        let x0 = wrap(fx0 as i64, w);
-        let y0 = wrap(fy0 as i64, h);
+        let (ix, ax) = floor_split(tx);
+        let (iy, ay) = floor_split(ty);
+        let x0 = wrap(ix, w);
+        let y0 = wrap(iy, h);
         let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
         let y1 = if y0 + 1 == h { 0 } else { y0 + 1 };
         let row0 = (y0 * w) as usize;
@@ -192,6 +195,19 @@ impl Level {
         }
         out
     }
+}
+
+/// `(floor(t) as i64, (t − floor(t)) as f32)` in one conversion: the texel and the
+/// fraction past it. The same values as through [`floor`] wherever `|t| < 2^63` (`as i64`
+/// saturates beyond; a texel is wrapped into the texture anyway), NaN giving texel 0 and a
+/// NaN fraction as before.
+#[inline]
+fn floor_split(t: f64) -> (i64, f32) {
+    let i = t as i64;
+    // Truncation rounds toward zero: one less for negative fractions. `i as f64` is exact
+    // wherever `t` has a fraction (|t| < 2^52).
+    let i = if i as f64 > t { i.saturating_sub(1) } else { i };
+    (i, (t - i as f64) as f32)
 }
 
 /// `i.rem_euclid(n)`, without the division for the usual case of `i` already in range or
@@ -357,5 +373,48 @@ mod tests {
         assert!((0.3..0.7).contains(&two[0]), "{two:?}");
         // More than MAX_ANISOTROPY asks for no more than it.
         assert_eq!(t.sample(0.5 * texel, 0.5, d, 16.0), four);
+    }
+
+    #[test]
+    fn magnified_footprints_take_one_tap_per_texel_of_their_length() {
+        // Horizontal stripes (a copy of `stripes()` turned): rows alternate white and
+        // black. A footprint 8:1 but only 0.8 texel long is one bilinear tap at the
+        // centre: a white row's centre stays pure white. Spread over 4 taps, as before,
+        // its outer taps reached 0.3 texel into the black rows beside it.
+        let rows = RgbImage::from_fn(64, 64, |_, y| Rgb([if y % 2 == 0 { 255 } else { 0 }; 3]));
+        let t = MipTexture::new(rows);
+        let texel = 1.0 / 64.0;
+        let (u, v) = (0.5, 0.5 * texel);
+        let short = [0.1 * texel, 0.0, 0.0, 0.8 * texel];
+        assert_eq!(t.sample(u, v, short, MAX_ANISOTROPY), [1.0; 3]);
+        assert_eq!(
+            t.sample(u, v, short, MAX_ANISOTROPY),
+            t.trilinear(u, v, -1.0)
+        );
+        // 2.5 texels long: 3 taps at level 0, a texel apart (rows −1, 0, +1 of 5 in
+        // 6ths): the mean of white, black, white's neighbourhood, neither pure colour.
+        let longer = [0.1 * texel, 0.0, 0.0, 2.5 * texel];
+        let c = t.sample(u, v, longer, MAX_ANISOTROPY);
+        assert!(c[0] > 0.2 && c[0] < 0.9, "{c:?}");
+    }
+
+    #[test]
+    fn floor_split_is_floor_and_fraction() {
+        for t in [
+            0.0,
+            0.25,
+            -0.25,
+            3.0,
+            -3.0,
+            -3.5,
+            7.75,
+            1e15 + 0.5,
+            -1e15 - 0.5,
+        ] {
+            let (i, f) = floor_split(t);
+            assert_eq!((i, f), (floor(t) as i64, (t - floor(t)) as f32), "{t}");
+        }
+        let (i, f) = floor_split(f64::NAN);
+        assert!(i == 0 && f.is_nan());
     }
 }
