@@ -20,6 +20,8 @@
 
 use rayon::prelude::*;
 
+use super::tile::NOTHING;
+
 /// Where a pixel's triangle ends nearest its centre: the neighbour across that edge is
 /// `(x + dx, y + dy)`, at `d` pixels along that axis. `d ≥ 1` (or the sky): no edge near.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,81 +67,97 @@ impl EdgeHint {
     }
 }
 
-/// Every pixel's hint, row-major, `width` wide, from the triangle at each pixel's centre
-/// (`tri`, [`super::tile::NOTHING`] for the sky): `hint(p)` where a 4-neighbour of pixel `p`
-/// shows another triangle, [`EdgeHint::NONE`] elsewhere. A hint acts only across a real
-/// edge, between two pixels of different triangles; a pixel whose four neighbours show its
-/// own triangle has none beside it, so its hint is never read, and is not worked out.
-pub(crate) fn hints(
+/// Whether a 4-neighbour of pixel `(x, y)` shows another triangle than it does (`tri` the
+/// triangle at each pixel's centre, row-major, `width` × `height`): the only pixels a real
+/// edge can pass beside.
+#[inline]
+fn on_boundary(tri: &[u32], width: usize, height: usize, x: usize, y: usize) -> bool {
+    let p = y * width + x;
+    let t = tri[p];
+    (x > 0 && tri[p - 1] != t)
+        || (x + 1 < width && tri[p + 1] != t)
+        || (y > 0 && tri[p - width] != t)
+        || (y + 1 < height && tri[p + width] != t)
+}
+
+/// Mixes `linear` (row-major, `width` wide) across the real edges, in place. `tri` is the
+/// triangle at each pixel's centre ([`NOTHING`] for the sky), `hint(p)` pixel `p`'s hint,
+/// and `real(p, q)` whether the boundary between pixels `p` and `q` (indices) is a real
+/// edge.
+///
+/// A mix acts only across a real edge, between two pixels of different triangles, so only
+/// pixels with a 4-neighbour of another triangle change, and only their hints are read:
+/// both are worked out at those pixels alone (a tenth to a fifth of a street frame).
+pub(crate) fn antialias(
+    linear: &mut [[f32; 3]],
     tri: &[u32],
     width: usize,
     hint: impl Fn(usize) -> EdgeHint + Sync,
-) -> Vec<EdgeHint> {
-    let height = tri.len() / width.max(1);
-    let mut out = vec![EdgeHint::NONE; tri.len()];
-    out.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        for (x, slot) in row.iter_mut().enumerate() {
-            let p = y * width + x;
-            let t = tri[p];
-            if t == super::tile::NOTHING {
-                continue;
-            }
-            let differs = (x > 0 && tri[p - 1] != t)
-                || (x + 1 < width && tri[p + 1] != t)
-                || (y > 0 && tri[p - width] != t)
-                || (y + 1 < height && tri[p + width] != t);
-            if differs {
-                *slot = hint(p);
-            }
-        }
-    });
-    out
-}
-
-/// Mixes `linear` (row-major, `width` wide) across the real edges that `hints` mark;
-/// `real(p, q)` says whether the boundary between pixels `p` and `q` (indices) is one.
-pub(crate) fn resolve(
-    linear: &[[f32; 3]],
-    hints: &[EdgeHint],
-    width: usize,
     real: impl Fn(usize, usize) -> bool + Sync,
-) -> Vec<[f32; 3]> {
+) {
     let height = linear.len() / width.max(1);
+    let mut hints = vec![EdgeHint::NONE; linear.len()];
+    hints
+        .par_chunks_mut(width)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, slot) in row.iter_mut().enumerate() {
+                if tri[y * width + x] != NOTHING && on_boundary(tri, width, height, x, y) {
+                    *slot = hint(y * width + x);
+                }
+            }
+        });
     let neighbour = |x: usize, y: usize, dx: i8, dy: i8| -> Option<usize> {
         let nx = x.checked_add_signed(isize::from(dx))?;
         let ny = y.checked_add_signed(isize::from(dy))?;
         (nx < width && ny < height).then_some(ny * width + nx)
     };
-    let mut out = linear.to_vec();
-    out.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-        for (x, slot) in row.iter_mut().enumerate() {
-            let p = y * width + x;
-            // (weight, neighbour) of the strongest mix offered.
-            let mut mix = (0f32, p);
-            let h = hints[p];
-            if h.d < 0.5
-                && let Some(q) = neighbour(x, y, h.dx, h.dy)
-                && real(p, q)
-            {
-                mix = (0.5 - h.d, q);
-            }
-            for (dx, dy) in [(-1i8, 0i8), (1, 0), (0, -1), (0, 1)] {
-                let Some(q) = neighbour(x, y, dx, dy) else {
+    let source: &[[f32; 3]] = linear;
+    // Each row's changed pixels, from the unmixed colours; written once all are known.
+    let changes: Vec<Vec<(usize, [f32; 3])>> = (0..height)
+        .into_par_iter()
+        .map(|y| {
+            let mut changed = Vec::new();
+            for x in 0..width {
+                if !on_boundary(tri, width, height, x, y) {
                     continue;
-                };
-                let g = hints[q];
-                // q's edge points back at p and lies inside p's pixel.
-                if g.dx == -dx && g.dy == -dy && g.d >= 0.5 && g.d - 0.5 > mix.0 && real(q, p) {
-                    mix = (g.d - 0.5, q);
+                }
+                let p = y * width + x;
+                // (weight, neighbour) of the strongest mix offered.
+                let mut mix = (0f32, p);
+                let h = hints[p];
+                if h.d < 0.5
+                    && let Some(q) = neighbour(x, y, h.dx, h.dy)
+                    && real(p, q)
+                {
+                    mix = (0.5 - h.d, q);
+                }
+                for (dx, dy) in [(-1i8, 0i8), (1, 0), (0, -1), (0, 1)] {
+                    let Some(q) = neighbour(x, y, dx, dy) else {
+                        continue;
+                    };
+                    let g = hints[q];
+                    // q's edge points back at p and lies inside p's pixel.
+                    if g.dx == -dx && g.dy == -dy && g.d >= 0.5 && g.d - 0.5 > mix.0 && real(q, p) {
+                        mix = (g.d - 0.5, q);
+                    }
+                }
+                if mix.0 > 0.0 {
+                    let (a, b) = (source[p], source[mix.1]);
+                    changed.push((x, [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * mix.0)));
                 }
             }
-            if mix.0 > 0.0 {
-                let (a, b) = (linear[p], linear[mix.1]);
-                *slot = [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * mix.0);
+            changed
+        })
+        .collect();
+    linear
+        .par_chunks_mut(width)
+        .zip(changes)
+        .for_each(|(row, changed)| {
+            for (x, c) in changed {
+                row[x] = c;
             }
-        }
-    });
-    out
+        });
 }
 
 #[cfg(test)]
@@ -156,13 +174,51 @@ mod tests {
         assert!((h.d - 0.8008).abs() < 1e-3, "{h:?}");
         // A row: two pixels of the triangle (white), then the sky (black).
         let linear = vec![[1.0; 3], [1.0; 3], [0.0; 3]];
-        let hints = vec![EdgeHint::of(&edges, 128, 128, 256), h, EdgeHint::NONE];
-        let out = resolve(&linear, &hints, 3, |_, _| true);
+        let tri = [0, 0, NOTHING];
+        let hint = |p: usize| EdgeHint::of(&edges, 128 + 256 * p as i64, 128, 256);
+        let mut out = linear.clone();
+        antialias(&mut out, &tri, 3, hint, |_, _| true);
         // Pixel 1 keeps its colour (the edge is in pixel 2); pixel 2 takes 0.3 of white.
         assert_eq!(out[0], [1.0; 3]);
         assert_eq!(out[1], [1.0; 3]);
         assert!((out[2][0] - 0.3008).abs() < 1e-3, "{:?}", out[2]);
         // Not a real edge: nothing moves.
-        assert_eq!(resolve(&linear, &hints, 3, |_, _| false), linear);
+        let mut out = linear.clone();
+        antialias(&mut out, &tri, 3, hint, |_, _| false);
+        assert_eq!(out, linear);
+    }
+
+    #[test]
+    fn only_pixels_beside_another_triangle_ask_for_their_hint_or_change() {
+        // 4 × 3: triangle 7 but in the last column (triangle 9). Hints are worked out in
+        // columns 2 and 3 only; every hint says "an edge 0.2 px to the right", so column 2
+        // takes 0.3 of column 3's colour and every other pixel keeps its own.
+        let tri: Vec<u32> = (0..12).map(|p| if p % 4 == 3 { 9 } else { 7 }).collect();
+        let linear: Vec<[f32; 3]> = (0..12).map(|p| [p as f32; 3]).collect();
+        let asked = std::sync::Mutex::new(Vec::new());
+        let mut out = linear.clone();
+        let hint = |p: usize| {
+            asked.lock().unwrap().push(p);
+            EdgeHint {
+                dx: 1,
+                dy: 0,
+                d: 0.2,
+            }
+        };
+        antialias(&mut out, &tri, 4, hint, |_, _| true);
+        let mut asked = asked.into_inner().unwrap();
+        asked.sort();
+        assert_eq!(asked, [2, 3, 6, 7, 10, 11]);
+        for p in 0..12 {
+            if p % 4 == 2 {
+                assert!(
+                    (out[p][0] - (p as f32 + 0.3)).abs() < 1e-5,
+                    "{p}: {:?}",
+                    out[p]
+                );
+            } else {
+                assert_eq!(out[p], linear[p], "{p}");
+            }
+        }
     }
 }

@@ -272,7 +272,7 @@ fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOu
     if let Some(centres) = centres.filter(|_| ctx.antialias_edges) {
         // The triangle at each output pixel's centre (one sample per pixel).
         let tri = &centres.tri;
-        let hints = edge_aa::hints(tri, w, |p| {
+        let hint = |p: usize| {
             let fixed = |v: usize| v as i64 * SUB + SUB / 2;
             EdgeHint::of(
                 &ctx.tris[tri[p] as usize].edges,
@@ -280,7 +280,7 @@ fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOu
                 fixed(p / w),
                 SUB,
             )
-        });
+        };
         let ids = instance.as_raw();
         // A real edge: two objects, an object and the sky, or a fold of one surface.
         let real = |p: usize, q: usize| {
@@ -295,7 +295,7 @@ fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOu
             let (m, n) = (normal(a), normal(b));
             m[0] * n[0] + m[1] * n[1] + m[2] * n[2] < 0.999
         };
-        linear = edge_aa::resolve(&linear, &hints, w, real);
+        edge_aa::antialias(&mut linear, tri, w, hint, real);
     }
     Frame {
         linear,
