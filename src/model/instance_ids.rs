@@ -8,11 +8,10 @@ use image::{ImageBuffer, Luma, RgbImage};
 /// Instance ids as RGB: `R = id & 255`, `G = (id >> 8) & 255`, `B = (id >> 16) & 255`.
 pub fn pack_ids(ids: &ImageBuffer<Luma<u32>, Vec<u32>>) -> RgbImage {
     let (w, h) = ids.dimensions();
-    let raw: Vec<u8> = ids
-        .as_raw()
-        .iter()
-        .flat_map(|&id| [id as u8, (id >> 8) as u8, (id >> 16) as u8])
-        .collect();
+    let mut raw = vec![0u8; ids.as_raw().len() * 3];
+    for (rgb, &id) in raw.chunks_exact_mut(3).zip(ids.as_raw()) {
+        rgb.copy_from_slice(&id.to_le_bytes()[..3]);
+    }
     RgbImage::from_raw(w, h, raw).expect("three bytes per pixel")
 }
 

@@ -3,7 +3,6 @@
 
 use image::{ImageBuffer, Luma, RgbImage};
 
-use crate::model::geometry::rounding::round;
 use crate::model::image_file::{PngEffort, encode_png};
 use crate::model::pack_ids;
 
@@ -76,14 +75,17 @@ impl Frame {
             DepthFormat::Mm16 | DepthFormat::F32 => 1000.0,
         };
         let (w, h) = self.depth.dimensions();
-        ImageBuffer::from_fn(w, h, |x, y| {
-            let d = self.depth.get_pixel(x, y).0[0];
-            Luma([if d > 0.0 {
-                round(f64::from(d) * per_metre).clamp(1.0, 65535.0) as u16
+        let units = self.depth.as_raw().iter().map(|&d| {
+            if d > 0.0 {
+                // `round`, as adding ½ and truncating: the same for values from ½ up
+                // (the sum is exact below 2^52, and the clamp caps it), and below ½
+                // both end at the clamp's 1. NaN fails `d > 0`.
+                (f64::from(d) * per_metre + 0.5).clamp(1.0, 65535.0) as u16
             } else {
                 0
-            }])
-        })
+            }
+        });
+        ImageBuffer::from_raw(w, h, units.collect()).expect("one depth a pixel")
     }
 
     /// The depth in millimetres as the 16-bit PNG of [`DepthFormat::Mm16`] holds it.

@@ -72,8 +72,54 @@ pub(crate) fn filmic(x: f32) -> f32 {
 
 /// Exposed linear RGB (row-major, `width` wide) → 8-bit sRGB through the filmic curve.
 pub fn tone_map(exposed: &[[f32; 3]], width: u32, height: u32) -> RgbImage {
-    let table = encode_table();
-    rgb8_by_channel(exposed, width, height, |c| encode(table, filmic(c)))
+    let (encoding, buckets) = (encode_table(), tone_buckets());
+    rgb8_by_channel(exposed, width, height, |c| tone_byte(encoding, buckets, c))
+}
+
+/// `encode(filmic(x))`, the byte an exposed value `x` develops to.
+#[inline]
+fn tone_byte(encoding: &[u8], buckets: &[u16], x: f32) -> u8 {
+    // Buckets cover [BUCKETS_FROM, BUCKETS_TO); NaN fails the test.
+    if (BUCKETS_FROM..BUCKETS_TO).contains(&x) {
+        let b = buckets
+            [((x.to_bits() >> BUCKET_SHIFT) - (BUCKETS_FROM.to_bits() >> BUCKET_SHIFT)) as usize];
+        if let Ok(byte) = u8::try_from(b) {
+            return byte;
+        }
+    }
+    encode(encoding, filmic(x))
+}
+
+/// Mantissa bits below a bucket of [`tone_buckets`]: buckets keep 10 of the 23, so each
+/// spans 1/1024 of its octave (0.1 %).
+const BUCKET_SHIFT: u32 = 13;
+/// The exposed values the buckets cover, whole octaves: below 2^-16 every value develops
+/// to 0, above 64 to 255 or nearly; both ends are computed.
+const BUCKETS_FROM: f32 = 1.0 / 65536.0;
+const BUCKETS_TO: f32 = 64.0;
+
+/// Per bucket of exposed values (all floats sharing their top bits, [`BUCKET_SHIFT`]),
+/// the byte every value in it develops to, or 256 where its values develop to more than
+/// one byte (a bucket straddling a step: about one in twenty, computed per value). The
+/// curve and the encoding both rise with their input, so the bucket's two ends decide.
+/// The same bytes as `encode(filmic(x))`, for a division and a square root less a value.
+fn tone_buckets() -> &'static [u16] {
+    static TABLE: OnceLock<Vec<u16>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let encoding = encode_table();
+        let (first, end) = (
+            BUCKETS_FROM.to_bits() >> BUCKET_SHIFT,
+            BUCKETS_TO.to_bits() >> BUCKET_SHIFT,
+        );
+        (first..end)
+            .map(|b| {
+                let lo = f32::from_bits(b << BUCKET_SHIFT);
+                let hi = f32::from_bits(((b + 1) << BUCKET_SHIFT) - 1);
+                let (a, z) = (encode(encoding, filmic(lo)), encode(encoding, filmic(hi)));
+                if a == z { u16::from(a) } else { 256 }
+            })
+            .collect()
+    })
 }
 
 #[inline]
@@ -140,6 +186,30 @@ mod tests {
         assert!((filmic(0.18) - 0.267).abs() < 0.01);
         // Not a hard clip: 1 and 2 stay apart, and only very bright light reaches white.
         assert!(filmic(1.0) < 0.85 && filmic(2.0) > filmic(1.0) + 0.05);
+    }
+
+    #[test]
+    fn the_buckets_develop_every_value_as_the_curve_does() {
+        // Every 61st float from below the buckets to above them (a prime stride, so every
+        // bucket is visited at many offsets), and the ends of every bucket.
+        let (encoding, buckets) = (encode_table(), tone_buckets());
+        let exact = |x: f32| encode(encoding, filmic(x));
+        let (from, to) = ((BUCKETS_FROM / 4.0).to_bits(), (BUCKETS_TO * 4.0).to_bits());
+        for bits in (from..to).step_by(61) {
+            let x = f32::from_bits(bits);
+            assert_eq!(tone_byte(encoding, buckets, x), exact(x), "{x}");
+        }
+        for b in BUCKETS_FROM.to_bits() >> BUCKET_SHIFT..BUCKETS_TO.to_bits() >> BUCKET_SHIFT {
+            for x in [b << BUCKET_SHIFT, ((b + 1) << BUCKET_SHIFT) - 1].map(f32::from_bits) {
+                assert_eq!(tone_byte(encoding, buckets, x), exact(x), "{x}");
+            }
+        }
+        for x in [f32::NAN, -1.0, 0.0, f32::INFINITY, 1e30] {
+            assert_eq!(tone_byte(encoding, buckets, x), exact(x), "{x}");
+        }
+        // Most buckets hold one byte.
+        let split = buckets.iter().filter(|&&b| b > 255).count();
+        assert!(split * 8 < buckets.len(), "{split} of {}", buckets.len());
     }
 
     #[test]
