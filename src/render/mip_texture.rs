@@ -17,6 +17,25 @@ use crate::model::geometry::rounding::{ceil, floor};
 /// footprint aspect ratio filtered without blur).
 pub(crate) const MAX_ANISOTROPY: f64 = 4.0;
 
+/// Where `taps` anisotropic taps sit along the footprint's long axis (in units of its
+/// length, centred on the pixel): `(k + ½) / taps − ½`, per number of taps.
+const TAP_OFFSETS: [[f64; 4]; 5] = {
+    let mut table = [[0.0; 4]; 5];
+    let mut taps = 1;
+    while taps < 5 {
+        let mut k = 0;
+        while k < taps {
+            table[taps][k] = (k as f64 + 0.5) / taps as f64 - 0.5;
+            k += 1;
+        }
+        taps += 1;
+    }
+    table
+};
+
+/// Each tap's share of the sample, per number of taps.
+const TAP_SHARE: [f32; 5] = [1.0, 1.0, 0.5, 1.0 / 3.0, 0.25];
+
 /// A texture with its mip levels, finest first.
 pub(crate) struct MipTexture {
     levels: Vec<Level>,
@@ -74,28 +93,43 @@ impl MipTexture {
         } else {
             (y2, x2, [d[2], d[3]])
         };
-        // Taps one texel apart at most: a footprint shorter than `ratio` level-0 texels
-        // (a magnified texture, seen from near) reads level 0 with one tap per texel of
-        // its length, and one under a texel long is a single bilinear tap.
-        let ratio = (major2 / minor2.max(1e-300))
-            .sqrt()
-            .min(major2.sqrt())
-            .clamp(1.0, max_taps.clamp(1.0, MAX_ANISOTROPY));
-        let taps = ceil(ratio) as u32;
-        if !ratio.is_finite() || taps <= 1 {
-            return self.trilinear(u, v, 0.5 * log2_approx(major2));
+        if major2.is_nan() {
+            return self.levels[0].bilinear(u, v, srgb());
         }
-        // The level of detail: log2 of the long footprint side ÷ the taps' spread.
-        let lod = 0.5 * log2_approx(major2) - log2_approx(ratio);
+        // Taps: the footprint's aspect ratio `√(major2 / minor2)`, rounded up, at most
+        // `max_taps`; and one texel apart at most: a footprint shorter than that many
+        // level-0 texels (a magnified texture, seen from near) reads level 0 with one tap
+        // per texel of its length, one under a texel long a single bilinear tap. Found by
+        // comparing squares: `k` taps do when `k² ≥ major2 / minor2` or `k² ≥ major2`.
+        let most = ceil(max_taps.clamp(1.0, MAX_ANISOTROPY)) as u32;
+        let taps = (1..most)
+            .find(|&k| {
+                let k2 = f64::from(k * k);
+                k2 >= major2 || k2 * minor2 >= major2
+            })
+            .unwrap_or(most);
+        let log_major2 = log2_approx(major2);
+        if taps <= 1 {
+            return self.trilinear(u, v, 0.5 * log_major2);
+        }
+        // The level of detail: log2 of the long footprint side ÷ the taps' spread, the
+        // spread being the aspect ratio (or the length in texels), at most `max_taps`.
+        let log_ratio2 = (log_major2 - log2_approx(minor2))
+            .min(log_major2)
+            .clamp(0.0, {
+                let most = max_taps.clamp(1.0, MAX_ANISOTROPY);
+                log2_approx(most * most)
+            });
+        let lod = 0.5 * (log_major2 - log_ratio2);
         let mut sum = [0f32; 3];
-        for k in 0..taps {
-            let t = (f64::from(k) + 0.5) / f64::from(taps) - 0.5;
+        for &t in &TAP_OFFSETS[taps as usize][..taps as usize] {
             let c = self.trilinear(u + t * axis[0], v + t * axis[1], lod);
             for (s, c) in sum.iter_mut().zip(c) {
                 *s += c;
             }
         }
-        sum.map(|s| s / taps as f32)
+        let share = TAP_SHARE[taps as usize];
+        sum.map(|s| s * share)
     }
 
     /// Trilinear sample at level of detail `lod` (level-0 texels per pixel, log2).

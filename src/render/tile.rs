@@ -247,11 +247,14 @@ fn shade(
     let source = &scene.triangles[tri.source as usize];
     let material = &scene.materials[source.material as usize];
     let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+    // w, the camera-space depth: one division for the texture coordinates, their
+    // derivatives and the point.
+    let w = 1.0 / q;
     let mut albedo = material.colour;
     let mut window = None;
     if let Some(texture) = material.texture {
-        let u = at(&tri.uq, tri.origin, px, py) / q;
-        let v = at(&tri.vq, tri.origin, px, py) / q;
+        let u = at(&tri.uq, tri.origin, px, py) * w;
+        let v = at(&tri.vq, tri.origin, px, py) * w;
         let (u, v) = if u.is_finite() && v.is_finite() {
             (u, v)
         } else {
@@ -259,11 +262,12 @@ fn shade(
         };
         // d(u/w · w)/dx = (d(u/w)/dx − u · d(1/w)/dx) · w, and likewise for v and y.
         // Scaled to output pixels: a pixel is shaded once, whatever its samples.
+        let ws = w * scale;
         let d = [
-            (tri.uq[0] - u * tri.q[0]) / q * scale,
-            (tri.vq[0] - v * tri.q[0]) / q * scale,
-            (tri.uq[1] - u * tri.q[1]) / q * scale,
-            (tri.vq[1] - v * tri.q[1]) / q * scale,
+            (tri.uq[0] - u * tri.q[0]) * ws,
+            (tri.vq[0] - v * tri.q[0]) * ws,
+            (tri.uq[1] - u * tri.q[1]) * ws,
+            (tri.vq[1] - v * tri.q[1]) * ws,
         ];
         let taps = if source.normal[1].abs() > 0.9 {
             LEVEL_SURFACE_TAPS
@@ -283,7 +287,7 @@ fn shade(
     let sun = n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2];
     let needs_point = !lights.is_empty() || (sun > 0.0 && ctx.shadows.is_some());
     let p = if needs_point {
-        ctx.view.unproject(px, py, 1.0 / q)
+        ctx.view.unproject(px, py, w)
     } else {
         [0.0; 3]
     };
