@@ -169,47 +169,59 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
     let mut out = vec![1f32; w * h];
     out.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
         let (j0, fy) = (y / GRID, y % GRID);
-        for (x, slot) in row.iter_mut().enumerate() {
-            let t = tri[y * w + x];
-            if t == NOTHING {
-                continue;
-            }
-            // This pixel's point and normal, worked out at the first sample on another
-            // triangle (most pixels have none around them).
-            let mut own = None;
-            let (i0, fx) = (x / GRID, x % GRID);
-            let (mut sum, mut weight) = (0f32, 0usize);
-            for (i, j, k) in [
-                (i0, j0, (GRID - fx) * (GRID - fy)),
-                (i0 + 1, j0, fx * (GRID - fy)),
-                (i0, j0 + 1, (GRID - fx) * fy),
-                (i0 + 1, j0 + 1, fx * fy),
-            ] {
-                if k == 0 || i >= wc || j >= hc {
+        // Grid sample (i, j): its pixel, triangle and value; none outside the grid.
+        let sample = |i: usize, j: usize| {
+            (i < wc && j < hc).then(|| {
+                let (gx, gy) = (GRID * i, GRID * j);
+                (gx, gy, tri[gy * w + gx], coarse[j * wc + i])
+            })
+        };
+        for (i0, cell) in row.chunks_mut(GRID).enumerate() {
+            // The cell's four grid samples, read once for its GRID pixels of this row,
+            // with their weight factors along y.
+            let corners = [
+                (sample(i0, j0), false, GRID - fy),
+                (sample(i0 + 1, j0), true, GRID - fy),
+                (sample(i0, j0 + 1), false, fy),
+                (sample(i0 + 1, j0 + 1), true, fy),
+            ];
+            for (fx, slot) in cell.iter_mut().enumerate() {
+                let x = i0 * GRID + fx;
+                let t = tri[y * w + x];
+                if t == NOTHING {
                     continue;
                 }
-                let (gx, gy) = (GRID * i, GRID * j);
-                let u = tri[gy * w + gx];
-                // A sample on this pixel's own triangle is on its surface; another
-                // triangle's is when it lies in this pixel's plane and faces its way.
-                let same = u == t
-                    || u != NOTHING && {
-                        let (p, n) = *own.get_or_insert_with(|| (point(x, y), normals[t as usize]));
-                        let (r, m) = (point(gx, gy), normals[u as usize]);
-                        let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
-                        (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs() <= 0.01 * p[2]
-                            && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] >= 0.9
+                // This pixel's point and normal, worked out at the first sample on another
+                // triangle (most pixels have none around them).
+                let mut own = None;
+                let (mut sum, mut weight) = (0f32, 0usize);
+                for &(corner, right, ky) in &corners {
+                    let k = if right { fx } else { GRID - fx } * ky;
+                    let Some((gx, gy, u, value)) = corner.filter(|_| k > 0) else {
+                        continue;
                     };
-                if same {
-                    sum += k as f32 * coarse[j * wc + i];
-                    weight += k;
+                    // A sample on this pixel's own triangle is on its surface; another
+                    // triangle's is when it lies in this pixel's plane and faces its way.
+                    let same = u == t
+                        || u != NOTHING && {
+                            let (p, n) =
+                                *own.get_or_insert_with(|| (point(x, y), normals[t as usize]));
+                            let (r, m) = (point(gx, gy), normals[u as usize]);
+                            let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
+                            (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]).abs() <= 0.01 * p[2]
+                                && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] >= 0.9
+                        };
+                    if same {
+                        sum += k as f32 * value;
+                        weight += k;
+                    }
                 }
+                *slot = if weight > 0 {
+                    sum / weight as f32
+                } else {
+                    occlusion(x, y)
+                };
             }
-            *slot = if weight > 0 {
-                sum / weight as f32
-            } else {
-                occlusion(x, y)
-            };
         }
     });
     out
