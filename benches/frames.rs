@@ -1,7 +1,7 @@
 //! Dataset benchmark: `cargo bench --bench frames`.
 //!
-//! The day city (`specs/day.toml`) with one street camera at 640 × 480, built for 100 and
-//! for 1,000 frames. Each build runs in its own process, with everything but the frames
+//! The day city (`specs/day.toml`) with its own street camera (640 × 480, the per-frame
+//! heading, pitch, roll and height ranges of the spec), built for 100 and for 1,000 frames. Each build runs in its own process, with everything but the frames
 //! already cached, so it times what a camera path costs: rendering RGB + instance ids +
 //! depth, encoding three PNGs, annotating (COCO, YOLO, ICDAR), and storing every file in
 //! the cache and the output folder. Prints, per case, the median frames per second of the
@@ -24,8 +24,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use support::{
-    bench_runs, build_into, child_args, copy_tree, day_without_cameras, median, peak_kib, repo,
-    run_child,
+    bench_runs, build_into, child_args, copy_tree, day_camera, day_without_cameras, median,
+    peak_kib, repo, run_child,
 };
 
 fn main() {
@@ -44,6 +44,7 @@ fn main() {
     copy_tree(&repo().join("assets"), &dir.path().join("assets"));
     fs::create_dir_all(dir.path().join("specs")).unwrap();
     let city = day_without_cameras();
+    let street = day_camera("street");
     let seed_spec = dir.path().join("specs/city.toml");
     fs::write(&seed_spec, &city).unwrap();
     // Everything but the frames, cached once: each case copies this cache.
@@ -51,7 +52,7 @@ fn main() {
     build_into(&seed_spec, &seed_cache, &dir.path().join("seed-out"));
 
     println!(
-        "cityspec frames benchmark: day city, one street camera at 640x480; the frames stage renders RGB + ids + depth, encodes the PNGs, annotates (COCO, YOLO, ICDAR) and stores every file in the cache"
+        "cityspec frames benchmark: specs/day.toml's street camera (640x480, its heading, pitch, roll and height ranges); the frames stage renders RGB + ids + depth, encodes the PNGs, annotates (COCO, YOLO, ICDAR) and stores every file in the cache"
     );
     println!(
         "{:<8} {:>5} {:>14} {:>10} {:>14} {:>14}",
@@ -59,7 +60,7 @@ fn main() {
     );
     for frames in cases {
         let spec = dir.path().join(format!("specs/street_{frames}.toml"));
-        fs::write(&spec, format!("{city}\n{}", camera(frames))).unwrap();
+        fs::write(&spec, format!("{city}\n{}", with_frames(&street, frames))).unwrap();
         let runs = if frames > 100 { 1 } else { runs.max(1) };
         let mut times = Vec::new();
         let mut totals = Vec::new();
@@ -91,11 +92,24 @@ fn main() {
     }
 }
 
-/// The day spec's street camera with `frames` frames.
-fn camera(frames: u32) -> String {
-    format!(
-        "[[cameras]]\nname = \"street\"\npath = \"roads\"\nframes = {frames}\nheight = 1.6\nfov = 60\nresolution = [640, 480]\njitter = 0.5\n"
-    )
+/// `camera` (one `[[cameras]]` table) with `frames` frames.
+fn with_frames(camera: &str, frames: u32) -> String {
+    let lines: Vec<String> = camera
+        .lines()
+        .map(|line| match line.split_once('=') {
+            Some((key, _)) if key.trim() == "frames" => format!("frames = {frames}"),
+            _ => line.to_owned(),
+        })
+        .collect();
+    assert!(
+        lines.iter().any(|l| l == &format!("frames = {frames}")),
+        "the street camera of specs/day.toml sets no `frames`"
+    );
+    lines.join(
+        "
+",
+    ) + "
+"
 }
 
 /// One build in this process; prints the frames stage's time and the peak memory.

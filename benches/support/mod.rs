@@ -24,6 +24,22 @@ pub fn day_without_cameras() -> String {
     }
 }
 
+/// The `[[cameras]]` table of `specs/day.toml` named `name`, as written there (up to the
+/// next table header).
+pub fn day_camera(name: &str) -> String {
+    let day = fs::read_to_string(repo().join("specs/day.toml")).unwrap();
+    let tables: Vec<&str> = day.split("\n[").collect();
+    tables
+        .iter()
+        .find(|t| {
+            t.starts_with("[cameras]]")
+                && t.lines()
+                    .any(|l| l.split('#').next().unwrap().trim() == format!("name = \"{name}\""))
+        })
+        .map(|t| format!("[{t}"))
+        .unwrap_or_else(|| panic!("specs/day.toml has no camera named {name:?}"))
+}
+
 /// `spec` with `key = value` added to its `[layout]` table. The day spec already opens
 /// `[layout]` (for `metres_per_pixel`), so a second `[layout]` header would be a TOML
 /// "duplicate key" error; a spec without the table gets one before `[layout.generate]`.
