@@ -190,21 +190,44 @@ pub(crate) fn cover(
     let bw = (ox1 - ox0) as usize;
     let mut covered = vec![false; bw * (oy1 - oy0) as usize];
     let (q_min, q_max) = q_range;
-    for t in tris {
-        t.rasterize(bounds, |x, y, q| {
-            if x % s == mid && y % s == mid && q > q_min && q <= q_max {
-                covered[(y / s - oy0) as usize * bw + (x / s - ox0) as usize] = true;
-            }
+    let accepted = |q: f64| q > q_min && q <= q_max;
+    if s == 1 {
+        // Every sample is its pixel's centre (no modulo per sample).
+        let (ox0, oy0) = (ox0 as usize, oy0 as usize);
+        for t in tris {
+            t.rasterize(bounds, |x, y, q| {
+                if accepted(q) {
+                    covered[(y as usize - oy0) * bw + x as usize - ox0] = true;
+                }
+            });
+        }
+    } else {
+        for t in tris {
+            t.rasterize(bounds, |x, y, q| {
+                if x % s == mid && y % s == mid && accepted(q) {
+                    covered[(y / s - oy0) as usize * bw + (x / s - ox0) as usize] = true;
+                }
+            });
+        }
+    }
+    // Count and box, a row at a time.
+    let mut pixels = 0u64;
+    let mut bounds: Option<[i64; 4]> = None;
+    for (row, line) in covered.chunks_exact(bw).enumerate() {
+        let Some(first) = line.iter().position(|&c| c) else {
+            continue;
+        };
+        let last = line.iter().rposition(|&c| c).expect("a covered pixel");
+        pixels += line[first..=last].iter().filter(|&&c| c).count() as u64;
+        let y = i64::from(oy0) + row as i64 - shift[1];
+        let (x0, x1) = (
+            i64::from(ox0) + first as i64 - shift[0],
+            i64::from(ox0) + last as i64 - shift[0],
+        );
+        bounds = Some(match bounds {
+            None => [x0, y, x1, y],
+            Some(b) => [b[0].min(x0), b[1], b[2].max(x1), y],
         });
     }
-    let mut found = Coverage::default();
-    for (i, _) in covered.iter().enumerate().filter(|(_, c)| **c) {
-        let x = i64::from(ox0) + (i % bw) as i64 - shift[0];
-        let y = i64::from(oy0) + (i / bw) as i64 - shift[1];
-        found = found.join(Coverage {
-            pixels: 1,
-            bounds: Some([x, y, x, y]),
-        });
-    }
-    found
+    Coverage { pixels, bounds }
 }
