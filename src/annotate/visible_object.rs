@@ -29,7 +29,7 @@ pub struct VisibleObject {
 /// wrote there, so a partly covered object keeps only the pixels it shows. The image is
 /// walked once, column by column (the order COCO's RLE runs in), a run of one id at a
 /// time, extending that id's current run or opening a new one. The columns are copied out
-/// [`BAND`] at a time, so the row-major image is read along its rows. Ids are up to 24
+/// 16 at a time, so the row-major image is read along its rows. Ids are up to 24
 /// bits and a frame shows few of them, so they are looked up in an ordered map, with the
 /// previous run's id as a shortcut.
 pub fn scan(image: &ImageBuffer<Luma<u32>, Vec<u32>>) -> Vec<VisibleObject> {
