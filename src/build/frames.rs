@@ -105,6 +105,14 @@ impl<'a> PathFrames<'a> {
         }
     }
 
+    /// Builds the shadow map frame `i` is lit by ahead of the frames (weather does not
+    /// move the sun), so frames rendered side by side find it built.
+    pub fn warm_shadows(&self, i: usize) {
+        let drawn_sun = self.input.relight.map(|f| f(i));
+        let lighting = drawn_sun.as_ref().map_or(self.input.lighting, |(l, _)| l);
+        render::warm_shadow_map(self.input.scene, lighting);
+    }
+
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
     /// as soon as it is ready; stops at the first error `emit` returns.
     pub fn render<E>(

@@ -223,6 +223,14 @@ pub fn render_measuring(
     (assemble(&ctx, Some(&centres), &tiles), footprints)
 }
 
+/// Builds the shadow map `lighting` needs, if any, and keeps it in `scene`: frames under
+/// that sun rendered side by side afterwards find it there instead of each building it.
+pub fn warm_shadow_map(scene: &PreparedScene, lighting: &Lighting) {
+    if lighting.shadows {
+        scene.shadow_map(lighting.sun_direction, lighting.shadow_map_side);
+    }
+}
+
 /// Triangle indices per tile, in scene order.
 fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<u32>> {
     let mut bins = vec![Vec::new(); (tiles_x * tiles_y) as usize];

@@ -64,16 +64,29 @@ impl PreparedScene {
     /// The shadow map for the sun in direction `sun`, at most `side` texels a side (built
     /// now, or the last one if it was built for the same direction and side). `None` when
     /// the sun is at or below the horizon.
+    ///
+    /// The lock is never held while a map is built: the build runs rayon jobs, and a
+    /// worker waiting for one of them may take up another frame that asks for a map here
+    /// (frames render side by side); holding the lock then deadlocks. Frames that start
+    /// together may each build the map; the builds are the same bytes and the first one
+    /// stored is kept. A camera path builds it once ahead of its frames
+    /// ([`super::warm_shadow_map`]).
     pub(crate) fn shadow_map(&self, sun: [f32; 3], side: u32) -> Option<Arc<ShadowMap>> {
-        let bits = sun.map(f32::to_bits);
-        let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((key, built_side, map)) = slot.as_ref()
-            && (*key, *built_side) == (bits, side)
-        {
-            return map.clone();
+        let key = (sun.map(f32::to_bits), side);
+        let last = |slot: &Option<LastShadowMap>| {
+            slot.as_ref()
+                .filter(|(bits, built_side, _)| (*bits, *built_side) == key)
+                .map(|(_, _, map)| map.clone())
+        };
+        if let Some(map) = last(&self.shadows.lock().unwrap_or_else(|e| e.into_inner())) {
+            return map;
         }
         let map = ShadowMap::build(self, sun.map(f64::from), side).map(Arc::new);
-        *slot = Some((bits, side, map.clone()));
+        let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(kept) = last(&slot) {
+            return kept;
+        }
+        *slot = Some((key.0, key.1, map.clone()));
         map
     }
 
