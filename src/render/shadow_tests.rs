@@ -287,3 +287,47 @@ fn weak_shadow_strength_lifts_shadows_part_way() {
         weak.linear[i][0]
     );
 }
+
+#[test]
+fn frames_asking_for_shadow_maps_side_by_side_finish() {
+    // Frames render side by side in rayon, each with parallel work of its own (its tiles),
+    // and each asks for its sun's map, which is built with rayon jobs too: a worker
+    // waiting for one of them may take up another frame, which asks for a map while the
+    // first build is under way. Every frame has a sun of its own (no map is reused); 8
+    // threads, under a watchdog. With the lock held over the build (before `cf7779b`) this
+    // hung in 2 of 3 runs; it cannot prove the absence of a deadlock, only catch one.
+    use rayon::prelude::*;
+    use std::sync::{Arc, mpsc};
+    use std::time::Duration;
+
+    const FRAMES: u32 = 128;
+    let scene = Arc::new(prepare(&box_on_plane()).unwrap());
+    let (done, finished) = mpsc::channel();
+    std::thread::spawn(move || {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(8)
+            .build()
+            .unwrap();
+        let built: u32 = pool.install(|| {
+            (0..FRAMES)
+                .into_par_iter()
+                .with_max_len(1)
+                .map(|k| {
+                    let tiles: u64 = (0..64u64).into_par_iter().map(|t| t * t).sum();
+                    let sun = Sun {
+                        elevation: 20.0 + f64::from(k) * 0.5,
+                        azimuth: 5.0 * f64::from(k),
+                        hour: None,
+                    };
+                    let map = scene.shadow_map(sun.direction().map(|c| c as f32), 2048);
+                    u32::from(map.is_some() && tiles > 0)
+                })
+                .sum()
+        });
+        let _ = done.send(built);
+    });
+    let built = finished
+        .recv_timeout(Duration::from_secs(60))
+        .expect("the frames did not finish in 60 s: a deadlock");
+    assert_eq!(built, FRAMES);
+}
