@@ -11,11 +11,10 @@
 //! (`AWS_ACCESS_KEY_ID`, `AWS_REGION`, `AWS_ENDPOINT_URL` and `AWS_ALLOW_HTTP=true` for an
 //! S3-compatible server; `GOOGLE_APPLICATION_CREDENTIALS` / `GOOGLE_SERVICE_ACCOUNT`;
 //! `AZURE_STORAGE_ACCOUNT_NAME` and `AZURE_STORAGE_ACCOUNT_KEY`, …).
-
 //!
 //! The store itself needs the `remote-cache` feature (on by default): without it
 //! (`--no-default-features`, a build without the cloud clients, about a third less to
-//! compile) [`RemoteStore::open`] refuses every URL with an error saying so.
+//! compile) [`RemoteStore::open`] refuses every bucket URL with an error saying so.
 
 use std::time::SystemTime;
 
