@@ -101,7 +101,8 @@ impl MipTexture {
         // level-0 texels (a magnified texture, seen from near) reads level 0 with one tap
         // per texel of its length, one under a texel long a single bilinear tap. Found by
         // comparing squares: `k` taps do when `k² ≥ major2 / minor2` or `k² ≥ major2`.
-        let most = ceil(max_taps.clamp(1.0, MAX_ANISOTROPY)) as u32;
+        let cap = max_taps.clamp(1.0, MAX_ANISOTROPY);
+        let most = ceil(cap) as u32;
         let taps = (1..most)
             .find(|&k| {
                 let k2 = f64::from(k * k);
@@ -116,10 +117,7 @@ impl MipTexture {
         // spread being the aspect ratio (or the length in texels), at most `max_taps`.
         let log_ratio2 = (log_major2 - log2_approx(minor2))
             .min(log_major2)
-            .clamp(0.0, {
-                let most = max_taps.clamp(1.0, MAX_ANISOTROPY);
-                log2_approx(most * most)
-            });
+            .clamp(0.0, log2_approx(cap * cap));
         let lod = 0.5 * (log_major2 - log_ratio2);
         let mut sum = [0f32; 3];
         for &t in &TAP_OFFSETS[taps as usize][..taps as usize] {
