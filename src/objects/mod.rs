@@ -26,6 +26,7 @@ pub const VERSION: u32 = 7;
 
 mod atlas_layout;
 mod car;
+mod footprint_grid;
 mod ground_spots;
 pub mod obj_lines;
 mod objects_error;

@@ -20,6 +20,7 @@ use rand_pcg::Pcg64;
 use rayon::prelude::*;
 
 use super::atlas_layout::{self, AtlasLayout};
+use super::footprint_grid::FootprintGrid;
 use super::plate_style::{PlateStyle, SHOP_BAND};
 use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
@@ -443,53 +444,76 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
     let rects: Vec<RoadRect> = input.layout.roads.iter().map(RoadRect::of).collect();
     let reach = ROAD_REACH * f64::from(strip_width_px(input.layout)) + 1.0;
     let mpp = input.metres_per_pixel;
-    let footprints: Vec<[f64; 4]> = input
-        .buildings
-        .iter()
-        .map(|b| {
-            let f = b.footprint;
-            [f.x0, f.y0, f.x1, f.y1].map(f64::from)
-        })
-        .collect();
+    let footprints = FootprintGrid::new(
+        input
+            .buildings
+            .iter()
+            .map(|b| {
+                let f = b.footprint;
+                [f.x0, f.y0, f.x1, f.y1].map(f64::from)
+            })
+            .collect(),
+    );
     let mut walls = Vec::new();
     for (b, (building, &height)) in input.buildings.iter().zip(&heights).enumerate() {
         let fp = building.footprint;
         let (x0, x1) = (f64::from(fp.x0), f64::from(fp.x1));
         let (y0, y1) = (f64::from(fp.y0), f64::from(fp.y1));
         let overlaps = |a: [f64; 2], b: [f64; 2]| a[0] < b[1] && b[0] < a[1];
-        // (normal, bottom-left corner seen from the front, gap to a road in front)
-        let sides: [([f64; 2], [f64; 2], &GapToRoad); 4] = [
-            ([0.0, -1.0], [x1, y0], &|r| {
-                (overlaps(r.x, [x0, x1]) && r.y[1] <= y0).then(|| y0 - r.y[1])
-            }),
-            ([1.0, 0.0], [x1, y1], &|r| {
-                (overlaps(r.y, [y0, y1]) && r.x[0] >= x1).then(|| r.x[0] - x1)
-            }),
-            ([0.0, 1.0], [x0, y1], &|r| {
-                (overlaps(r.x, [x0, x1]) && r.y[0] >= y1).then(|| r.y[0] - y1)
-            }),
-            ([-1.0, 0.0], [x0, y0], &|r| {
-                (overlaps(r.y, [y0, y1]) && r.x[1] <= x0).then(|| x0 - r.x[1])
-            }),
+        // (normal, bottom-left corner seen from the front, gap to a road in front, the
+        // rectangle `gap` ahead of the wall: where a rectangle with a smaller gap must reach)
+        type Ahead = fn([f64; 4], f64) -> [f64; 4];
+        let sides: [([f64; 2], [f64; 2], &GapToRoad, Ahead); 4] = [
+            (
+                [0.0, -1.0],
+                [x1, y0],
+                &|r| (overlaps(r.x, [x0, x1]) && r.y[1] <= y0).then(|| y0 - r.y[1]),
+                |[x0, y0, x1, _], g| [x0, y0 - g, x1, y0],
+            ),
+            (
+                [1.0, 0.0],
+                [x1, y1],
+                &|r| (overlaps(r.y, [y0, y1]) && r.x[0] >= x1).then(|| r.x[0] - x1),
+                |[_, y0, x1, y1], g| [x1, y0, x1 + g, y1],
+            ),
+            (
+                [0.0, 1.0],
+                [x0, y1],
+                &|r| (overlaps(r.x, [x0, x1]) && r.y[0] >= y1).then(|| r.y[0] - y1),
+                |[x0, _, x1, y1], g| [x0, y1, x1, y1 + g],
+            ),
+            (
+                [-1.0, 0.0],
+                [x0, y0],
+                &|r| (overlaps(r.y, [y0, y1]) && r.x[1] <= x0).then(|| x0 - r.x[1]),
+                |[x0, y0, _, y1], g| [x0 - g, y0, x0, y1],
+            ),
         ];
         let band = [KERB_Y + MIN_HEIGHT, KERB_Y + height - TOP_CLEARANCE];
         if band[1] <= band[0] {
             continue;
         }
         let facade = choice.of(building);
-        for (normal, corner, gap) in sides {
-            // The nearest road in front must be nearer than any other building in front.
+        for (normal, corner, gap, ahead) in sides {
+            // The nearest road in front must be within reach, and nearer than any other
+            // building in front. A building in front nearer than the road lies in the
+            // rectangle `to_road` ahead of the wall: only those are asked.
             let Some(to_road) = rects.iter().filter_map(gap).reduce(f64::min) else {
                 continue;
             };
-            let blocked = footprints.iter().enumerate().any(|(o, f)| {
+            if to_road > reach {
+                continue;
+            }
+            let candidates = footprints.touching(ahead([x0, y0, x1, y1], to_road));
+            let blocked = candidates.into_iter().any(|o| {
+                let f = footprints.boxes()[o as usize];
                 let r = RoadRect {
                     x: [f[0], f[2]],
                     y: [f[1], f[3]],
                 };
-                o != b && gap(&r).is_some_and(|g| g < to_road)
+                o as usize != b && gap(&r).is_some_and(|g| g < to_road)
             });
-            if to_road > reach || blocked {
+            if blocked {
                 continue;
             }
             let length = if normal[0] == 0.0 { x1 - x0 } else { y1 - y0 } * mpp;
