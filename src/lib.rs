@@ -26,7 +26,7 @@
 //! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,
 //! facade heights, vector and trig helpers) in [`model::geometry`] and image-file checks and
 //! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`] and [`hash`], never on each
-//! other. `tests/stage_imports.rs` fails when a stage names another; tests that need
+//! other. `tests/integration/stage_imports.rs` fails when a stage names another; tests that need
 //! another stage's output get it through `test_support`.
 
 pub mod annotate;

@@ -1,6 +1,6 @@
 //! Test fakes and fixtures shared by every stage's tests (compiled only under `cfg(test)`).
 //!
-//! Besides the driver, this is the one module allowed to run stages (`tests/stage_imports.rs`
+//! Besides the driver, this is the one module allowed to run stages (`tests/integration/stage_imports.rs`
 //! lists it so): a stage's tests that need another stage's output — a generated layout to
 //! parse, a parsed city to build a scene on — get it from here instead of importing that
 //! stage.

@@ -2,7 +2,7 @@
 //!
 //! World coordinates are metres: x east (= layout x), y up, z south (= layout y). Every
 //! item here is a pure function of its arguments; stages depend on this module and on
-//! [`crate::model`], never on each other (`tests/stage_imports.rs` checks it).
+//! [`crate::model`], never on each other (`tests/integration/stage_imports.rs` checks it).
 //!
 //! | item | used by |
 //! |---|---|

@@ -5,7 +5,7 @@
 //! Cases come from `cityspec::test_seed` (a fixed seed by default;
 //! `CITYSPEC_PROPTEST_CASES=N CITYSPEC_PROPTEST_SEED=random` for a longer random run).
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::io::Cursor;

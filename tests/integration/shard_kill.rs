@@ -9,7 +9,7 @@
 //! fraction of a timed run: on a busy 2-core CI machine the chunks of a small spec all land
 //! within a few milliseconds of each other, and a timed kill missed them (CI, stop 15).
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::Path;
@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 use cityspec::build::{self, BuildOptions};
 use common::tree;
 
-const SPEC: &str = include_str!("fixtures/shards.toml");
+const SPEC: &str = include_str!("../fixtures/shards.toml");
 
 /// The street frames of the shared fixture are 64 × 48, rendered in a few milliseconds a
 /// chunk. At 256 × 192 a chunk takes about 170 ms in a debug build: a wide window for a

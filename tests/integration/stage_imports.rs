@@ -169,7 +169,7 @@ fn violations(src: &Path) -> Vec<String> {
             || name == TEST_SUPPORT;
         if !known {
             found.push(format!(
-                "{}: module `{name}` is in no list of tests/stage_imports.rs: is it a stage or shared?",
+                "{}: module `{name}` is in no list of tests/integration/stage_imports.rs: is it a stage or shared?",
                 path.display()
             ));
             continue;

@@ -1,7 +1,7 @@
 //! The build driver and its cache, through the library API: determinism across cold and
 //! warm caches and thread counts, minimal rebuilds, damaged caches.
 
-mod common;
+use crate::common;
 
 use std::fs;
 
@@ -659,7 +659,7 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
 fn path_render_input_renders_the_ids_and_depth_a_build_writes() {
     let dir = tempfile::tempdir().unwrap();
     let spec = dir.path().join("small.toml");
-    fs::write(&spec, include_str!("fixtures/shards.toml")).unwrap();
+    fs::write(&spec, include_str!("../fixtures/shards.toml")).unwrap();
     let cache = dir.path().join("cache");
     let options = common::quiet_options(dir.path().join("out"), cache.clone());
     let out = build::build(&spec, &options).unwrap().out_dir;

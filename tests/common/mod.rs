@@ -5,7 +5,6 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-#[path = "common/copy_tree.rs"]
 mod copy_tree;
 pub use copy_tree::copy_tree;
 

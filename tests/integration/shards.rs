@@ -1,7 +1,7 @@
 //! Issue 12: a build split into shards sharing one cache, then merged by a plain build,
 //! gives the bytes of a one-machine build; the merge renders nothing.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -13,7 +13,7 @@ use common::tree;
 /// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
 /// a 12-frame orbit (2 chunks) with float depth; text, signs and cars so COCO, ICDAR and
 /// YOLO files all have something in them. (.ci/run builds it on Slurm too.)
-const SPEC: &str = include_str!("fixtures/shards.toml");
+const SPEC: &str = include_str!("../fixtures/shards.toml");
 
 fn options(dir: &Path, out: &str, cache: &str) -> BuildOptions {
     common::quiet_options(dir.join(out), dir.join(cache))

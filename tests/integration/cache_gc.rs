@@ -1,7 +1,7 @@
 //! Issue 12: `cityspec cache gc` keeps what the given specs (or lock files) need and removes
 //! the rest, never anything a running build may have just written.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::time::{Duration, SystemTime};
@@ -17,10 +17,10 @@ fn ran(report: &build::BuildReport) -> Vec<&'static str> {
 fn gc_keeps_the_given_specs_and_removes_the_rest() {
     let ws = Workspace::with_spec("mirrored");
     let small = ws.path().join("specs/small.toml");
-    fs::write(&small, include_str!("fixtures/shards.toml")).unwrap();
+    fs::write(&small, include_str!("../fixtures/shards.toml")).unwrap();
     // Another city (another seed and name): nothing in common with the first but facades.
     let other_spec = ws.path().join("specs/other.toml");
-    let other_text = include_str!("fixtures/shards.toml")
+    let other_text = include_str!("../fixtures/shards.toml")
         .replace("name = \"small\"", "name = \"other\"")
         .replace("seed = 11", "seed = 12")
         .replace("frames = 43", "frames = 3");

@@ -1,6 +1,6 @@
 //! Issue 12: `cityspec lock` and `cityspec build --locked` (exit code 3).
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! The sensor stage changes the RGB frames only: a camera path built with weather and
 //! sensor effects has the same ids, depth, YOLO and COCO annotations as without them.
 
-mod common;
+use crate::common;
 
 use std::fs;
 
