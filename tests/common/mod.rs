@@ -4,9 +4,24 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
 mod copy_tree;
 pub use copy_tree::copy_tree;
+
+/// Runs the `cityspec` binary in `ws` with `args`, to the end.
+pub fn cityspec(ws: &Workspace, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(ws.path())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// What a run printed on standard error.
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
 
 /// Options for a quiet, non-strict, unlocked build of `out_root` with `cache_dir`.
 pub fn quiet_options(out_root: PathBuf, cache_dir: PathBuf) -> cityspec::build::BuildOptions {

@@ -3,22 +3,10 @@
 use crate::common;
 
 use std::fs;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use common::{Workspace, tree};
-
-fn cityspec(ws: &Workspace, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cityspec"))
-        .current_dir(ws.path())
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use common::{Workspace, cityspec, stderr, tree};
 
 #[test]
 fn build_writes_artifacts_into_out_and_says_so() {

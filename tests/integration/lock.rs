@@ -4,21 +4,8 @@ use crate::common;
 
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
 
-use common::{Workspace, tree};
-
-fn cityspec(ws: &Workspace, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_cityspec"))
-        .current_dir(ws.path())
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use common::{Workspace, cityspec, stderr, tree};
 
 fn flip_one_byte(path: &Path) -> Vec<u8> {
     let mut bytes = fs::read(path).unwrap();
