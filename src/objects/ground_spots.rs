@@ -11,6 +11,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ObjectsInput;
+use super::taken_ground::TakenGround;
 use crate::model::geometry::{RoadRect, strip_width_px};
 use crate::model::{Axis, ParsedLayout, Road};
 
@@ -34,7 +35,7 @@ pub struct GroundSpots<'a> {
     strip_px: f64,
     /// The ground everything standing takes, in metres: lamps first, with
     /// [`LAMP_CLEARANCE`] as their radius.
-    taken: Vec<Footprint>,
+    taken: TakenGround,
 }
 
 /// A street corner, in metres (x east, z south), and the horizontal and vertical road that
@@ -94,13 +95,13 @@ impl<'a> GroundSpots<'a> {
             rects: input.layout.roads.iter().map(RoadRect::of).collect(),
             mpp,
             strip_px: f64::from(strip_width_px(input.layout)),
-            taken: input
-                .lamps
-                .iter()
-                .map(|l| {
-                    Footprint::Circle([l.position[0] * mpp, l.position[1] * mpp], LAMP_CLEARANCE)
-                })
-                .collect(),
+            taken: input.lamps.iter().fold(TakenGround::new(), |mut taken, l| {
+                taken.push(Footprint::Circle(
+                    [l.position[0] * mpp, l.position[1] * mpp],
+                    LAMP_CLEARANCE,
+                ));
+                taken
+            }),
         }
     }
 
@@ -119,7 +120,7 @@ impl<'a> GroundSpots<'a> {
 
     /// Takes `footprint` if it overlaps nothing taken; whether it did.
     pub fn claim(&mut self, footprint: Footprint) -> bool {
-        if self.taken.iter().any(|t| t.overlaps(&footprint)) {
+        if self.taken.overlaps(&footprint) {
             return false;
         }
         self.taken.push(footprint);
@@ -178,7 +179,7 @@ impl<'a> GroundSpots<'a> {
             let metres =
                 |r: RoadRect| Footprint::Rect(r.x.map(|v| v * self.mpp), r.y.map(|v| v * self.mpp));
             let probe = metres(rect(s.gap / self.mpp));
-            if self.taken.iter().any(|t| t.overlaps(&probe)) {
+            if self.taken.overlaps(&probe) {
                 return None;
             }
             self.taken.push(metres(rect(0.0)));

@@ -27,6 +27,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ground_spots::{Footprint, GroundSpots};
+use super::taken_ground::TakenGround;
 use super::vehicle_parts::{Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
@@ -73,14 +74,25 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
     // The far side of the strip bounds a curbside crown as well.
     let street_crown = MAX_STREET_CROWN.min(2.0 * spots.strip_half() - CURB_SETBACK - 0.15);
     let mpp = placing.input.metres_per_pixel;
-    let lamps: Vec<[f64; 2]> = placing
-        .input
-        .lamps
-        .iter()
-        .map(|l| [l.position[0] * mpp, l.position[1] * mpp])
-        .collect();
-    // Crowns of this entry's curbside trees: (centre, radius).
-    let mut canopies: Vec<([f64; 2], f64)> = Vec::new();
+    // Lamps (with the room a crown keeps from them as their radius), and the crowns of this
+    // entry's curbside trees.
+    let mut lamps = TakenGround::new();
+    for l in placing.input.lamps {
+        lamps.push(Footprint::Circle(
+            [l.position[0] * mpp, l.position[1] * mpp],
+            LAMP_ROOM,
+        ));
+    }
+    let mut canopies = TakenGround::new();
+    // The buildings, for trees on the blocks' paving.
+    let mut buildings = TakenGround::new();
+    for building in placing.input.buildings {
+        let f = building.footprint;
+        buildings.push(Footprint::Rect(
+            [f64::from(f.x0) * mpp, f64::from(f.x1) * mpp],
+            [f64::from(f.y0) * mpp, f64::from(f.y1) * mpp],
+        ));
+    }
     let mut misses = 0;
     for _ in 0..spec.count {
         if misses >= GIVE_UP {
@@ -111,19 +123,24 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             }
             let crown = crown_radius(kind, height).min(max_crown);
             let foot = if in_plaza {
-                plaza_spot(rng, crown, spots, placing)
+                plaza_spot(rng, crown, spots, &buildings, placing)
             } else if curbside {
                 (0..ATTEMPTS).find_map(|_| {
                     let spot = spots.strip_at(rng, TRUNK_ROOM, CURB_SETBACK, 1)?;
                     let p = spot.position;
-                    let far = |q: [f64; 2], room: f64| {
+                    // Far enough: at least the two radii together apart.
+                    let far = |f: &Footprint| {
+                        let &Footprint::Circle(q, r) = f else {
+                            return true;
+                        };
                         let (dx, dz) = (p[0] - q[0], p[1] - q[1]);
+                        let room = crown + r;
                         dx * dx + dz * dz >= room * room
                     };
-                    let free = lamps.iter().all(|&l| far(l, crown + LAMP_ROOM))
-                        && canopies.iter().all(|&(c, r)| far(c, crown + r));
+                    let probe = Footprint::Circle(p, crown);
+                    let free = lamps.all_near(&probe, far) && canopies.all_near(&probe, far);
                     if free {
-                        canopies.push((p, crown));
+                        canopies.push(probe);
                         Some(p)
                     } else {
                         spots.release(spot);
@@ -187,6 +204,7 @@ fn plaza_spot(
     rng: &mut Pcg64,
     crown: f64,
     spots: &mut GroundSpots,
+    buildings: &TakenGround,
     placing: &Placing,
 ) -> Option<[f64; 2]> {
     let input = placing.input;
@@ -209,14 +227,16 @@ fn plaza_spot(
         }
         let p = [px[0] * mpp, px[1] * mpp];
         let room = crown + BUILDING_CLEARANCE;
-        let clear = input.buildings.iter().all(|building| {
-            let f = building.footprint;
-            let x = [f64::from(f.x0) * mpp, f64::from(f.x1) * mpp];
-            let z = [f64::from(f.y0) * mpp, f64::from(f.y1) * mpp];
+        // Far enough: `room` from the building.
+        let far = |f: &Footprint| {
+            let &Footprint::Rect(x, z) = f else {
+                return true;
+            };
             let dx = p[0] - p[0].clamp(x[0], x[1]);
             let dz = p[1] - p[1].clamp(z[0], z[1]);
             dx * dx + dz * dz >= room * room
-        });
+        };
+        let clear = buildings.all_near(&Footprint::Circle(p, room), far);
         (clear && spots.claim(Footprint::Circle(p, crown + 0.1))).then_some(p)
     })
 }
