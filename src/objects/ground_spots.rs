@@ -11,12 +11,16 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ObjectsInput;
-use super::taken_ground::TakenGround;
+use super::footprint_grid::FootprintGrid;
 use crate::model::geometry::{RoadRect, strip_width_px};
 use crate::model::{Axis, ParsedLayout, Road};
 
 /// Metres an object keeps from a lamp site.
 pub const LAMP_CLEARANCE: f64 = 2.0;
+
+/// Side of the buckets footprints are found by, metres: about a car's length, the size of
+/// most footprints.
+pub const GRID_CELL: f64 = 8.0;
 
 /// A chosen spot, in metres (x east, z south).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,7 +39,7 @@ pub struct GroundSpots<'a> {
     strip_px: f64,
     /// The ground everything standing takes, in metres: lamps first, with
     /// [`LAMP_CLEARANCE`] as their radius.
-    taken: TakenGround,
+    taken: FootprintGrid,
 }
 
 /// A street corner, in metres (x east, z south), and the horizontal and vertical road that
@@ -95,13 +99,16 @@ impl<'a> GroundSpots<'a> {
             rects: input.layout.roads.iter().map(RoadRect::of).collect(),
             mpp,
             strip_px: f64::from(strip_width_px(input.layout)),
-            taken: input.lamps.iter().fold(TakenGround::new(), |mut taken, l| {
-                taken.push(Footprint::Circle(
-                    [l.position[0] * mpp, l.position[1] * mpp],
-                    LAMP_CLEARANCE,
-                ));
-                taken
-            }),
+            taken: input
+                .lamps
+                .iter()
+                .fold(FootprintGrid::new(GRID_CELL), |mut taken, l| {
+                    taken.push(Footprint::Circle(
+                        [l.position[0] * mpp, l.position[1] * mpp],
+                        LAMP_CLEARANCE,
+                    ));
+                    taken
+                }),
         }
     }
 

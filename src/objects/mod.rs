@@ -33,7 +33,6 @@ mod objects_error;
 mod plate_style;
 mod sign_face;
 mod street_names;
-mod taken_ground;
 #[cfg(test)]
 mod tests;
 mod text_colours;

@@ -26,8 +26,8 @@
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
-use super::ground_spots::{Footprint, GroundSpots};
-use super::taken_ground::TakenGround;
+use super::footprint_grid::FootprintGrid;
+use super::ground_spots::{Footprint, GRID_CELL, GroundSpots};
 use super::vehicle_parts::{Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
@@ -76,23 +76,16 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
     let mpp = placing.input.metres_per_pixel;
     // Lamps (with the room a crown keeps from them as their radius), and the crowns of this
     // entry's curbside trees.
-    let mut lamps = TakenGround::new();
+    let mut lamps = FootprintGrid::new(GRID_CELL);
     for l in placing.input.lamps {
         lamps.push(Footprint::Circle(
             [l.position[0] * mpp, l.position[1] * mpp],
             LAMP_ROOM,
         ));
     }
-    let mut canopies = TakenGround::new();
-    // The buildings, for trees on the blocks' paving.
-    let mut buildings = TakenGround::new();
-    for building in placing.input.buildings {
-        let f = building.footprint;
-        buildings.push(Footprint::Rect(
-            [f64::from(f.x0) * mpp, f64::from(f.x1) * mpp],
-            [f64::from(f.y0) * mpp, f64::from(f.y1) * mpp],
-        ));
-    }
+    let mut canopies = FootprintGrid::new(GRID_CELL);
+    // The buildings, for trees on the blocks' paving: made for the first plaza tree.
+    let mut buildings = None;
     let mut misses = 0;
     for _ in 0..spec.count {
         if misses >= GIVE_UP {
@@ -123,7 +116,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             }
             let crown = crown_radius(kind, height).min(max_crown);
             let foot = if in_plaza {
-                plaza_spot(rng, crown, spots, &buildings, placing)
+                let buildings = buildings.get_or_insert_with(|| building_grid(placing));
+                plaza_spot(rng, crown, spots, buildings, placing)
             } else if curbside {
                 (0..ATTEMPTS).find_map(|_| {
                     let spot = spots.strip_at(rng, TRUNK_ROOM, CURB_SETBACK, 1)?;
@@ -204,7 +198,7 @@ fn plaza_spot(
     rng: &mut Pcg64,
     crown: f64,
     spots: &mut GroundSpots,
-    buildings: &TakenGround,
+    buildings: &FootprintGrid,
     placing: &Placing,
 ) -> Option<[f64; 2]> {
     let input = placing.input;
@@ -239,6 +233,20 @@ fn plaza_spot(
         let clear = buildings.all_near(&Footprint::Circle(p, room), far);
         (clear && spots.claim(Footprint::Circle(p, crown + 0.1))).then_some(p)
     })
+}
+
+/// The buildings' footprints, metres.
+fn building_grid(placing: &Placing) -> FootprintGrid {
+    let mpp = placing.input.metres_per_pixel;
+    let mut grid = FootprintGrid::new(GRID_CELL);
+    for building in placing.input.buildings {
+        let f = building.footprint;
+        grid.push(Footprint::Rect(
+            [f64::from(f.x0) * mpp, f64::from(f.x1) * mpp],
+            [f64::from(f.y0) * mpp, f64::from(f.y1) * mpp],
+        ));
+    }
+    grid
 }
 
 /// Trunk and crown of a tree standing at `foot` (x, z) on the kerb-high paving.

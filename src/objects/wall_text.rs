@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use super::atlas_layout::{self, AtlasLayout};
 use super::footprint_grid::FootprintGrid;
+use super::ground_spots::Footprint;
 use super::plate_style::{PlateStyle, SHOP_BAND};
 use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
@@ -444,16 +445,15 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
     let rects: Vec<RoadRect> = input.layout.roads.iter().map(RoadRect::of).collect();
     let reach = ROAD_REACH * f64::from(strip_width_px(input.layout)) + 1.0;
     let mpp = input.metres_per_pixel;
-    let footprints = FootprintGrid::new(
-        input
-            .buildings
-            .iter()
-            .map(|b| {
-                let f = b.footprint;
-                [f.x0, f.y0, f.x1, f.y1].map(f64::from)
-            })
-            .collect(),
-    );
+    // The buildings' footprints in layout pixels, in buckets about a building wide.
+    let mut footprints = FootprintGrid::new(32.0);
+    for building in input.buildings {
+        let f = building.footprint;
+        footprints.push(Footprint::Rect(
+            [f64::from(f.x0), f64::from(f.x1)],
+            [f64::from(f.y0), f64::from(f.y1)],
+        ));
+    }
     let mut walls = Vec::new();
     for (b, (building, &height)) in input.buildings.iter().zip(&heights).enumerate() {
         let fp = building.footprint;
@@ -504,14 +504,13 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
             if to_road > reach {
                 continue;
             }
-            let candidates = footprints.touching(ahead([x0, y0, x1, y1], to_road));
-            let blocked = candidates.into_iter().any(|o| {
-                let f = footprints.boxes()[o as usize];
-                let r = RoadRect {
-                    x: [f[0], f[2]],
-                    y: [f[1], f[3]],
+            let [a0, a1, a2, a3] = ahead([x0, y0, x1, y1], to_road);
+            let probe = Footprint::Rect([a0, a2], [a1, a3]);
+            let blocked = footprints.any_near(&probe, |o, f| {
+                let &Footprint::Rect(x, y) = f else {
+                    return false;
                 };
-                o as usize != b && gap(&r).is_some_and(|g| g < to_road)
+                o != b && gap(&RoadRect { x, y }).is_some_and(|g| g < to_road)
             });
             if blocked {
                 continue;
