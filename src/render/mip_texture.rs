@@ -210,13 +210,12 @@ impl Level {
         let y1 = if y0 + 1 == h { 0 } else { y0 + 1 };
         let row0 = (y0 * w) as usize;
         let row1 = (y1 * w) as usize;
+        // Whole texels: one bounds check per texel, not one per channel (the hottest
+        // function of a frame).
+        let (texels, _) = self.texels.as_chunks::<3>();
         let at = |row: usize, x: i64| -> [f32; 3] {
-            let i = (row + x as usize) * 3;
-            [
-                table.to_linear(self.texels[i]),
-                table.to_linear(self.texels[i + 1]),
-                table.to_linear(self.texels[i + 2]),
-            ]
+            let [r, g, b] = texels[row + x as usize];
+            [table.to_linear(r), table.to_linear(g), table.to_linear(b)]
         };
         let (p00, p10, p01, p11) = (at(row0, x0), at(row0, x1), at(row1, x0), at(row1, x1));
         let mut out = [0f32; 3];
