@@ -151,18 +151,14 @@ fn bounds(footprint: &Footprint) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::RngExt;
 
     /// Against a scan of every footprint: circles and rectangles scattered over a city,
     /// some huge, one not finite, with pops between the pushes.
     #[test]
     fn overlaps_answers_what_a_scan_answers() {
-        let mut s = 99u64;
-        let mut next = |n: f64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 * n
-        };
+        let mut rng = crate::rng::stream(99, "footprint grid test", 0);
+        let mut next = |n: f64| rng.random::<f64>() * n;
         let mut shape = |big: bool| {
             let (x, z) = (next(400.0) - 20.0, next(400.0) - 20.0);
             let size = if big { 20_000.0 } else { 6.0 };
@@ -203,13 +199,8 @@ mod tests {
     /// `wall_text::facing_walls`).
     #[test]
     fn any_near_finds_by_index_what_a_scan_finds() {
-        let mut s = 12345u64;
-        let mut next = |n: u64| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % n) as f64
-        };
+        let mut rng = crate::rng::stream(12345, "footprint grid test", 1);
+        let mut next = |n: u32| f64::from(rng.random_range(0..n));
         let mut grid = FootprintGrid::new(32.0);
         let mut boxes = Vec::new();
         for _ in 0..400 {
