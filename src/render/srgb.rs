@@ -10,11 +10,23 @@ use std::sync::OnceLock;
 
 /// Entries of the encoding table.
 const ENCODE_ENTRIES: usize = 4096;
+/// A linear value's bits shifted right by this give its bucket of [`Srgb::buckets`]: the
+/// sign, the exponent and the mantissa's top 7 bits, a bucket 1/128 of an octave wide. No
+/// bucket holds more than one step of the 8-bit output (checked when the table is built:
+/// the narrowest step, at the top, is 1/107 of an octave).
+const BUCKET_SHIFT: u32 = 16;
+/// Buckets up to the one holding 1.0 (values from 1 up encode as 255 before any lookup).
+const BUCKETS: usize = (1.0f32.to_bits() >> BUCKET_SHIFT) as usize;
 
 /// The two conversion tables.
 pub(crate) struct Srgb {
     decode: [f32; 256],
     encode: Vec<u8>,
+    /// Per bucket of positive linear values below 1: the 8-bit value at its lowest value
+    /// and the value from which it is one more (above the bucket when it never is).
+    /// [`Srgb::to_srgb8`] in two lookups, without the square root: the same bytes as
+    /// [`Srgb::to_srgb8_by_root`].
+    buckets: Vec<(u8, f32)>,
 }
 
 /// The process-wide tables (built on first use; identical in every process).
@@ -49,7 +61,42 @@ impl Srgb {
                 (s * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
             })
             .collect();
-        Srgb { decode, encode }
+        let mut tables = Srgb {
+            decode,
+            encode,
+            buckets: Vec::new(),
+        };
+        tables.buckets = tables.bucket_table();
+        tables
+    }
+
+    /// [`Srgb::buckets`], from [`Srgb::to_srgb8_by_root`], which rises with its input (the
+    /// square root, the scaling and the truncation all keep order, and `encode` rises):
+    /// each bucket's value at its lowest input, and the first input where it steps, found
+    /// by bisection over the bits (positive floats order as their bits).
+    ///
+    /// # Panics
+    /// If a bucket holds two steps (it does not: see [`BUCKET_SHIFT`]).
+    fn bucket_table(&self) -> Vec<(u8, f32)> {
+        let f = |bits: u32| self.to_srgb8_by_root(f32::from_bits(bits));
+        (0..BUCKETS as u32)
+            .map(|b| {
+                let (first, last) = (b << BUCKET_SHIFT, ((b + 1) << BUCKET_SHIFT) - 1);
+                let base = f(first);
+                let top = f(last);
+                assert!(top - base <= 1, "bucket {b} holds two sRGB steps");
+                if top == base {
+                    return (base, f32::INFINITY);
+                }
+                // The first bits in (first, last] whose value is base + 1.
+                let (mut lo, mut hi) = (first, last);
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if f(mid) > base { hi = mid } else { lo = mid }
+                }
+                (base, f32::from_bits(hi))
+            })
+            .collect()
     }
 
     /// Linear value (0–1) of an 8-bit sRGB value.
@@ -61,6 +108,19 @@ impl Srgb {
     /// 8-bit sRGB of a linear value; values outside 0–1 are clamped, NaN is black.
     #[inline]
     pub(crate) fn to_srgb8(&self, linear: f32) -> u8 {
+        if !(linear > 0.0) {
+            return 0;
+        }
+        if linear >= 1.0 {
+            return 255;
+        }
+        let (base, step) = self.buckets[(linear.to_bits() >> BUCKET_SHIFT) as usize];
+        base + u8::from(linear >= step)
+    }
+
+    /// [`Srgb::to_srgb8`] by its definition: the encoding table's entry nearest the
+    /// square root of the value.
+    fn to_srgb8_by_root(&self, linear: f32) -> u8 {
         // NaN stays NaN here and becomes index 0 in the saturating cast below.
         let l = linear.clamp(0.0, 1.0);
         let index = (l.sqrt() * (ENCODE_ENTRIES - 1) as f32 + 0.5) as usize;
@@ -120,6 +180,45 @@ mod tests {
         assert_eq!(t.to_srgb8(-1.0), 0);
         assert_eq!(t.to_srgb8(7.0), 255);
         assert_eq!(t.to_srgb8(f32::NAN), 0);
+    }
+
+    #[test]
+    fn buckets_encode_as_the_square_root_table_does() {
+        // Every value where the output steps and a float either side of it, a spread of
+        // values between (every 251st bit pattern from 0 to 1), the edges and outside.
+        let t = srgb();
+        let spread = (0..=1.0f32.to_bits()).step_by(251).map(f32::from_bits);
+        let steps = t
+            .buckets
+            .iter()
+            .filter(|b| b.1.is_finite())
+            .flat_map(|b| [b.1.next_down(), b.1, b.1.next_up()]);
+        let edges = [
+            f32::MIN_POSITIVE,
+            1.0f32.next_down(),
+            1.0,
+            1.5,
+            f32::INFINITY,
+        ];
+        let outside = [-0.0, -1e-30, f32::NEG_INFINITY, f32::NAN];
+        for v in spread.chain(steps).chain(edges).chain(outside) {
+            assert_eq!(t.to_srgb8(v), t.to_srgb8_by_root(v), "{v:e}");
+        }
+        // Every output value is some bucket's, at its start or past its step.
+        let mut seen = [false; 256];
+        for &(base, step) in &t.buckets {
+            seen[usize::from(base)] = true;
+            if step.is_finite() {
+                seen[usize::from(base) + 1] = true;
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+
+    #[test]
+    fn encoding_table_rises() {
+        let t = srgb();
+        assert!(t.encode.windows(2).all(|w| w[0] <= w[1]));
     }
 
     #[test]
