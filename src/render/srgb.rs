@@ -108,7 +108,8 @@ impl Srgb {
     /// 8-bit sRGB of a linear value; values outside 0–1 are clamped, NaN is black.
     #[inline]
     pub(crate) fn to_srgb8(&self, linear: f32) -> u8 {
-        if !(linear > 0.0) {
+        // Zero, below it and NaN are black.
+        if linear.is_nan() || linear <= 0.0 {
             return 0;
         }
         if linear >= 1.0 {
