@@ -21,9 +21,9 @@ pub const OVERVIEW_ORBIT_POSES: u32 = 8;
 /// Far plane as a multiple of the diagonal: beyond the farthest corner from any orbit eye.
 pub const OVERVIEW_FAR: f64 = 4.0;
 /// Samples per pixel side: one, edges antialiased from coverage as the frames' are. Beside
-/// 2 × 2 samples the picture differs by 2 of 255 on average, along edges, and a cold
-/// build spends a tenth of a second less on it (1.01 s → 0.89 s for `specs/day.toml`
-/// without cameras on the 2-core machine).
+/// 2 × 2 samples the picture differs by 2 of 255 on average, along edges, and the overview
+/// stage takes about 50 ms less (314 → 262 ms for `specs/day.toml` on the 2-core machine;
+/// its cold build without cameras, alternated with 2 × 2: a median of 1.03 → 0.98 s).
 pub const OVERVIEW_SUPERSAMPLE: u32 = 1;
 /// Side of the shadow map the overview reads, texels. The overview and the map both span
 /// the whole city, so at any city size a map texel stays finer than the ground under an
