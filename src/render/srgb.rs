@@ -11,9 +11,9 @@ use std::sync::OnceLock;
 /// Entries of the encoding table.
 const ENCODE_ENTRIES: usize = 4096;
 /// A linear value's bits shifted right by this give its bucket of [`Srgb::buckets`]: the
-/// sign, the exponent and the mantissa's top 7 bits, a bucket 1/128 of an octave wide. No
-/// bucket holds more than one step of the 8-bit output (checked when the table is built:
-/// the narrowest step, at the top, is 1/107 of an octave).
+/// sign, the exponent and the mantissa's top 7 bits, so a bucket is at most 1/128 of its
+/// values wide. The 8-bit output's steps are wider (the narrowest, near white, about 1/112
+/// of the value), so no bucket holds two of them; building the table asserts it.
 const BUCKET_SHIFT: u32 = 16;
 /// Buckets up to the one holding 1.0 (values from 1 up encode as 255 before any lookup).
 const BUCKETS: usize = (1.0f32.to_bits() >> BUCKET_SHIFT) as usize;
