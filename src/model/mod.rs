@@ -7,6 +7,7 @@
 
 pub mod geometry;
 pub mod image_file;
+pub(crate) mod srgb;
 
 mod block;
 mod building;

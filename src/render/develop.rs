@@ -11,7 +11,7 @@ use image::RgbImage;
 
 use crate::model::image_file::rgb8_by_channel;
 
-use super::srgb::srgb;
+use crate::model::srgb::srgb;
 
 /// The tone curve on one linear value (after exposure), within 0–1.
 #[inline]

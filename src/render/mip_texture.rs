@@ -10,8 +10,8 @@
 
 use image::RgbImage;
 
-use super::srgb::{Srgb, srgb};
 use crate::model::geometry::rounding::{ceil, floor};
+use crate::model::srgb::{Srgb, srgb};
 
 /// Most trilinear taps one sample spreads along a slanted footprint (and the largest
 /// footprint aspect ratio filtered without blur).

@@ -71,7 +71,6 @@ mod scene_lighting;
 mod screen_triangle;
 mod shadow_map;
 mod sky;
-mod srgb;
 mod sun;
 mod tile;
 mod view;

@@ -133,7 +133,7 @@ pub(super) fn flat() -> Lighting {
 /// Pixel `(x, y)` of the frame's linear colour written as sRGB with a plain clip (no tone
 /// curve): the albedo, under [`flat`] lighting.
 fn clipped(frame: &Frame, x: u32, y: u32) -> [u8; 3] {
-    let table = super::srgb::srgb();
+    let table = crate::model::srgb::srgb();
     frame.linear[(y * frame.rgb().width() + x) as usize].map(|c| table.to_srgb8(c))
 }
 

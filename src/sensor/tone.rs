@@ -1,5 +1,5 @@
 //! Exposed linear radiance → display RGB: automatic exposure, a filmic tone curve and the
-//! sRGB encoding; and the sRGB decoding the glue needs until the renderer hands over
+//! sRGB encoding (the renderer's table, [`crate::model::srgb`]); and the sRGB decoding the glue needs until the renderer hands over
 //! linear radiance.
 //!
 //! The tone curve is Narkowicz's fit of the ACES filmic curve, a rational function (only
@@ -12,6 +12,7 @@ use std::sync::OnceLock;
 use image::{Rgb, RgbImage};
 
 use crate::model::image_file::rgb8_by_channel;
+use crate::model::srgb::{Srgb, srgb};
 
 /// Mid grey: automatic exposure maps the frame's log-average luminance here, in frames at
 /// least as bright as [`DIM`].
@@ -28,8 +29,6 @@ const AUTO_RANGE: (f32, f32) = (1.0 / 16.0, 2.0);
 /// night frame (dark walls, bright lamp pools) instead of sitting at the 2 limit, however
 /// dark, and dusk darkens continuously into night.
 const DIM: f32 = KEY / AUTO_RANGE.1;
-/// Entries of the encoding table, indexed by sqrt(value).
-const ENCODE_ENTRIES: usize = 4096;
 
 /// Rec. 709 luminance of linear RGB.
 #[inline]
@@ -72,13 +71,13 @@ pub(crate) fn filmic(x: f32) -> f32 {
 
 /// Exposed linear RGB (row-major, `width` wide) → 8-bit sRGB through the filmic curve.
 pub fn tone_map(exposed: &[[f32; 3]], width: u32, height: u32) -> RgbImage {
-    let (encoding, buckets) = (encode_table(), tone_buckets());
+    let (encoding, buckets) = (srgb(), tone_buckets());
     rgb8_by_channel(exposed, width, height, |c| tone_byte(encoding, buckets, c))
 }
 
-/// `encode(filmic(x))`, the byte an exposed value `x` develops to.
+/// The sRGB byte of `filmic(x)`, the byte an exposed value `x` develops to.
 #[inline]
-fn tone_byte(encoding: &[u8], buckets: &[u16], x: f32) -> u8 {
+fn tone_byte(encoding: &Srgb, buckets: &[u16], x: f32) -> u8 {
     // Buckets cover [BUCKETS_FROM, BUCKETS_TO); NaN fails the test.
     if (BUCKETS_FROM..BUCKETS_TO).contains(&x) {
         let b = buckets
@@ -87,7 +86,7 @@ fn tone_byte(encoding: &[u8], buckets: &[u16], x: f32) -> u8 {
             return byte;
         }
     }
-    encode(encoding, filmic(x))
+    encoding.to_srgb8(filmic(x))
 }
 
 /// Mantissa bits below a bucket of [`tone_buckets`]: buckets keep 10 of the 23, so each
@@ -102,11 +101,11 @@ const BUCKETS_TO: f32 = 64.0;
 /// the byte every value in it develops to, or 256 where its values develop to more than
 /// one byte (a bucket straddling a step: about one in twenty, computed per value). The
 /// curve and the encoding both rise with their input, so the bucket's two ends decide.
-/// The same bytes as `encode(filmic(x))`, for a division and a square root less a value.
+/// The same bytes as the sRGB encoding of `filmic(x)`, for a division less a value.
 fn tone_buckets() -> &'static [u16] {
     static TABLE: OnceLock<Vec<u16>> = OnceLock::new();
     TABLE.get_or_init(|| {
-        let encoding = encode_table();
+        let encoding = srgb();
         let (first, end) = (
             BUCKETS_FROM.to_bits() >> BUCKET_SHIFT,
             BUCKETS_TO.to_bits() >> BUCKET_SHIFT,
@@ -115,34 +114,8 @@ fn tone_buckets() -> &'static [u16] {
             .map(|b| {
                 let lo = f32::from_bits(b << BUCKET_SHIFT);
                 let hi = f32::from_bits(((b + 1) << BUCKET_SHIFT) - 1);
-                let (a, z) = (encode(encoding, filmic(lo)), encode(encoding, filmic(hi)));
+                let (a, z) = (encoding.to_srgb8(filmic(lo)), encoding.to_srgb8(filmic(hi)));
                 if a == z { u16::from(a) } else { 256 }
-            })
-            .collect()
-    })
-}
-
-#[inline]
-fn encode(table: &[u8], display: f32) -> u8 {
-    // NaN becomes index 0 in the saturating cast.
-    let index = (display.clamp(0.0, 1.0).sqrt() * (ENCODE_ENTRIES - 1) as f32 + 0.5) as usize;
-    table[index.min(ENCODE_ENTRIES - 1)]
-}
-
-/// Display linear (0–1, by its square root) → 8-bit sRGB.
-fn encode_table() -> &'static [u8] {
-    static TABLE: OnceLock<Vec<u8>> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        (0..ENCODE_ENTRIES)
-            .map(|i| {
-                let root = i as f64 / (ENCODE_ENTRIES - 1) as f64;
-                let l = root * root;
-                let s = if l <= 0.003_130_8 {
-                    12.92 * l
-                } else {
-                    1.055 * libm::pow(l, 1.0 / 2.4) - 0.055
-                };
-                (s * 255.0 + 0.5).floor().clamp(0.0, 255.0) as u8
             })
             .collect()
     })
@@ -192,8 +165,8 @@ mod tests {
     fn the_buckets_develop_every_value_as_the_curve_does() {
         // Every 61st float from below the buckets to above them (a prime stride, so every
         // bucket is visited at many offsets), and the ends of every bucket.
-        let (encoding, buckets) = (encode_table(), tone_buckets());
-        let exact = |x: f32| encode(encoding, filmic(x));
+        let (encoding, buckets) = (srgb(), tone_buckets());
+        let exact = |x: f32| encoding.to_srgb8(filmic(x));
         let (from, to) = ((BUCKETS_FROM / 4.0).to_bits(), (BUCKETS_TO * 4.0).to_bits());
         for bits in (from..to).step_by(61) {
             let x = f32::from_bits(bits);
@@ -214,9 +187,9 @@ mod tests {
 
     #[test]
     fn srgb_round_trips_through_the_tables() {
-        let table = encode_table();
+        let table = srgb();
         for s in 0..=255u8 {
-            assert_eq!(encode(table, srgb_to_linear(s)), s);
+            assert_eq!(table.to_srgb8(srgb_to_linear(s)), s);
         }
     }
 
