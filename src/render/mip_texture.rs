@@ -1,17 +1,20 @@
 //! Decoded RGB texture → mip chain, sampled trilinearly with wrap = repeat.
 //!
-//! Level 0 keeps the texture's own sRGB bytes. Each further level halves width and height
-//! (rounding down, at least 1) and averages 2 × 2 texels in linear light, stored again as
-//! 8-bit sRGB through the fixed table. Sampling converts texels to linear through the
-//! 256-entry table and blends in linear; slanted footprints are filtered anisotropically
+//! Texels are stored in linear light as 16-bit integers in units of 2⁻¹⁵ (1.0 = 32768;
+//! the finest step is a tenth of 8-bit sRGB's darkest one), four lanes per texel with the
+//! fourth zero, so a bilinear tap reads four aligned 8-byte texels and blends all channels
+//! at once without a decoding table. Level 0 is the texture's sRGB bytes decoded through
+//! the fixed table and rounded. Each further level halves width and height (rounding
+//! down, at least 1) and averages 2 × 2 texels in linear light, rounding half up, in
+//! integers. Sampling blends in linear; slanted footprints are filtered anisotropically
 //! (up to [`MAX_ANISOTROPY`] trilinear taps along their long side). Trilinear blends two
 //! levels only across the middle half of a level step and reads one level elsewhere
 //! ("brilinear"): half the texel reads, with no band a frame shows.
 
 use image::RgbImage;
 
-use crate::model::geometry::rounding::{ceil, floor};
-use crate::model::srgb::{Srgb, srgb};
+use crate::model::geometry::rounding::{ceil, floor, round};
+use crate::model::srgb::srgb;
 
 /// Most trilinear taps one sample spreads along a slanted footprint (and the largest
 /// footprint aspect ratio filtered without blur).
@@ -44,29 +47,51 @@ pub(crate) struct MipTexture {
 struct Level {
     width: u32,
     height: u32,
-    /// sRGB bytes, RGB, row-major.
-    texels: Vec<u8>,
+    /// Linear RGB in units of 1 / [`ONE`] and a zero lane, row-major.
+    texels: Vec<Texel>,
 }
+
+/// One texel: linear red, green, blue in units of 1 / [`ONE`], and a zero.
+type Texel = [u16; 4];
+
+/// The stored value of linear 1.0: a power of two, so scaling back is exact.
+const ONE: f32 = 32768.0;
+
+/// `1 / ONE`, exact.
+const PER_UNIT: f32 = 1.0 / ONE;
 
 impl MipTexture {
     /// The mip chain of `image` (an empty image samples as black).
     pub(crate) fn new(image: RgbImage) -> MipTexture {
         let table = srgb();
+        let decode: [u16; 256] =
+            std::array::from_fn(|s| round(f64::from(table.to_linear(s as u8) * ONE)) as u16);
+        let texels = if image.width() == 0 || image.height() == 0 {
+            vec![[0; 4]]
+        } else {
+            let (rgb, _) = image.as_raw().as_chunks::<3>();
+            rgb.iter()
+                .map(|&[r, g, b]| {
+                    [
+                        decode[usize::from(r)],
+                        decode[usize::from(g)],
+                        decode[usize::from(b)],
+                        0,
+                    ]
+                })
+                .collect()
+        };
         let mut levels = vec![Level {
             width: image.width().max(1),
             height: image.height().max(1),
-            texels: if image.width() == 0 || image.height() == 0 {
-                vec![0; 3]
-            } else {
-                image.into_raw()
-            },
+            texels,
         }];
         loop {
             let last = levels.last().expect("level 0 exists");
             if last.width == 1 && last.height == 1 {
                 break;
             }
-            let next = last.halve(table);
+            let next = last.halve();
             levels.push(next);
         }
         MipTexture { levels }
@@ -94,7 +119,7 @@ impl MipTexture {
             (y2, x2, [d[2], d[3]])
         };
         if major2.is_nan() {
-            return self.levels[0].bilinear(u, v, srgb());
+            return rgb(self.levels[0].bilinear(u, v));
         }
         // Taps: the footprint's aspect ratio `√(major2 / minor2)`, rounded up, at most
         // `max_taps`; and one texel apart at most: a footprint shorter than that many
@@ -111,7 +136,7 @@ impl MipTexture {
             .unwrap_or(most);
         let log_major2 = log2_approx(major2);
         if taps <= 1 {
-            return self.trilinear(u, v, 0.5 * log_major2);
+            return rgb(self.trilinear(u, v, 0.5 * log_major2));
         }
         // The level of detail: log2 of the long footprint side ÷ the taps' spread, the
         // spread being the aspect ratio (or the length in texels), at most `max_taps`.
@@ -119,7 +144,7 @@ impl MipTexture {
             .min(log_major2)
             .clamp(0.0, log2_approx(cap * cap));
         let lod = 0.5 * (log_major2 - log_ratio2);
-        let mut sum = [0f32; 3];
+        let mut sum = [0f32; 4];
         for &t in &TAP_OFFSETS[taps as usize][..taps as usize] {
             let c = self.trilinear(u + t * axis[0], v + t * axis[1], lod);
             for (s, c) in sum.iter_mut().zip(c) {
@@ -127,18 +152,18 @@ impl MipTexture {
             }
         }
         let share = TAP_SHARE[taps as usize];
-        sum.map(|s| s * share)
+        rgb(sum.map(|s| s * share))
     }
 
-    /// Trilinear sample at level of detail `lod` (level-0 texels per pixel, log2).
-    fn trilinear(&self, u: f64, v: f64, lod: f64) -> [f32; 3] {
-        let table = srgb();
+    /// Trilinear sample at level of detail `lod` (level-0 texels per pixel, log2), with
+    /// the zero lane.
+    fn trilinear(&self, u: f64, v: f64, lod: f64) -> [f32; 4] {
         let top = (self.levels.len() - 1) as f64;
         if lod.is_nan() || lod <= 0.0 {
-            return self.levels[0].bilinear(u, v, table);
+            return self.levels[0].bilinear(u, v);
         }
         if lod >= top {
-            return self.levels[self.levels.len() - 1].bilinear(u, v, table);
+            return self.levels[self.levels.len() - 1].bilinear(u, v);
         }
         let base = floor(lod);
         let i = base as usize;
@@ -146,18 +171,14 @@ impl MipTexture {
         // level.
         let t = ((lod - base) as f32 - 0.25) * 2.0;
         if t <= 0.0 {
-            return self.levels[i].bilinear(u, v, table);
+            return self.levels[i].bilinear(u, v);
         }
         if t >= 1.0 {
-            return self.levels[i + 1].bilinear(u, v, table);
+            return self.levels[i + 1].bilinear(u, v);
         }
-        let a = self.levels[i].bilinear(u, v, table);
-        let b = self.levels[i + 1].bilinear(u, v, table);
-        [
-            a[0] + (b[0] - a[0]) * t,
-            a[1] + (b[1] - a[1]) * t,
-            a[2] + (b[2] - a[2]) * t,
-        ]
+        let a = self.levels[i].bilinear(u, v);
+        let b = self.levels[i + 1].bilinear(u, v);
+        std::array::from_fn(|c| a[c] + (b[c] - a[c]) * t)
     }
 
     #[cfg(test)]
@@ -167,26 +188,26 @@ impl MipTexture {
 }
 
 impl Level {
-    fn halve(&self, table: &Srgb) -> Level {
+    fn halve(&self) -> Level {
         let width = (self.width / 2).max(1);
         let height = (self.height / 2).max(1);
         let (sw, sh) = (self.width as usize, self.height as usize);
-        let mut texels = vec![0u8; width as usize * height as usize * 3];
+        let mut texels = vec![[0u16; 4]; width as usize * height as usize];
         // Row by row, reading the two source rows as slices (a texel's bounds are checked
         // once per row, not four times per channel).
-        for (y, out_row) in texels.chunks_exact_mut(width as usize * 3).enumerate() {
-            let row = |y: usize| &self.texels[y.min(sh - 1) * sw * 3..][..sw * 3];
+        for (y, out_row) in texels.chunks_exact_mut(width as usize).enumerate() {
+            let row = |y: usize| &self.texels[y.min(sh - 1) * sw..][..sw];
             let (r0, r1) = (row(2 * y), row(2 * y + 1));
-            for (x, out) in out_row.chunks_exact_mut(3).enumerate() {
-                let x0 = (2 * x).min(sw - 1) * 3;
-                let x1 = (2 * x + 1).min(sw - 1) * 3;
-                for c in 0..3 {
-                    let sum = table.to_linear(r0[x0 + c])
-                        + table.to_linear(r0[x1 + c])
-                        + table.to_linear(r1[x0 + c])
-                        + table.to_linear(r1[x1 + c]);
-                    out[c] = table.to_srgb8(sum * 0.25);
-                }
+            for (x, out) in out_row.iter_mut().enumerate() {
+                let x0 = (2 * x).min(sw - 1);
+                let x1 = (2 * x + 1).min(sw - 1);
+                *out = std::array::from_fn(|c| {
+                    let sum = u32::from(r0[x0][c])
+                        + u32::from(r0[x1][c])
+                        + u32::from(r1[x0][c])
+                        + u32::from(r1[x1][c]);
+                    ((sum + 2) / 4) as u16
+                });
             }
         }
         Level {
@@ -198,7 +219,7 @@ impl Level {
 
     /// Bilinear sample at texel centres `+0.5`, wrapping at both edges.
     #[inline]
-    fn bilinear(&self, u: f64, v: f64, table: &Srgb) -> [f32; 3] {
+    fn bilinear(&self, u: f64, v: f64) -> [f32; 4] {
         let (w, h) = (i64::from(self.width), i64::from(self.height));
         let tx = u * w as f64 - 0.5;
         let ty = v * h as f64 - 0.5;
@@ -210,22 +231,21 @@ impl Level {
         let y1 = if y0 + 1 == h { 0 } else { y0 + 1 };
         let row0 = (y0 * w) as usize;
         let row1 = (y1 * w) as usize;
-        // Whole texels: one bounds check per texel, not one per channel (the hottest
-        // function of a frame).
-        let (texels, _) = self.texels.as_chunks::<3>();
-        let at = |row: usize, x: i64| -> [f32; 3] {
-            let [r, g, b] = texels[row + x as usize];
-            [table.to_linear(r), table.to_linear(g), table.to_linear(b)]
-        };
+        // Whole texels, all four lanes at once (the hottest function of a frame).
+        let at = |row: usize, x: i64| -> [f32; 4] { self.texels[row + x as usize].map(f32::from) };
         let (p00, p10, p01, p11) = (at(row0, x0), at(row0, x1), at(row1, x0), at(row1, x1));
-        let mut out = [0f32; 3];
-        for c in 0..3 {
+        std::array::from_fn(|c| {
             let top = p00[c] + (p10[c] - p00[c]) * ax;
             let bottom = p01[c] + (p11[c] - p01[c]) * ax;
-            out[c] = top + (bottom - top) * ay;
-        }
-        out
+            (top + (bottom - top) * ay) * PER_UNIT
+        })
     }
+}
+
+/// The colour lanes of a four-lane sample.
+#[inline]
+fn rgb(c: [f32; 4]) -> [f32; 3] {
+    [c[0], c[1], c[2]]
 }
 
 /// `(floor(t) as i64, (t − floor(t)) as f32)` in one conversion: the texel and the
@@ -311,8 +331,9 @@ mod tests {
     fn chain_halves_down_to_one_texel_and_averages_in_linear() {
         let t = MipTexture::new(checker(4, 1));
         assert_eq!(t.level_count(), 3);
-        // Half white, half black in linear light is sRGB 188, not 128.
-        assert_eq!(t.levels[2].texels, vec![188, 188, 188]);
+        // Half white, half black in linear light is 0.5 (sRGB 188, not 128).
+        assert_eq!(t.levels[2].texels, vec![[16384, 16384, 16384, 0]]);
+        assert_eq!(t.levels[0].texels[..2], [[32768, 32768, 32768, 0], [0; 4]]);
         let odd = MipTexture::new(RgbImage::new(5, 3));
         let sizes: Vec<_> = odd.levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(sizes, vec![(5, 3), (2, 1), (1, 1)]);
@@ -362,7 +383,7 @@ mod tests {
         let t = MipTexture::new(checker(64, 1));
         // One screen pixel spans 64 texels: the 1 × 1 level, grey.
         let c = t.sample(0.3, 0.6, [1.0, 0.0, 0.0, 1.0], MAX_ANISOTROPY);
-        assert!((c[0] - srgb().to_linear(188)).abs() < 1e-6, "{c:?}");
+        assert_eq!(c, [0.5; 3]);
         // Half a texel per pixel: level 0, a pure texel at its centre.
         let c = t.sample(
             0.5 / 64.0,
@@ -420,7 +441,7 @@ mod tests {
         assert_eq!(t.sample(u, v, short, MAX_ANISOTROPY), [1.0; 3]);
         assert_eq!(
             t.sample(u, v, short, MAX_ANISOTROPY),
-            t.trilinear(u, v, -1.0)
+            rgb(t.trilinear(u, v, -1.0))
         );
         // 2.5 texels long: 3 taps at level 0, a texel apart (rows −1, 0, +1 of 5 in
         // 6ths): the mean of white, black, white's neighbourhood, neither pure colour.
