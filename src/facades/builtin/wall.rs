@@ -6,7 +6,7 @@ use rand_pcg::Pcg64;
 use crate::model::PxRect;
 use crate::model::geometry::rounding::round_i32;
 
-use super::canvas::{Canvas, Colour, add, mix, rect, scale};
+use super::canvas::{Canvas, Colour, Grain, add, mix, rect, scale};
 use super::design::Wall;
 
 /// Brick course height and brick length, mortar joints included.
@@ -40,13 +40,14 @@ fn bricks(c: &mut Canvas, r: PxRect, brick: Colour, mortar: Colour, rng: &mut Pc
                 }
         })
         .collect();
+    let mut noise = Grain::new(rng);
     c.each(r, |x, y, _| {
         let (lx, ly) = (x - r.x0, y - r.y0);
         let row = ly / COURSE;
         let shift = if row.is_multiple_of(2) { 0 } else { BRICK / 2 };
         let col = (lx + shift) / BRICK;
         let in_joint = ly % COURSE >= COURSE - 2 || (lx + shift) % BRICK >= BRICK - 2;
-        let grain = rng.random_range(-6..=6);
+        let grain = noise.next(6);
         if in_joint {
             mortar.map(|v| add(v, grain))
         } else {
@@ -62,6 +63,7 @@ fn plaster(c: &mut Canvas, r: PxRect, colour: Colour, rng: &mut Pcg64) {
     let gw = r.width() / BLOTCH + 2;
     let gh = r.height() / BLOTCH + 2;
     let grid: Vec<f64> = (0..gw * gh).map(|_| rng.random_range(-7.0..7.0)).collect();
+    let mut noise = Grain::new(rng);
     c.each(r, |x, y, _| {
         let (fx, fy) = (
             f64::from(x - r.x0) / f64::from(BLOTCH),
@@ -73,7 +75,7 @@ fn plaster(c: &mut Canvas, r: PxRect, colour: Colour, rng: &mut Pcg64) {
         let top = at(ix, iy) * (1.0 - tx) + at(ix + 1, iy) * tx;
         let bottom = at(ix, iy + 1) * (1.0 - tx) + at(ix + 1, iy + 1) * tx;
         let blotch = round_i32(top * (1.0 - ty) + bottom * ty);
-        let grain = rng.random_range(-3..=3);
+        let grain = noise.next(3);
         colour.map(|v| add(v, blotch + grain))
     });
 }
