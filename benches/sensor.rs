@@ -1,5 +1,5 @@
 //! Sensor stage benchmark, printing the median milliseconds per 640 × 480 frame of
-//! `sensor::develop` (and of the glue that feeds it) under each condition:
+//! `sensor::develop` under each condition:
 //! `cargo bench --bench sensor`. The frames path must stay at 30 frames/s or more by day
 //! (issue 11), so the plain condition has to cost a few milliseconds. Timings are printed,
 //! never asserted.
@@ -27,11 +27,6 @@ fn main() {
         rayon::current_num_threads()
     );
     println!("| condition | ms per frame (median of {runs}) |\n|---|---|");
-    let glue = median(runs, || {
-        let linear = sensor::decode_srgb(&rgb);
-        black_box(linear);
-    });
-    println!("| sRGB decode (interim glue) | {glue:.2} |");
     let linear = sensor::decode_srgb(&rgb);
     let cases = [
         ("plain (clear, auto exposure, tone curve)", "", ""),

@@ -1,5 +1,5 @@
 //! Fixed sRGB ↔ linear tables: 8-bit sRGB → linear f32, linear f32 → 8-bit sRGB. The
-//! renderer samples textures and develops through them, the sensor stage encodes its
+//! renderer decodes textures and develops through them, the sensor stage encodes its
 //! tone-mapped frames with them.
 //!
 //! Both tables are built once from the sRGB transfer function with nothing but + − × ÷ and

@@ -31,7 +31,7 @@ mod tone;
 mod weather;
 
 pub use conditions::{Conditions, draw};
-pub use tone::{auto_exposure, decode_srgb, srgb_to_linear, tone_map};
+pub use tone::{auto_exposure, decode_srgb, tone_map};
 pub use weather::{WeatherLight, weather_light};
 
 use image::{ImageFormat, RgbImage};
