@@ -302,7 +302,8 @@ pub enum OnError {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LampsSpec {
-    /// Distance between lamps along a road (paper: 100).
+    /// Distance between lamps along each side of a road, metres (the paper: every 100 layout
+    /// pixels, which is 100 m at the default 1 m a pixel).
     #[serde(default = "default_spacing")]
     #[schemars(range(min = 1.0, max = 10000.0))]
     pub spacing: f64,

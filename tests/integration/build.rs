@@ -107,7 +107,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let plan_before = fs::read(ws.out().join("day/plan.json")).unwrap();
-    ws.edit_spec("day", "spacing = 100", "spacing = 60");
+    ws.edit_spec("day", "spacing = 30 ", "spacing = 20 ");
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
     use StageStatus::{Cached, Ran};
     assert_eq!(
