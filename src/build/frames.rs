@@ -25,7 +25,7 @@ use crate::cameras::tan_half_degrees;
 use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
 use crate::sensor::{self, SensorFrame, WeatherLight};
-use crate::spec::{CameraSpec, WeatherSpec};
+use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
@@ -113,6 +113,26 @@ impl<'a> PathFrames<'a> {
         render::warm_shadow_map(self.input.scene, lighting);
     }
 
+    /// `lighting` with the headlights of the car a `roads` camera rides in, when they are
+    /// on: the camera asks for them and the lamps are lit (`emission` above 0). `None`
+    /// otherwise (the lighting as it is).
+    fn headlit(&self, lighting: &Lighting, i: usize) -> Option<Lighting> {
+        let camera = self.input.camera;
+        if camera.path != CameraPath::Roads || !camera.headlights || lighting.emission <= 0.0 {
+            return None;
+        }
+        let pose = &self.poses[i];
+        let travel = sensor::travel_direction(self.poses, i)?;
+        let height = pose.angles.map_or(pose.eye[1], |a| a.height);
+        let lights = render::ego_headlights(pose.eye, height, travel, lighting.emission);
+        if lights.is_empty() {
+            return None;
+        }
+        let mut out = lighting.clone();
+        out.lights.extend(lights);
+        Some(out)
+    }
+
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
     /// as soon as it is ready; stops at the first error `emit` returns.
     pub fn render<E>(
@@ -138,6 +158,8 @@ impl<'a> PathFrames<'a> {
         );
         let weathered = weathered(lighting, &sensor::weather_light(&conditions));
         let lighting = weathered.as_ref().unwrap_or(lighting);
+        let headlit = self.headlit(lighting, i);
+        let lighting = headlit.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
@@ -164,6 +186,9 @@ impl<'a> PathFrames<'a> {
         );
         let mut drawn = conditions.to_json(developed.exposure);
         drawn["sun"] = sun_json(&sun);
+        if camera.path == CameraPath::Roads {
+            drawn["headlights"] = json!(headlit.is_some());
+        }
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance: &frame.instance,

@@ -52,7 +52,7 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 10;
+pub const VERSION: u32 = 11;
 
 mod ambient_occlusion;
 mod centre_samples;
@@ -91,7 +91,7 @@ pub use lighting::{
 pub use lit_windows::LitWindows;
 pub use prepared_scene::{MAX_OBJECTS, PreparedScene, TextureMips, prepare, prepare_with};
 pub use render_error::RenderError;
-pub use scene_lighting::lighting_for;
+pub use scene_lighting::{ego_headlights, lighting_for};
 pub use sky::Sky;
 pub use sun::{Sun, solar_position};
 

@@ -2,7 +2,8 @@
 //! path (or frame): the spec's sun, sky and shadows, a point light at every lamp head and
 //! a seeded share of lit windows once the sun is low with the light they spill onto the
 //! pavement, and the headlight beam and tail-light glow of every car in a driving lane
-//! (a parked car's lights are off: its lenses are other materials).
+//! (a parked car's lights are off: its lenses are other materials). A driving camera's
+//! own car adds its headlights per frame ([`ego_headlights`]).
 
 use super::lighting::{LAMP_COLOUR, WINDOW_COLOUR};
 use super::{Light, Lighting, LitWindows, Sun};
@@ -106,6 +107,63 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
     out
 }
 
+/// The camera car's headlights: each lamp this far ahead of the driver's eye, metres. A
+/// real car's are about 2 m ahead, but its bonnet hides the road below them, and the
+/// camera has no bonnet: from here the beams' lower edge falls on the road about 1 m
+/// ahead of the eye, under the frame's lower edge, so the pool has no hard near edge…
+const EGO_AHEAD: f64 = 0.5;
+/// …this high above the road…
+const EGO_LAMP_HEIGHT: f64 = 0.7;
+/// …this far either side of the car's centre line…
+const EGO_HALF_TRACK: f64 = 0.75;
+/// …which is this far right of the eye (a driver sits left of centre in right-hand
+/// traffic, as the roads camera drives).
+const EGO_DRIVER_OFFSET: f64 = 0.4;
+/// Each lamp's share of [`HEAD_LIGHT`]: the pair lights the road 4 m ahead about as
+/// brightly as one other car's beam does 4 m ahead of it (about 1, the noon sun's
+/// strength), and twice that at the frame's lower edge.
+const EGO_SHARE: f32 = 0.45;
+
+/// The headlights of the car a `roads` camera rides in: two dipped beams, like every
+/// driving car's ([`HEAD_LIGHT`], [`HEAD_RANGE`]), aimed along `travel` (the way the car
+/// moves, whichever way the camera looks) from in front of and below the eye, which is
+/// `eye_height` metres above the road. `strength` scales them: the lighting's `emission`
+/// (0 by day, so none; 1 at night). Without a horizontal `travel`, none. A night drive's
+/// nearest road is lit by them, as on a dashcam, instead of black between the lamps.
+pub fn ego_headlights(
+    eye: [f64; 3],
+    eye_height: f64,
+    travel: [f64; 3],
+    strength: f32,
+) -> Vec<Light> {
+    let len = (travel[0] * travel[0] + travel[2] * travel[2]).sqrt();
+    let usable = strength > 0.0 && strength.is_finite() && len > 1e-6 && len.is_finite();
+    if !usable || !eye_height.is_finite() || !eye.iter().all(|v| v.is_finite()) {
+        return Vec::new();
+    }
+    let (fx, fz) = (travel[0] / len, travel[2] / len);
+    // Right of the travel direction, seen from above (x east, z south, y up).
+    let (rx, rz) = (-fz, fx);
+    let y = eye[1] - eye_height + EGO_LAMP_HEIGHT;
+    [-EGO_HALF_TRACK, EGO_HALF_TRACK]
+        .map(|side| {
+            let across = EGO_DRIVER_OFFSET + side;
+            Light {
+                position: [
+                    (eye[0] + fx * EGO_AHEAD + rx * across) as f32,
+                    y as f32,
+                    (eye[2] + fz * EGO_AHEAD + rz * across) as f32,
+                ],
+                colour: HEAD_LIGHT.map(|c| c * EGO_SHARE * strength.min(1.0)),
+                range: HEAD_RANGE,
+                near: HEAD_NEAR,
+                aim: [fx as f32, -HEAD_DIP as f32, fz as f32],
+                edge: HEAD_EDGE,
+            }
+        })
+        .to_vec()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -151,5 +209,26 @@ mod tests {
             "red: {:?}",
             tail.colour
         );
+    }
+
+    #[test]
+    fn the_camera_cars_headlights_shine_along_its_travel_from_below_the_eye() {
+        // Driving north (−z) with the eye 1.5 m above a road at y = 0.
+        let lights = ego_headlights([10.0, 1.5, 20.0], 1.5, [0.0, 0.0, -3.0], 1.0);
+        assert_eq!(lights.len(), 2);
+        for (l, x) in lights.iter().zip([10.0 - 0.35, 10.0 + 1.15]) {
+            // Ahead of the eye (north), right of it by the driver's offset ± half the track.
+            assert!((l.position[0] - x).abs() < 1e-5, "{:?}", l.position);
+            assert!((l.position[1] - 0.7).abs() < 1e-6);
+            assert!((l.position[2] - 19.5).abs() < 1e-5);
+            assert_eq!(l.aim, [0.0, -HEAD_DIP as f32, -1.0]);
+            assert_eq!(l.colour, HEAD_LIGHT.map(|c| c * EGO_SHARE));
+        }
+        // Half strength at dusk; none by day, or with no direction of travel.
+        let dusk = ego_headlights([0.0, 1.2, 0.0], 1.2, [1.0, 0.0, 0.0], 0.5);
+        assert_eq!(dusk[0].colour, HEAD_LIGHT.map(|c| c * EGO_SHARE * 0.5));
+        assert!(ego_headlights([0.0; 3], 1.5, [1.0, 0.0, 0.0], 0.0).is_empty());
+        assert!(ego_headlights([0.0; 3], 1.5, [0.0, 1.0, 0.0], 1.0).is_empty());
+        assert!(ego_headlights([0.0; 3], f64::NAN, [1.0, 0.0, 0.0], 1.0).is_empty());
     }
 }

@@ -194,7 +194,7 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            10,
+            11,
             "5a7635175ce0eb1a6d33686139ac835078e5c634ca6ee9efdc2b1e7b75ad294c"
         ),
         "lighting output changed: bump render::VERSION and update this digest"

@@ -94,6 +94,11 @@ pub struct CameraSpec {
     #[serde(default = "default_lane_offset")]
     #[schemars(range(min = 0.0, max = 50.0))]
     pub lane_offset: f64,
+    /// Roads path: whether the camera's own car shines its headlights (two dipped beams
+    /// along the direction of travel, lighting the road ahead) once the street lamps come
+    /// on; off by day whatever this says. Other paths have none.
+    #[serde(default = "default_headlights")]
+    pub headlights: bool,
     /// Samples per pixel side for the colour image (1 = none, 2 = 2×2).
     #[serde(default = "default_supersample")]
     #[schemars(range(min = 1, max = 4))]
@@ -298,6 +303,9 @@ fn default_look_ahead() -> f64 {
 }
 fn default_jitter() -> f64 {
     0.5
+}
+fn default_headlights() -> bool {
+    true
 }
 fn default_lane_offset() -> f64 {
     4.0

@@ -80,6 +80,11 @@ impl Workspace {
     /// frames and about a tenth of its objects, keeping every kind of object, camera and
     /// output file: for tests that build it many times over.
     pub fn shrink_day(&self) {
+        self.shrink("day");
+    }
+
+    /// [`Workspace::shrink_day`] for another spec of the day city (`night`, `dusk`, …).
+    pub fn shrink(&self, name: &str) {
         for (from, to) in [
             ("width = 768", "width = 384"),
             ("height = 768", "height = 384"),
@@ -94,7 +99,7 @@ impl Workspace {
             ("count = 450", "count = 40"),
             ("count = 300", "count = 30"),
         ] {
-            self.edit_spec("day", from, to);
+            self.edit_spec(name, from, to);
         }
     }
 

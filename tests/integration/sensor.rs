@@ -1,5 +1,6 @@
 //! The sensor stage changes the RGB frames only: a camera path built with weather and
-//! sensor effects has the same ids, depth, YOLO and COCO annotations as without them.
+//! sensor effects has the same ids, depth, YOLO and COCO annotations as without them. So
+//! do the headlights of a night drive's own car.
 
 use crate::common;
 
@@ -94,5 +95,60 @@ fn weather_and_sensor_change_rgb_only() {
             sun["elevation"].is_number() && sun["azimuth"].is_number(),
             "{sun}"
         );
+    }
+}
+
+/// Mean of the lower half of an RGB PNG, 0–255.
+fn lower_half_mean(png: &[u8]) -> f64 {
+    let image = image::load_from_memory(png).unwrap().to_rgb8();
+    let half = image.height() / 2;
+    let values: Vec<f64> = image
+        .rows()
+        .skip(half as usize)
+        .flatten()
+        .flat_map(|p| p.0.map(f64::from))
+        .collect();
+    values.iter().sum::<f64>() / values.len() as f64
+}
+
+#[test]
+fn a_night_drive_lights_the_road_ahead_with_its_own_headlights_in_rgb_only() {
+    let ws = Workspace::with_spec("night");
+    ws.shrink("night");
+    build::build(&ws.spec("night"), &ws.options()).unwrap();
+    let with = tree(&ws.out().join("night/frames/street"));
+    ws.edit_spec(
+        "night",
+        "lane_offset = 5.4 ",
+        "headlights = false\nlane_offset = 5.4 ",
+    );
+    build::build(&ws.spec("night"), &ws.options()).unwrap();
+    let without = tree(&ws.out().join("night/frames/street"));
+
+    assert_eq!(
+        with.keys().collect::<Vec<_>>(),
+        without.keys().collect::<Vec<_>>()
+    );
+    let (mut lit, mut dark, mut changed) = (0.0, 0.0, 0);
+    for (name, bytes) in &with {
+        let plain = &without[name];
+        if name.starts_with("ids/") || name.starts_with("depth/") || name.starts_with("yolo/") {
+            assert!(bytes == plain, "{name} changed");
+        } else if name.starts_with("rgb/") {
+            changed += usize::from(bytes != plain);
+            lit += lower_half_mean(bytes);
+            dark += lower_half_mean(plain);
+        }
+    }
+    assert!(changed > 0, "no frame changed");
+    // The road ahead is brighter with them on.
+    assert!(lit > dark + 2.0, "lower halves: {lit} with, {dark} without");
+    let coco = coco_without_conditions(&with["coco.json"]);
+    assert_eq!(coco, coco_without_conditions(&without["coco.json"]));
+    for (doc, on) in [(&with, true), (&without, false)] {
+        let poses: serde_json::Value = serde_json::from_slice(&doc["poses.json"]).unwrap();
+        for frame in poses["frames"].as_array().unwrap() {
+            assert_eq!(frame["conditions"]["headlights"], on, "{frame}");
+        }
     }
 }
