@@ -158,19 +158,29 @@ impl ShadowMap {
         })
     }
 
-    /// Share of the sun reaching surface point `p` with unit normal `n`, 0–1.
-    pub(crate) fn light(&self, p: [f64; 3], n: [f64; 3]) -> f32 {
+    /// What the test needs of a surface with unit normal `n`, the same at each of its
+    /// points: `None` when it faces away from the sun (no light reaches it).
+    pub(crate) fn receiver(&self, n: [f64; 3]) -> Option<Receiver> {
         let cos = dot(n, self.dir);
         if cos <= 0.0 {
-            return 0.0;
+            return None;
         }
         let tan = ((1.0 - cos * cos).max(0.0).sqrt() / cos).min(5.0);
+        Some(Receiver {
+            n,
+            bias: self.texel * (0.5 + 2.0 * tan),
+        })
+    }
+
+    /// Share of the sun reaching point `p` of the surface `r` describes, 0–1.
+    pub(crate) fn light_at(&self, p: [f64; 3], r: &Receiver) -> f32 {
+        let n = r.n;
         let q = [
             p[0] + n[0] * self.texel,
             p[1] + n[1] * self.texel,
             p[2] + n[2] * self.texel,
         ];
-        let z = dot(q, self.dir) + self.texel * (0.5 + 2.0 * tan);
+        let z = dot(q, self.dir) + r.bias;
         let fx = (dot(q, self.right) - self.origin[0]) * self.per_texel - 0.5;
         let fy = (dot(q, self.up) - self.origin[1]) * self.per_texel - 0.5;
         if !(fx.is_finite() && fy.is_finite()) {
@@ -215,6 +225,15 @@ impl ShadowMap {
         }
         lit as f32
     }
+}
+
+/// A surface facing the sun, as the shadow test sees it ([`ShadowMap::receiver`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Receiver {
+    /// Unit normal.
+    n: [f64; 3],
+    /// Depth bias: `texel · (0.5 + 2 · tan θ)`.
+    bias: f64,
 }
 
 /// The largest `f32` not above `z` (NaN stays NaN, so every test against it fails, as

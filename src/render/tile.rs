@@ -9,9 +9,9 @@ use super::Lighting;
 use super::lit_windows::WindowLookup;
 use super::mip_texture::MAX_ANISOTROPY;
 use super::point_lights::{self, FrameLight};
-use super::prepared_scene::PreparedScene;
+use super::prepared_scene::{PreparedScene, ShadeMaterial, Triangle};
 use super::screen_triangle::{ScreenTri, at};
-use super::shadow_map::ShadowMap;
+use super::shadow_map::{Receiver, ShadowMap};
 use super::view::View;
 
 /// Most anisotropic texture taps on level surfaces (roads, sidewalks, plazas, roofs),
@@ -145,21 +145,20 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
         depth: Vec::with_capacity(ow * oh),
     };
     let scale = f64::from(s);
-    let shade_sample = |i: usize, open: f32| -> [f32; 3] {
+    // The surface of the last triangle shaded: runs of pixels share one.
+    let mut last: Option<(u32, Surface)> = None;
+    let mut shade_sample = |i: usize, open: f32| -> [f32; 3] {
         let x = inner[0] + (i % iw) as u32;
         let y = inner[1] + (i / iw) as u32;
         match id[i] {
             NOTHING => sky(ctx, x, y),
-            t => shade(
-                ctx,
-                &ctx.tris[t as usize],
-                x,
-                y,
-                depth[i],
-                &lights,
-                scale,
-                open,
-            ),
+            t => {
+                let surface = match &last {
+                    Some((u, surface)) if *u == t => surface,
+                    _ => &last.insert((t, Surface::of(ctx, t))).1,
+                };
+                shade(ctx, surface, x, y, depth[i], &lights, scale, open)
+            }
         }
     };
     // (triangle, samples, sample to shade) per distinct triangle of a pixel.
@@ -230,12 +229,67 @@ fn sky(ctx: &FrameContext, x: u32, y: u32) -> [f32; 3] {
     ctx.lighting.sky.radiance(d.map(|c| c / len))
 }
 
-/// Linear colour of the surface of `tri` at internal pixel `(x, y)`, where 1/w = `q`;
-/// `open` scales its ambient light (ambient occlusion).
+/// What shading needs of a screen triangle's surface that is the same at each of its
+/// pixels, worked out once for a run of pixels on it ([`shade_tile`] keeps the last one).
+pub(crate) struct Surface<'a> {
+    tri: &'a ScreenTri,
+    source: &'a Triangle,
+    material: &'a ShadeMaterial,
+    /// Most anisotropic texture taps.
+    taps: f64,
+    /// `max(0, n · sun)` before shadowing.
+    sun: f32,
+    /// The shadow test's view of the surface, when it faces the sun and shadows are on.
+    receiver: Option<Receiver>,
+    /// Whether the surface faces the sun while shadows are on (so a point is needed).
+    shadowed: bool,
+    /// Ambient light before occlusion: the sky's from above, the ground's bounce from
+    /// below, blended by the normal.
+    ambient: [f32; 3],
+}
+
+impl<'a> Surface<'a> {
+    pub(crate) fn of(ctx: &FrameContext<'a>, t: u32) -> Surface<'a> {
+        let scene = ctx.scene;
+        let tri = &ctx.tris[t as usize];
+        let source = &scene.triangles[tri.source as usize];
+        let material = &scene.materials[source.material as usize];
+        let taps = if source.normal[1].abs() > 0.9 {
+            LEVEL_SURFACE_TAPS
+        } else {
+            MAX_ANISOTROPY
+        };
+        let l = ctx.lighting;
+        let n = source.normal;
+        let sun = n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2];
+        let shadowed = sun > 0.0 && ctx.shadows.is_some();
+        let receiver = ctx
+            .shadows
+            .filter(|_| sun > 0.0)
+            .and_then(|map| map.receiver(n.map(f64::from)));
+        let up = 0.5 + 0.5 * n[1];
+        let ambient = std::array::from_fn(|k| {
+            l.ground_ambient[k] + (l.ambient[k] - l.ground_ambient[k]) * up
+        });
+        Surface {
+            tri,
+            source,
+            material,
+            taps,
+            sun,
+            receiver,
+            shadowed,
+            ambient,
+        }
+    }
+}
+
+/// Linear colour of `surface` at internal pixel `(x, y)`, where 1/w = `q`; `open` scales
+/// its ambient light (ambient occlusion).
 #[allow(clippy::too_many_arguments)]
 fn shade(
     ctx: &FrameContext,
-    tri: &ScreenTri,
+    surface: &Surface,
     x: u32,
     y: u32,
     q: f64,
@@ -244,8 +298,7 @@ fn shade(
     open: f32,
 ) -> [f32; 3] {
     let scene = ctx.scene;
-    let source = &scene.triangles[tri.source as usize];
-    let material = &scene.materials[source.material as usize];
+    let (tri, source, material) = (surface.tri, surface.source, surface.material);
     let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
     // w, the camera-space depth: one division for the texture coordinates, their
     // derivatives and the point.
@@ -269,12 +322,7 @@ fn shade(
             (tri.uq[1] - u * tri.q[1]) * ws,
             (tri.vq[1] - v * tri.q[1]) * ws,
         ];
-        let taps = if source.normal[1].abs() > 0.9 {
-            LEVEL_SURFACE_TAPS
-        } else {
-            MAX_ANISOTROPY
-        };
-        let t = scene.textures[texture as usize].sample(u, v, d, taps);
+        let t = scene.textures[texture as usize].sample(u, v, d, surface.taps);
         albedo = [albedo[0] * t[0], albedo[1] * t[1], albedo[2] * t[2]];
         if let Some(w) = ctx.windows
             && w.is_lit(texture, source.instance, u, v)
@@ -284,29 +332,29 @@ fn shade(
     }
     let l = ctx.lighting;
     let n = source.normal;
-    let sun = n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2];
-    let needs_point = !lights.is_empty() || (sun > 0.0 && ctx.shadows.is_some());
+    let needs_point = !lights.is_empty() || surface.shadowed;
     let p = if needs_point {
         ctx.view.unproject(px, py, w)
     } else {
         [0.0; 3]
     };
-    let sun = if sun <= 0.0 {
+    let sun = if surface.sun <= 0.0 {
         0.0
-    } else if let Some(map) = ctx.shadows {
-        let shade = 1.0 - map.light(p, n.map(f64::from));
-        sun * (1.0 - l.shadow_strength.clamp(0.0, 1.0) * shade)
+    } else if ctx.shadows.is_some() {
+        let lit = surface
+            .receiver
+            .as_ref()
+            .zip(ctx.shadows)
+            .map_or(0.0, |(r, map)| map.light_at(p, r));
+        surface.sun * (1.0 - l.shadow_strength.clamp(0.0, 1.0) * (1.0 - lit))
     } else {
-        sun
+        surface.sun
     };
-    // Ambient: the sky from above, the ground's bounce from below, blended by the normal.
-    let up = 0.5 + 0.5 * n[1];
-    let ambient =
-        |k: usize| (l.ground_ambient[k] + (l.ambient[k] - l.ground_ambient[k]) * up) * open;
+    let a = surface.ambient;
     let mut light = [
-        ambient(0) + l.sun_colour[0] * sun,
-        ambient(1) + l.sun_colour[1] * sun,
-        ambient(2) + l.sun_colour[2] * sun,
+        a[0] * open + l.sun_colour[0] * sun,
+        a[1] * open + l.sun_colour[1] * sun,
+        a[2] * open + l.sun_colour[2] * sun,
     ];
     point_lights::add_lights(&mut light, lights, p, n);
     let e = l.emission;
