@@ -185,10 +185,22 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
                 (sample(i0, j0 + 1), false, fy),
                 (sample(i0 + 1, j0 + 1), true, fy),
             ];
+            // Open all round (every grid sample 1, as on open ground, mid-wall or far
+            // away): any blend of them is exactly 1, the value already in place, so a
+            // pixel with a sample on its own triangle is done.
+            let open = corners.iter().all(|(c, _, _)| c.is_none_or(|c| c.3 == 1.0));
             for (fx, slot) in cell.iter_mut().enumerate() {
                 let x = i0 * GRID + fx;
                 let t = tri[y * w + x];
                 if t == NOTHING {
+                    continue;
+                }
+                if open
+                    && corners.iter().any(|&(c, right, ky)| {
+                        let k = if right { fx } else { GRID - fx } * ky;
+                        k > 0 && c.is_some_and(|c| c.2 == t)
+                    })
+                {
                     continue;
                 }
                 // This pixel's point and normal, worked out at the first sample on another
