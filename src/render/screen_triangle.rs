@@ -33,7 +33,12 @@ pub(crate) struct ScreenTri {
 }
 
 impl ScreenTri {
-    /// Calls `cover(x, y, q)` for every covered pixel inside `[x0, x1) × [y0, y1)`.
+    /// Calls `cover(x, y, q)` for every covered pixel inside `[x0, x1) × [y0, y1)`, block
+    /// by block of [`BLOCK`] × [`BLOCK`] pixels: a block wholly inside the triangle
+    /// (every edge function non-negative at its four corner pixels, so at all its pixels:
+    /// they are linear) is covered without testing its pixels, one wholly outside an edge
+    /// is skipped, and only the blocks an edge crosses test each pixel. The pixels covered
+    /// and their `q` are those of a test of every pixel.
     #[inline]
     pub(crate) fn rasterize(&self, clip: [u32; 4], mut cover: impl FnMut(u32, u32, f64)) {
         let x0 = self.bounds[0].max(clip[0]);
@@ -43,26 +48,63 @@ impl ScreenTri {
         if x0 >= x1 || y0 >= y1 {
             return;
         }
-        let [e0, e1, e2] = self.edges;
-        let px0 = i64::from(x0) * SUB + SUB / 2;
+        let edges = self.edges;
+        let centre = |v: u32| i64::from(v) * SUB + SUB / 2;
         let (qx, qy) = (self.q[0], self.q[1]);
-        for y in y0..y1 {
-            let py = i64::from(y) * SUB + SUB / 2;
-            let mut w0 = e0[0] * px0 + e0[1] * py + e0[2];
-            let mut w1 = e1[0] * px0 + e1[1] * py + e1[2];
-            let mut w2 = e2[0] * px0 + e2[1] * py + e2[2];
-            let row_q = self.q[2] + qy * (f64::from(y) + 0.5 - self.origin[1]);
-            for x in x0..x1 {
-                if (w0 | w1 | w2) >= 0 {
-                    cover(x, y, row_q + qx * (f64::from(x) + 0.5 - self.origin[0]));
+        let row_q = |y: u32| self.q[2] + qy * (f64::from(y) + 0.5 - self.origin[1]);
+        let pixel_q = |row_q: f64, x: u32| row_q + qx * (f64::from(x) + 0.5 - self.origin[0]);
+        for by in (y0..y1).step_by(BLOCK as usize) {
+            let by1 = (by + BLOCK).min(y1);
+            for bx in (x0..x1).step_by(BLOCK as usize) {
+                let bx1 = (bx + BLOCK).min(x1);
+                // Each edge's least and greatest value over the block's corner pixels.
+                let (cx0, cx1, cy0, cy1) =
+                    (centre(bx), centre(bx1 - 1), centre(by), centre(by1 - 1));
+                let mut inside = true;
+                let mut outside = false;
+                for e in &edges {
+                    let (ax0, ax1) = (e[0] * cx0, e[0] * cx1);
+                    let (by0, by1) = (e[1] * cy0, e[1] * cy1);
+                    let least = ax0.min(ax1) + by0.min(by1) + e[2];
+                    let most = ax0.max(ax1) + by0.max(by1) + e[2];
+                    inside &= least >= 0;
+                    outside |= most < 0;
                 }
-                w0 += e0[0] * SUB;
-                w1 += e1[0] * SUB;
-                w2 += e2[0] * SUB;
+                if outside {
+                    continue;
+                }
+                if inside {
+                    for y in by..by1 {
+                        let rq = row_q(y);
+                        for x in bx..bx1 {
+                            cover(x, y, pixel_q(rq, x));
+                        }
+                    }
+                    continue;
+                }
+                let [e0, e1, e2] = edges;
+                for y in by..by1 {
+                    let py = centre(y);
+                    let mut w0 = e0[0] * cx0 + e0[1] * py + e0[2];
+                    let mut w1 = e1[0] * cx0 + e1[1] * py + e1[2];
+                    let mut w2 = e2[0] * cx0 + e2[1] * py + e2[2];
+                    let rq = row_q(y);
+                    for x in bx..bx1 {
+                        if (w0 | w1 | w2) >= 0 {
+                            cover(x, y, pixel_q(rq, x));
+                        }
+                        w0 += e0[0] * SUB;
+                        w1 += e1[0] * SUB;
+                        w2 += e2[0] * SUB;
+                    }
+                }
             }
         }
     }
 }
+
+/// Side of the blocks [`ScreenTri::rasterize`] tests whole, pixels.
+const BLOCK: u32 = 8;
 
 #[inline]
 pub(crate) fn at(p: &[f64; 3], origin: [f64; 2], x: f64, y: f64) -> f64 {
