@@ -25,7 +25,10 @@
 //!
 //! It is measured at every [`GRID`]-th pixel of every `GRID`-th row, the steps starting at
 //! an offset per grid cell from a fixed 4 × 4 pattern (ordered dither), so the two rings
-//! blend into a smooth falloff instead of bands. Every pixel then blends the four grid
+//! blend into a smooth falloff instead of bands. A grid sample measures every other
+//! direction, the straight four or the diagonal four in a checkerboard, so the four a
+//! pixel blends cover all eight, at half the taps (day street frames: 94 → 90 CPU ms; the
+//! RGB image moves by more than 4 of 255 on 0.07 % of pixels). Every pixel then blends the four grid
 //! samples around it by their bilinear weights, keeping those on its own surface (its own
 //! triangle, or a point in its plane with a normal within ~25°), and is measured itself
 //! only where none is: at silhouettes and on surfaces thinner than the grid. A sixteenth
@@ -47,7 +50,7 @@ pub(crate) const RADIUS: f32 = 1.2;
 /// Ignores surfaces rising less than this (sine of the angle) above the tangent plane:
 /// flat ground does not occlude itself.
 const BIAS: f32 = 0.1;
-/// Screen directions.
+/// Screen directions (a grid sample measures half of them, a pixel measured alone all).
 const DIRECTIONS: usize = 8;
 /// Steps per direction.
 const STEPS: usize = 2;
@@ -114,7 +117,8 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
         ][k]
     });
     let r2 = RADIUS * RADIUS;
-    let occlusion = |x: usize, y: usize| -> f32 {
+    // Which of the directions a pixel measures: every other one from `first`.
+    let occlusion = |x: usize, y: usize, first: usize, every: usize| -> f32 {
         let p = point(x, y);
         if p[2] <= 0.0 {
             return 1.0;
@@ -127,7 +131,7 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
         }
         let jitter = f32::from(DITHER[(y / GRID % 4) * 4 + x / GRID % 4]) / 16.0;
         let mut sum = 0.0;
-        for d in &dirs {
+        for d in dirs.iter().skip(first).step_by(every) {
             let mut best = 0f32;
             for step in 0..STEPS {
                 let t = reach * (step as f32 + 0.25 + 0.75 * jitter) / STEPS as f32;
@@ -156,14 +160,14 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
             }
             sum += best;
         }
-        1.0 - strength * (GAIN * sum / DIRECTIONS as f32).min(1.0)
+        1.0 - strength * (GAIN * sum / (DIRECTIONS / every) as f32).min(1.0)
     };
     // Measured on the grid, then blended per pixel (see the module's docs).
     let (wc, hc) = ((w - 1) / GRID + 1, (h - 1) / GRID + 1);
     let mut coarse = vec![1f32; wc * hc];
     coarse.par_chunks_mut(wc).enumerate().for_each(|(j, row)| {
         for (i, slot) in row.iter_mut().enumerate() {
-            *slot = occlusion(GRID * i, GRID * j);
+            *slot = occlusion(GRID * i, GRID * j, (i + j) % 2, 2);
         }
     });
     let mut out = vec![1f32; w * h];
@@ -231,7 +235,7 @@ pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: 
                 *slot = if weight > 0 {
                     sum / weight as f32
                 } else {
-                    occlusion(x, y)
+                    occlusion(x, y, 0, 1)
                 };
             }
         }

@@ -194,8 +194,8 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            11,
-            "5a7635175ce0eb1a6d33686139ac835078e5c634ca6ee9efdc2b1e7b75ad294c"
+            12,
+            "4f688945913751bbc5324db443080fc3ca0d0dea380991d57a5073c29c8915c9"
         ),
         "lighting output changed: bump render::VERSION and update this digest"
     );
