@@ -124,12 +124,13 @@ const EGO_DRIVER_OFFSET: f64 = 0.4;
 /// strength), and twice that at the frame's lower edge.
 const EGO_SHARE: f32 = 0.45;
 
-/// The headlights of the car a `roads` camera rides in: two dipped beams, like every
-/// driving car's ([`HEAD_LIGHT`], [`HEAD_RANGE`]), aimed along `travel` (the way the car
-/// moves, whichever way the camera looks) from in front of and below the eye, which is
-/// `eye_height` metres above the road. `strength` scales them: the lighting's `emission`
-/// (0 by day, so none; 1 at night). Without a horizontal `travel`, none. A night drive's
-/// nearest road is lit by them, as on a dashcam, instead of black between the lamps.
+/// The headlights of the car a `roads` camera rides in: two dipped beams like every
+/// driving car's (the same cone, 30 m reach and warm white, each at 0.45 of its
+/// strength), aimed along `travel` (the way the car moves, whichever way the camera
+/// looks) from in front of and below the eye, which is `eye_height` metres above the
+/// road. `strength` scales them: the lighting's `emission` (0 by day, so none; 1 at
+/// night). Without a horizontal `travel`, none. A night drive's nearest road is lit by
+/// them, as on a dashcam, instead of black between the lamps.
 pub fn ego_headlights(
     eye: [f64; 3],
     eye_height: f64,
