@@ -61,6 +61,8 @@ pub struct PathFrames<'a> {
     measured: Vec<u32>,
     has_text: bool,
     dir: String,
+    /// The path's median step between poses, for each frame's direction of travel.
+    median_step: Option<f64>,
 }
 
 /// What one rendered frame leaves for its path's `coco.json`, `poses.json` and
@@ -102,6 +104,7 @@ impl<'a> PathFrames<'a> {
                 .iter()
                 .any(|l| l.text.is_some() && l.category.is_some()),
             dir: format!("frames/{}", camera.name),
+            median_step: sensor::median_step(poses),
         }
     }
 
@@ -113,16 +116,16 @@ impl<'a> PathFrames<'a> {
         render::warm_shadow_map(self.input.scene, lighting);
     }
 
-    /// `lighting` with the headlights of the car a `roads` camera rides in, when they are
-    /// on: the camera asks for them and the lamps are lit (`emission` above 0). `None`
-    /// otherwise (the lighting as it is).
-    fn headlit(&self, lighting: &Lighting, i: usize) -> Option<Lighting> {
+    /// `lighting` with the headlights of the car a `roads` camera rides in, aimed along
+    /// frame `i`'s `travel`, when they are on: the camera asks for them and the lamps are
+    /// lit (`emission` above 0). `None` otherwise (the lighting as it is).
+    fn headlit(&self, lighting: &Lighting, i: usize, travel: Option<[f64; 3]>) -> Option<Lighting> {
         let camera = self.input.camera;
         if camera.path != CameraPath::Roads || !camera.headlights || lighting.emission <= 0.0 {
             return None;
         }
         let pose = &self.poses[i];
-        let travel = sensor::travel_direction(self.poses, i)?;
+        let travel = travel?;
         let height = pose.angles.map_or(pose.eye[1], |a| a.height);
         let lights = render::ego_headlights(pose.eye, height, travel, lighting.emission);
         if lights.is_empty() {
@@ -158,7 +161,8 @@ impl<'a> PathFrames<'a> {
         );
         let weathered = weathered(lighting, &sensor::weather_light(&conditions));
         let lighting = weathered.as_ref().unwrap_or(lighting);
-        let headlit = self.headlit(lighting, i);
+        let travel = sensor::travel_direction_with(self.poses, i, self.median_step);
+        let headlit = self.headlit(lighting, i, travel);
         let lighting = headlit.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
@@ -178,7 +182,7 @@ impl<'a> PathFrames<'a> {
                 depth: frame.depth.as_raw(),
                 pose: *pose,
                 intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
-                motion: sensor::travel_direction(self.poses, i),
+                motion: travel,
                 horizon: lighting.sky.horizon(),
                 scene_exposure: lighting.exposure,
             },

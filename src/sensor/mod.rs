@@ -130,17 +130,36 @@ fn jpeg_round_trip(rgb: RgbImage, quality: u8) -> RgbImage {
 /// A neighbour counts when it is a step of the path, no longer than twice the path's
 /// median step (a road tour jumps between roads); of two steps that disagree, the one
 /// nearer the view direction wins; with none, the view direction stands in. `None` for a
-/// pose without a view direction.
+/// pose without a view direction. [`travel_direction_with`] takes the median step worked
+/// out once for the path, where a caller asks for each of its frames.
 pub fn travel_direction(poses: &[CameraPose], i: usize) -> Option<[f64; 3]> {
+    travel_direction_with(poses, i, median_step(poses))
+}
+
+/// The median length of a path's steps between consecutive poses; `None` for fewer than
+/// two poses.
+pub fn median_step(poses: &[CameraPose]) -> Option<f64> {
+    let mut lengths: Vec<f64> = poses
+        .windows(2)
+        .map(|p| {
+            let d = [0, 1, 2].map(|k| p[1].eye[k] - p[0].eye[k]);
+            dot(d, d).sqrt()
+        })
+        .collect();
+    lengths.sort_by(f64::total_cmp);
+    lengths.get(lengths.len() / 2).copied()
+}
+
+/// [`travel_direction`] with the path's [`median_step`] given.
+pub fn travel_direction_with(
+    poses: &[CameraPose],
+    i: usize,
+    median: Option<f64>,
+) -> Option<[f64; 3]> {
     let step = |a: &CameraPose, b: &CameraPose| [0, 1, 2].map(|k| b.eye[k] - a.eye[k]);
     let pose = poses.get(i)?;
     let forward = pose.basis()?.forward;
-    let mut lengths: Vec<f64> = poses
-        .windows(2)
-        .map(|p| dot(step(&p[0], &p[1]), step(&p[0], &p[1])).sqrt())
-        .collect();
-    lengths.sort_by(f64::total_cmp);
-    let Some(&median) = lengths.get(lengths.len() / 2) else {
+    let Some(median) = median else {
         return Some(forward);
     };
     let unit = |d: [f64; 3]| {
