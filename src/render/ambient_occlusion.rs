@@ -27,14 +27,15 @@
 //! an offset per grid cell from a fixed 4 × 4 pattern (ordered dither), so the two rings
 //! blend into a smooth falloff instead of bands. A grid sample measures every other
 //! direction, the straight four or the diagonal four in a checkerboard, so the four a
-//! pixel blends cover all eight, at half the taps (day street frames: 94 → 90 CPU ms; the
-//! RGB image moves by more than 4 of 255 on 0.07 % of pixels). Every pixel then blends the four grid
-//! samples around it by their bilinear weights, keeping those on its own surface (its own
-//! triangle, or a point in its plane with a normal within ~25°), and is measured itself
-//! only where none is: at silhouettes and on surfaces thinner than the grid. A sixteenth
-//! of the measuring, no blur across silhouettes, and a smooth gradient where a crease is
-//! wider than the grid. The taps are what costs: they read scattered pixels of the depth
-//! buffer, so a measured pixel costs as much as its cache misses.
+//! pixel blends cover all eight at half the taps (day street frames: 94 → 90 CPU ms; the
+//! RGB image moves by more than 4 of 255 on 0.07 % of pixels). Every pixel then blends
+//! the four grid samples around it by their bilinear weights, keeping those on its own
+//! surface (its own triangle, or a point in its plane with a normal within ~25°), and is
+//! measured itself, in all eight directions, only where none is: at silhouettes and on
+//! surfaces thinner than the grid. A thirty-second of the taps, no blur across
+//! silhouettes, and a smooth gradient where a crease is wider than the grid. The taps are
+//! what costs: they read scattered pixels of the depth buffer, so a measured pixel costs
+//! as much as its cache misses.
 //!
 //! Each pixel reads only the frame's buffers and writes only itself, in `f32` with
 //! + − × ÷ and sqrt: the bytes do not depend on threads.

@@ -38,7 +38,8 @@ impl ScreenTri {
     /// (every edge function non-negative at its four corner pixels, so at all its pixels:
     /// they are linear) is covered without testing its pixels, one wholly outside an edge
     /// is skipped, and only the blocks an edge crosses test each pixel. The pixels covered
-    /// and their `q` are those of a test of every pixel.
+    /// and their `q` are those of a test of every pixel; they come block by block, so a
+    /// caller must not depend on their order (depth tests and coverage masks do not).
     #[inline]
     pub(crate) fn rasterize(&self, clip: [u32; 4], mut cover: impl FnMut(u32, u32, f64)) {
         let x0 = self.bounds[0].max(clip[0]);
@@ -63,10 +64,10 @@ impl ScreenTri {
                 let mut inside = true;
                 let mut outside = false;
                 for e in &edges {
-                    let (ax0, ax1) = (e[0] * cx0, e[0] * cx1);
-                    let (by0, by1) = (e[1] * cy0, e[1] * cy1);
-                    let least = ax0.min(ax1) + by0.min(by1) + e[2];
-                    let most = ax0.max(ax1) + by0.max(by1) + e[2];
+                    let (ex0, ex1) = (e[0] * cx0, e[0] * cx1);
+                    let (ey0, ey1) = (e[1] * cy0, e[1] * cy1);
+                    let least = ex0.min(ex1) + ey0.min(ey1) + e[2];
+                    let most = ex0.max(ex1) + ey0.max(ey1) + e[2];
                     inside &= least >= 0;
                     outside |= most < 0;
                 }

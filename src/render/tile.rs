@@ -231,25 +231,26 @@ fn sky(ctx: &FrameContext, x: u32, y: u32) -> [f32; 3] {
 
 /// What shading needs of a screen triangle's surface that is the same at each of its
 /// pixels, worked out once for a run of pixels on it ([`shade_tile`] keeps the last one).
-pub(crate) struct Surface<'a> {
+struct Surface<'a> {
     tri: &'a ScreenTri,
     source: &'a Triangle,
     material: &'a ShadeMaterial,
     /// Most anisotropic texture taps.
     taps: f64,
-    /// `max(0, n · sun)` before shadowing.
+    /// `n · sun` (the sun lights the surface where it is positive), before shadowing.
     sun: f32,
     /// The shadow test's view of the surface, when it faces the sun and shadows are on.
     receiver: Option<Receiver>,
-    /// Whether the surface faces the sun while shadows are on (so a point is needed).
-    shadowed: bool,
+    /// Whether the surface faces the sun while shadows are on: its pixels take the shadow
+    /// test, at their point.
+    tests_shadow: bool,
     /// Ambient light before occlusion: the sky's from above, the ground's bounce from
     /// below, blended by the normal.
     ambient: [f32; 3],
 }
 
 impl<'a> Surface<'a> {
-    pub(crate) fn of(ctx: &FrameContext<'a>, t: u32) -> Surface<'a> {
+    fn of(ctx: &FrameContext<'a>, t: u32) -> Surface<'a> {
         let scene = ctx.scene;
         let tri = &ctx.tris[t as usize];
         let source = &scene.triangles[tri.source as usize];
@@ -262,7 +263,7 @@ impl<'a> Surface<'a> {
         let l = ctx.lighting;
         let n = source.normal;
         let sun = n[0] * l.sun_direction[0] + n[1] * l.sun_direction[1] + n[2] * l.sun_direction[2];
-        let shadowed = sun > 0.0 && ctx.shadows.is_some();
+        let tests_shadow = sun > 0.0 && ctx.shadows.is_some();
         let receiver = ctx
             .shadows
             .filter(|_| sun > 0.0)
@@ -278,7 +279,7 @@ impl<'a> Surface<'a> {
             taps,
             sun,
             receiver,
-            shadowed,
+            tests_shadow,
             ambient,
         }
     }
@@ -332,7 +333,7 @@ fn shade(
     }
     let l = ctx.lighting;
     let n = source.normal;
-    let needs_point = !lights.is_empty() || surface.shadowed;
+    let needs_point = !lights.is_empty() || surface.tests_shadow;
     let p = if needs_point {
         ctx.view.unproject(px, py, w)
     } else {
