@@ -23,7 +23,7 @@ use crate::annotate::{
 };
 use crate::cameras::tan_half_degrees;
 use crate::model::CameraPose;
-use crate::render::{self, Intrinsics, Lighting, PreparedScene, Sun};
+use crate::render::{self, Intrinsics, Light, Lighting, PreparedScene, Sun};
 use crate::sensor::{self, SensorFrame, WeatherLight};
 use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
 
@@ -116,24 +116,20 @@ impl<'a> PathFrames<'a> {
         render::warm_shadow_map(self.input.scene, lighting);
     }
 
-    /// `lighting` with the headlights of the car a `roads` camera rides in, aimed along
-    /// frame `i`'s `travel`, when they are on: the camera asks for them and the lamps are
-    /// lit (`emission` above 0). `None` otherwise (the lighting as it is).
-    fn headlit(&self, lighting: &Lighting, i: usize, travel: Option<[f64; 3]>) -> Option<Lighting> {
+    /// The headlights of the car a `roads` camera rides in, aimed along frame `i`'s
+    /// `travel`, when they are on: the camera asks for them and the lamps are lit
+    /// (`emission` above 0). None otherwise.
+    fn headlights(&self, emission: f32, i: usize, travel: Option<[f64; 3]>) -> Vec<Light> {
         let camera = self.input.camera;
-        if camera.path != CameraPath::Roads || !camera.headlights || lighting.emission <= 0.0 {
-            return None;
+        if camera.path != CameraPath::Roads || !camera.headlights || emission <= 0.0 {
+            return Vec::new();
         }
+        let Some(travel) = travel else {
+            return Vec::new();
+        };
         let pose = &self.poses[i];
-        let travel = travel?;
         let height = pose.angles.map_or(pose.eye[1], |a| a.height);
-        let lights = render::ego_headlights(pose.eye, height, travel, lighting.emission);
-        if lights.is_empty() {
-            return None;
-        }
-        let mut out = lighting.clone();
-        out.lights.extend(lights);
-        Some(out)
+        render::ego_headlights(pose.eye, height, travel, emission)
     }
 
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
@@ -159,11 +155,11 @@ impl<'a> PathFrames<'a> {
             input.conditions_seed,
             i as u64,
         );
-        let weathered = weathered(lighting, &sensor::weather_light(&conditions));
-        let lighting = weathered.as_ref().unwrap_or(lighting);
         let travel = sensor::travel_direction_with(self.poses, i, self.median_step);
-        let headlit = self.headlit(lighting, i, travel);
-        let lighting = headlit.as_ref().unwrap_or(lighting);
+        let headlights = self.headlights(lighting.emission, i, travel);
+        let headlit = !headlights.is_empty();
+        let adjusted = frame_lighting(lighting, &sensor::weather_light(&conditions), headlights);
+        let lighting = adjusted.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
             pose,
@@ -191,7 +187,7 @@ impl<'a> PathFrames<'a> {
         let mut drawn = conditions.to_json(developed.exposure);
         drawn["sun"] = sun_json(&sun);
         if camera.path == CameraPath::Roads {
-            drawn["headlights"] = json!(headlit.is_some());
+            drawn["headlights"] = json!(headlit);
         }
         let frame_input = FrameInput {
             file_name: format!("rgb/{i:06}.png"),
@@ -290,16 +286,23 @@ pub fn preview_png(frames: Vec<(RgbImage, Vec<[u32; 5]>)>, categories: &[Categor
     codec::encode_png(&sheet.draw(categories))
 }
 
-/// The lighting under a frame's weather, when it differs from the path's: the sun and
-/// the sky light scaled, shadows weakened.
-fn weathered(lighting: &Lighting, light: &WeatherLight) -> Option<Lighting> {
-    if light.sun_scale == 1.0 && light.sky_scale == 1.0 && light.shadow_strength == 1.0 {
+/// A frame's lighting, when it differs from the path's: under the frame's weather (the
+/// sun and the sky light scaled, shadows weakened) and with `extra` lights (the camera
+/// car's headlights). One copy of the path's lighting at most.
+fn frame_lighting(
+    lighting: &Lighting,
+    light: &WeatherLight,
+    extra: Vec<Light>,
+) -> Option<Lighting> {
+    let clear = light.sun_scale == 1.0 && light.sky_scale == 1.0 && light.shadow_strength == 1.0;
+    if clear && extra.is_empty() {
         return None;
     }
     let mut out = lighting.clone();
     out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
     out.ambient = out.ambient.map(|c| c * light.sky_scale);
     out.shadow_strength *= light.shadow_strength;
+    out.lights.extend(extra);
     Some(out)
 }
 

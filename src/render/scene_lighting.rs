@@ -84,14 +84,7 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
                     [0.0; 3]
                 }
             });
-            out.push(Light {
-                position: head.map(|v| v as f32),
-                colour: HEAD_LIGHT,
-                range: HEAD_RANGE,
-                near: HEAD_NEAR,
-                aim,
-                edge: HEAD_EDGE,
-            });
+            out.push(head_beam(head.map(|v| v as f32), aim, HEAD_LIGHT));
         }
         if let Some(tail) = tail {
             out.push(Light {
@@ -105,6 +98,18 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
         }
     }
     out
+}
+
+/// A headlight's dipped beam from `position` along `aim`, in `colour`.
+fn head_beam(position: [f32; 3], aim: [f32; 3], colour: [f32; 3]) -> Light {
+    Light {
+        position,
+        colour,
+        range: HEAD_RANGE,
+        near: HEAD_NEAR,
+        aim,
+        edge: HEAD_EDGE,
+    }
 }
 
 /// The camera car's headlights: each lamp this far ahead of the driver's eye, metres. A
@@ -149,18 +154,15 @@ pub fn ego_headlights(
     [-EGO_HALF_TRACK, EGO_HALF_TRACK]
         .map(|side| {
             let across = EGO_DRIVER_OFFSET + side;
-            Light {
-                position: [
+            head_beam(
+                [
                     (eye[0] + fx * EGO_AHEAD + rx * across) as f32,
                     y as f32,
                     (eye[2] + fz * EGO_AHEAD + rz * across) as f32,
                 ],
-                colour: HEAD_LIGHT.map(|c| c * EGO_SHARE * strength.min(1.0)),
-                range: HEAD_RANGE,
-                near: HEAD_NEAR,
-                aim: [fx as f32, -HEAD_DIP as f32, fz as f32],
-                edge: HEAD_EDGE,
-            }
+                [fx as f32, -HEAD_DIP as f32, fz as f32],
+                HEAD_LIGHT.map(|c| c * EGO_SHARE * strength.min(1.0)),
+            )
         })
         .to_vec()
 }
@@ -225,7 +227,7 @@ mod tests {
             assert_eq!(l.aim, [0.0, -HEAD_DIP as f32, -1.0]);
             assert_eq!(l.colour, HEAD_LIGHT.map(|c| c * EGO_SHARE));
         }
-        // Half strength at dusk; none by day, or with no direction of travel.
+        // Half strength as the lamps come on; none by day, or with no direction of travel.
         let dusk = ego_headlights([0.0, 1.2, 0.0], 1.2, [1.0, 0.0, 0.0], 0.5);
         assert_eq!(dusk[0].colour, HEAD_LIGHT.map(|c| c * EGO_SHARE * 0.5));
         assert!(ego_headlights([0.0; 3], 1.5, [1.0, 0.0, 0.0], 0.0).is_empty());
