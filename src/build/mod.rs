@@ -12,6 +12,7 @@ mod cache;
 mod cache_gc;
 mod cache_remote;
 mod chunks;
+mod clear_views;
 mod codec;
 mod decode_error;
 mod error;

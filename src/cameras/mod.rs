@@ -26,7 +26,7 @@
 //! [`CameraPose`] lives in [`crate::model`]; the renderer consumes it.
 
 /// Bump when this stage's output changes: it is part of the stage's cache key.
-pub const VERSION: u32 = 7;
+pub const VERSION: u32 = 8;
 
 mod aim;
 mod leg;
@@ -49,5 +49,5 @@ pub use overview::{
     OVERVIEW_FAR, OVERVIEW_HEIGHT, OVERVIEW_ORBIT_POSES, OVERVIEW_SHADOW_MAP_SIDE, OVERVIEW_SIZE,
     OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, overview,
 };
-pub use road_path::{ROAD_PITCH, RoadPath, road_path, tour_length};
+pub use road_path::{ROAD_PITCH, RoadPath, road_path, road_path_draws, tour_length};
 pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};

@@ -56,6 +56,23 @@ pub fn road_path(
     path: &RoadPath,
     seed: u64,
 ) -> Vec<CameraPose> {
+    road_path_draws(layout, metres_per_pixel, path, seed, 1)
+        .into_iter()
+        .filter_map(|draws| draws.into_iter().next())
+        .collect()
+}
+
+/// [`road_path`]'s frames, each with `draws` poses (at least one) from the same place:
+/// the pose [`road_path`] gives first, then further draws of the aim and the jitter,
+/// continuing frame `i`'s two streams. A caller that finds a draw unusable (its view
+/// blocked) takes the next one.
+pub fn road_path_draws(
+    layout: &ParsedLayout,
+    metres_per_pixel: f64,
+    path: &RoadPath,
+    seed: u64,
+    draws: usize,
+) -> Vec<Vec<CameraPose>> {
     let valid = metres_per_pixel.is_finite()
         && metres_per_pixel > 0.0
         && path.look_ahead.is_finite()
@@ -74,17 +91,22 @@ pub fn road_path(
         .zip(0u64..)
         .map(|((eye, dir), i)| {
             let right = [-dir[1], dir[0]];
-            let angles = path.aim.draw(&mut rng::stream(seed, "cameras/aim", i));
-            let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
-            let mut stream = rng::stream(seed, "cameras", i);
-            let yaw = signed_unit(stream.next_u64()) * path.jitter;
-            let pitch = signed_unit(stream.next_u64()) * path.jitter;
-            pose.target = [
-                mm(pose.target[0] + right[0] * yaw),
-                mm(pose.target[1] + pitch),
-                mm(pose.target[2] + right[1] * yaw),
-            ];
-            pose
+            let mut aim = rng::stream(seed, "cameras/aim", i);
+            let mut jitter = rng::stream(seed, "cameras", i);
+            (0..draws.max(1))
+                .map(|_| {
+                    let angles = path.aim.draw(&mut aim);
+                    let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
+                    let yaw = signed_unit(jitter.next_u64()) * path.jitter;
+                    let pitch = signed_unit(jitter.next_u64()) * path.jitter;
+                    pose.target = [
+                        mm(pose.target[0] + right[0] * yaw),
+                        mm(pose.target[1] + pitch),
+                        mm(pose.target[2] + right[1] * yaw),
+                    ];
+                    pose
+                })
+                .collect()
         })
         .collect()
 }
@@ -165,6 +187,28 @@ mod tests {
             jitter: 0.5,
             lane_offset: 3.0,
         }
+    }
+
+    #[test]
+    fn further_draws_start_with_the_road_paths_own_pose() {
+        let mut p = path(12);
+        p.aim.heading = ValueRange::Between([-80.0, 80.0]);
+        let poses = road_path(&layout(), M, &p, 7);
+        let draws = road_path_draws(&layout(), M, &p, 7, 3);
+        assert_eq!(draws.len(), poses.len());
+        for (frame, pose) in draws.iter().zip(&poses) {
+            assert_eq!(frame.len(), 3);
+            assert_eq!(&frame[0], pose);
+            // The same place, other aims.
+            assert!(frame.iter().all(|d| d.eye == pose.eye));
+            assert_ne!(frame[1].target, frame[0].target);
+        }
+        // At least one draw is always made.
+        assert!(
+            road_path_draws(&layout(), M, &p, 7, 0)
+                .iter()
+                .all(|f| f.len() == 1)
+        );
     }
 
     #[test]

@@ -10,6 +10,7 @@ use rand::Rng;
 
 use super::super::BuildError;
 use super::super::cache::{Load, Miss, Outputs};
+use super::super::clear_views;
 use super::super::codec;
 use super::super::frame_labels;
 use super::super::frames;
@@ -376,18 +377,27 @@ impl Pipeline<'_> {
         let camera_seed = rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
         let aim = cameras::Aim::of(camera);
         match camera.path {
-            CameraPath::Roads => cameras::road_path(
-                parsed,
-                mpp,
-                &cameras::RoadPath {
-                    frames: camera.frame_rule(),
-                    aim,
-                    look_ahead: camera.look_ahead,
-                    jitter: camera.jitter,
-                    lane_offset: camera.lane_offset,
-                },
-                camera_seed,
-            ),
+            CameraPath::Roads => {
+                let draws = cameras::road_path_draws(
+                    parsed,
+                    mpp,
+                    &cameras::RoadPath {
+                        frames: camera.frame_rule(),
+                        aim,
+                        look_ahead: camera.look_ahead,
+                        jitter: camera.jitter,
+                        lane_offset: camera.lane_offset,
+                    },
+                    camera_seed,
+                    clear_views::DRAWS,
+                );
+                // Fields of view down and across the picture.
+                let down = cameras::tan_half_degrees(camera.fov);
+                let aspect =
+                    f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
+                let boxes = clear_views::vehicle_boxes(scene);
+                clear_views::unblocked(draws, &boxes, [down * aspect, down])
+            }
             CameraPath::Sidewalks => cameras::sidewalk_path(
                 parsed,
                 mpp,

@@ -1,0 +1,258 @@
+//! A roads camera's poses: scene + each frame's draws ([`cameras::road_path_draws`]) → one
+//! pose per frame whose view is not filled by a vehicle beside the camera.
+//!
+//! Glue between the cameras stage, which draws aims from the layout alone, and the
+//! scene. The roads camera drives the outer lane, close to the parked cars (`specs/day.toml`
+//! keeps 0.65 m from a parked bus's side), so a heading drawn towards the curb could stare
+//! into a bus from under a metre: a frame of one blank flank, which no dashcam takes. Such a
+//! draw is replaced by the frame's next one.
+//!
+//! A draw is blocked when one vehicle within [`NEAR`] metres of the eye covers more than
+//! [`MAX_SHARE`] of the view: [`COLUMNS`] × [`ROWS`] rays through the picture are cast
+//! against the vehicles' boxes (cars, vans, buses and trucks are axis-aligned boxes on the
+//! ground), and each ray counts for the nearest box it meets within `NEAR`. Each frame
+//! keeps its first unblocked draw of [`DRAWS`]; when all are blocked, the least blocked
+//! (the first of equals). Frames whose first draw is clear keep the pose they had before.
+//! Everything here is `f64` arithmetic in a fixed order: the same poses on every machine.
+//! The poses are the cameras stage's output as far as the cache is concerned: bump
+//! [`cameras::VERSION`](crate::cameras::VERSION) with any change here.
+
+use crate::cameras::CameraPose;
+use crate::model::Scene;
+
+/// Draws tried per frame.
+pub const DRAWS: usize = 8;
+
+/// Reach of a blocking vehicle, metres from the eye.
+pub const NEAR: f64 = 3.0;
+
+/// Largest share of the view one vehicle within [`NEAR`] may cover.
+pub const MAX_SHARE: f64 = 0.5;
+
+/// Rays across the picture.
+pub const COLUMNS: usize = 16;
+/// Rays down the picture.
+pub const ROWS: usize = 12;
+
+/// Object kind (its name without the number) of the scene's vehicles.
+const VEHICLE_KIND: &str = "car";
+
+/// An axis-aligned box, world metres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Box3 {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+/// The boxes of the scene's vehicles (objects named `car_NNNN`), in scene order.
+pub fn vehicle_boxes(scene: &Scene) -> Vec<Box3> {
+    scene
+        .objects
+        .iter()
+        .filter(|o| crate::stats::kind_of(&o.name) == VEHICLE_KIND)
+        .filter_map(|o| {
+            let mut b = Box3 {
+                min: [f64::INFINITY; 3],
+                max: [f64::NEG_INFINITY; 3],
+            };
+            for p in o.meshes.iter().flat_map(|m| &m.positions) {
+                for (k, &c) in p.iter().enumerate() {
+                    b.min[k] = b.min[k].min(f64::from(c));
+                    b.max[k] = b.max[k].max(f64::from(c));
+                }
+            }
+            b.min
+                .iter()
+                .chain(&b.max)
+                .all(|v| v.is_finite())
+                .then_some(b)
+        })
+        .collect()
+}
+
+/// One pose per frame: its first draw that [`share`] finds at most [`MAX_SHARE`] blocked,
+/// or its least blocked. `tan_half` is the tangent of half the field of view across and
+/// down the picture. A frame without draws is left out.
+pub fn unblocked(
+    draws: Vec<Vec<CameraPose>>,
+    boxes: &[Box3],
+    tan_half: [f64; 2],
+) -> Vec<CameraPose> {
+    draws
+        .into_iter()
+        .filter_map(|frame| {
+            let mut best: Option<(f64, CameraPose)> = None;
+            for pose in frame {
+                let s = share(&pose, boxes, tan_half);
+                if s <= MAX_SHARE {
+                    return Some(pose);
+                }
+                if best.as_ref().is_none_or(|(b, _)| s < *b) {
+                    best = Some((s, pose));
+                }
+            }
+            best.map(|(_, pose)| pose)
+        })
+        .collect()
+}
+
+/// The largest share of `pose`'s view (0–1) that one box of `boxes` covers within [`NEAR`]
+/// metres of the eye, by [`COLUMNS`] × [`ROWS`] rays through the picture.
+pub fn share(pose: &CameraPose, boxes: &[Box3], tan_half: [f64; 2]) -> f64 {
+    let eye = pose.eye;
+    let near: Vec<&Box3> = boxes
+        .iter()
+        .filter(|b| {
+            let d2: f64 = (0..3)
+                .map(|k| (b.min[k] - eye[k]).max(eye[k] - b.max[k]).max(0.0).powi(2))
+                .sum();
+            d2 <= NEAR * NEAR
+        })
+        .collect();
+    if near.is_empty() {
+        return 0.0;
+    }
+    let forward = unit(sub(pose.target, eye));
+    let right = unit(cross(forward, pose.up));
+    let up = cross(right, forward);
+    let mut counts = vec![0usize; near.len()];
+    for row in 0..ROWS {
+        let b = (1.0 - 2.0 * (row as f64 + 0.5) / ROWS as f64) * tan_half[1];
+        for column in 0..COLUMNS {
+            let a = (2.0 * (column as f64 + 0.5) / COLUMNS as f64 - 1.0) * tan_half[0];
+            let d = unit(std::array::from_fn(|k| {
+                forward[k] + a * right[k] + b * up[k]
+            }));
+            let mut nearest: Option<(f64, usize)> = None;
+            for (i, b) in near.iter().enumerate() {
+                if let Some(t) = entry(eye, d, b)
+                    && t <= NEAR
+                    && nearest.is_none_or(|(n, _)| t < n)
+                {
+                    nearest = Some((t, i));
+                }
+            }
+            if let Some((_, i)) = nearest {
+                counts[i] += 1;
+            }
+        }
+    }
+    let most = counts.into_iter().max().unwrap_or(0);
+    most as f64 / (COLUMNS * ROWS) as f64
+}
+
+/// Where the ray `eye + t·d` (`t ≥ 0`) enters box `b` (0 when the eye is inside), if it
+/// meets it: the slab test.
+fn entry(eye: [f64; 3], d: [f64; 3], b: &Box3) -> Option<f64> {
+    let (mut enter, mut leave) = (0.0f64, f64::INFINITY);
+    for k in 0..3 {
+        if d[k] == 0.0 {
+            if eye[k] < b.min[k] || eye[k] > b.max[k] {
+                return None;
+            }
+            continue;
+        }
+        let (t0, t1) = ((b.min[k] - eye[k]) / d[k], (b.max[k] - eye[k]) / d[k]);
+        enter = enter.max(t0.min(t1));
+        leave = leave.min(t0.max(t1));
+    }
+    (enter <= leave).then_some(enter)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    if l > 0.0 { a.map(|c| c / l) } else { a }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A bus 2.5 m wide, 3 m tall, 12 m long beside the lane: its near side 0.65 m east of
+    /// an eye at the origin, 1.5 m up, from 1 m behind to 11 m ahead (north is −z).
+    fn bus() -> Box3 {
+        Box3 {
+            min: [0.65, 0.0, -11.0],
+            max: [3.15, 3.0, 1.0],
+        }
+    }
+
+    /// A pose at 1.5 m looking `heading` degrees east of north, level.
+    fn looking(heading: f64) -> CameraPose {
+        let r = heading.to_radians();
+        CameraPose {
+            eye: [0.0, 1.5, 0.0],
+            target: [10.0 * r.sin(), 1.5, -10.0 * r.cos()],
+            up: [0.0, 1.0, 0.0],
+            angles: None,
+        }
+    }
+
+    /// 60° down the picture, 4:3.
+    const TAN_HALF: [f64; 2] = [0.577_350_269 * 4.0 / 3.0, 0.577_350_269];
+
+    #[test]
+    fn a_bus_beside_the_eye_blocks_the_view_towards_it_only() {
+        let boxes = [bus()];
+        // Straight down the lane the bus fills the right-hand side, under half the view.
+        let ahead = share(&looking(0.0), &boxes, TAN_HALF);
+        assert!(ahead > 0.1 && ahead <= MAX_SHARE, "{ahead}");
+        // Turned 60° towards it: its flank fills the picture.
+        let towards = share(&looking(60.0), &boxes, TAN_HALF);
+        assert!(towards > 0.9, "{towards}");
+        // Turned away: nothing.
+        assert_eq!(share(&looking(-60.0), &boxes, TAN_HALF), 0.0);
+        // The same bus 4 m further east is beyond NEAR: it does not count.
+        let far = Box3 {
+            min: [4.65, 0.0, -11.0],
+            max: [7.15, 3.0, 1.0],
+        };
+        assert_eq!(share(&looking(60.0), &[far], TAN_HALF), 0.0);
+    }
+
+    #[test]
+    fn each_frame_keeps_its_first_clear_draw_or_its_least_blocked() {
+        let boxes = [bus()];
+        let frames = vec![
+            // Clear at once: kept as drawn.
+            vec![looking(-30.0), looking(0.0)],
+            // Blocked, then clear: the second draw.
+            vec![looking(60.0), looking(70.0), looking(-10.0), looking(-20.0)],
+            // All blocked: the least blocked, the first of equals.
+            vec![looking(80.0), looking(50.0), looking(50.0)],
+            // No draws: no frame.
+            vec![],
+        ];
+        let kept = unblocked(frames, &boxes, TAN_HALF);
+        assert_eq!(kept.len(), 3);
+        assert_eq!(kept[0], looking(-30.0));
+        assert_eq!(kept[1], looking(-10.0));
+        let s = |h| share(&looking(h), &boxes, TAN_HALF);
+        let least = if s(50.0) < s(80.0) { 50.0 } else { 80.0 };
+        assert_eq!(kept[2], looking(least));
+    }
+
+    #[test]
+    fn the_slab_test_enters_boxes_ahead_and_reports_zero_from_inside() {
+        let b = Box3 {
+            min: [1.0, -1.0, -1.0],
+            max: [2.0, 1.0, 1.0],
+        };
+        assert_eq!(entry([0.0; 3], [1.0, 0.0, 0.0], &b), Some(1.0));
+        assert_eq!(entry([0.0; 3], [-1.0, 0.0, 0.0], &b), None);
+        assert_eq!(entry([0.0, 2.0, 0.0], [1.0, 0.0, 0.0], &b), None);
+        assert_eq!(entry([1.5, 0.0, 0.0], [0.0, 1.0, 0.0], &b), Some(0.0));
+    }
+}
