@@ -40,7 +40,9 @@ pub struct CameraSpec {
     /// and sidewalks turn from the direction of travel (default 0 on roads, [-120, 120] on
     /// sidewalks, so a walk looks at shop fronts on the right and the street on the
     /// left); objects turn the aim from the line of sight to the target (default
-    /// [-15, 15], so the target is not always in the centre). Orbit: unused.
+    /// [-15, 15], so the target is not always in the centre). Orbit: unused. On roads, a
+    /// drawn aim whose view one vehicle within 3 m fills more than half of is drawn again
+    /// (up to 8 draws, then the least filled).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(schema_with = "heading_schema")]
     pub heading: Option<ValueRange>,
