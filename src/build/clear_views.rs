@@ -18,7 +18,8 @@
 //! [`cameras::VERSION`](crate::cameras::VERSION) with any change here.
 
 use crate::cameras::CameraPose;
-use crate::model::Scene;
+use crate::model::geometry::normalize;
+use crate::model::{CameraBasis, Scene};
 
 /// Draws tried per frame.
 pub const DRAWS: usize = 8;
@@ -44,29 +45,14 @@ pub struct Box3 {
     pub max: [f64; 3],
 }
 
-/// The boxes of the scene's vehicles (objects named `car_NNNN`), in scene order.
+/// The boxes of the scene's vehicles (objects of kind `car`), in scene order.
 pub fn vehicle_boxes(scene: &Scene) -> Vec<Box3> {
     scene
         .objects
         .iter()
-        .filter(|o| crate::stats::kind_of(&o.name) == VEHICLE_KIND)
-        .filter_map(|o| {
-            let mut b = Box3 {
-                min: [f64::INFINITY; 3],
-                max: [f64::NEG_INFINITY; 3],
-            };
-            for p in o.meshes.iter().flat_map(|m| &m.positions) {
-                for (k, &c) in p.iter().enumerate() {
-                    b.min[k] = b.min[k].min(f64::from(c));
-                    b.max[k] = b.max[k].max(f64::from(c));
-                }
-            }
-            b.min
-                .iter()
-                .chain(&b.max)
-                .all(|v| v.is_finite())
-                .then_some(b)
-        })
+        .filter(|o| o.kind() == VEHICLE_KIND)
+        .filter_map(|o| o.bounds())
+        .map(|(min, max)| Box3 { min, max })
         .collect()
 }
 
@@ -112,17 +98,19 @@ pub fn share(pose: &CameraPose, boxes: &[Box3], tan_half: [f64; 2]) -> f64 {
     if near.is_empty() {
         return 0.0;
     }
-    let forward = unit(sub(pose.target, eye));
-    let right = unit(cross(forward, pose.up));
-    let up = cross(right, forward);
+    let Some(CameraBasis { right, up, forward }) = pose.basis() else {
+        return 0.0;
+    };
     let mut counts = vec![0usize; near.len()];
     for row in 0..ROWS {
         let b = (1.0 - 2.0 * (row as f64 + 0.5) / ROWS as f64) * tan_half[1];
         for column in 0..COLUMNS {
             let a = (2.0 * (column as f64 + 0.5) / COLUMNS as f64 - 1.0) * tan_half[0];
-            let d = unit(std::array::from_fn(|k| {
+            let Some(d) = normalize(std::array::from_fn(|k| {
                 forward[k] + a * right[k] + b * up[k]
-            }));
+            })) else {
+                continue;
+            };
             let mut nearest: Option<(f64, usize)> = None;
             for (i, b) in near.iter().enumerate() {
                 if let Some(t) = entry(eye, d, b)
@@ -157,23 +145,6 @@ fn entry(eye: [f64; 3], d: [f64; 3], b: &Box3) -> Option<f64> {
         leave = leave.min(t0.max(t1));
     }
     (enter <= leave).then_some(enter)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> [f64; 3] {
-    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    if l > 0.0 { a.map(|c| c / l) } else { a }
 }
 
 #[cfg(test)]

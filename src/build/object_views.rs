@@ -82,20 +82,13 @@ pub fn object_targets(scene: &Scene, classes: &[String]) -> Vec<ObjectTarget> {
         .zip(1u32..)
         .filter(|(object, _)| classes.contains(&object.class))
         .filter_map(|(object, id)| {
-            let mut min = [f64::INFINITY; 3];
-            let mut max = [f64::NEG_INFINITY; 3];
+            let (min, max) = object.bounds()?;
             let mut normal = [0.0f64; 3];
             for mesh in &object.meshes {
                 let textured = scene
                     .materials
                     .get(mesh.material as usize)
                     .is_some_and(|m| m.texture.is_some());
-                for p in &mesh.positions {
-                    for k in 0..3 {
-                        min[k] = min[k].min(f64::from(p[k]));
-                        max[k] = max[k].max(f64::from(p[k]));
-                    }
-                }
                 if !textured {
                     continue;
                 }
@@ -114,9 +107,6 @@ pub fn object_targets(scene: &Scene, classes: &[String]) -> Vec<ObjectTarget> {
                     ];
                     normal = [normal[0] + n[0], normal[1] + n[1], normal[2] + n[2]];
                 }
-            }
-            if !min.iter().chain(&max).all(|v| v.is_finite()) {
-                return None;
             }
             let flat = (normal[0] * normal[0] + normal[2] * normal[2]).sqrt();
             let length = (flat * flat + normal[1] * normal[1]).sqrt();

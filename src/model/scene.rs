@@ -64,3 +64,82 @@ impl Scene {
             .sum()
     }
 }
+
+impl SceneObject {
+    /// Its kind: the name without its number ([`kind_of`]).
+    pub fn kind(&self) -> &str {
+        kind_of(&self.name)
+    }
+
+    /// The box around all its vertices, `(min, max)` in world metres; `None` when it has
+    /// no vertex or a coordinate is not finite.
+    pub fn bounds(&self) -> Option<([f64; 3], [f64; 3])> {
+        let mut min = [f64::INFINITY; 3];
+        let mut max = [f64::NEG_INFINITY; 3];
+        for p in self.meshes.iter().flat_map(|m| &m.positions) {
+            for (k, &c) in p.iter().enumerate() {
+                min[k] = min[k].min(f64::from(c));
+                max[k] = max[k].max(f64::from(c));
+            }
+        }
+        min.iter()
+            .chain(&max)
+            .all(|v| v.is_finite())
+            .then_some((min, max))
+    }
+}
+
+/// An object's kind: its name without a trailing `_<digits>` (`building_0042` →
+/// `building`, `car_0093` → `car`, `ground` → `ground`).
+pub fn kind_of(name: &str) -> &str {
+    match name.rsplit_once('_') {
+        Some((kind, n))
+            if !kind.is_empty() && !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) =>
+        {
+            kind
+        }
+        _ => name,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_drop_the_number() {
+        for (name, kind) in [
+            ("building_0042", "building"),
+            ("sign_0003", "sign"),
+            ("ground", "ground"),
+            ("street_tree_0001", "street_tree"),
+            ("road_x", "road_x"),
+            ("_12", "_12"),
+        ] {
+            assert_eq!(kind_of(name), kind, "{name}");
+        }
+    }
+
+    #[test]
+    fn bounds_span_every_vertex_and_an_empty_object_has_none() {
+        let mesh = |positions| Mesh {
+            positions,
+            ..Mesh::default()
+        };
+        let object = SceneObject {
+            name: "car_0007".to_owned(),
+            class: "car".to_owned(),
+            meshes: vec![
+                mesh(vec![[1.0, 0.0, -2.0], [3.0, 1.5, 0.0]]),
+                mesh(vec![[-1.0, 0.5, 4.0]]),
+            ],
+        };
+        assert_eq!(object.kind(), "car");
+        assert_eq!(object.bounds(), Some(([-1.0, 0.0, -2.0], [3.0, 1.5, 4.0])));
+        let empty = SceneObject {
+            meshes: vec![mesh(Vec::new())],
+            ..object
+        };
+        assert_eq!(empty.bounds(), None);
+    }
+}

@@ -113,15 +113,7 @@ fn triangles(mesh: &Mesh) -> impl Iterator<Item = ([[f64; 3]; 3], [f64; 3])> + '
 }
 
 fn bounds(object: &SceneObject) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in object.meshes.iter().flat_map(|m| &m.positions) {
-        for k in 0..3 {
-            lo[k] = lo[k].min(f64::from(p[k]));
-            hi[k] = hi[k].max(f64::from(p[k]));
-        }
-    }
-    (lo, hi)
+    object.bounds().expect("the object has vertices")
 }
 
 #[test]

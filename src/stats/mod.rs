@@ -18,6 +18,9 @@ pub use path_stats::{ClassStats, KindShare, PathStats, measure_path, percentile}
 pub use stats_error::StatsError;
 pub use table::table;
 
+/// An object's kind (kept here too: `cityspec stats` counts pixels by it).
+pub use crate::model::kind_of;
+
 use std::io::BufRead;
 use std::path::Path;
 
@@ -69,35 +72,4 @@ pub fn object_names(path: &Path) -> Result<Vec<String>, StatsError> {
         }
     }
     Ok(names)
-}
-
-/// An object's kind: its name without a trailing `_<digits>`.
-pub fn kind_of(name: &str) -> &str {
-    match name.rsplit_once('_') {
-        Some((kind, n))
-            if !kind.is_empty() && !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) =>
-        {
-            kind
-        }
-        _ => name,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kinds_drop_the_number() {
-        for (name, kind) in [
-            ("building_0042", "building"),
-            ("sign_0003", "sign"),
-            ("ground", "ground"),
-            ("street_tree_0001", "street_tree"),
-            ("road_x", "road_x"),
-            ("_12", "_12"),
-        ] {
-            assert_eq!(kind_of(name), kind, "{name}");
-        }
-    }
 }
