@@ -251,7 +251,7 @@ fn a_spec_with_only_version_name_and_generate_gets_every_default() {
     assert_eq!(spec.buildings, spec::BuildingsSpec::default());
     assert_eq!(spec.lamps, spec::LampsSpec::default());
     assert!(spec.layout.mirror.is_empty());
-    assert_eq!(spec.layout.metres_per_pixel, 1.0);
+    assert_eq!(spec.layout.metres_per_pixel, 0.55);
 }
 
 #[test]
