@@ -1,25 +1,37 @@
-//! A roads camera's poses: scene + each frame's draws ([`cameras::road_path_draws`]) → one
-//! pose per frame whose view is not filled by a vehicle beside the camera.
+//! Moving cameras' poses: scene + each frame's draws of its aim → one pose per frame whose
+//! view is not filled by something right in front of the eye.
 //!
 //! Glue between the cameras stage, which draws aims from the layout alone, and the
-//! scene. The roads camera drives the outer lane, close to the parked cars (`specs/day.toml`
-//! keeps 0.65 m from a parked bus's side), so a heading drawn towards the curb could stare
-//! into a bus from under a metre: a frame of one blank flank, which no dashcam takes. Such a
-//! draw is replaced by the frame's next one.
+//! scene. Each frame keeps its first clear draw of [`DRAWS`]; when none is clear, the least
+//! filled (the first of equals). Frames whose first draw is clear keep the pose they had
+//! before. Two paths are checked, each by the rule that catches what it meets:
 //!
-//! A draw is blocked when one vehicle within [`NEAR`] metres of the eye covers more than
-//! [`MAX_SHARE`] of the view: [`COLUMNS`] × [`ROWS`] rays through the picture are cast
-//! against the vehicles' boxes (cars, vans, buses and trucks are axis-aligned boxes on the
-//! ground), and each ray counts for the nearest box it meets within `NEAR`. Each frame
-//! keeps its first unblocked draw of [`DRAWS`]; when all are blocked, the least blocked
-//! (the first of equals). Frames whose first draw is clear keep the pose they had before.
-//! Everything here is `f64` arithmetic in a fixed order: the same poses on every machine.
-//! The poses are the cameras stage's output as far as the cache is concerned: bump
+//! - **Roads** ([`unblocked`], with [`cameras::road_path_draws`](crate::cameras)): the
+//!   camera drives the outer lane, close to the parked cars (`specs/day.toml` keeps 0.65 m
+//!   from a parked bus's side), so a heading drawn towards the curb could stare into a bus
+//!   from under a metre: a frame of one blank flank, which no dashcam takes. A draw is
+//!   blocked when one vehicle within [`NEAR`] metres of the eye covers more than
+//!   [`MAX_SHARE`] of the view: [`COLUMNS`] × [`ROWS`] rays through the picture are cast
+//!   against the vehicles' boxes (cars, vans, buses and trucks are axis-aligned boxes on
+//!   the ground), and each ray counts for the nearest box it meets within `NEAR`.
+//! - **Sidewalks** ([`unfilled`], with [`cameras::sidewalk_path_draws`](crate::cameras)):
+//!   the walker is 1.3 m from the shop fronts on a 4.4 m sidewalk and passes trees, lamps
+//!   and parked cars, so a drawn heading can face a wall, a trunk or a car door from a
+//!   metre or two. A draw is filled when the renderer, at a quarter of the camera's
+//!   resolution, shows more than [`WALK_MAX_SHARE`] of its pixels nearer than
+//!   [`WALK_NEAR`] metres (depth along the view): anything counts, as the renderer sees it.
+//!
+//! Everything here is deterministic (`f64` rays in a fixed order; renders that are the
+//! same on every machine, one per draw, frames in parallel but collected in order). The
+//! poses are the cameras stage's output as far as the cache is concerned: bump
 //! [`cameras::VERSION`](crate::cameras::VERSION) with any change here.
+
+use rayon::prelude::*;
 
 use crate::cameras::CameraPose;
 use crate::model::geometry::normalize;
 use crate::model::{CameraBasis, Scene};
+use crate::render::{self, Intrinsics, PreparedScene};
 
 /// Draws tried per frame.
 pub const DRAWS: usize = 8;
@@ -29,6 +41,14 @@ pub const NEAR: f64 = 3.0;
 
 /// Largest share of the view one vehicle within [`NEAR`] may cover.
 pub const MAX_SHARE: f64 = 0.5;
+
+/// Depth in metres within which a walker's view may not be filled.
+pub const WALK_NEAR: f32 = 2.0;
+
+/// Largest share of a walker's view that may be nearer than [`WALK_NEAR`] (everything
+/// together, not one object): a third of the picture of bricks a metre away already
+/// shows nothing a detector learns from.
+pub const WALK_MAX_SHARE: f64 = 0.3;
 
 /// Rays across the picture.
 pub const COLUMNS: usize = 16;
@@ -66,20 +86,63 @@ pub fn unblocked(
 ) -> Vec<CameraPose> {
     draws
         .into_iter()
-        .filter_map(|frame| {
-            let mut best: Option<(f64, CameraPose)> = None;
-            for pose in frame {
-                let s = share(&pose, boxes, tan_half);
-                if s <= MAX_SHARE {
-                    return Some(pose);
-                }
-                if best.as_ref().is_none_or(|(b, _)| s < *b) {
-                    best = Some((s, pose));
-                }
-            }
-            best.map(|(_, pose)| pose)
-        })
+        .filter_map(|frame| first_clear(frame, MAX_SHARE, |pose| share(pose, boxes, tan_half)))
         .collect()
+}
+
+/// One pose per frame: its first draw that [`near_share`] finds at most
+/// [`WALK_MAX_SHARE`] filled when rendered with `check` (a quarter of the camera's
+/// resolution), or its least filled. A frame without draws is left out.
+pub fn unfilled(
+    prepared: &PreparedScene,
+    draws: Vec<Vec<CameraPose>>,
+    check: &Intrinsics,
+) -> Vec<CameraPose> {
+    let chosen: Vec<Option<CameraPose>> = draws
+        .into_par_iter()
+        .map(|frame| {
+            first_clear(frame, WALK_MAX_SHARE, |pose| {
+                near_share(prepared, pose, check)
+            })
+        })
+        .collect();
+    chosen.into_iter().flatten().collect()
+}
+
+/// The first of `frame`'s draws whose `share` is at most `most`, or the one with the
+/// least (the first of equals); `None` for no draws.
+fn first_clear(
+    frame: Vec<CameraPose>,
+    most: f64,
+    share: impl Fn(&CameraPose) -> f64,
+) -> Option<CameraPose> {
+    let mut best: Option<(f64, CameraPose)> = None;
+    for pose in frame {
+        let s = share(&pose);
+        if s <= most {
+            return Some(pose);
+        }
+        if best.as_ref().is_none_or(|(b, _)| s < *b) {
+            best = Some((s, pose));
+        }
+    }
+    best.map(|(_, pose)| pose)
+}
+
+/// The share of `pose`'s view (0–1) that the renderer, at `check`'s size, shows nearer
+/// than [`WALK_NEAR`] metres of depth.
+pub fn near_share(prepared: &PreparedScene, pose: &CameraPose, check: &Intrinsics) -> f64 {
+    // Only depth is read: no shadows or ambient occlusion to pay for.
+    let lighting = render::Lighting {
+        shadows: false,
+        ambient_occlusion: 0.0,
+        ..render::Lighting::day()
+    };
+    let frame = render::render(prepared, pose, check, &lighting, 1);
+    let pixels = frame.depth.as_raw();
+    // The sky has depth 0.
+    let near = pixels.iter().filter(|&&d| d > 0.0 && d < WALK_NEAR).count();
+    near as f64 / pixels.len().max(1) as f64
 }
 
 /// The largest share of `pose`'s view (0–1) that one box of `boxes` covers within [`NEAR`]
@@ -225,5 +288,53 @@ mod tests {
         assert_eq!(entry([0.0; 3], [-1.0, 0.0, 0.0], &b), None);
         assert_eq!(entry([0.0, 2.0, 0.0], [1.0, 0.0, 0.0], &b), None);
         assert_eq!(entry([1.5, 0.0, 0.0], [0.0, 1.0, 0.0], &b), Some(0.0));
+    }
+
+    /// A wall 20 m long, 4 m tall and 0.2 m thick, its face 1 m east of the eye of
+    /// [`looking`], prepared for rendering.
+    fn wall_east() -> PreparedScene {
+        use crate::model::geometry::MeshBuilder;
+        use crate::model::{Material, SceneObject};
+        let mut mesh = MeshBuilder::new(0);
+        mesh.oriented_box([1.1, 0.0, 0.0], [0.0, 1.0], [10.0, 0.1], 4.0);
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![Material {
+                name: "brick".into(),
+                colour: [0.5; 3],
+                texture: None,
+                emissive: [0.0; 3],
+            }],
+            objects: vec![SceneObject {
+                name: "building_0000".into(),
+                class: "building".into(),
+                meshes: vec![mesh.finish()],
+            }],
+        };
+        render::prepare(&scene).expect("a one-box scene prepares")
+    }
+
+    #[test]
+    fn a_wall_a_metre_away_fills_a_walkers_view_turned_to_it_only() {
+        let prepared = wall_east();
+        let check = Intrinsics::from_fov(64, 48, TAN_HALF[1]);
+        // Facing it: all wall, 1 m away.
+        assert!(near_share(&prepared, &looking(90.0), &check) > 0.95);
+        // Turned away: nothing near (and no sky counts).
+        assert_eq!(near_share(&prepared, &looking(-90.0), &check), 0.0);
+        // Along it: the wall's first 2 m of depth on the right edge, under the limit.
+        let along = near_share(&prepared, &looking(0.0), &check);
+        assert!(along > 0.05 && along <= WALK_MAX_SHARE, "{along}");
+        // Each frame keeps its first draw not filled, else the least filled.
+        let kept = unfilled(
+            &prepared,
+            vec![
+                vec![looking(90.0), looking(0.0), looking(-90.0)],
+                vec![looking(90.0), looking(60.0)],
+                vec![],
+            ],
+            &check,
+        );
+        assert_eq!(kept, vec![looking(0.0), looking(60.0)]);
     }
 }

@@ -40,12 +40,7 @@ pub fn aimed_poses(
         angle: camera.angle,
     };
     let candidates = cameras::object_views(layout, metres_per_pixel, &targets, &path, seed);
-    let (w, h) = (camera.resolution[0], camera.resolution[1]);
-    let check = Intrinsics::from_fov(
-        (w / 4).max(16),
-        (h / 4).max(16),
-        cameras::tan_half_degrees(camera.fov),
-    );
+    let check = check_intrinsics(camera);
     let chosen: Vec<Option<CameraPose>> = candidates
         .par_iter()
         .map(|frame| {
@@ -56,6 +51,17 @@ pub fn aimed_poses(
         })
         .collect();
     chosen.into_iter().flatten().collect()
+}
+
+/// The camera at a quarter of its resolution (at least 16 × 16), for renders that only
+/// check what a view shows.
+pub fn check_intrinsics(camera: &CameraSpec) -> Intrinsics {
+    let (w, h) = (camera.resolution[0], camera.resolution[1]);
+    Intrinsics::from_fov(
+        (w / 4).max(16),
+        (h / 4).max(16),
+        cameras::tan_half_degrees(camera.fov),
+    )
 }
 
 /// Whether `view`'s object shows enough in a render with `intrinsics`.

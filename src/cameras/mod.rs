@@ -26,7 +26,7 @@
 //! [`CameraPose`] lives in [`crate::model`]; the renderer consumes it.
 
 /// Bump when this stage's output changes: it is part of the stage's cache key.
-pub const VERSION: u32 = 8;
+pub const VERSION: u32 = 9;
 
 mod aim;
 mod leg;
@@ -50,4 +50,6 @@ pub use overview::{
     OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, overview,
 };
 pub use road_path::{ROAD_PITCH, RoadPath, road_path, road_path_draws, tour_length};
-pub use sidewalk_path::{SidewalkPath, WALK_SHARE, sidewalk_path, walk_length};
+pub use sidewalk_path::{
+    SidewalkPath, WALK_SHARE, sidewalk_path, sidewalk_path_draws, walk_length,
+};

@@ -32,9 +32,10 @@ pub struct SidewalkPath {
 /// shop fronts are on the walker's right (heading +90°) and the street on the left
 /// (−90°): along the rectangle around the block's bounding box, [`WALK_SHARE`] of the
 /// sidewalk's width out from it, cut to the layout. A side less than a sidewalk's width
-/// from the layout's edge is left out: beyond it is the end of the world, not a street. Frames are spaced evenly by arc length
-/// over the whole walk ([`walk_length`]); between sides and blocks the walker jumps. Each
-/// frame draws its aim from `rng::stream(seed, "cameras/aim", frame)`.
+/// from the layout's edge is left out: beyond it is the end of the world, not a street.
+/// Frames are spaced evenly by arc length over the whole walk ([`walk_length`]); between
+/// sides and blocks the walker jumps. Each frame draws its aim from
+/// `rng::stream(seed, "cameras/aim", frame)`.
 ///
 /// No poses when there are no frames, no block, or a parameter is out of range
 /// (`metres_per_pixel` and `sidewalk` positive and finite, `aim` valid).
@@ -44,6 +45,23 @@ pub fn sidewalk_path(
     path: &SidewalkPath,
     seed: u64,
 ) -> Vec<CameraPose> {
+    sidewalk_path_draws(layout, metres_per_pixel, path, seed, 1)
+        .into_iter()
+        .filter_map(|draws| draws.into_iter().next())
+        .collect()
+}
+
+/// Up to `draws` (at least one) poses per frame of [`sidewalk_path`]: each frame's stream
+/// drawn on, so the first draw is the pose `sidewalk_path` gives and the others are the
+/// same walker at the same spot looking elsewhere. The build keeps one per frame (a view
+/// not filled by something right in front of the eye, `build/clear_views.rs`).
+pub fn sidewalk_path_draws(
+    layout: &ParsedLayout,
+    metres_per_pixel: f64,
+    path: &SidewalkPath,
+    seed: u64,
+    draws: usize,
+) -> Vec<Vec<CameraPose>> {
     if !path.aim.is_valid() {
         return Vec::new();
     }
@@ -53,8 +71,10 @@ pub fn sidewalk_path(
         .into_iter()
         .zip(0u64..)
         .map(|((ground, dir), i)| {
-            let angles = path.aim.draw(&mut rng::stream(seed, "cameras/aim", i));
-            aimed_pose(ground, dir, (1.0, 0.0), angles, LOOK)
+            let mut aim = rng::stream(seed, "cameras/aim", i);
+            (0..draws.max(1))
+                .map(|_| aimed_pose(ground, dir, (1.0, 0.0), path.aim.draw(&mut aim), LOOK))
+                .collect()
         })
         .collect()
 }
@@ -206,5 +226,19 @@ mod tests {
             ..layout()
         };
         assert!(sidewalk_path(&empty, 0.5, &ranged, 5).is_empty());
+    }
+
+    #[test]
+    fn the_first_draw_is_the_path_pose_and_the_rest_look_elsewhere_from_it() {
+        let ranged = path(30, ValueRange::Between([-120.0, 120.0]));
+        let poses = sidewalk_path(&layout(), 0.5, &ranged, 5);
+        let draws = sidewalk_path_draws(&layout(), 0.5, &ranged, 5, 4);
+        assert_eq!(draws.len(), poses.len());
+        for (frame, pose) in draws.iter().zip(&poses) {
+            assert_eq!(frame.len(), 4);
+            assert_eq!(&frame[0], pose);
+            assert!(frame.iter().all(|d| d.eye == pose.eye));
+            assert!(frame[1..].iter().all(|d| d.target != pose.target));
+        }
     }
 }

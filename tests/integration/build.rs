@@ -617,11 +617,13 @@ fn poses(ws: &Workspace, name: &str) -> serde_json::Value {
 #[test]
 fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_camera() {
     let ws = Workspace::with_spec("text");
+    // The street camera's ranges, narrowed and widened.
     ws.edit_spec(
         "text",
-        "frames = 4\njitter = 1.0",
-        "frames = 4\njitter = 1.0\nheading = [-60, 60]\nroll = [-5, 5]\nheight = [1.4, 2.0]",
+        "frames = 4\nheight = [1.4, 2.2]\nheading = [-80, 80]",
+        "frames = 4\nheight = [1.4, 2.0]\nheading = [-60, 60]",
     );
+    ws.edit_spec("text", "roll = [-2, 2]", "roll = [-5, 5]");
     ws.edit_spec("text", "frames = 4\ndistance", "frames = 3\ndistance");
     in_pool(1, || build::build(&ws.spec("text"), &ws.options())).unwrap();
     let first = tree(&ws.out());
@@ -646,8 +648,8 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
     // A camera added in front of the others leaves their poses as they were.
     ws.edit_spec(
         "text",
-        "[[cameras]]\nname = \"street\"",
-        "[[cameras]]\nname = \"extra\"\nframes = 2\nheading = [-90, 90]\n\n\
+        "name = \"street\"",
+        "name = \"extra\"\nframes = 2\nheading = [-90, 90]\n\n\
          [[cameras]]\nname = \"street\"",
     );
     build::build(&ws.spec("text"), &ws.options()).unwrap();

@@ -398,16 +398,21 @@ impl Pipeline<'_> {
                 let boxes = clear_views::vehicle_boxes(scene);
                 clear_views::unblocked(draws, &boxes, [down * aspect, down])
             }
-            CameraPath::Sidewalks => cameras::sidewalk_path(
-                parsed,
-                mpp,
-                &cameras::SidewalkPath {
-                    frames: camera.frame_rule(),
-                    aim,
-                    sidewalk: f64::from(scene::strip_width_px(parsed)) * mpp,
-                },
-                camera_seed,
-            ),
+            CameraPath::Sidewalks => {
+                let draws = cameras::sidewalk_path_draws(
+                    parsed,
+                    mpp,
+                    &cameras::SidewalkPath {
+                        frames: camera.frame_rule(),
+                        aim,
+                        sidewalk: f64::from(scene::strip_width_px(parsed)) * mpp,
+                    },
+                    camera_seed,
+                    clear_views::DRAWS,
+                );
+                let check = object_views::check_intrinsics(camera);
+                clear_views::unfilled(prepared, draws, &check)
+            }
             CameraPath::Objects => {
                 object_views::aimed_poses(prepared, scene, parsed, mpp, camera, camera_seed)
             }
