@@ -10,9 +10,9 @@ use crate::model::ParsedLayout;
 use crate::rng;
 use crate::spec::FrameRule;
 
-/// Where across the sidewalk a pedestrian walks, as a share of its width from the block's
-/// edge: nearer the shop fronts than the lamps, signs and benches standing mid-strip.
-pub const WALK_SHARE: f64 = 0.3;
+/// Where across the sidewalk the walker walks (shared with the objects stage, which keeps
+/// people off that line).
+pub use crate::model::geometry::WALK_SHARE;
 
 /// Metres from the eye to the look-at point (only the direction matters).
 const LOOK: f64 = 10.0;

@@ -30,6 +30,7 @@ mod footprint_grid;
 mod ground_spots;
 pub mod obj_lines;
 mod objects_error;
+mod person;
 mod plate_style;
 mod sign_face;
 mod street_names;
@@ -264,6 +265,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             }
             ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Person => person::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::StreetName => {
                 poles = Some(street_names::place(
                     spec,

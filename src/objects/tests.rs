@@ -87,6 +87,7 @@ fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
             ObjectKind::Car => "car",
             ObjectKind::Tree => "tree",
             ObjectKind::StreetName => "street_name",
+            ObjectKind::Person => "person",
         }
     ))
     .unwrap()
@@ -1008,6 +1009,82 @@ fn cars_and_trees_never_overlap_anything_standing() {
                 && c[3] - 0.05 <= rect.y[1]
         });
         assert!(on_road, "{c:?}");
+    }
+}
+
+#[test]
+fn people_stand_in_the_strips_apart_from_each_other_and_from_trunks() {
+    let city = city();
+    let specs = [
+        spec(ObjectKind::Sign, "traffic_sign", 60),
+        spec(ObjectKind::Tree, "tree", 200),
+        spec(ObjectKind::Car, "car", 300),
+        spec(ObjectKind::Person, "person", 300),
+    ];
+    let mpp = 0.55;
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    // Where an object stands: the mean of its vertices on its lowest level (a person's
+    // soles, a tree trunk's foot), and that level.
+    let foot = |meshes: &[crate::model::Mesh]| -> ([f64; 2], f64) {
+        let points: Vec<[f64; 3]> = meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.map(f64::from))
+            .collect();
+        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        let soles: Vec<&[f64; 3]> = points.iter().filter(|p| p[1] < low + 1e-4).collect();
+        let n = soles.len() as f64;
+        let mean = soles
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+        (mean, low)
+    };
+    let people: Vec<[f64; 2]> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "person")
+        .map(|o| {
+            let (at, low) = foot(&o.meshes);
+            assert!((low - KERB_Y).abs() < 1e-4, "{} stands at {low}", o.name);
+            assert!(o.name.starts_with("person_"));
+            at
+        })
+        .collect();
+    assert_eq!(inserted.placed[3] as usize, people.len());
+    assert!(people.len() >= 250, "{} people", people.len());
+    let trunks: Vec<[f64; 2]> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "tree")
+        .map(|o| foot(&o.meshes[..1]).0)
+        .collect();
+    let apart = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    // Soles centre 2 cm ahead of the spot a person took: 5 cm of slack.
+    for (i, &p) in people.iter().enumerate() {
+        for &q in &people[i + 1..] {
+            assert!(apart(p, q) >= 2.0 * person::ROOM - 0.05, "{p:?} {q:?}");
+        }
+        for &t in &trunks {
+            assert!(
+                apart(p, t) >= person::ROOM + tree::TRUNK_ROOM - 0.05,
+                "{p:?} {t:?}"
+            );
+        }
+        // Off the roads: in a strip, at least CURB_ROOM from the curb.
+        for r in &city.layout.roads {
+            let px = RoadRect::of(r);
+            let inside = (px.x[0] * mpp - person::CURB_ROOM + 0.05
+                ..=px.x[1] * mpp + person::CURB_ROOM - 0.05)
+                .contains(&p[0])
+                && (px.y[0] * mpp - person::CURB_ROOM + 0.05
+                    ..=px.y[1] * mpp + person::CURB_ROOM - 0.05)
+                    .contains(&p[1]);
+            assert!(!inside, "{p:?} on or by road {r:?}");
+        }
     }
 }
 

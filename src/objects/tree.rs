@@ -97,7 +97,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         for _ in 0..REDRAWS {
             let kind = species[rng.random_range(0..species.len())];
             let t: f64 = rng.random();
-            let height = spec.height[0] + t * (spec.height[1] - spec.height[0]);
+            let [low, high] = spec.height_range();
+            let height = low + t * (high - low);
             let shade = rng.random_range(0..3usize);
             let in_plaza = rng.random::<f64>() < spec.plazas;
             let kerbside = crown_radius(kind, height)

@@ -38,7 +38,26 @@ pub(crate) fn check_objects(
             }
             ObjectKind::Sign => {}
             ObjectKind::Car => {}
-            ObjectKind::Tree => check_range(&key("height"), object.height, findings),
+            ObjectKind::Tree | ObjectKind::Person => {
+                let range = object.height_range();
+                check_range(&key("height"), range, findings);
+                if let Some([low, high]) = ObjectSpec::height_bounds(object.kind)
+                    && (range[0] < low || range[1] > high)
+                {
+                    findings.error(
+                        &key("height"),
+                        format!(
+                            "expected heights from {low} to {high} m for a {}, found {:?}",
+                            if object.kind == ObjectKind::Tree {
+                                "tree"
+                            } else {
+                                "person"
+                            },
+                            range
+                        ),
+                    );
+                }
+            }
             ObjectKind::Mesh if object.label.is_empty() => findings.error(
                 &format!("objects[{i}]"),
                 "expected a `label` for an object of kind \"mesh\" (its annotation \

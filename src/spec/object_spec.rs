@@ -16,12 +16,14 @@ pub struct ObjectSpec {
     /// What to insert: `"text"` (words on walls facing a road), `"sign"` (traffic signs on
     /// poles beside the roads), `"mesh"` (a user OBJ model), `"car"` (cars, vans, buses
     /// and trucks parked at the curbs and standing in the lanes), `"tree"` (street trees
-    /// in the sidewalk strips and on the blocks' open paving) or `"street_name"`
+    /// in the sidewalk strips and on the blocks' open paving), `"person"` (pedestrians in
+    /// the sidewalk strips, walking along the street or standing) or `"street_name"`
     /// (street-name signs on poles at the street corners: two double-sided plates naming
     /// the two streets, four text objects; `count` counts poles).
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
-    /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`); a mesh needs one.
+    /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`); a mesh
+    /// needs one.
     #[serde(default)]
     #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
     pub label: String,
@@ -78,10 +80,11 @@ pub struct ObjectSpec {
     #[serde(default)]
     #[schemars(length(max = 64))]
     pub species: Vec<TreeSpecies>,
-    /// tree: height range `[low, high]` in metres.
-    #[serde(default = "default_tree_height")]
-    #[schemars(inner(range(min = 2.0, max = 40.0)))]
-    pub height: [f64; 2],
+    /// tree, person: height range `[low, high]` in metres. Default `[5, 10]` for trees
+    /// (2–40 allowed), `[1.5, 1.95]` for people (0.8–2.3 allowed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(inner(range(min = 0.8, max = 40.0)))]
+    pub height: Option<[f64; 2]>,
     /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
     /// of the sidewalk strips.
     #[serde(default = "default_plazas")]
@@ -97,10 +100,33 @@ impl ObjectSpec {
             ObjectKind::Sign => Some("traffic_sign"),
             ObjectKind::Car => Some("car"),
             ObjectKind::Tree => Some("tree"),
+            ObjectKind::Person => Some("person"),
             ObjectKind::Mesh => None,
         }
     }
+
+    /// The height range of a tree or a person entry: `height`, else the kind's default.
+    pub fn height_range(&self) -> [f64; 2] {
+        self.height.unwrap_or(match self.kind {
+            ObjectKind::Person => PERSON_HEIGHT,
+            _ => TREE_HEIGHT,
+        })
+    }
+
+    /// The heights an entry of `kind` may have, when it has one.
+    pub fn height_bounds(kind: ObjectKind) -> Option<[f64; 2]> {
+        match kind {
+            ObjectKind::Tree => Some([2.0, 40.0]),
+            ObjectKind::Person => Some([0.8, 2.3]),
+            _ => None,
+        }
+    }
 }
+
+/// Default height range of trees, metres.
+pub const TREE_HEIGHT: [f64; 2] = [5.0, 10.0];
+/// Default height range of people, metres.
+pub const PERSON_HEIGHT: [f64; 2] = [1.5, 1.95];
 
 /// Gives every entry without a `label` its kind's default (a mesh entry keeps none, and
 /// the checks report it).
@@ -178,6 +204,7 @@ pub enum ObjectKind {
     Car,
     Tree,
     StreetName,
+    Person,
 }
 
 /// Letter case of text objects.
@@ -265,9 +292,6 @@ fn default_rotation() -> [f64; 2] {
 fn default_parked() -> f64 {
     0.75
 }
-fn default_tree_height() -> [f64; 2] {
-    [5.0, 10.0]
-}
 fn default_plazas() -> f64 {
     0.25
 }
@@ -293,7 +317,16 @@ mod tests {
 
     #[test]
     fn labels_default_to_the_kind_except_for_meshes() {
-        let mut specs: Vec<ObjectSpec> = ["car", "tree", "sign", "text", "mesh", "street_name"]
+        let kinds = [
+            "car",
+            "tree",
+            "sign",
+            "text",
+            "mesh",
+            "street_name",
+            "person",
+        ];
+        let mut specs: Vec<ObjectSpec> = kinds
             .iter()
             .map(|kind| toml::from_str(&format!("kind = {kind:?}\n")).unwrap())
             .collect();
@@ -302,10 +335,23 @@ mod tests {
         let labels: Vec<&str> = specs.iter().map(|s| s.label.as_str()).collect();
         assert_eq!(
             labels,
-            ["car", "tree", "traffic_sign", "text", "", "text", "vehicle"]
+            [
+                "car",
+                "tree",
+                "traffic_sign",
+                "text",
+                "",
+                "text",
+                "person",
+                "vehicle"
+            ]
         );
         assert_eq!(specs[0].parked, 0.75);
-        assert_eq!(specs[1].height, [5.0, 10.0]);
+        // Heights default by kind: trees' and people's.
+        assert_eq!(specs[1].height_range(), [5.0, 10.0]);
+        assert_eq!(specs[6].height_range(), [1.5, 1.95]);
+        let tall: ObjectSpec = toml::from_str("kind = \"person\"\nheight = [1.8, 2]\n").unwrap();
+        assert_eq!(tall.height_range(), [1.8, 2.0]);
     }
 
     #[test]

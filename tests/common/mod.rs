@@ -98,6 +98,7 @@ impl Workspace {
             ("count = 60\n", "count = 6\n"),
             ("count = 450", "count = 40"),
             ("count = 300", "count = 30"),
+            ("count = 500", "count = 50"),
         ] {
             self.edit_spec(name, from, to);
         }

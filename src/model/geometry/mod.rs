@@ -8,7 +8,7 @@
 //! |---|---|
 //! | [`ROAD_Y`], [`MARKING_Y`], [`KERB_Y`]: surface heights | scene, objects |
 //! | [`MeshBuilder`], [`MaterialBook`]: triangles and materials | scene, objects |
-//! | [`RoadRect`], [`StreetProfile`], [`strip_width_px`]: roads in plan | scene, objects, build |
+//! | [`RoadRect`], [`StreetProfile`], [`strip_width_px`], [`WALK_SHARE`]: roads in plan | scene, objects, cameras, build |
 //! | [`FacadeChoice`]: each building's facade and height | scene, objects |
 //! | [`vector`] helpers: `sub`, `dot`, `cross`, `normalize` | scene, objects, render, export, sensor |
 //! | [`trig`]: bit-exact cos/sin and tan(θ/2) | objects, build |
@@ -31,7 +31,7 @@ pub use material_book::MaterialBook;
 pub use mesh_builder::MeshBuilder;
 pub use road_rect::RoadRect;
 pub use street_profile::StreetProfile;
-pub use strip_width::{DEFAULT_STRIP_PX, strip_width_px};
+pub use strip_width::{DEFAULT_STRIP_PX, WALK_SHARE, strip_width_px};
 pub use trig::{cos_sin_deg, tan_half_degrees};
 pub use units::{mm, round_to, widths_px};
 pub use vector::{UP, cross, dot, neg, normalize, sub};

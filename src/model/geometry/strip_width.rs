@@ -10,6 +10,11 @@ use crate::model::{Block, ParsedLayout};
 /// Strip width when the layout gives nothing to measure (the paper's 8 px).
 pub const DEFAULT_STRIP_PX: u32 = 8;
 
+/// Where across the strip a pedestrian camera walks, as a share of its width from the
+/// block's edge: nearer the shop fronts than the lamps, signs and benches standing
+/// mid-strip. The cameras stage walks this line; the objects stage keeps people off it.
+pub const WALK_SHARE: f64 = 0.3;
+
 /// The lamp strip's width in pixels, measured: for each block, the distance from its
 /// bounding box to the nearest road edge that runs alongside it (a road parallel to one of
 /// the box's sides, on the outside of it, overlapping it lengthwise); the lower median of
