@@ -132,14 +132,9 @@ fn first_clear(
 /// The share of `pose`'s view (0–1) that the renderer, at `check`'s size, shows nearer
 /// than [`WALK_NEAR`] metres of depth.
 pub fn near_share(prepared: &PreparedScene, pose: &CameraPose, check: &Intrinsics) -> f64 {
-    // Only depth is read: no shadows or ambient occlusion to pay for.
-    let lighting = render::Lighting {
-        shadows: false,
-        ambient_occlusion: 0.0,
-        ..render::Lighting::day()
-    };
-    let frame = render::render(prepared, pose, check, &lighting, 1);
-    let pixels = frame.depth.as_raw();
+    // Only depth is read: the depth test alone, no shading.
+    let (shown, _) = render::visibility(prepared, pose, check, &[]);
+    let pixels = shown.depth.as_raw();
     // The sky has depth 0.
     let near = pixels.iter().filter(|&&d| d > 0.0 && d < WALK_NEAR).count();
     near as f64 / pixels.len().max(1) as f64

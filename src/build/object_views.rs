@@ -67,9 +67,7 @@ pub fn check_intrinsics(camera: &CameraSpec) -> Intrinsics {
 /// Whether `view`'s object shows enough in a render with `intrinsics`.
 fn shows(prepared: &PreparedScene, view: &ObjectView, intrinsics: &Intrinsics) -> bool {
     let id = view.target;
-    let lighting = render::Lighting::day();
-    let (frame, footprints) =
-        render::render_measuring(prepared, &view.pose, intrinsics, &lighting, 1, &[id]);
+    let (frame, footprints) = render::visibility(prepared, &view.pose, intrinsics, &[id]);
     let Some(footprint) = footprints.first() else {
         return false;
     };

@@ -142,33 +142,8 @@ pub fn render_measuring(
     let Some(view) = View::new(pose, intrinsics, samples) else {
         return (sky_frame(width, height, lighting), Vec::new());
     };
-
-    let per_object: Vec<Vec<ScreenTri>> = scene
-        .objects
-        .par_iter()
-        .map(|object| {
-            let mut out = Vec::new();
-            if view.may_see_box(object.min, object.max) {
-                for i in object.first..object.end {
-                    screen_triangle::setup(&scene.triangles[i], i as u32, &view, &mut out);
-                }
-            }
-            out
-        })
-        .collect();
-    // Nothing is nearer than the near plane; a larger 1/w is a rounding artefact.
-    let q_range = (1.0 / view.far, 1.0001 / view.near);
-    let footprints = footprint::measure(
-        scene,
-        pose,
-        intrinsics,
-        &view,
-        samples,
-        &per_object,
-        measure,
-        q_range,
-    );
-    let tris: Vec<ScreenTri> = per_object.into_iter().flatten().collect();
+    let (tris, footprints, q_range) =
+        screen_triangles(scene, pose, intrinsics, &view, samples, measure);
 
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
@@ -220,6 +195,123 @@ pub fn render_measuring(
         .map(|r| tile::shade_tile(&ctx, r, ao.as_deref()))
         .collect();
     (assemble(&ctx, Some(&centres), &tiles), footprints)
+}
+
+/// The screen triangles of the objects `view` may see, in scene order, the footprints of
+/// `measure` (see [`render_measuring`]) and the accepted range of 1/w.
+fn screen_triangles(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    view: &View,
+    samples: u32,
+    measure: &[u32],
+) -> (Vec<ScreenTri>, Vec<Footprint>, (f64, f64)) {
+    let per_object: Vec<Vec<ScreenTri>> = scene
+        .objects
+        .par_iter()
+        .map(|object| {
+            let mut out = Vec::new();
+            if view.may_see_box(object.min, object.max) {
+                for i in object.first..object.end {
+                    screen_triangle::setup(&scene.triangles[i], i as u32, view, &mut out);
+                }
+            }
+            out
+        })
+        .collect();
+    // Accepted 1/w: above 1/far, at most 1.0001/near. Nothing is nearer than the near
+    // plane; a larger 1/w is a rounding artefact.
+    let q_range = (1.0 / view.far, 1.0001 / view.near);
+    let footprints = footprint::measure(
+        scene,
+        pose,
+        intrinsics,
+        view,
+        samples,
+        &per_object,
+        measure,
+        q_range,
+    );
+    (
+        per_object.into_iter().flatten().collect(),
+        footprints,
+        q_range,
+    )
+}
+
+/// What a frame shows, without its colours: the instance id and depth of each pixel, as
+/// [`render_measuring`] gives them at one sample per pixel, and the footprints of
+/// `measure`. Only the depth test runs: no shading, sky, shadows, ambient occlusion or
+/// antialiasing (none of which changes ids or depth), so it costs a fraction of a frame.
+/// For the build's checks of what a camera would see.
+pub fn visibility(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    measure: &[u32],
+) -> (Visibility, Vec<Footprint>) {
+    let (width, height) = (intrinsics.width, intrinsics.height);
+    let Some(view) = View::new(pose, intrinsics, 1) else {
+        return (
+            Visibility {
+                instance: ImageBuffer::new(width, height),
+                depth: ImageBuffer::new(width, height),
+            },
+            Vec::new(),
+        );
+    };
+    let (tris, footprints, q_range) = screen_triangles(scene, pose, intrinsics, &view, 1, measure);
+    let tiles_x = width.div_ceil(TILE);
+    let bins = bin(&tris, tiles_x, height.div_ceil(TILE), TILE);
+    // Only the raster reads the context: the lighting is never looked at.
+    let lighting = Lighting::day();
+    let ctx = FrameContext {
+        scene,
+        view: &view,
+        lighting: &lighting,
+        tris: &tris,
+        bins: &bins,
+        lights: &[],
+        windows: None,
+        shadows: None,
+        samples: 1,
+        antialias_edges: false,
+        width,
+        height,
+        tiles_x,
+        q_range,
+    };
+    let w = width as usize;
+    let mut instance = vec![0u32; w * height as usize];
+    let mut depth = vec![0f32; w * height as usize];
+    let rasters: Vec<TileRaster> = (0..bins.len())
+        .into_par_iter()
+        .map(|t| tile::raster_tile(&ctx, t))
+        .collect();
+    for r in &rasters {
+        let rw = r.inner_width();
+        for (k, (&t, &q)) in r.id.iter().zip(&r.depth).enumerate() {
+            let p = (r.rect[1] as usize + k / rw) * w + r.rect[0] as usize + k % rw;
+            if t != tile::NOTHING {
+                instance[p] = scene.triangles[tris[t as usize].source as usize].instance;
+                depth[p] = tile::depth_metres(q);
+            }
+        }
+    }
+    let visibility = Visibility {
+        instance: ImageBuffer::from_raw(width, height, instance).expect("one id a pixel"),
+        depth: ImageBuffer::from_raw(width, height, depth).expect("one depth a pixel"),
+    };
+    (visibility, footprints)
+}
+
+/// A frame's instance ids and depths, without its colours ([`visibility`]).
+pub struct Visibility {
+    /// As [`Frame::instance`]: 0 where nothing is.
+    pub instance: ImageBuffer<Luma<u32>, Vec<u32>>,
+    /// As [`Frame::depth`]: metres along the view axis, 0 for the sky.
+    pub depth: ImageBuffer<Luma<f32>, Vec<f32>>,
 }
 
 /// Builds the shadow map `lighting` needs, if any, and keeps it in `scene`: frames under

@@ -500,6 +500,27 @@ fn footprints_reach_past_the_image_edge() {
 }
 
 #[test]
+fn visibility_gives_a_frames_ids_depth_and_footprints_without_its_colours() {
+    let prepared = prepare(&street_scene()).unwrap();
+    // A size that is not a multiple of the tile: the last tiles are partial.
+    let k = Intrinsics::from_fov(100, 70, 0.6);
+    let ids: Vec<u32> = (1..=prepared.object_count() as u32).collect();
+    for eye in [
+        pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]),
+        pose([-20.0, 1.5, -5.0], [10.0, 2.0, -18.0]),
+    ] {
+        let (frame, footprints) = render_measuring(&prepared, &eye, &k, &Lighting::day(), 1, &ids);
+        let (shown, measured) = crate::render::visibility(&prepared, &eye, &k, &ids);
+        assert_eq!(shown.instance, frame.instance);
+        assert_eq!(shown.depth, frame.depth);
+        assert_eq!(measured, footprints);
+        // Something of the street and of the sky is in view: the check compares content.
+        assert!(shown.instance.pixels().any(|p| p.0[0] > 1));
+        assert!(shown.depth.pixels().any(|p| p.0[0] == 0.0));
+    }
+}
+
+#[test]
 fn every_visible_pixel_of_a_street_lies_in_its_objects_footprint() {
     let prepared = prepare(&street_scene()).unwrap();
     let k = Intrinsics::from_fov(96, 64, 0.6);

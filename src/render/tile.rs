@@ -210,7 +210,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
 }
 
 /// Depth `1/q` in metres as `f32`, at least 1e-6 (0 is kept for the sky).
-fn depth_metres(q: f64) -> f32 {
+pub(crate) fn depth_metres(q: f64) -> f32 {
     ((1.0 / q) as f32).max(1e-6)
 }
 
