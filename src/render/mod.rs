@@ -291,11 +291,10 @@ pub fn visibility(
         .collect();
     for r in &rasters {
         let rw = r.inner_width();
-        for (k, (&t, &q)) in r.id.iter().zip(&r.depth).enumerate() {
-            let p = (r.rect[1] as usize + k / rw) * w + r.rect[0] as usize + k % rw;
-            if t != tile::NOTHING {
-                instance[p] = scene.triangles[tris[t as usize].source as usize].instance;
-                depth[p] = tile::depth_metres(q);
+        for (row, (ids, qs)) in r.id.chunks(rw).zip(r.depth.chunks(rw)).enumerate() {
+            let start = (r.rect[1] as usize + row) * w + r.rect[0] as usize;
+            for (k, (&t, &q)) in ids.iter().zip(qs).enumerate() {
+                (instance[start + k], depth[start + k]) = tile::instance_and_depth(&ctx, t, q);
             }
         }
     }

@@ -192,25 +192,31 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
                 sum
             };
             out.linear.push(c);
-            match id[centre] {
-                NOTHING => {
-                    out.instance.push(0);
-                    out.depth.push(0.0);
-                }
-                t => {
-                    let tri = &ctx.tris[t as usize];
-                    out.instance
-                        .push(ctx.scene.triangles[tri.source as usize].instance);
-                    out.depth.push(depth_metres(depth[centre]));
-                }
-            }
+            let (instance, metres) = instance_and_depth(ctx, id[centre], depth[centre]);
+            out.instance.push(instance);
+            out.depth.push(metres);
         }
     }
     out
 }
 
+/// A pixel's instance id and depth in metres from its centre sample's triangle `t` and
+/// 1/w `q`: (0, 0) for the sky. Frames and [`super::visibility`] both write these.
+pub(crate) fn instance_and_depth(ctx: &FrameContext, t: u32, q: f64) -> (u32, f32) {
+    match t {
+        NOTHING => (0, 0.0),
+        t => {
+            let tri = &ctx.tris[t as usize];
+            (
+                ctx.scene.triangles[tri.source as usize].instance,
+                depth_metres(q),
+            )
+        }
+    }
+}
+
 /// Depth `1/q` in metres as `f32`, at least 1e-6 (0 is kept for the sky).
-pub(crate) fn depth_metres(q: f64) -> f32 {
+fn depth_metres(q: f64) -> f32 {
     ((1.0 / q) as f32).max(1e-6)
 }
 
