@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use cityspec::build::{PathRenderInput, path_render_input};
 use cityspec::render::{self, CameraPose, Lighting, Sky, develop};
-use support::{bench_runs, repo};
+use support::{bench_runs, cpu_ms, repo};
 
 fn main() {
     let runs = bench_runs(15);
@@ -183,19 +183,4 @@ fn report(label: &str, mut ms: Vec<f64>, cpu: f64) {
         ms[ms.len() - 1],
         cpu
     );
-}
-
-/// CPU time of this process so far (user + system, all threads), ms; Linux only (0
-/// elsewhere). `/proc/self/stat` counts in ticks of 10 ms (`CLK_TCK` = 100).
-fn cpu_ms() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    // Fields after the parenthesised command name: utime and stime are the 12th and 13th.
-    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
-    let f: Vec<f64> = rest
-        .split_whitespace()
-        .skip(11)
-        .take(2)
-        .filter_map(|v| v.parse().ok())
-        .collect();
-    f.iter().sum::<f64>() * 10.0
 }

@@ -1,5 +1,5 @@
 //! What the benchmarks share: the repository root, copying trees, the day spec without its
-//! cameras, medians and the peak memory of this process.
+//! cameras, medians, and the CPU time and peak memory of this process.
 
 #![allow(dead_code)] // each bench uses a part
 
@@ -124,4 +124,19 @@ pub fn peak_kib() -> u64 {
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
         .unwrap_or(0)
+}
+
+/// CPU time of this process so far (user + system, all threads), ms; Linux only (0
+/// elsewhere). `/proc/self/stat` counts in ticks of 10 ms (`CLK_TCK` = 100).
+pub fn cpu_ms() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the parenthesised command name: utime and stime are the 12th and 13th.
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    f.iter().sum::<f64>() * 10.0
 }
