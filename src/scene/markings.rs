@@ -1,13 +1,19 @@
 //! Roads → `marking_NNNN` objects: white dashes along each road's centre line and between
-//! its driving lanes, and a solid line along each parking lane (the road's
-//! [`StreetProfile`]), all left out of every crossing (any stretch where another road's
-//! surface meets the centre line) and [`CROSSING_MARGIN`] either side of it.
+//! its driving lanes, a solid line along each parking lane (the road's
+//! [`StreetProfile`]), and a zebra crossing on each approach to a crossing (any stretch
+//! where another road's surface meets the centre line). All of them stay out of every
+//! crossing and [`CROSSING_MARGIN`] either side of it.
 //!
-//! Within each free stretch the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a
-//! stretch between two crossings looks the same from both ends.
+//! - A zebra crossing starts [`CROSSING_MARGIN`] from the crossing: bars [`BAR`] wide and
+//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`] apart and centred from curb
+//!   to curb (less [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to
+//!   the other's. A stretch too short for two of them and a line between gets none.
+//! - The lines stop [`LINE_CLEARANCE`] before a zebra. Within each stretch left to them
+//!   the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a stretch between two
+//!   crossings looks the same from both ends.
 
 use super::object;
-use crate::model::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile};
+use crate::model::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile, ZEBRA_END};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
 /// Dash length, gap between dashes and line width, in metres.
@@ -16,6 +22,16 @@ pub const GAP: f64 = 6.0;
 pub const LINE_WIDTH: f64 = 0.15;
 /// Clear road kept before and after a crossing, in metres.
 pub const CROSSING_MARGIN: f64 = 1.0;
+/// A zebra crossing: its length along the road, its bars' width and the gap between them,
+/// and the road kept clear at each curb, in metres.
+pub const ZEBRA_DEPTH: f64 = 3.0;
+pub const BAR: f64 = 0.5;
+pub const BAR_GAP: f64 = 0.6;
+pub const CURB_CLEARANCE: f64 = 0.3;
+/// Road kept clear between a zebra crossing and the lines, in metres.
+pub const LINE_CLEARANCE: f64 = 1.5;
+// The objects stage keeps lane cars behind the zebras by the shared figure.
+const _: () = assert!(CROSSING_MARGIN + ZEBRA_DEPTH == ZEBRA_END);
 
 pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
     let rects: Vec<RoadRect> = layout
@@ -29,7 +45,11 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
         .enumerate()
         .filter_map(|(i, road)| {
             let mut mesh = MeshBuilder::new(material);
-            let free = free_along(road, i, &rects, mpp);
+            let own = [
+                road.start.min(road.end) * mpp,
+                road.start.max(road.end) * mpp,
+            ];
+            let (zebras, free) = zebras_and_lines(own, &free_along(road, i, &rects, mpp));
             for (offset, solid) in lines(road, mpp) {
                 for &stretch in &free {
                     let pieces = if solid {
@@ -40,6 +60,11 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
                     for [a, b] in pieces {
                         stripe(&mut mesh, road, mpp, offset, [a, b]);
                     }
+                }
+            }
+            for along in zebras {
+                for across in bars(road, mpp) {
+                    rect(&mut mesh, road, across, along);
                 }
             }
             (!mesh.is_empty())
@@ -65,14 +90,69 @@ fn lines(road: &Road, mpp: f64) -> Vec<(f64, bool)> {
     lines
 }
 
+/// Of the stretches of a road clear of crossings (`free`, along-axis metres, in order; the
+/// road runs over `own`): the along-axis ranges of its zebra crossings, one at each end of
+/// a stretch that meets a crossing, and what is left of each stretch for the lines.
+fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let mut zebras = Vec::new();
+    let mut lines = Vec::new();
+    // A stretch ending short of the road's own end meets a crossing there.
+    let eps = 1e-9;
+    for &[a, b] in free {
+        let ends = [a > own[0] + eps, b < own[1] - eps];
+        let need = ends.iter().filter(|&&e| e).count() as f64 * (ZEBRA_DEPTH + LINE_CLEARANCE);
+        if b - a < need + DASH {
+            // Too short for its zebras and a dash between: lines only, as before.
+            lines.push([a, b]);
+            continue;
+        }
+        let mut left = [a, b];
+        if ends[0] {
+            zebras.push([a, a + ZEBRA_DEPTH]);
+            left[0] += ZEBRA_DEPTH + LINE_CLEARANCE;
+        }
+        if ends[1] {
+            zebras.push([b - ZEBRA_DEPTH, b]);
+            left[1] -= ZEBRA_DEPTH + LINE_CLEARANCE;
+        }
+        lines.push(left);
+    }
+    (zebras, lines)
+}
+
+/// The across-axis ranges (metres) of a zebra crossing's bars on `road`: as many as fit
+/// between its curbs less [`CURB_CLEARANCE`], centred.
+fn bars(road: &Road, mpp: f64) -> Vec<[f64; 2]> {
+    let lo = road.edges[0].min(road.edges[1]) * mpp + CURB_CLEARANCE;
+    let hi = road.edges[0].max(road.edges[1]) * mpp - CURB_CLEARANCE;
+    let period = BAR + BAR_GAP;
+    // n bars take n·BAR + (n − 1)·BAR_GAP.
+    let n = ((hi - lo + BAR_GAP) / period).floor();
+    if !n.is_finite() || n < 1.0 {
+        return Vec::new();
+    }
+    let first = lo + (hi - lo - (n * period - BAR_GAP)) / 2.0;
+    (0..n as u64)
+        .map(|k| {
+            let a = first + k as f64 * period;
+            [a, a + BAR]
+        })
+        .collect()
+}
+
 /// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, from `a` to
 /// `b` metres along it.
-fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, [a, b]: [f64; 2]) {
+fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, along: [f64; 2]) {
     let half = LINE_WIDTH / 2.0;
     let line = road.line * mpp + offset;
+    rect(mesh, road, [line - half, line + half], along);
+}
+
+/// One marking quad on `road`: `across` and `along` its axis, in metres.
+fn rect(mesh: &mut MeshBuilder, road: &Road, across: [f64; 2], along: [f64; 2]) {
     let (x, z) = match road.axis {
-        Axis::Horizontal => ([a, b], [line - half, line + half]),
-        Axis::Vertical => ([line - half, line + half], [a, b]),
+        Axis::Horizontal => (along, across),
+        Axis::Vertical => (across, along),
     };
     // uv: the whole stripe is one white quad; 0..1 over it.
     let corners = [
@@ -204,5 +284,67 @@ mod tests {
         let many = centred_dashes([3.0, 700.0]);
         assert_eq!(many.len(), 78);
         assert!(many[0][0] >= 3.0 && many[77][1] <= 700.0);
+    }
+
+    #[test]
+    fn zebras_sit_where_a_stretch_meets_a_crossing_and_lines_keep_clear_of_them() {
+        // A road over [0, 100] crossed over [40, 50] (with the margins): the first stretch
+        // meets it at its end, the second at its start; the road's own ends have none.
+        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[0.0, 39.0], [51.0, 100.0]]);
+        assert_eq!(zebras, vec![[36.0, 39.0], [51.0, 54.0]]);
+        assert_eq!(lines, vec![[0.0, 34.5], [55.5, 100.0]]);
+        // Between two crossings 12 m apart there is room for neither zebra and a dash
+        // (2 × 4.5 m + 3 m = 12 m is just enough; 11 m is not).
+        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 42.0]]);
+        assert_eq!(zebras, vec![[30.0, 33.0], [39.0, 42.0]]);
+        assert_eq!(lines, vec![[34.5, 37.5]]);
+        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 41.0]]);
+        assert_eq!(zebras, Vec::<[f64; 2]>::new());
+        assert_eq!(lines, vec![[30.0, 41.0]]);
+        // A road crossed nowhere: lines only.
+        let (zebras, lines) = zebras_and_lines([5.0, 60.0], &[[5.0, 60.0]]);
+        assert!(zebras.is_empty());
+        assert_eq!(lines, vec![[5.0, 60.0]]);
+    }
+
+    #[test]
+    fn zebra_bars_are_centred_between_the_curbs() {
+        let road = |edges: [f64; 2]| Road {
+            id: 0,
+            axis: Axis::Horizontal,
+            start: 0.0,
+            end: 100.0,
+            line: (edges[0] + edges[1]) / 2.0,
+            edges,
+        };
+        // 17.05 m between the curbs, 16.45 m inside the clearances: 15 bars take 15 × 0.5 +
+        // 14 × 0.6 = 15.9 m, 0.275 m either side.
+        let bars = bars(&road([10.0, 41.0]), 0.55);
+        assert_eq!(bars.len(), 15);
+        let (lo, hi) = (10.0 * 0.55 + CURB_CLEARANCE, 41.0 * 0.55 - CURB_CLEARANCE);
+        assert!((bars[0][0] - lo - 0.275).abs() < 1e-9, "{bars:?}");
+        assert!((hi - bars[14][1] - 0.275).abs() < 1e-9, "{bars:?}");
+        for pair in bars.windows(2) {
+            assert!((pair[1][0] - pair[0][1] - BAR_GAP).abs() < 1e-9);
+            assert!((pair[0][1] - pair[0][0] - BAR).abs() < 1e-12);
+        }
+        // Too narrow for one bar: none.
+        assert!(bars_of_width(0.9).is_empty());
+        assert_eq!(bars_of_width(1.2).len(), 1);
+    }
+
+    /// The bars of a road `width` metres wide (1 m per pixel).
+    fn bars_of_width(width: f64) -> Vec<[f64; 2]> {
+        bars(
+            &Road {
+                id: 0,
+                axis: Axis::Vertical,
+                start: 0.0,
+                end: 10.0,
+                line: width / 2.0,
+                edges: [0.0, width],
+            },
+            1.0,
+        )
     }
 }

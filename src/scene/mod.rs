@@ -10,7 +10,7 @@
 //! | `ground` | ground | one quad under the layout, [`GROUND_MARGIN`] beyond it | `grass` |
 //! | `block_0007` | block | one quad per band span of the block's pixels | `paving` |
 //! | `road_0003` | road | the road's rectangle minus earlier roads' (crossings belong to the lower id) | `asphalt` |
-//! | `marking_0003` | marking | centre and lane lines, parking-lane edges, clear of other roads | `marking` |
+//! | `marking_0003` | marking | centre and lane lines, parking-lane edges, a zebra crossing on each approach to a crossing, clear of other roads | `marking` |
 //! | `sidewalk_0007` | sidewalk | the strip ring: a raised slab with curb faces | `concrete` |
 //! | `building_0042` | building | walls with the facade, flat roof | `facade_*`, `roof_*` |
 //! | `lamp_0017` | lamp | pole, arm, emissive head | `lamp_metal`, `lamp_head` |
@@ -32,7 +32,7 @@
 //! bit for bit on every platform.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
 mod blocks;
 mod buildings;

@@ -407,8 +407,32 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
     let city = city(None);
     let scene = scene_of(&city, None);
     let rects: Vec<RoadRect> = city.layout.roads.iter().map(RoadRect::of).collect();
-    let mut dashes = 0;
+    let (mut dashes, mut bars) = (0, 0);
     for object in of_class(&scene, "marking") {
+        // No two markings of a road overlap: lines stop short of the zebra crossings.
+        let pieces: Vec<RoadRect> = object.meshes[0]
+            .positions
+            .chunks(4)
+            .map(|quad| {
+                let xs = quad.iter().map(|p| f64::from(p[0]));
+                let zs = quad.iter().map(|p| f64::from(p[2]));
+                RoadRect {
+                    x: [
+                        xs.clone().fold(f64::INFINITY, f64::min),
+                        xs.fold(f64::NEG_INFINITY, f64::max),
+                    ],
+                    y: [
+                        zs.clone().fold(f64::INFINITY, f64::min),
+                        zs.fold(f64::NEG_INFINITY, f64::max),
+                    ],
+                }
+            })
+            .collect();
+        for (i, a) in pieces.iter().enumerate() {
+            for b in &pieces[i + 1..] {
+                assert!(!a.overlaps(b), "{}: {a:?} overlaps {b:?}", object.name);
+            }
+        }
         let id: usize = object.name["marking_".len()..].parse().unwrap();
         for quad in object.meshes[0].positions.chunks(4) {
             dashes += 1;
@@ -424,6 +448,9 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
                     zs.fold(f64::NEG_INFINITY, f64::max),
                 ],
             };
+            if quad_is_zebra_bar(&dash) {
+                bars += 1;
+            }
             let own = &rects[id];
             let inside = own.x[0] <= dash.x[0]
                 && dash.x[1] <= own.x[1]
@@ -440,6 +467,16 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
         }
     }
     assert!(dashes > 100, "{dashes}");
+    // The test city's crossings have zebra crossings on their approaches.
+    assert!(bars > 20, "{bars} zebra bars");
+}
+
+/// Whether a marking quad (its plan rectangle, layout pixels) is a zebra crossing's bar: 3 m
+/// along the road, 0.5 m across (the test city's scale is 1 m a pixel).
+fn quad_is_zebra_bar(r: &RoadRect) -> bool {
+    let (w, h) = (r.x[1] - r.x[0], r.y[1] - r.y[0]);
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-3;
+    (near(w, 3.0) && near(h, 0.5)) || (near(w, 0.5) && near(h, 3.0))
 }
 
 #[test]

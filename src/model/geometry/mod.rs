@@ -40,5 +40,8 @@ pub use vector::{UP, cross, dot, neg, normalize, sub};
 pub const ROAD_Y: f64 = 0.02;
 /// Height of the lane markings: a few millimetres above the road.
 pub const MARKING_Y: f64 = 0.025;
+/// How far from a crossing's edge the zebra crossing on each approach ends, in metres (the
+/// scene paints it; cars standing in a lane keep behind it).
+pub const ZEBRA_END: f64 = 4.0;
 /// Top of the sidewalk slabs and of the block surfaces (a curb's height).
 pub const KERB_Y: f64 = 0.15;
