@@ -413,20 +413,7 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
         let pieces: Vec<RoadRect> = object.meshes[0]
             .positions
             .chunks(4)
-            .map(|quad| {
-                let xs = quad.iter().map(|p| f64::from(p[0]));
-                let zs = quad.iter().map(|p| f64::from(p[2]));
-                RoadRect {
-                    x: [
-                        xs.clone().fold(f64::INFINITY, f64::min),
-                        xs.fold(f64::NEG_INFINITY, f64::max),
-                    ],
-                    y: [
-                        zs.clone().fold(f64::INFINITY, f64::min),
-                        zs.fold(f64::NEG_INFINITY, f64::max),
-                    ],
-                }
-            })
+            .map(plan_rect)
             .collect();
         for (i, a) in pieces.iter().enumerate() {
             for b in &pieces[i + 1..] {
@@ -434,20 +421,8 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
             }
         }
         let id: usize = object.name["marking_".len()..].parse().unwrap();
-        for quad in object.meshes[0].positions.chunks(4) {
+        for dash in pieces {
             dashes += 1;
-            let xs = quad.iter().map(|p| f64::from(p[0]));
-            let zs = quad.iter().map(|p| f64::from(p[2]));
-            let dash = RoadRect {
-                x: [
-                    xs.clone().fold(f64::INFINITY, f64::min),
-                    xs.fold(f64::NEG_INFINITY, f64::max),
-                ],
-                y: [
-                    zs.clone().fold(f64::INFINITY, f64::min),
-                    zs.fold(f64::NEG_INFINITY, f64::max),
-                ],
-            };
             if quad_is_zebra_bar(&dash) {
                 bars += 1;
             }
@@ -471,6 +446,22 @@ fn markings_stay_out_of_crossings_and_on_their_road() {
     assert!(bars > 20, "{bars} zebra bars");
 }
 
+/// The plan rectangle (x and z extents) of a flat quad's corners.
+fn plan_rect(quad: &[[f32; 3]]) -> RoadRect {
+    let xs = quad.iter().map(|p| f64::from(p[0]));
+    let zs = quad.iter().map(|p| f64::from(p[2]));
+    RoadRect {
+        x: [
+            xs.clone().fold(f64::INFINITY, f64::min),
+            xs.fold(f64::NEG_INFINITY, f64::max),
+        ],
+        y: [
+            zs.clone().fold(f64::INFINITY, f64::min),
+            zs.fold(f64::NEG_INFINITY, f64::max),
+        ],
+    }
+}
+
 /// Whether a marking quad (its plan rectangle, layout pixels) is a zebra crossing's bar: 3 m
 /// along the road, 0.5 m across (the test city's scale is 1 m a pixel).
 fn quad_is_zebra_bar(r: &RoadRect) -> bool {
@@ -487,18 +478,7 @@ fn road_surfaces_do_not_overlap_and_cover_every_road() {
     let mut area = 0.0;
     for object in of_class(&scene, "road") {
         for quad in object.meshes[0].positions.chunks(4) {
-            let xs = quad.iter().map(|p| f64::from(p[0]));
-            let zs = quad.iter().map(|p| f64::from(p[2]));
-            let piece = RoadRect {
-                x: [
-                    xs.clone().fold(f64::INFINITY, f64::min),
-                    xs.fold(f64::NEG_INFINITY, f64::max),
-                ],
-                y: [
-                    zs.clone().fold(f64::INFINITY, f64::min),
-                    zs.fold(f64::NEG_INFINITY, f64::max),
-                ],
-            };
+            let piece = plan_rect(quad);
             assert!(
                 pieces.iter().all(|p| !p.overlaps(&piece)),
                 "{}",
