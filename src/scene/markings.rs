@@ -7,7 +7,8 @@
 //! - A zebra crossing starts [`CROSSING_MARGIN`] from the crossing: bars [`BAR`] wide and
 //!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`] apart and centred from curb
 //!   to curb (less [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to
-//!   the other's. A stretch too short for two of them and a line between gets none.
+//!   the other's. A stretch too short for its zebras, their clearances and one dash keeps
+//!   its lines only.
 //! - The lines stop [`LINE_CLEARANCE`] before a zebra. Within each stretch left to them
 //!   the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a stretch between two
 //!   crossings looks the same from both ends.
@@ -62,8 +63,9 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
                     }
                 }
             }
+            let bars = bars(road, mpp);
             for along in zebras {
-                for across in bars(road, mpp) {
+                for &across in &bars {
                     rect(&mut mesh, road, across, along);
                 }
             }
@@ -140,8 +142,8 @@ fn bars(road: &Road, mpp: f64) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, from `a` to
-/// `b` metres along it.
+/// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, over
+/// `along` (metres along its axis).
 fn stripe(mesh: &mut MeshBuilder, road: &Road, mpp: f64, offset: f64, along: [f64; 2]) {
     let half = LINE_WIDTH / 2.0;
     let line = road.line * mpp + offset;
@@ -293,8 +295,8 @@ mod tests {
         let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[0.0, 39.0], [51.0, 100.0]]);
         assert_eq!(zebras, vec![[36.0, 39.0], [51.0, 54.0]]);
         assert_eq!(lines, vec![[0.0, 34.5], [55.5, 100.0]]);
-        // Between two crossings 12 m apart there is room for neither zebra and a dash
-        // (2 × 4.5 m + 3 m = 12 m is just enough; 11 m is not).
+        // A 12 m stretch between two crossings just holds both zebras, their clearances and
+        // one dash (2 × 4.5 m + 3 m); an 11 m one keeps its lines only.
         let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 42.0]]);
         assert_eq!(zebras, vec![[30.0, 33.0], [39.0, 42.0]]);
         assert_eq!(lines, vec![[34.5, 37.5]]);
