@@ -50,7 +50,7 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
                 road.start.min(road.end) * mpp,
                 road.start.max(road.end) * mpp,
             ];
-            let (zebras, free) = zebras_and_lines(own, &free_along(road, i, &rects, mpp));
+            let (zebras, free) = zebras_and_lines(own, &free_along(road, own, i, &rects, mpp));
             for (offset, solid) in lines(road, mpp) {
                 for &stretch in &free {
                     let pieces = if solid {
@@ -127,19 +127,7 @@ fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f6
 fn bars(road: &Road, mpp: f64) -> Vec<[f64; 2]> {
     let lo = road.edges[0].min(road.edges[1]) * mpp + CURB_CLEARANCE;
     let hi = road.edges[0].max(road.edges[1]) * mpp - CURB_CLEARANCE;
-    let period = BAR + BAR_GAP;
-    // n bars take n·BAR + (n − 1)·BAR_GAP.
-    let n = ((hi - lo + BAR_GAP) / period).floor();
-    if !n.is_finite() || n < 1.0 {
-        return Vec::new();
-    }
-    let first = lo + (hi - lo - (n * period - BAR_GAP)) / 2.0;
-    (0..n as u64)
-        .map(|k| {
-            let a = first + k as f64 * period;
-            [a, a + BAR]
-        })
-        .collect()
+    centred_pieces([lo, hi], BAR, BAR_GAP)
 }
 
 /// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, over
@@ -175,13 +163,9 @@ fn metres(r: RoadRect, mpp: f64) -> RoadRect {
 }
 
 /// Along-axis `[from, to]` (metres) of the stretches of road `i` clear of crossings.
-fn free_along(road: &Road, i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> {
+fn free_along(road: &Road, own: [f64; 2], i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> {
     let half = LINE_WIDTH / 2.0;
     let line = road.line * mpp;
-    let own = [
-        road.start.min(road.end) * mpp,
-        road.start.max(road.end) * mpp,
-    ];
     let strip = match road.axis {
         Axis::Horizontal => RoadRect {
             x: own,
@@ -230,19 +214,24 @@ fn free_stretches(range: [f64; 2], mut blocked: Vec<[f64; 2]>) -> Vec<[f64; 2]> 
 
 /// As many whole dashes as fit in `stretch`, centred in it.
 fn centred_dashes(stretch: [f64; 2]) -> Vec<[f64; 2]> {
-    let length = stretch[1] - stretch[0];
-    let period = DASH + GAP;
-    // n dashes take n·DASH + (n − 1)·GAP.
-    let n = ((length + GAP) / period).floor();
-    // A non-finite stretch or fewer than one dash: nothing.
+    centred_pieces(stretch, DASH, GAP)
+}
+
+/// As many pieces `length` long and `gap` apart as fit in `range`, centred in it.
+fn centred_pieces(range: [f64; 2], length: f64, gap: f64) -> Vec<[f64; 2]> {
+    let room = range[1] - range[0];
+    let period = length + gap;
+    // n pieces take n·length + (n − 1)·gap.
+    let n = ((room + gap) / period).floor();
+    // A non-finite range or fewer than one piece: nothing.
     if !n.is_finite() || n < 1.0 {
         return Vec::new();
     }
-    let first = stretch[0] + (length - (n * period - GAP)) / 2.0;
+    let first = range[0] + (room - (n * period - gap)) / 2.0;
     (0..n as u64)
         .map(|k| {
             let a = first + k as f64 * period;
-            [a, a + DASH]
+            [a, a + length]
         })
         .collect()
 }
