@@ -31,6 +31,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::UNIX_EPOCH;
 
+use rayon::prelude::*;
+
 use super::BuildError;
 use super::cache::{Blob, Cache};
 use super::fresh::FreshRecord;
@@ -147,12 +149,13 @@ impl OutDir {
         };
         let mut synced = Synced::default();
         let mut keep = BTreeSet::new();
-        for artifact in artifacts {
-            if same(
-                &artifact.path,
-                &artifact.blob.sha256(),
-                artifact.blob.size(),
-            ) {
+        // Old files are read and hashed on every core (in artifact order all the same).
+        let unchanged: Vec<bool> = artifacts
+            .par_iter()
+            .map(|a| same(&a.path, &a.blob.sha256(), a.blob.size()))
+            .collect();
+        for (artifact, unchanged) in artifacts.iter().zip(unchanged) {
+            if unchanged {
                 keep.insert(artifact.path.as_str());
                 synced.unchanged.push(artifact.path.clone());
             } else {
@@ -191,9 +194,15 @@ impl OutDir {
         let stage = self.reserved("stage");
         fs::create_dir(&stage).map_err(io_err(&stage))?;
         self.faults.step();
-        for artifact in artifacts {
+        // The folders first, then the files on every core: a path's frames come back
+        // from the cache (read and checked against their hash), which one core took
+        // 0.3 s of a 100-frame build for.
+        for dir in folders_of(artifacts.iter().map(|a| a.path.as_str())) {
+            let target = stage.join(&dir);
+            fs::create_dir_all(&target).map_err(io_err(&target))?;
+        }
+        artifacts.par_iter().try_for_each(|artifact| {
             let target = stage.join(&artifact.path);
-            make_parent(&target).map_err(io_err(&target))?;
             let linked = keep.contains(artifact.path.as_str())
                 && fs::hard_link(self.dir.join(&artifact.path), &target).is_ok();
             if !linked {
@@ -207,7 +216,8 @@ impl OutDir {
                 .map_err(io_err(&self.dir.join(&artifact.path)))?;
             }
             self.faults.step();
-        }
+            Ok(())
+        })?;
         let target = stage.join("manifest.json");
         let linked =
             manifest_same && fs::hard_link(self.dir.join("manifest.json"), &target).is_ok();
@@ -390,13 +400,6 @@ pub fn mtime_ns(meta: &fs::Metadata) -> u128 {
         .ok()
         .and_then(|t| t.duration_since(UNIX_EPOCH).ok())
         .map_or(0, |d| d.as_nanos())
-}
-
-fn make_parent(path: &Path) -> io::Result<()> {
-    match path.parent() {
-        Some(parent) => fs::create_dir_all(parent),
-        None => Ok(()),
-    }
 }
 
 /// Writes a file that must not exist yet (the staging folder is this build's own).
