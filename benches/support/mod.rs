@@ -6,11 +6,6 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-/// The allocator the `cityspec` binary runs on (see `src/main.rs`), so that builds run in
-/// a bench's process cost what they cost from the command line.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 pub fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
