@@ -189,35 +189,49 @@ pub fn assemble(
         })?;
         out.flush()
     };
-    let coco = if store {
-        cache.put_object_with(coco)?
-    } else {
-        let mut sink = Hashing::new(io::sink());
-        coco(&mut sink)?;
-        sink.finish()
-    };
-    outputs.insert(format!("{dir}/coco.json"), Blob::Stored(coco, None));
     let picks = crate::annotate::contact_sheet_picks(plan.poses.len());
-    let mut drawn = Vec::with_capacity(plan.poses.len());
-    let mut sheet = Vec::with_capacity(picks.len());
     // Per frame, the id of its first annotation in coco.json (for the WebDataset samples).
-    let mut first_ids = Vec::with_capacity(plan.poses.len());
-    let mut annotations = 1u64;
-    each_record(&mut |i, record| {
-        first_ids.push(annotations);
-        annotations += record.coco.annotations.len() as u64;
-        if picks.contains(&i) {
-            let name = format!("{dir}/rgb/{i:06}.png");
-            let blob = chunks
-                .get(i / CHUNK_FRAMES)
-                .and_then(|chunk| chunk.get(&name))
-                .ok_or_else(|| io::Error::other(format!("a chunk lacks {name}")))?;
-            let rgb = codec::decode_png(&read(blob)?).map_err(io::Error::other)?;
-            sheet.push((rgb, record.sheet));
-        }
-        drawn.push(record.conditions);
-        Ok(())
-    })?;
+    let records = || {
+        let mut drawn = Vec::with_capacity(plan.poses.len());
+        let mut sheet = Vec::with_capacity(picks.len());
+        let mut first_ids = Vec::with_capacity(plan.poses.len());
+        let mut annotations = 1u64;
+        each_record(&mut |i, record| {
+            first_ids.push(annotations);
+            annotations += record.coco.annotations.len() as u64;
+            if picks.contains(&i) {
+                let name = format!("{dir}/rgb/{i:06}.png");
+                let blob = chunks
+                    .get(i / CHUNK_FRAMES)
+                    .and_then(|chunk| chunk.get(&name))
+                    .ok_or_else(|| io::Error::other(format!("a chunk lacks {name}")))?;
+                sheet.push((read(blob)?, record.sheet));
+            }
+            drawn.push(record.conditions);
+            Ok(())
+        })?;
+        // The picked frames decoded on every core, in order.
+        let sheet = sheet
+            .into_par_iter()
+            .map(|(png, boxes)| Ok((codec::decode_png(&png).map_err(io::Error::other)?, boxes)))
+            .collect::<io::Result<Vec<_>>>()?;
+        Ok::<_, io::Error>((drawn, sheet, first_ids))
+    };
+    // coco.json is written while the other pass over the records gathers the rest.
+    let (coco, gathered) = rayon::join(
+        || {
+            if store {
+                cache.put_object_with(coco)
+            } else {
+                let mut sink = Hashing::new(io::sink());
+                coco(&mut sink)?;
+                Ok(sink.finish())
+            }
+        },
+        records,
+    );
+    outputs.insert(format!("{dir}/coco.json"), Blob::Stored(coco?, None));
+    let (drawn, sheet, first_ids) = gathered?;
     if drawn.len() != plan.poses.len() {
         return Err(io::Error::other(format!(
             "the chunks hold {} frames, the path {}",
