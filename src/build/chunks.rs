@@ -190,7 +190,8 @@ pub fn assemble(
         out.flush()
     };
     let picks = crate::annotate::contact_sheet_picks(plan.poses.len());
-    // Per frame, the id of its first annotation in coco.json (for the WebDataset samples).
+    // Each frame's drawn conditions, the preview's frames, and per frame the id of its
+    // first annotation in coco.json (for the WebDataset samples).
     let records = || {
         let mut drawn = Vec::with_capacity(plan.poses.len());
         let mut sheet = Vec::with_capacity(picks.len());

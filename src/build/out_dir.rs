@@ -149,7 +149,7 @@ impl OutDir {
         };
         let mut synced = Synced::default();
         let mut keep = BTreeSet::new();
-        // Old files are read and hashed on every core (in artifact order all the same).
+        // Old files are read and hashed on every core; the answers come back in artifact order.
         let unchanged: Vec<bool> = artifacts
             .par_iter()
             .map(|a| same(&a.path, &a.blob.sha256(), a.blob.size()))
@@ -195,8 +195,8 @@ impl OutDir {
         fs::create_dir(&stage).map_err(io_err(&stage))?;
         self.faults.step();
         // The folders first, then the files on every core: a path's frames come back
-        // from the cache (read and checked against their hash), which one core took
-        // 0.3 s of a 100-frame build for.
+        // from the cache (read and checked against their hash), which took one core
+        // 0.3 s in a 100-frame build. With several failures, any one is reported.
         for dir in folders_of(artifacts.iter().map(|a| a.path.as_str())) {
             let target = stage.join(&dir);
             fs::create_dir_all(&target).map_err(io_err(&target))?;
