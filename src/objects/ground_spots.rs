@@ -48,6 +48,9 @@ pub struct GroundSpots<'a> {
 pub struct Corner {
     pub position: [f64; 2],
     pub roads: [u32; 2],
+    /// Which side of the crossing the corner is on: −1 or 1 along x (west, east of the
+    /// vertical road) and along z (north, south of the horizontal road).
+    pub sides: [f64; 2],
 }
 
 /// Ground an object takes, in metres (x east, z south).
@@ -297,6 +300,7 @@ impl<'a> GroundSpots<'a> {
                         out.push(Corner {
                             position: [x * self.mpp, z * self.mpp],
                             roads: [h.id, v.id],
+                            sides: [sx, sz],
                         });
                     }
                 }

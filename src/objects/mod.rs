@@ -10,6 +10,7 @@
 //! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
 //! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of four species (`tree` module) |
 //! | street_name | `street_pole_0002` (class `pole`) + four `text_0140`… | at a street corner, half a strip from both curbs | a pole and two stacked double-sided plates naming the two streets (`street_names` module) |
+//! | traffic_light | `signal_pole_0001` (class `pole`) + two `traffic_light_0002`… | at a street corner, half a strip from both curbs | a pole and two signal heads looking along the two roads, one lamp lit (`traffic_lights` module) |
 //!
 //! Every object's class is its spec entry's `label`. Entry `i` draws from
 //! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
@@ -39,6 +40,7 @@ mod tests;
 mod text_colours;
 mod text_font;
 mod text_plate;
+mod traffic_lights;
 mod traffic_signs;
 mod tree;
 mod user_mesh;
@@ -131,7 +133,7 @@ impl Inserted {
             .enumerate()
             .filter(|(_, (spec, placed))| **placed < spec.count)
             .map(|(i, (spec, placed))| {
-                let kind = format!("{:?}", spec.kind).to_lowercase();
+                let kind = spec.kind.name();
                 format!(
                     "objects[{i}] ({kind}, label {:?}): placed {} of {} (no free spot left \
                      after {ATTEMPTS} tries each)",
@@ -274,9 +276,17 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
                     &mut placing,
                 )?);
             }
+            ObjectKind::TrafficLight => {
+                poles = Some(traffic_lights::place(
+                    spec,
+                    &mut rng,
+                    &mut spots,
+                    &mut placing,
+                ));
+            }
         }
-        // A street-name entry counts poles (each carries four text faces); the others
-        // count objects.
+        // Street-name and traffic-light entries count poles (each carries four text faces
+        // or two signal heads); the others count objects.
         let placed = poles.unwrap_or((placing.out.objects.len() - before) as u32);
         placing.out.placed.push(placed);
     }

@@ -80,15 +80,7 @@ fn city() -> City {
 fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
     toml::from_str(&format!(
         "kind = {:?}\nlabel = {label:?}\ncount = {count}\n",
-        match kind {
-            ObjectKind::Text => "text",
-            ObjectKind::Sign => "sign",
-            ObjectKind::Mesh => "mesh",
-            ObjectKind::Car => "car",
-            ObjectKind::Tree => "tree",
-            ObjectKind::StreetName => "street_name",
-            ObjectKind::Person => "person",
-        }
+        kind.name()
     ))
     .unwrap()
 }
@@ -1132,6 +1124,95 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
     let many = [spec(ObjectKind::StreetName, "text", 10_000)];
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] > 12 && all.placed[0] < 10_000);
+}
+
+#[test]
+fn traffic_lights_stand_at_corners_with_one_head_along_each_road() {
+    use super::traffic_lights::{HEAD_OFFSET, HEAD_SIZE, POLE_HEIGHT};
+    let city = city();
+    let specs = [spec(ObjectKind::TrafficLight, "traffic_light", 10)];
+    let inserted = run(&city, &specs).unwrap();
+    assert_eq!(inserted.placed, [10]);
+    let objects = &inserted.objects;
+    assert_eq!(objects.len(), 30);
+    // Bounding box of an object's meshes, and of one mesh.
+    let bounds = |meshes: &[Mesh]| {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in meshes.iter().flat_map(|m| &m.positions) {
+            for k in 0..3 {
+                lo[k] = lo[k].min(f64::from(p[k]));
+                hi[k] = hi[k].max(f64::from(p[k]));
+            }
+        }
+        (lo, hi)
+    };
+    let centre = |(lo, hi): ([f64; 3], [f64; 3])| [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    let mut states = BTreeSet::new();
+    for pole_and_heads in objects.chunks(3) {
+        let [pole, heads @ ..] = pole_and_heads else {
+            unreachable!()
+        };
+        assert!(pole.name.starts_with("signal_pole_") && pole.class == "pole");
+        let (lo, hi) = bounds(&pole.meshes);
+        assert!((hi[1] - lo[1] - POLE_HEIGHT).abs() < 1e-4);
+        let foot = centre((lo, hi));
+        let mut offsets = Vec::new();
+        let mut signals = Vec::new();
+        for head in heads {
+            assert!(head.name.starts_with("traffic_light_"), "{}", head.name);
+            assert_eq!(head.class, "traffic_light");
+            let i = objects.iter().position(|o| o.name == head.name).unwrap();
+            let state = inserted.info[i].attributes["state"].clone();
+            // The body: a head's height, HEAD_OFFSET out from the pole along x or z.
+            let body = centre(bounds(&head.meshes[..1]));
+            let d = [body[0] - foot[0], body[2] - foot[2]];
+            assert!(
+                (d[0].abs() - HEAD_OFFSET).abs() < 1e-3 && d[1].abs() < 1e-3
+                    || (d[1].abs() - HEAD_OFFSET).abs() < 1e-3 && d[0].abs() < 1e-3,
+                "{d:?}"
+            );
+            let (blo, bhi) = bounds(&head.meshes[..1]);
+            assert!((bhi[1] - blo[1] - HEAD_SIZE[0]).abs() < 1e-4);
+            // Three lenses in front of the body, red over amber over green; only the one
+            // the state names glows.
+            let lenses = &head.meshes[2..];
+            assert_eq!(lenses.len(), 3);
+            let mut lit = Vec::new();
+            let mut last_y = f64::INFINITY;
+            for (lens, colour) in lenses.iter().zip(["red", "amber", "green"]) {
+                let material = &inserted.materials[lens.material as usize];
+                assert!(material.name.starts_with(&format!("signal_{colour}_")));
+                let c = centre(bounds(std::slice::from_ref(lens)));
+                assert!(c[1] < last_y);
+                last_y = c[1];
+                let out = [c[0] - foot[0], c[2] - foot[2]];
+                assert!(out[0] * d[0] + out[1] * d[1] > HEAD_OFFSET * HEAD_OFFSET);
+                if material.emissive.iter().any(|&e| e > 0.0) {
+                    lit.push(colour);
+                }
+            }
+            assert_eq!(lit, [state.as_str()]);
+            offsets.push(d);
+            signals.push(state.clone());
+            states.insert(state);
+        }
+        // One head along each road, away from each other; one road has red.
+        assert!(offsets[0][0] * offsets[1][0] + offsets[0][1] * offsets[1][1] == 0.0);
+        signals.sort();
+        assert!(
+            signals == ["green", "red"] || signals == ["amber", "red"],
+            "{signals:?}"
+        );
+    }
+    assert!(
+        states.contains("red") && states.contains("green"),
+        "{states:?}"
+    );
+    // Deterministic; a larger count than corners falls short, never panics.
+    assert_eq!(run(&city, &specs).unwrap(), inserted);
+    let many = [spec(ObjectKind::TrafficLight, "traffic_light", 10_000)];
+    let all = run(&city, &many).unwrap();
+    assert!(all.placed[0] >= 10 && all.placed[0] < 10_000);
 }
 
 #[test]

@@ -37,7 +37,7 @@ pub(crate) fn check_objects(
                 }
             }
             ObjectKind::Sign => {}
-            ObjectKind::Car => {}
+            ObjectKind::Car | ObjectKind::TrafficLight => {}
             ObjectKind::Tree | ObjectKind::Person => {
                 let range = object.height_range();
                 check_range(&key("height"), range, findings);

@@ -19,10 +19,13 @@ pub struct ObjectSpec {
     /// in the sidewalk strips and on the blocks' open paving), `"person"` (pedestrians in
     /// the sidewalk strips, walking along the street or standing) or `"street_name"`
     /// (street-name signs on poles at the street corners: two double-sided plates naming
-    /// the two streets, four text objects; `count` counts poles).
+    /// the two streets, four text objects; `count` counts poles) or `"traffic_light"`
+    /// (signal poles at the street corners, each with two heads looking along the two
+    /// roads, one lit red, amber or green; `count` counts poles).
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
-    /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`); a mesh
+    /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
+    /// `traffic_light`); a mesh
     /// needs one.
     #[serde(default)]
     #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
@@ -101,6 +104,7 @@ impl ObjectSpec {
             ObjectKind::Car => Some("car"),
             ObjectKind::Tree => Some("tree"),
             ObjectKind::Person => Some("person"),
+            ObjectKind::TrafficLight => Some("traffic_light"),
             ObjectKind::Mesh => None,
         }
     }
@@ -205,6 +209,23 @@ pub enum ObjectKind {
     Tree,
     StreetName,
     Person,
+    TrafficLight,
+}
+
+impl ObjectKind {
+    /// The snake_case name the spec uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObjectKind::Text => "text",
+            ObjectKind::Sign => "sign",
+            ObjectKind::Mesh => "mesh",
+            ObjectKind::Car => "car",
+            ObjectKind::Tree => "tree",
+            ObjectKind::StreetName => "street_name",
+            ObjectKind::Person => "person",
+            ObjectKind::TrafficLight => "traffic_light",
+        }
+    }
 }
 
 /// Letter case of text objects.
@@ -316,6 +337,24 @@ mod tests {
     }
 
     #[test]
+    fn kind_names_are_what_the_spec_reads() {
+        let kinds = [
+            ObjectKind::Text,
+            ObjectKind::Sign,
+            ObjectKind::Mesh,
+            ObjectKind::Car,
+            ObjectKind::Tree,
+            ObjectKind::StreetName,
+            ObjectKind::Person,
+            ObjectKind::TrafficLight,
+        ];
+        for kind in kinds {
+            let spec: ObjectSpec = toml::from_str(&format!("kind = {:?}\n", kind.name())).unwrap();
+            assert_eq!(spec.kind, kind);
+        }
+    }
+
+    #[test]
     fn labels_default_to_the_kind_except_for_meshes() {
         let kinds = [
             "car",
@@ -325,6 +364,7 @@ mod tests {
             "mesh",
             "street_name",
             "person",
+            "traffic_light",
         ];
         let mut specs: Vec<ObjectSpec> = kinds
             .iter()
@@ -343,6 +383,7 @@ mod tests {
                 "",
                 "text",
                 "person",
+                "traffic_light",
                 "vehicle"
             ]
         );
