@@ -309,6 +309,16 @@ impl<'a> GroundSpots<'a> {
         out
     }
 
+    /// [`GroundSpots::corners`] in a random order (Fisher–Yates from `rng`): which corners
+    /// a pole entry tries first.
+    pub fn shuffled_corners(&self, rng: &mut Pcg64) -> Vec<Corner> {
+        let mut corners = self.corners();
+        for i in (1..corners.len()).rev() {
+            corners.swap(i, rng.random_range(0..=i));
+        }
+        corners
+    }
+
     /// A road (uniform among the roads), a side and an along-position on it.
     fn pick_road(&self, rng: &mut Pcg64) -> Option<(&'a Road, bool, f64)> {
         let roads = &self.layout.roads;

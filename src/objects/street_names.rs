@@ -52,7 +52,8 @@ const COLOURS: [([u8; 3], [u8; 3]); 5] = [
     ([95, 55, 30], [250, 245, 235]),
 ];
 
-const POLE_GREY: [f32; 3] = [0.3, 0.31, 0.33];
+/// Paint of the pole (signal poles share it).
+pub(super) const POLE_GREY: [f32; 3] = [0.3, 0.31, 0.33];
 
 /// Places up to `spec.count` street-name signs; returns how many poles stand.
 pub fn place(
@@ -70,11 +71,7 @@ pub fn place(
         .iter()
         .map(|road| street_name(spec, &list, placing.input.seed, road.id))
         .collect();
-    let mut corners = spots.corners();
-    // Fisher–Yates: which corners get a sign first.
-    for i in (1..corners.len()).rev() {
-        corners.swap(i, rng.random_range(0..=i));
-    }
+    let corners = spots.shuffled_corners(rng);
     let pole_material = placing.material("street_pole", || (POLE_GREY, None));
     let mut faces: Vec<Wall> = Vec::new();
     let mut placed: Vec<Placed> = Vec::new();

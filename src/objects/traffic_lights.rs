@@ -20,6 +20,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ground_spots::{Footprint, GroundSpots};
+use super::street_names::POLE_GREY;
 use super::{ObjectInfo, Placing};
 use crate::model::geometry::{KERB_Y, MeshBuilder};
 use crate::model::{Mesh, SceneObject};
@@ -75,7 +76,6 @@ impl Signal {
 
 /// Body colours of heads and poles: black, traffic yellow (linear albedo).
 const BODIES: [[f32; 3]; 2] = [[0.025, 0.025, 0.027], [0.62, 0.42, 0.02]];
-const POLE_GREY: [f32; 3] = [0.3, 0.31, 0.33];
 
 /// Places up to `spec.count` signal poles; returns how many stand.
 pub fn place(
@@ -84,11 +84,7 @@ pub fn place(
     spots: &mut GroundSpots,
     placing: &mut Placing,
 ) -> u32 {
-    let mut corners = spots.corners();
-    // Fisher–Yates: which corners get a pole first.
-    for i in (1..corners.len()).rev() {
-        corners.swap(i, rng.random_range(0..=i));
-    }
+    let corners = spots.shuffled_corners(rng);
     let pole_material = placing.material("signal_pole", || (POLE_GREY, None));
     let mut poles = 0u32;
     for corner in corners {
