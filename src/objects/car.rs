@@ -11,8 +11,8 @@
 //! [`StreetProfile`], or against the curb when there is none), the others standing in a
 //! driving lane with the traffic. Cars are axis-aligned rectangles on the ground
 //! ([`Footprint::Rect`]): they never overlap each other or anything else standing, keep
-//! clear of crossings (parked ones 5 m, lane ones behind the zebra crossing,
-//! [`ZEBRA_END`]), and no lane car stands within [`CAMERA_CLEARANCE`] of the line a
+//! clear of crossings (parked ones 5 m, lane ones behind the zebra crossing's stop line,
+//! [`STOP_LINE_END`]), and no lane car stands within [`CAMERA_CLEARANCE`] of the line a
 //! roads camera drives by default ([`CAMERA_LANE`] right of the centre line), so a default
 //! drive never passes through a car.
 
@@ -23,7 +23,7 @@ use super::ground_spots::{GroundSpots, RoadSlot};
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
-use crate::model::geometry::{ROAD_Y, StreetProfile, ZEBRA_END};
+use crate::model::geometry::{ROAD_Y, STOP_LINE_END, StreetProfile};
 use crate::spec::{CarBody, ObjectSpec};
 
 /// The roads camera's default `lane_offset`, metres right of the centre line.
@@ -294,8 +294,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
                     Some(RoadSlot {
                         half,
                         offset,
-                        // Behind the zebra crossing, as a car waits at a crossing.
-                        crossing_clearance: ZEBRA_END + 0.5,
+                        // Behind the stop line, as a car waits at a crossing.
+                        crossing_clearance: STOP_LINE_END,
                         gap: 2.5,
                     })
                 }

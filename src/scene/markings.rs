@@ -9,12 +9,20 @@
 //!   to curb (less [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to
 //!   the other's. A stretch too short for its zebras, their clearances and one dash keeps
 //!   its lines only.
+//! - Behind each zebra, seen from the traffic coming towards it, a stop line
+//!   [`STOP_LINE`] wide runs across that traffic's driving lanes, from the centre line to
+//!   the parking lane (or [`CURB_CLEARANCE`] short of the curb), ending [`STOP_LINE_END`]
+//!   from the crossing; cars standing in a lane wait behind it. Traffic keeps right:
+//!   along a horizontal road it runs east on the south side, along a vertical one north on
+//!   the east side.
 //! - The lines stop [`LINE_CLEARANCE`] before a zebra. Within each stretch left to them
 //!   the dashes ([`DASH`] long, [`GAP`] apart) are centred, so a stretch between two
 //!   crossings looks the same from both ends.
 
 use super::object;
-use crate::model::geometry::{MARKING_Y, MeshBuilder, RoadRect, StreetProfile, ZEBRA_END};
+use crate::model::geometry::{
+    MARKING_Y, MeshBuilder, RoadRect, STOP_LINE_END, StreetProfile, ZEBRA_END,
+};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
 /// Dash length, gap between dashes and line width, in metres.
@@ -31,8 +39,13 @@ pub const BAR_GAP: f64 = 0.6;
 pub const CURB_CLEARANCE: f64 = 0.3;
 /// Road kept clear between a zebra crossing and the lines, in metres.
 pub const LINE_CLEARANCE: f64 = 1.5;
+/// Width of a stop line along the road, in metres.
+pub const STOP_LINE: f64 = 0.4;
 // The objects stage keeps lane cars behind the zebras by the shared figure.
 const _: () = assert!(CROSSING_MARGIN + ZEBRA_DEPTH == ZEBRA_END);
+// The stop line lies between the zebra and the lines.
+const _: () = assert!(STOP_LINE_END - STOP_LINE > ZEBRA_END);
+const _: () = assert!(STOP_LINE_END < ZEBRA_END + LINE_CLEARANCE);
 
 pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
     let rects: Vec<RoadRect> = layout
@@ -64,10 +77,12 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
                 }
             }
             let bars = bars(road, mpp);
-            for along in zebras {
+            for (along, at_start) in zebras {
                 for &across in &bars {
                     rect(&mut mesh, road, across, along);
                 }
+                let (across, along) = stop_line(road, mpp, along, at_start);
+                rect(&mut mesh, road, across, along);
             }
             (!mesh.is_empty())
                 .then(|| object(format!("marking_{:04}", road.id), "marking", vec![mesh]))
@@ -93,9 +108,11 @@ fn lines(road: &Road, mpp: f64) -> Vec<(f64, bool)> {
 }
 
 /// Of the stretches of a road clear of crossings (`free`, along-axis metres, in order; the
-/// road runs over `own`): the along-axis ranges of its zebra crossings, one at each end of
-/// a stretch that meets a crossing, and what is left of each stretch for the lines.
-fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+/// road runs over `own`): its zebra crossings, one at each end of a stretch that meets a
+/// crossing (the along-axis range, and whether it is at the stretch's start, the crossing
+/// lying before it), and what is left of each stretch for the lines.
+#[allow(clippy::type_complexity)]
+fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<([f64; 2], bool)>, Vec<[f64; 2]>) {
     let mut zebras = Vec::new();
     let mut lines = Vec::new();
     // A stretch ending short of the road's own end meets a crossing there.
@@ -110,11 +127,11 @@ fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f6
         }
         let mut left = [a, b];
         if ends[0] {
-            zebras.push([a, a + ZEBRA_DEPTH]);
+            zebras.push(([a, a + ZEBRA_DEPTH], true));
             left[0] += ZEBRA_DEPTH + LINE_CLEARANCE;
         }
         if ends[1] {
-            zebras.push([b - ZEBRA_DEPTH, b]);
+            zebras.push(([b - ZEBRA_DEPTH, b], false));
             left[1] -= ZEBRA_DEPTH + LINE_CLEARANCE;
         }
         lines.push(left);
@@ -128,6 +145,48 @@ fn bars(road: &Road, mpp: f64) -> Vec<[f64; 2]> {
     let lo = road.edges[0].min(road.edges[1]) * mpp + CURB_CLEARANCE;
     let hi = road.edges[0].max(road.edges[1]) * mpp - CURB_CLEARANCE;
     centred_pieces([lo, hi], BAR, BAR_GAP)
+}
+
+/// The stop line behind the zebra crossing `zebra` (along-axis metres; `at_start`: the
+/// crossing lies before it) of `road`, as (across, along) ranges in metres: across the
+/// driving lanes of the traffic coming towards the crossing, on the far side of the zebra
+/// from it.
+fn stop_line(road: &Road, mpp: f64, zebra: [f64; 2], at_start: bool) -> ([f64; 2], [f64; 2]) {
+    let profile = StreetProfile::of((road.edges[1] - road.edges[0]) * mpp);
+    // Where the lanes end: the parking lane, or short of the curb.
+    let reach = if profile.parking > 0.0 {
+        profile.lane_edge(profile.lanes - 1) - LINE_WIDTH / 2.0
+    } else {
+        profile.half - CURB_CLEARANCE
+    };
+    let start = LINE_WIDTH / 2.0;
+    // The traffic running towards +along keeps to the high side of a horizontal road
+    // (east on the south side) and to the low side of a vertical one (north, towards
+    // −along, on the east side).
+    let towards_plus = !at_start;
+    let high = towards_plus == (road.axis == Axis::Horizontal);
+    let line = road.line * mpp;
+    let across = if high {
+        [line + start, line + reach]
+    } else {
+        [line - reach, line - start]
+    };
+    // Seen from that traffic, behind the zebra: `STOP_LINE_END` from the crossing, which
+    // lies `ZEBRA_END` from the zebra's far end.
+    let along = if at_start {
+        let crossing = zebra[1] - ZEBRA_END;
+        [
+            crossing + STOP_LINE_END - STOP_LINE,
+            crossing + STOP_LINE_END,
+        ]
+    } else {
+        let crossing = zebra[0] + ZEBRA_END;
+        [
+            crossing - STOP_LINE_END,
+            crossing - STOP_LINE_END + STOP_LINE,
+        ]
+    };
+    (across, along)
 }
 
 /// One [`LINE_WIDTH`] quad along `road`, `offset` metres from its centre line, over
@@ -282,15 +341,15 @@ mod tests {
         // A road over [0, 100] crossed over [40, 50] (with the margins): the first stretch
         // meets it at its end, the second at its start; the road's own ends have none.
         let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[0.0, 39.0], [51.0, 100.0]]);
-        assert_eq!(zebras, vec![[36.0, 39.0], [51.0, 54.0]]);
+        assert_eq!(zebras, vec![([36.0, 39.0], false), ([51.0, 54.0], true)]);
         assert_eq!(lines, vec![[0.0, 34.5], [55.5, 100.0]]);
         // A 12 m stretch between two crossings just holds both zebras, their clearances and
         // one dash (2 × 4.5 m + 3 m); an 11 m one keeps its lines only.
         let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 42.0]]);
-        assert_eq!(zebras, vec![[30.0, 33.0], [39.0, 42.0]]);
+        assert_eq!(zebras, vec![([30.0, 33.0], true), ([39.0, 42.0], false)]);
         assert_eq!(lines, vec![[34.5, 37.5]]);
         let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 41.0]]);
-        assert_eq!(zebras, Vec::<[f64; 2]>::new());
+        assert!(zebras.is_empty());
         assert_eq!(lines, vec![[30.0, 41.0]]);
         // A road crossed nowhere: lines only.
         let (zebras, lines) = zebras_and_lines([5.0, 60.0], &[[5.0, 60.0]]);
@@ -322,6 +381,41 @@ mod tests {
         // Too narrow for one bar: none.
         assert!(bars_of_width(0.9).is_empty());
         assert_eq!(bars_of_width(1.2).len(), 1);
+    }
+
+    #[test]
+    fn stop_lines_cross_the_oncoming_lanes_behind_each_zebra() {
+        // 17.6 m wide (2 + 2 lanes of 3.1 m, parking 2.6 m), centre line at 20 m; crossed
+        // over [40, 50] (zebras [36, 39] and [51, 54] as above).
+        let road = |axis| Road {
+            id: 0,
+            axis,
+            start: 0.0,
+            end: 100.0,
+            line: 20.0,
+            edges: [11.2, 28.8],
+        };
+        let reach = 6.2 - LINE_WIDTH / 2.0;
+        let start = LINE_WIDTH / 2.0;
+        let close =
+            |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9;
+        // Horizontal: traffic towards +x (east) keeps to the high (south) side and meets
+        // the crossing past the first zebra; its stop line ends 4.5 m before it.
+        let (across, along) = stop_line(&road(Axis::Horizontal), 1.0, [36.0, 39.0], false);
+        assert!(close(across, [20.0 + start, 20.0 + reach]), "{across:?}");
+        assert!(close(along, [35.5, 35.9]), "{along:?}");
+        // Traffic towards −x keeps to the low (north) side; its line lies past the second
+        // zebra, 4.5 m from the crossing's far edge (50).
+        let (across, along) = stop_line(&road(Axis::Horizontal), 1.0, [51.0, 54.0], true);
+        assert!(close(across, [20.0 - reach, 20.0 - start]), "{across:?}");
+        assert!(close(along, [54.1, 54.5]), "{along:?}");
+        // Vertical: traffic towards +z (south) keeps to the low (west) side.
+        let (across, _) = stop_line(&road(Axis::Vertical), 1.0, [36.0, 39.0], false);
+        assert!(close(across, [20.0 - reach, 20.0 - start]), "{across:?}");
+        let (across, _) = stop_line(&road(Axis::Vertical), 1.0, [51.0, 54.0], true);
+        assert!(close(across, [20.0 + start, 20.0 + reach]), "{across:?}");
+        // Between the zebra and the lines, which start 1.5 m past it.
+        assert!(along[0] > 54.0 && along[1] < 54.0 + LINE_CLEARANCE);
     }
 
     /// The bars of a road `width` metres wide (1 m per pixel).

@@ -43,5 +43,8 @@ pub const MARKING_Y: f64 = 0.025;
 /// How far from a crossing's edge the zebra crossing on each approach ends, in metres (the
 /// scene paints it; cars standing in a lane keep behind it).
 pub const ZEBRA_END: f64 = 4.0;
+/// How far from a crossing's edge the stop line before each zebra crossing ends, in
+/// metres: cars standing in a lane wait behind it.
+pub const STOP_LINE_END: f64 = ZEBRA_END + 0.5;
 /// Top of the sidewalk slabs and of the block surfaces (a curb's height).
 pub const KERB_Y: f64 = 0.15;
