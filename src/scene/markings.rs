@@ -9,8 +9,8 @@
 //!   to curb (less [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to
 //!   the other's. A stretch too short for its zebras, their clearances and one dash keeps
 //!   its lines only.
-//! - Behind each zebra, seen from the traffic coming towards it, a stop line
-//!   [`STOP_LINE`] wide runs across that traffic's driving lanes, from the centre line to
+//! - Before each zebra, where the traffic coming towards the crossing meets it first, a
+//!   stop line [`STOP_LINE`] wide runs across that traffic's driving lanes, from the centre line to
 //!   the parking lane (or [`CURB_CLEARANCE`] short of the curb), ending [`STOP_LINE_END`]
 //!   from the crossing; cars standing in a lane wait behind it. Traffic keeps right:
 //!   along a horizontal road it runs east on the south side, along a vertical one north on
@@ -107,12 +107,15 @@ fn lines(road: &Road, mpp: f64) -> Vec<(f64, bool)> {
     lines
 }
 
+/// A zebra crossing: its along-axis range (metres), and whether it lies at the start of
+/// its stretch (the crossing before it, at lower along-axis values).
+type Zebra = ([f64; 2], bool);
+
 /// Of the stretches of a road clear of crossings (`free`, along-axis metres, in order; the
 /// road runs over `own`): its zebra crossings, one at each end of a stretch that meets a
 /// crossing (the along-axis range, and whether it is at the stretch's start, the crossing
 /// lying before it), and what is left of each stretch for the lines.
-#[allow(clippy::type_complexity)]
-fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<([f64; 2], bool)>, Vec<[f64; 2]>) {
+fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<Zebra>, Vec<[f64; 2]>) {
     let mut zebras = Vec::new();
     let mut lines = Vec::new();
     // A stretch ending short of the road's own end meets a crossing there.
@@ -147,10 +150,10 @@ fn bars(road: &Road, mpp: f64) -> Vec<[f64; 2]> {
     centred_pieces([lo, hi], BAR, BAR_GAP)
 }
 
-/// The stop line behind the zebra crossing `zebra` (along-axis metres; `at_start`: the
+/// The stop line of the zebra crossing `zebra` (along-axis metres; `at_start`: the
 /// crossing lies before it) of `road`, as (across, along) ranges in metres: across the
-/// driving lanes of the traffic coming towards the crossing, on the far side of the zebra
-/// from it.
+/// driving lanes of the traffic coming towards the crossing, on the zebra's side away from
+/// the crossing, so that traffic meets the line first.
 fn stop_line(road: &Road, mpp: f64, zebra: [f64; 2], at_start: bool) -> ([f64; 2], [f64; 2]) {
     let profile = StreetProfile::of((road.edges[1] - road.edges[0]) * mpp);
     // Where the lanes end: the parking lane, or short of the curb.
@@ -171,8 +174,8 @@ fn stop_line(road: &Road, mpp: f64, zebra: [f64; 2], at_start: bool) -> ([f64; 2
     } else {
         [line - reach, line - start]
     };
-    // Seen from that traffic, behind the zebra: `STOP_LINE_END` from the crossing, which
-    // lies `ZEBRA_END` from the zebra's far end.
+    // On the zebra's side away from the crossing, ending `STOP_LINE_END` from the
+    // crossing, which lies `ZEBRA_END` from the zebra's far end.
     let along = if at_start {
         let crossing = zebra[1] - ZEBRA_END;
         [
