@@ -10,9 +10,8 @@
 //!   camera drives the outer lane, close to the parked cars (`specs/day.toml` keeps 0.65 m
 //!   from a parked bus's side), so a heading drawn towards the curb could stare into a bus
 //!   from under a metre, or fill most of the picture with one from a few metres: a frame
-//!   of one blank flank, which no dashcam takes. A draw is
-//!   blocked when one vehicle within [`NEAR`] metres of the eye covers more than
-//!   [`MAX_SHARE`] of the view: [`COLUMNS`] × [`ROWS`] rays through the picture are cast
+//!   of one blank flank, which no dashcam takes. A draw is blocked when one vehicle within
+//!   [`NEAR`] metres of the eye covers more than [`MAX_SHARE`] of the view: [`COLUMNS`] × [`ROWS`] rays through the picture are cast
 //!   against the vehicles' boxes (cars, vans, buses and trucks are axis-aligned boxes on
 //!   the ground), and each ray counts for the nearest box it meets within `NEAR`.
 //! - **Sidewalks** ([`unfilled`], with [`cameras::sidewalk_path_draws`](crate::cameras)):
@@ -37,8 +36,8 @@ use crate::render::{self, Intrinsics, PreparedScene};
 /// Draws tried per frame.
 pub const DRAWS: usize = 8;
 
-/// Reach of a blocking vehicle, metres from the eye: a bus's side 3–8 m away still
-/// fills most of a 60° view (3 m let `specs/day.toml`'s street keep such frames).
+/// Reach of a blocking vehicle, metres from the eye: a vehicle 3–8 m away can still fill
+/// more than half of a 60° view (with 3 m, `specs/day.toml`'s street kept such a frame).
 pub const NEAR: f64 = 8.0;
 
 /// Largest share of the view one vehicle within [`NEAR`] may cover.

@@ -74,7 +74,7 @@ impl Signal {
     }
 }
 
-/// Body colours of heads and poles: black, traffic yellow (linear albedo).
+/// Body colours of the heads: black, traffic yellow (linear albedo).
 const BODIES: [[f32; 3]; 2] = [[0.025, 0.025, 0.027], [0.62, 0.42, 0.02]];
 
 /// Places up to `spec.count` signal poles; returns how many stand.

@@ -25,8 +25,7 @@ pub struct ObjectSpec {
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
-    /// `traffic_light`); a mesh
-    /// needs one.
+    /// `traffic_light`); a mesh needs one.
     #[serde(default)]
     #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
     pub label: String,

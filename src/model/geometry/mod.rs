@@ -41,7 +41,7 @@ pub const ROAD_Y: f64 = 0.02;
 /// Height of the lane markings: a few millimetres above the road.
 pub const MARKING_Y: f64 = 0.025;
 /// How far from a crossing's edge the zebra crossing on each approach ends, in metres (the
-/// scene paints it; cars standing in a lane keep behind it).
+/// scene paints it; its stop line lies just beyond, [`STOP_LINE_END`]).
 pub const ZEBRA_END: f64 = 4.0;
 /// How far from a crossing's edge the stop line before each zebra crossing ends, in
 /// metres: cars standing in a lane wait behind it.
