@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::{Category, ObjectLabel, YoloClasses};
-use crate::spec::{CameraSpec, ObjectKind, SignKind, Spec};
+use crate::spec::{CameraSpec, ObjectKind, RIDER_CLASS, SignKind, Spec};
 
 /// The class every lamp head is labelled with.
 const LAMP_CLASS: &str = "lamp";
@@ -29,7 +29,8 @@ pub struct PathLabels {
 }
 
 /// The classes a path annotates: the camera's own `classes`, else `[annotations]
-/// classes`, else every `[[objects]]` label and `lamp`; COCO ids from 1 in that order.
+/// classes`, else every `[[objects]]` label (and `rider` after a bicycle entry's) and
+/// `lamp`; COCO ids from 1 in that order.
 ///
 /// A traffic sign is its label's category only seen from the front; seen from behind it
 /// is `<label>_back` when that class is listed, else nothing.
@@ -40,8 +41,11 @@ pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>
         (None, true) => {
             let mut classes: Vec<String> = Vec::new();
             for object in &spec.objects {
-                if !classes.contains(&object.label) {
-                    classes.push(object.label.clone());
+                let rider = (object.kind == ObjectKind::Bicycle).then_some(RIDER_CLASS);
+                for class in std::iter::once(object.label.as_str()).chain(rider) {
+                    if !classes.iter().any(|c| c == class) {
+                        classes.push(class.to_owned());
+                    }
                 }
             }
             classes.push(LAMP_CLASS.to_owned());
@@ -94,5 +98,25 @@ pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>
         categories,
         labels,
         yolo,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn by_default_every_label_then_riders_after_bicycles_then_lamps() {
+        let text = "version = 1\nname = 'a'\n[layout.generate]\n[buildings]\nwidths = [5, 5]\n\
+                    [[objects]]\nkind = 'car'\nlabel = 'car'\n\
+                    [[objects]]\nkind = 'bicycle'\nlabel = 'bicycle'\n\
+                    [[objects]]\nkind = 'person'\nlabel = 'person'\n\
+                    [[cameras]]\nname = 'c'\npath = 'roads'\nframes = 1\n";
+        let spec: Spec = toml::from_str(text).unwrap();
+        let labels = path_labels(&spec, &spec.cameras[0], Vec::new());
+        let names: Vec<&str> = labels.categories.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["car", "bicycle", "rider", "person", "lamp"]);
+        let ids: Vec<u32> = labels.categories.iter().map(|c| c.id).collect();
+        assert_eq!(ids, [1, 2, 3, 4, 5]);
     }
 }

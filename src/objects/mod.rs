@@ -26,6 +26,7 @@
 pub const VERSION: u32 = 8;
 
 mod atlas_layout;
+mod bicycle;
 mod car;
 mod footprint_grid;
 mod ground_spots;
@@ -258,7 +259,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
         let before = placing.out.objects.len();
-        let mut poles = None;
+        let mut counted = None;
         match spec.kind {
             ObjectKind::Text => walls.place(spec, &mut rng, &mut placing)?,
             ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
@@ -268,8 +269,11 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Person => person::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Bicycle => {
+                counted = Some(bicycle::place(spec, &mut rng, &mut spots, &mut placing));
+            }
             ObjectKind::StreetName => {
-                poles = Some(street_names::place(
+                counted = Some(street_names::place(
                     spec,
                     &mut rng,
                     &mut spots,
@@ -277,7 +281,7 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
                 )?);
             }
             ObjectKind::TrafficLight => {
-                poles = Some(traffic_lights::place(
+                counted = Some(traffic_lights::place(
                     spec,
                     &mut rng,
                     &mut spots,
@@ -286,8 +290,9 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             }
         }
         // Street-name and traffic-light entries count poles (each carries four text faces
-        // or two signal heads); the others count objects.
-        let placed = poles.unwrap_or((placing.out.objects.len() - before) as u32);
+        // or two signal heads), bicycle entries bicycles (a ridden one has a rider); the
+        // others count objects.
+        let placed = counted.unwrap_or((placing.out.objects.len() - before) as u32);
         placing.out.placed.push(placed);
     }
     let (textures, materials) = placing.book.finish();

@@ -1243,3 +1243,107 @@ fn only_cars_in_the_driving_lanes_have_their_lights_on() {
         }
     }
 }
+
+#[test]
+fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() {
+    use super::bicycle::RIDDEN_HALF;
+    use crate::spec::RIDER_CLASS;
+    let city = city();
+    let specs = [
+        spec(ObjectKind::Car, "car", 200),
+        ObjectSpec {
+            parked: 0.4,
+            ..spec(ObjectKind::Bicycle, "bicycle", 80)
+        },
+    ];
+    let mpp = 0.55;
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    let bounds = |meshes: &[Mesh]| {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in meshes.iter().flat_map(|m| &m.positions) {
+            for k in 0..3 {
+                lo[k] = lo[k].min(f64::from(p[k]));
+                hi[k] = hi[k].max(f64::from(p[k]));
+            }
+        }
+        (lo, hi)
+    };
+    let cars: Vec<([f64; 3], [f64; 3])> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "car")
+        .map(|o| bounds(&o.meshes))
+        .collect();
+    let first = inserted
+        .objects
+        .iter()
+        .position(|o| o.class != "car")
+        .unwrap();
+    let rest = &inserted.objects[first..];
+    let (mut parked, mut ridden) = (0, 0);
+    let mut k = 0;
+    let mut footprints: Vec<([f64; 3], [f64; 3])> = Vec::new();
+    while k < rest.len() {
+        let bike = &rest[k];
+        assert!(bike.name.starts_with("bicycle_"), "{}", bike.name);
+        assert_eq!(bike.class, "bicycle");
+        let (lo, hi) = bounds(&bike.meshes);
+        let rider = rest.get(k + 1).filter(|o| o.class == RIDER_CLASS);
+        if let Some(rider) = rider {
+            // Ridden: on the road, along it (the long side along x or z), the rider over it.
+            assert!((lo[1] - ROAD_Y).abs() < 1e-4, "{} at {}", bike.name, lo[1]);
+            assert!(rider.name.starts_with("rider_"));
+            let (rlo, rhi) = bounds(&rider.meshes);
+            assert!(rlo[1] > lo[1] && rhi[1] > hi[1] + 0.5, "{rlo:?} {rhi:?}");
+            let both = (
+                [0, 1, 2].map(|i| lo[i].min(rlo[i])),
+                [0, 1, 2].map(|i| hi[i].max(rhi[i])),
+            );
+            let size = [both.1[0] - both.0[0], both.1[2] - both.0[2]];
+            let (long, short) = (size[0].max(size[1]), size[0].min(size[1]));
+            assert!(
+                long <= 2.0 * RIDDEN_HALF[0] + 1e-6 && long > 1.6,
+                "{size:?}"
+            );
+            assert!(short <= 2.0 * RIDDEN_HALF[1] + 1e-6, "{size:?}");
+            footprints.push(both);
+            ridden += 1;
+            k += 2;
+        } else {
+            // Parked: on the sidewalk.
+            assert!((lo[1] - KERB_Y).abs() < 1e-4, "{} at {}", bike.name, lo[1]);
+            footprints.push((lo, hi));
+            parked += 1;
+            k += 1;
+        }
+    }
+    assert_eq!(inserted.placed[1] as usize, parked + ridden);
+    assert!(
+        parked >= 15 && ridden >= 30,
+        "{parked} parked, {ridden} ridden"
+    );
+    // No bicycle overlaps a car or another bicycle (their boxes on the ground).
+    let overlap = |a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])| {
+        a.0[0] < b.1[0] && b.0[0] < a.1[0] && a.0[2] < b.1[2] && b.0[2] < a.1[2]
+    };
+    for (i, a) in footprints.iter().enumerate() {
+        assert!(!cars.iter().any(|c| overlap(a, c)), "{a:?}");
+        assert!(!footprints[i + 1..].iter().any(|b| overlap(a, b)), "{a:?}");
+    }
+    // Deterministic; a huge count falls short without panicking.
+    assert_eq!(
+        insert(&ObjectsInput {
+            metres_per_pixel: mpp,
+            ..input(&city, &specs)
+        })
+        .unwrap(),
+        inserted
+    );
+    let many = [spec(ObjectKind::Bicycle, "bicycle", 100_000)];
+    let all = run(&city, &many).unwrap();
+    assert!(all.placed[0] > 80 && all.placed[0] < 100_000);
+}

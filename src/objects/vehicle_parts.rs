@@ -148,6 +148,25 @@ impl Solid {
         self.prism(frame, &profile, v, &[]);
     }
 
+    /// A straight bar from `a` to `b` in the (u, y) plane, `thickness` across it in that
+    /// plane and spanning `v` (tubes, limbs): a prism of the four-sided profile. Nothing for
+    /// a bar of no length.
+    pub fn bar(&mut self, frame: &Frame, a: [f64; 2], b: [f64; 2], thickness: f64, v: [f64; 2]) {
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        if len.is_nan() || len <= 1e-9 {
+            return;
+        }
+        let n = [-d[1] / len * thickness / 2.0, d[0] / len * thickness / 2.0];
+        let profile = [
+            [a[0] - n[0], a[1] - n[1]],
+            [b[0] - n[0], b[1] - n[1]],
+            [b[0] + n[0], b[1] + n[1]],
+            [a[0] + n[0], a[1] + n[1]],
+        ];
+        self.prism(frame, &profile, v, &[]);
+    }
+
     pub fn is_empty(&self) -> bool {
         self.mesh.indices.is_empty()
     }

@@ -62,7 +62,9 @@ pub use input_file::{
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
-pub use object_spec::{CarBody, Ground, ObjectKind, ObjectSpec, SignKind, TextCase, TreeSpecies};
+pub use object_spec::{
+    CarBody, Ground, ObjectKind, ObjectSpec, RIDER_CLASS, SignKind, TextCase, TreeSpecies,
+};
 pub use output_spec::{OutputLayout, OutputSpec};
 pub use report::report;
 pub use sensor_spec::{ExposureMode, SensorSpec};

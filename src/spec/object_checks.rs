@@ -38,7 +38,7 @@ pub(crate) fn check_objects(
             }
             ObjectKind::Sign => {}
             ObjectKind::Car | ObjectKind::TrafficLight => {}
-            ObjectKind::Tree | ObjectKind::Person => {
+            ObjectKind::Tree | ObjectKind::Person | ObjectKind::Bicycle => {
                 let range = object.height_range();
                 check_range(&key("height"), range, findings);
                 if let Some([low, high]) = ObjectSpec::height_bounds(object.kind)
@@ -48,10 +48,10 @@ pub(crate) fn check_objects(
                         &key("height"),
                         format!(
                             "expected heights from {low} to {high} m for a {}, found {:?}",
-                            if object.kind == ObjectKind::Tree {
-                                "tree"
-                            } else {
-                                "person"
+                            match object.kind {
+                                ObjectKind::Tree => "tree",
+                                ObjectKind::Bicycle => "bicycle's rider",
+                                _ => "person",
                             },
                             range
                         ),

@@ -21,11 +21,13 @@ pub struct ObjectSpec {
     /// (street-name signs on poles at the street corners: two double-sided plates naming
     /// the two streets, four text objects; `count` counts poles) or `"traffic_light"`
     /// (signal poles at the street corners, each with two heads looking along the two
-    /// roads, one lit red, amber or green; `count` counts poles).
+    /// roads, one lit red, amber or green; `count` counts poles) or `"bicycle"` (bicycles
+    /// parked in the sidewalk strips and ridden in the driving lanes, each ridden one with
+    /// a rider of class `rider`; `count` counts bicycles).
     pub kind: ObjectKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
-    /// `traffic_light`); a mesh needs one.
+    /// `traffic_light`, `bicycle`); a mesh needs one.
     #[serde(default)]
     #[schemars(regex(pattern = r"^[a-z][a-z0-9_]{0,31}$"))]
     pub label: String,
@@ -75,6 +77,7 @@ pub struct ObjectSpec {
     #[schemars(length(max = 64))]
     pub bodies: Vec<CarBody>,
     /// car: share of the cars parked along the curbs; the others stand in the driving lanes.
+    /// bicycle: share of the bicycles parked in the sidewalk strips; the others are ridden.
     #[serde(default = "default_parked")]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub parked: f64,
@@ -82,8 +85,9 @@ pub struct ObjectSpec {
     #[serde(default)]
     #[schemars(length(max = 64))]
     pub species: Vec<TreeSpecies>,
-    /// tree, person: height range `[low, high]` in metres. Default `[5, 10]` for trees
-    /// (2–40 allowed), `[1.5, 1.95]` for people (0.8–2.3 allowed).
+    /// tree, person, bicycle: height range `[low, high]` in metres (a bicycle's: its
+    /// rider's, standing, which sets the saddle). Default `[5, 10]` for trees (2–40
+    /// allowed), `[1.5, 1.95]` for people and riders (0.8–2.3 allowed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(inner(range(min = 0.8, max = 40.0)))]
     pub height: Option<[f64; 2]>,
@@ -104,14 +108,25 @@ impl ObjectSpec {
             ObjectKind::Tree => Some("tree"),
             ObjectKind::Person => Some("person"),
             ObjectKind::TrafficLight => Some("traffic_light"),
+            ObjectKind::Bicycle => Some("bicycle"),
             ObjectKind::Mesh => None,
+        }
+    }
+
+    /// Classes an entry of `kind` gives objects besides its `label`: the poles of
+    /// street-name signs and traffic lights, the riders of bicycles.
+    pub fn companion_classes(kind: ObjectKind) -> &'static [&'static str] {
+        match kind {
+            ObjectKind::StreetName | ObjectKind::TrafficLight => &["pole"],
+            ObjectKind::Bicycle => &[RIDER_CLASS],
+            _ => &[],
         }
     }
 
     /// The height range of a tree or a person entry: `height`, else the kind's default.
     pub fn height_range(&self) -> [f64; 2] {
         self.height.unwrap_or(match self.kind {
-            ObjectKind::Person => PERSON_HEIGHT,
+            ObjectKind::Person | ObjectKind::Bicycle => PERSON_HEIGHT,
             _ => TREE_HEIGHT,
         })
     }
@@ -120,11 +135,14 @@ impl ObjectSpec {
     pub fn height_bounds(kind: ObjectKind) -> Option<[f64; 2]> {
         match kind {
             ObjectKind::Tree => Some([2.0, 40.0]),
-            ObjectKind::Person => Some([0.8, 2.3]),
+            ObjectKind::Person | ObjectKind::Bicycle => Some([0.8, 2.3]),
             _ => None,
         }
     }
 }
+
+/// The class of the riders a bicycle entry puts on its ridden bicycles.
+pub const RIDER_CLASS: &str = "rider";
 
 /// Default height range of trees, metres.
 pub const TREE_HEIGHT: [f64; 2] = [5.0, 10.0];
@@ -209,6 +227,7 @@ pub enum ObjectKind {
     StreetName,
     Person,
     TrafficLight,
+    Bicycle,
 }
 
 impl ObjectKind {
@@ -223,6 +242,7 @@ impl ObjectKind {
             ObjectKind::StreetName => "street_name",
             ObjectKind::Person => "person",
             ObjectKind::TrafficLight => "traffic_light",
+            ObjectKind::Bicycle => "bicycle",
         }
     }
 }
@@ -346,6 +366,7 @@ mod tests {
             ObjectKind::StreetName,
             ObjectKind::Person,
             ObjectKind::TrafficLight,
+            ObjectKind::Bicycle,
         ];
         for kind in kinds {
             let spec: ObjectSpec = toml::from_str(&format!("kind = {:?}\n", kind.name())).unwrap();
