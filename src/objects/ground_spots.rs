@@ -12,6 +12,7 @@ use rand_pcg::Pcg64;
 
 use super::ObjectsInput;
 use super::footprint_grid::FootprintGrid;
+use crate::model::geometry::zebras::road_stretches;
 use crate::model::geometry::{RoadRect, strip_width_px};
 use crate::model::{Axis, ParsedLayout, Road};
 
@@ -40,6 +41,8 @@ pub struct GroundSpots<'a> {
     /// The ground everything standing takes, in metres: lamps first, with
     /// [`LAMP_CLEARANCE`] as their radius.
     taken: FootprintGrid,
+    /// Every zebra crossing: its road's index and its along-axis range, metres.
+    zebras: Vec<(usize, [f64; 2])>,
 }
 
 /// A street corner, in metres (x east, z south), and the horizontal and vertical road that
@@ -112,6 +115,11 @@ impl<'a> GroundSpots<'a> {
                     ));
                     taken
                 }),
+            zebras: road_stretches(input.layout, mpp)
+                .into_iter()
+                .enumerate()
+                .flat_map(|(i, s)| s.zebras.into_iter().map(move |(along, _)| (i, along)))
+                .collect(),
         }
     }
 
@@ -264,6 +272,48 @@ impl<'a> GroundSpots<'a> {
                 return None;
             }
             self.take(road, high, px, radius)
+        })
+    }
+
+    /// A free spot on a zebra crossing (uniform among them) for an object of `radius`
+    /// metres: wholly on the zebra along the road, at most `reach` metres either side of
+    /// its centre line and `radius` inside the curbs, travelling across the road either
+    /// way. None when the city has no zebra crossing, or after `attempts`.
+    pub fn zebra(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        reach: f64,
+        attempts: u32,
+    ) -> Option<Spot> {
+        if self.zebras.is_empty() {
+            return None;
+        }
+        (0..attempts).find_map(|_| {
+            let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
+            let road = &self.layout.roads[i];
+            let along = a + radius + rng.random::<f64>() * (b - a - 2.0 * radius);
+            let half = (road.edges[1] - road.edges[0]) * self.mpp / 2.0;
+            let limit = reach.min(half - radius);
+            let across = road.line * self.mpp + (2.0 * rng.random::<f64>() - 1.0) * limit;
+            let back: bool = rng.random();
+            if !(b - a >= 2.0 * radius && limit >= 0.0 && along.is_finite() && across.is_finite()) {
+                return None;
+            }
+            let position = image_point(road, along, across);
+            if !self.inside_image(position.map(|v| v / self.mpp))
+                || !self.claim(Footprint::Circle(position, radius))
+            {
+                return None;
+            }
+            // Across the road: the side direction of the road's lanes.
+            let t = travel(road.axis, true);
+            let side = [-t[1], t[0]];
+            Some(Spot {
+                position,
+                travel: if back { side.map(|v| -v) } else { side },
+                road: road.id,
+            })
         })
     }
 

@@ -11,16 +11,19 @@
 //! People stand in the sidewalk strips between the curb and the line a `sidewalks` camera
 //! walks ([`WALKER_ROOM`] clear of it; it runs [`WALK_SHARE`] of the strip from the shop
 //! fronts), each taking a circle of [`ROOM`] of ground, so they never overlap lamps, signs,
-//! trees, benches, cars or each other.
+//! trees, benches, cars or each other. The entry's `crossing` share walk across the zebra
+//! crossings instead, on the zebra's paint, within [`ZEBRA_REACH`] of the road's centre
+//! line (lane cars wait behind the stop lines, clear of them).
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
+use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
 use super::ground_spots::GroundSpots;
 use super::vehicle_parts::{Frame, Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing};
 use crate::model::Mesh;
-use crate::model::geometry::{KERB_Y, WALK_SHARE, trig};
+use crate::model::geometry::{KERB_Y, MARKING_Y, WALK_SHARE, trig};
 use crate::spec::ObjectSpec;
 
 /// Ground a person takes: the radius of its circle in metres (a tall walker's stride and
@@ -30,8 +33,12 @@ pub const ROOM: f64 = 0.6;
 pub const CURB_ROOM: f64 = 0.45;
 /// Room kept from the line a sidewalks camera walks, metres.
 pub const WALKER_ROOM: f64 = 0.6;
-/// Share of the people walking (the others stand).
+/// Share of the people walking (the others stand); every one on a zebra crossing walks.
 pub const WALKING: f64 = 0.7;
+/// Farthest a person crossing a road on a zebra walks from its centre line, metres: a
+/// default roads camera's line ([`CAMERA_LANE`]) stays [`CAMERA_CLEARANCE`] beyond their
+/// [`ROOM`], as lane cars keep it.
+pub const ZEBRA_REACH: f64 = CAMERA_LANE - CAMERA_CLEARANCE - ROOM;
 
 /// Clothes, linear RGB.
 pub(super) const SHIRTS: [[f32; 3]; 10] = [
@@ -94,11 +101,19 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             break;
         }
         misses += 1;
-        let from_curb = CURB_ROOM + rng.random::<f64>() * (far - CURB_ROOM);
-        let Some(spot) = (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1)) else {
+        // Only an entry with crossers draws whether each is one (the others keep their
+        // draws).
+        let crossing = spec.crossing > 0.0 && rng.random::<f64>() < spec.crossing;
+        let spot = if crossing {
+            (0..ATTEMPTS).find_map(|_| spots.zebra(rng, ROOM, ZEBRA_REACH, 1))
+        } else {
+            let from_curb = CURB_ROOM + rng.random::<f64>() * (far - CURB_ROOM);
+            (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1))
+        };
+        let Some(spot) = spot else {
             continue;
         };
-        let walking = rng.random::<f64>() < WALKING;
+        let walking = crossing || rng.random::<f64>() < WALKING;
         let forward = if walking {
             let back = rng.random::<bool>();
             spot.travel.map(|t| if back { -t } else { t })
@@ -128,8 +143,9 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             hair: pick("hair", &HAIR),
             shoes: pick("shoes", &SHOES),
         };
+        let ground = if crossing { MARKING_Y } else { KERB_Y };
         let frame = Frame {
-            origin: [spot.position[0], KERB_Y, spot.position[1]],
+            origin: [spot.position[0], ground, spot.position[1]],
             forward,
         };
         let name = placing.name("person");

@@ -1347,3 +1347,109 @@ fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() 
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] > 80 && all.placed[0] < 100_000);
 }
+
+#[test]
+fn crossers_walk_across_the_zebras_near_the_centre_line() {
+    use super::person::ZEBRA_REACH;
+    use crate::model::geometry::MARKING_Y;
+    use crate::model::geometry::zebras::road_stretches;
+    let city = city();
+    let mpp = 0.55;
+    let specs = [
+        spec(ObjectKind::Car, "car", 200),
+        ObjectSpec {
+            crossing: 1.0,
+            ..spec(ObjectKind::Person, "person", 40)
+        },
+    ];
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    let zebras: Vec<(usize, [f64; 2])> = road_stretches(&city.layout, mpp)
+        .into_iter()
+        .enumerate()
+        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
+        .collect();
+    assert!(!zebras.is_empty());
+    let people: Vec<&SceneObject> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "person")
+        .collect();
+    assert_eq!(people.len(), 40);
+    assert_eq!(inserted.placed[1], 40);
+    for person in people {
+        let points: Vec<[f64; 3]> = person
+            .meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.map(f64::from))
+            .collect();
+        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        assert!((low - MARKING_Y).abs() < 1e-4, "{} at {low}", person.name);
+        // Its middle lies on a zebra, within reach of the centre line.
+        let n = points.len() as f64;
+        let mid = points
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+        let on_zebra = zebras.iter().any(|&(i, [a, b])| {
+            let road = &city.layout.roads[i];
+            let (along, across) = match road.axis {
+                Axis::Horizontal => (mid[0], mid[1]),
+                Axis::Vertical => (mid[1], mid[0]),
+            };
+            a - 0.1 <= along
+                && along <= b + 0.1
+                && (across - road.line * mpp).abs() <= ZEBRA_REACH + 0.1
+        });
+        assert!(on_zebra, "{} at {mid:?}", person.name);
+    }
+    // Without crossers an entry places no one on the road.
+    let specs = [spec(ObjectKind::Person, "person", 40)];
+    let strips = run(&city, &specs).unwrap();
+    for person in &strips.objects {
+        let low = person
+            .meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| f64::from(p[1]))
+            .fold(f64::MAX, f64::min);
+        assert!((low - KERB_Y).abs() < 1e-4);
+    }
+}
+
+#[test]
+fn zebra_spots_travel_across_their_road_and_never_overlap() {
+    let city = city();
+    let specs: [ObjectSpec; 0] = [];
+    let input = input(&city, &specs);
+    let mut spots = super::ground_spots::GroundSpots::new(&input);
+    let mut rng = crate::rng::stream(7, "test", 0);
+    let mut taken: Vec<[f64; 2]> = Vec::new();
+    for _ in 0..30 {
+        let Some(spot) = spots.zebra(&mut rng, 0.6, 2.4, 40) else {
+            continue;
+        };
+        let road = city
+            .layout
+            .roads
+            .iter()
+            .find(|r| r.id == spot.road)
+            .unwrap();
+        let across = match road.axis {
+            Axis::Horizontal => [0.0, 1.0],
+            Axis::Vertical => [1.0, 0.0],
+        };
+        let d = spot.travel[0] * across[0] + spot.travel[1] * across[1];
+        assert!((d.abs() - 1.0).abs() < 1e-12, "{:?}", spot.travel);
+        for p in &taken {
+            let gap =
+                ((p[0] - spot.position[0]).powi(2) + (p[1] - spot.position[1]).powi(2)).sqrt();
+            assert!(gap >= 1.2 - 1e-9, "{gap}");
+        }
+        taken.push(spot.position);
+    }
+    assert!(taken.len() >= 20, "{}", taken.len());
+}

@@ -1,14 +1,16 @@
 //! Roads → `marking_NNNN` objects: white dashes along each road's centre line and between
 //! its driving lanes, a solid line along each parking lane (the road's
 //! [`StreetProfile`]), and a zebra crossing on each approach to a crossing (any stretch
-//! where another road's surface meets the centre line). All of them stay out of every
-//! crossing and [`CROSSING_MARGIN`] either side of it.
+//! where another road's surface meets the centre line). Where the zebras lie, and what is
+//! left of a road for its lines, is shared with the objects stage:
+//! [`zebras`](crate::model::geometry::zebras). All markings stay out of every crossing and
+//! a metre either side of it.
 //!
-//! - A zebra crossing starts [`CROSSING_MARGIN`] from the crossing: bars [`BAR`] wide and
-//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`] apart and centred from curb
-//!   to curb (less [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to
-//!   the other's. A stretch too short for its zebras, their clearances and one dash keeps
-//!   its lines only.
+//! - A zebra crossing starts a metre from the crossing: bars [`BAR`] wide and 3 m long,
+//!   parallel to the road, [`BAR_GAP`] apart and centred from curb to curb (less
+//!   [`CURB_CLEARANCE`]), as pedestrians cross it from one block's corner to the other's.
+//!   A stretch too short for its zebras, their clearances and one dash keeps its lines
+//!   only.
 //! - Before each zebra, where the traffic coming towards the crossing meets it first, a
 //!   stop line [`STOP_LINE`] wide runs across that traffic's driving lanes, from the centre line to
 //!   the parking lane (or [`CURB_CLEARANCE`] short of the curb), ending [`STOP_LINE_END`]
@@ -20,50 +22,36 @@
 //!   crossings looks the same from both ends.
 
 use super::object;
-use crate::model::geometry::{
-    MARKING_Y, MeshBuilder, RoadRect, STOP_LINE_END, StreetProfile, ZEBRA_END,
-};
+use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH};
+use crate::model::geometry::zebras::{Stretches, road_stretches};
+use crate::model::geometry::{MARKING_Y, MeshBuilder, STOP_LINE_END, StreetProfile, ZEBRA_END};
 use crate::model::{Axis, ParsedLayout, Road, SceneObject};
 
-/// Dash length, gap between dashes and line width, in metres.
-pub const DASH: f64 = 3.0;
+/// Gap between dashes, in metres (their length and the lines' width: [`DASH`],
+/// [`LINE_WIDTH`]).
 pub const GAP: f64 = 6.0;
-pub const LINE_WIDTH: f64 = 0.15;
-/// Clear road kept before and after a crossing, in metres.
-pub const CROSSING_MARGIN: f64 = 1.0;
-/// A zebra crossing: its length along the road, its bars' width and the gap between them,
-/// and the road kept clear at each curb, in metres.
-pub const ZEBRA_DEPTH: f64 = 3.0;
+/// A zebra crossing's bars' width and the gap between them, and the road kept clear at
+/// each curb, in metres (its length: [`ZEBRA_DEPTH`](crate::model::geometry::zebras::ZEBRA_DEPTH)).
 pub const BAR: f64 = 0.5;
 pub const BAR_GAP: f64 = 0.6;
 pub const CURB_CLEARANCE: f64 = 0.3;
-/// Road kept clear between a zebra crossing and the lines, in metres.
-pub const LINE_CLEARANCE: f64 = 1.5;
 /// Width of a stop line along the road, in metres.
 pub const STOP_LINE: f64 = 0.4;
-// The objects stage keeps lane cars behind the zebras by the shared figure.
-const _: () = assert!(CROSSING_MARGIN + ZEBRA_DEPTH == ZEBRA_END);
 // The stop line lies between the zebra and the lines.
 const _: () = assert!(STOP_LINE_END - STOP_LINE > ZEBRA_END);
 const _: () = assert!(STOP_LINE_END < ZEBRA_END + LINE_CLEARANCE);
 
 pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
-    let rects: Vec<RoadRect> = layout
-        .roads
-        .iter()
-        .map(|r| metres(RoadRect::of(r), mpp))
-        .collect();
     layout
         .roads
         .iter()
-        .enumerate()
-        .filter_map(|(i, road)| {
+        .zip(road_stretches(layout, mpp))
+        .filter_map(|(road, stretches)| {
             let mut mesh = MeshBuilder::new(material);
-            let own = [
-                road.start.min(road.end) * mpp,
-                road.start.max(road.end) * mpp,
-            ];
-            let (zebras, free) = zebras_and_lines(own, &free_along(road, own, i, &rects, mpp));
+            let Stretches {
+                zebras,
+                lines: free,
+            } = stretches;
             for (offset, solid) in lines(road, mpp) {
                 for &stretch in &free {
                     let pieces = if solid {
@@ -105,41 +93,6 @@ fn lines(road: &Road, mpp: f64) -> Vec<(f64, bool)> {
         }
     }
     lines
-}
-
-/// A zebra crossing: its along-axis range (metres), and whether it lies at the start of
-/// its stretch (the crossing before it, at lower along-axis values).
-type Zebra = ([f64; 2], bool);
-
-/// Of the stretches of a road clear of crossings (`free`, along-axis metres, in order; the
-/// road runs over `own`): its zebra crossings, one at each end of a stretch that meets a
-/// crossing (the along-axis range, and whether it is at the stretch's start, the crossing
-/// lying before it), and what is left of each stretch for the lines.
-fn zebras_and_lines(own: [f64; 2], free: &[[f64; 2]]) -> (Vec<Zebra>, Vec<[f64; 2]>) {
-    let mut zebras = Vec::new();
-    let mut lines = Vec::new();
-    // A stretch ending short of the road's own end meets a crossing there.
-    let eps = 1e-9;
-    for &[a, b] in free {
-        let ends = [a > own[0] + eps, b < own[1] - eps];
-        let need = ends.iter().filter(|&&e| e).count() as f64 * (ZEBRA_DEPTH + LINE_CLEARANCE);
-        if b - a < need + DASH {
-            // Too short for its zebras and a dash between: lines only, as before.
-            lines.push([a, b]);
-            continue;
-        }
-        let mut left = [a, b];
-        if ends[0] {
-            zebras.push(([a, a + ZEBRA_DEPTH], true));
-            left[0] += ZEBRA_DEPTH + LINE_CLEARANCE;
-        }
-        if ends[1] {
-            zebras.push(([b - ZEBRA_DEPTH, b], false));
-            left[1] -= ZEBRA_DEPTH + LINE_CLEARANCE;
-        }
-        lines.push(left);
-    }
-    (zebras, lines)
 }
 
 /// The across-axis ranges (metres) of a zebra crossing's bars on `road`: as many as fit
@@ -217,63 +170,6 @@ fn rect(mesh: &mut MeshBuilder, road: &Road, across: [f64; 2], along: [f64; 2]) 
     mesh.quad(corners, crate::model::geometry::UP, uvs);
 }
 
-fn metres(r: RoadRect, mpp: f64) -> RoadRect {
-    RoadRect {
-        x: r.x.map(|v| v * mpp),
-        y: r.y.map(|v| v * mpp),
-    }
-}
-
-/// Along-axis `[from, to]` (metres) of the stretches of road `i` clear of crossings.
-fn free_along(road: &Road, own: [f64; 2], i: usize, rects: &[RoadRect], mpp: f64) -> Vec<[f64; 2]> {
-    let half = LINE_WIDTH / 2.0;
-    let line = road.line * mpp;
-    let strip = match road.axis {
-        Axis::Horizontal => RoadRect {
-            x: own,
-            y: [line - half, line + half],
-        },
-        Axis::Vertical => RoadRect {
-            x: [line - half, line + half],
-            y: own,
-        },
-    };
-    let blocked: Vec<[f64; 2]> = rects
-        .iter()
-        .enumerate()
-        .filter(|&(j, other)| j != i && other.overlaps(&strip))
-        .map(|(_, other)| {
-            let along = match road.axis {
-                Axis::Horizontal => other.x,
-                Axis::Vertical => other.y,
-            };
-            [along[0] - CROSSING_MARGIN, along[1] + CROSSING_MARGIN]
-        })
-        .collect();
-    free_stretches(own, blocked)
-}
-
-/// `range` minus the union of `blocked`, in order.
-fn free_stretches(range: [f64; 2], mut blocked: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
-    blocked.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    let mut free = Vec::new();
-    let mut from = range[0];
-    for [b0, b1] in blocked {
-        if b0 > from {
-            free.push([from, b0.min(range[1])]);
-        }
-        from = from.max(b1);
-        if from >= range[1] {
-            break;
-        }
-    }
-    if from < range[1] {
-        free.push([from, range[1]]);
-    }
-    free.retain(|s| s[0] < s[1]);
-    free
-}
-
 /// As many whole dashes as fit in `stretch`, centred in it.
 fn centred_dashes(stretch: [f64; 2]) -> Vec<[f64; 2]> {
     centred_pieces(stretch, DASH, GAP)
@@ -303,31 +199,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn free_stretches_cases() {
-        type Spans = Vec<[f64; 2]>;
-        let cases: [(Spans, Spans); 5] = [
-            (vec![], vec![[0.0, 100.0]]),
-            (vec![[40.0, 50.0]], vec![[0.0, 40.0], [50.0, 100.0]]),
-            (
-                vec![[60.0, 70.0], [-5.0, 10.0]],
-                vec![[10.0, 60.0], [70.0, 100.0]],
-            ),
-            (
-                vec![[20.0, 40.0], [30.0, 50.0]],
-                vec![[0.0, 20.0], [50.0, 100.0]],
-            ),
-            (vec![[90.0, 120.0], [-1.0, 101.0]], vec![]),
-        ];
-        for (blocked, want) in cases {
-            assert_eq!(
-                free_stretches([0.0, 100.0], blocked.clone()),
-                want,
-                "{blocked:?}"
-            );
-        }
-    }
-
-    #[test]
     fn dashes_are_centred_and_stay_inside() {
         assert_eq!(centred_dashes([0.0, 2.9]), Vec::<[f64; 2]>::new());
         assert_eq!(centred_dashes([10.0, 14.0]), vec![[10.5, 13.5]]);
@@ -337,27 +208,6 @@ mod tests {
         let many = centred_dashes([3.0, 700.0]);
         assert_eq!(many.len(), 78);
         assert!(many[0][0] >= 3.0 && many[77][1] <= 700.0);
-    }
-
-    #[test]
-    fn zebras_sit_where_a_stretch_meets_a_crossing_and_lines_keep_clear_of_them() {
-        // A road over [0, 100] crossed over [40, 50] (with the margins): the first stretch
-        // meets it at its end, the second at its start; the road's own ends have none.
-        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[0.0, 39.0], [51.0, 100.0]]);
-        assert_eq!(zebras, vec![([36.0, 39.0], false), ([51.0, 54.0], true)]);
-        assert_eq!(lines, vec![[0.0, 34.5], [55.5, 100.0]]);
-        // A 12 m stretch between two crossings just holds both zebras, their clearances and
-        // one dash (2 × 4.5 m + 3 m); an 11 m one keeps its lines only.
-        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 42.0]]);
-        assert_eq!(zebras, vec![([30.0, 33.0], true), ([39.0, 42.0], false)]);
-        assert_eq!(lines, vec![[34.5, 37.5]]);
-        let (zebras, lines) = zebras_and_lines([0.0, 100.0], &[[30.0, 41.0]]);
-        assert!(zebras.is_empty());
-        assert_eq!(lines, vec![[30.0, 41.0]]);
-        // A road crossed nowhere: lines only.
-        let (zebras, lines) = zebras_and_lines([5.0, 60.0], &[[5.0, 60.0]]);
-        assert!(zebras.is_empty());
-        assert_eq!(lines, vec![[5.0, 60.0]]);
     }
 
     #[test]

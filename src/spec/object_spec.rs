@@ -91,6 +91,12 @@ pub struct ObjectSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(inner(range(min = 0.8, max = 40.0)))]
     pub height: Option<[f64; 2]>,
+    /// person: share of the people walking across the zebra crossings (in the road's
+    /// inner 2.4 m either side of its centre line, clear of the line a roads camera drives
+    /// by default); the others are in the sidewalk strips.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub crossing: f64,
     /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
     /// of the sidewalk strips.
     #[serde(default = "default_plazas")]

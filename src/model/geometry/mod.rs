@@ -14,6 +14,7 @@
 //! | [`trig`]: bit-exact cos/sin and tan(θ/2) | objects, build |
 //! | [`units`]: metres ↔ pixels, millimetre rounding | plan, cameras, annotate, build |
 //! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render, facades, objects |
+//! | [`zebras`]: where each road's zebra crossings lie | scene, objects |
 
 mod facade_choice;
 mod material_book;
@@ -25,6 +26,7 @@ mod strip_width;
 pub mod trig;
 pub mod units;
 pub mod vector;
+pub mod zebras;
 
 pub use facade_choice::{FacadeChoice, PLAIN_HEIGHT, facade_height, usable};
 pub use material_book::MaterialBook;
