@@ -43,7 +43,7 @@
 use rayon::prelude::*;
 
 use super::centre_samples::CentreSamples;
-use super::tile::{FrameContext, NOTHING};
+use super::tile::{NOTHING, RasterContext};
 
 /// Reach of the occlusion, metres: the crease along a wall's foot, a car's or a bench's
 /// shadowless contact darkening.
@@ -66,7 +66,7 @@ const GRID: usize = 4;
 const MAX_PIXELS: f32 = 48.0;
 
 /// Ambient visibility per output pixel, row-major: `1 − strength · occlusion`.
-pub(crate) fn visibility(ctx: &FrameContext, centres: &CentreSamples, strength: f32) -> Vec<f32> {
+pub(crate) fn visibility(ctx: &RasterContext, centres: &CentreSamples, strength: f32) -> Vec<f32> {
     let (w, h) = (centres.width, centres.height);
     let view = ctx.view;
     let scale = ctx.samples as f32;

@@ -7,7 +7,7 @@
 
 use rayon::prelude::*;
 
-use super::tile::{FrameContext, NOTHING, TILE, TileRaster};
+use super::tile::{NOTHING, RasterContext, TILE, TileRaster};
 
 /// Per output pixel, row-major: the centre sample's triangle and depth.
 pub(crate) struct CentreSamples {
@@ -20,7 +20,7 @@ pub(crate) struct CentreSamples {
 }
 
 impl CentreSamples {
-    pub(crate) fn new(ctx: &FrameContext, rasters: &[TileRaster]) -> CentreSamples {
+    pub(crate) fn new(ctx: &RasterContext, rasters: &[TileRaster]) -> CentreSamples {
         let (w, h) = (ctx.width as usize, ctx.height as usize);
         let s = ctx.samples as usize;
         let mut tri = vec![NOTHING; w * h];

@@ -102,7 +102,7 @@ use centre_samples::CentreSamples;
 use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
 use screen_triangle::{SUB, ScreenTri};
-use tile::{FrameContext, TILE, TileOut, TileRaster};
+use tile::{FrameContext, RasterContext, TILE, TileOut, TileRaster};
 use view::View;
 
 /// Largest supersampling factor; larger requests are clamped to it.
@@ -159,37 +159,39 @@ pub fn render_measuring(
         None
     };
     let ctx = FrameContext {
-        scene,
-        view: &view,
+        raster: RasterContext {
+            scene,
+            view: &view,
+            tris: &tris,
+            bins: &bins,
+            samples,
+            width,
+            height,
+            tiles_x,
+            q_range,
+        },
         lighting,
-        tris: &tris,
-        bins: &bins,
         lights: &lights,
         windows: windows.as_ref(),
         shadows: shadows.as_deref(),
-        samples,
         antialias_edges,
-        width,
-        height,
-        tiles_x,
-        q_range,
     };
     if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
         // Nothing reads across tiles: each tile shades as soon as it is rasterized, and
         // its samples are dropped (a supersampled frame's would be tens of megabytes).
         let tiles: Vec<TileOut> = (0..bins.len())
             .into_par_iter()
-            .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx, t), None))
+            .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx.raster, t), None))
             .collect();
         return (assemble(&ctx, None, &tiles), footprints);
     }
     let rasters: Vec<TileRaster> = (0..bins.len())
         .into_par_iter()
-        .map(|t| tile::raster_tile(&ctx, t))
+        .map(|t| tile::raster_tile(&ctx.raster, t))
         .collect();
-    let centres = CentreSamples::new(&ctx, &rasters);
+    let centres = CentreSamples::new(&ctx.raster, &rasters);
     let ao = (lighting.ambient_occlusion > 0.0)
-        .then(|| ambient_occlusion::visibility(&ctx, &centres, lighting.ambient_occlusion));
+        .then(|| ambient_occlusion::visibility(&ctx.raster, &centres, lighting.ambient_occlusion));
     let tiles: Vec<TileOut> = rasters
         .par_iter()
         .map(|r| tile::shade_tile(&ctx, r, ao.as_deref()))
@@ -264,19 +266,12 @@ pub fn visibility(
     let (tris, footprints, q_range) = screen_triangles(scene, pose, intrinsics, &view, 1, measure);
     let tiles_x = width.div_ceil(TILE);
     let bins = bin(&tris, tiles_x, height.div_ceil(TILE), TILE);
-    // Only the raster reads the context: the lighting is never looked at.
-    let lighting = Lighting::day();
-    let ctx = FrameContext {
+    let ctx = RasterContext {
         scene,
         view: &view,
-        lighting: &lighting,
         tris: &tris,
         bins: &bins,
-        lights: &[],
-        windows: None,
-        shadows: None,
         samples: 1,
-        antialias_edges: false,
         width,
         height,
         tiles_x,
@@ -339,14 +334,14 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
 /// reads the frame's `centres`); ids and depth as the tiles resolved them. [`Frame::rgb`]
 /// develops it.
 fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOut]) -> Frame {
-    let (width, height) = (ctx.width, ctx.height);
+    let (width, height) = (ctx.raster.width, ctx.raster.height);
     let (w, n) = (width as usize, width as usize * height as usize);
     let mut linear = vec![[0f32; 3]; n];
     let mut instance = vec![0u32; n];
     let mut depth = vec![0f32; n];
     // Each band of TILE rows is copied from its row of tiles, the bands in parallel.
     let band = TILE as usize * w;
-    let tile_rows = tiles.chunks(ctx.tiles_x as usize);
+    let tile_rows = tiles.chunks(ctx.raster.tiles_x as usize);
     linear
         .par_chunks_mut(band)
         .zip(instance.par_chunks_mut(band))
@@ -373,7 +368,7 @@ fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOu
         let hint = |p: usize| {
             let fixed = |v: usize| v as i64 * SUB + SUB / 2;
             EdgeHint::of(
-                &ctx.tris[tri[p] as usize].edges,
+                &ctx.raster.tris[tri[p] as usize].edges,
                 fixed(p % w),
                 fixed(p / w),
                 SUB,
@@ -389,7 +384,9 @@ fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOu
             if a == b || a == tile::NOTHING || b == tile::NOTHING {
                 return a != b;
             }
-            let normal = |t: u32| ctx.scene.triangles[ctx.tris[t as usize].source as usize].normal;
+            let normal = |t: u32| {
+                ctx.raster.scene.triangles[ctx.raster.tris[t as usize].source as usize].normal
+            };
             let (m, n) = (normal(a), normal(b));
             m[0] * n[0] + m[1] * n[1] + m[2] * n[2] < 0.999
         };

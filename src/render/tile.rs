@@ -24,20 +24,15 @@ const LEVEL_SURFACE_TAPS: f64 = 2.0;
 /// Tile side in output pixels.
 pub(crate) const TILE: u32 = 32;
 
-/// What every tile of a frame shares.
-pub(crate) struct FrameContext<'a> {
+/// What rasterizing every tile of a frame shares: the screen triangles and where they
+/// fall. All that ids, depth and visibility need.
+pub(crate) struct RasterContext<'a> {
     pub scene: &'a PreparedScene,
     pub view: &'a View,
-    pub lighting: &'a Lighting,
     pub tris: &'a [ScreenTri],
     pub bins: &'a [Vec<u32>],
-    pub lights: &'a [FrameLight],
-    pub windows: Option<&'a WindowLookup>,
-    pub shadows: Option<&'a ShadowMap>,
     /// Samples per pixel side.
     pub samples: u32,
-    /// Whether edges are antialiased from coverage (at one sample per pixel).
-    pub antialias_edges: bool,
     /// Output size.
     pub width: u32,
     pub height: u32,
@@ -45,6 +40,17 @@ pub(crate) struct FrameContext<'a> {
     /// Accepted 1/w: above 1/far, at most 1.0001/near (nothing is nearer than the near
     /// plane; a larger 1/w is a rounding artefact).
     pub q_range: (f64, f64),
+}
+
+/// What shading every tile of a frame shares: its raster, and its light.
+pub(crate) struct FrameContext<'a> {
+    pub raster: RasterContext<'a>,
+    pub lighting: &'a Lighting,
+    pub lights: &'a [FrameLight],
+    pub windows: Option<&'a WindowLookup>,
+    pub shadows: Option<&'a ShadowMap>,
+    /// Whether edges are antialiased from coverage (at one sample per pixel).
+    pub antialias_edges: bool,
 }
 
 /// A finished tile: its rectangle in output pixels and its pixels, row-major.
@@ -84,7 +90,7 @@ impl TileRaster {
 }
 
 /// Rasterizes tile number `tile` (row-major over the tile grid): depth test only.
-pub(crate) fn raster_tile(ctx: &FrameContext, tile: usize) -> TileRaster {
+pub(crate) fn raster_tile(ctx: &RasterContext, tile: usize) -> TileRaster {
     let s = ctx.samples;
     let (tx, ty) = (tile as u32 % ctx.tiles_x, tile as u32 / ctx.tiles_x);
     let rect = [
@@ -123,11 +129,11 @@ pub(crate) fn raster_tile(ctx: &FrameContext, tile: usize) -> TileRaster {
 /// Shades and resolves a rasterized tile. `ao` is the frame's ambient visibility per
 /// output pixel (row-major, 1 = open sky), when ambient occlusion is on.
 pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f32]>) -> TileOut {
-    let s = ctx.samples;
+    let s = ctx.raster.samples;
     let (rect, inner) = (raster.rect, raster.inner);
     let iw = raster.inner_width();
     let (depth, id) = (&raster.depth, &raster.id);
-    let lights = point_lights::tile_lights(ctx.lights, ctx.view, raster);
+    let lights = point_lights::tile_lights(ctx.lights, ctx.raster.view, raster);
 
     // Resolve, shading once per pixel and triangle: each distinct triangle (or the sky)
     // among a pixel's s × s samples is shaded once, at the sample nearest the centre for
@@ -167,7 +173,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
         for ox in 0..ow {
             let centre = (oy * su + mid) * iw + ox * su + mid;
             let open = ao.map_or(1.0, |ao| {
-                ao[(rect[1] as usize + oy) * ctx.width as usize + rect[0] as usize + ox]
+                ao[(rect[1] as usize + oy) * ctx.raster.width as usize + rect[0] as usize + ox]
             });
             let c = if su == 1 {
                 shade_sample(centre, open)
@@ -192,7 +198,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
                 sum
             };
             out.linear.push(c);
-            let (instance, metres) = instance_and_depth(ctx, id[centre], depth[centre]);
+            let (instance, metres) = instance_and_depth(&ctx.raster, id[centre], depth[centre]);
             out.instance.push(instance);
             out.depth.push(metres);
         }
@@ -202,7 +208,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
 
 /// A pixel's instance id and depth in metres from its centre sample's triangle `t` and
 /// 1/w `q`: (0, 0) for the sky. Frames and [`super::visibility`] both write these.
-pub(crate) fn instance_and_depth(ctx: &FrameContext, t: u32, q: f64) -> (u32, f32) {
+pub(crate) fn instance_and_depth(ctx: &RasterContext, t: u32, q: f64) -> (u32, f32) {
     match t {
         NOTHING => (0, 0.0),
         t => {
@@ -222,7 +228,7 @@ fn depth_metres(q: f64) -> f32 {
 
 /// Sky radiance through internal pixel `(x, y)`.
 fn sky(ctx: &FrameContext, x: u32, y: u32) -> [f32; 3] {
-    let v = ctx.view;
+    let v = ctx.raster.view;
     let a = (f64::from(x) + 0.5 - v.cx) / v.fx;
     let b = (f64::from(y) + 0.5 - v.cy) / v.fy;
     let (r, u, f) = (v.basis.right, v.basis.up, v.basis.forward);
@@ -257,8 +263,8 @@ struct Surface<'a> {
 
 impl<'a> Surface<'a> {
     fn of(ctx: &FrameContext<'a>, t: u32) -> Surface<'a> {
-        let scene = ctx.scene;
-        let tri = &ctx.tris[t as usize];
+        let scene = ctx.raster.scene;
+        let tri = &ctx.raster.tris[t as usize];
         let source = &scene.triangles[tri.source as usize];
         let material = &scene.materials[source.material as usize];
         let taps = if source.normal[1].abs() > 0.9 {
@@ -304,7 +310,7 @@ fn shade(
     scale: f64,
     open: f32,
 ) -> [f32; 3] {
-    let scene = ctx.scene;
+    let scene = ctx.raster.scene;
     let (tri, source, material) = (surface.tri, surface.source, surface.material);
     let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
     // w, the camera-space depth: one division for the texture coordinates, their
@@ -341,7 +347,7 @@ fn shade(
     let n = source.normal;
     let needs_point = !lights.is_empty() || surface.tests_shadow;
     let p = if needs_point {
-        ctx.view.unproject(px, py, w)
+        ctx.raster.view.unproject(px, py, w)
     } else {
         [0.0; 3]
     };
