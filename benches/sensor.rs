@@ -29,7 +29,12 @@ fn main() {
     println!("| condition | ms per frame (median of {runs}) |\n|---|---|");
     let linear = sensor::decode_srgb(&rgb);
     let cases = [
-        ("plain (clear, auto exposure, tone curve)", "", ""),
+        (
+            "plain (clear, no clouds, auto exposure, tone curve)",
+            "clouds = 0",
+            "",
+        ),
+        ("clouds over half the sky", "clouds = 0.5", ""),
         ("overcast", "kind = \"overcast\"", ""),
         ("fog", "kind = \"fog\"", ""),
         ("rain", "kind = \"rain\"", ""),
@@ -59,6 +64,11 @@ fn main() {
             intrinsics: [554.0, 554.0, 320.0, 240.0],
             motion: None,
             horizon: [0.7, 0.8, 0.95],
+            clouds: sensor::CloudLight {
+                sun_direction: [0.0, 0.8, -0.6],
+                sun_colour: [1.0, 0.95, 0.9],
+                sky: [0.3, 0.4, 0.6],
+            },
             scene_exposure: 1.0,
         };
         let ms = median(runs, || {

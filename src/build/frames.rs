@@ -24,7 +24,7 @@ use crate::annotate::{
 use crate::cameras::tan_half_degrees;
 use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Light, Lighting, PreparedScene, Sun};
-use crate::sensor::{self, SensorFrame, WeatherLight};
+use crate::sensor::{self, CloudLight, SensorFrame, WeatherLight};
 use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
 
 /// Everything one camera path needs besides its poses.
@@ -180,6 +180,11 @@ impl<'a> PathFrames<'a> {
                 intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
                 motion: travel,
                 horizon: lighting.sky.horizon(),
+                clouds: CloudLight {
+                    sun_direction: lighting.sun_direction,
+                    sun_colour: lighting.sun_colour,
+                    sky: lighting.ambient,
+                },
                 scene_exposure: lighting.exposure,
             },
             &conditions,

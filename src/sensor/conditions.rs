@@ -12,6 +12,9 @@ use serde_json::{Value, json};
 use crate::rng;
 use crate::spec::{ExposureMode, SensorSpec, ValueRange, Weather, WeatherSpec};
 
+/// The cloud layer's pattern repeats every this many metres (what `cloud_offset` spans).
+pub const CLOUD_TILE: f64 = 8192.0;
+
 /// The values one frame drew.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Conditions {
@@ -22,6 +25,11 @@ pub struct Conditions {
     pub fog_density: f64,
     /// Fog's scale height in metres (used when the weather is fog).
     pub fog_height: f64,
+    /// Share of the sky under clouds, 0–1.
+    pub clouds: f64,
+    /// Where the cloud layer's pattern starts, metres east and south: the same for every
+    /// frame of a path (the clouds stand still as the camera moves), another per path.
+    pub cloud_offset: [f64; 2],
     pub exposure: ExposureMode,
     /// Stops: the exposure (`fixed`) or its compensation (`auto`).
     pub ev: f64,
@@ -55,6 +63,7 @@ impl Conditions {
             "strength": r(self.strength),
             "fog_density": r(self.fog_density),
             "fog_height": r(self.fog_height),
+            "clouds": r(self.clouds),
             "exposure": match self.exposure {
                 ExposureMode::Scene => "scene",
                 ExposureMode::Auto => "auto",
@@ -90,6 +99,13 @@ pub fn draw(weather: &WeatherSpec, sensor: &SensorSpec, seed: u64, frame: u64) -
         strength: value("strength", weather.strength),
         fog_density: value("fog_density", weather.fog_density),
         fog_height: value("fog_height", weather.fog_height),
+        clouds: value("clouds", weather.clouds),
+        cloud_offset: {
+            let mut stream = rng::stream(seed, "conditions.cloud_offset", 0);
+            let mut metres =
+                || (stream.next_u64() >> 40) as f64 * (CLOUD_TILE / (1u64 << 24) as f64);
+            [metres(), metres()]
+        },
         exposure: sensor.exposure,
         ev: value("ev", sensor.ev),
         noise: value("noise", sensor.noise),
@@ -152,5 +168,33 @@ mod tests {
         assert_eq!(j["weather"], "clear");
         assert_eq!(j["exposure_scale"], 1.25);
         assert_eq!(j["jpeg_quality"], Value::Null);
+    }
+
+    #[test]
+    fn clouds_are_drawn_per_frame_over_one_pattern_per_path() {
+        let w = WeatherSpec::default();
+        let s = SensorSpec::default();
+        let frames: Vec<Conditions> = (0..40).map(|f| draw(&w, &s, 3, f)).collect();
+        // The default cover is a range, 0–0.6, drawn per frame.
+        assert!(frames.iter().all(|c| (0.0..=0.6).contains(&c.clouds)));
+        assert!(frames.iter().any(|c| c.clouds != frames[0].clouds));
+        // One offset for the whole path, inside the pattern's tile; another path, another.
+        assert!(
+            frames
+                .iter()
+                .all(|c| c.cloud_offset == frames[0].cloud_offset)
+        );
+        assert!(
+            frames[0]
+                .cloud_offset
+                .iter()
+                .all(|o| (0.0..CLOUD_TILE).contains(o))
+        );
+        assert_ne!(frames[0].cloud_offset, draw(&w, &s, 4, 0).cloud_offset);
+        // A fixed cover is taken as given, and recorded.
+        let fixed: WeatherSpec = toml::from_str("clouds = 0.25").unwrap();
+        let c = draw(&fixed, &s, 3, 7);
+        assert_eq!(c.clouds, 0.25);
+        assert_eq!(c.to_json(1.0)["clouds"], 0.25);
     }
 }

@@ -21,8 +21,9 @@
 //! counter-based hash of the frame's seed, transcendental functions come from `libm`.
 
 /// Bump when this stage's output bytes change: it is part of the frames stage's key.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
+mod clouds;
 mod conditions;
 mod noise;
 mod optics;
@@ -30,7 +31,8 @@ mod rays;
 mod tone;
 mod weather;
 
-pub use conditions::{Conditions, draw};
+pub use clouds::CloudLight;
+pub use conditions::{CLOUD_TILE, Conditions, draw};
 pub use tone::{auto_exposure, decode_srgb, tone_map};
 pub use weather::{WeatherLight, weather_light};
 
@@ -57,6 +59,8 @@ pub struct SensorFrame<'a> {
     pub motion: Option<[f64; 3]>,
     /// The sky's linear colour at the horizon (fog and grey skies take their colour from it).
     pub horizon: [f32; 3],
+    /// The sun's and the sky's light on the clouds.
+    pub clouds: CloudLight,
     /// The lighting's own exposure for its time of day (`exposure = "scene"`).
     pub scene_exposure: f32,
 }
@@ -81,6 +85,15 @@ pub fn develop(frame: &SensorFrame, c: &Conditions) -> Developed {
     }
     let mut light = frame.linear.to_vec();
     if let Some(rays) = Rays::new(&frame.pose, frame.intrinsics) {
+        clouds::draw_clouds(
+            &mut light,
+            frame.depth,
+            w,
+            &rays,
+            &frame.clouds,
+            c.clouds as f32,
+            c.cloud_offset,
+        );
         weather::apply_weather(&mut light, frame.depth, w, &rays, frame.horizon, c);
         let motion = frame
             .motion

@@ -40,6 +40,11 @@ fn develop_with(c: &Conditions) -> Developed {
             intrinsics,
             motion: None,
             horizon: [0.45, 0.62, 0.9],
+            clouds: CloudLight {
+                sun_direction: [0.0, 0.8, -0.6],
+                sun_colour: [1.0, 0.95, 0.9],
+                sky: [0.3, 0.4, 0.6],
+            },
             scene_exposure: 1.0,
         },
         c,

@@ -31,6 +31,12 @@ pub struct WeatherSpec {
     #[serde(default = "default_fog_height")]
     #[schemars(schema_with = "sensor_ranges::fog_height")]
     pub fog_height: ValueRange,
+    /// Share of the sky covered by clouds, 0–1, fixed or `[low, high]` drawn per frame: a
+    /// layer 1.2 km up, lit by the sun and the sky, fading towards the horizon (overcast,
+    /// fog and rain grey the sky over them as they strengthen).
+    #[serde(default = "default_clouds")]
+    #[schemars(schema_with = "sensor_ranges::unit")]
+    pub clouds: ValueRange,
 }
 
 impl Default for WeatherSpec {
@@ -40,6 +46,7 @@ impl Default for WeatherSpec {
             strength: default_strength(),
             fog_density: default_fog_density(),
             fog_height: default_fog_height(),
+            clouds: default_clouds(),
         }
     }
 }
@@ -115,6 +122,9 @@ fn default_fog_density() -> ValueRange {
 }
 fn default_fog_height() -> ValueRange {
     ValueRange::Fixed(30.0)
+}
+fn default_clouds() -> ValueRange {
+    ValueRange::Between([0.0, 0.6])
 }
 
 #[cfg(test)]
