@@ -98,7 +98,9 @@ fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 /// The field's value at `(u, v)` cells (any real; it tiles), bilinear.
 fn sample(f: &Field, u: f32, v: f32) -> f32 {
     let n = FIELD as f32;
-    let (u, v) = (u.rem_euclid(n), v.rem_euclid(n));
+    // Wrapped into the tile by floor (one instruction; `rem_euclid` calls `fmodf`).
+    let wrap = |t: f32| t - (t * (1.0 / n)).floor() * n;
+    let (u, v) = (wrap(u), wrap(v));
     let (x0, y0) = ((u as usize).min(FIELD - 1), (v as usize).min(FIELD - 1));
     let (tx, ty) = (u - x0 as f32, v - y0 as f32);
     let (x1, y1) = ((x0 + 1) % FIELD, (y0 + 1) % FIELD);
