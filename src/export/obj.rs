@@ -95,7 +95,11 @@ impl Bases {
         let count = mesh.positions.len() as u64;
         self.v += count;
         self.vt += if has_uv { count } else { 0 };
-        self.vn += if has_normal { count } else { 0 };
+        self.vn += if has_normal {
+            normal_runs(&mesh.normals)
+        } else {
+            0
+        };
     }
 }
 
@@ -134,14 +138,25 @@ fn write_mesh(
             out.extend_from_slice(b"vt 0.00000 1.00000\n");
         }
     }
+    // One `vn` per run of equal normals (a flat-shaded face's corners share one): the
+    // normal index of each vertex.
+    let mut normal_of = Vec::new();
     if has_normal {
-        for n in &mesh.normals {
-            out.extend_from_slice(b"vn");
-            for &c in n {
-                out.push(b' ');
-                push_fixed(out, c, UNIT_DECIMALS);
+        normal_of.reserve(mesh.normals.len());
+        let mut last: Option<[f32; 3]> = None;
+        let mut count = 0u64;
+        for &n in &mesh.normals {
+            if last.is_none_or(|l| l.map(f32::to_bits) != n.map(f32::to_bits)) {
+                out.extend_from_slice(b"vn");
+                for c in n {
+                    out.push(b' ');
+                    push_fixed(out, c, UNIT_DECIMALS);
+                }
+                out.push(b'\n');
+                last = Some(n);
+                count += 1;
             }
-            out.push(b'\n');
+            normal_of.push(count - 1);
         }
     }
     if let Some(name) = material {
@@ -163,12 +178,26 @@ fn write_mesh(
             }
             if has_normal {
                 out.push(b'/');
-                push_u64(out, next.vn + i);
+                push_u64(out, next.vn + normal_of[i as usize]);
             }
         }
         out.push(b'\n');
     }
     next.advance(mesh, textured);
+}
+
+/// How many `vn` lines `normals` take: one per run of equal normals.
+fn normal_runs(normals: &[[f32; 3]]) -> u64 {
+    let bits = |n: &[f32; 3]| n.map(f32::to_bits);
+    let changes = normals
+        .windows(2)
+        .filter(|w| bits(&w[0]) != bits(&w[1]))
+        .count();
+    if normals.is_empty() {
+        0
+    } else {
+        changes as u64 + 1
+    }
 }
 
 /// Appends a name as OBJ and MTL can hold it: one token, so whitespace and control
@@ -316,7 +345,8 @@ mod tests {
             "ground normal"
         );
         assert!(!obj.contains("-0.0000"), "negative zero");
-        assert!(obj.contains("\nusemtl facade_a\nf 5/5/5 6/6/6 7/7/7\n"));
+        // The ground's four corners share normal 1; the first wall's, normal 2.
+        assert!(obj.contains("\nusemtl facade_a\nf 5/5/2 6/6/2 7/7/2\nf 5/5/2 7/7/2 8/8/2\n"));
         assert!(obj.ends_with('\n'));
     }
 
@@ -338,10 +368,10 @@ mod tests {
                 3,
                 3,
                 &[0, 1, 2],
-                "f 1/1/1 2/2/2 3/3/3\n",
+                "f 1/1/1 2/2/1 3/3/1\n",
                 "vt 0.25000 0.50000\n",
             ),
-            (2, 0, 3, &[0, 1, 2], "f 1//1 2//2 3//3\n", ""),
+            (2, 0, 3, &[0, 1, 2], "f 1//1 2//1 3//1\n", ""),
             (
                 2,
                 3,
@@ -357,7 +387,7 @@ mod tests {
                 0,
                 3,
                 &[0, 1, 2],
-                "f 1/1/1 2/2/2 3/3/3\n",
+                "f 1/1/1 2/2/1 3/3/1\n",
                 "vt 0.00000 1.00000\n",
             ),
             (
@@ -384,6 +414,9 @@ mod tests {
             }
             let name = &scene.materials[material as usize].name;
             assert!(tail.ends_with(&format!("usemtl {name}\n{faces}")), "{case}");
+            // The three corners share one normal: one `vn`.
+            let vns = tail.lines().filter(|l| l.starts_with("vn ")).count();
+            assert_eq!(vns, usize::from(normals == 3), "{case}");
             let vts: Vec<&str> = tail.lines().filter(|l| l.starts_with("vt ")).collect();
             if vt.is_empty() {
                 assert!(vts.is_empty(), "{case}");

@@ -3,8 +3,8 @@
 //!
 //! Every face is wound counter-clockwise around the outward normal it is given (the winding
 //! is chosen from the corners, as `MeshBuilder::quad` does), and its vertices carry that
-//! normal: the renderer shades faces flat, so low-poly solids read as solids. No uv: these
-//! materials are plain colours.
+//! normal: the renderer shades faces flat, so low-poly solids read as solids. No uvs (an
+//! empty list): these materials are plain colours, and the OBJ and GLB then carry none.
 
 use crate::model::Mesh;
 use crate::model::geometry::{cross, dot, sub};
@@ -74,7 +74,6 @@ impl Solid {
         for p in corners {
             self.mesh.positions.push(p.map(|v| v as f32));
             self.mesh.normals.push(normal.map(|v| v as f32));
-            self.mesh.uvs.push([0.0, 0.0]);
         }
         for k in 1..corners.len() as u32 - 1 {
             if turn > 0.0 {
