@@ -25,7 +25,7 @@ use rand_pcg::Pcg64;
 
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
 use super::ground_spots::{GroundSpots, RoadSlot};
-use super::person::{HAIR, SHIRTS, SHOES, SKIN, TROUSERS, WALKER_ROOM};
+use super::person::{self, Cap, HAIR, SHIRTS, SHOES, SKIN, TROUSERS, WALKER_ROOM};
 use super::vehicle_parts::{Frame, Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
@@ -404,28 +404,12 @@ pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials
     // Neck and head, the face looking ahead; a helmet or hair over its top and back.
     let centre = [shoulder[0] + 0.07 * s, shoulder[1] + 0.1 * h];
     skin.bar(frame, shoulder, centre, 0.09 * s, [-0.045 * s, 0.045 * s]);
-    let (half_u, half_y) = (0.1 * s, 0.065 * h);
-    let octagon = |scale: f64| -> Vec<[f64; 2]> {
-        (0..8)
-            .map(|k| {
-                let (c, sn) = trig::cos_sin_deg(22.5 + 45.0 * f64::from(k));
-                [
-                    centre[0] + c * half_u * scale,
-                    centre[1] + sn * half_y * scale,
-                ]
-            })
-            .collect()
+    let cap = Cap {
+        scale: 1.15,
+        nape: 0.5,
+        half_width: 0.085 * s,
     };
-    skin.prism(frame, &octagon(1.0), [-0.075 * s, 0.075 * s], &[]);
-    let big = octagon(1.15);
-    let cap = [
-        big[0],
-        big[1],
-        big[2],
-        big[3],
-        [big[3][0], centre[1] - 0.5 * half_y],
-    ];
-    head.prism(frame, &cap, [-0.085 * s, 0.085 * s], &[]);
+    person::head(frame, centre, s, h, (&mut skin, &mut head), cap);
     finish_all(vec![trousers, shoes, shirt, skin, head])
 }
 

@@ -250,9 +250,46 @@ pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
         shirt.prism(frame, &limb(top, at(figure.sleeve)), v, &[]);
         skin.prism(frame, &limb(at(figure.sleeve), at(1.0)), v, &[]);
     }
-    // Head: an octagon in side view, 0.13 h tall, over the neck; hair a cap over its top and
-    // back.
-    let centre = [0.01 * s, 0.935 * h];
+    // Head: over the neck; hair a cap over its top and back.
+    let cap = Cap {
+        scale: 1.1,
+        nape: 0.6,
+        half_width: 0.082 * s,
+    };
+    head(
+        frame,
+        [0.01 * s, 0.935 * h],
+        s,
+        h,
+        (&mut skin, &mut hair),
+        cap,
+    );
+    finish_all(vec![trousers, shoes, shirt, skin, hair])
+}
+
+/// The cap over a head: hair or a helmet.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Cap {
+    /// Size against the head's octagon.
+    pub scale: f64,
+    /// How far down the back it reaches, in halves of the head's height below its centre.
+    pub nape: f64,
+    /// Half its width across the face, metres.
+    pub half_width: f64,
+}
+
+/// A head in side view about `centre` (`(u, y)` in `frame`) of a figure `h` tall and `s`
+/// wide: an octagon 0.13 h tall and 0.2 s long, 0.15 s across, in the first solid; and
+/// `cap` in the second: the upper half of a larger octagon (its corners 0–3, front to
+/// back), down the back to the nape, and back up across the temple to the front corner.
+pub(super) fn head(
+    frame: &Frame,
+    centre: [f64; 2],
+    s: f64,
+    h: f64,
+    (skin, hair): (&mut Solid, &mut Solid),
+    cap: Cap,
+) {
     let (half_u, half_y) = (0.1 * s, 0.065 * h);
     let octagon = |scale: f64| -> Vec<[f64; 2]> {
         (0..8)
@@ -266,18 +303,15 @@ pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
             .collect()
     };
     skin.prism(frame, &octagon(1.0), [-0.075 * s, 0.075 * s], &[]);
-    // The cap: the upper half of a slightly larger octagon (its corners 0–3, front to
-    // back), down the back to the nape, and back up across the temple to the front corner.
-    let big = octagon(1.1);
-    let cap = [
+    let big = octagon(cap.scale);
+    let outline = [
         big[0],
         big[1],
         big[2],
         big[3],
-        [big[3][0], centre[1] - 0.6 * half_y],
+        [big[3][0], centre[1] - cap.nape * half_y],
     ];
-    hair.prism(frame, &cap, [-0.082 * s, 0.082 * s], &[]);
-    finish_all(vec![trousers, shoes, shirt, skin, hair])
+    hair.prism(frame, &outline, [-cap.half_width, cap.half_width], &[]);
 }
 
 #[cfg(test)]
