@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::{Category, ObjectLabel, YoloClasses};
-use crate::spec::{CameraSpec, ObjectKind, RIDER_CLASS, SignKind, Spec};
+use crate::spec::{CameraSpec, ObjectKind, ObjectSpec, SignKind, Spec};
 
 /// The class every lamp head is labelled with.
 const LAMP_CLASS: &str = "lamp";
@@ -41,8 +41,10 @@ pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>
         (None, true) => {
             let mut classes: Vec<String> = Vec::new();
             for object in &spec.objects {
-                let rider = (object.kind == ObjectKind::Bicycle).then_some(RIDER_CLASS);
-                for class in std::iter::once(object.label.as_str()).chain(rider) {
+                let companions = ObjectSpec::annotated_companions(object.kind);
+                for class in
+                    std::iter::once(object.label.as_str()).chain(companions.iter().copied())
+                {
                     if !classes.iter().any(|c| c == class) {
                         classes.push(class.to_owned());
                     }

@@ -197,11 +197,8 @@ pub fn place(
         placing.push_plain(name, &spec.label, bicycle_meshes(&frame, &bike, materials));
         if ridden {
             let helmet = rng.random::<f64>() < 2.0 / 3.0;
-            let mut pick = |name: &str, palette: &[[f32; 3]]| {
-                let k = rng.random_range(0..palette.len());
-                let colour = palette[k];
-                placing.material(&format!("{name}_{k:02}"), || (colour, None))
-            };
+            let mut pick =
+                |name: &str, palette: &[[f32; 3]]| placing.palette_material(rng, name, palette);
             let clothes = RiderMaterials {
                 shirt: pick("person_shirt", &SHIRTS),
                 trousers: pick("person_trousers", &TROUSERS),

@@ -51,6 +51,9 @@ mod word_list;
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use rand::RngExt;
+use rand_pcg::Pcg64;
+
 use crate::model::geometry::{FacadeChoice, MaterialBook, trig};
 use crate::model::{
     Building, FacadeSet, Lamp, Material, Mesh, ParsedLayout, Scene, SceneObject, Texture,
@@ -207,6 +210,14 @@ impl Placing<'_> {
         let m = self.book.add(name, colour, texture.as_ref(), [0.0; 3]);
         self.cached.insert(name.to_owned(), m);
         m
+    }
+
+    /// A plain material of a colour drawn from `palette` (uniform, one draw of `rng`),
+    /// registered once as `<prefix>_<index, two digits>`.
+    pub fn palette_material(&mut self, rng: &mut Pcg64, prefix: &str, palette: &[[f32; 3]]) -> u32 {
+        let k = rng.random_range(0..palette.len());
+        let colour = palette[k];
+        self.material(&format!("{prefix}_{k:02}"), || (colour, None))
     }
 
     /// A plain, emissive material registered once under `name`: it glows at night.

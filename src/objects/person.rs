@@ -131,17 +131,14 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             },
             sleeve: if rng.random::<bool>() { 0.35 } else { 0.9 },
         };
-        let mut pick = |name: &str, palette: &[[f32; 3]]| {
-            let k = rng.random_range(0..palette.len());
-            let colour = palette[k];
-            placing.material(&format!("person_{name}_{k:02}"), || (colour, None))
-        };
+        let mut pick =
+            |name: &str, palette: &[[f32; 3]]| placing.palette_material(rng, name, palette);
         let materials = Clothes {
-            shirt: pick("shirt", &SHIRTS),
-            trousers: pick("trousers", &TROUSERS),
-            skin: pick("skin", &SKIN),
-            hair: pick("hair", &HAIR),
-            shoes: pick("shoes", &SHOES),
+            shirt: pick("person_shirt", &SHIRTS),
+            trousers: pick("person_trousers", &TROUSERS),
+            skin: pick("person_skin", &SKIN),
+            hair: pick("person_hair", &HAIR),
+            shoes: pick("person_shoes", &SHOES),
         };
         let ground = if crossing { MARKING_Y } else { KERB_Y };
         let frame = Frame {

@@ -129,6 +129,15 @@ impl ObjectSpec {
         }
     }
 
+    /// Of [`ObjectSpec::companion_classes`], those a camera path annotates when the spec
+    /// lists no classes: the riders (people), not the poles (street furniture).
+    pub fn annotated_companions(kind: ObjectKind) -> &'static [&'static str] {
+        match kind {
+            ObjectKind::Bicycle => &[RIDER_CLASS],
+            _ => &[],
+        }
+    }
+
     /// The height range of a tree or a person entry: `height`, else the kind's default.
     pub fn height_range(&self) -> [f64; 2] {
         self.height.unwrap_or(match self.kind {
