@@ -58,7 +58,7 @@ pub(crate) fn measure(
     k: &Intrinsics,
     view: &View,
     samples: u32,
-    per_object: &[Vec<ScreenTri>],
+    per_object: &[&[ScreenTri]],
     ids: &[u32],
     q_range: (f64, f64),
 ) -> Vec<Footprint> {

@@ -95,6 +95,8 @@ pub use scene_lighting::{ego_headlights, lighting_for};
 pub use sky::Sky;
 pub use sun::{Sun, solar_position};
 
+use std::ops::Range;
+
 use image::{ImageBuffer, Luma};
 use rayon::prelude::*;
 
@@ -102,7 +104,7 @@ use centre_samples::CentreSamples;
 use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
 use screen_triangle::{SUB, ScreenTri};
-use tile::{FrameContext, RasterContext, TILE, TileOut, TileRaster};
+use tile::{FrameContext, RasterContext, TILE, TileRaster, TileTarget};
 use view::View;
 
 /// Largest supersampling factor; larger requests are clamped to it.
@@ -125,9 +127,9 @@ pub fn render(
 }
 
 /// [`render`], and the [`Footprint`] of each object of `measure` (instance ids, ascending)
-/// that would cover a pixel of the image with nothing in front of it, in id order: where it
-/// would show with nothing in front and no image edge (the annotator's full projected box
-/// and the denominator of the visible fraction).
+/// that shows in the frame, in id order: where it would show with nothing in front and no
+/// image edge (the annotator's full projected box and the denominator of the visible
+/// fraction). Objects wholly hidden are left out: nothing reads their footprint.
 pub fn render_measuring(
     scene: &PreparedScene,
     pose: &CameraPose,
@@ -142,8 +144,7 @@ pub fn render_measuring(
     let Some(view) = View::new(pose, intrinsics, samples) else {
         return (sky_frame(width, height, lighting), Vec::new());
     };
-    let (tris, footprints, q_range) =
-        screen_triangles(scene, pose, intrinsics, &view, samples, measure);
+    let (tris, ranges) = screen_triangles(scene, &view);
 
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
@@ -168,7 +169,7 @@ pub fn render_measuring(
             width,
             height,
             tiles_x,
-            q_range,
+            q_range: q_range(&view),
         },
         lighting,
         lights: &lights,
@@ -176,39 +177,50 @@ pub fn render_measuring(
         shadows: shadows.as_deref(),
         antialias_edges,
     };
-    if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
+    let n = width as usize * height as usize;
+    let mut linear = vec![[0f32; 3]; n];
+    let mut instance = vec![0u32; n];
+    let mut depth = vec![0f32; n];
+    let targets = TileTarget::all(width as usize, &mut linear, &mut instance, &mut depth);
+    let centres = if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
         // Nothing reads across tiles: each tile shades as soon as it is rasterized, and
         // its samples are dropped (a supersampled frame's would be tens of megabytes).
-        let tiles: Vec<TileOut> = (0..bins.len())
+        targets.into_par_iter().enumerate().for_each(|(t, out)| {
+            tile::shade_tile(&ctx, &tile::raster_tile(&ctx.raster, t), None, out);
+        });
+        None
+    } else {
+        let rasters: Vec<TileRaster> = (0..bins.len())
             .into_par_iter()
-            .map(|t| tile::shade_tile(&ctx, &tile::raster_tile(&ctx.raster, t), None))
+            .map(|t| tile::raster_tile(&ctx.raster, t))
             .collect();
-        return (assemble(&ctx, None, &tiles), footprints);
-    }
-    let rasters: Vec<TileRaster> = (0..bins.len())
-        .into_par_iter()
-        .map(|t| tile::raster_tile(&ctx.raster, t))
-        .collect();
-    let centres = CentreSamples::new(&ctx.raster, &rasters);
-    let ao = (lighting.ambient_occlusion > 0.0)
-        .then(|| ambient_occlusion::visibility(&ctx.raster, &centres, lighting.ambient_occlusion));
-    let tiles: Vec<TileOut> = rasters
-        .par_iter()
-        .map(|r| tile::shade_tile(&ctx, r, ao.as_deref()))
-        .collect();
-    (assemble(&ctx, Some(&centres), &tiles), footprints)
+        let centres = CentreSamples::new(&ctx.raster, &rasters);
+        let ao = (lighting.ambient_occlusion > 0.0).then(|| {
+            ambient_occlusion::visibility(&ctx.raster, &centres, lighting.ambient_occlusion)
+        });
+        targets
+            .into_par_iter()
+            .zip(&rasters)
+            .for_each(|(out, r)| tile::shade_tile(&ctx, r, ao.as_deref(), out));
+        Some(centres)
+    };
+    let footprints = shown_footprints(
+        scene,
+        pose,
+        intrinsics,
+        &view,
+        samples,
+        (&tris, &ranges),
+        measure,
+        &instance,
+    );
+    let frame = finish(&ctx, centres.as_ref(), linear, instance, depth);
+    (frame, footprints)
 }
 
-/// The screen triangles of the objects `view` may see, in scene order, the footprints of
-/// `measure` (see [`render_measuring`]) and the accepted range of 1/w.
-fn screen_triangles(
-    scene: &PreparedScene,
-    pose: &CameraPose,
-    intrinsics: &Intrinsics,
-    view: &View,
-    samples: u32,
-    measure: &[u32],
-) -> (Vec<ScreenTri>, Vec<Footprint>, (f64, f64)) {
+/// The screen triangles of the objects `view` may see, in scene order, with each object's
+/// range of them (by object index).
+fn screen_triangles(scene: &PreparedScene, view: &View) -> (Vec<ScreenTri>, Vec<Range<usize>>) {
     let per_object: Vec<Vec<ScreenTri>> = scene
         .objects
         .par_iter()
@@ -222,23 +234,59 @@ fn screen_triangles(
             out
         })
         .collect();
-    // Accepted 1/w: above 1/far, at most 1.0001/near. Nothing is nearer than the near
-    // plane; a larger 1/w is a rounding artefact.
-    let q_range = (1.0 / view.far, 1.0001 / view.near);
-    let footprints = footprint::measure(
+    let mut ranges = Vec::with_capacity(per_object.len());
+    let mut end = 0;
+    for tris in &per_object {
+        ranges.push(end..end + tris.len());
+        end += tris.len();
+    }
+    (per_object.into_iter().flatten().collect(), ranges)
+}
+
+/// Accepted 1/w: above 1/far, at most 1.0001/near. Nothing is nearer than the near plane;
+/// a larger 1/w is a rounding artefact.
+fn q_range(view: &View) -> (f64, f64) {
+    (1.0 / view.far, 1.0001 / view.near)
+}
+
+/// The footprints (see [`render_measuring`]) of the objects of `measure` that show in
+/// `instance`, the frame's instance ids: an object no pixel shows is not measured, for
+/// nobody asks how much of it is hidden.
+#[allow(clippy::too_many_arguments)] // the frame's context, passed as the renderer holds it
+fn shown_footprints(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    view: &View,
+    samples: u32,
+    (tris, ranges): (&[ScreenTri], &[Range<usize>]),
+    measure: &[u32],
+    instance: &[u32],
+) -> Vec<Footprint> {
+    let Some(&top) = measure.iter().max() else {
+        return Vec::new();
+    };
+    let mut shows = vec![false; top as usize + 1];
+    for &id in instance {
+        if id <= top {
+            shows[id as usize] = true;
+        }
+    }
+    let shown: Vec<u32> = measure
+        .iter()
+        .copied()
+        .filter(|&id| shows[id as usize])
+        .collect();
+    let per_object: Vec<&[ScreenTri]> = ranges.iter().map(|r| &tris[r.clone()]).collect();
+    footprint::measure(
         scene,
         pose,
         intrinsics,
         view,
         samples,
         &per_object,
-        measure,
-        q_range,
-    );
-    (
-        per_object.into_iter().flatten().collect(),
-        footprints,
-        q_range,
+        &shown,
+        q_range(view),
     )
 }
 
@@ -263,7 +311,7 @@ pub fn visibility(
             Vec::new(),
         );
     };
-    let (tris, footprints, q_range) = screen_triangles(scene, pose, intrinsics, &view, 1, measure);
+    let (tris, ranges) = screen_triangles(scene, &view);
     let tiles_x = width.div_ceil(TILE);
     let bins = bin(&tris, tiles_x, height.div_ceil(TILE), TILE);
     let ctx = RasterContext {
@@ -275,7 +323,7 @@ pub fn visibility(
         width,
         height,
         tiles_x,
-        q_range,
+        q_range: q_range(&view),
     };
     let w = width as usize;
     let mut instance = vec![0u32; w * height as usize];
@@ -293,6 +341,16 @@ pub fn visibility(
             }
         }
     }
+    let footprints = shown_footprints(
+        scene,
+        pose,
+        intrinsics,
+        &view,
+        1,
+        (&tris, &ranges),
+        measure,
+        &instance,
+    );
     let visibility = Visibility {
         instance: ImageBuffer::from_raw(width, height, instance).expect("one id a pixel"),
         depth: ImageBuffer::from_raw(width, height, depth).expect("one depth a pixel"),
@@ -330,34 +388,18 @@ fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<
     bins
 }
 
-/// The frame from its tiles: colours mixed across edges (at one sample per pixel, which
-/// reads the frame's `centres`); ids and depth as the tiles resolved them. [`Frame::rgb`]
-/// develops it.
-fn assemble(ctx: &FrameContext, centres: Option<&CentreSamples>, tiles: &[TileOut]) -> Frame {
+/// The frame from its shaded pixels: colours mixed across edges (at one sample per pixel,
+/// which reads the frame's `centres`); ids and depth as the tiles resolved them.
+/// [`Frame::rgb`] develops it.
+fn finish(
+    ctx: &FrameContext,
+    centres: Option<&CentreSamples>,
+    mut linear: Vec<[f32; 3]>,
+    instance: Vec<u32>,
+    depth: Vec<f32>,
+) -> Frame {
     let (width, height) = (ctx.raster.width, ctx.raster.height);
-    let (w, n) = (width as usize, width as usize * height as usize);
-    let mut linear = vec![[0f32; 3]; n];
-    let mut instance = vec![0u32; n];
-    let mut depth = vec![0f32; n];
-    // Each band of TILE rows is copied from its row of tiles, the bands in parallel.
-    let band = TILE as usize * w;
-    let tile_rows = tiles.chunks(ctx.raster.tiles_x as usize);
-    linear
-        .par_chunks_mut(band)
-        .zip(instance.par_chunks_mut(band))
-        .zip(depth.par_chunks_mut(band))
-        .zip(tile_rows.collect::<Vec<_>>())
-        .for_each(|(((linear, instance), depth), row)| {
-            for t in row {
-                let (x0, tw) = (t.rect[0] as usize, (t.rect[2] - t.rect[0]) as usize);
-                for y in 0..(t.rect[3] - t.rect[1]) as usize {
-                    let (from, to) = (y * tw..(y + 1) * tw, y * w + x0..y * w + x0 + tw);
-                    linear[to.clone()].copy_from_slice(&t.linear[from.clone()]);
-                    instance[to.clone()].copy_from_slice(&t.instance[from.clone()]);
-                    depth[to].copy_from_slice(&t.depth[from]);
-                }
-            }
-        });
+    let w = width as usize;
     let instance: ImageBuffer<Luma<u32>, Vec<u32>> =
         ImageBuffer::from_raw(width, height, instance).expect("one id a pixel");
     let depth: ImageBuffer<Luma<f32>, Vec<f32>> =

@@ -429,17 +429,20 @@ fn footprints_are_what_an_object_shows_with_nothing_in_front() {
         materials: vec![material([0.5; 3], None, [0.0; 3])],
         objects,
     };
-    // Off-screen, behind the camera: never measured.
+    // Off-screen, behind the camera, or wholly hidden behind the near box: not measured.
     let behind = cuboid(0, [-1.0, -1.0, 5.0], [1.0, 1.0, 6.0]);
+    let hidden = cuboid(0, [-0.3, -0.3, -9.0], [0.3, 0.3, -8.5]);
     let both = prepare(&scene(vec![
         object("near", near_box.clone()),
         object("far", far_box.clone()),
         object("behind", behind),
+        object("hidden", hidden),
     ]))
     .unwrap();
     let far_alone = prepare(&scene(vec![object("far", far_box)])).unwrap();
     for samples in [1, 2, 3] {
-        let (frame, footprints) = render_measuring(&both, &eye, &k, &flat(), samples, &[1, 2, 3]);
+        let (frame, footprints) =
+            render_measuring(&both, &eye, &k, &flat(), samples, &[1, 2, 3, 4]);
         assert_eq!(frame, render(&both, &eye, &k, &flat(), samples));
         let ids: Vec<u32> = footprints.iter().map(|f| f.id).collect();
         assert_eq!(ids, [1, 2], "samples {samples}");

@@ -53,12 +53,50 @@ pub(crate) struct FrameContext<'a> {
     pub antialias_edges: bool,
 }
 
-/// A finished tile: its rectangle in output pixels and its pixels, row-major.
-pub(crate) struct TileOut {
-    pub rect: [u32; 4],
-    pub linear: Vec<[f32; 3]>,
-    pub instance: Vec<u32>,
-    pub depth: Vec<f32>,
+/// Where a tile's pixels go: its rows' stretches of the frame's buffers, top to bottom
+/// ([`TileTarget::all`]). Shading writes them in place; no tile is copied afterwards.
+pub(crate) struct TileTarget<'f> {
+    pub linear: Vec<&'f mut [[f32; 3]]>,
+    pub instance: Vec<&'f mut [u32]>,
+    pub depth: Vec<&'f mut [f32]>,
+}
+
+impl<'f> TileTarget<'f> {
+    /// The targets of every tile of a frame `width` pixels wide, in tile order (row-major
+    /// over the grid of [`TILE`]-pixel tiles), cut from its row-major buffers.
+    pub(crate) fn all(
+        width: usize,
+        linear: &'f mut [[f32; 3]],
+        instance: &'f mut [u32],
+        depth: &'f mut [f32],
+    ) -> Vec<TileTarget<'f>> {
+        let tile = TILE as usize;
+        let (tiles_x, tiles_y) = (width.div_ceil(tile), (linear.len() / width).div_ceil(tile));
+        let mut targets: Vec<TileTarget> = (0..tiles_x * tiles_y)
+            .map(|_| TileTarget {
+                linear: Vec::with_capacity(tile),
+                instance: Vec::with_capacity(tile),
+                depth: Vec::with_capacity(tile),
+            })
+            .collect();
+        let rows = linear
+            .chunks_mut(width)
+            .zip(instance.chunks_mut(width))
+            .zip(depth.chunks_mut(width));
+        for (y, ((linear, instance), depth)) in rows.enumerate() {
+            let band = &mut targets[y / tile * tiles_x..][..tiles_x];
+            let pieces = linear
+                .chunks_mut(tile)
+                .zip(instance.chunks_mut(tile))
+                .zip(depth.chunks_mut(tile));
+            for (target, ((linear, instance), depth)) in band.iter_mut().zip(pieces) {
+                target.linear.push(linear);
+                target.instance.push(instance);
+                target.depth.push(depth);
+            }
+        }
+        targets
+    }
 }
 
 /// No triangle at a sample: the sky.
@@ -126,13 +164,19 @@ pub(crate) fn raster_tile(ctx: &RasterContext, tile: usize) -> TileRaster {
     }
 }
 
-/// Shades and resolves a rasterized tile. `ao` is the frame's ambient visibility per
-/// output pixel (row-major, 1 = open sky), when ambient occlusion is on.
-pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f32]>) -> TileOut {
+/// Shades and resolves a rasterized tile into `out`, its stretch of the frame. `ao` is the
+/// frame's ambient visibility per output pixel (row-major, 1 = open sky), when ambient
+/// occlusion is on.
+pub(crate) fn shade_tile(
+    ctx: &FrameContext,
+    raster: &TileRaster,
+    ao: Option<&[f32]>,
+    out: TileTarget,
+) {
     let s = ctx.raster.samples;
     let (rect, inner) = (raster.rect, raster.inner);
     let iw = raster.inner_width();
-    let (depth, id) = (&raster.depth, &raster.id);
+    let (q, id) = (&raster.depth, &raster.id);
     let lights = point_lights::tile_lights(ctx.lights, ctx.raster.view, raster);
 
     // Resolve, shading once per pixel and triangle: each distinct triangle (or the sky)
@@ -144,12 +188,12 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
     let su = s as usize;
     let mid = (su - 1) / 2;
     let norm = 1.0 / (su * su) as f32;
-    let mut out = TileOut {
-        rect,
-        linear: Vec::with_capacity(ow * oh),
-        instance: Vec::with_capacity(ow * oh),
-        depth: Vec::with_capacity(ow * oh),
-    };
+    let TileTarget {
+        mut linear,
+        mut instance,
+        mut depth,
+    } = out;
+    debug_assert!(linear.len() == oh && linear.iter().all(|row| row.len() == ow));
     let scale = f64::from(s);
     // The surface of the last triangle shaded: runs of pixels share one.
     let mut last: Option<(u32, Surface)> = None;
@@ -163,7 +207,7 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
                     Some((u, surface)) if *u == t => surface,
                     _ => &last.insert((t, Surface::of(ctx, t))).1,
                 };
-                shade(ctx, surface, x, y, depth[i], &lights, scale, open)
+                shade(ctx, surface, x, y, q[i], &lights, scale, open)
             }
         }
     };
@@ -197,13 +241,11 @@ pub(crate) fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f
                 }
                 sum
             };
-            out.linear.push(c);
-            let (instance, metres) = instance_and_depth(&ctx.raster, id[centre], depth[centre]);
-            out.instance.push(instance);
-            out.depth.push(metres);
+            linear[oy][ox] = c;
+            (instance[oy][ox], depth[oy][ox]) =
+                instance_and_depth(&ctx.raster, id[centre], q[centre]);
         }
     }
-    out
 }
 
 /// A pixel's instance id and depth in metres from its centre sample's triangle `t` and
