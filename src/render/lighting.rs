@@ -28,7 +28,16 @@ pub struct Light {
     /// Cosine of the angle from the axis at which the beam reaches zero; it brightens
     /// linearly in the cosine towards the axis. Ignored without an `aim`.
     pub edge: f32,
+    /// A dipped headlight's cut-off: the sine of the elevation (from the horizontal,
+    /// seen from the light) above which it sends nothing, fading in over
+    /// [`CUTOFF_BAND`] below it. None for a light without one.
+    #[serde(default)]
+    pub cutoff: Option<f32>,
 }
+
+/// Sine of elevation over which a [`Light::cutoff`] goes from full light to none: about
+/// 0.9°, a sharp line on a wall ahead, as a dipped beam's is.
+pub const CUTOFF_BAND: f32 = 0.015;
 
 impl Light {
     /// A light shining all round, without inverse-square falloff (only the cut to zero at
@@ -41,6 +50,7 @@ impl Light {
             near: 0.0,
             aim: [0.0; 3],
             edge: -1.0,
+            cutoff: None,
         }
     }
 
@@ -55,6 +65,7 @@ impl Light {
             near: LAMP_NEAR,
             aim: [0.0, -1.0, 0.0],
             edge: -0.25,
+            cutoff: None,
         }
     }
 }

@@ -183,6 +183,7 @@ impl LitWindows {
                                     near: SPILL_NEAR,
                                     aim: n.map(|v| v as f32),
                                     edge: 0.0,
+                                    cutoff: None,
                                 });
                             }
                             ru += 1.0;

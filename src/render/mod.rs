@@ -52,7 +52,7 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 12;
+pub const VERSION: u32 = 13;
 
 mod ambient_occlusion;
 mod centre_samples;
@@ -85,8 +85,8 @@ pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};
 pub use lighting::{
-    AMBIENT_OCCLUSION, LAMP_COLOUR, Light, Lighting, MAX_SHADOW_MAP_SIDE, NIGHT_SKY, WINDOW_COLOUR,
-    sun_colour,
+    AMBIENT_OCCLUSION, CUTOFF_BAND, LAMP_COLOUR, Light, Lighting, MAX_SHADOW_MAP_SIDE, NIGHT_SKY,
+    WINDOW_COLOUR, sun_colour,
 };
 pub use lit_windows::LitWindows;
 pub use prepared_scene::{MAX_OBJECTS, PreparedScene, TextureMips, prepare, prepare_with};

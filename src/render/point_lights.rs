@@ -7,11 +7,13 @@
 //! little between lamps), finite at the light, and exactly zero from `range` on. `beam` is
 //! 1 for a light that shines all round; for a beam (a street lamp's shielded head, a
 //! headlight, a window) it is `(c − edge) / (1 − edge)` clamped to 0–1, with `c` the cosine
-//! between the beam's axis and the direction to the point.
+//! between the beam's axis and the direction to the point. A headlight's dipped beam is
+//! also cut off above the horizontal: times `(cutoff − s) / CUTOFF_BAND` clamped to 0–1,
+//! `s` the sine of the point's elevation seen from the light.
 
-use super::Light;
 use super::tile::{NOTHING, TileRaster};
 use super::view::View;
+use super::{CUTOFF_BAND, Light};
 
 /// At most this many lights shade one tile: those that may light its surfaces the most.
 /// Keeps a frame's cost bounded however many windows glow and cars shine.
@@ -26,6 +28,8 @@ pub(crate) struct FrameLight {
     /// Unit beam axis, or zero all round.
     pub aim: [f64; 3],
     pub edge: f64,
+    /// [`Light::cutoff`], infinite for none.
+    pub cutoff: f64,
     /// Luminance of `colour` (which lights a full tile keeps).
     pub luminance: f64,
     /// Position in camera coordinates (right, up, forward).
@@ -97,6 +101,10 @@ pub(crate) fn frame_lights(lights: &[Light], view: &View) -> Vec<FrameLight> {
                 near2,
                 aim,
                 edge: f64::from(l.edge).clamp(-1.0, 0.999),
+                cutoff: l
+                    .cutoff
+                    .filter(|c| c.is_finite())
+                    .map_or(f64::INFINITY, f64::from),
                 luminance: f64::from(
                     0.2126 * l.colour[0] + 0.7152 * l.colour[1] + 0.0722 * l.colour[2],
                 ),
@@ -204,6 +212,13 @@ pub(crate) fn add_lights(light: &mut [f32; 3], lights: &[&FrameLight], p: [f64; 
             let c = -(a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) * inv;
             ((c - lamp.edge) / (1.0 - lamp.edge)).min(1.0)
         };
+        // A cut-off: the sine of the elevation of p seen from the light, against the line.
+        let beam = if lamp.cutoff.is_finite() {
+            let rise = -d[1] * inv;
+            beam * ((lamp.cutoff - rise) / f64::from(CUTOFF_BAND)).clamp(0.0, 1.0)
+        } else {
+            beam
+        };
         if beam <= 0.0 {
             continue;
         }
@@ -211,6 +226,65 @@ pub(crate) fn add_lights(light: &mut [f32; 3], lights: &[&FrameLight], p: [f64; 
         let k = (t * t * n_dot * beam * (lamp.near2 / (lamp.near2 + d2))) as f32;
         for (l, c) in light.iter_mut().zip(lamp.colour) {
             *l += c * k;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A headlight 0.7 m up at the origin, aimed along +x and dipped as a car's, with the
+    /// cut-off `cutoff` (infinite for none).
+    fn headlight(cutoff: f64) -> FrameLight {
+        let aim = [1.0, -0.06, 0.0];
+        let len = (1.0f64 + 0.06 * 0.06).sqrt();
+        FrameLight {
+            position: [0.0, 0.7, 0.0],
+            colour: [1.0; 3],
+            range2: 30.0 * 30.0,
+            near2: 36.0,
+            aim: aim.map(|v| v / len),
+            edge: 0.8,
+            cutoff,
+            luminance: 1.0,
+            camera: [0.0; 3],
+            rect: [0, 0, 1, 1],
+        }
+    }
+
+    fn received(light: &FrameLight, p: [f64; 3], n: [f32; 3]) -> f32 {
+        let mut sum = [0f32; 3];
+        add_lights(&mut sum, &[light], p, n);
+        sum[0]
+    }
+
+    #[test]
+    fn a_dipped_beam_lights_a_wall_ahead_up_to_the_lamps_height_and_the_road_far_ahead() {
+        let (open, dipped) = (headlight(f64::INFINITY), headlight(0.005));
+        // A wall 4 m ahead, facing the lamp. The beam's cone reaches 2 m up it; the cut-off
+        // stops the light a few centimetres above the lamp's height (sine 0.005 − 0.015
+        // is full light, 0.005 none), with a thin fade between.
+        let wall = |light: &FrameLight, y: f64| received(light, [4.0, y, 0.0], [-1.0, 0.0, 0.0]);
+        assert!(wall(&open, 2.0) > 0.1, "{}", wall(&open, 2.0));
+        assert_eq!(wall(&dipped, 2.0), 0.0);
+        assert_eq!(wall(&dipped, 0.73), 0.0);
+        let fading = wall(&dipped, 0.69);
+        assert!(fading > 0.0 && fading < wall(&open, 0.69), "{fading}");
+        assert_eq!(wall(&dipped, 0.5), wall(&open, 0.5));
+        assert!(wall(&dipped, 0.5) > 0.1);
+        // The road is lit as before out to the beam's reach, and nothing outside the cone
+        // (behind the lamp, or far to its side) is lit by either.
+        let road =
+            |light: &FrameLight, x: f64, z: f64| received(light, [x, 0.0, z], [0.0, 1.0, 0.0]);
+        for x in [3.0, 10.0, 25.0] {
+            assert!(road(&dipped, x, 0.0) > 0.0, "{x} m");
+            assert_eq!(road(&dipped, x, 0.0), road(&open, x, 0.0), "{x} m");
+        }
+        for light in [&open, &dipped] {
+            assert_eq!(road(light, -5.0, 0.0), 0.0);
+            assert_eq!(road(light, 3.0, 8.0), 0.0);
+            assert_eq!(received(light, [3.0, 6.0, 8.0], [0.0, -1.0, 0.0]), 0.0);
         }
     }
 }

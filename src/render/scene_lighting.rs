@@ -43,6 +43,12 @@ const HEAD_NEAR: f32 = 6.0;
 const HEAD_EDGE: f32 = 0.8;
 /// How far down the headlights aim (the beam's axis falls this much per metre).
 const HEAD_DIP: f64 = 0.06;
+/// A dipped beam sends nothing above the horizontal through the lamp, nearly: full light
+/// up to 0.6° below it, none from 0.3° above ([`crate::render::CUTOFF_BAND`]). The road
+/// is lit out to the beam's reach (30 m ahead it lies 1.3° below a lamp 0.7 m up), but a
+/// wall or a truck's back a few metres ahead only up to the lamps' height, with the sharp
+/// line a dipped beam draws, instead of a glaring disc as high as the beam is wide.
+const HEAD_CUTOFF: f32 = 0.005;
 /// Tail lights' red glow on the road and the car just behind, all round.
 const TAIL_LIGHT: [f32; 3] = [0.5, 0.03, 0.015];
 const TAIL_RANGE: f32 = 3.0;
@@ -94,13 +100,15 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
                 near: TAIL_NEAR,
                 aim: [0.0; 3],
                 edge: -1.0,
+                cutoff: None,
             });
         }
     }
     out
 }
 
-/// A headlight's dipped beam from `position` along `aim`, in `colour`.
+/// A headlight's dipped beam from `position` along `aim`, in `colour`, cut off just above
+/// the horizontal ([`HEAD_CUTOFF`]).
 fn head_beam(position: [f32; 3], aim: [f32; 3], colour: [f32; 3]) -> Light {
     Light {
         position,
@@ -109,6 +117,7 @@ fn head_beam(position: [f32; 3], aim: [f32; 3], colour: [f32; 3]) -> Light {
         near: HEAD_NEAR,
         aim,
         edge: HEAD_EDGE,
+        cutoff: Some(HEAD_CUTOFF),
     }
 }
 
