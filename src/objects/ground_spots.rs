@@ -317,6 +317,49 @@ impl<'a> GroundSpots<'a> {
         })
     }
 
+    /// A free spot in the sidewalk strip at one end of a zebra crossing, `from_curb` metres
+    /// from the curb, for an object of `radius` metres; its `travel` points across the
+    /// curb at the road (where someone waiting to cross looks). None after `attempts`.
+    pub fn zebra_kerb(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: f64,
+        attempts: u32,
+    ) -> Option<Spot> {
+        if self.zebras.is_empty() {
+            return None;
+        }
+        let offset = from_curb / self.mpp;
+        (0..attempts).find_map(|_| {
+            let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
+            let road = &self.layout.roads[i];
+            let high: bool = rng.random();
+            let along = (a + radius + rng.random::<f64>() * (b - a - 2.0 * radius)) / self.mpp;
+            if !(b - a >= 2.0 * radius && along.is_finite()) {
+                return None;
+            }
+            let across = if high {
+                road.edges[1] + offset
+            } else {
+                road.edges[0] - offset
+            };
+            let px = image_point(road, along, across);
+            // A zebra's end meets the corner, where the strip runs on into the crossing
+            // road's: one pixel past the strip's far edge lies in a block or that strip, never
+            // on a road.
+            let beyond = self.strip_px - offset + 1.0;
+            let behind = image_point(road, along, across + if high { beyond } else { -beyond });
+            if !self.inside_image(px) || self.on_road(px, 0.0) || self.on_road(behind, 0.0) {
+                return None;
+            }
+            let mut spot = self.take(road, high, px, radius)?;
+            let towards = if high { -1.0 } else { 1.0 };
+            spot.travel = image_point(road, 0.0, towards);
+            Some(spot)
+        })
+    }
+
     /// The street corners: where the strips of a horizontal and a vertical road that cross
     /// (or meet) touch, half a strip from both curbs, with a block pixel diagonally behind.
     /// In (horizontal road, vertical road, north-west, north-east, south-west, south-east)

@@ -13,7 +13,9 @@
 //! fronts), each taking a circle of [`ROOM`] of ground, so they never overlap lamps, signs,
 //! trees, benches, cars or each other. The entry's `crossing` share walk across the zebra
 //! crossings instead, on the zebra's paint, within [`ZEBRA_REACH`] of the road's centre
-//! line (lane cars wait behind the stop lines, clear of them).
+//! line (lane cars wait behind the stop lines, clear of them). Its `waiting` share of the
+//! others stand at the zebras' ends, at the curb, facing the road as if about to cross (as
+//! many as the ends hold; the rest join the strips).
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
@@ -39,6 +41,11 @@ pub const WALKING: f64 = 0.7;
 /// default roads camera's line ([`CAMERA_LANE`]) stays [`CAMERA_CLEARANCE`] beyond their
 /// [`ROOM`], as lane cars keep it.
 pub const ZEBRA_REACH: f64 = CAMERA_LANE - CAMERA_CLEARANCE - ROOM;
+/// People waiting to cross stand at a zebra's end, [`CURB_ROOM`] to this much farther from
+/// the curb, metres…
+pub const WAITING_DEPTH: f64 = 0.8;
+/// …facing the road, turned up to this many degrees either way.
+const WAITING_TURN: f64 = 25.0;
 
 /// Clothes, linear RGB.
 pub(super) const SHIRTS: [[f32; 3]; 10] = [
@@ -101,20 +108,33 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             break;
         }
         misses += 1;
-        // Only an entry with crossers draws whether each is one (the others keep their
-        // draws).
+        // Only an entry with crossers (or people waiting) draws whether each is one (the
+        // others keep their draws).
         let crossing = spec.crossing > 0.0 && rng.random::<f64>() < spec.crossing;
-        let spot = if crossing {
-            (0..ATTEMPTS).find_map(|_| spots.zebra(rng, ROOM, ZEBRA_REACH, 1))
-        } else {
+        let mut waiting = !crossing && spec.waiting > 0.0 && rng.random::<f64>() < spec.waiting;
+        let mut spot = None;
+        if crossing {
+            spot = (0..ATTEMPTS).find_map(|_| spots.zebra(rng, ROOM, ZEBRA_REACH, 1));
+        } else if waiting {
+            let from_curb = CURB_ROOM + rng.random::<f64>() * WAITING_DEPTH;
+            spot = (0..ATTEMPTS).find_map(|_| spots.zebra_kerb(rng, ROOM, from_curb, 1));
+            // With the zebras' ends full, this one stands in a strip like the others.
+            waiting = spot.is_some();
+        }
+        if spot.is_none() && !crossing {
             let from_curb = CURB_ROOM + rng.random::<f64>() * (far - CURB_ROOM);
-            (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1))
-        };
+            spot = (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1));
+        }
         let Some(spot) = spot else {
             continue;
         };
-        let walking = crossing || rng.random::<f64>() < WALKING;
-        let forward = if walking {
+        let walking = crossing || !waiting && rng.random::<f64>() < WALKING;
+        let forward = if waiting {
+            // Facing the road, give or take a glance along it.
+            let (c, s) = trig::cos_sin_deg((2.0 * rng.random::<f64>() - 1.0) * WAITING_TURN);
+            let t = spot.travel;
+            [t[0] * c - t[1] * s, t[0] * s + t[1] * c]
+        } else if walking {
             let back = rng.random::<bool>();
             spot.travel.map(|t| if back { -t } else { t })
         } else {

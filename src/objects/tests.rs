@@ -1422,6 +1422,132 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
 }
 
 #[test]
+fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
+    use super::person::{CURB_ROOM, ROOM, WAITING_DEPTH};
+    use crate::model::geometry::zebras::road_stretches;
+    let city = city();
+    let mpp = 0.55;
+    let zebras: Vec<(usize, [f64; 2])> = road_stretches(&city.layout, mpp)
+        .into_iter()
+        .enumerate()
+        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
+        .collect();
+    // Where a point in metres lies against zebra `i`'s road: along it, and how far past
+    // its nearer curb (negative on the road).
+    let beside = |i: usize, p: [f64; 2]| {
+        let road = &city.layout.roads[i];
+        let (along, across) = match road.axis {
+            Axis::Horizontal => (p[0], p[1]),
+            Axis::Vertical => (p[1], p[0]),
+        };
+        let (low, high) = (road.edges[0] * mpp, road.edges[1] * mpp);
+        (along, (low - across).max(across - high))
+    };
+    let at_an_end = |p: [f64; 2], slack: f64| {
+        zebras.iter().any(|&(i, [a, b])| {
+            let (along, past) = beside(i, p);
+            a - slack <= along
+                && along <= b + slack
+                && CURB_ROOM - slack <= past
+                && past <= CURB_ROOM + WAITING_DEPTH + slack
+        })
+    };
+    // The spots: at a zebra's end in the strip, apart, their travel straight at the road.
+    let specs: [ObjectSpec; 0] = [];
+    let objects_input = ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    };
+    let mut spots = super::ground_spots::GroundSpots::new(&objects_input);
+    let mut rng = crate::rng::stream(7, "test", 0);
+    let mut found = 0;
+    for k in 0..20 {
+        let from_curb = CURB_ROOM + WAITING_DEPTH * f64::from(k % 3) / 2.0;
+        let Some(spot) = spots.zebra_kerb(&mut rng, ROOM, from_curb, 40) else {
+            continue;
+        };
+        found += 1;
+        assert!(at_an_end(spot.position, 1e-6), "{:?}", spot.position);
+        let road = city
+            .layout
+            .roads
+            .iter()
+            .find(|r| r.id == spot.road)
+            .unwrap();
+        let step = spot.position.map(|v| v / mpp);
+        let ahead = [step[0] + spot.travel[0], step[1] + spot.travel[1]];
+        let centre = |q: [f64; 2]| match road.axis {
+            Axis::Horizontal => (q[1] - road.line).abs(),
+            Axis::Vertical => (q[0] - road.line).abs(),
+        };
+        assert!(
+            (centre(step) - centre(ahead) - 1.0).abs() < 1e-9,
+            "{:?} from {:?}",
+            spot.travel,
+            spot.position
+        );
+    }
+    assert!(found >= 15, "{found}");
+    // An entry that waits: all placed, on the kerb, and those at the ends are as many
+    // as the ends hold (the others stand in the strips).
+    let specs = [ObjectSpec {
+        waiting: 1.0,
+        ..spec(ObjectKind::Person, "person", 30)
+    }];
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    assert_eq!(inserted.placed[0], 30);
+    let mut waiting = 0;
+    for person in &inserted.objects {
+        let points: Vec<[f64; 3]> = person
+            .meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.map(f64::from))
+            .collect();
+        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        assert!((low - KERB_Y).abs() < 1e-4, "{} at {low}", person.name);
+        let n = points.len() as f64;
+        let mid = points
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+        if at_an_end(mid, ROOM) {
+            waiting += 1;
+        }
+    }
+    assert!(waiting >= 15, "{waiting} of 30 at the zebras' ends");
+    // Without `waiting`, the same entry's people stand along the strips: few by chance
+    // at a zebra's end.
+    let specs = [spec(ObjectKind::Person, "person", 30)];
+    let strips = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    let by_chance = strips
+        .objects
+        .iter()
+        .filter(|person| {
+            let points: Vec<[f64; 3]> = person
+                .meshes
+                .iter()
+                .flat_map(|m| &m.positions)
+                .map(|p| p.map(f64::from))
+                .collect();
+            let n = points.len() as f64;
+            let mid = points
+                .iter()
+                .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+            at_an_end(mid, ROOM)
+        })
+        .count();
+    assert!(by_chance < waiting / 2, "{by_chance} vs {waiting}");
+}
+
+#[test]
 fn zebra_spots_travel_across_their_road_and_never_overlap() {
     let city = city();
     let specs: [ObjectSpec; 0] = [];

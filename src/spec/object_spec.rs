@@ -97,6 +97,12 @@ pub struct ObjectSpec {
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub crossing: f64,
+    /// person: share of the people not crossing who stand at the curb at a zebra
+    /// crossing's end, facing the road as if waiting to cross; the others stand or walk
+    /// along the sidewalk strips.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub waiting: f64,
     /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
     /// of the sidewalk strips.
     #[serde(default = "default_plazas")]
