@@ -158,7 +158,15 @@ impl<'a> PathFrames<'a> {
         let travel = sensor::travel_direction_with(self.poses, i, self.median_step);
         let headlights = self.headlights(lighting.emission, i, travel);
         let headlit = !headlights.is_empty();
-        let adjusted = frame_lighting(lighting, &sensor::weather_light(&conditions), headlights);
+        // A cloud between the camera's ground and the sun dims the sun for the whole frame.
+        let shade = sensor::sun_shade(
+            conditions.clouds as f32,
+            conditions.cloud_offset,
+            [pose.eye[0], 0.0, pose.eye[2]],
+            lighting.sun_direction,
+        );
+        let weather = sensor::weather_light(&conditions).under_cloud(shade);
+        let adjusted = frame_lighting(lighting, &weather, headlights);
         let lighting = adjusted.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
@@ -191,6 +199,7 @@ impl<'a> PathFrames<'a> {
         );
         let mut drawn = conditions.to_json(developed.exposure);
         drawn["sun"] = sun_json(&sun);
+        drawn["sun_shaded"] = json!((f64::from(shade) * 1e3).round() / 1e3);
         if camera.path == CameraPath::Roads {
             drawn["headlights"] = json!(headlit);
         }

@@ -139,6 +139,27 @@ fn opacity(f: &Field, eye: [f32; 3], v: [f32; 3], offset: [f32; 2], edge: f32) -
     (alpha * haze, n)
 }
 
+/// How much of the sun the cloud layer hides from the ground at `ground` (world metres):
+/// the opacity [`draw_clouds`] gives the sky pixel that looks from there straight at the
+/// sun (`sun_direction`), with the same `cover` and `offset`. So a frame is shaded exactly
+/// when its sky would show a cloud over the sun; a low sun, towards the haze where the
+/// clouds thin, is hardly shaded, and the sun below the horizon not at all.
+pub fn sun_shade(cover: f32, offset: [f64; 2], ground: [f64; 3], sun_direction: [f32; 3]) -> f32 {
+    if cover.is_nan() || cover <= 0.0 {
+        return 0.0;
+    }
+    let f = field();
+    let offset = offset.map(|o| o as f32);
+    opacity(
+        f,
+        ground.map(|v| v as f32),
+        sun_direction,
+        offset,
+        threshold(f, cover),
+    )
+    .0
+}
+
 /// Draws the clouds covering `cover` of the layer onto the sky pixels (`depth` 0) of
 /// `linear` (row-major, `width` wide), lit by `light`.
 pub(crate) fn draw_clouds(
@@ -214,6 +235,38 @@ mod tests {
             assert!((share - cover).abs() < 0.01, "{cover}: {share}");
         }
         assert_eq!(threshold(f, 0.0), f32::INFINITY);
+    }
+
+    #[test]
+    fn the_sun_is_shaded_on_about_the_covered_share_of_the_ground_as_drawn_in_the_sky() {
+        let sun = LIGHT.sun_direction;
+        // Ground points every 37 m over 8 km: the share under a cloud follows the cover.
+        let share = |cover: f32| {
+            let points: Vec<[f64; 3]> = (0..220 * 220)
+                .map(|i| [f64::from(i % 220) * 37.0, 0.0, f64::from(i / 220) * 37.0])
+                .collect();
+            let shaded = points
+                .iter()
+                .filter(|&&g| sun_shade(cover, [0.0; 2], g, sun) > 0.5)
+                .count();
+            shaded as f32 / points.len() as f32
+        };
+        for cover in [0.2f32, 0.5, 0.8] {
+            let s = share(cover);
+            assert!((s - cover).abs() < 0.12, "cover {cover}: {s}");
+        }
+        assert_eq!(share(0.0), 0.0);
+        // No shade with the sun down, or no cover.
+        let night = [0.0, -0.2, -0.98];
+        assert_eq!(sun_shade(0.9, [0.0; 2], [50.0, 0.0, 50.0], night), 0.0);
+        // A sun 2° up is seen through the haze, where the drawn clouds thin out: it is
+        // hardly ever hidden, whatever the cover.
+        let low = [0.0, 0.035, -0.999];
+        let hidden = (0..2000)
+            .map(|i| [f64::from(i) * 29.0, 0.0, f64::from(i % 37) * 41.0])
+            .filter(|&g| sun_shade(0.8, [0.0; 2], g, low) > 0.5)
+            .count();
+        assert_eq!(hidden, 0);
     }
 
     fn rays() -> Rays {

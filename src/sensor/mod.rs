@@ -21,7 +21,7 @@
 //! counter-based hash of the frame's seed, transcendental functions come from `libm`.
 
 /// Bump when this stage's output bytes change: it is part of the frames stage's key.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 
 mod clouds;
 mod conditions;
@@ -31,7 +31,7 @@ mod rays;
 mod tone;
 mod weather;
 
-pub use clouds::CloudLight;
+pub use clouds::{CloudLight, sun_shade};
 pub use conditions::{CLOUD_TILE, Conditions, draw};
 pub use tone::{auto_exposure, decode_srgb, tone_map};
 pub use weather::{WeatherLight, weather_light};

@@ -25,6 +25,21 @@ pub struct WeatherLight {
     pub shadow_strength: f32,
 }
 
+/// Share of the sun a cloud at full opacity holds back: a cumulus lets about a sixth
+/// through.
+const CLOUD_SHADOW: f32 = 0.85;
+
+impl WeatherLight {
+    /// This light with `shade` (0–1, [`super::sun_shade`]) of the sun hidden by a cloud:
+    /// the sun dimmed, so the shadows it casts fade with it.
+    pub fn under_cloud(self, shade: f32) -> WeatherLight {
+        WeatherLight {
+            sun_scale: self.sun_scale * (1.0 - CLOUD_SHADOW * shade.clamp(0.0, 1.0)),
+            ..self
+        }
+    }
+}
+
 /// The light settings for a frame's weather: overcast, fog and rain dim the sun, raise
 /// the sky light and soften shadows, the more the stronger the weather.
 pub fn weather_light(c: &Conditions) -> WeatherLight {
@@ -280,5 +295,24 @@ mod tests {
         let full = weather_light(&c);
         assert!(full.shadow_strength < half.shadow_strength && half.shadow_strength < 1.0);
         assert!(full.sun_scale < half.sun_scale && full.sky_scale > half.sky_scale);
+    }
+
+    #[test]
+    fn a_cloud_over_the_sun_dims_the_sun_only() {
+        let mut c = Conditions::plain();
+        c.weather = Weather::Overcast;
+        c.strength = 0.5;
+        let light = weather_light(&c);
+        assert_eq!(light.under_cloud(0.0), light);
+        let shaded = light.under_cloud(1.0);
+        assert!((shaded.sun_scale - light.sun_scale * (1.0 - CLOUD_SHADOW)).abs() < 1e-6);
+        assert_eq!(
+            (shaded.sky_scale, shaded.shadow_strength),
+            (light.sky_scale, light.shadow_strength)
+        );
+        let half = light.under_cloud(0.5).sun_scale;
+        assert!(shaded.sun_scale < half && half < light.sun_scale);
+        // Out of range is clamped.
+        assert_eq!(light.under_cloud(7.0), shaded);
     }
 }
