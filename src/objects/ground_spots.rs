@@ -290,14 +290,12 @@ impl<'a> GroundSpots<'a> {
             return None;
         }
         (0..attempts).find_map(|_| {
-            let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
-            let road = &self.layout.roads[i];
-            let along = a + radius + rng.random::<f64>() * (b - a - 2.0 * radius);
+            let (road, along, fits) = self.pick_zebra(rng, radius);
             let half = (road.edges[1] - road.edges[0]) * self.mpp / 2.0;
             let limit = reach.min(half - radius);
             let across = road.line * self.mpp + (2.0 * rng.random::<f64>() - 1.0) * limit;
             let back: bool = rng.random();
-            if !(b - a >= 2.0 * radius && limit >= 0.0 && along.is_finite() && across.is_finite()) {
+            if !(fits && limit >= 0.0 && across.is_finite()) {
                 return None;
             }
             let position = image_point(road, along, across);
@@ -332,13 +330,12 @@ impl<'a> GroundSpots<'a> {
         }
         let offset = from_curb / self.mpp;
         (0..attempts).find_map(|_| {
-            let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
-            let road = &self.layout.roads[i];
+            let (road, along, fits) = self.pick_zebra(rng, radius);
             let high: bool = rng.random();
-            let along = (a + radius + rng.random::<f64>() * (b - a - 2.0 * radius)) / self.mpp;
-            if !(b - a >= 2.0 * radius && along.is_finite()) {
+            if !fits {
                 return None;
             }
+            let along = along / self.mpp;
             let across = if high {
                 road.edges[1] + offset
             } else {
@@ -410,6 +407,16 @@ impl<'a> GroundSpots<'a> {
             corners.swap(i, rng.random_range(0..=i));
         }
         corners
+    }
+
+    /// A zebra crossing (uniform among them; there must be one) and an along-road position
+    /// on it, metres, leaving `radius` to both its edges; whether the crossing is deep
+    /// enough for that.
+    fn pick_zebra(&self, rng: &mut Pcg64, radius: f64) -> (&'a Road, f64, bool) {
+        let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
+        let along = a + radius + rng.random::<f64>() * (b - a - 2.0 * radius);
+        let fits = b - a >= 2.0 * radius && along.is_finite();
+        (&self.layout.roads[i], along, fits)
     }
 
     /// A road (uniform among the roads), a side and an along-position on it.

@@ -1349,11 +1349,37 @@ fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() 
     assert!(all.placed[0] > 80 && all.placed[0] < 100_000);
 }
 
+/// Every zebra crossing of `city` at `mpp` metres a pixel: its road's index and its
+/// along-road range, metres.
+fn zebras_of(city: &City, mpp: f64) -> Vec<(usize, [f64; 2])> {
+    crate::model::geometry::zebras::road_stretches(&city.layout, mpp)
+        .into_iter()
+        .enumerate()
+        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
+        .collect()
+}
+
+/// An object's middle seen from above (the mean of its vertices' x and z) and its lowest
+/// point's height.
+fn plan_middle_and_low(object: &SceneObject) -> ([f64; 2], f64) {
+    let points: Vec<[f64; 3]> = object
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .map(|p| p.map(f64::from))
+        .collect();
+    let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+    let n = points.len() as f64;
+    let mid = points
+        .iter()
+        .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+    (mid, low)
+}
+
 #[test]
 fn crossers_walk_across_the_zebras_near_the_centre_line() {
     use super::person::ZEBRA_REACH;
     use crate::model::geometry::MARKING_Y;
-    use crate::model::geometry::zebras::road_stretches;
     let city = city();
     let mpp = 0.55;
     let specs = [
@@ -1368,11 +1394,7 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
         ..input(&city, &specs)
     })
     .unwrap();
-    let zebras: Vec<(usize, [f64; 2])> = road_stretches(&city.layout, mpp)
-        .into_iter()
-        .enumerate()
-        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
-        .collect();
+    let zebras = zebras_of(&city, mpp);
     assert!(!zebras.is_empty());
     let people: Vec<&SceneObject> = inserted
         .objects
@@ -1382,19 +1404,9 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
     assert_eq!(people.len(), 40);
     assert_eq!(inserted.placed[1], 40);
     for person in people {
-        let points: Vec<[f64; 3]> = person
-            .meshes
-            .iter()
-            .flat_map(|m| &m.positions)
-            .map(|p| p.map(f64::from))
-            .collect();
-        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        let (mid, low) = plan_middle_and_low(person);
         assert!((low - MARKING_Y).abs() < 1e-4, "{} at {low}", person.name);
         // Its middle lies on a zebra, within reach of the centre line.
-        let n = points.len() as f64;
-        let mid = points
-            .iter()
-            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
         let on_zebra = zebras.iter().any(|&(i, [a, b])| {
             let road = &city.layout.roads[i];
             let (along, across) = match road.axis {
@@ -1424,14 +1436,9 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
 #[test]
 fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     use super::person::{CURB_ROOM, ROOM, WAITING_DEPTH};
-    use crate::model::geometry::zebras::road_stretches;
     let city = city();
     let mpp = 0.55;
-    let zebras: Vec<(usize, [f64; 2])> = road_stretches(&city.layout, mpp)
-        .into_iter()
-        .enumerate()
-        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
-        .collect();
+    let zebras = zebras_of(&city, mpp);
     // Where a point in metres lies against zebra `i`'s road: along it, and how far past
     // its nearer curb (negative on the road).
     let beside = |i: usize, p: [f64; 2]| {
@@ -1502,18 +1509,8 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     assert_eq!(inserted.placed[0], 30);
     let mut waiting = 0;
     for person in &inserted.objects {
-        let points: Vec<[f64; 3]> = person
-            .meshes
-            .iter()
-            .flat_map(|m| &m.positions)
-            .map(|p| p.map(f64::from))
-            .collect();
-        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        let (mid, low) = plan_middle_and_low(person);
         assert!((low - KERB_Y).abs() < 1e-4, "{} at {low}", person.name);
-        let n = points.len() as f64;
-        let mid = points
-            .iter()
-            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
         if at_an_end(mid, ROOM) {
             waiting += 1;
         }
@@ -1530,19 +1527,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     let by_chance = strips
         .objects
         .iter()
-        .filter(|person| {
-            let points: Vec<[f64; 3]> = person
-                .meshes
-                .iter()
-                .flat_map(|m| &m.positions)
-                .map(|p| p.map(f64::from))
-                .collect();
-            let n = points.len() as f64;
-            let mid = points
-                .iter()
-                .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
-            at_an_end(mid, ROOM)
-        })
+        .filter(|person| at_an_end(plan_middle_and_low(person).0, ROOM))
         .count();
     assert!(by_chance < waiting / 2, "{by_chance} vs {waiting}");
 }
