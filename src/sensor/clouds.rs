@@ -140,10 +140,10 @@ fn opacity(f: &Field, eye: [f32; 3], v: [f32; 3], offset: [f32; 2], edge: f32) -
 }
 
 /// How much of the sun the cloud layer hides from the ground at `ground` (world metres):
-/// the opacity [`draw_clouds`] gives the sky pixel that looks from there straight at the
-/// sun (`sun_direction`), with the same `cover` and `offset`. So a frame is shaded exactly
-/// when its sky would show a cloud over the sun; a low sun, towards the haze where the
-/// clouds thin, is hardly shaded, and the sun below the horizon not at all.
+/// the opacity the sky's clouds are drawn with at the pixel looking from there straight
+/// at the sun (`sun_direction`), for the same `cover` and `offset`. So a frame is shaded
+/// exactly when its sky would show a cloud over the sun; a low sun, towards the haze
+/// where the clouds thin, is hardly shaded, and the sun below the horizon not at all.
 pub fn sun_shade(cover: f32, offset: [f64; 2], ground: [f64; 3], sun_direction: [f32; 3]) -> f32 {
     if cover.is_nan() || cover <= 0.0 {
         return 0.0;
