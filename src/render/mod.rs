@@ -115,7 +115,8 @@ pub const MAX_SUPERSAMPLE: u32 = 4;
 /// nearest the pixel centre, so ids stay exact either way); 0 = one sample per pixel
 /// without antialiasing (hard, jagged edges: for comparison and measurement);
 /// more than [`MAX_SUPERSAMPLE`] as that. Unusable intrinsics (non-positive focal length
-/// or near distance, far ≤ near) or a pose whose eye is its target give a frame of sky.
+/// or near distance, far ≤ near) or a pose whose eye is its target give a frame of sky;
+/// an image 0 pixels wide or high, an empty frame.
 pub fn render(
     scene: &PreparedScene,
     pose: &CameraPose,
@@ -141,7 +142,8 @@ pub fn render_measuring(
     let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
     let antialias_edges = supersample == 1;
     let (width, height) = (intrinsics.width, intrinsics.height);
-    let Some(view) = View::new(pose, intrinsics, samples) else {
+    let Some(view) = View::new(pose, intrinsics, samples).filter(|_| width > 0 && height > 0)
+    else {
         return (sky_frame(width, height, lighting), Vec::new());
     };
     let (tris, ranges) = screen_triangles(scene, &view);
@@ -302,7 +304,7 @@ pub fn visibility(
     measure: &[u32],
 ) -> (Visibility, Vec<Footprint>) {
     let (width, height) = (intrinsics.width, intrinsics.height);
-    let Some(view) = View::new(pose, intrinsics, 1) else {
+    let Some(view) = View::new(pose, intrinsics, 1).filter(|_| width > 0 && height > 0) else {
         return (
             Visibility {
                 instance: ImageBuffer::new(width, height),

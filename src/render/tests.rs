@@ -469,6 +469,24 @@ fn footprints_are_what_an_object_shows_with_nothing_in_front() {
 }
 
 #[test]
+fn empty_images_render_without_panicking() {
+    let prepared = prepare(&street_scene()).unwrap();
+    let eye = pose([1.0, 1.7, 5.0], [0.0, 3.0, -20.0]);
+    for (w, h) in [(0, 0), (0, 40), (40, 0), (1, 1)] {
+        let k = Intrinsics::from_fov(w, h, 0.6);
+        for samples in [0, 1, 2] {
+            let (frame, footprints) =
+                render_measuring(&prepared, &eye, &k, &Lighting::day(), samples, &[1, 2]);
+            assert_eq!(frame.instance.dimensions(), (w, h));
+            assert_eq!(frame.linear.len(), (w * h) as usize);
+            assert!(footprints.len() <= (w * h) as usize);
+        }
+        let (shown, _) = crate::render::visibility(&prepared, &eye, &k, &[1]);
+        assert_eq!(shown.depth.dimensions(), (w, h));
+    }
+}
+
+#[test]
 fn footprints_reach_past_the_image_edge() {
     // A 4 m square 5 m ahead, shifted so its left part is out of a 64 × 48 image.
     let scene = Scene {

@@ -70,6 +70,9 @@ impl<'f> TileTarget<'f> {
         instance: &'f mut [u32],
         depth: &'f mut [f32],
     ) -> Vec<TileTarget<'f>> {
+        if width == 0 {
+            return Vec::new();
+        }
         let tile = TILE as usize;
         let (tiles_x, tiles_y) = (width.div_ceil(tile), (linear.len() / width).div_ceil(tile));
         let mut targets: Vec<TileTarget> = (0..tiles_x * tiles_y)
