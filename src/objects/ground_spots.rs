@@ -286,11 +286,8 @@ impl<'a> GroundSpots<'a> {
         reach: f64,
         attempts: u32,
     ) -> Option<Spot> {
-        if self.zebras.is_empty() {
-            return None;
-        }
         (0..attempts).find_map(|_| {
-            let (road, along, fits) = self.pick_zebra(rng, radius);
+            let (road, along, fits) = self.pick_zebra(rng, radius)?;
             let half = (road.edges[1] - road.edges[0]) * self.mpp / 2.0;
             let limit = reach.min(half - radius);
             let across = road.line * self.mpp + (2.0 * rng.random::<f64>() - 1.0) * limit;
@@ -325,12 +322,9 @@ impl<'a> GroundSpots<'a> {
         from_curb: f64,
         attempts: u32,
     ) -> Option<Spot> {
-        if self.zebras.is_empty() {
-            return None;
-        }
         let offset = from_curb / self.mpp;
         (0..attempts).find_map(|_| {
-            let (road, along, fits) = self.pick_zebra(rng, radius);
+            let (road, along, fits) = self.pick_zebra(rng, radius)?;
             let high: bool = rng.random();
             if !fits {
                 return None;
@@ -409,14 +403,17 @@ impl<'a> GroundSpots<'a> {
         corners
     }
 
-    /// A zebra crossing (uniform among them; there must be one) and an along-road position
-    /// on it, metres, leaving `radius` to both its edges; whether the crossing is deep
-    /// enough for that.
-    fn pick_zebra(&self, rng: &mut Pcg64, radius: f64) -> (&'a Road, f64, bool) {
+    /// A zebra crossing (uniform among them) and an along-road position on it, metres,
+    /// leaving `radius` to both its edges; whether the crossing is deep enough for that.
+    /// None, drawing nothing, when the city has no zebra crossing.
+    fn pick_zebra(&self, rng: &mut Pcg64, radius: f64) -> Option<(&'a Road, f64, bool)> {
+        if self.zebras.is_empty() {
+            return None;
+        }
         let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
         let along = a + radius + rng.random::<f64>() * (b - a - 2.0 * radius);
         let fits = b - a >= 2.0 * radius && along.is_finite();
-        (&self.layout.roads[i], along, fits)
+        Some((&self.layout.roads[i], along, fits))
     }
 
     /// A road (uniform among the roads), a side and an along-position on it.
