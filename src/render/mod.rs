@@ -28,7 +28,9 @@
 //!
 //! # Pipeline of one frame
 //!
-//! 1. Objects whose bounding box is outside the view frustum are skipped.
+//! 1. Objects whose bounding box is outside the view frustum are skipped, and so are
+//!    objects the big ones (buildings, roads) wholly hide: those are rasterized first, and
+//!    bound what each block of pixels can still show (`occlusion`; no byte changes).
 //! 2. Triangles facing away are culled (counter-clockwise is the front; where vertex
 //!    normals contradict the winding, [`prepare`] turns the triangle to follow them).
 //! 3. Triangles are clipped against the near plane (Sutherland–Hodgman; and, rarely,
@@ -64,6 +66,7 @@ mod intrinsics;
 mod lighting;
 mod lit_windows;
 mod mip_texture;
+mod occlusion;
 mod point_lights;
 mod prepared_scene;
 mod render_error;
@@ -103,6 +106,7 @@ use rayon::prelude::*;
 use centre_samples::CentreSamples;
 use edge_aa::EdgeHint;
 use lit_windows::WindowLookup;
+use occlusion::{OcclusionBlocks, TileBlocks};
 use screen_triangle::{SUB, ScreenTri};
 use tile::{FrameContext, RasterContext, TILE, TileRaster, TileTarget};
 use view::View;
@@ -146,11 +150,17 @@ pub fn render_measuring(
     else {
         return (sky_frame(width, height, lighting), Vec::new());
     };
-    let (tris, ranges) = screen_triangles(scene, &view);
-
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
-    let bins = bin(&tris, tiles_x, tiles_y, TILE * samples);
+    // Nothing reads across tiles without ambient occlusion or edge antialiasing: each tile
+    // then shades as soon as it is rasterized, and its samples are dropped (a supersampled
+    // frame's would be tens of megabytes).
+    let keep = lighting.ambient_occlusion > 0.0 || antialias_edges;
+    let Rasterized {
+        tris,
+        ranges,
+        rasters,
+    } = rasterize(scene, &view, (width, height), tiles_x, samples, keep);
     let lights = point_lights::frame_lights(&lighting.lights, &view);
     let windows = lighting
         .windows
@@ -162,17 +172,7 @@ pub fn render_measuring(
         None
     };
     let ctx = FrameContext {
-        raster: RasterContext {
-            scene,
-            view: &view,
-            tris: &tris,
-            bins: &bins,
-            samples,
-            width,
-            height,
-            tiles_x,
-            q_range: q_range(&view),
-        },
+        raster: RasterContext::new(scene, &view, &tris, samples, (width, height)),
         lighting,
         lights: &lights,
         windows: windows.as_ref(),
@@ -184,27 +184,26 @@ pub fn render_measuring(
     let mut instance = vec![0u32; n];
     let mut depth = vec![0f32; n];
     let targets = TileTarget::all(width as usize, &mut linear, &mut instance, &mut depth);
-    let centres = if lighting.ambient_occlusion <= 0.0 && !antialias_edges {
-        // Nothing reads across tiles: each tile shades as soon as it is rasterized, and
-        // its samples are dropped (a supersampled frame's would be tens of megabytes).
-        targets.into_par_iter().enumerate().for_each(|(t, out)| {
-            tile::shade_tile(&ctx, &tile::raster_tile(&ctx.raster, t), None, out);
-        });
-        None
-    } else {
-        let rasters: Vec<TileRaster> = (0..bins.len())
-            .into_par_iter()
-            .map(|t| tile::raster_tile(&ctx.raster, t))
-            .collect();
-        let centres = CentreSamples::new(&ctx.raster, &rasters);
-        let ao = (lighting.ambient_occlusion > 0.0).then(|| {
-            ambient_occlusion::visibility(&ctx.raster, &centres, lighting.ambient_occlusion)
-        });
-        targets
-            .into_par_iter()
-            .zip(&rasters)
-            .for_each(|(out, r)| tile::shade_tile(&ctx, r, ao.as_deref(), out));
-        Some(centres)
+    let centres = match rasters {
+        None => {
+            let bins = bin(&tris, 0, tiles_x, tiles_y, TILE * samples);
+            targets.into_par_iter().enumerate().for_each(|(t, out)| {
+                let raster = tile::raster_tile(&ctx.raster, t, &bins[t]);
+                tile::shade_tile(&ctx, &raster, None, out);
+            });
+            None
+        }
+        Some(rasters) => {
+            let centres = CentreSamples::new(&ctx.raster, &rasters);
+            let ao = (lighting.ambient_occlusion > 0.0).then(|| {
+                ambient_occlusion::visibility(&ctx.raster, &centres, lighting.ambient_occlusion)
+            });
+            targets
+                .into_par_iter()
+                .zip(&rasters)
+                .for_each(|(out, r)| tile::shade_tile(&ctx, r, ao.as_deref(), out));
+            Some(centres)
+        }
     };
     let footprints = shown_footprints(
         scene,
@@ -220,29 +219,120 @@ pub fn render_measuring(
     (frame, footprints)
 }
 
-/// The screen triangles of the objects `view` may see, in scene order, with each object's
-/// range of them (by object index).
-fn screen_triangles(scene: &PreparedScene, view: &View) -> (Vec<ScreenTri>, Vec<Range<usize>>) {
-    let per_object: Vec<Vec<ScreenTri>> = scene
+/// What a view shows before shading: its screen triangles, each object's range of them
+/// (by object index), and every tile's depth test over them when asked to keep them.
+struct Rasterized {
+    tris: Vec<ScreenTri>,
+    ranges: Vec<Range<usize>>,
+    rasters: Option<Vec<TileRaster>>,
+}
+
+/// The screen triangles of the objects `view` may see, with the objects the occluders
+/// wholly hide left out ([`occlusion`]): they would show in no pixel. The occluders' come
+/// first, then the others', each group in scene order; the depth test breaks ties by
+/// scene order, so the order changes no pixel.
+///
+/// The occluders are rasterized first, tile by tile; their depths bound what each block
+/// of pixels can show, and every other object is tested against that before it is set
+/// up. With `keep`, the tiles then go on with the other objects' triangles and are
+/// returned; without, each tile's samples are dropped once its blocks are known (the
+/// caller rasterizes every triangle again, tile by tile, as it shades).
+fn rasterize(
+    scene: &PreparedScene,
+    view: &View,
+    (width, height): (u32, u32),
+    tiles_x: u32,
+    samples: u32,
+    keep: bool,
+) -> Rasterized {
+    let tiles_y = height.div_ceil(TILE);
+    let tile_px = TILE * samples;
+    let setup = |object: &prepared_scene::ObjectBounds| {
+        let mut out = Vec::new();
+        if view.may_see_box(object.min, object.max) {
+            for i in object.first..object.end {
+                screen_triangle::setup(&scene.triangles[i], i as u32, view, &mut out);
+            }
+        }
+        out
+    };
+    let occluders: Vec<Vec<ScreenTri>> = scene
         .objects
         .par_iter()
         .map(|object| {
-            let mut out = Vec::new();
-            if view.may_see_box(object.min, object.max) {
-                for i in object.first..object.end {
-                    screen_triangle::setup(&scene.triangles[i], i as u32, view, &mut out);
-                }
+            if object.occluder {
+                setup(object)
+            } else {
+                Vec::new()
             }
-            out
         })
         .collect();
-    let mut ranges = Vec::with_capacity(per_object.len());
-    let mut end = 0;
-    for tris in &per_object {
-        ranges.push(end..end + tris.len());
-        end += tris.len();
+    let mut ranges = vec![0..0; scene.objects.len()];
+    let mut tris = Vec::new();
+    for (range, object_tris) in ranges.iter_mut().zip(occluders) {
+        *range = tris.len()..tris.len() + object_tris.len();
+        tris.extend(object_tris);
     }
-    (per_object.into_iter().flatten().collect(), ranges)
+    let first_others = tris.len();
+    let (mut rasters, blocks) = {
+        let ctx = RasterContext::new(scene, view, &tris, samples, (width, height));
+        let bins = bin(&tris, 0, tiles_x, tiles_y, tile_px);
+        let tiles = (0..bins.len())
+            .into_par_iter()
+            .map(|t| tile::raster_tile(&ctx, t, &bins[t]));
+        if keep {
+            let rasters: Vec<TileRaster> = tiles.collect();
+            let blocks: Vec<TileBlocks> = rasters.par_iter().map(TileBlocks::of).collect();
+            let blocks = OcclusionBlocks::of_tiles(view.width, view.height, &blocks);
+            (Some(rasters), blocks)
+        } else {
+            let blocks: Vec<TileBlocks> = tiles.map(|r| TileBlocks::of(&r)).collect();
+            (
+                None,
+                OcclusionBlocks::of_tiles(view.width, view.height, &blocks),
+            )
+        }
+    };
+    let others: Vec<Vec<ScreenTri>> = scene
+        .objects
+        .par_iter()
+        .map(|object| {
+            let triangles = &scene.triangles[object.first..object.end];
+            if object.occluder || blocks.hides_object(view, (object.min, object.max), triangles) {
+                return Vec::new();
+            }
+            let tris = setup(object);
+            if tris.iter().all(|t| blocks.hides(t)) {
+                return Vec::new();
+            }
+            tris
+        })
+        .collect();
+    for (range, object_tris) in ranges.iter_mut().zip(others) {
+        if !object_tris.is_empty() {
+            *range = tris.len()..tris.len() + object_tris.len();
+            tris.extend(object_tris);
+        }
+    }
+    if let Some(rasters) = &mut rasters {
+        let ctx = RasterContext::new(scene, view, &tris, samples, (width, height));
+        let bins = bin(
+            &tris[first_others..],
+            first_others,
+            tiles_x,
+            tiles_y,
+            tile_px,
+        );
+        rasters
+            .par_iter_mut()
+            .zip(&bins)
+            .for_each(|(raster, bin)| tile::raster_more(&ctx, raster, bin));
+    }
+    Rasterized {
+        tris,
+        ranges,
+        rasters,
+    }
 }
 
 /// Accepted 1/w: above 1/far, at most 1.0001/near. Nothing is nearer than the near plane;
@@ -313,27 +403,17 @@ pub fn visibility(
             Vec::new(),
         );
     };
-    let (tris, ranges) = screen_triangles(scene, &view);
     let tiles_x = width.div_ceil(TILE);
-    let bins = bin(&tris, tiles_x, height.div_ceil(TILE), TILE);
-    let ctx = RasterContext {
-        scene,
-        view: &view,
-        tris: &tris,
-        bins: &bins,
-        samples: 1,
-        width,
-        height,
-        tiles_x,
-        q_range: q_range(&view),
-    };
+    let Rasterized {
+        tris,
+        ranges,
+        rasters,
+    } = rasterize(scene, &view, (width, height), tiles_x, 1, true);
+    let rasters = rasters.expect("kept");
+    let ctx = RasterContext::new(scene, &view, &tris, 1, (width, height));
     let w = width as usize;
     let mut instance = vec![0u32; w * height as usize];
     let mut depth = vec![0f32; w * height as usize];
-    let rasters: Vec<TileRaster> = (0..bins.len())
-        .into_par_iter()
-        .map(|t| tile::raster_tile(&ctx, t))
-        .collect();
     for r in &rasters {
         let rw = r.inner_width();
         for (row, (ids, qs)) in r.id.chunks(rw).zip(r.depth.chunks(rw)).enumerate() {
@@ -376,10 +456,16 @@ pub fn warm_shadow_map(scene: &PreparedScene, lighting: &Lighting) {
     }
 }
 
-/// Triangle indices per tile, in scene order.
-fn bin(tris: &[ScreenTri], tiles_x: u32, tiles_y: u32, tile_px: u32) -> Vec<Vec<u32>> {
+/// Indices of `tris` per tile, in order, numbered from `first`.
+fn bin(
+    tris: &[ScreenTri],
+    first: usize,
+    tiles_x: u32,
+    tiles_y: u32,
+    tile_px: u32,
+) -> Vec<Vec<u32>> {
     let mut bins = vec![Vec::new(); (tiles_x * tiles_y) as usize];
-    for (i, t) in tris.iter().enumerate() {
+    for (i, t) in (first..).zip(tris) {
         let [x0, y0, x1, y1] = t.bounds;
         for ty in y0 / tile_px..=(y1 - 1) / tile_px {
             for tx in x0 / tile_px..=(x1 - 1) / tile_px {

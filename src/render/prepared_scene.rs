@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use super::RenderError;
 use super::mip_texture::MipTexture;
+use super::occlusion;
 use super::shadow_map::ShadowMap;
 use crate::model::geometry::{cross, dot, normalize};
 use crate::model::{Scene, Texture};
@@ -43,6 +44,8 @@ pub(crate) struct ObjectBounds {
     pub max: [f64; 3],
     pub first: usize,
     pub end: usize,
+    /// Whether its triangles are big enough to hide others ([`super::occlusion`]).
+    pub occluder: bool,
 }
 
 /// One triangle, wound counter-clockwise around `normal` (its front).
@@ -256,6 +259,7 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
             max,
             first,
             end: triangles.len(),
+            occluder: occlusion::is_occluder(&triangles[first..]),
         });
     }
     Ok(PreparedScene {

@@ -33,6 +33,13 @@ pub(crate) struct ScreenTri {
 }
 
 impl ScreenTri {
+    /// 1/w at the centre of pixel `(x, y)`, with the arithmetic of [`ScreenTri::rasterize`].
+    #[inline]
+    pub(crate) fn pixel_q(&self, x: u32, y: u32) -> f64 {
+        let row = self.q[2] + self.q[1] * (f64::from(y) + 0.5 - self.origin[1]);
+        row + self.q[0] * (f64::from(x) + 0.5 - self.origin[0])
+    }
+
     /// Calls `cover(x, y, q)` for every covered pixel inside `[x0, x1) × [y0, y1)`, block
     /// by block of [`BLOCK`] × [`BLOCK`] pixels: a block wholly inside the triangle
     /// (every edge function non-negative at its four corner pixels, so at all its pixels:

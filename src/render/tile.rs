@@ -24,13 +24,12 @@ const LEVEL_SURFACE_TAPS: f64 = 2.0;
 /// Tile side in output pixels.
 pub(crate) const TILE: u32 = 32;
 
-/// What rasterizing every tile of a frame shares: the screen triangles and where they
-/// fall. All that ids, depth and visibility need.
+/// What rasterizing every tile of a frame shares: the screen triangles. All that ids,
+/// depth and visibility need.
 pub(crate) struct RasterContext<'a> {
     pub scene: &'a PreparedScene,
     pub view: &'a View,
     pub tris: &'a [ScreenTri],
-    pub bins: &'a [Vec<u32>],
     /// Samples per pixel side.
     pub samples: u32,
     /// Output size.
@@ -40,6 +39,29 @@ pub(crate) struct RasterContext<'a> {
     /// Accepted 1/w: above 1/far, at most 1.0001/near (nothing is nearer than the near
     /// plane; a larger 1/w is a rounding artefact).
     pub q_range: (f64, f64),
+}
+
+impl<'a> RasterContext<'a> {
+    /// The context of `tris`, seen from `view` at `samples` per pixel side, for a frame
+    /// `width` × `height` output pixels.
+    pub(crate) fn new(
+        scene: &'a PreparedScene,
+        view: &'a View,
+        tris: &'a [ScreenTri],
+        samples: u32,
+        (width, height): (u32, u32),
+    ) -> RasterContext<'a> {
+        RasterContext {
+            scene,
+            view,
+            tris,
+            samples,
+            width,
+            height,
+            tiles_x: width.div_ceil(TILE),
+            q_range: super::q_range(view),
+        }
+    }
 }
 
 /// What shading every tile of a frame shares: its raster, and its light.
@@ -130,8 +152,9 @@ impl TileRaster {
     }
 }
 
-/// Rasterizes tile number `tile` (row-major over the tile grid): depth test only.
-pub(crate) fn raster_tile(ctx: &RasterContext, tile: usize) -> TileRaster {
+/// Rasterizes the triangles of `bin` (indices into the frame's screen triangles) into
+/// tile number `tile` (row-major over the tile grid): depth test only.
+pub(crate) fn raster_tile(ctx: &RasterContext, tile: usize, bin: &[u32]) -> TileRaster {
     let s = ctx.samples;
     let (tx, ty) = (tile as u32 % ctx.tiles_x, tile as u32 / ctx.tiles_x);
     let rect = [
@@ -141,29 +164,37 @@ pub(crate) fn raster_tile(ctx: &RasterContext, tile: usize) -> TileRaster {
         ((ty + 1) * TILE).min(ctx.height),
     ];
     let inner = rect.map(|v| v * s);
-    let (iw, ih) = (
-        (inner[2] - inner[0]) as usize,
-        (inner[3] - inner[1]) as usize,
-    );
+    let n = ((inner[2] - inner[0]) * (inner[3] - inner[1])) as usize;
+    let mut raster = TileRaster {
+        rect,
+        inner,
+        depth: vec![ctx.q_range.0; n],
+        id: vec![NOTHING; n],
+    };
+    raster_more(ctx, &mut raster, bin);
+    raster
+}
 
-    // Visibility: nearest 1/w wins; ties go to the earlier triangle.
-    let (q_min, q_max) = ctx.q_range;
-    let mut depth = vec![q_min; iw * ih];
-    let mut id = vec![NOTHING; iw * ih];
-    for &t in &ctx.bins[tile] {
-        ctx.tris[t as usize].rasterize(inner, |x, y, q| {
+/// Rasterizes the triangles of `bin` into `raster`, over what it holds: the nearest 1/w
+/// wins, and of equal ones the earlier triangle in the scene (so the bytes do not depend
+/// on the order triangles come in).
+pub(crate) fn raster_more(ctx: &RasterContext, raster: &mut TileRaster, bin: &[u32]) {
+    let inner = raster.inner;
+    let iw = raster.inner_width();
+    let (q_max, tris) = (ctx.q_range.1, ctx.tris);
+    let TileRaster { depth, id, .. } = raster;
+    for &t in bin {
+        let tri = &tris[t as usize];
+        tri.rasterize(inner, |x, y, q| {
             let i = (y - inner[1]) as usize * iw + (x - inner[0]) as usize;
-            if q > depth[i] && q <= q_max {
+            let d = depth[i];
+            if (q > d || (q == d && id[i] != NOTHING && tris[id[i] as usize].source > tri.source))
+                && q <= q_max
+            {
                 depth[i] = q;
                 id[i] = t;
             }
         });
-    }
-    TileRaster {
-        rect,
-        inner,
-        depth,
-        id,
     }
 }
 
