@@ -67,17 +67,29 @@ impl EdgeHint {
     }
 }
 
-/// Whether a 4-neighbour of pixel `(x, y)` shows another triangle than it does (`tri` the
-/// triangle at each pixel's centre, row-major, `width` × `height`): the only pixels a real
-/// edge can pass beside.
-#[inline]
-fn on_boundary(tri: &[u32], width: usize, height: usize, x: usize, y: usize) -> bool {
-    let p = y * width + x;
-    let t = tri[p];
-    (x > 0 && tri[p - 1] != t)
-        || (x + 1 < width && tri[p + 1] != t)
-        || (y > 0 && tri[p - width] != t)
-        || (y + 1 < height && tri[p + width] != t)
+/// Marks in `out` the pixels of row `y` with a 4-neighbour that shows another triangle
+/// than they do (`tri` the triangle at each pixel's centre, row-major, `width` ×
+/// `height`): the only pixels a real edge can pass beside. Whole rows at a time, which
+/// the compiler turns into vector compares.
+fn boundary_row(tri: &[u32], width: usize, height: usize, y: usize, out: &mut [bool]) {
+    let row = &tri[y * width..][..width];
+    out.fill(false);
+    for x in 1..width {
+        let differs = row[x] != row[x - 1];
+        out[x] |= differs;
+        out[x - 1] |= differs;
+    }
+    let mut beside = |other: &[u32]| {
+        for ((o, a), b) in out.iter_mut().zip(row).zip(other) {
+            *o |= a != b;
+        }
+    };
+    if y > 0 {
+        beside(&tri[(y - 1) * width..][..width]);
+    }
+    if y + 1 < height {
+        beside(&tri[(y + 1) * width..][..width]);
+    }
 }
 
 /// Mixes `linear` (row-major, `width` wide) across the real edges, in place. `tri` is the
@@ -96,13 +108,21 @@ pub(crate) fn antialias(
     real: impl Fn(usize, usize) -> bool + Sync,
 ) {
     let height = linear.len() / width.max(1);
+    let mut boundary = vec![false; linear.len()];
     let mut hints = vec![EdgeHint::NONE; linear.len()];
     hints
         .par_chunks_mut(width)
+        .zip(boundary.par_chunks_mut(width))
         .enumerate()
-        .for_each(|(y, row)| {
-            for (x, slot) in row.iter_mut().enumerate() {
-                if tri[y * width + x] != NOTHING && on_boundary(tri, width, height, x, y) {
+        .for_each(|(y, (row, marks))| {
+            boundary_row(tri, width, height, y, marks);
+            for (x, (slot, _)) in row
+                .iter_mut()
+                .zip(&*marks)
+                .enumerate()
+                .filter(|(_, (_, m))| **m)
+            {
+                if tri[y * width + x] != NOTHING {
                     *slot = hint(y * width + x);
                 }
             }
@@ -118,10 +138,8 @@ pub(crate) fn antialias(
         .into_par_iter()
         .map(|y| {
             let mut changed = Vec::new();
-            for x in 0..width {
-                if !on_boundary(tri, width, height, x, y) {
-                    continue;
-                }
+            let marks = &boundary[y * width..][..width];
+            for x in (0..width).filter(|&x| marks[x]) {
                 let p = y * width + x;
                 // (weight, neighbour) of the strongest mix offered.
                 let mut mix = (0f32, p);

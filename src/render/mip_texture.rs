@@ -14,7 +14,7 @@
 
 use image::RgbImage;
 
-use crate::model::geometry::rounding::{ceil, floor, round};
+use crate::model::geometry::rounding::{floor, round};
 use crate::model::srgb::srgb;
 
 /// Most trilinear taps one sample spreads along a slanted footprint (and the largest
@@ -128,7 +128,10 @@ impl MipTexture {
         // per texel of its length, one under a texel long a single bilinear tap. Found by
         // comparing squares: `k` taps do when `k² ≥ major2 / minor2` or `k² ≥ major2`.
         let cap = max_taps.clamp(1.0, MAX_ANISOTROPY);
-        let most = ceil(cap) as u32;
+        // `ceil(cap)`, for `cap` in 1–4 (NaN gives 0 either way), without the general
+        // function's range checks: a sample's longest dependency chain runs through it.
+        let whole = cap as u32;
+        let most = whole + u32::from(f64::from(whole) < cap);
         let taps = (1..most)
             .find(|&k| {
                 let k2 = f64::from(k * k);

@@ -30,11 +30,7 @@ where
     };
     let mut png = Vec::new();
     image
-        .write_with_encoder(PngEncoder::new_with_quality(
-            &mut png,
-            compression,
-            filter,
-        ))
+        .write_with_encoder(PngEncoder::new_with_quality(&mut png, compression, filter))
         .expect("encoding a PNG into memory cannot fail");
     png
 }
