@@ -160,7 +160,7 @@ pub fn render_measuring(
         tris,
         ranges,
         rasters,
-    } = rasterize(scene, &view, (width, height), tiles_x, samples, keep);
+    } = rasterize(scene, &view, (width, height), samples, keep);
     let lights = point_lights::frame_lights(&lighting.lights, &view);
     let windows = lighting
         .windows
@@ -241,11 +241,10 @@ fn rasterize(
     scene: &PreparedScene,
     view: &View,
     (width, height): (u32, u32),
-    tiles_x: u32,
     samples: u32,
     keep: bool,
 ) -> Rasterized {
-    let tiles_y = height.div_ceil(TILE);
+    let (tiles_x, tiles_y) = (width.div_ceil(TILE), height.div_ceil(TILE));
     let tile_px = TILE * samples;
     let setup = |object: &prepared_scene::ObjectBounds| {
         let mut out = Vec::new();
@@ -403,12 +402,11 @@ pub fn visibility(
             Vec::new(),
         );
     };
-    let tiles_x = width.div_ceil(TILE);
     let Rasterized {
         tris,
         ranges,
         rasters,
-    } = rasterize(scene, &view, (width, height), tiles_x, 1, true);
+    } = rasterize(scene, &view, (width, height), 1, true);
     let rasters = rasters.expect("kept");
     let ctx = RasterContext::new(scene, &view, &tris, 1, (width, height));
     let w = width as usize;

@@ -308,14 +308,7 @@ mod tests {
             assert!(a.0.instance == b.0.instance && a.0.depth == b.0.depth && a.1 == b.1);
             let view = View::new(eye, &k, 1).unwrap();
             let count = |s: &PreparedScene| {
-                let r = rasterize(
-                    s,
-                    &view,
-                    (k.width, k.height),
-                    k.width.div_ceil(TILE),
-                    1,
-                    true,
-                );
+                let r = rasterize(s, &view, (k.width, k.height), 1, true);
                 r.ranges.iter().filter(|r| !r.is_empty()).count()
             };
             dropped += count(&uncut) - count(&culled);
