@@ -28,6 +28,7 @@ use super::prepared_scene::Triangle;
 use super::screen_triangle::{SUB, ScreenTri};
 use super::tile::TileRaster;
 use super::view::View;
+use crate::model::geometry::{cross, dot, sub};
 
 /// Side of the occlusion blocks, internal pixels.
 pub(crate) const BLOCK: u32 = 8;
@@ -60,14 +61,8 @@ pub(crate) fn is_occluder(triangles: &[Triangle]) -> bool {
         .iter()
         .map(|t| {
             let p = t.p.map(|v| v.map(f64::from));
-            let a = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-            let b = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-            let c = [
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ];
-            0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+            let c = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+            0.5 * dot(c, c).sqrt()
         })
         .sum();
     area >= OCCLUDER_AREA * triangles.len() as f64
@@ -108,13 +103,7 @@ impl OcclusionBlocks {
         (min, max): ([f64; 3], [f64; 3]),
         triangles: &[Triangle],
     ) -> bool {
-        let corners: [[f64; 3]; 8] = std::array::from_fn(|i| {
-            view.to_camera([
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ])
-        });
+        let corners = view.box_corners(min, max);
         let nearest = corners.iter().map(|c| c[2]).fold(f64::INFINITY, f64::min);
         // Wholly in front of the near plane: nothing is clipped there, and every point
         // of the box, so every vertex, has 1/w at most the box's.
@@ -154,11 +143,11 @@ impl OcclusionBlocks {
         }
         let focal = view.fx.min(view.fy);
         triangles.iter().all(|t| {
-            let n = t.normal.map(f64::from);
-            let p = t.p[0].map(f64::from);
-            let facing = n[0] * (view.eye[0] - p[0])
-                + n[1] * (view.eye[1] - p[1])
-                + n[2] * (view.eye[2] - p[2]);
+            // As `screen_triangle::setup` measures it.
+            let facing = dot(
+                t.normal.map(f64::from),
+                sub(view.eye, t.p[0].map(f64::from)),
+            );
             if facing.is_nan() {
                 return false;
             }

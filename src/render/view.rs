@@ -95,18 +95,23 @@ impl View {
         ]
     }
 
-    /// Whether an axis-aligned world box may be visible (false only when it is surely not).
-    pub(crate) fn may_see_box(&self, min: [f64; 3], max: [f64; 3]) -> bool {
-        if min[0].is_nan() || min[0] > max[0] {
-            return false;
-        }
-        let corners: [[f64; 3]; 8] = std::array::from_fn(|i| {
+    /// Camera coordinates of the eight corners of the axis-aligned world box `min`–`max`.
+    pub(crate) fn box_corners(&self, min: [f64; 3], max: [f64; 3]) -> [[f64; 3]; 8] {
+        std::array::from_fn(|i| {
             self.to_camera([
                 if i & 1 == 0 { min[0] } else { max[0] },
                 if i & 2 == 0 { min[1] } else { max[1] },
                 if i & 4 == 0 { min[2] } else { max[2] },
             ])
-        });
+        })
+    }
+
+    /// Whether an axis-aligned world box may be visible (false only when it is surely not).
+    pub(crate) fn may_see_box(&self, min: [f64; 3], max: [f64; 3]) -> bool {
+        if min[0].is_nan() || min[0] > max[0] {
+            return false;
+        }
+        let corners = self.box_corners(min, max);
         if corners.iter().all(|c| c[2] < self.near) || corners.iter().all(|c| c[2] > self.far) {
             return false;
         }
@@ -124,16 +129,11 @@ impl View {
         if !(min.iter().chain(&max).all(|v| v.is_finite()) && min[0] <= max[0]) {
             return false;
         }
-        (0..8).all(|i| {
-            let c = self.to_camera([
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]);
+        self.box_corners(min, max).iter().all(|c| {
             if c[2] < self.near {
                 return false;
             }
-            let [x, y] = self.project(c);
+            let [x, y] = self.project(*c);
             // A pixel of margin: the fill rule and snapping act within a pixel.
             x >= 1.0
                 && y >= 1.0
