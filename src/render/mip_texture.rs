@@ -12,6 +12,8 @@
 //! ("brilinear"): five eighths of the texel reads, with no band a frame shows (half a
 //! step's blend cost 3 % of a street frame and looked the same).
 
+use std::sync::OnceLock;
+
 use image::RgbImage;
 
 use crate::model::geometry::rounding::{floor, round};
@@ -41,8 +43,21 @@ const TAP_OFFSETS: [[f64; 4]; 5] = {
 const TAP_SHARE: [f32; 5] = [1.0, 1.0, 0.5, 1.0 / 3.0, 0.25];
 
 /// A texture with its mip levels, finest first.
+///
+/// Level 0 is decoded from the kept sRGB bytes the first time a sample reads it: a view
+/// from afar (the overview) reads only coarse levels, and level 0 is three quarters of a
+/// chain's memory. Level 1 is halved straight from the sRGB bytes, decoded row by row, so
+/// every level holds the same values as when level 0 was made first.
 pub(crate) struct MipTexture {
-    levels: Vec<Level>,
+    /// The texture's sRGB bytes, level 0's source.
+    source: RgbImage,
+    /// Level 0, once a sample has read it.
+    base: OnceLock<Level>,
+    /// Levels 1 and up.
+    coarser: Vec<Level>,
+    /// Level 0's size.
+    width: u32,
+    height: u32,
 }
 
 struct Level {
@@ -64,38 +79,94 @@ const PER_UNIT: f32 = 1.0 / ONE;
 impl MipTexture {
     /// The mip chain of `image` (an empty image samples as black).
     pub(crate) fn new(image: RgbImage) -> MipTexture {
-        let table = srgb();
-        let decode: [u16; 256] =
-            std::array::from_fn(|s| round(f64::from(table.to_linear(s as u8) * ONE)) as u16);
-        let texels = if image.width() == 0 || image.height() == 0 {
-            vec![[0; 4]]
-        } else {
-            let (rgb, _) = image.as_raw().as_chunks::<3>();
-            rgb.iter()
-                .map(|&[r, g, b]| {
+        let (width, height) = (image.width(), image.height());
+        let base = OnceLock::new();
+        if width == 0 || height == 0 {
+            let _ = base.set(Level {
+                width: 1,
+                height: 1,
+                texels: vec![[0; 4]],
+            });
+            return MipTexture {
+                source: image,
+                base,
+                coarser: Vec::new(),
+                width: 1,
+                height: 1,
+            };
+        }
+        let mut coarser: Vec<Level> = Vec::new();
+        if width > 1 || height > 1 {
+            let table = decode_table();
+            let (sw, sh) = (width as usize, height as usize);
+            let rows = image.as_raw();
+            let decode_row = |y: usize, out: &mut Vec<Texel>| {
+                let (rgb, _) = rows[y.min(sh - 1) * sw * 3..][..sw * 3].as_chunks::<3>();
+                out.clear();
+                out.extend(rgb.iter().map(|&[r, g, b]| {
                     [
-                        decode[usize::from(r)],
-                        decode[usize::from(g)],
-                        decode[usize::from(b)],
+                        table[usize::from(r)],
+                        table[usize::from(g)],
+                        table[usize::from(b)],
                         0,
                     ]
-                })
-                .collect()
-        };
-        let mut levels = vec![Level {
-            width: image.width().max(1),
-            height: image.height().max(1),
-            texels,
-        }];
-        loop {
-            let last = levels.last().expect("level 0 exists");
-            if last.width == 1 && last.height == 1 {
-                break;
+                }));
+            };
+            let (mut r0, mut r1) = (Vec::with_capacity(sw), Vec::with_capacity(sw));
+            coarser.push(Level::halved(width, height, |y, out_row| {
+                decode_row(2 * y, &mut r0);
+                decode_row(2 * y + 1, &mut r1);
+                halve_row(&r0, &r1, out_row);
+            }));
+            loop {
+                let last = coarser.last().expect("level 1 exists");
+                if last.width == 1 && last.height == 1 {
+                    break;
+                }
+                let next = last.halve();
+                coarser.push(next);
             }
-            let next = last.halve();
-            levels.push(next);
         }
-        MipTexture { levels }
+        MipTexture {
+            source: image,
+            base,
+            coarser,
+            width,
+            height,
+        }
+    }
+
+    /// Level `i` (0 is the finest), decoding level 0 on first use.
+    #[inline]
+    fn level(&self, i: usize) -> &Level {
+        if i == 0 {
+            self.base.get_or_init(|| {
+                let table = decode_table();
+                let (rgb, _) = self.source.as_raw().as_chunks::<3>();
+                Level {
+                    width: self.width,
+                    height: self.height,
+                    texels: rgb
+                        .iter()
+                        .map(|&[r, g, b]| {
+                            [
+                                table[usize::from(r)],
+                                table[usize::from(g)],
+                                table[usize::from(b)],
+                                0,
+                            ]
+                        })
+                        .collect(),
+                }
+            })
+        } else {
+            &self.coarser[i - 1]
+        }
+    }
+
+    /// Number of levels.
+    fn level_count(&self) -> usize {
+        self.coarser.len() + 1
     }
 
     /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), filtered
@@ -108,10 +179,7 @@ impl MipTexture {
     /// side ÷ the anisotropy (at most `max_taps`, itself at most [`MAX_ANISOTROPY`]), and
     /// that many trilinear taps are spread along the long side and averaged.
     pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4], max_taps: f64) -> [f32; 3] {
-        let (w, h) = (
-            f64::from(self.levels[0].width),
-            f64::from(self.levels[0].height),
-        );
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
         let x2 = (d[0] * w) * (d[0] * w) + (d[1] * h) * (d[1] * h);
         let y2 = (d[2] * w) * (d[2] * w) + (d[3] * h) * (d[3] * h);
         let (major2, minor2, axis) = if x2 >= y2 {
@@ -120,7 +188,7 @@ impl MipTexture {
             (y2, x2, [d[2], d[3]])
         };
         if major2.is_nan() {
-            return rgb(self.levels[0].bilinear(u, v));
+            return rgb(self.level(0).bilinear(u, v));
         }
         // Taps: the footprint's aspect ratio `√(major2 / minor2)`, rounded up, at most
         // `max_taps`; and one texel apart at most: a footprint shorter than that many
@@ -162,12 +230,12 @@ impl MipTexture {
     /// Trilinear sample at level of detail `lod` (level-0 texels per pixel, log2), with
     /// the zero lane.
     fn trilinear(&self, u: f64, v: f64, lod: f64) -> [f32; 4] {
-        let top = (self.levels.len() - 1) as f64;
+        let top = (self.level_count() - 1) as f64;
         if lod.is_nan() || lod <= 0.0 {
-            return self.levels[0].bilinear(u, v);
+            return self.level(0).bilinear(u, v);
         }
         if lod >= top {
-            return self.levels[self.levels.len() - 1].bilinear(u, v);
+            return self.level(self.level_count() - 1).bilinear(u, v);
         }
         let base = floor(lod);
         let i = base as usize;
@@ -175,44 +243,35 @@ impl MipTexture {
         // on each side read one level.
         let t = ((lod - base) as f32 - 0.375) * 4.0;
         if t <= 0.0 {
-            return self.levels[i].bilinear(u, v);
+            return self.level(i).bilinear(u, v);
         }
         if t >= 1.0 {
-            return self.levels[i + 1].bilinear(u, v);
+            return self.level(i + 1).bilinear(u, v);
         }
-        let a = self.levels[i].bilinear(u, v);
-        let b = self.levels[i + 1].bilinear(u, v);
+        let a = self.level(i).bilinear(u, v);
+        let b = self.level(i + 1).bilinear(u, v);
         std::array::from_fn(|c| a[c] + (b[c] - a[c]) * t)
-    }
-
-    #[cfg(test)]
-    pub(crate) fn level_count(&self) -> usize {
-        self.levels.len()
     }
 }
 
 impl Level {
+    /// The next level: half the width and height (rounding down, at least 1).
     fn halve(&self) -> Level {
-        let width = (self.width / 2).max(1);
-        let height = (self.height / 2).max(1);
         let (sw, sh) = (self.width as usize, self.height as usize);
+        let row = |y: usize| &self.texels[y.min(sh - 1) * sw..][..sw];
+        Level::halved(self.width, self.height, |y, out_row| {
+            halve_row(row(2 * y), row(2 * y + 1), out_row);
+        })
+    }
+
+    /// The level half the size of a `width` × `height` one, each of its rows filled by
+    /// `fill(y, row)`.
+    fn halved(width: u32, height: u32, mut fill: impl FnMut(usize, &mut [Texel])) -> Level {
+        let width = (width / 2).max(1);
+        let height = (height / 2).max(1);
         let mut texels = vec![[0u16; 4]; width as usize * height as usize];
-        // Row by row, reading the two source rows as slices (a texel's bounds are checked
-        // once per row, not four times per channel).
         for (y, out_row) in texels.chunks_exact_mut(width as usize).enumerate() {
-            let row = |y: usize| &self.texels[y.min(sh - 1) * sw..][..sw];
-            let (r0, r1) = (row(2 * y), row(2 * y + 1));
-            for (x, out) in out_row.iter_mut().enumerate() {
-                let x0 = (2 * x).min(sw - 1);
-                let x1 = (2 * x + 1).min(sw - 1);
-                *out = std::array::from_fn(|c| {
-                    let sum = u32::from(r0[x0][c])
-                        + u32::from(r0[x1][c])
-                        + u32::from(r1[x0][c])
-                        + u32::from(r1[x1][c]);
-                    ((sum + 2) / 4) as u16
-                });
-            }
+            fill(y, out_row);
         }
         Level {
             width,
@@ -243,6 +302,30 @@ impl Level {
             let bottom = p01[c] + (p11[c] - p01[c]) * ax;
             (top + (bottom - top) * ay) * PER_UNIT
         })
+    }
+}
+
+/// sRGB byte → stored linear value.
+fn decode_table() -> [u16; 256] {
+    let table = srgb();
+    std::array::from_fn(|s| round(f64::from(table.to_linear(s as u8) * ONE)) as u16)
+}
+
+/// One row of the next level from two source rows (the same row twice at an odd
+/// height's end): each output texel averages 2 × 2 source texels, rounding half up, the
+/// last column repeated at an odd width's end.
+fn halve_row(r0: &[Texel], r1: &[Texel], out_row: &mut [Texel]) {
+    let last = r0.len() - 1;
+    for (x, out) in out_row.iter_mut().enumerate() {
+        let x0 = (2 * x).min(last);
+        let x1 = (2 * x + 1).min(last);
+        *out = std::array::from_fn(|c| {
+            let sum = u32::from(r0[x0][c])
+                + u32::from(r0[x1][c])
+                + u32::from(r1[x0][c])
+                + u32::from(r1[x1][c]);
+            ((sum + 2) / 4) as u16
+        });
     }
 }
 
@@ -336,11 +419,37 @@ mod tests {
         let t = MipTexture::new(checker(4, 1));
         assert_eq!(t.level_count(), 3);
         // Half white, half black in linear light is 0.5 (sRGB 188, not 128).
-        assert_eq!(t.levels[2].texels, vec![[16384, 16384, 16384, 0]]);
-        assert_eq!(t.levels[0].texels[..2], [[32768, 32768, 32768, 0], [0; 4]]);
+        assert_eq!(t.level(2).texels, vec![[16384, 16384, 16384, 0]]);
+        assert_eq!(t.level(0).texels[..2], [[32768, 32768, 32768, 0], [0; 4]]);
         let odd = MipTexture::new(RgbImage::new(5, 3));
-        let sizes: Vec<_> = odd.levels.iter().map(|l| (l.width, l.height)).collect();
+        let sizes: Vec<_> = (0..odd.level_count())
+            .map(|i| (odd.level(i).width, odd.level(i).height))
+            .collect();
         assert_eq!(sizes, vec![(5, 3), (2, 1), (1, 1)]);
+    }
+
+    /// Level 1, halved from the sRGB bytes before level 0 exists, holds what halving the
+    /// decoded level 0 gives, for even and odd sizes, and level 0 is made only when read.
+    #[test]
+    fn level_one_from_srgb_bytes_is_level_zero_halved() {
+        for (w, h) in [(8, 6), (7, 5), (1, 9), (9, 1), (2, 2)] {
+            let image = RgbImage::from_fn(w, h, |x, y| {
+                Rgb([
+                    (x * 37 + y * 11) as u8,
+                    (x * y * 5) as u8,
+                    (255 - x * 3) as u8,
+                ])
+            });
+            let t = MipTexture::new(image);
+            assert!(t.base.get().is_none(), "{w} × {h}");
+            assert_eq!(t.level(0).halve().texels, t.level(1).texels, "{w} × {h}");
+            assert!(t.base.get().is_some());
+        }
+        let empty = MipTexture::new(RgbImage::new(0, 4));
+        assert_eq!(
+            (empty.level_count(), &empty.level(0).texels),
+            (1, &vec![[0; 4]])
+        );
     }
 
     #[test]
