@@ -92,7 +92,7 @@ impl ShadowMap {
         // Triangles in texel coordinates, binned by band.
         let tris: Vec<[[f64; 3]; 3]> = scene
             .triangles
-            .iter()
+            .par_iter()
             .map(|t| {
                 t.p.map(|p| {
                     let p = p.map(f64::from);
@@ -265,26 +265,29 @@ fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
             continue;
         };
         let (xa, xb) = (xa.max(x0), xb.min(x1));
+        if xa >= xb {
+            continue;
+        }
         let row = &mut band[(y - rows[0]) * width..][..width];
-        for (x, slot) in row.iter_mut().enumerate().take(xb).skip(xa) {
+        // The row's terms once; every texel then runs the same arithmetic, its depth kept
+        // or not by a select instead of a branch (mispredicted at every span's ends).
+        let (ay, by, cy) = (a[1] - py, b[1] - py, c[1] - py);
+        for (slot, x) in row[xa..xb].iter_mut().zip(xa..) {
             let px = x as f64 + 0.5;
             // Barycentric weights; a texel centre on an edge counts for both sides.
-            let w0 = ((b[0] - px) * (c[1] - py) - (b[1] - py) * (c[0] - px)) * inv;
-            let w1 = ((c[0] - px) * (a[1] - py) - (c[1] - py) * (a[0] - px)) * inv;
+            let w0 = ((b[0] - px) * cy - by * (c[0] - px)) * inv;
+            let w1 = ((c[0] - px) * ay - cy * (a[0] - px)) * inv;
             let w2 = 1.0 - w0 - w1;
-            if w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0 {
-                let z = (w0 * a[2] + w1 * b[2] + w2 * c[2]) as f32;
-                if z > *slot {
-                    *slot = z;
-                }
-            }
+            let z = (w0 * a[2] + w1 * b[2] + w2 * c[2]) as f32;
+            let nearer = (w0 >= 0.0) & (w1 >= 0.0) & (w2 >= 0.0) & (z > *slot);
+            *slot = if nearer { z } else { *slot };
         }
     }
 }
 
 /// Texels `[xa, xb)` of the row whose centres lie at `py` that can pass [`raster`]'s
 /// inside test: the x extent of the triangle within one texel of the row (clipped to the
-/// slab `py ± 1`), padded by two texels. The test's rounding errs by far less than a
+/// slab `py ± 1`), padded by a texel. The test's rounding errs by far less than a
 /// texel, so a centre it accepts always lies in the slab and inside the padding.
 fn row_span(t: &[[f64; 3]; 3], py: f64) -> Option<(usize, usize)> {
     let (lo, hi) = (py - 1.0, py + 1.0);
@@ -312,8 +315,8 @@ fn row_span(t: &[[f64; 3]; 3], py: f64) -> Option<(usize, usize)> {
     if x_min > x_max {
         return None;
     }
-    let xa = (x_min - 2.0).floor().max(0.0) as usize;
-    let xb = (x_max + 2.0).ceil().max(0.0) as usize;
+    let xa = (x_min - 1.0).floor().max(0.0) as usize;
+    let xb = (x_max + 1.0).ceil().max(0.0) as usize;
     Some((xa, xb))
 }
 
