@@ -112,7 +112,7 @@ impl ContactSheet {
             .frames
             .par_iter()
             .map(|(rgb, boxes)| {
-                let mut small = imageops::resize(rgb, w, h, imageops::FilterType::Triangle);
+                let mut small = halve(rgb);
                 for b in boxes {
                     let PixelBox {
                         x_min: x0,
@@ -143,6 +143,31 @@ impl ContactSheet {
     }
 }
 
+/// `rgb` at half its size (width and height halved, rounding down): each pixel the mean
+/// of a 2 × 2 block, rounding half up. A tenth of a filtered resize's cost (which took
+/// 20 ms of a 100-frame path's assembly) for a picture a sheet shows small.
+fn halve(rgb: &RgbImage) -> RgbImage {
+    let (w, h) = (rgb.width() / 2, rgb.height() / 2);
+    let stride = rgb.width() as usize * 3;
+    let raw = rgb.as_raw();
+    let mut small = RgbImage::new(w, h);
+    if w == 0 {
+        return small;
+    }
+    for (y, row) in small.chunks_exact_mut(w as usize * 3).enumerate() {
+        let top = &raw[2 * y * stride..][..stride];
+        let bottom = &raw[(2 * y + 1) * stride..][..stride];
+        for (x, px) in row.chunks_exact_mut(3).enumerate() {
+            for (c, out) in px.iter_mut().enumerate() {
+                let (a, b) = (6 * x + c, 6 * x + 3 + c);
+                let sum = u16::from(top[a]) + u16::from(top[b]) + u16::from(bottom[a]);
+                *out = ((sum + u16::from(bottom[b]) + 2) / 4) as u8;
+            }
+        }
+    }
+    small
+}
+
 /// The frames a path of `frames` frames shows on its sheet: up to `SHEET_FRAMES`,
 /// spread over the path.
 pub fn picks(frames: usize) -> Vec<usize> {
@@ -153,6 +178,18 @@ pub fn picks(frames: usize) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn halving_averages_two_by_two_blocks_and_drops_an_odd_edge() {
+        let rgb = RgbImage::from_fn(5, 3, |x, y| Rgb([(10 * x + y) as u8, 200, (x * y) as u8]));
+        let small = halve(&rgb);
+        assert_eq!(small.dimensions(), (2, 1));
+        // Block (0..2, 0..2): red 0, 10, 1, 11 → 5.5 → 6; blue 0, 0, 0, 1 → 0.25 → 0.
+        assert_eq!(small.get_pixel(0, 0).0, [6, 200, 0]);
+        // Block (2..4, 0..2): red 20, 30, 21, 31 → 25.5 → 26; blue 0, 0, 2, 3 → 1.25 → 1.
+        assert_eq!(small.get_pixel(1, 0).0, [26, 200, 1]);
+        assert_eq!(halve(&RgbImage::new(1, 7)).dimensions(), (0, 3));
+    }
 
     #[test]
     fn picks_spread_over_the_path() {
