@@ -42,6 +42,16 @@ const TAP_OFFSETS: [[f64; 4]; 5] = {
 /// Each tap's share of the sample, per number of taps.
 const TAP_SHARE: [f32; 5] = [1.0, 1.0, 0.5, 1.0 / 3.0, 0.25];
 
+/// How one pixel's texture sample is filtered ([`MipTexture::footprint`]): how many
+/// trilinear taps (1–[`MAX_ANISOTROPY`]), at which level of detail (level-0 texels per
+/// pixel, log2; NaN reads level 0), a tap apart along `axis` (uv per pixel).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Footprint {
+    taps: u32,
+    lod: f64,
+    axis: [f64; 2],
+}
+
 /// A texture with its mip levels, finest first.
 ///
 /// Level 0 is decoded from the kept sRGB bytes the first time a sample reads it: a view
@@ -171,14 +181,21 @@ impl MipTexture {
 
     /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), filtered
     /// anisotropically from the uv derivatives per screen pixel:
-    /// `d = [du/dx, dv/dx, du/dy, dv/dy]`.
+    /// `d = [du/dx, dv/dx, du/dy, dv/dy]` ([`MipTexture::footprint`], then
+    /// [`MipTexture::sample_at`]).
+    #[cfg(test)]
+    pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4], max_taps: f64) -> [f32; 3] {
+        self.sample_at(u, v, &self.footprint(d, max_taps))
+    }
+
+    /// How a pixel with uv derivatives `d = [du/dx, dv/dx, du/dy, dv/dy]` is filtered.
     ///
     /// A pixel's footprint on a wall seen at a slant is long and thin. Choosing the mip
     /// level from its long side (plain trilinear) blurs text across the short side; from its
     /// short side alone it shimmers along the long one. So the level comes from the long
     /// side ÷ the anisotropy (at most `max_taps`, itself at most [`MAX_ANISOTROPY`]), and
     /// that many trilinear taps are spread along the long side and averaged.
-    pub(crate) fn sample(&self, u: f64, v: f64, d: [f64; 4], max_taps: f64) -> [f32; 3] {
+    pub(crate) fn footprint(&self, d: [f64; 4], max_taps: f64) -> Footprint {
         let (w, h) = (f64::from(self.width), f64::from(self.height));
         let x2 = (d[0] * w) * (d[0] * w) + (d[1] * h) * (d[1] * h);
         let y2 = (d[2] * w) * (d[2] * w) + (d[3] * h) * (d[3] * h);
@@ -188,7 +205,12 @@ impl MipTexture {
             (y2, x2, [d[2], d[3]])
         };
         if major2.is_nan() {
-            return rgb(self.level(0).bilinear(u, v));
+            // Level 0, one bilinear tap (a NaN level reads level 0).
+            return Footprint {
+                taps: 1,
+                lod: f64::NAN,
+                axis,
+            };
         }
         // Taps: the footprint's aspect ratio `√(major2 / minor2)`, rounded up, at most
         // `max_taps`; and one texel apart at most: a footprint shorter than that many
@@ -208,14 +230,32 @@ impl MipTexture {
             .unwrap_or(most);
         let log_major2 = log2_approx(major2);
         if taps <= 1 {
-            return rgb(self.trilinear(u, v, 0.5 * log_major2));
+            return Footprint {
+                taps: 1,
+                lod: 0.5 * log_major2,
+                axis,
+            };
         }
         // The level of detail: log2 of the long footprint side ÷ the taps' spread, the
         // spread being the aspect ratio (or the length in texels), at most `max_taps`.
         let log_ratio2 = (log_major2 - log2_approx(minor2))
             .min(log_major2)
             .clamp(0.0, log2_approx(cap * cap));
-        let lod = 0.5 * (log_major2 - log_ratio2);
+        Footprint {
+            taps,
+            lod: 0.5 * (log_major2 - log_ratio2),
+            axis,
+        }
+    }
+
+    /// Linear colour at `(u, v)` (v down; any real value, the texture repeats), filtered
+    /// over `footprint`: its taps, each trilinear at its level of detail, spread along its
+    /// long axis and averaged.
+    pub(crate) fn sample_at(&self, u: f64, v: f64, footprint: &Footprint) -> [f32; 3] {
+        let Footprint { taps, lod, axis } = *footprint;
+        if taps <= 1 {
+            return rgb(self.trilinear(u, v, lod));
+        }
         let mut sum = [0f32; 4];
         for &t in &TAP_OFFSETS[taps as usize][..taps as usize] {
             let c = self.trilinear(u + t * axis[0], v + t * axis[1], lod);
