@@ -87,9 +87,10 @@ pub fn render_chunk(
     progress: impl Fn() + Sync,
 ) -> io::Result<Outputs> {
     let picks = crate::annotate::contact_sheet_picks(total);
-    // The sun's shadow map once, with every core, before the frames ask for it together.
+    // The sun's shadow map and the cloud field once, with every core, before the frames
+    // ask for them together.
     if range.start < range.end {
-        path.warm_shadows(range.start);
+        path.warm(range.start);
     }
     // A chunk's frames render side by side: a frame's serial tail (sensor, PNG encoding,
     // hashing, storing) overlaps another frame's tiles, where one frame at a time left a

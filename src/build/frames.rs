@@ -108,12 +108,19 @@ impl<'a> PathFrames<'a> {
         }
     }
 
-    /// Builds the shadow map frame `i` is lit by ahead of the frames (weather does not
-    /// move the sun), so frames rendered side by side find it built.
-    pub fn warm_shadows(&self, i: usize) {
-        let drawn_sun = self.input.relight.map(|f| f(i));
-        let lighting = drawn_sun.as_ref().map_or(self.input.lighting, |(l, _)| l);
-        render::warm_shadow_map(self.input.scene, lighting);
+    /// Builds what every frame reads ahead of the frames, side by side: the shadow map
+    /// frame `i` is lit by (weather does not move the sun), and the cloud field when the
+    /// path may draw clouds. Frames rendered side by side then find them built, instead
+    /// of waiting for the first of them to build one.
+    pub fn warm(&self, i: usize) {
+        rayon::join(
+            || {
+                let drawn_sun = self.input.relight.map(|f| f(i));
+                let lighting = drawn_sun.as_ref().map_or(self.input.lighting, |(l, _)| l);
+                render::warm_shadow_map(self.input.scene, lighting);
+            },
+            || sensor::warm_clouds(self.input.weather.clouds.ends()[1]),
+        );
     }
 
     /// The headlights of the car a `roads` camera rides in, aimed along frame `i`'s

@@ -31,7 +31,7 @@ mod rays;
 mod tone;
 mod weather;
 
-pub use clouds::{CloudLight, sun_shade};
+pub use clouds::{CloudLight, sun_shade, warm as warm_clouds};
 pub use conditions::{CLOUD_TILE, Conditions, draw};
 pub use tone::{auto_exposure, decode_srgb, tone_map};
 pub use weather::{WeatherLight, weather_light};
