@@ -7,6 +7,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use rand::Rng;
+use rayon::prelude::*;
 
 use super::super::BuildError;
 use super::super::cache::{Load, Miss, Outputs};
@@ -301,21 +302,40 @@ impl Pipeline<'_> {
                 }
                 Ok(outputs)
             };
-        for (chunk, range) in chunk_list.into_iter().zip(ranges) {
-            match chunk {
-                Chunk::Skip => {}
+        // What every frame reads (the shadow map, the cloud field) once, with every core,
+        // before chunks start side by side and each asks for it.
+        let first = chunk_list
+            .iter()
+            .zip(&ranges)
+            .find(|(c, r)| matches!(c, Chunk::Render) && !r.is_empty());
+        if let (Some((_, range)), Some(gathered)) = (first, state.gathered.as_ref()) {
+            self.with_path_input(index, gathered, |input| {
+                frames::PathFrames::new(input, poses).warm(range.start);
+            });
+        }
+        // Chunks render side by side, each one's frames side by side: a chunk's serial
+        // ends (its input, its last frame's tail, its summary and cache entry) overlap
+        // another chunk's frames. Outputs come back in chunk order.
+        let rendered: Vec<Option<Result<Outputs, BuildError>>> = chunk_list
+            .into_par_iter()
+            .zip(ranges)
+            .map(|(chunk, range)| match chunk {
+                Chunk::Skip => None,
                 Chunk::Cached(outputs) => {
                     done.fetch_add(range.len(), std::sync::atomic::Ordering::Relaxed);
-                    out.push(outputs);
+                    Some(Ok(outputs))
                 }
                 Chunk::Render => {
                     let gathered = state
                         .gathered
                         .as_ref()
                         .expect("path_state gathers the scene for chunks to render");
-                    out.push(render(range, gathered)?);
+                    Some(render(range, gathered))
                 }
-            }
+            })
+            .collect();
+        for outputs in rendered.into_iter().flatten() {
+            out.push(outputs?);
         }
         Ok(out)
     }
