@@ -412,7 +412,8 @@ fn shade(
         let mips = &scene.textures[texture as usize];
         // Pixels are shaded in pairs along a row: the second of two neighbours on one
         // surface takes the first's footprint (the derivatives change by a fraction of a
-        // percent from one pixel to the next), saving a third of a sample's cost.
+        // percent from one pixel to the next): every other pixel skips working out the
+        // footprint (derivatives, tap count, level).
         let footprint = match surface.footprint.take() {
             Some((fx, fy, footprint)) if fx + 1 == x && fy == y => footprint,
             _ => {
