@@ -111,16 +111,8 @@ impl MipTexture {
             let (sw, sh) = (width as usize, height as usize);
             let rows = image.as_raw();
             let decode_row = |y: usize, out: &mut Vec<Texel>| {
-                let (rgb, _) = rows[y.min(sh - 1) * sw * 3..][..sw * 3].as_chunks::<3>();
                 out.clear();
-                out.extend(rgb.iter().map(|&[r, g, b]| {
-                    [
-                        table[usize::from(r)],
-                        table[usize::from(g)],
-                        table[usize::from(b)],
-                        0,
-                    ]
-                }));
+                out.extend(decoded(&table, &rows[y.min(sh - 1) * sw * 3..][..sw * 3]));
             };
             let (mut r0, mut r1) = (Vec::with_capacity(sw), Vec::with_capacity(sw));
             coarser.push(Level::halved(width, height, |y, out_row| {
@@ -150,24 +142,10 @@ impl MipTexture {
     #[inline]
     fn level(&self, i: usize) -> &Level {
         if i == 0 {
-            self.base.get_or_init(|| {
-                let table = decode_table();
-                let (rgb, _) = self.source.as_raw().as_chunks::<3>();
-                Level {
-                    width: self.width,
-                    height: self.height,
-                    texels: rgb
-                        .iter()
-                        .map(|&[r, g, b]| {
-                            [
-                                table[usize::from(r)],
-                                table[usize::from(g)],
-                                table[usize::from(b)],
-                                0,
-                            ]
-                        })
-                        .collect(),
-                }
+            self.base.get_or_init(|| Level {
+                width: self.width,
+                height: self.height,
+                texels: decoded(&decode_table(), self.source.as_raw()).collect(),
             })
         } else {
             &self.coarser[i - 1]
@@ -349,6 +327,19 @@ impl Level {
 fn decode_table() -> [u16; 256] {
     let table = srgb();
     std::array::from_fn(|s| round(f64::from(table.to_linear(s as u8) * ONE)) as u16)
+}
+
+/// The texels of sRGB bytes `rgb` (three per texel), through `table`.
+fn decoded<'a>(table: &'a [u16; 256], rgb: &'a [u8]) -> impl Iterator<Item = Texel> + 'a {
+    let (texels, _) = rgb.as_chunks::<3>();
+    texels.iter().map(|&[r, g, b]| {
+        [
+            table[usize::from(r)],
+            table[usize::from(g)],
+            table[usize::from(b)],
+            0,
+        ]
+    })
 }
 
 /// One row of the next level from two source rows (the same row twice at an odd
