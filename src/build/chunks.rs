@@ -77,7 +77,8 @@ pub fn chunk_key(frames_key: &str, range: &Range<usize>) -> String {
 /// Renders the frames of `range`: each file into the cache as it is made (or, with
 /// `store` false, as `cityspec verify` reruns a stage, only hashed; the RGB images the
 /// contact sheet picks, or with `keep_all` every file, for WebDataset tars, are then kept
-/// in memory), then `summary.jsonl`. `progress` is told of each frame done.
+/// in memory), then `summary.jsonl`. `progress` is told of each frame done. The caller
+/// builds what every frame reads first ([`PathFrames::warm`]).
 pub fn render_chunk(
     cache: &Cache,
     path: &PathFrames,
@@ -87,11 +88,6 @@ pub fn render_chunk(
     progress: impl Fn() + Sync,
 ) -> io::Result<Outputs> {
     let picks = crate::annotate::contact_sheet_picks(total);
-    // The sun's shadow map and the cloud field once, with every core, before the frames
-    // ask for them together.
-    if range.start < range.end {
-        path.warm(range.start);
-    }
     // A chunk's frames render side by side: a frame's serial tail (sensor, PNG encoding,
     // hashing, storing) overlaps another frame's tiles, where one frame at a time left a
     // core idle. Each frame's files and record are collected per frame and joined in frame

@@ -280,7 +280,6 @@ impl Pipeline<'_> {
         let store = !self.rechecking;
         let poses = &state.plan.poses;
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let mut out = Vec::with_capacity(ranges.len());
         let chunk_list = std::mem::take(&mut state.chunks);
         let render =
             |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
@@ -303,7 +302,8 @@ impl Pipeline<'_> {
                 Ok(outputs)
             };
         // What every frame reads (the shadow map, the cloud field) once, with every core,
-        // before chunks start side by side and each asks for it.
+        // before chunks start side by side and each asks for it (`render_chunk` does not:
+        // two chunks starting together would each build the same map).
         let first = chunk_list
             .iter()
             .zip(&ranges)
@@ -334,10 +334,8 @@ impl Pipeline<'_> {
                 }
             })
             .collect();
-        for outputs in rendered.into_iter().flatten() {
-            out.push(outputs?);
-        }
-        Ok(out)
+        // The first error in chunk order, whichever chunk failed first.
+        rendered.into_iter().flatten().collect()
     }
 
     /// Path `index`'s prepared scene, poses and first frame's lighting, for
