@@ -27,6 +27,8 @@ pub mod obj;
 mod sample_scene;
 pub mod texture_files;
 
+use std::sync::Arc;
+
 use crate::model::Scene;
 pub use texture_files::{TextureFile, TextureFiles};
 
@@ -35,7 +37,8 @@ pub const VERSION: u32 = 2;
 
 /// The export stage: scene → files, as (path relative to the output folder, bytes), sorted
 /// by path: `city.glb`, `city.mtl`, `city.obj`, `textures/<first 16 hex of sha256>.png`…
-pub fn export(scene: &Scene) -> Vec<(String, Vec<u8>)> {
+/// A texture file's bytes are the scene texture's own PNG, shared, not copied.
+pub fn export(scene: &Scene) -> Vec<(String, Arc<Vec<u8>>)> {
     let textures = TextureFiles::collect(scene);
     // The GLB and the OBJ text are the two big writes: one on each core.
     let (glb, obj) = rayon::join(
@@ -43,11 +46,15 @@ pub fn export(scene: &Scene) -> Vec<(String, Vec<u8>)> {
         || obj::write_obj(scene, &textures),
     );
     let mut files = Vec::with_capacity(3 + textures.files().len());
-    files.push(("city.glb".to_owned(), glb));
-    files.push(("city.mtl".to_owned(), mtl::write_mtl(scene, &textures)));
-    files.push(("city.obj".to_owned(), obj));
+    files.push(("city.glb".to_owned(), Arc::new(glb)));
+    files.push((
+        "city.mtl".to_owned(),
+        Arc::new(mtl::write_mtl(scene, &textures)),
+    ));
+    files.push(("city.obj".to_owned(), Arc::new(obj)));
     for file in textures.files() {
-        files.push((file.path.clone(), scene.textures[file.texture].png.to_vec()));
+        let png = &scene.textures[file.texture].png;
+        files.push((file.path.clone(), Arc::clone(png)));
     }
     files.sort_by(|a, b| a.0.cmp(&b.0));
     files
@@ -142,7 +149,7 @@ mod tests {
         for (path, bytes) in export(&sample_scene()) {
             let path = dir.join(path);
             std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-            std::fs::write(&path, bytes).unwrap();
+            std::fs::write(&path, &bytes[..]).unwrap();
         }
     }
 }

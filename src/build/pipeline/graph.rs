@@ -277,7 +277,7 @@ impl Pipeline<'_> {
                 );
                 let outputs = files
                     .into_iter()
-                    .map(|(path, bytes)| (path, Blob::from(bytes)))
+                    .map(|(path, bytes)| (path, Blob::Bytes(bytes)))
                     .collect();
                 Ok(((), outputs))
             },
