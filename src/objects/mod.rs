@@ -312,20 +312,21 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
     Ok(placing.out)
 }
 
-/// Appends `inserted` to `scene`, re-basing material and texture indices; returns the index
-/// of the first inserted object in scene.objects.
+/// Moves the objects, materials and textures of `inserted` into `scene`, re-basing
+/// material and texture indices; returns the index of the first inserted object in
+/// scene.objects. The rest of `inserted` (`info`, `sign_faces`, `placed`) is not read.
 ///
 /// A material whose name the scene already uses is renamed `<name>_2`, `<name>_3`, … (and
 /// its texture with it), so exported names stay unique.
-pub fn merge(scene: &mut Scene, inserted: &Inserted) -> usize {
+pub fn merge(scene: &mut Scene, inserted: Inserted) -> usize {
     let texture_base = scene.textures.len() as u32;
     let material_base = scene.materials.len() as u32;
     let mut material_names: BTreeSet<String> =
         scene.materials.iter().map(|m| m.name.clone()).collect();
     let mut texture_names: BTreeSet<String> =
         scene.textures.iter().map(|t| t.name.clone()).collect();
-    let mut textures = inserted.textures.clone();
-    for material in &inserted.materials {
+    let mut textures = inserted.textures;
+    for material in inserted.materials {
         let mut name = material.name.clone();
         let mut n = 2u32;
         while material_names.contains(&name)
@@ -342,23 +343,18 @@ pub fn merge(scene: &mut Scene, inserted: &Inserted) -> usize {
         scene.materials.push(Material {
             name,
             texture: material.texture.map(|t| t + texture_base),
-            ..material.clone()
+            ..material
         });
     }
     scene.textures.extend(textures);
     let first = scene.objects.len();
-    scene.objects.extend(inserted.objects.iter().map(|o| {
-        SceneObject {
-            meshes: o
-                .meshes
-                .iter()
-                .map(|m| Mesh {
-                    material: m.material + material_base,
-                    ..m.clone()
-                })
-                .collect(),
-            ..o.clone()
-        }
-    }));
+    scene
+        .objects
+        .extend(inserted.objects.into_iter().map(|mut object| {
+            for mesh in &mut object.meshes {
+                mesh.material += material_base;
+            }
+            object
+        }));
     first
 }

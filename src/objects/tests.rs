@@ -642,7 +642,7 @@ fn merge_rebases_indices() {
         SEED,
     );
     let before = scene.clone();
-    let first = merge(&mut scene, &inserted);
+    let first = merge(&mut scene, inserted.clone());
     assert_eq!(first, before.objects.len());
     assert_eq!(scene.objects.len(), first + inserted.objects.len());
     assert_eq!(scene.objects[..first], before.objects[..]);
@@ -675,7 +675,7 @@ fn merge_rebases_indices() {
     let mut clash = inserted.clone();
     clash.materials[0].name = "asphalt".to_owned();
     let mut scene = before.clone();
-    merge(&mut scene, &clash);
+    merge(&mut scene, clash);
     let renamed = &scene.materials[before.materials.len()];
     assert_eq!(renamed.name, "asphalt_2");
 }

@@ -52,7 +52,7 @@ impl Pipeline<'_> {
             || render::TextureMips::of(&built.textures),
         );
         self.mips = mips;
-        let inserted = inserted.map_err(|source| BuildError::Objects {
+        let mut inserted = inserted.map_err(|source| BuildError::Objects {
             spec: self.spec_path.clone(),
             source,
         })?;
@@ -65,14 +65,12 @@ impl Pipeline<'_> {
             });
         }
         self.warnings.extend(shortfalls);
-        let first = objects::merge(&mut built, &inserted);
-        self.sign_faces = inserted
-            .sign_faces
-            .iter()
-            .map(|(i, f)| (first + i, *f))
-            .collect();
+        let sign_faces = std::mem::take(&mut inserted.sign_faces);
+        let info = std::mem::take(&mut inserted.info);
+        let first = objects::merge(&mut built, inserted);
+        self.sign_faces = sign_faces.iter().map(|(i, f)| (first + i, *f)).collect();
         self.object_info = vec![None; first];
-        self.object_info.extend(inserted.info.into_iter().map(Some));
+        self.object_info.extend(info.into_iter().map(Some));
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {
             stage: "scene",
