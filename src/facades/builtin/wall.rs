@@ -64,17 +64,36 @@ fn plaster(c: &mut Canvas, r: PxRect, colour: Colour, rng: &mut Pcg64) {
     let gh = r.height() / BLOTCH + 2;
     let grid: Vec<f64> = (0..gw * gh).map(|_| rng.random_range(-7.0..7.0)).collect();
     let mut noise = Grain::new(rng);
+    let at = |gx: u32, gy: u32| grid[(gy * gw + gx) as usize];
+    // The blotch is bilinear in the grid: each column's mix along x of the grid rows above
+    // and below is the same for every pixel row of a grid band, so it is worked out once
+    // a band (the same sums as per pixel, so the same values).
+    let columns: Vec<(u32, f64)> = (0..r.width())
+        .map(|dx| {
+            let fx = f64::from(dx) / f64::from(BLOTCH);
+            let ix = fx as u32;
+            (ix, fx - f64::from(ix))
+        })
+        .collect();
+    let mut band = (u32::MAX, Vec::new(), Vec::new());
+    let mut row = (u32::MAX, 0.0);
     c.each(r, |x, y, _| {
-        let (fx, fy) = (
-            f64::from(x - r.x0) / f64::from(BLOTCH),
-            f64::from(y - r.y0) / f64::from(BLOTCH),
-        );
-        let (ix, iy) = (fx as u32, fy as u32);
-        let (tx, ty) = (fx - f64::from(ix), fy - f64::from(iy));
-        let at = |gx: u32, gy: u32| grid[(gy * gw + gx) as usize];
-        let top = at(ix, iy) * (1.0 - tx) + at(ix + 1, iy) * tx;
-        let bottom = at(ix, iy + 1) * (1.0 - tx) + at(ix + 1, iy + 1) * tx;
-        let blotch = round_i32(top * (1.0 - ty) + bottom * ty);
+        if row.0 != y {
+            let fy = f64::from(y - r.y0) / f64::from(BLOTCH);
+            let iy = fy as u32;
+            if band.0 != iy {
+                let along = |gy: u32| -> Vec<f64> {
+                    columns
+                        .iter()
+                        .map(|&(ix, tx)| at(ix, gy) * (1.0 - tx) + at(ix + 1, gy) * tx)
+                        .collect()
+                };
+                band = (iy, along(iy), along(iy + 1));
+            }
+            row = (y, fy - f64::from(iy));
+        }
+        let (i, ty) = ((x - r.x0) as usize, row.1);
+        let blotch = round_i32(band.1[i] * (1.0 - ty) + band.2[i] * ty);
         let grain = noise.next(3);
         colour.map(|v| add(v, blotch + grain))
     });
