@@ -28,6 +28,7 @@ pub const VERSION: u32 = 11;
 mod atlas_layout;
 mod bicycle;
 mod car;
+mod entry_groups;
 mod footprint_grid;
 mod ground_spots;
 pub mod obj_lines;
@@ -177,24 +178,63 @@ pub struct ObjectInfo {
     pub attributes: BTreeMap<String, String>,
 }
 
-/// State shared by the entries while they are placed in order.
+/// State shared by the entries of one group (see [`entry_groups`]) while they are placed
+/// in order. It records every name and material asked for, so that the groups' results
+/// can be replayed into one as if every entry had been placed in turn.
 pub(crate) struct Placing<'a> {
     pub input: &'a ObjectsInput<'a>,
-    pub book: MaterialBook,
+    book: MaterialBook,
+    /// Per material of `book`, how it was asked for.
+    requests: Vec<MaterialRequest>,
     /// Material of a name already registered (sign faces, poles), so it is made once.
-    pub cached: BTreeMap<String, u32>,
+    cached: BTreeMap<String, u32>,
     pub out: Inserted,
     /// Next number per object-name prefix.
     counters: BTreeMap<String, u32>,
+    /// The prefix of every name handed out, in order.
+    name_calls: Vec<String>,
 }
 
-impl Placing<'_> {
+/// How a material came to be registered: the name asked for (before the book makes it
+/// unique) and, for one registered once per name, that name as its key.
+#[derive(Clone, Debug)]
+struct MaterialRequest {
+    name: String,
+    once: bool,
+}
+
+impl<'a> Placing<'a> {
+    fn new(input: &'a ObjectsInput<'a>) -> Placing<'a> {
+        Placing {
+            input,
+            book: MaterialBook::default(),
+            requests: Vec::new(),
+            cached: BTreeMap::new(),
+            out: Inserted::default(),
+            counters: BTreeMap::new(),
+            name_calls: Vec::new(),
+        }
+    }
+
     /// The next unique name `<prefix>_NNNN`.
     pub fn name(&mut self, prefix: &str) -> String {
-        let n = self.counters.entry(prefix.to_owned()).or_insert(0);
-        let name = format!("{prefix}_{n:04}");
-        *n += 1;
-        name
+        self.name_calls.push(prefix.to_owned());
+        next_name(&mut self.counters, prefix)
+    }
+
+    /// Registers a material (its name made unique by the book) and returns its index.
+    pub fn add(
+        &mut self,
+        name: &str,
+        colour: [f32; 3],
+        texture: Option<&Texture>,
+        emissive: [f32; 3],
+    ) -> u32 {
+        self.requests.push(MaterialRequest {
+            name: name.to_owned(),
+            once: false,
+        });
+        self.book.add(name, colour, texture, emissive)
     }
 
     /// A material registered once under `name`, made by `make` the first time.
@@ -207,9 +247,7 @@ impl Placing<'_> {
             return m;
         }
         let (colour, texture) = make();
-        let m = self.book.add(name, colour, texture.as_ref(), [0.0; 3]);
-        self.cached.insert(name.to_owned(), m);
-        m
+        self.add_once(name, colour, texture.as_ref(), [0.0; 3])
     }
 
     /// A plain material of a colour drawn from `palette` (uniform, one draw of `rng`),
@@ -225,7 +263,18 @@ impl Placing<'_> {
         if let Some(&m) = self.cached.get(name) {
             return m;
         }
-        let m = self.book.add(name, colour, None, emissive);
+        self.add_once(name, colour, None, emissive)
+    }
+
+    fn add_once(
+        &mut self,
+        name: &str,
+        colour: [f32; 3],
+        texture: Option<&Texture>,
+        emissive: [f32; 3],
+    ) -> u32 {
+        let m = self.add(name, colour, texture, emissive);
+        self.requests[m as usize].once = true;
         self.cached.insert(name.to_owned(), m);
         m
     }
@@ -252,45 +301,67 @@ impl Placing<'_> {
     }
 }
 
-/// Places every spec entry's objects, in entry order. Pure and deterministic.
+/// Places every spec entry's objects, as if in entry order. Pure and deterministic.
 ///
 /// Errors for mesh entries: a model missing from `meshes`, an OBJ/MTL tobj cannot read, a
 /// texture the MTL names that is missing or not an image; for text entries: a word file
-/// missing from `meshes` or without words. Each error names the file.
+/// missing from `meshes` or without words. Each error names the file. With several, the
+/// first entry's.
 pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
-    let mut placing = Placing {
-        input,
-        book: MaterialBook::default(),
-        cached: BTreeMap::new(),
-        out: Inserted::default(),
-        counters: BTreeMap::new(),
-    };
+    entry_groups::insert(input)
+}
+
+/// Entries placed into one [`Placing`], and per entry of the spec (`None` for the others)
+/// what of it that entry made.
+struct PlacedEntries<'a> {
+    placing: Placing<'a>,
+    shares: Vec<Option<EntryShare>>,
+}
+
+/// Places the entries of `input.specs` for which `chosen` holds, in order, each with its
+/// own stream, into one [`Placing`]. An error comes with its entry's index.
+fn place_entries<'a>(
+    input: &'a ObjectsInput<'a>,
+    chosen: impl Fn(&ObjectSpec) -> bool,
+) -> Result<PlacedEntries<'a>, (usize, ObjectsError)> {
+    let mut placing = Placing::new(input);
+    let mut shares = vec![None; input.specs.len()];
     let mut spots = ground_spots::GroundSpots::new(input);
-    let mut walls = wall_text::Walls::new(input);
+    let mut walls = None;
     for (i, spec) in input.specs.iter().enumerate() {
+        if !chosen(spec) {
+            continue;
+        }
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
-        let before = placing.out.objects.len();
+        let before = EntryShare::start(&placing);
         let mut counted = None;
-        match spec.kind {
-            ObjectKind::Text => walls.place(spec, &mut rng, &mut placing)?,
-            ObjectKind::Sign => traffic_signs::place(spec, &mut rng, &mut spots, &mut placing),
-            ObjectKind::Mesh => {
-                user_mesh::place(spec, &mut rng, &mut spots, &mut placing)?;
+        let placed = match spec.kind {
+            ObjectKind::Text => walls
+                .get_or_insert_with(|| wall_text::Walls::new(input))
+                .place(spec, &mut rng, &mut placing),
+            ObjectKind::Sign => {
+                traffic_signs::place(spec, &mut rng, &mut spots, &mut placing);
+                Ok(())
             }
-            ObjectKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
-            ObjectKind::Tree => tree::place(spec, &mut rng, &mut spots, &mut placing),
-            ObjectKind::Person => person::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
+            ObjectKind::Car => {
+                car::place(spec, &mut rng, &mut spots, &mut placing);
+                Ok(())
+            }
+            ObjectKind::Tree => {
+                tree::place(spec, &mut rng, &mut spots, &mut placing);
+                Ok(())
+            }
+            ObjectKind::Person => {
+                person::place(spec, &mut rng, &mut spots, &mut placing);
+                Ok(())
+            }
             ObjectKind::Bicycle => {
                 counted = Some(bicycle::place(spec, &mut rng, &mut spots, &mut placing));
+                Ok(())
             }
-            ObjectKind::StreetName => {
-                counted = Some(street_names::place(
-                    spec,
-                    &mut rng,
-                    &mut spots,
-                    &mut placing,
-                )?);
-            }
+            ObjectKind::StreetName => street_names::place(spec, &mut rng, &mut spots, &mut placing)
+                .map(|n| counted = Some(n)),
             ObjectKind::TrafficLight => {
                 counted = Some(traffic_lights::place(
                     spec,
@@ -298,18 +369,60 @@ pub fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
                     &mut spots,
                     &mut placing,
                 ));
+                Ok(())
             }
-        }
+        };
+        placed.map_err(|e| (i, e))?;
         // Street-name and traffic-light entries count poles (each carries four text faces
         // or two signal heads), bicycle entries bicycles (a ridden one has a rider); the
         // others count objects.
-        let placed = counted.unwrap_or((placing.out.objects.len() - before) as u32);
-        placing.out.placed.push(placed);
+        shares[i] = Some(before.end(&placing, counted));
     }
-    let (textures, materials) = placing.book.finish();
-    placing.out.textures = textures;
-    placing.out.materials = materials;
-    Ok(placing.out)
+    Ok(PlacedEntries { placing, shares })
+}
+
+/// What one entry made in its [`Placing`]: ranges of its objects, materials and name
+/// calls, and how many it placed by its `count`'s measure.
+#[derive(Clone, Debug)]
+struct EntryShare {
+    objects: std::ops::Range<usize>,
+    materials: std::ops::Range<usize>,
+    names: std::ops::Range<usize>,
+    placed: u32,
+}
+
+impl EntryShare {
+    fn start(placing: &Placing) -> EntryShare {
+        let (o, m, n) = (
+            placing.out.objects.len(),
+            placing.requests.len(),
+            placing.name_calls.len(),
+        );
+        EntryShare {
+            objects: o..o,
+            materials: m..m,
+            names: n..n,
+            placed: 0,
+        }
+    }
+
+    fn end(self, placing: &Placing, counted: Option<u32>) -> EntryShare {
+        let objects = self.objects.start..placing.out.objects.len();
+        EntryShare {
+            placed: counted.unwrap_or(objects.len() as u32),
+            objects,
+            materials: self.materials.start..placing.requests.len(),
+            names: self.names.start..placing.name_calls.len(),
+        }
+    }
+}
+
+/// The next name `<prefix>_NNNN` by `counters`.
+fn next_name(counters: &mut BTreeMap<String, u32>, prefix: &str) -> String {
+    let n = counters.entry(prefix.to_owned()).or_insert(0);
+    let name = format!("{prefix}_{n:04}");
+    *n += 1;
+    name
 }
 
 /// Moves the objects, materials and textures of `inserted` into `scene`, re-basing

@@ -1565,3 +1565,61 @@ fn zebra_spots_travel_across_their_road_and_never_overlap() {
     }
     assert!(taken.len() >= 20, "{}", taken.len());
 }
+
+/// Every entry placed in turn in one [`Placing`]: what [`insert`] must give.
+fn in_turn(city: &City, specs: &[ObjectSpec]) -> Inserted {
+    let input = input(city, specs);
+    let PlacedEntries { placing, shares } =
+        place_entries(&input, |_| true).map_err(|(_, e)| e).unwrap();
+    let mut out = placing.out;
+    (out.textures, out.materials) = placing.book.finish();
+    out.placed = shares.into_iter().map(|s| s.unwrap().placed).collect();
+    out
+}
+
+#[test]
+fn groups_placed_side_by_side_give_what_placing_in_turn_gives() {
+    let city = city();
+    let text = |label: &str, count| ObjectSpec {
+        letter_height: [0.3, 0.8],
+        ..spec(ObjectKind::Text, label, count)
+    };
+    // Interleaved kinds, with what the two groups could get wrong when replayed: street
+    // names make `text_` objects as wall text does, a bench labelled `text` too; the
+    // second text entry's atlas pages are named as the street names' pages (`text_street_
+    // atlas_0`); two sign entries share their once-registered pole and faces.
+    let specs = vec![
+        ObjectSpec {
+            letter_height: [0.18, 0.24],
+            ..spec(ObjectKind::StreetName, "text", 4)
+        },
+        text("text", 20),
+        ObjectSpec {
+            label: "text".to_owned(),
+            ..bench(5, Ground::Sidewalk)
+        },
+        spec(ObjectKind::Sign, "traffic_sign", 8),
+        text("text_street", 12),
+        spec(ObjectKind::Car, "car", 6),
+        spec(ObjectKind::Sign, "traffic_sign", 4),
+        spec(ObjectKind::Tree, "tree", 6),
+        spec(ObjectKind::TrafficLight, "traffic_light", 2),
+    ];
+    let expected = in_turn(&city, &specs);
+    let got = run(&city, &specs).unwrap();
+    // The cases above happen: the same names and material names asked for by both groups.
+    let named = |prefix: &str| {
+        expected
+            .objects
+            .iter()
+            .filter(|o| o.name.starts_with(prefix))
+            .count()
+    };
+    assert!(named("text_") > 36, "street-name faces, plates and benches");
+    let materials: Vec<&str> = expected.materials.iter().map(|m| &m.name[..]).collect();
+    assert!(
+        materials.contains(&"text_street_atlas_0_2"),
+        "{materials:?}"
+    );
+    assert_eq!(got, expected);
+}

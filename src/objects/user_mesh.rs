@@ -249,9 +249,7 @@ pub fn place(
                 .iter()
                 .map(|m| {
                     let key = format!("{}_{}", spec.label, m.name);
-                    placing
-                        .book
-                        .add(&key, m.colour, m.texture.as_ref(), [0.0; 3])
+                    placing.add(&key, m.colour, m.texture.as_ref(), [0.0; 3])
                 })
                 .collect()
         });

@@ -323,7 +323,7 @@ pub(crate) fn finish_plates(
         .enumerate()
         .map(|(i, page)| {
             let name = format!("{page_name}_{i}");
-            placing.book.add(&name, [1.0; 3], Some(page), [0.0; 3])
+            placing.add(&name, [1.0; 3], Some(page), [0.0; 3])
         })
         .collect();
     for (i, p) in placed.into_iter().enumerate() {
