@@ -15,6 +15,7 @@
 //! number are left out of that primitive.
 
 use std::collections::BTreeMap;
+use std::ops::Range;
 
 use super::gltf_document::*;
 use super::texture_files::TextureFiles;
@@ -27,23 +28,32 @@ const CHUNK_BIN: &[u8; 4] = b"BIN\0";
 const ROUGHNESS: f32 = 0.9;
 
 /// The GLB bytes of `scene`, embedding the PNG of every file in `textures`.
+///
+/// The JSON is made first, from where every part of the BIN chunk will go; then the file
+/// is allocated once, zeroed, and the BIN chunk's sections are filled in place, each on
+/// its own task (a city's are tens of megabytes: no second buffer, no copy).
 pub fn write_glb(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
-    let (document, bin) = build(scene, textures);
-    let mut json = serde_json::to_vec(&document).expect("the glTF document serializes");
+    let plan = plan(scene, textures);
+    let mut json = serde_json::to_vec(&plan.doc).expect("the glTF document serializes");
     json.resize(align4(json.len()), b' ');
-    let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let bin_len = align4(plan.end);
+    let bin_chunk = if bin_len == 0 { 0 } else { 8 + bin_len };
     let total = 12 + 8 + json.len() + bin_chunk;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(CHUNK_JSON);
-    out.extend_from_slice(&json);
-    if !bin.is_empty() {
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(CHUNK_BIN);
-        out.extend_from_slice(&bin);
+    // Zeroed: the BIN's padding, and the uvs of a mesh without its own, stay zero.
+    let mut out = vec![0u8; total];
+    let mut header = Vec::with_capacity(28);
+    header.extend_from_slice(MAGIC);
+    header.extend_from_slice(&2u32.to_le_bytes());
+    header.extend_from_slice(&(total as u32).to_le_bytes());
+    header.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    header.extend_from_slice(CHUNK_JSON);
+    out[..20].copy_from_slice(&header[..20]);
+    out[20..20 + json.len()].copy_from_slice(&json);
+    if bin_len > 0 {
+        let at = 20 + json.len();
+        out[at..at + 4].copy_from_slice(&(bin_len as u32).to_le_bytes());
+        out[at + 4..at + 8].copy_from_slice(CHUNK_BIN);
+        fill(&mut out[at + 8..], &plan);
     }
     out
 }
@@ -83,7 +93,6 @@ impl PrimitiveParts {
 /// One geometry section of the BIN chunk: its bufferView and the next free byte in it.
 struct Section {
     view: u32,
-    start: usize,
     used: usize,
 }
 
@@ -99,16 +108,16 @@ impl Section {
     ) -> Option<Section> {
         (length > 0).then(|| Section {
             view: push_view(doc, start, length, stride, Some(target)),
-            start,
             used: 0,
         })
     }
 
-    /// Claims `length` bytes: returns the range in the BIN chunk and the offset in the view.
-    fn claim(&mut self, length: usize) -> (std::ops::Range<usize>, usize) {
+    /// Claims `length` bytes: returns the range within the section and the offset in the
+    /// view (the same number: a section is one view).
+    fn claim(&mut self, length: usize) -> (Range<usize>, usize) {
         let offset = self.used;
         self.used += length;
-        (self.start + offset..self.start + self.used, offset)
+        (offset..self.used, offset)
     }
 }
 
@@ -120,8 +129,29 @@ struct Sections {
     indices: Option<Section>,
 }
 
-/// The JSON document and the (4-byte padded) BIN chunk data.
-fn build(scene: &Scene, textures: &TextureFiles) -> (GltfDocument, Vec<u8>) {
+/// The JSON document, and where every byte of the BIN chunk comes from.
+struct Plan<'s> {
+    doc: GltfDocument,
+    /// Byte lengths of the position, normal, uv and index sections, in BIN order.
+    sections: [usize; 4],
+    /// Per texture file, its PNG and where it starts in BIN.
+    images: Vec<(usize, &'s [u8])>,
+    primitives: Vec<PrimitiveSlots<'s>>,
+    /// The end of the last byte used (BIN is this, padded to 4).
+    end: usize,
+}
+
+/// Where one primitive's data goes: ranges within each section.
+struct PrimitiveSlots<'s> {
+    mesh: &'s Mesh,
+    positions: Range<usize>,
+    normals: Option<Range<usize>>,
+    /// With the mesh's own uvs or, when it has none, the zeros the file starts with.
+    uvs: Option<Range<usize>>,
+    indices: Range<usize>,
+}
+
+fn plan<'s>(scene: &'s Scene, textures: &TextureFiles) -> Plan<'s> {
     let mut doc = GltfDocument {
         asset: Asset {
             version: "2.0",
@@ -130,7 +160,7 @@ fn build(scene: &Scene, textures: &TextureFiles) -> (GltfDocument, Vec<u8>) {
         ..GltfDocument::default()
     };
 
-    // Sizes first, so the buffer is allocated once and every view placed up front.
+    // Sizes first, so every view is placed up front.
     let (mut positions, mut normals, mut uvs, mut indices) = (0, 0, 0, 0);
     let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
     for parts in meshes().filter_map(|mesh| PrimitiveParts::of(mesh, scene, textures)) {
@@ -157,18 +187,13 @@ fn build(scene: &Scene, textures: &TextureFiles) -> (GltfDocument, Vec<u8>) {
         ),
     };
     let mut end = positions + normals + uvs + indices;
-    let mut image_at = Vec::with_capacity(textures.files().len());
+    let mut images = Vec::with_capacity(textures.files().len());
     for file in textures.files() {
-        let start = align4(end);
-        image_at.push(start);
-        end = start + scene.textures[file.texture].png.len();
-    }
-    let mut bin = vec![0u8; align4(end)];
-
-    for (file, &offset) in textures.files().iter().zip(&image_at) {
         let texture = &scene.textures[file.texture];
-        bin[offset..offset + texture.png.len()].copy_from_slice(&texture.png);
-        let buffer_view = push_view(&mut doc, offset, texture.png.len(), None, None);
+        let start = align4(end);
+        end = start + texture.png.len();
+        images.push((start, &texture.png[..]));
+        let buffer_view = push_view(&mut doc, start, texture.png.len(), None, None);
         doc.images.push(Image {
             name: texture.name.clone(),
             buffer_view,
@@ -176,14 +201,15 @@ fn build(scene: &Scene, textures: &TextureFiles) -> (GltfDocument, Vec<u8>) {
         });
     }
 
+    let mut slots = Vec::new();
     for object in &scene.objects {
         let primitives: Vec<Primitive> = object
             .meshes
             .iter()
             .filter_map(|mesh| {
                 let parts = PrimitiveParts::of(mesh, scene, textures)?;
-                let mut primitive =
-                    write_primitive(&mut doc, &mut bin, &mut sections, mesh, &parts);
+                let (mut primitive, slot) = place_primitive(&mut doc, &mut sections, mesh, &parts);
+                slots.push(slot);
                 primitive.material =
                     ((mesh.material as usize) < scene.materials.len()).then_some(mesh.material);
                 Some(primitive)
@@ -209,28 +235,40 @@ fn build(scene: &Scene, textures: &TextureFiles) -> (GltfDocument, Vec<u8>) {
     doc.scenes.push(GltfScene {
         nodes: (0..doc.nodes.len() as u32).collect(),
     });
-    if !bin.is_empty() {
+    if end > 0 {
         doc.buffers.push(Buffer {
             byte_length: end as u64,
         });
     }
-    (doc, bin)
+    Plan {
+        doc,
+        sections: [positions, normals, uvs, indices],
+        images,
+        primitives: slots,
+        end,
+    }
 }
 
-/// Writes one mesh's attributes and indices into their sections; returns the primitive
-/// (without its material) referring to the new accessors.
-fn write_primitive(
+/// Adds one mesh's accessors, claiming its share of each section; returns the primitive
+/// (without its material) referring to them, and where its data goes.
+fn place_primitive<'s>(
     doc: &mut GltfDocument,
-    bin: &mut [u8],
     sections: &mut Sections,
-    mesh: &Mesh,
+    mesh: &'s Mesh,
     parts: &PrimitiveParts,
-) -> Primitive {
+) -> (Primitive, PrimitiveSlots<'s>) {
     // The sections were sized from the same parts, so each one needed here exists.
     let mut attributes = BTreeMap::new();
+    let mut slots = PrimitiveSlots {
+        mesh,
+        positions: 0..0,
+        normals: None,
+        uvs: None,
+        indices: 0..0,
+    };
     if let Some(section) = sections.positions.as_mut() {
         let (range, offset) = section.claim(parts.vertices * 12);
-        let bounds = put_positions(&mut bin[range], &mesh.positions);
+        let bounds = bounds(&mesh.positions);
         let a = push_accessor(
             doc,
             section.view,
@@ -241,10 +279,10 @@ fn write_primitive(
             Some(bounds),
         );
         attributes.insert("POSITION", a);
+        slots.positions = range;
     }
     if let (true, Some(section)) = (parts.normals, sections.normals.as_mut()) {
         let (range, offset) = section.claim(parts.vertices * 12);
-        put_normals(&mut bin[range], &mesh.normals);
         let a = push_accessor(
             doc,
             section.view,
@@ -255,18 +293,10 @@ fn write_primitive(
             None,
         );
         attributes.insert("NORMAL", a);
+        slots.normals = Some(range);
     }
     if let (true, Some(section)) = (parts.uvs, sections.uvs.as_mut()) {
         let (range, offset) = section.claim(parts.vertices * 8);
-        // Without uvs of its own the mesh keeps the zeros the buffer starts with.
-        if mesh.uvs.len() == parts.vertices {
-            for (slot, v) in bin[range]
-                .chunks_exact_mut(4)
-                .zip(mesh.uvs.iter().flatten())
-            {
-                slot.copy_from_slice(&v.to_le_bytes());
-            }
-        }
         let a = push_accessor(
             doc,
             section.view,
@@ -277,13 +307,11 @@ fn write_primitive(
             None,
         );
         attributes.insert("TEXCOORD_0", a);
+        slots.uvs = (mesh.uvs.len() == parts.vertices).then_some(range);
     }
     let mut indices = 0;
     if let Some(section) = sections.indices.as_mut() {
         let (range, offset) = section.claim(parts.indices * 4);
-        for (slot, i) in bin[range].chunks_exact_mut(4).zip(&mesh.indices) {
-            slot.copy_from_slice(&i.to_le_bytes());
-        }
         indices = push_accessor(
             doc,
             section.view,
@@ -293,12 +321,73 @@ fn write_primitive(
             "SCALAR",
             None,
         );
+        slots.indices = range;
     }
-    Primitive {
+    let primitive = Primitive {
         attributes,
         indices,
         material: None,
-    }
+    };
+    (primitive, slots)
+}
+
+/// Fills the BIN chunk's data (`bin`, zeroed) as `plan` places it: the four sections and
+/// the images side by side, each written in primitive order.
+fn fill(bin: &mut [u8], plan: &Plan) {
+    let [positions, normals, uvs, indices] = plan.sections;
+    let (position_bytes, rest) = bin.split_at_mut(positions);
+    let (normal_bytes, rest) = rest.split_at_mut(normals);
+    let (uv_bytes, rest) = rest.split_at_mut(uvs);
+    let (index_bytes, image_bytes) = rest.split_at_mut(indices);
+    let images_start = positions + normals + uvs + indices;
+    let slots = &plan.primitives;
+    rayon::join(
+        || {
+            rayon::join(
+                || {
+                    for slot in slots {
+                        put_positions(&mut position_bytes[slot.positions.clone()], slot);
+                    }
+                },
+                || {
+                    for slot in slots {
+                        if let Some(range) = slot.normals.clone() {
+                            put_normals(&mut normal_bytes[range], &slot.mesh.normals);
+                        }
+                    }
+                },
+            )
+        },
+        || {
+            rayon::join(
+                || {
+                    for slot in slots {
+                        if let Some(range) = slot.uvs.clone() {
+                            let floats = slot.mesh.uvs.iter().flatten();
+                            for (bytes, v) in uv_bytes[range].chunks_exact_mut(4).zip(floats) {
+                                bytes.copy_from_slice(&v.to_le_bytes());
+                            }
+                        }
+                    }
+                    for &(start, png) in &plan.images {
+                        let at = start - images_start;
+                        image_bytes[at..at + png.len()].copy_from_slice(png);
+                    }
+                },
+                || {
+                    for slot in slots {
+                        let range = slot.indices.clone();
+                        for (bytes, i) in index_bytes[range]
+                            .chunks_exact_mut(4)
+                            .zip(&slot.mesh.indices)
+                        {
+                            bytes.copy_from_slice(&i.to_le_bytes());
+                        }
+                    }
+                },
+            )
+        },
+    );
 }
 
 /// One glTF material per scene material, in order; one texture per image, sharing one
@@ -371,18 +460,26 @@ fn push_accessor(
     doc.accessors.len() as u32 - 1
 }
 
-/// Writes positions and returns their per-axis min and max (glTF requires both).
-fn put_positions(bin: &mut [u8], positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+/// The per-axis min and max of `positions` (glTF requires both).
+fn bounds(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
     let mut min = [f32::INFINITY; 3];
     let mut max = [f32::NEG_INFINITY; 3];
-    for (slot, p) in bin.chunks_exact_mut(12).zip(positions) {
+    for p in positions {
         for c in 0..3 {
             min[c] = min[c].min(p[c]);
             max[c] = max[c].max(p[c]);
-            slot[c * 4..c * 4 + 4].copy_from_slice(&p[c].to_le_bytes());
         }
     }
     (min, max)
+}
+
+/// Writes a primitive's positions into its slot of the position section.
+fn put_positions(bin: &mut [u8], slot: &PrimitiveSlots) {
+    for (bytes, p) in bin.chunks_exact_mut(12).zip(&slot.mesh.positions) {
+        for c in 0..3 {
+            bytes[c * 4..c * 4 + 4].copy_from_slice(&p[c].to_le_bytes());
+        }
+    }
 }
 
 /// Writes normals, normalising those not already of unit length; a zero normal (which
