@@ -23,8 +23,7 @@ pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
     let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
     let vertices: usize = meshes().map(|m| m.positions.len()).sum();
     let triangles = scene.triangle_count();
-    // About 30 bytes per `v`, 20 per `vt`, 30 per `vn`, 40 per face line.
-    let mut out = Vec::with_capacity(vertices * 80 + triangles * 40 + 64 * scene.objects.len());
+    let mut out = Vec::new();
     out.extend_from_slice(b"# city.obj written by cityspec (");
     out.extend_from_slice(env!("CARGO_PKG_NAME").as_bytes());
     out.push(b' ');
@@ -68,9 +67,23 @@ pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
             run
         })
         .collect();
-    for run in runs {
-        out.extend_from_slice(&run);
+    // The header and the runs copied into the file side by side: it is allocated once,
+    // zeroed by the allocator (so its pages are first touched by the copies that fill
+    // them), and cut into their places.
+    let header = out;
+    let mut out = vec![0u8; header.len() + runs.iter().map(Vec::len).sum::<usize>()];
+    let (head, mut rest) = out.split_at_mut(header.len());
+    head.copy_from_slice(&header);
+    let mut places = Vec::with_capacity(runs.len());
+    for run in &runs {
+        let (place, after) = rest.split_at_mut(run.len());
+        places.push(place);
+        rest = after;
     }
+    places
+        .into_par_iter()
+        .zip(&runs)
+        .for_each(|(place, run)| place.copy_from_slice(run));
     out
 }
 
