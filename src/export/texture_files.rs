@@ -3,6 +3,8 @@
 
 use std::collections::BTreeMap;
 
+use rayon::prelude::*;
+
 use crate::model::Scene;
 
 /// The distinct texture files of a scene, in order of first use by its materials.
@@ -26,19 +28,28 @@ pub struct TextureFile {
 }
 
 impl TextureFiles {
-    /// Hashes each texture that a material uses, once, and deduplicates by content.
+    /// Hashes each texture that a material uses, once (on every core), and deduplicates
+    /// by content.
     pub fn collect(scene: &Scene) -> TextureFiles {
         let mut file_of_texture = vec![None; scene.textures.len()];
-        let mut files = Vec::new();
-        let mut by_hash: BTreeMap<String, usize> = BTreeMap::new();
+        let mut used = vec![false; scene.textures.len()];
+        let mut first_use = Vec::new();
         for material in &scene.materials {
             let Some(t) = material.texture.map(|t| t as usize) else {
                 continue;
             };
-            if t >= scene.textures.len() || file_of_texture[t].is_some() {
-                continue;
+            if t < scene.textures.len() && !used[t] {
+                used[t] = true;
+                first_use.push(t);
             }
-            let hash = crate::hash::sha256_hex(&scene.textures[t].png);
+        }
+        let hashes: Vec<String> = first_use
+            .par_iter()
+            .map(|&t| crate::hash::sha256_hex(&scene.textures[t].png))
+            .collect();
+        let mut files = Vec::new();
+        let mut by_hash: BTreeMap<String, usize> = BTreeMap::new();
+        for (t, hash) in first_use.into_iter().zip(hashes) {
             let next = files.len();
             let file = *by_hash.entry(hash[..16].to_owned()).or_insert(next);
             if file == next {
