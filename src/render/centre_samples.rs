@@ -23,8 +23,8 @@ impl CentreSamples {
     pub(crate) fn new(ctx: &RasterContext, rasters: &[TileRaster]) -> CentreSamples {
         let (w, h) = (ctx.width as usize, ctx.height as usize);
         let s = ctx.samples as usize;
-        let mut tri = vec![NOTHING; w * h];
-        let mut z = vec![0f32; w * h];
+        let mut tri = super::filled(NOTHING, w * h);
+        let mut z = super::filled(0f32, w * h);
         tri.par_chunks_mut(w)
             .zip(z.par_chunks_mut(w))
             .enumerate()

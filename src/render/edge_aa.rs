@@ -108,8 +108,8 @@ pub(crate) fn antialias(
     real: impl Fn(usize, usize) -> bool + Sync,
 ) {
     let height = linear.len() / width.max(1);
-    let mut boundary = vec![false; linear.len()];
-    let mut hints = vec![EdgeHint::NONE; linear.len()];
+    let mut boundary = super::filled(false, linear.len());
+    let mut hints = super::filled(EdgeHint::NONE, linear.len());
     hints
         .par_chunks_mut(width)
         .zip(boundary.par_chunks_mut(width))

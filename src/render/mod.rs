@@ -180,9 +180,9 @@ pub fn render_measuring(
         antialias_edges,
     };
     let n = width as usize * height as usize;
-    let mut linear = vec![[0f32; 3]; n];
-    let mut instance = vec![0u32; n];
-    let mut depth = vec![0f32; n];
+    let mut linear = filled([0f32; 3], n);
+    let mut instance = filled(0u32, n);
+    let mut depth = filled(0f32, n);
     let targets = TileTarget::all(width as usize, &mut linear, &mut instance, &mut depth);
     let centres = match rasters {
         None => {
@@ -379,6 +379,13 @@ fn shown_footprints(
         &shown,
         q_range(view),
     )
+}
+
+/// `n` copies of `value`, written on every core: a frame-sized buffer (the overview's are
+/// 5 to 15 MB) would otherwise be cleared, its pages first touched, on one core while the
+/// others wait.
+pub(crate) fn filled<T: Copy + Send + Sync>(value: T, n: usize) -> Vec<T> {
+    rayon::iter::repeat_n(value, n).collect()
 }
 
 /// What a frame shows, without its colours: the instance id and depth of each pixel, as
