@@ -23,34 +23,21 @@ pub fn push_fixed(out: &mut Vec<u8>, x: f32, decimals: usize) {
         out.push(b'-');
     }
     let magnitude = scaled.unsigned_abs();
-    push_u64(out, magnitude / scale);
+    let mut digits = itoa::Buffer::new();
+    out.extend_from_slice(digits.format(magnitude / scale).as_bytes());
     if decimals > 0 {
         out.push(b'.');
-        let frac = magnitude % scale;
-        let mut digits = [b'0'; 6];
-        let mut rest = frac;
-        for d in digits[..decimals].iter_mut().rev() {
-            *d = b'0' + (rest % 10) as u8;
-            rest /= 10;
-        }
-        out.extend_from_slice(&digits[..decimals]);
+        // The fraction's digits with their leading zeros: those of `scale + frac`, the
+        // leading 1 dropped.
+        let padded = digits.format(scale + magnitude % scale).as_bytes();
+        out.extend_from_slice(&padded[1..]);
     }
 }
 
 /// Appends `n` in decimal.
 #[inline]
-pub fn push_u64(out: &mut Vec<u8>, mut n: u64) {
-    let mut digits = [0u8; 20];
-    let mut start = digits.len();
-    loop {
-        start -= 1;
-        digits[start] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    out.extend_from_slice(&digits[start..]);
+pub fn push_u64(out: &mut Vec<u8>, n: u64) {
+    out.extend_from_slice(itoa::Buffer::new().format(n).as_bytes());
 }
 
 #[cfg(test)]
