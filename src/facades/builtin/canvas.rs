@@ -9,6 +9,7 @@ use rand_pcg::Pcg64;
 
 use crate::model::PxRect;
 pub use crate::model::geometry::rounding::round;
+use crate::model::geometry::rounding::round_i32;
 
 use super::super::cmp_box::CmpBox;
 use super::super::cmp_label::CmpLabel;
@@ -165,7 +166,10 @@ pub fn scale(colour: Colour, factor: f64) -> Colour {
 }
 
 fn scale_channel(c: u8, factor: f64) -> u8 {
-    round(f64::from(c) * factor).clamp(0.0, 255.0) as u8
+    // `round_i32` is `round` for every product a factor of a few could make (a NaN
+    // factor gives 0 either way), without its branches: `shade` tabulates this for all
+    // 256 values on every call.
+    round_i32(f64::from(c) * factor).clamp(0, 255) as u8
 }
 
 /// Linear mix of two colours, `t` in 0–1.
