@@ -13,7 +13,8 @@
 //! | traffic_light | `signal_pole_0001` (class `pole`) + two `traffic_light_0002`… | at a street corner, half a strip from both curbs | a pole and two signal heads looking along the two roads, one lamp lit (`traffic_lights` module) |
 //!
 //! Every object's class is its spec entry's `label`. Entry `i` draws from
-//! `crate::rng::stream(seed, "objects", i)`; entries are placed in order and later entries
+//! `crate::rng::stream(seed, "objects", i)`; entries are placed as if in order (text and
+//! the ground's kinds side by side, replayed in order: `entry_groups`) and later entries
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
 //! finds no free spot in [`ATTEMPTS`] tries is drawn again (text: new words, size, style;
 //! cars: a new body; trees: a new species and size) a few times, then left out: `count` is
