@@ -248,7 +248,8 @@ impl<'a> Placing<'a> {
             return m;
         }
         let (colour, texture) = make();
-        self.add_once(name, colour, texture.as_ref(), [0.0; 3])
+        let m = self.add(name, colour, texture.as_ref(), [0.0; 3]);
+        self.registered_once(name, m)
     }
 
     /// A plain material of a colour drawn from `palette` (uniform, one draw of `rng`),
@@ -264,17 +265,12 @@ impl<'a> Placing<'a> {
         if let Some(&m) = self.cached.get(name) {
             return m;
         }
-        self.add_once(name, colour, None, emissive)
+        let m = self.add(name, colour, None, emissive);
+        self.registered_once(name, m)
     }
 
-    fn add_once(
-        &mut self,
-        name: &str,
-        colour: [f32; 3],
-        texture: Option<&Texture>,
-        emissive: [f32; 3],
-    ) -> u32 {
-        let m = self.add(name, colour, texture, emissive);
+    /// Marks material `m`, just added, as the one registered once under `name`.
+    fn registered_once(&mut self, name: &str, m: u32) -> u32 {
         self.requests[m as usize].once = true;
         self.cached.insert(name.to_owned(), m);
         m
