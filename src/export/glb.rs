@@ -41,13 +41,11 @@ pub fn write_glb(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
     let total = 12 + 8 + json.len() + bin_chunk;
     // Zeroed: the BIN's padding, and the uvs of a mesh without its own, stay zero.
     let mut out = vec![0u8; total];
-    let mut header = Vec::with_capacity(28);
-    header.extend_from_slice(MAGIC);
-    header.extend_from_slice(&2u32.to_le_bytes());
-    header.extend_from_slice(&(total as u32).to_le_bytes());
-    header.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    header.extend_from_slice(CHUNK_JSON);
-    out[..20].copy_from_slice(&header[..20]);
+    out[0..4].copy_from_slice(MAGIC);
+    out[4..8].copy_from_slice(&2u32.to_le_bytes());
+    out[8..12].copy_from_slice(&(total as u32).to_le_bytes());
+    out[12..16].copy_from_slice(&(json.len() as u32).to_le_bytes());
+    out[16..20].copy_from_slice(CHUNK_JSON);
     out[20..20 + json.len()].copy_from_slice(&json);
     if bin_len > 0 {
         let at = 20 + json.len();
@@ -146,7 +144,8 @@ struct PrimitiveSlots<'s> {
     mesh: &'s Mesh,
     positions: Range<usize>,
     normals: Option<Range<usize>>,
-    /// With the mesh's own uvs or, when it has none, the zeros the file starts with.
+    /// Where the mesh's own uvs go: `None` without them (a textured mesh's uv slot then
+    /// keeps the zeros the file starts with).
     uvs: Option<Range<usize>>,
     indices: Range<usize>,
 }
@@ -346,7 +345,10 @@ fn fill(bin: &mut [u8], plan: &Plan) {
             rayon::join(
                 || {
                     for slot in slots {
-                        put_positions(&mut position_bytes[slot.positions.clone()], slot);
+                        put_positions(
+                            &mut position_bytes[slot.positions.clone()],
+                            &slot.mesh.positions,
+                        );
                     }
                 },
                 || {
@@ -473,9 +475,9 @@ fn bounds(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
     (min, max)
 }
 
-/// Writes a primitive's positions into its slot of the position section.
-fn put_positions(bin: &mut [u8], slot: &PrimitiveSlots) {
-    for (bytes, p) in bin.chunks_exact_mut(12).zip(&slot.mesh.positions) {
+/// Writes positions (f32, little-endian).
+fn put_positions(bin: &mut [u8], positions: &[[f32; 3]]) {
+    for (bytes, p) in bin.chunks_exact_mut(12).zip(positions) {
         for c in 0..3 {
             bytes[c * 4..c * 4 + 4].copy_from_slice(&p[c].to_le_bytes());
         }
