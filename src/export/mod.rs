@@ -115,7 +115,7 @@ mod tests {
             renamed.iter().map(|f| &f.0).collect::<Vec<_>>()
         );
         let other = image::RgbImage::from_pixel(8, 8, image::Rgb([1, 2, 3]));
-        scene.textures[1] = crate::model::Texture::from_rgb("brick_copy", &other);
+        scene.textures[1] = crate::model::Texture::from_rgb("brick_copy", other);
         let split = export(&scene);
         assert_eq!(
             split.len(),

@@ -10,7 +10,7 @@ fn texture(name: &str, size: u32, salt: u8) -> Texture {
     let image = RgbImage::from_fn(size, size, |x, y| {
         image::Rgb([x as u8 * 30 + salt, y as u8 * 30, 200 - salt])
     });
-    Texture::from_rgb(name, &image)
+    Texture::from_rgb(name, image)
 }
 
 fn material(name: &str, colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3]) -> Material {

@@ -119,7 +119,7 @@ pub fn crop_facade(
         molding: molding_colour,
         roof: nearest_roof(molding_colour, roofs),
         windows: windows.iter().map(uv).collect(),
-        texture: Texture::from_rgb(format!("facade_{}", safe_name(&file.name)), &cropped),
+        texture: Texture::from_rgb(format!("facade_{}", safe_name(&file.name)), cropped),
     })
 }
 

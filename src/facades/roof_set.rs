@@ -94,7 +94,7 @@ pub fn builtin_roofs() -> Vec<Roof> {
                 name: kind.name.to_string(),
                 colour: mean_colour(&image),
                 tile: kind.tile,
-                texture: Texture::from_rgb(format!("roof_{}", kind.name), &image),
+                texture: Texture::from_rgb(format!("roof_{}", kind.name), image),
             }
         })
         .collect()
@@ -213,7 +213,7 @@ mod tests {
             name: String::new(),
             colour,
             tile: 1.0,
-            texture: Texture::from_rgb("t", &RgbImage::new(1, 1)),
+            texture: Texture::from_rgb("t", RgbImage::new(1, 1)),
         };
         let roofs = [
             roof([0, 0, 0]),

@@ -27,7 +27,7 @@ struct City {
 
 /// Three facades 12, 15 and 21 m high (10, 14, 18 m wide).
 fn facade_set() -> FacadeSet {
-    let texture = Texture::from_rgb("t", &RgbImage::new(4, 4));
+    let texture = Texture::from_rgb("t", RgbImage::new(4, 4));
     let facade = |name: &str, floors: u32, width: f64| Facade {
         name: name.to_owned(),
         floors,

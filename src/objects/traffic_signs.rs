@@ -45,7 +45,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         };
         let face = placing.material(&face_name, || {
             let image = sign_face::draw(kind, speed);
-            ([1.0; 3], Some(Texture::from_rgb(face_name.clone(), &image)))
+            ([1.0; 3], Some(Texture::from_rgb(face_name.clone(), image)))
         });
         let pole = placing.material("sign_pole", || (POLE_GREY, None));
         let back = placing.material("sign_back", || (BACK_GREY, None));

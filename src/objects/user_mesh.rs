@@ -143,7 +143,7 @@ fn load_texture(model: &str, name: &str, files: &MeshFiles) -> Result<Texture, O
         texture: name.to_owned(),
         source: Box::new(source),
     })?;
-    Ok(Texture::from_rgb(name, &image.to_rgb8()))
+    Ok(Texture::from_rgb(name, image.to_rgb8()))
 }
 
 /// One tobj mesh as a part: v flipped, flat normals where the file has none.

@@ -316,7 +316,7 @@ pub(crate) fn finish_plates(
     let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
     let pages: Vec<Texture> = (0..atlas.pages.len())
         .into_par_iter()
-        .map(|page| Texture::from_rgb(String::new(), &atlas.paint(page, &images)))
+        .map(|page| Texture::from_rgb(String::new(), atlas.paint(page, &images)))
         .collect();
     let materials: Vec<u32> = pages
         .iter()

@@ -315,7 +315,7 @@ mod tests {
     /// texture 1 (the windows' texture) with v down from its top.
     fn wall_scene() -> Scene {
         use crate::model::{Material, Mesh, SceneObject, Texture};
-        let texture = Texture::from_rgb("facade", &image::RgbImage::new(2, 2));
+        let texture = Texture::from_rgb("facade", image::RgbImage::new(2, 2));
         Scene {
             textures: vec![texture.clone(), texture],
             materials: vec![Material {

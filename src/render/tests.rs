@@ -104,7 +104,7 @@ fn checker_texture(size: u32, cell: u32) -> Texture {
             Rgb([0, 0, 0])
         }
     });
-    Texture::from_rgb(format!("checker_{size}_{cell}"), &image)
+    Texture::from_rgb(format!("checker_{size}_{cell}"), image)
 }
 
 pub(super) fn pose(eye: [f64; 3], target: [f64; 3]) -> CameraPose {
@@ -931,7 +931,7 @@ fn emissive_surfaces_glow_without_any_light() {
 
 #[test]
 fn lit_windows_glow_inside_their_boxes_only() {
-    let facade = Texture::from_rgb("facade_a", &RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
+    let facade = Texture::from_rgb("facade_a", RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
     let scene = Scene {
         textures: vec![facade],
         materials: vec![material([1.0; 3], Some(0), [0.0; 3])],
@@ -1108,7 +1108,7 @@ fn a_street_lamp_lights_a_pool_below_it_and_nothing_above() {
 #[test]
 fn a_lit_window_spills_light_onto_the_ground_in_front_of_it() {
     let ground = ground_quad(40.0);
-    let facade = Texture::from_rgb("facade_a", &RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
+    let facade = Texture::from_rgb("facade_a", RgbImage::from_pixel(8, 8, Rgb([60, 60, 60])));
     let scene = Scene {
         textures: vec![facade],
         materials: vec![

@@ -24,7 +24,7 @@ impl Surfaces {
         let white = [1.0; 3];
         let none = [0.0; 3];
         let textured = |book: &mut MaterialBook, name: &str, image| {
-            book.add(name, white, Some(&Texture::from_rgb(name, &image)), none)
+            book.add(name, white, Some(&Texture::from_rgb(name, image)), none)
         };
         Surfaces {
             grass: textured(book, "grass", procedural::grass()),

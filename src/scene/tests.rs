@@ -31,13 +31,13 @@ fn facade_set() -> FacadeSet {
         molding: tint,
         roof,
         windows: Vec::new(),
-        texture: Texture::from_rgb(format!("facade_{name}"), &image(24, 32, tint)),
+        texture: Texture::from_rgb(format!("facade_{name}"), image(24, 32, tint)),
     };
     let roof = |name: &str, colour, tile| Roof {
         name: name.to_owned(),
         colour,
         tile,
-        texture: Texture::from_rgb(format!("roof_{name}"), &image(16, 16, colour)),
+        texture: Texture::from_rgb(format!("roof_{name}"), image(16, 16, colour)),
     };
     FacadeSet {
         facades: vec![

@@ -80,7 +80,7 @@ mod tests {
     #[test]
     fn names_are_made_safe_and_unique() {
         let image = image::RgbImage::new(2, 2);
-        let texture = Texture::from_rgb("whatever", &image);
+        let texture = Texture::from_rgb("whatever", image);
         let mut book = MaterialBook::default();
         let cases = [
             ("asphalt", "asphalt"),
