@@ -23,18 +23,18 @@ pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
     let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
     let vertices: usize = meshes().map(|m| m.positions.len()).sum();
     let triangles = scene.triangle_count();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"# city.obj written by cityspec (");
-    out.extend_from_slice(env!("CARGO_PKG_NAME").as_bytes());
-    out.push(b' ');
-    out.extend_from_slice(env!("CARGO_PKG_VERSION").as_bytes());
-    out.extend_from_slice(b")\n# objects ");
-    push_u64(&mut out, scene.objects.len() as u64);
-    out.extend_from_slice(b", vertices ");
-    push_u64(&mut out, vertices as u64);
-    out.extend_from_slice(b", triangles ");
-    push_u64(&mut out, triangles as u64);
-    out.extend_from_slice(b"\nmtllib city.mtl\n");
+    let mut header = Vec::new();
+    header.extend_from_slice(b"# city.obj written by cityspec (");
+    header.extend_from_slice(env!("CARGO_PKG_NAME").as_bytes());
+    header.push(b' ');
+    header.extend_from_slice(env!("CARGO_PKG_VERSION").as_bytes());
+    header.extend_from_slice(b")\n# objects ");
+    push_u64(&mut header, scene.objects.len() as u64);
+    header.extend_from_slice(b", vertices ");
+    push_u64(&mut header, vertices as u64);
+    header.extend_from_slice(b", triangles ");
+    push_u64(&mut header, triangles as u64);
+    header.extend_from_slice(b"\nmtllib city.mtl\n");
 
     let material = |mesh: &Mesh| scene.materials.get(mesh.material as usize);
     let textured = |mesh: &Mesh| material(mesh).is_some_and(|m| textures.file(m.texture).is_some());
@@ -70,7 +70,6 @@ pub fn write_obj(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
     // The header and the runs copied into the file side by side: it is allocated once,
     // zeroed by the allocator (so its pages are first touched by the copies that fill
     // them), and cut into their places.
-    let header = out;
     let mut out = vec![0u8; header.len() + runs.iter().map(Vec::len).sum::<usize>()];
     let (head, mut rest) = out.split_at_mut(header.len());
     head.copy_from_slice(&header);
