@@ -323,6 +323,8 @@ fn place_entries<'a>(
 ) -> Result<PlacedEntries<'a>, (usize, ObjectsError)> {
     let mut placing = Placing::new(input);
     let mut shares = vec![None; input.specs.len()];
+    // The walls facing roads are found only by a group that places text (finding them
+    // looks at every building); the ground's spots cost little and are simply made.
     let mut spots = ground_spots::GroundSpots::new(input);
     let mut walls = None;
     for (i, spec) in input.specs.iter().enumerate() {
