@@ -279,10 +279,15 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
         "the damaged object was not replaced"
     );
 
-    // gc: a stray entry and object (old enough: --grace-minutes 0) go, the spec's stay.
-    let stray_entry = Key::from("run2/entries/0000.json");
+    // gc: a stray entry and object (old enough: --grace-minutes 0) go, the spec's stay,
+    // and so do files of names the cache never writes.
+    let stray_entry = Key::from(format!("run2/entries/{}.json", "0".repeat(64)));
     let stray_object = Key::from(format!("run2/objects/ab/ab{}", "0".repeat(62)));
-    for stray in [&stray_entry, &stray_object] {
+    let foreign = [
+        Key::from("run2/objects/README-keep.txt"),
+        Key::from("run2/entries/0000.json"),
+    ];
+    for stray in [&stray_entry, &stray_object].into_iter().chain(&foreign) {
         rt.block_on(client.put(stray, PutPayload::from_static(b"{}")))
             .unwrap();
     }
@@ -306,6 +311,16 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
     };
     let said = gc("small.toml");
     assert!(said.contains("removed 1 entries, 1 objects"), "{said}");
+    assert!(
+        said.contains("skipped 2 files and folders that cityspec does not write"),
+        "{said}"
+    );
+    for kept in &foreign {
+        assert!(
+            rt.block_on(client.head(kept)).is_ok(),
+            "gc removed {kept}, which the cache never writes"
+        );
+    }
     for stray in [&stray_entry, &stray_object] {
         assert!(
             matches!(
@@ -360,7 +375,10 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
         .iter()
         .filter(|n| n.starts_with("run2/objects/"))
         .count();
-    assert_eq!(left.len(), entries + objects, "{left:?}");
+    // Besides them: the marker and the two foreign files.
+    assert_eq!(left.len(), entries + objects + 1, "{left:?}");
+    assert!(left.contains(&"run2/CACHEDIR.TAG".to_owned()), "{left:?}");
+    let (entries, objects) = (entries - 1, objects - 1);
     let kept = format!("kept {entries} entries and {objects} objects; removed ");
     assert!(
         said.contains(&kept),

@@ -10,7 +10,7 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-const TEMP_MARK: &str = ".cityspec-tmp-";
+pub(super) const TEMP_MARK: &str = ".cityspec-tmp-";
 
 /// Writes `bytes` to `path` atomically, creating the parent folder if needed.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
@@ -30,7 +30,9 @@ pub fn write_atomic_with(
     fs::create_dir_all(dir)?;
     let temp = temp_path(dir, path);
     let result = (|| {
-        let mut file = File::create(&temp)?;
+        // A new file, never one that is there already (nor through a symlink planted at
+        // the name).
+        let mut file = File::create_new(&temp)?;
         fill(&mut file)?;
         file.flush()?;
         drop(file);

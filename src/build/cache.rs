@@ -4,12 +4,23 @@
 //!
 //! | path | holds |
 //! |---|---|
+//! | `CACHEDIR.TAG` | the marker: this folder is a cityspec cache ([`MARKER`]) |
 //! | `objects/ab/abcdef…` | one output's bytes, named by their SHA-256 |
-//! | `entries/<key>.json` | [`Entry`]: the stage name and its outputs' hashes and sizes |
+//! | `entries/<key>.json` | [`Entry`]: the stage name, its outputs' hashes and sizes, and its diagnostics |
 //!
 //! An entry is written only after all its objects are whole, so an interrupted build never
 //! leaves an entry that points at missing bytes. Every read re-hashes the object: a cached
 //! object whose bytes no longer match its name counts as a miss and is rebuilt, never used.
+//!
+//! Damage is a miss, never a crash or a hang: an entry is parsed into a validated [`Entry`]
+//! (every hash 64 hex digits, every size in range) before anything indexes into it, and
+//! every file is opened without following a symlink or blocking on a FIFO and read only
+//! when it is a regular file ([`crate::regular_file`]). What is found damaged is reported
+//! and replaced by the next write (a rename over it).
+//!
+//! The cache knows its own files by their exact names ([`CacheName`]): `cache gc` removes
+//! nothing else, and only in a folder (or prefix) that holds the marker, which the first
+//! write creates.
 //!
 //! The same layout lives either in a local folder (atomic renames) or under a bucket's
 //! prefix (`--cache s3://…`, [`RemoteStore`]: whole-object PUTs). Only storage differs:
@@ -19,7 +30,7 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -28,7 +39,21 @@ use sha2::{Digest, Sha256};
 use super::atomic::write_atomic;
 use super::cache_remote::{RemoteLocation, RemoteStore};
 use super::error::BuildError;
+use crate::diagnostic::Diagnostic;
 use crate::hash::sha256_hex;
+use crate::regular_file::{self, Follow};
+
+/// The marker file at the cache's root. Its text follows the Cache Directory Tagging
+/// specification (so backup tools skip the folder) and names cityspec, which is what
+/// `cache gc` checks before it removes anything.
+pub const MARKER: &str = "CACHEDIR.TAG";
+
+const MARKER_TEXT: &str = "Signature: 8a477f597d28d172789f06886806bc55\n\
+# This file is a cityspec cache's marker, written by cityspec when it created the cache.\n\
+# `cityspec cache gc` removes files only where it finds this file.\n";
+
+/// The largest object an entry may name (1 TiB): a size past it is damage.
+pub const MAX_OBJECT_BYTES: u64 = 1 << 40;
 
 /// A stage's outputs: file name → bytes, in memory or already stored as cache objects.
 pub type Outputs = BTreeMap<String, Blob>;
@@ -95,19 +120,103 @@ pub enum Load {
     References,
 }
 
-/// What `entries/<key>.json` records.
+/// What `entries/<key>.json` records. Parsed only through [`Entry::parse`], so every
+/// [`ObjectRef`] in it is valid.
 #[derive(Debug, Serialize, Deserialize)]
 pub struct Entry {
     pub stage: String,
     pub key: String,
     pub outputs: BTreeMap<String, ObjectRef>,
+    /// The stage's diagnostics and those of every stage it read (see
+    /// [`crate::diagnostic`]): replayed whenever the entry is used.
+    pub diagnostics: Vec<Diagnostic>,
 }
 
-/// One output: its hash and size.
+/// Why an entry's text is not an [`Entry`].
+#[derive(Debug, PartialEq, Eq)]
+pub enum BadEntry {
+    /// Written by a cityspec before entries held diagnostics: used by none, rebuilt quietly.
+    Older,
+    /// Not an entry: what is wrong with it.
+    Damaged(String),
+}
+
+impl Entry {
+    /// The entry in `text`, validated (see [`ObjectRef`]).
+    pub fn parse(text: &[u8]) -> Result<Entry, BadEntry> {
+        /// The same fields, diagnostics optional, to tell an older entry from a damaged one.
+        #[derive(Deserialize)]
+        struct Record {
+            stage: String,
+            key: String,
+            outputs: BTreeMap<String, ObjectRef>,
+            diagnostics: Option<Vec<Diagnostic>>,
+        }
+        let record: Record =
+            serde_json::from_slice(text).map_err(|e| BadEntry::Damaged(e.to_string()))?;
+        let diagnostics = record.diagnostics.ok_or(BadEntry::Older)?;
+        if record.stage.is_empty() {
+            return Err(BadEntry::Damaged("it names no stage".to_owned()));
+        }
+        Ok(Entry {
+            stage: record.stage,
+            key: record.key,
+            outputs: record.outputs,
+            diagnostics,
+        })
+    }
+}
+
+/// One output: its hash and size. Deserialized only when the hash is 64 lowercase hex
+/// digits and the size at most [`MAX_OBJECT_BYTES`], so code that names the object's file
+/// (`objects/ab/…`) never meets a hash it cannot slice.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "ObjectRecord")]
 pub struct ObjectRef {
     pub sha256: String,
     pub bytes: u64,
+}
+
+/// An [`ObjectRef`] as read, before it is checked.
+#[derive(Deserialize)]
+struct ObjectRecord {
+    sha256: String,
+    bytes: u64,
+}
+
+impl TryFrom<ObjectRecord> for ObjectRef {
+    type Error = String;
+
+    fn try_from(record: ObjectRecord) -> Result<ObjectRef, String> {
+        if !is_sha256(&record.sha256) {
+            return Err(format!(
+                "expected a SHA-256 of 64 lowercase hex digits, found {:?}",
+                record.sha256
+            ));
+        }
+        if record.bytes > MAX_OBJECT_BYTES {
+            return Err(format!(
+                "expected a size of at most {MAX_OBJECT_BYTES} bytes, found {}",
+                record.bytes
+            ));
+        }
+        Ok(ObjectRef {
+            sha256: record.sha256,
+            bytes: record.bytes,
+        })
+    }
+}
+
+/// Whether `text` is a SHA-256 as the cache writes it: 64 lowercase hex digits.
+pub fn is_sha256(text: &str) -> bool {
+    text.len() == 64 && text.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'))
+}
+
+/// A stage's cached result: its outputs and its diagnostics.
+#[derive(Debug)]
+pub struct Hit {
+    pub outputs: Outputs,
+    pub diagnostics: Vec<Diagnostic>,
 }
 
 /// Why a lookup did not hit.
@@ -126,6 +235,8 @@ pub struct Cache {
     root: PathBuf,
     /// Set for `s3://`, `gs://` and `az://` caches.
     remote: Option<Arc<RemoteStore>>,
+    /// Set once this process has seen or written the marker.
+    marked: Arc<OnceLock<()>>,
 }
 
 impl Cache {
@@ -134,6 +245,7 @@ impl Cache {
         Cache {
             root: root.into(),
             remote: None,
+            marked: Arc::default(),
         }
     }
 
@@ -151,6 +263,7 @@ impl Cache {
             Some(remote) => Ok(Cache {
                 root: location.to_path_buf(),
                 remote: Some(Arc::new(RemoteStore::open(&remote).map_err(failed)?)),
+                marked: Arc::default(),
             }),
         }
     }
@@ -170,9 +283,51 @@ impl Cache {
         self.remote.as_deref()
     }
 
-    /// The entry recorded under `key`, without reading or verifying its objects.
+    /// Whether the cache holds the marker [`MARKER`] written by cityspec (`cache gc`
+    /// removes nothing where it does not).
+    pub fn is_marked(&self) -> io::Result<bool> {
+        let text = match &self.remote {
+            Some(remote) => remote.get(MARKER)?,
+            None => match regular_file::read(&self.root.join(MARKER), Follow::No) {
+                Ok(text) => Some(text),
+                Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+                Err(e) if regular_file::is_not_regular(&e) => None,
+                Err(e) => return Err(e),
+            },
+        };
+        Ok(text.is_some_and(|t| t == MARKER_TEXT.as_bytes()))
+    }
+
+    /// Writes the marker unless this process saw it already: before the first object of
+    /// every build, so a folder that holds cache files holds the marker too.
+    fn mark(&self) -> io::Result<()> {
+        if self.marked.get().is_some() {
+            return Ok(());
+        }
+        match &self.remote {
+            Some(remote) => {
+                if remote.get(MARKER)?.is_none() {
+                    remote.put(MARKER, MARKER_TEXT.as_bytes())?;
+                }
+            }
+            None => {
+                fs::create_dir_all(&self.root)?;
+                // Never through a symlink or over a file someone else put there.
+                match fs::File::create_new(self.root.join(MARKER)) {
+                    Ok(mut file) => file.write_all(MARKER_TEXT.as_bytes())?,
+                    Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
+                    Err(e) => return Err(e),
+                }
+            }
+        }
+        let _ = self.marked.set(());
+        Ok(())
+    }
+
+    /// The entry recorded under `key`, without reading or verifying its objects; `None`
+    /// when there is none or it is damaged.
     pub fn entry(&self, key: &str) -> Option<Entry> {
-        let entry: Entry = serde_json::from_slice(&self.read_entry(key).ok()??).ok()?;
+        let entry = Entry::parse(&self.read_entry(key).ok()??).ok()?;
         (entry.key == key).then_some(entry)
     }
 
@@ -181,11 +336,12 @@ impl Cache {
         self.read_entry(key).is_ok_and(|text| text.is_some())
     }
 
-    /// The bytes of `key`'s entry; `None` when there is none.
+    /// The bytes of `key`'s entry; `None` when there is none. A FIFO, folder or symlink
+    /// there is an error (damage), found without blocking.
     fn read_entry(&self, key: &str) -> io::Result<Option<Vec<u8>>> {
         match &self.remote {
             Some(remote) => remote.get(&entry_name(key)),
-            None => match fs::read(self.entry_path(key)) {
+            None => match regular_file::read(&self.entry_path(key), Follow::No) {
                 Ok(text) => Ok(Some(text)),
                 Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
                 Err(e) => Err(e),
@@ -197,6 +353,7 @@ impl Cache {
     /// or kept as references (`load`).
     pub fn get(&self, key: &str, load: Load) -> Result<Outputs, Miss> {
         self.get_checked(key, load, |_| Ok(()))
+            .map(|hit| hit.outputs)
     }
 
     /// [`Cache::get`] for stage `stage`, whose output names must pass `names` (see
@@ -209,6 +366,17 @@ impl Cache {
         load: Load,
         names: &super::output_names::OutputNames,
     ) -> Result<Outputs, Miss> {
+        self.lookup(stage, key, load, names).map(|hit| hit.outputs)
+    }
+
+    /// [`Cache::get_stage`] with the entry's diagnostics.
+    pub fn lookup(
+        &self,
+        stage: &str,
+        key: &str,
+        load: Load,
+        names: &super::output_names::OutputNames,
+    ) -> Result<Hit, Miss> {
         self.get_checked(key, load, |entry| {
             if entry.stage != stage {
                 return Err(format!("it records stage {:?}, not {stage:?}", entry.stage));
@@ -222,14 +390,13 @@ impl Cache {
         key: &str,
         load: Load,
         accept: impl FnOnce(&Entry) -> Result<(), String>,
-    ) -> Result<Outputs, Miss> {
+    ) -> Result<Hit, Miss> {
         let entry_path = self.entry_path(key);
         let text = match self.read_entry(key) {
             Ok(Some(text)) => text,
             Ok(None) => return Err(Miss::Absent),
-            // A local entry that cannot be read is as good as none (as before); a remote
-            // store that fails to answer is worth a warning.
-            Err(_) if self.remote.is_none() => return Err(Miss::Absent),
+            // Unreadable (a FIFO, a symlink, a folder, no permission, a store that fails
+            // to answer): damage, reported, and replaced when the stage's entry is written.
             Err(e) => {
                 return Err(Miss::Corrupt(format!(
                     "{} cannot be read: {e}",
@@ -237,8 +404,16 @@ impl Cache {
                 )));
             }
         };
-        let entry: Entry = serde_json::from_slice(&text)
-            .map_err(|_| Miss::Corrupt(format!("{} is not a cache entry", entry_path.display())))?;
+        let entry = match Entry::parse(&text) {
+            Ok(entry) => entry,
+            Err(BadEntry::Older) => return Err(Miss::Absent),
+            Err(BadEntry::Damaged(why)) => {
+                return Err(Miss::Corrupt(format!(
+                    "{} is not a cache entry: {why}",
+                    entry_path.display()
+                )));
+            }
+        };
         if entry.key != key {
             return Err(Miss::Corrupt(format!(
                 "{} records another key",
@@ -264,7 +439,10 @@ impl Cache {
             };
             outputs.insert(name, blob);
         }
-        Ok(outputs)
+        Ok(Hit {
+            outputs,
+            diagnostics: entry.diagnostics,
+        })
     }
 
     /// The bytes of a stored object, verified against its size and hash (in this process:
@@ -281,7 +459,13 @@ impl Cache {
                     Err(e) => return Err(format!("{} cannot be read: {e}", path.display())),
                 },
             },
-            None => fs::read(&path).map_err(|_| format!("{} is missing", path.display()))?,
+            None => match regular_file::read(&path, Follow::No) {
+                Ok(bytes) => bytes,
+                Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                    return Err(format!("{} is missing", path.display()));
+                }
+                Err(e) => return Err(format!("{} cannot be read: {e}", path.display())),
+            },
         };
         if bytes.len() as u64 != object.bytes || sha256_hex(&bytes) != object.sha256 {
             return Err(format!("{} no longer matches its hash", path.display()));
@@ -291,6 +475,7 @@ impl Cache {
 
     /// Stores one object (unless an intact copy is there already) and returns its reference.
     pub fn put_object(&self, bytes: &[u8]) -> io::Result<ObjectRef> {
+        self.mark()?;
         let object = ObjectRef {
             sha256: sha256_hex(bytes),
             bytes: bytes.len() as u64,
@@ -306,7 +491,7 @@ impl Cache {
         // The copy there is intact when it holds these very bytes: comparing costs less
         // than hashing again, and the export's textures are often there already (they
         // are the facade stage's objects).
-        let intact = fs::read(&path).is_ok_and(|old| old == bytes);
+        let intact = regular_file::read(&path, Follow::No).is_ok_and(|old| old == bytes);
         if intact {
             touch(&path);
         } else {
@@ -322,6 +507,7 @@ impl Cache {
         &self,
         fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
     ) -> io::Result<ObjectRef> {
+        self.mark()?;
         // A remote cache stages the bytes in a local temporary file, then uploads it.
         let dir = match &self.remote {
             Some(_) => std::env::temp_dir(),
@@ -330,7 +516,7 @@ impl Cache {
         fs::create_dir_all(&dir)?;
         let temp = super::atomic::temp_path(&dir, Path::new("stream"));
         let written = (|| {
-            let mut out = Hashing::new(io::BufWriter::new(fs::File::create(&temp)?));
+            let mut out = Hashing::new(io::BufWriter::new(fs::File::create_new(&temp)?));
             fill(&mut out)?;
             out.inner.flush()?;
             Ok::<_, io::Error>(out.finish())
@@ -348,7 +534,8 @@ impl Cache {
             return uploaded.map(|()| object);
         }
         let path = self.object_path(&object.sha256);
-        let intact = fs::read(&path).is_ok_and(|old| sha256_hex(&old) == object.sha256);
+        let intact = regular_file::read(&path, Follow::No)
+            .is_ok_and(|old| sha256_hex(&old) == object.sha256);
         let placed = if intact {
             touch(&path);
             fs::remove_file(&temp)
@@ -362,14 +549,16 @@ impl Cache {
         placed.map(|()| object)
     }
 
-    /// Records `outputs` under `key`: objects first (those in memory are stored now; stored
-    /// ones were stored by [`Cache::put_object`]), then the entry.
+    /// Records `outputs` and `diagnostics` under `key`: objects first (those in memory are
+    /// stored now; stored ones were stored by [`Cache::put_object`]), then the entry.
     pub fn put(
         &self,
         stage: &str,
         key: &str,
         outputs: &Outputs,
+        diagnostics: &[Diagnostic],
     ) -> io::Result<BTreeMap<String, ObjectRef>> {
+        self.mark()?;
         let store = |(name, blob): (&String, &Blob)| {
             let object = match blob {
                 Blob::Bytes(bytes) => self.put_object(bytes)?,
@@ -398,6 +587,7 @@ impl Cache {
             stage: stage.to_owned(),
             key: key.to_owned(),
             outputs: refs.clone(),
+            diagnostics: diagnostics.to_vec(),
         };
         let mut text = serde_json::to_vec_pretty(&entry).map_err(io::Error::other)?;
         text.push(b'\n');
@@ -420,14 +610,66 @@ impl Cache {
     }
 }
 
-/// An object's path in the cache: `objects/ab/abcdef…`.
+/// An object's path in the cache: `objects/ab/abcdef…` (a hash too short to shard, which
+/// no valid [`ObjectRef`] holds, names a file no cache writes, so it is only missing).
 fn object_name(sha256: &str) -> String {
-    format!("objects/{}/{sha256}", &sha256[..2])
+    format!("objects/{}/{sha256}", sha256.get(..2).unwrap_or("--"))
 }
 
 /// An entry's path in the cache: `entries/<key>.json`.
 fn entry_name(key: &str) -> String {
     format!("entries/{key}.json")
+}
+
+/// A file the cache writes, known by its exact name (relative to the cache's root,
+/// `/`-separated). `cache gc` removes these and nothing else.
+#[derive(Debug, PartialEq, Eq)]
+pub enum CacheName {
+    /// `entries/<key>.json`, the key 64 hex digits.
+    Entry(String),
+    /// `objects/ab/<sha256>`, the shard the hash's first two digits.
+    Object(String),
+    /// What a killed write left: `.<one of those names>.cityspec-tmp-<pid>-<n>` beside
+    /// it, or `objects/.stream.cityspec-tmp-<pid>-<n>`.
+    Temporary,
+}
+
+impl CacheName {
+    /// What `relative` is, when it is a name the cache writes.
+    pub fn of(relative: &str) -> Option<CacheName> {
+        let parts: Vec<&str> = relative.split('/').collect();
+        match parts[..] {
+            ["entries", name] => match name.strip_suffix(".json") {
+                Some(key) if is_sha256(key) => Some(CacheName::Entry(key.to_owned())),
+                _ => temporary_of(name, |base| {
+                    base.strip_suffix(".json").is_some_and(is_sha256)
+                }),
+            },
+            ["objects", shard, name] if shard.len() == 2 && is_lower_hex(shard) => {
+                if is_sha256(name) && name.starts_with(shard) {
+                    Some(CacheName::Object(name.to_owned()))
+                } else {
+                    temporary_of(name, |base| is_sha256(base) && base.starts_with(shard))
+                }
+            }
+            ["objects", name] => temporary_of(name, |base| base == "stream"),
+            _ => None,
+        }
+    }
+}
+
+/// [`CacheName::Temporary`] when `name` is a temporary of a file whose name passes `base`.
+fn temporary_of(name: &str, base: impl Fn(&str) -> bool) -> Option<CacheName> {
+    let (stem, tail) = name
+        .strip_prefix('.')?
+        .split_once(super::atomic::TEMP_MARK)?;
+    let (pid, n) = tail.split_once('-')?;
+    let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+    (base(stem) && digits(pid) && digits(n)).then_some(CacheName::Temporary)
+}
+
+fn is_lower_hex(text: &str) -> bool {
+    text.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'))
 }
 
 /// Sets an object's mtime to now: `cache gc` removes nothing younger than its grace
@@ -496,7 +738,7 @@ mod tests {
         let cache = Cache::new(dir.path());
         assert_eq!(cache.get("k1", Load::Bytes), Err(Miss::Absent));
         let out = outputs(&[("a.json", b"{}"), ("b.png", b"png bytes")]);
-        cache.put("parse", "k1", &out).unwrap();
+        cache.put("parse", "k1", &out, &[]).unwrap();
         let back = cache.get("k1", Load::Bytes).unwrap();
         for (name, blob) in &back {
             assert_eq!(blob.bytes(), out[name].bytes());
@@ -517,7 +759,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let cache = Cache::new(dir.path());
         let refs = cache
-            .put("mirror", "k2", &outputs(&[("layout.png", b"pixels")]))
+            .put("mirror", "k2", &outputs(&[("layout.png", b"pixels")]), &[])
             .unwrap();
         let object = cache.object_path(&refs["layout.png"].sha256);
         fs::write(&object, b"pixelz").unwrap();
@@ -526,7 +768,7 @@ mod tests {
         );
         // Putting the same outputs again repairs the object.
         cache
-            .put("mirror", "k2", &outputs(&[("layout.png", b"pixels")]))
+            .put("mirror", "k2", &outputs(&[("layout.png", b"pixels")]), &[])
             .unwrap();
         assert!(cache.get("k2", Load::References).is_ok());
         fs::remove_file(&object).unwrap();
@@ -548,7 +790,7 @@ mod tests {
             ),
             ("coco.json".to_owned(), Blob::from(b"{}".to_vec())),
         ]);
-        cache.put("frames", "k4", &out).unwrap();
+        cache.put("frames", "k4", &out, &[]).unwrap();
         let back = cache.get("k4", Load::Bytes).unwrap();
         assert_eq!(
             back["rgb/000000.png"].bytes().unwrap().as_slice(),
@@ -558,6 +800,162 @@ mod tests {
             cache.get("k4", Load::References).unwrap()["rgb/000000.png"],
             Blob::Stored(frame, None)
         );
+    }
+
+    const SHA: &str = "3f2a0000000000000000000000000000000000000000000000000000000000e1";
+
+    #[test]
+    fn the_cache_knows_its_own_names_and_no_others() {
+        let own = [
+            (
+                format!("entries/{SHA}.json"),
+                CacheName::Entry(SHA.to_owned()),
+            ),
+            (
+                format!("objects/3f/{SHA}"),
+                CacheName::Object(SHA.to_owned()),
+            ),
+            (
+                format!("entries/.{SHA}.json.cityspec-tmp-12-0"),
+                CacheName::Temporary,
+            ),
+            (
+                format!("objects/3f/.{SHA}.cityspec-tmp-7-31"),
+                CacheName::Temporary,
+            ),
+            (
+                "objects/.stream.cityspec-tmp-7-2".to_owned(),
+                CacheName::Temporary,
+            ),
+        ];
+        for (name, kind) in own {
+            assert_eq!(CacheName::of(&name), Some(kind), "{name}");
+        }
+        let foreign = [
+            "objects/README-keep.txt".to_owned(),
+            // git's objects: 38 hex digits under a two-digit shard.
+            "objects/3f/2a00000000000000000000000000000000000e".to_owned(),
+            format!("objects/ab/{SHA}"),
+            format!("objects/3F/{}", SHA.to_uppercase()),
+            format!("objects/3f/{SHA}/x"),
+            "entries/HEAD".to_owned(),
+            "entries/k1.json".to_owned(),
+            format!("entries/{SHA}.json.bak"),
+            format!("entries/.{SHA}.json.cityspec-tmp-x-0"),
+            "entries/.notes.cityspec-tmp-1-0".to_owned(),
+            "objects/info/packs".to_owned(),
+            format!("fresh/{SHA}.json"),
+        ];
+        for name in foreign {
+            assert_eq!(CacheName::of(&name), None, "{name}");
+        }
+    }
+
+    #[test]
+    fn entries_with_bad_hashes_or_sizes_are_damage_not_panics() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = Cache::new(dir.path());
+        fs::create_dir_all(dir.path().join("entries")).unwrap();
+        let entry = |sha: &str, bytes: &str| {
+            format!(
+                r#"{{"stage":"mirror","key":"k5","outputs":{{"layout.png":{{"sha256":"{sha}","bytes":{bytes}}}}},"diagnostics":[]}}"#
+            )
+        };
+        for (sha, bytes) in [
+            ("", "1"),
+            ("a", "1"),
+            ("é", "1"),
+            (&SHA.to_uppercase()[..], "1"),
+            (SHA, "1099511627777"),
+        ] {
+            fs::write(dir.path().join("entries/k5.json"), entry(sha, bytes)).unwrap();
+            assert!(
+                matches!(cache.get("k5", Load::Bytes), Err(Miss::Corrupt(m)) if m.contains("not a cache entry")),
+                "{sha:?} {bytes}"
+            );
+            assert!(cache.entry("k5").is_none());
+        }
+        // An entry of an older cityspec (no diagnostics) is no entry: rebuilt quietly.
+        let older = r#"{"stage":"mirror","key":"k5","outputs":{}}"#;
+        fs::write(dir.path().join("entries/k5.json"), older).unwrap();
+        assert_eq!(cache.get("k5", Load::Bytes), Err(Miss::Absent));
+        // A hash from nowhere names a file that is only missing.
+        assert_eq!(
+            cache.object_path("a"),
+            dir.path().join("objects/--/a"),
+            "no slice past the end"
+        );
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_fifo_or_symlink_in_the_cache_is_damage_found_without_blocking_and_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = Cache::new(dir.path());
+        let out = outputs(&[("layout.png", b"pixels")]);
+        let refs = cache.put("mirror", "k6", &out, &[]).unwrap();
+        let entry = cache.entry_path("k6");
+        fs::remove_file(&entry).unwrap();
+        rustix::fs::mkfifoat(rustix::fs::CWD, &entry, rustix::fs::Mode::RUSR).unwrap();
+        // Opened blocking, this read would wait for a writer forever.
+        let miss = cache.get("k6", Load::Bytes);
+        assert!(
+            matches!(&miss, Err(Miss::Corrupt(m)) if m.contains("a FIFO, not a regular file")),
+            "{miss:?}"
+        );
+        cache.put("mirror", "k6", &out, &[]).unwrap();
+        assert!(
+            cache.get("k6", Load::Bytes).is_ok(),
+            "the FIFO was replaced"
+        );
+        // An object replaced by a symlink to a file with the same bytes is not followed.
+        let object = cache.object_path(&refs["layout.png"].sha256);
+        let elsewhere = dir.path().join("elsewhere");
+        fs::write(&elsewhere, b"pixels").unwrap();
+        fs::remove_file(&object).unwrap();
+        std::os::unix::fs::symlink(&elsewhere, &object).unwrap();
+        let miss = cache.get("k6", Load::Bytes);
+        assert!(
+            matches!(&miss, Err(Miss::Corrupt(m)) if m.contains("a symlink")),
+            "{miss:?}"
+        );
+        cache.put("mirror", "k6", &out, &[]).unwrap();
+        assert!(!fs::symlink_metadata(&object).unwrap().is_symlink());
+        assert!(cache.get("k6", Load::Bytes).is_ok());
+    }
+
+    #[test]
+    fn diagnostics_are_kept_with_the_entry_and_the_first_write_marks_the_cache() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = Cache::new(dir.path().join("new"));
+        assert!(!cache.is_marked().unwrap());
+        let warned = [Diagnostic::warning("facade-skipped", "skipped a.jpg")];
+        cache
+            .put(
+                "facades",
+                "k7",
+                &outputs(&[("facades.json", b"[]")]),
+                &warned,
+            )
+            .unwrap();
+        let hit = cache
+            .lookup(
+                "facades",
+                "k7",
+                Load::Bytes,
+                &crate::build::output_names::OutputNames::of("facades", None),
+            )
+            .unwrap();
+        assert_eq!(hit.diagnostics, warned);
+        assert!(cache.is_marked().unwrap());
+        // A marker someone else wrote is not cityspec's.
+        let other = tempfile::tempdir().unwrap();
+        fs::write(
+            other.path().join(MARKER),
+            "Signature: 8a477f597d28d172789f06886806bc55\n",
+        )
+        .unwrap();
+        assert!(!Cache::new(other.path()).is_marked().unwrap());
     }
 
     #[test]

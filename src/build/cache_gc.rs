@@ -2,9 +2,18 @@
 //!
 //! Needed: every stage entry of each spec (its city stages, each camera path's entry, plan
 //! and chunks) and every object those entries name, plus every object a given lock file
-//! lists. Everything else in `entries/` and `objects/` may go: all of it without limits;
-//! with `--max-age`, what is older than that; with `--max-size`, the oldest first until the
+//! lists. Every other file of the cache may go: all of it without limits; with
+//! `--max-age`, what is older than that; with `--max-size`, the oldest first until the
 //! cache fits. Temporaries that killed builds left (`.…cityspec-tmp-…`) always go.
+//!
+//! Only the cache's own files ever go. gc refuses a folder (or prefix) without the marker
+//! a cache's first write leaves ([`MARKER`]), so `--cache` pointed at a git repository or a
+//! home folder removes nothing. Inside a marked cache it removes only names of the exact
+//! shape the cache writes ([`CacheName`]: 64 hex digits under their two-digit shard, and so
+//! on); everything else is left and reported as skipped. It never follows a symlink: a
+//! symlinked `entries/`, `objects/` or shard folder is reported, not entered. A file with
+//! one of the cache's names that is not a regular file (a FIFO, a symlink) is damage: it is
+//! removed whatever its age (removing a symlink never touches what it points to).
 //!
 //! Safe while other builds run: nothing modified within the grace period (default one
 //! hour) is removed. A build writes its objects before the entry that names them, and
@@ -27,7 +36,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
-use super::cache::Cache;
+use super::cache::{Cache, CacheName, MARKER};
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
@@ -52,9 +61,14 @@ pub struct GcReport {
     pub removed_entries: usize,
     pub removed_objects: usize,
     pub removed_temporaries: usize,
+    /// Files with the cache's names that were not regular files (FIFOs, symlinks): removed.
+    pub removed_damaged: usize,
     pub removed_bytes: u64,
     /// Bytes in the cache afterwards.
     pub bytes: u64,
+    /// What gc left alone because the cache does not write it: foreign names, folders
+    /// where a file belongs, symlinked folders (relative paths, sorted).
+    pub skipped: Vec<String>,
 }
 
 /// A file gc may remove.
@@ -66,15 +80,41 @@ struct Candidate {
 /// A file of the cache: its path in a local folder, or under a remote cache's prefix.
 struct CacheFile {
     path: PathBuf,
-    name: String,
+    name: CacheName,
     bytes: u64,
     modified: SystemTime,
+    /// Not a regular file (local caches only): damage.
+    damaged: bool,
+}
+
+/// The cache's files by kind, and what it skipped.
+#[derive(Default)]
+struct Listing {
+    files: Vec<CacheFile>,
+    skipped: Vec<String>,
 }
 
 /// Collects what `specs` (spec files, or lock files ending in `.lock`) need, then removes
 /// the rest of the cache as [`GcOptions`] allow.
 pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildError>> {
     let cache = Cache::open(&options.cache_dir).map_err(|e| vec![e])?;
+    let refuse = |why: String| {
+        vec![BuildError::NotACache {
+            path: options.cache_dir.clone(),
+            why,
+        }]
+    };
+    match cache.is_marked() {
+        Ok(true) => {}
+        Ok(false) => {
+            return Err(refuse(format!(
+                "it has no {MARKER} written by cityspec, so `cache gc` removes nothing from \
+                 it (a cache gets the marker with its first write; a cache made by an older \
+                 cityspec gets it at its next build)"
+            )));
+        }
+        Err(e) => return Err(refuse(format!("its {MARKER} cannot be read: {e}"))),
+    }
     let mut entries = BTreeSet::new();
     let mut objects = BTreeSet::new();
     let mut errors = Vec::new();
@@ -103,25 +143,33 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
         }]
     };
     let now = SystemTime::now();
-    let mut report = GcReport::default();
+    let listing = cache_files(&cache, now).map_err(io_error)?;
+    let mut report = GcReport {
+        skipped: listing.skipped,
+        ..GcReport::default()
+    };
     let mut candidates = Vec::new();
     let mut total = 0u64;
     let mut temporaries = Vec::new();
-    for (entry, file) in cache_files(&cache, now).map_err(io_error)? {
-        let young = now.duration_since(file.modified).unwrap_or_default() < options.grace;
+    for file in listing.files {
         total += file.bytes;
-        if file.name.contains(".cityspec-tmp-") {
-            if !young {
-                temporaries.push(file);
+        if file.damaged {
+            if remove(&cache, &file) {
+                report.removed_damaged += 1;
+                total -= file.bytes;
             }
             continue;
         }
-        let needed = if entry {
-            file.name
-                .strip_suffix(".json")
-                .is_some_and(|k| entries.contains(k))
-        } else {
-            objects.contains(&file.name)
+        let young = now.duration_since(file.modified).unwrap_or_default() < options.grace;
+        let (needed, entry) = match &file.name {
+            CacheName::Temporary => {
+                if !young {
+                    temporaries.push(file);
+                }
+                continue;
+            }
+            CacheName::Entry(key) => (entries.contains(key), true),
+            CacheName::Object(sha256) => (objects.contains(sha256), false),
         };
         match (needed, entry) {
             (true, true) => report.kept_entries += 1,
@@ -188,90 +236,115 @@ fn lock_objects(path: &Path) -> Result<Vec<String>, BuildError> {
     })
 }
 
-/// Every entry (`true`) and object (`false`) file of the cache, local or remote.
-fn cache_files(cache: &Cache, now: SystemTime) -> io::Result<Vec<(bool, CacheFile)>> {
+/// Every file of the cache with one of its own names, local or remote, and what was
+/// skipped.
+fn cache_files(cache: &Cache, now: SystemTime) -> io::Result<Listing> {
     let Some(remote) = cache.remote() else {
-        let root = cache.root();
-        let entries = files_of(&root.join("entries"))?
-            .into_iter()
-            .map(|f| (true, f));
-        let objects = files_of_nested(&root.join("objects"))?;
-        let local = |(path, meta): (PathBuf, fs::Metadata)| CacheFile {
-            name: path
-                .file_name()
-                .unwrap_or_default()
-                .to_string_lossy()
-                .into_owned(),
-            bytes: meta.len(),
-            modified: meta.modified().unwrap_or(now),
-            path,
-        };
-        return Ok(entries
-            .chain(objects.into_iter().map(|f| (false, f)))
-            .map(|(entry, file)| (entry, local(file)))
-            .collect());
+        return local_files(cache.root(), now);
     };
-    let mut files = Vec::new();
-    for (folder, entry) in [("entries", true), ("objects", false)] {
+    let mut listing = Listing::default();
+    for folder in ["entries", "objects"] {
         for listed in remote.list(folder)? {
-            let name = listed
-                .name
-                .rsplit('/')
-                .next()
-                .unwrap_or_default()
-                .to_owned();
-            files.push((
-                entry,
-                CacheFile {
+            match CacheName::of(&listed.name) {
+                Some(name) => listing.files.push(CacheFile {
                     path: PathBuf::from(listed.name),
                     name,
                     bytes: listed.bytes,
                     modified: listed.modified,
-                },
-            ));
+                    damaged: false,
+                }),
+                None => listing.skipped.push(listed.name),
+            }
         }
     }
-    Ok(files)
+    listing.skipped.sort();
+    Ok(listing)
 }
 
-/// Removes one file of the cache; whether it went.
+/// [`cache_files`] of a local cache: `entries/*` and `objects/*/*`, walked without
+/// following a symlink.
+fn local_files(root: &Path, now: SystemTime) -> io::Result<Listing> {
+    let mut listing = Listing::default();
+    for top in ["entries", "objects"] {
+        let dir = root.join(top);
+        match fs::symlink_metadata(&dir) {
+            Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
+            Err(e) => return Err(e),
+            Ok(meta) if meta.is_dir() => {}
+            Ok(meta) => {
+                listing.skipped.push(format!("{top} ({})", kind_of(&meta)));
+                continue;
+            }
+        }
+        for (name, meta) in children(&dir)? {
+            let relative = format!("{top}/{name}");
+            if top == "objects" && meta.is_dir() {
+                // A shard folder (two hex digits): its files, one level down.
+                let shard =
+                    name.len() == 2 && name.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'));
+                if !shard {
+                    listing.skipped.push(format!("{relative} (a folder)"));
+                    continue;
+                }
+                for (inner, meta) in children(&dir.join(&name))? {
+                    let relative = format!("{relative}/{inner}");
+                    listing.add(root, relative, &meta, now);
+                }
+            } else {
+                listing.add(root, relative, &meta, now);
+            }
+        }
+    }
+    listing.skipped.sort();
+    Ok(listing)
+}
+
+impl Listing {
+    /// Files the cache names are listed (damaged when not regular files); folders there
+    /// and foreign names are skipped.
+    fn add(&mut self, root: &Path, relative: String, meta: &fs::Metadata, now: SystemTime) {
+        match CacheName::of(&relative) {
+            Some(name) if !meta.is_dir() => self.files.push(CacheFile {
+                path: root.join(&relative),
+                name,
+                bytes: if meta.is_file() { meta.len() } else { 0 },
+                modified: meta.modified().unwrap_or(now),
+                damaged: !meta.is_file(),
+            }),
+            _ if meta.is_symlink() => self.skipped.push(format!("{relative} (a symlink)")),
+            _ if meta.is_dir() => self.skipped.push(format!("{relative} (a folder)")),
+            _ => self.skipped.push(relative),
+        }
+    }
+}
+
+/// What a non-folder is, for the skipped list.
+fn kind_of(meta: &fs::Metadata) -> &'static str {
+    if meta.is_symlink() {
+        "a symlink: not followed"
+    } else {
+        "not a folder"
+    }
+}
+
+/// The entries of a folder with their own metadata (a symlink is reported as one, never
+/// followed).
+fn children(dir: &Path) -> io::Result<Vec<(String, fs::Metadata)>> {
+    let mut out = Vec::new();
+    for entry in fs::read_dir(dir)? {
+        let entry = entry?;
+        let meta = fs::symlink_metadata(entry.path())?;
+        out.push((entry.file_name().to_string_lossy().into_owned(), meta));
+    }
+    Ok(out)
+}
+
+/// Removes one file of the cache (a symlink itself, never its target); whether it went.
 fn remove(cache: &Cache, file: &CacheFile) -> bool {
     match cache.remote() {
         Some(remote) => remote.delete(&file.path.to_string_lossy()).is_ok(),
         None => fs::remove_file(&file.path).is_ok(),
     }
-}
-
-/// The files of a folder (none when it is missing).
-fn files_of(dir: &Path) -> io::Result<Vec<(PathBuf, fs::Metadata)>> {
-    let entries = match fs::read_dir(dir) {
-        Ok(entries) => entries,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e),
-    };
-    let mut out = Vec::new();
-    for entry in entries {
-        let entry = entry?;
-        let meta = entry.metadata()?;
-        if meta.is_file() {
-            out.push((entry.path(), meta));
-        }
-    }
-    Ok(out)
-}
-
-/// The files of a folder and of its subfolders one level down (`objects/ab/…`).
-fn files_of_nested(dir: &Path) -> io::Result<Vec<(PathBuf, fs::Metadata)>> {
-    let mut out = files_of(dir)?;
-    if let Ok(entries) = fs::read_dir(dir) {
-        for entry in entries {
-            let entry = entry?;
-            if entry.file_type()?.is_dir() {
-                out.extend(files_of(&entry.path())?);
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// Parses a size: a number of bytes with an optional `K`, `M`, `G` or `T` (powers of

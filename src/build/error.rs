@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use super::decode_error::DecodeError;
 use super::input_problem::InputProblem;
+use crate::diagnostic::Diagnostic;
 use crate::facades::FacadeError;
 use crate::layout::LayoutError;
 use crate::objects::ObjectsError;
@@ -65,10 +66,10 @@ pub enum BuildError {
         source: ObjectsError,
     },
     /// `--strict`: the build would have succeeded with these warnings.
-    #[error("{}: --strict: {}", spec.display(), warnings.join("; "))]
+    #[error("{}: --strict: {}", spec.display(), joined(warnings))]
     Strict {
         spec: PathBuf,
-        warnings: Vec<String>,
+        warnings: Vec<Diagnostic>,
     },
     /// The renderer refused the scene: too many objects for the instance ids (the spec
     /// asks for too much), or a cityspec bug (a mesh naming a missing material).
@@ -88,6 +89,12 @@ pub enum BuildError {
     /// Writing the output folder failed.
     #[error("cannot write {}: {source}", path.display())]
     Output { path: PathBuf, source: io::Error },
+    /// `cache gc` was pointed at a folder (or prefix) that is not a cityspec cache.
+    #[error("{}: not a cityspec cache: {why}", path.display())]
+    NotACache { path: PathBuf, why: String },
+    /// `--out` names something that is not a folder (a usage error).
+    #[error("{}: --out names a file, not a folder: give the folder the spec's output folder goes in (default `out`)", path.display())]
+    OutNotAFolder { path: PathBuf },
     /// The output folder is one cityspec must not replace (a link, a folder of the
     /// user's), or a stage named a path outside it.
     #[error("{}: {message}", path.display())]
@@ -108,4 +115,10 @@ pub enum BuildError {
         #[source]
         source: DecodeError,
     },
+}
+
+/// Diagnostics on one line, `; `-separated.
+fn joined(diagnostics: &[Diagnostic]) -> String {
+    let lines: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
+    lines.join("; ")
 }

@@ -23,7 +23,9 @@ use super::cache::Cache;
 use super::manifest::{Artifact, Manifest};
 use super::out_dir::{folders_of, mtime_ns};
 use super::output_names::is_safe_relative;
+use crate::diagnostic::{Diagnostic, extend_unique};
 use crate::hash::sha256_hex;
+use crate::regular_file::{self, Follow};
 
 /// What the last build left in one output folder.
 #[derive(Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -65,20 +67,24 @@ fn stamp(path: &Path, dir: bool) -> Option<(u64, u128)> {
 
 /// The record of the last build into `out_dir`, if any.
 pub fn load(cache: &Cache, out_dir: &Path) -> Option<FreshRecord> {
-    serde_json::from_slice(&fs::read(record_path(cache, out_dir)?).ok()?).ok()
+    let text = regular_file::read(&record_path(cache, out_dir)?, Follow::No).ok()?;
+    serde_json::from_slice(&text).ok()
 }
 
-/// The manifest of an up-to-date output folder, or `None` when anything may have changed.
+/// The manifest of an up-to-date output folder and the diagnostics its stages' entries
+/// record, or `None` when anything may have changed.
 pub fn check(
     cache: &Cache,
     out_dir: &Path,
     name: &str,
     stages: &[(&'static str, &str)],
-) -> Option<Manifest> {
+) -> Option<(Manifest, Vec<Diagnostic>)> {
     let record = load(cache, out_dir)?;
     let mut artifacts = Vec::new();
+    let mut diagnostics = Vec::new();
     for (stage, key) in stages {
         let entry = cache.entry(key)?;
+        extend_unique(&mut diagnostics, &entry.diagnostics);
         for (path, object) in &entry.outputs {
             if !is_safe_relative(path) {
                 return None;
@@ -126,7 +132,7 @@ pub fn check(
             return None;
         }
     }
-    Some(manifest)
+    Some((manifest, diagnostics))
 }
 
 /// Records what the output folder holds after a build (best effort: a failure only costs

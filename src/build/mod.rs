@@ -180,7 +180,7 @@ pub fn build(path: &Path, options: &BuildOptions) -> Result<BuildReport, BuildEr
 /// file it names (read, hashed and parsed as the build reads them), and a facade folder's
 /// photos, boxes and floors, processed as the facades stage does. Returns the spec and the
 /// facade warnings a build would print.
-pub fn validate(path: &Path) -> Result<(Spec, Vec<String>), BuildError> {
+pub fn validate(path: &Path) -> Result<(Spec, Vec<crate::diagnostic::Diagnostic>), BuildError> {
     let spec = load_spec(path)?;
     let inputs = inputs::SpecInputs::read(path, &spec)?;
     let warnings = match &inputs.facades {
@@ -192,7 +192,7 @@ pub fn validate(path: &Path) -> Result<(Spec, Vec<String>), BuildError> {
                     spec: path.to_path_buf(),
                     source,
                 })?;
-            warnings.iter().map(ToString::to_string).collect()
+            warnings
         }
     };
     Ok((spec, warnings))

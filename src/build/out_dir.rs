@@ -77,14 +77,18 @@ impl OutDir {
             let path = path.to_path_buf();
             move |source| BuildError::Output { path, source }
         };
+        if let Ok(meta) = fs::metadata(root)
+            && !meta.is_dir()
+        {
+            return Err(BuildError::OutNotAFolder {
+                path: root.to_path_buf(),
+            });
+        }
         fs::create_dir_all(root).map_err(io_err(root))?;
+        // Created or opened like every other write here: never through a symlink planted
+        // at its name (which would make every build create its target outside the folder).
         let lock_path = root.join(format!(".{name}~cityspec-lock"));
-        let lock = File::options()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(io_err(&lock_path))?;
+        let lock = crate::regular_file::open_lock_file(&lock_path).map_err(io_err(&lock_path))?;
         match lock.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {

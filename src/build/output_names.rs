@@ -12,7 +12,7 @@
 pub enum OutputNames {
     /// Exactly these names.
     Fixed(&'static [&'static str]),
-    /// `facades.json`, `warnings.json` and `textures/<file>.png`.
+    /// `facades.json` and `textures/<file>.png`.
     Facades,
     /// `city.obj`, `city.mtl`, `city.glb` and `textures/<file>.png`.
     Export,
@@ -49,9 +49,7 @@ impl OutputNames {
         }
         match self {
             OutputNames::Fixed(names) => names.contains(&name),
-            OutputNames::Facades => {
-                matches!(name, "facades.json" | "warnings.json") || is_texture(name)
-            }
+            OutputNames::Facades => name == "facades.json" || is_texture(name),
             OutputNames::Export => {
                 matches!(name, "city.obj" | "city.mtl" | "city.glb") || is_texture(name)
             }
@@ -75,7 +73,7 @@ impl OutputNames {
     fn required(&self) -> &'static [&'static str] {
         match self {
             OutputNames::Fixed(names) => names,
-            OutputNames::Facades => &["facades.json", "warnings.json"],
+            OutputNames::Facades => &["facades.json"],
             OutputNames::Export => &["city.glb", "city.mtl", "city.obj"],
             OutputNames::Frames(_) => &[],
             OutputNames::Chunk(_) => &["summary.jsonl"],

@@ -28,6 +28,8 @@ pub struct StageRun {
 #[derive(Clone, Debug)]
 pub struct BuildReport {
     pub name: String,
+    /// The spec file built (the CLI places diagnostics in it).
+    pub spec: PathBuf,
     pub out_dir: PathBuf,
     /// Stages in the order they finished. Stages whose outputs were not needed (because
     /// everything downstream came from the cache) do not appear.
@@ -38,8 +40,9 @@ pub struct BuildReport {
     pub unchanged: Vec<String>,
     /// Files of an earlier build that this build no longer produces, now removed.
     pub removed: Vec<String>,
-    /// Warnings of stages that ran (facades skipped for bad data, …).
-    pub warnings: Vec<String>,
+    /// The diagnostics of every stage the build used, run or cached (facades skipped for
+    /// bad data, objects short of their count, …), sorted.
+    pub warnings: Vec<crate::diagnostic::Diagnostic>,
     /// Triangles in the 3D scene, when this build made the scene.
     pub triangles: Option<usize>,
     pub elapsed: Duration,

@@ -17,6 +17,7 @@ use super::out_dir::OutDir;
 use super::pipeline::{ArtifactOut, Pipeline};
 use super::report::{BuildReport, StageRun, StageStatus};
 use super::{BuildError, BuildOptions};
+use crate::diagnostic::Diagnostic;
 use crate::spec::Spec;
 
 /// Builds an already validated spec read from `path`.
@@ -33,7 +34,8 @@ pub fn build_spec(
     pipeline.strict = options.strict;
     // Held until this build returns: builds of one output folder take turns.
     let out = lock_output_folder(spec, options)?;
-    if let Some((manifest, report)) = up_to_date(spec, &pipeline, &cache, &out, start) {
+    if let Some((manifest, report)) = up_to_date(path, spec, &pipeline, &cache, &out, start) {
+        let report = strict_report(path, report, options)?;
         check_lock(path, &manifest, options)?;
         return Ok(report);
     }
@@ -44,12 +46,13 @@ pub fn build_spec(
     let synced = write_output_folder(&out, &artifacts, &manifest, &cache)?;
     Ok(BuildReport {
         name: spec.name.clone(),
+        spec: path.to_path_buf(),
         out_dir: out.path().to_path_buf(),
         stages: pipeline.runs,
         written: synced.written,
         unchanged: synced.unchanged,
         removed: synced.removed,
-        warnings: pipeline.warnings,
+        warnings: sorted(pipeline.diagnostics),
         triangles: pipeline.triangles,
         elapsed: start.elapsed(),
     })
@@ -74,13 +77,36 @@ pub(super) fn strict_check<'a>(
     pipeline: Pipeline<'a>,
     options: &BuildOptions,
 ) -> Result<Pipeline<'a>, BuildError> {
-    if options.strict && !pipeline.warnings.is_empty() {
+    if options.strict && pipeline.diagnostics.iter().any(Diagnostic::is_warning) {
         return Err(BuildError::Strict {
             spec: path.to_path_buf(),
-            warnings: pipeline.warnings,
+            warnings: sorted(pipeline.diagnostics),
         });
     }
     Ok(pipeline)
+}
+
+/// [`strict_check`] of a no-op build, whose warnings its entries replayed.
+fn strict_report(
+    path: &Path,
+    report: BuildReport,
+    options: &BuildOptions,
+) -> Result<BuildReport, BuildError> {
+    if options.strict && report.warnings.iter().any(Diagnostic::is_warning) {
+        return Err(BuildError::Strict {
+            spec: path.to_path_buf(),
+            warnings: report.warnings,
+        });
+    }
+    Ok(report)
+}
+
+/// Diagnostics in one order, whatever order the stages were evaluated or looked up in: a
+/// warm build says what a cold one said, in the same words and order.
+pub(super) fn sorted(mut diagnostics: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    diagnostics.sort();
+    diagnostics.dedup();
+    diagnostics
 }
 
 /// Locks `<out>/<name>/` (saying so when another build holds it) and removes what a
@@ -98,6 +124,7 @@ fn lock_output_folder(spec: &Spec, options: &BuildOptions) -> Result<OutDir, Bui
 /// left it and the artifact stages' entries name the same objects, the report of a build
 /// that did nothing, with the manifest it found.
 fn up_to_date(
+    path: &Path,
     spec: &Spec,
     pipeline: &Pipeline,
     cache: &Cache,
@@ -105,7 +132,7 @@ fn up_to_date(
     start: Instant,
 ) -> Option<(Manifest, BuildReport)> {
     let stages = pipeline.artifact_stages();
-    let manifest = fresh::check(cache, out.path(), &spec.name, &stages)?;
+    let (manifest, diagnostics) = fresh::check(cache, out.path(), &spec.name, &stages)?;
     let lookup = start.elapsed();
     let mut unchanged: Vec<String> = manifest.artifacts.iter().map(|a| a.path.clone()).collect();
     unchanged.push("manifest.json".to_owned());
@@ -122,12 +149,13 @@ fn up_to_date(
         .collect();
     let report = BuildReport {
         name: spec.name.clone(),
+        spec: path.to_path_buf(),
         out_dir: out.path().to_path_buf(),
         stages,
         written: Vec::new(),
         unchanged,
         removed: Vec::new(),
-        warnings: Vec::new(),
+        warnings: sorted(diagnostics),
         triangles: None,
         elapsed: start.elapsed(),
     };

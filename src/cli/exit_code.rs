@@ -22,7 +22,9 @@ pub fn exit_code(error: &BuildError) -> u8 {
         | BuildError::Facades { .. }
         | BuildError::Objects { .. }
         | BuildError::Strict { .. }
-        | BuildError::DuplicateName { .. } => INPUT,
+        | BuildError::DuplicateName { .. }
+        | BuildError::OutNotAFolder { .. }
+        | BuildError::NotACache { .. } => INPUT,
         // The spec asked for more objects than instance ids can tell apart.
         BuildError::Render {
             source: RenderError::TooManyObjects { .. },

@@ -174,7 +174,7 @@ pub fn run() -> ExitCode {
                 match build::validate(path) {
                     Ok((spec, warnings)) => {
                         for warning in warnings {
-                            eprintln!("warning: {}: {warning}", spec.name);
+                            eprintln!("{}", print::diagnostic_line(path, &warning));
                         }
                         out.info(&format!("{}: ok ({})", path.display(), spec.name));
                     }
@@ -232,6 +232,29 @@ pub fn run() -> ExitCode {
                         r.removed_bytes as f64 / 1048576.0,
                         r.bytes as f64 / 1048576.0
                     ));
+                    if r.removed_damaged > 0 {
+                        out.info(&format!(
+                            "removed {} damaged files (FIFOs, symlinks or other non-regular \
+                             files where the cache keeps its files)",
+                            r.removed_damaged
+                        ));
+                    }
+                    if !r.skipped.is_empty() {
+                        // Told even with --quiet: files in the cache that are not its own
+                        // are worth a look.
+                        const SHOWN: usize = 10;
+                        let mut names: Vec<&str> =
+                            r.skipped.iter().take(SHOWN).map(String::as_str).collect();
+                        if r.skipped.len() > SHOWN {
+                            names.push("…");
+                        }
+                        eprintln!(
+                            "skipped {} files and folders that cityspec does not write (left as \
+                             they are): {}",
+                            r.skipped.len(),
+                            names.join(", ")
+                        );
+                    }
                     ExitCode::SUCCESS
                 }
                 Err(errors) => exit_for(&errors, &out),

@@ -1,6 +1,8 @@
 //! Terminal output: build summaries, per-stage lines and rendered errors, on stderr.
 
 use crate::build::{BuildError, BuildReport, StageStatus, VerifyReport};
+use crate::diagnostic::Diagnostic;
+use crate::regular_file::{self, Follow};
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -51,7 +53,7 @@ impl Printer {
             }
         }
         for warning in &report.warnings {
-            eprintln!("warning: {}: {warning}", report.name);
+            eprintln!("{}", diagnostic_line(&report.spec, warning));
         }
         if self.quiet {
             return;
@@ -249,6 +251,24 @@ pub fn waiting_line() -> crate::build::Waiting {
             dir.display()
         );
     })
+}
+
+/// One diagnostic as `spec.toml:LINE:COL: warning[code]: message (file)`, placed at its
+/// key in the spec when it names one that the spec file still holds.
+pub fn diagnostic_line(spec: &Path, diagnostic: &Diagnostic) -> String {
+    let position = diagnostic.key.as_deref().and_then(|key| {
+        let text = regular_file::read_to_string(spec, Follow::Yes).ok()?;
+        crate::spec::key_position(&text, key)
+    });
+    let place = match position {
+        Some((line, column)) => format!("{}:{line}:{column}", spec.display()),
+        None => spec.display().to_string(),
+    };
+    let file = match &diagnostic.file {
+        Some(file) => format!(" ({file})"),
+        None => String::new(),
+    };
+    format!("{place}: {diagnostic}{file}")
 }
 
 #[cfg(test)]

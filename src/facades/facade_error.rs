@@ -1,4 +1,4 @@
-//! FacadeError and Warning: why a facade set, or one facade of it, could not be used.
+//! FacadeError: why a facade set, or one facade of it, could not be used.
 
 use thiserror::Error;
 
@@ -53,15 +53,4 @@ pub enum FacadeError {
         found: usize,
         skipped: usize,
     },
-}
-
-/// Something the stage let pass but the user should hear about, e.g.
-/// `skipped facade cmp_b0007: data/cmp/cmp_b0007.xml: missing; …`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Warning(pub String);
-
-impl std::fmt::Display for Warning {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
 }

@@ -9,7 +9,7 @@
 //!
 //! Bad facade data (missing XML, unreadable photo, bad XML, no window boxes and no floors
 //! entry, a crop that leaves nothing) stops the stage with an error naming the file, or with
-//! [`OnError::Skip`] leaves the facade out with a [`Warning`]. A bad floors-file line is
+//! [`OnError::Skip`] leaves the facade out with a warning ([`Diagnostic`]). A bad floors-file line is
 //! always an error. So is an empty result.
 //!
 //! Facades are processed in parallel into index-addressed slots; errors and warnings are
@@ -21,7 +21,7 @@
 /// Bump when the builtin set's bytes change: part of the facades stage's cache key.
 pub const BUILTIN_VERSION: u32 = 3;
 /// Bump when [`process`]'s output changes for the same input.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 mod builtin;
 mod cmp_box;
@@ -44,7 +44,9 @@ use crate::spec::OnError;
 pub use builtin::builtin;
 pub use cmp_box::{CmpBox, parse_cmp_xml, write_cmp_xml};
 pub use cmp_label::CmpLabel;
-pub use facade_error::{FacadeError, Warning};
+pub use facade_error::FacadeError;
+
+use crate::diagnostic::Diagnostic;
 pub use facade_source::{FacadeFile, FacadeSource, Photo};
 pub use floors_file::FloorsFile;
 pub use roof_set::{builtin_roofs, nearest_roof};
@@ -54,7 +56,7 @@ pub fn process(
     source: &FacadeSource,
     floor_height: f64,
     on_error: OnError,
-) -> Result<(FacadeSet, Vec<Warning>), FacadeError> {
+) -> Result<(FacadeSet, Vec<Diagnostic>), FacadeError> {
     let side = match &source.floors {
         Some(text) => FloorsFile::parse(text, &source.origin)?,
         None => FloorsFile::default(),
@@ -73,10 +75,12 @@ pub fn process(
     let mut warnings = Vec::new();
     for name in side.floors.keys() {
         if !source.files.iter().any(|f| &f.name == name) {
-            warnings.push(Warning(format!(
+            let message = format!(
                 "{}: floors file (facades.floors) lists `{name}`, which has no photo",
                 source.origin
-            )));
+            );
+            warnings
+                .push(Diagnostic::warning("facade-floors-unmatched", message).at("facades.floors"));
         }
     }
     gather(&source.origin, results, roofs, on_error, warnings)
@@ -87,7 +91,7 @@ pub fn process(
 pub fn process_builtin(
     floor_height: f64,
     on_error: OnError,
-) -> Result<(FacadeSet, Vec<Warning>), FacadeError> {
+) -> Result<(FacadeSet, Vec<Diagnostic>), FacadeError> {
     let source = builtin::source_without_files();
     let roofs = builtin_roofs();
     let results: Vec<_> = (0..builtin::COUNT)
@@ -108,8 +112,8 @@ fn gather(
     results: Vec<(String, Result<Facade, FacadeError>)>,
     roofs: Vec<Roof>,
     on_error: OnError,
-    mut warnings: Vec<Warning>,
-) -> Result<(FacadeSet, Vec<Warning>), FacadeError> {
+    mut warnings: Vec<Diagnostic>,
+) -> Result<(FacadeSet, Vec<Diagnostic>), FacadeError> {
     let found = results.len();
     let mut facades = Vec::new();
     let mut skipped = 0;
@@ -119,7 +123,9 @@ fn gather(
             (Err(error), OnError::Error) => return Err(error),
             (Err(error), OnError::Skip) => {
                 skipped += 1;
-                warnings.push(Warning(format!("skipped facade {name}: {error}")));
+                let message = format!("skipped facade {name}: {error}");
+                warnings
+                    .push(Diagnostic::warning("facade-skipped", message).at("facades.on_error"));
             }
         }
     }

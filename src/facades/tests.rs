@@ -288,9 +288,11 @@ fn side_file_overrides_the_estimate_and_its_bad_lines_are_errors() {
     assert_eq!(set.facades[0].height, 17.5);
     assert_eq!(
         warnings,
-        [Warning(
-            "data/cmp: floors file (facades.floors) lists `c`, which has no photo".into()
-        )]
+        [crate::diagnostic::Diagnostic::warning(
+            "facade-floors-unmatched",
+            "data/cmp: floors file (facades.floors) lists `c`, which has no photo"
+        )
+        .at("facades.floors")]
     );
     let err = process(&source(files, Some("a 5\nb five\n")), 3.0, OnError::Skip).unwrap_err();
     assert!(
@@ -378,7 +380,7 @@ fn bad_facade_data_errors_or_is_skipped_as_the_spec_says() {
         assert_eq!(warnings.len(), 1, "{name}");
         assert!(
             warnings[0]
-                .0
+                .message
                 .starts_with(&format!("skipped facade {name}: {expected}")),
             "{}",
             warnings[0]

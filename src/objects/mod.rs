@@ -130,9 +130,9 @@ pub struct Inserted {
 }
 
 impl Inserted {
-    /// One line per spec entry that placed fewer objects than its `count` asks, with the
-    /// numbers: `count` is an upper bound, so falling short is a warning, not an error.
-    pub fn shortfalls(&self, specs: &[ObjectSpec]) -> Vec<String> {
+    /// One warning per spec entry that placed fewer objects than its `count` asks, with
+    /// the numbers: `count` is an upper bound, so falling short is a warning, not an error.
+    pub fn shortfalls(&self, specs: &[ObjectSpec]) -> Vec<crate::diagnostic::Diagnostic> {
         specs
             .iter()
             .zip(&self.placed)
@@ -140,13 +140,15 @@ impl Inserted {
             .filter(|(_, (spec, placed))| **placed < spec.count)
             .map(|(i, (spec, placed))| {
                 let kind = spec.kind.name();
-                format!(
+                let message = format!(
                     "objects[{i}] ({kind}, label {:?}): placed {} of {} (no free spot left \
                      after {ATTEMPTS} tries each)",
                     spec.label,
                     thousands(*placed),
                     thousands(spec.count)
-                )
+                );
+                crate::diagnostic::Diagnostic::warning("objects-short", message)
+                    .at(format!("objects[{i}].count"))
             })
             .collect()
     }

@@ -187,11 +187,14 @@ fn count_is_an_upper_bound_when_the_city_is_full() {
     let warnings = inserted.shortfalls(&specs);
     assert_eq!(warnings.len(), 1);
     let expected = format!("placed {} of 5,000", inserted.objects.len());
+    assert_eq!(warnings[0].code, "objects-short");
+    assert_eq!(warnings[0].key.as_deref(), Some("objects[0].count"));
+    let message = &warnings[0].message;
     assert!(
-        warnings[0].starts_with("objects[0] (text, label \"text\")"),
-        "{warnings:?}"
+        message.starts_with("objects[0] (text, label \"text\")"),
+        "{message}"
     );
-    assert!(warnings[0].contains(&expected), "{warnings:?}");
+    assert!(message.contains(&expected), "{message}");
 }
 
 #[test]

@@ -177,6 +177,17 @@ pub fn resolve(spec_path: &Path, relative: &str) -> PathBuf {
     }
 }
 
+/// The 1-based line and column of the key `key` (a dotted path such as
+/// `objects[2].count`) in the spec text, or of its nearest written ancestor; `None` when the
+/// text does not parse. The CLI places a build's diagnostics with it.
+pub fn key_position(text: &str, key: &str) -> Option<(usize, usize)> {
+    let table = DeTable::parse(text).ok()?;
+    let locator = Locator::new(table.into_inner());
+    let span = locator.key_span(&key_path::KeyPath::parse(key));
+    let at = Diagnostic::new(text, span, key, "");
+    Some((at.line, at.column))
+}
+
 /// The schema generated from the types (pretty JSON text, trailing newline) — what
 /// `cityspec schema` prints and what is committed at schemas/cityspec.schema.json.
 pub fn schema_json() -> String {

@@ -337,13 +337,36 @@ fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says(
     fs::write(&xml, "<object><points><x>oops</x></points>").unwrap();
     let report = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
     assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    assert_eq!(report.warnings[0].code, "facade-skipped");
     assert!(
-        report.warnings[0].contains("street_04.xml"),
+        report.warnings[0].message.contains("street_04.xml"),
         "{}",
         report.warnings[0]
     );
     let obj = String::from_utf8(fs::read(ws.out().join("cmp/city.obj")).unwrap()).unwrap();
     assert!(!obj.contains("facade_street_04"));
+
+    // The warning is part of the stages' results: a warm build (the no-op fast path, then
+    // a full build from the cache) says it again, and `--strict` fails on it whatever the
+    // cache holds.
+    let warm = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    assert!(warm.up_to_date());
+    assert_eq!(warm.warnings, report.warnings);
+    fs::remove_dir_all(ws.out()).unwrap();
+    let from_cache = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    assert_eq!(
+        from_cache.ran().count(),
+        0,
+        "every stage came from the cache"
+    );
+    assert_eq!(from_cache.warnings, report.warnings);
+    let strict = build::BuildOptions {
+        strict: true,
+        ..ws.options()
+    };
+    let err = build::build(&ws.spec("cmp"), &strict).unwrap_err();
+    assert!(matches!(err, build::BuildError::Strict { .. }), "{err}");
+    assert!(err.to_string().contains("street_04.xml"), "{err}");
 
     // …and with on_error = "error" the build stops, naming the file, as bad input.
     ws.edit_spec("cmp", "on_error = \"skip\"", "on_error = \"error\"");

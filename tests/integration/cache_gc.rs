@@ -35,8 +35,8 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
     let other_manifest = manifest(&other.out_dir);
 
     // Temporaries of killed builds: a stale one goes, a young one (a running build's) stays.
-    let stale = ws.cache().join("objects/.x.cityspec-tmp-1-1");
-    let young = ws.cache().join("objects/.y.cityspec-tmp-1-2");
+    let stale = ws.cache().join("objects/.stream.cityspec-tmp-1-1");
+    let young = ws.cache().join("objects/.stream.cityspec-tmp-1-2");
     fs::write(&stale, b"half").unwrap();
     fs::write(&young, b"half").unwrap();
     let two_hours_ago = SystemTime::now() - Duration::from_secs(7200);

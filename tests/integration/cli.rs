@@ -538,7 +538,11 @@ fn issue_8_objects_placed_short_of_count_warn_and_fail_under_strict() {
     let plain = cityspec(&ws, &["build", "specs/crowded.toml"]);
     let text = stderr(&plain);
     assert_eq!(plain.status.code(), Some(0), "{text}");
-    assert!(text.contains("warning: crowded: objects[0]"), "{text}");
+    // At the entry's `count` in the spec, with the warning's code.
+    assert!(
+        text.contains("specs/crowded.toml:14:1: warning[objects-short]: objects[0]"),
+        "{text}"
+    );
     assert!(text.contains(" of 5,000"), "{text}");
     assert!(ws.path().join("out/crowded/manifest.json").is_file());
 

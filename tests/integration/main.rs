@@ -12,6 +12,7 @@ mod common;
 
 mod build;
 mod cache_gc;
+mod cache_safety;
 mod cli;
 mod lock;
 mod mutations;

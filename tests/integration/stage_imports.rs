@@ -21,9 +21,17 @@ const STAGES: &[&str] = &[
     "objects", "export", "cameras", "render", "annotate", "sensor", "stats",
 ];
 
-/// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing and
-/// image-file checks.
-const SHARED: &[&str] = &["model", "spec", "rng", "hash", "test_seed"];
+/// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing,
+/// image-file checks, the diagnostics stages report and regular-file opening.
+const SHARED: &[&str] = &[
+    "model",
+    "spec",
+    "rng",
+    "hash",
+    "test_seed",
+    "diagnostic",
+    "regular_file",
+];
 
 /// Test fakes and fixtures: shared by every stage's tests, and the one place (besides the
 /// driver) that may run stages, to hand one stage's tests another stage's output.

@@ -1,5 +1,11 @@
 //! Evaluating one stage: its cache entry, or its inputs gathered and the stage run; and
 //! reading a stage's typed value back from its outputs.
+//!
+//! Diagnostics travel with results. A stage that runs records, in its cache entry, what it
+//! reported itself and what every stage it read carried (collected on `reading` while it
+//! gathers its inputs); a stage found in the cache hands on what its entry records. So the
+//! artifact stages' entries hold every diagnostic of the build, and a warm build says what
+//! a cold one said, `--strict` included.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -10,6 +16,7 @@ use super::super::decode_error::DecodeError;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
 use super::{Pipeline, Slot};
+use crate::diagnostic::{Diagnostic, extend_unique};
 
 impl Pipeline<'_> {
     /// Fills `slot` from the cache, or gathers the inputs and runs the stage.
@@ -26,62 +33,74 @@ impl Pipeline<'_> {
         if self.recheck.as_deref() == Some(key.as_str()) {
             // `cityspec verify`: run the stage whatever the cache holds, and compare.
             let cached = self.cache.get_stage(name, &key, Load::References, &names);
-            let inputs = gather(self)?;
+            self.reading.push(Vec::new());
+            let inputs = gather(self);
+            let mut diagnostics = self.reading.pop().unwrap_or_default();
+            let inputs = inputs?;
             self.rechecking = true;
             let ran = run(self, inputs);
             self.rechecking = false;
             let (value, outputs) = ran?;
+            extend_unique(&mut diagnostics, &self.take_reported());
             self.verdict = Some(super::super::verify::compare(&cached, &outputs));
             *slot(self) = Some(Slot {
                 outputs,
                 value: Some(Arc::new(value)),
+                diagnostics,
             });
             return Ok(());
         }
-        if slot(self).is_some() {
-            return Ok(());
+        if let Some(filled) = slot(self) {
+            let diagnostics = filled.diagnostics.clone();
+            return self.read_diagnostics(&diagnostics);
         }
         let lookup = Instant::now();
-        let (filled, status, repaired, time) =
-            match self.cache.get_stage(name, &key, load, &names) {
-                Ok(outputs) => (
-                    Slot {
-                        outputs,
-                        value: None,
-                    },
-                    StageStatus::Cached,
-                    None,
-                    lookup.elapsed(),
-                ),
-                Err(miss) => {
-                    let repaired = match miss {
-                        Miss::Absent => None,
-                        Miss::Corrupt(why) => Some(why),
-                    };
-                    let inputs = gather(self)?;
-                    let start = Instant::now();
-                    let (value, mut outputs) = run(self, inputs)?;
-                    let refs = self.cache.put(name, &key, &outputs).map_err(|source| {
-                        BuildError::Cache {
+        let (filled, status, repaired, time) = match self.cache.lookup(name, &key, load, &names) {
+            Ok(hit) => (
+                Slot {
+                    outputs: hit.outputs,
+                    value: None,
+                    diagnostics: hit.diagnostics,
+                },
+                StageStatus::Cached,
+                None,
+                lookup.elapsed(),
+            ),
+            Err(miss) => {
+                let repaired = match miss {
+                    Miss::Absent => None,
+                    Miss::Corrupt(why) => Some(why),
+                };
+                self.reading.push(Vec::new());
+                let inputs = gather(self);
+                let mut diagnostics = self.reading.pop().unwrap_or_default();
+                let inputs = inputs?;
+                let start = Instant::now();
+                let (value, mut outputs) = run(self, inputs)?;
+                extend_unique(&mut diagnostics, &self.take_reported());
+                let refs =
+                    self.cache
+                        .put(name, &key, &outputs, &diagnostics)
+                        .map_err(|source| BuildError::Cache {
                             path: self.cache.root().to_path_buf(),
                             source,
-                        }
-                    })?;
-                    // Each output now knows its object, so its hash is not computed again;
-                    // bytes the stage made stay in memory for the driver to write (a
-                    // streamed stage's never were).
-                    for (name, object) in refs {
-                        if let Some(blob) = outputs.remove(&name) {
-                            outputs.insert(name, blob.stored(object));
-                        }
+                        })?;
+                // Each output now knows its object, so its hash is not computed again;
+                // bytes the stage made stay in memory for the driver to write (a
+                // streamed stage's never were).
+                for (name, object) in refs {
+                    if let Some(blob) = outputs.remove(&name) {
+                        outputs.insert(name, blob.stored(object));
                     }
-                    let slot = Slot {
-                        outputs,
-                        value: Some(Arc::new(value)),
-                    };
-                    (slot, StageStatus::Ran, repaired, start.elapsed())
                 }
-            };
+                let slot = Slot {
+                    outputs,
+                    value: Some(Arc::new(value)),
+                    diagnostics,
+                };
+                (slot, StageStatus::Ran, repaired, start.elapsed())
+            }
+        };
         let camera = self.camera_of(&key).map(str::to_owned);
         self.runs.push(StageRun {
             stage: name,
@@ -91,8 +110,43 @@ impl Pipeline<'_> {
             time,
             repaired,
         });
+        let diagnostics = filled.diagnostics.clone();
         *slot(self) = Some(filled);
+        self.read_diagnostics(&diagnostics)
+    }
+
+    /// A stage (or the scene) was read with `diagnostics`: the stage gathering its inputs
+    /// inherits them, and the build reports them. With `--strict`, a warning fails the
+    /// build here, as soon as it is known, run or cached.
+    pub(super) fn read_diagnostics(
+        &mut self,
+        diagnostics: &[Diagnostic],
+    ) -> Result<(), BuildError> {
+        if let Some(reader) = self.reading.last_mut() {
+            extend_unique(reader, diagnostics);
+        }
+        extend_unique(&mut self.diagnostics, diagnostics);
+        if self.strict && self.diagnostics.iter().any(Diagnostic::is_warning) {
+            return Err(BuildError::Strict {
+                spec: self.spec_path.clone(),
+                warnings: self.diagnostics.clone(),
+            });
+        }
         Ok(())
+    }
+
+    /// Reports a diagnostic of the stage now running (from its run closure).
+    pub(super) fn report(&self, diagnostic: Diagnostic) {
+        if let Ok(mut reported) = self.reported.lock() {
+            reported.push(diagnostic);
+        }
+    }
+
+    fn take_reported(&self) -> Vec<Diagnostic> {
+        self.reported
+            .lock()
+            .map(|mut reported| std::mem::take(&mut *reported))
+            .unwrap_or_default()
     }
 }
 

@@ -65,9 +65,21 @@ impl Pipeline<'_> {
             move |p| &mut p.frames[index],
             move |p| p.path_state(index, recheck, None),
             move |p, mut state| {
+                let camera = &p.spec.cameras[index];
+                if state.plan.poses.is_empty() {
+                    let message = format!(
+                        "camera path {:?} yields 0 frames: nothing along its path fits \
+                         (a layout too small for its spacing, or no road or sidewalk it can \
+                         drive)",
+                        camera.name
+                    );
+                    p.report(
+                        crate::diagnostic::Diagnostic::warning("camera-no-frames", message)
+                            .at(format!("cameras[{index}]")),
+                    );
+                }
                 let chunks = p.render_chunks(index, &mut state)?;
                 let store = !p.rechecking;
-                let camera = &p.spec.cameras[index];
                 let outputs =
                     chunks::assemble(p.cache, camera, &state.plan, &chunks, store, &p.spec.output)
                         .map_err(|source| p.cache_error(source))?;
@@ -201,7 +213,7 @@ impl Pipeline<'_> {
         let bytes = codec::to_json(&plan);
         if !recheck {
             self.cache
-                .put("frames-plan", &key, &one(chunks::PLAN, bytes.clone()))
+                .put("frames-plan", &key, &one(chunks::PLAN, bytes.clone()), &[])
                 .map_err(|source| self.cache_error(source))?;
             self.runs.push(StageRun {
                 stage: "frames-plan",
@@ -296,7 +308,7 @@ impl Pipeline<'_> {
                 let outputs = outputs.map_err(|source| self.cache_error(source))?;
                 if store {
                     self.cache
-                        .put("frames-chunk", &key, &outputs)
+                        .put("frames-chunk", &key, &outputs, &[])
                         .map_err(|source| self.cache_error(source))?;
                 }
                 Ok(outputs)

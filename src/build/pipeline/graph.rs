@@ -9,8 +9,7 @@ use super::super::BuildError;
 use super::super::cache::{Blob, Load};
 use super::super::codec;
 use super::super::inputs::{FacadeInput, LayoutSource};
-use super::super::report::StageStatus;
-use super::evaluate::{evaluated, one, value};
+use super::evaluate::{one, value};
 use super::frames_stage::lighting;
 use super::{OVERVIEW_SUN, Pipeline};
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
@@ -215,7 +214,6 @@ impl Pipeline<'_> {
 
     pub(super) fn need_facades(&mut self) -> Result<(), BuildError> {
         let key = self.keys.facades.clone();
-        let before = self.runs.len();
         self.stage(
             "facades",
             key,
@@ -234,24 +232,13 @@ impl Pipeline<'_> {
                     spec: p.spec_path.clone(),
                     source,
                 })?;
-                let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
-                let mut outputs = codec::facade_set_outputs(&set);
-                outputs.insert(
-                    "warnings.json".to_owned(),
-                    Blob::from(codec::to_json(&warnings)),
-                );
+                for warning in warnings {
+                    p.report(warning);
+                }
+                let outputs = codec::facade_set_outputs(&set);
                 Ok((set, outputs))
             },
-        )?;
-        // Warnings are told when the facades are processed, not on every cached build.
-        if self.runs.len() > before && self.runs[before].status == StageStatus::Ran {
-            let outputs = &evaluated(&self.facades).outputs;
-            let warnings: Vec<String> = codec::output(outputs, "warnings.json")
-                .and_then(|bytes| codec::from_json(bytes))
-                .unwrap_or_default();
-            self.warnings.extend(warnings);
-        }
-        Ok(())
+        )
     }
 
     pub(super) fn facade_set(&mut self) -> Result<Arc<FacadeSet>, BuildError> {

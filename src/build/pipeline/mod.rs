@@ -14,7 +14,7 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use image::RgbImage;
 
@@ -30,6 +30,7 @@ use super::cache::{Blob, Cache, Outputs};
 use super::inputs::{FacadeInput, LayoutSource, SpecInputs};
 use super::report::StageRun;
 use super::stage_key::StageKey;
+use crate::diagnostic::Diagnostic;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::{OutputLayout, Spec};
 use crate::{
@@ -68,10 +69,12 @@ struct Keys {
     paths: Vec<String>,
 }
 
-/// A stage's outputs, and its typed value once computed or decoded.
+/// A stage's outputs, its typed value once computed or decoded, and its diagnostics (its
+/// own and those of every stage it read, as its cache entry records them).
 struct Slot<T> {
     outputs: Outputs,
     value: Option<Arc<T>>,
+    diagnostics: Vec<Diagnostic>,
 }
 
 pub struct Pipeline<'a> {
@@ -87,10 +90,18 @@ pub struct Pipeline<'a> {
     cache: &'a Cache,
     keys: Keys,
     pub runs: Vec<StageRun>,
-    /// Warnings of stages that ran (skipped facades, …).
-    pub warnings: Vec<String>,
-    /// `--strict`: objects placed short of `count` fail the scene, before any stage that
-    /// reads it writes a cache entry (so a later plain build still warns).
+    /// The diagnostics of every stage evaluated so far, run or cached, each once.
+    pub diagnostics: Vec<Diagnostic>,
+    /// While a stage gathers its inputs: the diagnostics of the stages it reads, innermost
+    /// stage last (see `evaluate`).
+    reading: Vec<Vec<Diagnostic>>,
+    /// What a running stage reports (its run closure sees `&self`).
+    reported: Mutex<Vec<Diagnostic>>,
+    /// The scene's own diagnostics (objects short of their count): the scene is not
+    /// cached, so every stage that reads it inherits them.
+    scene_diagnostics: Vec<Diagnostic>,
+    /// `--strict`: the first stage with a warning, run or cached, fails the build (its
+    /// entry, written first, keeps the warning for the next build).
     pub strict: bool,
     /// Triangles in the scene, when the scene was built.
     pub triangles: Option<usize>,
@@ -140,7 +151,10 @@ impl<'a> Pipeline<'a> {
             cache,
             keys,
             runs: Vec::new(),
-            warnings: Vec::new(),
+            diagnostics: Vec::new(),
+            reading: Vec::new(),
+            reported: Mutex::default(),
+            scene_diagnostics: Vec::new(),
             strict: false,
             triangles: None,
             scene: None,

@@ -15,7 +15,10 @@ impl Pipeline<'_> {
     /// export (and later the renderer) reads it.
     pub(super) fn scene(&mut self) -> Result<Arc<Scene>, BuildError> {
         if let Some(scene) = &self.scene {
-            return Ok(Arc::clone(scene));
+            let scene = Arc::clone(scene);
+            let diagnostics = self.scene_diagnostics.clone();
+            self.read_diagnostics(&diagnostics)?;
+            return Ok(scene);
         }
         let parsed = self.parsed()?;
         let lamps = self.lamp_sites()?;
@@ -56,15 +59,9 @@ impl Pipeline<'_> {
             spec: self.spec_path.clone(),
             source,
         })?;
-        // `count` is an upper bound; falling short is told, with the numbers.
-        let shortfalls = inserted.shortfalls(&self.spec.objects);
-        if self.strict && !shortfalls.is_empty() {
-            return Err(BuildError::Strict {
-                spec: self.spec_path.clone(),
-                warnings: shortfalls,
-            });
-        }
-        self.warnings.extend(shortfalls);
+        // `count` is an upper bound; falling short is told, with the numbers, by every
+        // stage that reads the scene (see `read_diagnostics` below).
+        self.scene_diagnostics = inserted.shortfalls(&self.spec.objects);
         let sign_faces = std::mem::take(&mut inserted.sign_faces);
         let info = std::mem::take(&mut inserted.info);
         let first = objects::merge(&mut built, inserted);
@@ -82,6 +79,8 @@ impl Pipeline<'_> {
         });
         let built = Arc::new(built);
         self.scene = Some(Arc::clone(&built));
+        let diagnostics = self.scene_diagnostics.clone();
+        self.read_diagnostics(&diagnostics)?;
         Ok(built)
     }
 
