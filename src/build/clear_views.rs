@@ -221,10 +221,10 @@ mod tests {
 
     /// A pose at 1.5 m looking `heading` degrees east of north, level.
     fn looking(heading: f64) -> CameraPose {
-        let r = heading.to_radians();
+        let (cos, sin) = crate::model::geometry::trig::cos_sin_deg(heading);
         CameraPose {
             eye: [0.0, 1.5, 0.0],
-            target: [10.0 * r.sin(), 1.5, -10.0 * r.cos()],
+            target: [10.0 * sin, 1.5, -10.0 * cos],
             up: [0.0, 1.0, 0.0],
             angles: None,
         }

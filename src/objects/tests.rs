@@ -358,7 +358,8 @@ fn text_plates_share_atlas_pages_and_each_maps_to_its_own_plate() {
         ];
         // Pixels per metre agree along both sides: the rectangle is this plate's own.
         let quad = |k: usize| mesh.positions[k].map(f64::from);
-        let across = (quad(1)[0] - quad(0)[0]).hypot(quad(1)[2] - quad(0)[2]);
+        let (dx, dz) = (quad(1)[0] - quad(0)[0], quad(1)[2] - quad(0)[2]);
+        let across = (dx * dx + dz * dz).sqrt();
         let up = (quad(2)[1] - quad(1)[1]).abs();
         let ratio = f64::from(rect[2] - rect[0]) / across / (f64::from(rect[3] - rect[1]) / up);
         assert!((ratio - 1.0).abs() < 0.02, "{}: {ratio}", object.name);
@@ -462,7 +463,8 @@ fn signs_stand_on_the_strip_facing_oncoming_traffic() {
         let pixel = city.image.get_pixel(foot[0] as u32, foot[1] as u32).0;
         assert_eq!(pixel, strip, "{} at {foot:?}", object.name);
         for lamp in &city.lamps {
-            let d = (lamp.position[0] - foot[0]).hypot(lamp.position[1] - foot[1]);
+            let (dx, dz) = (lamp.position[0] - foot[0], lamp.position[1] - foot[1]);
+            let d = (dx * dx + dz * dz).sqrt();
             assert!(d >= 2.0, "{} {d} m from a lamp", object.name);
         }
         // The nearest road, the side the sign stands on, its lane's traffic.

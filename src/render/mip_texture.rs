@@ -435,6 +435,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::disallowed_methods)] // compares with the platform's log2
     fn log2_is_exact_at_powers_of_two_and_close_between() {
         for (x, expected) in [(1.0, 0.0), (2.0, 1.0), (0.25, -2.0), (1024.0, 10.0)] {
             assert_eq!(log2_approx(x), expected);
