@@ -176,6 +176,10 @@ pub enum CacheCommand {
     /// Remove what the given specs (and lock files) do not need: every other entry and
     /// object, or with --max-age only those older, with --max-size only the oldest until
     /// the cache fits. Safe while builds run: nothing younger than --grace-minutes goes.
+    ///
+    /// Only the cache's own files ever go: a folder (or prefix) without the CACHEDIR.TAG
+    /// a cache's first write leaves is refused, names the cache does not write are left
+    /// and listed, and no symlink is followed.
     #[command(
         after_help = "Examples:\n  cityspec cache gc specs/*.toml\n  cityspec cache gc --max-size 20G --cache /shared/cache specs/day.toml specs/night.lock\n  cityspec cache gc --max-age 30 --cache s3://my-bucket/cityspec specs/*.toml"
     )]

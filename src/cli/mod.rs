@@ -10,6 +10,7 @@ mod print;
 mod shared_args;
 
 use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
@@ -51,6 +52,11 @@ pub fn run() -> ExitCode {
         verbose,
         color,
     };
+    let cx = Context {
+        out,
+        quiet: args.quiet,
+        terminal,
+    };
     match args.command {
         Command::Build {
             verbosity: _,
@@ -64,46 +70,16 @@ pub fn run() -> ExitCode {
             stage,
             locked,
         } => {
-            // Drawn in place on a terminal, one line per path otherwise; colour plays no part.
-            let progress = (!args.quiet).then(|| print::progress_line(terminal));
             let options = BuildOptions {
                 out_root,
                 cache_dir: cache,
-                progress,
+                progress: cx.progress(),
                 waiting: Some(print::waiting_line()),
                 strict,
                 locked,
             };
-            let pool = match pool(jobs) {
-                Ok(pool) => pool,
-                Err(code) => return code,
-            };
-            if shard.is_some() || stage.is_some() {
-                let shard = match shard.map(|s| s.resolve(shard_count, |k| std::env::var(k).ok())) {
-                    Some(Err(e)) => {
-                        eprintln!("error: --shard: {e}");
-                        return ExitCode::from(2);
-                    }
-                    Some(Ok(shard)) => Some(shard),
-                    None => None,
-                };
-                return match pool.install(|| build::build_shards(&specs, &options, shard)) {
-                    Ok(reports) => {
-                        reports.iter().for_each(|r| out.shard_report(r));
-                        ExitCode::SUCCESS
-                    }
-                    Err(errors) => exit_for(&errors, &out),
-                };
-            }
-            match pool.install(|| build::build_all(&specs, &options)) {
-                Ok(reports) => {
-                    for report in &reports {
-                        out.report(report);
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(errors) => exit_for(&errors, &out),
-            }
+            let shards = (shard.is_some() || stage.is_some()).then_some((shard, shard_count));
+            build_command(&cx, &specs, &options, jobs, shards)
         }
         Command::Lock {
             specs,
@@ -114,24 +90,12 @@ pub fn run() -> ExitCode {
             let options = BuildOptions {
                 out_root,
                 cache_dir: cache,
-                progress: (!args.quiet).then(|| print::progress_line(terminal)),
+                progress: cx.progress(),
                 waiting: Some(print::waiting_line()),
                 strict: false,
                 locked: false,
             };
-            let pool = match pool(jobs) {
-                Ok(pool) => pool,
-                Err(code) => return code,
-            };
-            match pool.install(|| build::lock_all(&specs, &options)) {
-                Ok(locks) => {
-                    for lock in &locks {
-                        out.info(&format!("wrote {}", lock.display()));
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(errors) => exit_for(&errors, &out),
-            }
+            lock_command(&cx, &specs, &options, jobs)
         }
         Command::Verify {
             verbosity: _,
@@ -142,63 +106,16 @@ pub fn run() -> ExitCode {
             seed,
             jobs: JobsArg { jobs },
         } => {
-            let seed = seed.unwrap_or_else(clock_seed);
             let options = build::VerifyOptions {
                 cache_dir: cache,
                 all,
                 sample,
-                seed,
+                seed: seed.unwrap_or_else(clock_seed),
             };
-            let pool = match pool(jobs) {
-                Ok(pool) => pool,
-                Err(code) => return code,
-            };
-            match pool.install(|| build::verify_all(&specs, &options)) {
-                Ok(reports) => {
-                    let failed = reports.iter().any(|r| r.failed().next().is_some());
-                    for report in &reports {
-                        out.verify_report(report, (!all).then_some(seed));
-                    }
-                    if failed {
-                        ExitCode::from(1)
-                    } else {
-                        ExitCode::SUCCESS
-                    }
-                }
-                Err(errors) => exit_for(&errors, &out),
-            }
+            verify_command(&cx, &specs, &options, jobs)
         }
-        Command::Validate { specs } => {
-            let mut errors = Vec::new();
-            for path in &specs {
-                match build::validate(path) {
-                    Ok((spec, warnings)) => {
-                        for warning in warnings {
-                            eprintln!("{}", print::diagnostic_line(path, &warning));
-                        }
-                        out.info(&format!("{}: ok ({})", path.display(), spec.name));
-                    }
-                    Err(e) => errors.push(e),
-                }
-            }
-            if errors.is_empty() {
-                ExitCode::SUCCESS
-            } else {
-                exit_for(&errors, &out)
-            }
-        }
-        Command::Facades(FacadesCommand::Export { dir }) => {
-            match build::export_builtin_facades(&dir) {
-                Ok(count) => {
-                    out.info(&format!(
-                        "wrote {count} built-in facades to {}",
-                        dir.display()
-                    ));
-                    ExitCode::SUCCESS
-                }
-                Err(e) => exit_for(&[e], &out),
-            }
-        }
+        Command::Validate { specs } => validate_command(&cx, &specs),
+        Command::Facades(FacadesCommand::Export { dir }) => facades_export(&cx, &dir),
         Command::Cache(CacheCommand::Gc {
             specs,
             cache: CacheArg { cache },
@@ -220,67 +137,216 @@ pub fn run() -> ExitCode {
                 max_age,
                 grace,
             };
-            match build::gc(&specs, &options) {
-                Ok(r) => {
-                    out.info(&format!(
-                        "kept {} entries and {} objects; removed {} entries, {} objects, {} temporaries ({:.1} MiB); the cache holds {:.1} MiB",
-                        r.kept_entries,
-                        r.kept_objects,
-                        r.removed_entries,
-                        r.removed_objects,
-                        r.removed_temporaries,
-                        r.removed_bytes as f64 / 1048576.0,
-                        r.bytes as f64 / 1048576.0
-                    ));
-                    if r.removed_damaged > 0 {
-                        out.info(&format!(
-                            "removed {} damaged files (FIFOs, symlinks or other non-regular \
-                             files where the cache keeps its files)",
-                            r.removed_damaged
-                        ));
-                    }
-                    if !r.skipped.is_empty() {
-                        // Told even with --quiet: files in the cache that are not its own
-                        // are worth a look.
-                        const SHOWN: usize = 10;
-                        let mut names: Vec<&str> =
-                            r.skipped.iter().take(SHOWN).map(String::as_str).collect();
-                        if r.skipped.len() > SHOWN {
-                            names.push("…");
-                        }
-                        eprintln!(
-                            "skipped {} files and folders that cityspec does not write (left as \
-                             they are): {}",
-                            r.skipped.len(),
-                            names.join(", ")
-                        );
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(errors) => exit_for(&errors, &out),
-            }
+            cache_gc(&cx, &specs, &options)
         }
         Command::Schema => {
             print!("{}", crate::spec::schema_json());
             ExitCode::SUCCESS
         }
-        Command::Stats { dir, json } => match crate::stats::measure(&dir) {
-            Ok(stats) if json => {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&stats).expect("stats serialize")
-                );
+        Command::Stats { dir, json } => stats_command(&dir, json),
+    }
+}
+
+/// What every command prints with.
+struct Context {
+    out: print::Printer,
+    quiet: bool,
+    /// Standard error is a terminal (the progress line is drawn in place).
+    terminal: bool,
+}
+
+impl Context {
+    /// The progress line of frames rendered, unless `--quiet`.
+    fn progress(&self) -> Option<build::Progress> {
+        (!self.quiet).then(|| print::progress_line(self.terminal))
+    }
+}
+
+/// `cityspec build`: every spec into its output folder, or with `shards` (`--shard`,
+/// `--shard-count`; `--stage city` when the shard is `None`) a shard's share into the
+/// cache.
+fn build_command(
+    cx: &Context,
+    specs: &[PathBuf],
+    options: &BuildOptions,
+    jobs: Option<u16>,
+    shards: Option<(Option<build::ShardArg>, Option<u32>)>,
+) -> ExitCode {
+    let pool = match pool(jobs) {
+        Ok(pool) => pool,
+        Err(code) => return code,
+    };
+    if let Some((shard, shard_count)) = shards {
+        let shard = match shard.map(|s| s.resolve(shard_count, |k| std::env::var(k).ok())) {
+            Some(Err(e)) => {
+                eprintln!("error: --shard: {e}");
+                return ExitCode::from(2);
+            }
+            Some(Ok(shard)) => Some(shard),
+            None => None,
+        };
+        return match pool.install(|| build::build_shards(specs, options, shard)) {
+            Ok(reports) => {
+                reports.iter().for_each(|r| cx.out.shard_report(r));
                 ExitCode::SUCCESS
             }
-            Ok(stats) => {
-                print!("{}", crate::stats::table(&stats));
+            Err(errors) => exit_for(&errors, &cx.out),
+        };
+    }
+    match pool.install(|| build::build_all(specs, options)) {
+        Ok(reports) => {
+            for report in &reports {
+                cx.out.report(report);
+            }
+            ExitCode::SUCCESS
+        }
+        Err(errors) => exit_for(&errors, &cx.out),
+    }
+}
+
+/// `cityspec lock`: build, then write each spec's lock file.
+fn lock_command(
+    cx: &Context,
+    specs: &[PathBuf],
+    options: &BuildOptions,
+    jobs: Option<u16>,
+) -> ExitCode {
+    let pool = match pool(jobs) {
+        Ok(pool) => pool,
+        Err(code) => return code,
+    };
+    match pool.install(|| build::lock_all(specs, options)) {
+        Ok(locks) => {
+            for lock in &locks {
+                cx.out.info(&format!("wrote {}", lock.display()));
+            }
+            ExitCode::SUCCESS
+        }
+        Err(errors) => exit_for(&errors, &cx.out),
+    }
+}
+
+/// `cityspec verify`: rerun cached stages and compare; exit 1 when any differs.
+fn verify_command(
+    cx: &Context,
+    specs: &[PathBuf],
+    options: &build::VerifyOptions,
+    jobs: Option<u16>,
+) -> ExitCode {
+    let pool = match pool(jobs) {
+        Ok(pool) => pool,
+        Err(code) => return code,
+    };
+    match pool.install(|| build::verify_all(specs, options)) {
+        Ok(reports) => {
+            let failed = reports.iter().any(|r| r.failed().next().is_some());
+            for report in &reports {
+                cx.out
+                    .verify_report(report, (!options.all).then_some(options.seed));
+            }
+            if failed {
+                ExitCode::from(1)
+            } else {
                 ExitCode::SUCCESS
             }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::from(2)
+        }
+        Err(errors) => exit_for(&errors, &cx.out),
+    }
+}
+
+/// `cityspec validate`: every spec checked as a build would, every error reported.
+fn validate_command(cx: &Context, specs: &[PathBuf]) -> ExitCode {
+    let mut errors = Vec::new();
+    for path in specs {
+        match build::validate(path) {
+            Ok((spec, warnings)) => {
+                for warning in warnings {
+                    eprintln!("{}", print::diagnostic_line(path, &warning));
+                }
+                cx.out
+                    .info(&format!("{}: ok ({})", path.display(), spec.name));
             }
-        },
+            Err(e) => errors.push(e),
+        }
+    }
+    if errors.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        exit_for(&errors, &cx.out)
+    }
+}
+
+/// `cityspec facades export DIR`.
+fn facades_export(cx: &Context, dir: &Path) -> ExitCode {
+    match build::export_builtin_facades(dir) {
+        Ok(count) => {
+            cx.out.info(&format!(
+                "wrote {count} built-in facades to {}",
+                dir.display()
+            ));
+            ExitCode::SUCCESS
+        }
+        Err(e) => exit_for(&[e], &cx.out),
+    }
+}
+
+/// `cityspec cache gc`: what it kept and removed, and (even with `--quiet`) what it left
+/// because the cache does not write it.
+fn cache_gc(cx: &Context, specs: &[PathBuf], options: &build::GcOptions) -> ExitCode {
+    let r = match build::gc(specs, options) {
+        Ok(report) => report,
+        Err(errors) => return exit_for(&errors, &cx.out),
+    };
+    cx.out.info(&format!(
+        "kept {} entries and {} objects; removed {} entries, {} objects, {} temporaries ({:.1} MiB); the cache holds {:.1} MiB",
+        r.kept_entries,
+        r.kept_objects,
+        r.removed_entries,
+        r.removed_objects,
+        r.removed_temporaries,
+        r.removed_bytes as f64 / 1048576.0,
+        r.bytes as f64 / 1048576.0
+    ));
+    if r.removed_damaged > 0 {
+        cx.out.info(&format!(
+            "removed {} damaged files (FIFOs, symlinks or other non-regular files where the \
+             cache keeps its files)",
+            r.removed_damaged
+        ));
+    }
+    if !r.skipped.is_empty() {
+        const SHOWN: usize = 10;
+        let mut names: Vec<&str> = r.skipped.iter().take(SHOWN).map(String::as_str).collect();
+        if r.skipped.len() > SHOWN {
+            names.push("…");
+        }
+        eprintln!(
+            "skipped {} files and folders that cityspec does not write (left as they are): {}",
+            r.skipped.len(),
+            names.join(", ")
+        );
+    }
+    ExitCode::SUCCESS
+}
+
+/// `cityspec stats DIR`: a table, or JSON.
+fn stats_command(dir: &Path, json: bool) -> ExitCode {
+    match crate::stats::measure(dir) {
+        Ok(stats) if json => {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&stats).expect("stats serialize")
+            );
+            ExitCode::SUCCESS
+        }
+        Ok(stats) => {
+            print!("{}", crate::stats::table(&stats));
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
     }
 }
 
