@@ -45,6 +45,7 @@ pub mod parse;
 pub mod place;
 pub mod plan;
 pub mod preview;
+pub mod regular_file;
 pub mod render;
 pub mod rng;
 pub mod scene;

@@ -23,7 +23,7 @@ const STAGES: &[&str] = &[
 
 /// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing and
 /// image-file checks.
-const SHARED: &[&str] = &["model", "spec", "rng", "hash", "test_seed"];
+const SHARED: &[&str] = &["model", "spec", "rng", "hash", "test_seed", "regular_file"];
 
 /// Test fakes and fixtures: shared by every stage's tests, and the one place (besides the
 /// driver) that may run stages, to hand one stage's tests another stage's output.
