@@ -52,9 +52,6 @@ pub enum InputProblem {
     /// The word file holds no word.
     #[error("the word file holds no words")]
     NoWords,
-    /// The word file cannot be read.
-    #[error("{0}")]
-    WordsUnreadable(#[source] io::Error),
 }
 
 /// `line N: ` when the line is known (the error names the file).

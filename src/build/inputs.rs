@@ -336,16 +336,14 @@ fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, Bu
         entry: Some(format!("objects[{index}].words_file")),
         source: Box::new(source),
     };
-    let size = fs::metadata(&file)
-        .map_err(|e| error(InputProblem::WordsUnreadable(e)))?
-        .len();
-    if size > MAX_WORDS_FILE {
-        return Err(error(InputProblem::WordsTooLarge {
-            size,
-            cap: MAX_WORDS_FILE,
-        }));
-    }
-    let bytes = fs::read(&file).map_err(|e| error(InputProblem::WordsUnreadable(e)))?;
+    // Through `regular_file`, like every input: a FIFO is refused at once, never read.
+    let bytes = spec::read_capped(&file, MAX_WORDS_FILE).map_err(|source| match source {
+        InputFileError::TooLarge { size, cap } => error(InputProblem::WordsTooLarge { size, cap }),
+        source => error(InputProblem::Read {
+            expected: "a word file",
+            source,
+        }),
+    })?;
     match std::str::from_utf8(&bytes) {
         Err(e) => Err(error(InputProblem::WordsNotUtf8(e))),
         Ok(text) if crate::objects::parse_words(text).is_empty() => {

@@ -57,7 +57,7 @@ pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use input_file::{
     InputFileError, MAX_FLOORS_BYTES, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, MAX_MTL_BYTES,
-    MAX_SPEC_BYTES, MAX_TEXTURE_BYTES, check_file, read_capped, read_text_capped,
+    MAX_SPEC_BYTES, MAX_TEXTURE_BYTES, check_file, open_capped, read_capped, read_text_capped,
 };
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};

@@ -13,6 +13,7 @@ mod common;
 mod build;
 mod cache_gc;
 mod cli;
+mod input_files;
 mod lock;
 mod mutations;
 mod sensor;

@@ -1,0 +1,81 @@
+//! The files a spec names, as the binary meets them: a FIFO never hangs a command and is
+//! refused with the file and key; OBJ and MTL problems point into the model's own files.
+
+use crate::common;
+
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{Workspace, stderr};
+
+/// Runs the binary in `ws` with `args`, killing it (and failing the test) if it has not
+/// ended within 60 s: a command blocked on a FIFO must fail the test, not hang the suite.
+fn bounded(ws: &Workspace, args: &[&str]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(ws.path())
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > Duration::from_secs(60) {
+            child.kill().unwrap();
+            let out = child.wait_with_output().unwrap();
+            panic!(
+                "cityspec {args:?} hung (killed after 60 s): {}",
+                stderr(&out)
+            );
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+#[cfg(target_os = "linux")]
+fn make_fifo(path: &Path) {
+    if path.exists() {
+        std::fs::remove_file(path).unwrap();
+    }
+    rustix::fs::mkfifoat(rustix::fs::CWD, path, rustix::fs::Mode::RUSR).unwrap();
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_fifo_as_spec_layout_image_model_or_word_file_exits_2_at_once() {
+    let ws = Workspace::with_spec("day");
+    ws.edit_spec("text", "case = \"mixed\"", "words_file = \"words.fifo\"");
+    make_fifo(&ws.path().join("specs/fifo.toml"));
+    make_fifo(&ws.path().join("specs/words.fifo"));
+    make_fifo(&ws.path().join("assets/layouts/drawn.png"));
+    make_fifo(&ws.path().join("assets/models/bench.obj"));
+    let cases: [(&str, &[&str]); 4] = [
+        ("specs/fifo.toml", &["cannot read spec specs/fifo.toml"]),
+        (
+            "specs/drawn.toml",
+            &["layout.image", "assets/layouts/drawn.png"],
+        ),
+        (
+            "specs/day.toml",
+            &["objects[4].model", "assets/models/bench.obj"],
+        ),
+        ("specs/text.toml", &["objects[0].words_file", "words.fifo"]),
+    ];
+    for (spec, wants) in cases {
+        for command in ["validate", "build"] {
+            let out = bounded(&ws, &["-q", command, spec]);
+            let text = stderr(&out);
+            assert_eq!(out.status.code(), Some(2), "{command} {spec}: {text}");
+            assert!(
+                text.contains("a FIFO, not a regular file"),
+                "{command} {spec}: {text}"
+            );
+            for want in wants {
+                assert!(text.contains(want), "{command} {spec}: {want}: {text}");
+            }
+        }
+    }
+}
