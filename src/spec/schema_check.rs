@@ -176,7 +176,11 @@ fn diagnose(
                     .join(", "),
                 None => options.to_string(),
             };
-            at_value(format!("expected one of {listed}, found {}", found()))
+            let mut message = format!("expected one of {listed}, found {}", found());
+            if let Some(near) = closest_option(locator, path, options) {
+                message.push_str(&format!(" (did you mean \"{near}\"?)"));
+            }
+            at_value(message)
         }
         ValidationErrorKind::Constant { expected_value } => {
             at_value(format!("expected {expected_value}, found {}", found()))
@@ -212,6 +216,21 @@ fn unknown_key_message(key: &str, known: &[&str]) -> String {
         message.push_str(&format!(" (did you mean `{near}`?)"));
     }
     message
+}
+
+/// The allowed string nearest to the string written at `path`, when it is near enough to
+/// be a typo (as [`closest`] judges for unknown keys).
+fn closest_option<'v>(
+    locator: &Locator<'_>,
+    path: &KeyPath,
+    options: &'v Value,
+) -> Option<&'v str> {
+    let written = locator.value(path)?;
+    let toml::de::DeValue::String(written) = written.get_ref() else {
+        return None;
+    };
+    let allowed = options.as_array()?.iter().filter_map(Value::as_str);
+    closest(written, allowed)
 }
 
 /// A friendlier "expected" for values whose range has a meaning beyond the numbers.
@@ -371,6 +390,44 @@ mod tests {
             messages("version = 1\nname = \"a\"\n[lamps]\n"),
             ["1:1 layout: expected a `layout` key at the top level, found none"]
         );
+    }
+
+    #[test]
+    fn enum_values_near_an_allowed_one_get_a_suggestion() {
+        const HEAD: &str = "version = 1\nname = \"a\"\n[layout.generate]\n";
+        let cases: &[(&str, &str)] = &[
+            (
+                "[[objects]]\nkind = \"texts\"\n",
+                "found \"texts\" (did you mean \"text\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"traffic_lights\"\n",
+                "(did you mean \"traffic_light\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"sign\"\nsigns = [\"stpo\"]\n",
+                "(did you mean \"stop\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"car\"\nbodies = [\"Sedan\"]\n",
+                "(did you mean \"sedan\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"text\"\ncase = \"uper\"\n",
+                "(did you mean \"upper\"?)",
+            ),
+            (
+                "[facades]\non_error = \"skpi\"\n",
+                "(did you mean \"skip\"?)",
+            ),
+        ];
+        for (body, want) in cases {
+            let got = messages(&format!("{HEAD}{body}"));
+            assert_eq!(got.len(), 1, "{body}: {got:?}");
+            assert!(got[0].ends_with(want), "{body}: {got:?}");
+        }
+        let far = messages(&format!("{HEAD}[[objects]]\nkind = \"poster\"\n"));
+        assert!(!far[0].contains("did you mean"), "{far:?}");
     }
 
     #[test]
