@@ -8,6 +8,7 @@
 //! kept, so a rebuild with nothing changed writes nothing.
 
 mod atomic;
+mod build_world;
 mod cache;
 mod cache_gc;
 mod cache_remote;
@@ -43,6 +44,7 @@ use std::path::{Path, PathBuf};
 /// Kept here for the tests and benches that place buildings by hand.
 pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
+pub use build_world::BuildWorld;
 pub use cache::{Blob, Cache, Load, Miss};
 pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
 pub use cache_remote::cache_location;
@@ -58,7 +60,7 @@ pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
 pub use spec_build::build_spec;
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
-use crate::spec::{self, FsWorld, Spec, SpecSource};
+use crate::spec::{self, Spec, SpecSource};
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
 pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
@@ -111,7 +113,7 @@ pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
         path: path.to_path_buf(),
         text,
     };
-    spec::load(&source, &FsWorld).map_err(BuildError::Spec)
+    spec::load(&source, &BuildWorld).map_err(BuildError::Spec)
 }
 
 /// Loads and validates every spec first, reporting all their errors together; then runs

@@ -11,8 +11,10 @@
 //! | semantic | rules between values: one layout source, roads that fit, the image and models exist, one of a camera's `frames` and `spacing`, … | no |
 //!
 //! Then serde builds the [`Spec`] (defaults filled in). The only I/O is through
-//! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world the build
-//! driver passes in. Relative paths in a spec resolve against the spec's own folder.
+//! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world, which the
+//! build driver wraps with the parse stage's reading of a layout image (a layout image
+//! nothing can be read off is refused here, with the spec's other errors). Relative paths
+//! in a spec resolve against the spec's own folder.
 
 mod camera_checks;
 mod camera_path_checks;
@@ -103,6 +105,17 @@ pub trait SpecWorld {
     /// when this world does not decode images (the checks then use the header's size).
     /// Err(message) completes "expected a whole PNG or JPEG layout image at …, found …".
     fn layout_pixels(&self, _path: &Path) -> Option<Result<image::RgbImage, String>> {
+        None
+    }
+    /// What the parse stage reads off a layout image drawn with `palette`: how many roads
+    /// and how many blocks, as `(roads, blocks)`. None when this world does not parse
+    /// layouts: the spec stage may not run another stage, so the build driver's world
+    /// (`build::BuildWorld`) answers this, and [`FsWorld`] does not.
+    fn parsed_layout(
+        &self,
+        _pixels: &image::RgbImage,
+        _palette: &Palette,
+    ) -> Option<(usize, usize)> {
         None
     }
 }

@@ -79,3 +79,28 @@ fn a_fifo_as_spec_layout_image_model_or_word_file_exits_2_at_once() {
         }
     }
 }
+
+#[test]
+fn a_photo_as_the_layout_image_is_refused_by_validate_and_build() {
+    let ws = Workspace::with_spec("drawn");
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::copy(
+        repo.join("tests/fixtures/bad/street_photo.png"),
+        ws.path().join("assets/layouts/drawn.png"),
+    )
+    .unwrap();
+    for command in ["validate", "build"] {
+        let out = bounded(&ws, &["-q", command, "specs/drawn.toml"]);
+        let text = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{command}: {text}");
+        for want in [
+            "invalid `layout.image`",
+            "specs/drawn.toml:10:9",
+            "found 0 roads and 1 block in specs/../assets/layouts/drawn.png",
+            "3036 road, 107 line, 1383 block and 0 strip pixels",
+        ] {
+            assert!(text.contains(want), "{command}: {want}: {text}");
+        }
+    }
+    assert!(!ws.out().exists(), "nothing is built");
+}
