@@ -104,3 +104,76 @@ fn a_photo_as_the_layout_image_is_refused_by_validate_and_build() {
     }
     assert!(!ws.out().exists(), "nothing is built");
 }
+
+/// The bench model's OBJ with line `number` replaced by `text`.
+fn bench_with_line(number: usize, text: &str) -> String {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let obj = std::fs::read_to_string(repo.join("assets/models/bench.obj")).unwrap();
+    let mut lines: Vec<&str> = obj.lines().collect();
+    lines[number - 1] = text;
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn obj_and_mtl_errors_point_into_the_model_s_own_files() {
+    let ws = Workspace::with_spec("day");
+    let models = ws.path().join("assets/models");
+    let obj = models.join("bench.obj");
+    let mtl = std::fs::read_to_string(models.join("bench.mtl")).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&obj).unwrap().lines().nth(2),
+        Some("mtllib bench.mtl"),
+        "the cases below rely on line 3 naming the MTL"
+    );
+    // (what to write, the MTL to write, what the report must hold)
+    let cases: [(String, Option<&str>, &[&str]); 4] = [
+        (
+            bench_with_line(4, "v -0.800 oops -0.220"),
+            None,
+            &[
+                "error: specs/day.toml: objects[4].model: specs/../assets/models/bench.obj:4:1: not a valid OBJ model",
+                "┌─ specs/../assets/models/bench.obj:4:1",
+                "4 │ v -0.800 oops -0.220",
+                "^^^^^^^^^^^^^^^^^^^^ not a valid OBJ line",
+            ],
+        ),
+        (
+            bench_with_line(3, "mtllib gone.mtl"),
+            None,
+            &[
+                "objects[4].model: specs/../assets/models/bench.obj:3:8: the file its `mtllib` names, specs/../assets/models/gone.mtl: expected an MTL file, found no such file",
+                "3 │ mtllib gone.mtl",
+                "^^^^^^^^ found no such file",
+            ],
+        ),
+        (
+            bench_with_line(3, "mtllib bench.mtl"),
+            Some("newmtl wood\nKd 0.45 brown 0.14\n"),
+            &[
+                "objects[4].model: specs/../assets/models/bench.mtl:2:1: not a valid MTL file",
+                "2 │ Kd 0.45 brown 0.14",
+                "^^^^^^^^^^^^^^^^^^ not a valid MTL line",
+            ],
+        ),
+        (
+            bench_with_line(3, "mtllib bench.mtl"),
+            Some("newmtl wood\nKd 0.45 0.28 0.14\nmap_Kd wood.png\n"),
+            &[
+                "specs/../assets/models/bench.mtl:3:8: the file its `map_Kd` names, specs/../assets/models/wood.png: expected a texture image, found no such file",
+                "3 │ map_Kd wood.png",
+            ],
+        ),
+    ];
+    for (obj_text, mtl_text, wants) in cases {
+        std::fs::write(&obj, &obj_text).unwrap();
+        std::fs::write(models.join("bench.mtl"), mtl_text.unwrap_or(&mtl)).unwrap();
+        for command in ["validate", "build"] {
+            let out = bounded(&ws, &["-q", command, "specs/day.toml"]);
+            let text = stderr(&out);
+            assert_eq!(out.status.code(), Some(2), "{command}: {text}");
+            for want in wants {
+                assert!(text.contains(want), "{command}: {want}\n{text}");
+            }
+        }
+    }
+}
