@@ -3,15 +3,14 @@
 //! Stages never touch files; the driver reads what a spec names here, hashes it for the
 //! stage keys and hands the bytes on.
 
-use std::cell::RefCell;
 use std::fs;
-use std::io::Cursor;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
 use super::BuildError;
 use super::input_problem::InputProblem;
+use super::model_files;
 use std::collections::BTreeMap;
 
 use crate::facades::{FacadeFile, FacadeSource, Photo};
@@ -209,10 +208,8 @@ pub const MAX_WORDS_FILE: u64 = 1 << 20;
 /// (its bytes as the `obj`, at most [`MAX_WORDS_FILE`]). Returns them keyed by the spec's
 /// `model` or `words_file` string, and a digest of all their bytes for the stage keys.
 ///
-/// tobj parses both files (nothing else here reads OBJ or MTL), so a model that would fail
-/// in the scene fails here, before any stage runs or caches, with `file:line`. The MTL and
-/// its textures must lie inside the model's folder: no absolute paths, no `..`, no symlink
-/// out, so a model cannot copy any image on the machine into `out/textures/`.
+/// A model is read and parsed by [`model_files::read`]: an error points into the OBJ or
+/// MTL itself.
 pub fn mesh_files(
     spec_path: &Path,
     spec: &Spec,
@@ -243,70 +240,7 @@ pub fn mesh_files(
         if meshes.contains_key(model) {
             continue;
         }
-        let file = spec::resolve(spec_path, model);
-        let fail = |path: &Path, source: InputProblem| BuildError::Input {
-            spec: spec_path.to_path_buf(),
-            key: "objects.model",
-            file: path.to_path_buf(),
-            entry: Some(format!("objects[{index}].model")),
-            source: Box::new(source),
-        };
-        let read = |path: &Path, cap: u64, expected: &'static str| {
-            spec::read_capped(path, cap)
-                .map_err(|source| fail(path, InputProblem::Read { expected, source }))
-        };
-        let obj = read(&file, spec::MAX_MODEL_BYTES, "an OBJ model")?;
-        let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
-        let obj_text = String::from_utf8_lossy(&obj);
-        let mtl_names = RefCell::new(Vec::new());
-        let options = tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        };
-        tobj::load_obj_buf(&mut Cursor::new(&obj[..]), &options, |name| {
-            mtl_names
-                .borrow_mut()
-                .push(name.to_string_lossy().into_owned());
-            Ok((Vec::new(), Default::default()))
-        })
-        .map(|_| ())
-        .map_err(|e| {
-            let line = crate::objects::obj_lines::obj_error_line(&obj_text, &e);
-            fail(&file, InputProblem::Obj { line, source: e })
-        })?;
-        let mtl_name = mtl_names.into_inner().into_iter().next();
-        let mtl = match &mtl_name {
-            Some(name) => {
-                let path = inside(&folder, name).map_err(|why| fail(&file, why))?;
-                Some(read(&path, spec::MAX_MTL_BYTES, "an MTL file")?)
-            }
-            None => None,
-        };
-        let mut textures = BTreeMap::new();
-        if let (Some(mtl), Some(mtl_name)) = (&mtl, &mtl_name) {
-            let mtl_path = folder.join(mtl_name);
-            let (materials, _) = tobj::load_mtl_buf(&mut Cursor::new(&mtl[..])).map_err(|e| {
-                let text = String::from_utf8_lossy(mtl);
-                let line = crate::objects::obj_lines::mtl_error_line(&text, &e);
-                fail(&mtl_path, InputProblem::Mtl { line, source: e })
-            })?;
-            let names = materials.iter().flat_map(|m| {
-                [&m.diffuse_texture, &m.ambient_texture, &m.dissolve_texture]
-                    .into_iter()
-                    .flatten()
-            });
-            for name in names {
-                if name.is_empty() || textures.contains_key(name) {
-                    continue;
-                }
-                let path = inside(&folder, name).map_err(|why| fail(&mtl_path, why))?;
-                textures.insert(
-                    name.clone(),
-                    read(&path, spec::MAX_TEXTURE_BYTES, "a texture image")?,
-                );
-            }
-        }
+        let MeshFiles { obj, mtl, textures } = model_files::read(spec_path, model, index)?;
         for part in [
             model.as_bytes(),
             &obj[..],
@@ -336,16 +270,14 @@ fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, Bu
         entry: Some(format!("objects[{index}].words_file")),
         source: Box::new(source),
     };
-    let size = fs::metadata(&file)
-        .map_err(|e| error(InputProblem::WordsUnreadable(e)))?
-        .len();
-    if size > MAX_WORDS_FILE {
-        return Err(error(InputProblem::WordsTooLarge {
-            size,
-            cap: MAX_WORDS_FILE,
-        }));
-    }
-    let bytes = fs::read(&file).map_err(|e| error(InputProblem::WordsUnreadable(e)))?;
+    // Through `regular_file`, like every input: a FIFO is refused at once, never read.
+    let bytes = spec::read_capped(&file, MAX_WORDS_FILE).map_err(|source| match source {
+        InputFileError::TooLarge { size, cap } => error(InputProblem::WordsTooLarge { size, cap }),
+        source => error(InputProblem::Read {
+            expected: "a word file",
+            source,
+        }),
+    })?;
     match std::str::from_utf8(&bytes) {
         Err(e) => Err(error(InputProblem::WordsNotUtf8(e))),
         Ok(text) if crate::objects::parse_words(text).is_empty() => {
@@ -353,32 +285,4 @@ fn words_file(spec_path: &Path, words: &str, index: usize) -> Result<Vec<u8>, Bu
         }
         Ok(_) => Ok(bytes),
     }
-}
-
-/// `name` (from an OBJ or MTL) resolved in `folder`, if it stays inside it: relative, no
-/// `..`, and not leading out through a symlink.
-fn inside(folder: &Path, name: &str) -> Result<PathBuf, InputProblem> {
-    let relative = Path::new(name);
-    let escapes = relative.is_absolute()
-        || relative
-            .components()
-            .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir));
-    if escapes {
-        return Err(InputProblem::Escapes(name.to_owned()));
-    }
-    let path = folder.join(relative);
-    let base = fs::canonicalize(if folder.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        folder
-    });
-    if let (Ok(base), Ok(real)) = (base, fs::canonicalize(&path))
-        && !real.starts_with(&base)
-    {
-        return Err(InputProblem::LinksOut {
-            name: name.to_owned(),
-            target: real.display().to_string(),
-        });
-    }
-    Ok(path)
 }

@@ -8,6 +8,7 @@
 //! kept, so a rebuild with nothing changed writes nothing.
 
 mod atomic;
+mod build_world;
 mod cache;
 mod cache_gc;
 mod cache_remote;
@@ -23,6 +24,7 @@ mod input_problem;
 mod inputs;
 mod lock;
 mod manifest;
+mod model_files;
 mod object_views;
 mod out_dir;
 mod output_names;
@@ -30,6 +32,7 @@ mod pipeline;
 mod render_input;
 mod report;
 mod shard;
+mod source_frame;
 mod spec_build;
 mod stage_key;
 mod verified_memo;
@@ -43,6 +46,7 @@ use std::path::{Path, PathBuf};
 /// Kept here for the tests and benches that place buildings by hand.
 pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
+pub use build_world::BuildWorld;
 pub use cache::{Blob, Cache, Load, Miss};
 pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
 pub use cache_remote::cache_location;
@@ -55,10 +59,11 @@ pub use output_names::{OutputNames, is_safe_relative};
 pub use render_input::{PathRenderInput, path_render_input};
 pub use report::{BuildReport, StageRun, StageStatus};
 pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
+pub use source_frame::{SourceFrame, framed_report};
 pub use spec_build::build_spec;
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
-use crate::spec::{self, FsWorld, Spec, SpecSource};
+use crate::spec::{self, Spec, SpecSource};
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
 pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
@@ -111,7 +116,7 @@ pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
         path: path.to_path_buf(),
         text,
     };
-    spec::load(&source, &FsWorld).map_err(BuildError::Spec)
+    spec::load(&source, &BuildWorld).map_err(BuildError::Spec)
 }
 
 /// Loads and validates every spec first, reporting all their errors together; then runs

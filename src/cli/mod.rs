@@ -373,7 +373,11 @@ fn clock_seed() -> u64 {
 
 fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {
     for error in errors {
-        out.error(error);
+        // An error about a line of a model's OBJ or MTL shows that line, as spec errors do.
+        match build::framed_report(error, out.color) {
+            Some(report) => eprint!("{report}"),
+            None => out.error(error),
+        }
     }
     ExitCode::from(exit_code::exit_code_of(errors))
 }

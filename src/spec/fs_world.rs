@@ -1,14 +1,13 @@
 //! FsWorld: the build driver's [`SpecWorld`] — image paths → sizes read from file headers.
 
-use std::fs::File;
-use std::io::{ErrorKind, Read};
+use std::io::{BufReader, ErrorKind, Read, Seek, SeekFrom};
 use std::path::Path;
 
 use image::ImageReader;
 
 use super::SpecWorld;
 use super::input_file::{
-    InputFileError, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, read_capped,
+    InputFileError, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, open_capped, read_capped,
 };
 
 /// The real file system: reads only the header of each image.
@@ -37,19 +36,21 @@ impl SpecWorld for FsWorld {
         if path.is_dir() {
             return Err("a directory".to_string());
         }
-        check_file(path, MAX_IMAGE_BYTES).map_err(|e| e.to_string())?;
+        // One open, through `regular_file`: a FIFO is refused at once, never waited on.
+        let (mut file, _) = open_capped(path, MAX_IMAGE_BYTES).map_err(|e| e.to_string())?;
         let unreadable = |e: std::io::Error| InputFileError::of_io(e).to_string();
         // Judge by content, not by name: `with_guessed_format` would fall back to the
         // extension and blame a garbage `.png` on the PNG decoder.
         let mut head = Vec::with_capacity(32);
-        File::open(path)
-            .and_then(|f| f.take(32).read_to_end(&mut head))
+        (&mut file)
+            .take(32)
+            .read_to_end(&mut head)
             .map_err(unreadable)?;
         if image::guess_format(&head).is_err() {
             return Err("a file that is not a PNG or JPEG image".to_string());
         }
-        ImageReader::open(path)
-            .map_err(unreadable)?
+        file.seek(SeekFrom::Start(0)).map_err(unreadable)?;
+        ImageReader::new(BufReader::new(file))
             .with_guessed_format()
             .map_err(unreadable)?
             .into_dimensions()

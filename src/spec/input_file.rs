@@ -1,13 +1,18 @@
 //! Input files: a path a spec names + a size cap → its bytes, or why not.
 //!
-//! Every file cityspec reads goes through [`read_capped`]: it must be a regular file (a
-//! device such as `/dev/zero`, a pipe or a socket is refused before a byte is read) and no
-//! larger than the cap for its kind, so no input can make a build read until memory runs
-//! out. Symlinks to regular files are followed: a user may link a model in.
+//! Every file cityspec reads from the user's tree goes through [`read_capped`] (or
+//! [`open_capped`]), which opens it through [`crate::regular_file`]: without blocking, and
+//! only when the open descriptor is a regular file (a FIFO, a device such as `/dev/zero`, a
+//! socket or a folder is refused before a byte is read, and a FIFO never hangs the build
+//! waiting for a writer). Its size is then checked against the cap for its kind, so no
+//! input can make a build read until memory runs out. Symlinks to regular files are
+//! followed: a user may link a model in.
 
-use std::fs::{self, File};
+use std::fs::File;
 use std::io::{self, ErrorKind, Read};
 use std::path::Path;
+
+use crate::regular_file::{self, Follow};
 
 /// Largest spec file.
 pub const MAX_SPEC_BYTES: u64 = 1 << 20;
@@ -31,10 +36,9 @@ pub enum InputFileError {
     PermissionDenied,
     #[error("an unreadable file ({0})")]
     Unreadable(#[source] io::Error),
-    #[error("a folder, not a file")]
-    Folder,
-    #[error("not a regular file (a device, pipe or socket)")]
-    NotRegular,
+    /// A FIFO, device, socket or folder: the text says which ("a FIFO, not a regular file").
+    #[error("{}", not_regular_text(.0))]
+    NotRegular(#[source] io::Error),
     #[error("a file of {size} bytes, over the limit of {cap} bytes for this kind of input")]
     TooLarge { size: u64, cap: u64 },
     #[error("a file that is not UTF-8 text (byte {valid_up_to})")]
@@ -44,6 +48,9 @@ pub enum InputFileError {
 impl InputFileError {
     /// The error of a failed open, read or metadata call.
     pub fn of_io(e: io::Error) -> InputFileError {
+        if regular_file::is_not_regular(&e) {
+            return InputFileError::NotRegular(e);
+        }
         match e.kind() {
             ErrorKind::NotFound => InputFileError::NotFound,
             ErrorKind::PermissionDenied => InputFileError::PermissionDenied,
@@ -52,32 +59,37 @@ impl InputFileError {
     }
 }
 
-/// Why `path` cannot be read as a regular file of at most `cap` bytes; Ok with its size
-/// otherwise.
-pub fn check_file(path: &Path, cap: u64) -> Result<u64, InputFileError> {
-    let meta = fs::metadata(path).map_err(InputFileError::of_io)?;
-    if meta.is_dir() {
-        return Err(InputFileError::Folder);
-    }
-    if !meta.is_file() {
-        return Err(InputFileError::NotRegular);
-    }
-    if meta.len() > cap {
-        return Err(InputFileError::TooLarge {
-            size: meta.len(),
-            cap,
-        });
-    }
-    Ok(meta.len())
+/// `regular_file`'s "is a FIFO, not a regular file" as a "found …" completes it.
+fn not_regular_text(e: &io::Error) -> String {
+    let text = e.to_string();
+    text.strip_prefix("is ").unwrap_or(&text).to_string()
 }
 
-/// The bytes of the regular file `path`, refused (see [`check_file`]) when it is not a
+/// `path` opened for reading (see [`crate::regular_file::open`]) with its size, refused when
+/// it is not a regular file or holds more than `cap` bytes.
+pub fn open_capped(path: &Path, cap: u64) -> Result<(File, u64), InputFileError> {
+    let file = regular_file::open(path, Follow::Yes).map_err(InputFileError::of_io)?;
+    let size = file.metadata().map_err(InputFileError::of_io)?.len();
+    if size > cap {
+        return Err(InputFileError::TooLarge { size, cap });
+    }
+    Ok((file, size))
+}
+
+/// Why `path` cannot be read as a regular file of at most `cap` bytes; Ok with its size
+/// otherwise. It is opened (without blocking) to tell, so what passes here is what
+/// [`read_capped`] would open.
+pub fn check_file(path: &Path, cap: u64) -> Result<u64, InputFileError> {
+    open_capped(path, cap).map(|(_, size)| size)
+}
+
+/// The bytes of the regular file `path`, refused (see [`open_capped`]) when it is not a
 /// regular file or holds more than `cap` bytes.
 pub fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, InputFileError> {
-    let size = check_file(path, cap)?;
+    let (file, size) = open_capped(path, cap)?;
     let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
-    File::open(path)
-        .and_then(|f| f.take(cap + 1).read_to_end(&mut bytes))
+    file.take(cap + 1)
+        .read_to_end(&mut bytes)
         .map_err(InputFileError::of_io)?;
     // It may have grown since it was measured.
     if bytes.len() as u64 > cap {
@@ -112,7 +124,7 @@ mod tests {
         );
         assert_eq!(
             read_capped(dir.path(), 9).unwrap_err().to_string(),
-            "a folder, not a file"
+            "a folder, not a regular file"
         );
         assert_eq!(
             read_capped(&dir.path().join("b"), 9)
@@ -125,9 +137,25 @@ mod tests {
             read_capped(Path::new("/dev/zero"), MAX_MODEL_BYTES)
                 .unwrap_err()
                 .to_string(),
-            "not a regular file (a device, pipe or socket)"
+            "a device, not a regular file"
         );
         assert!(started.elapsed().as_secs() < 1);
+        #[cfg(target_os = "linux")]
+        {
+            // Opened blocking, a FIFO with no writer would hang the read forever.
+            let fifo = dir.path().join("fifo");
+            rustix::fs::mkfifoat(rustix::fs::CWD, &fifo, rustix::fs::Mode::RUSR).unwrap();
+            let started = std::time::Instant::now();
+            assert_eq!(
+                read_capped(&fifo, 9).unwrap_err().to_string(),
+                "a FIFO, not a regular file"
+            );
+            assert_eq!(
+                check_file(&fifo, 9).unwrap_err().to_string(),
+                "a FIFO, not a regular file"
+            );
+            assert!(started.elapsed().as_secs() < 1);
+        }
         std::fs::write(&small, [0xff, 0xfe]).unwrap();
         assert!(
             read_text_capped(&small, 9)

@@ -248,11 +248,40 @@ fn check_image(
                 );
                 return None;
             }
+            if let Some((roads, blocks)) = world.parsed_layout(&pixels, palette)
+                && (roads == 0 || blocks == 0)
+            {
+                findings.error(
+                    "layout.image",
+                    format!(
+                        "expected a layout from which roads and blocks can be read, found \
+                         {roads} road{} and {blocks} block{} in {} (palette road {}, line {}, \
+                         block {}, strip {}, within {}: {road} road, {line} line, {block} \
+                         block and {} strip pixels); a road needs a centre line in the line \
+                         colour, a block an area in the block colour: is this a layout \
+                         drawing?",
+                        plural(roads),
+                        plural(blocks),
+                        resolved.display(),
+                        palette.road,
+                        palette.line,
+                        palette.block,
+                        palette.strip,
+                        palette.tolerance,
+                        counts[3],
+                    ),
+                );
+                return None;
+            }
             extent.block_px = block;
             extent.line_px = line;
         }
     }
     Some(extent)
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
 }
 
 /// Pixels of each palette colour: road, line, block, strip.
@@ -324,7 +353,67 @@ fn too_large(w: u64, h: u64) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use std::path::Path;
+
+    use image::RgbImage;
+
+    use super::super::{Palette, SpecWorld};
     use crate::test_support::FakeWorld;
+
+    /// A world whose one layout image has pixels of every palette colour, and which parses
+    /// it to the given roads and blocks.
+    struct ParsingWorld(usize, usize);
+
+    impl SpecWorld for ParsingWorld {
+        fn image_dimensions(&self, _: &Path) -> Result<(u32, u32), String> {
+            Ok((4, 1))
+        }
+        fn folder(&self, _: &Path) -> Result<(), String> {
+            Ok(())
+        }
+        fn file(&self, _: &Path) -> Result<(), String> {
+            Ok(())
+        }
+        fn layout_pixels(&self, _: &Path) -> Option<Result<RgbImage, String>> {
+            let p = Palette::default();
+            let pixels = [p.road, p.line, p.block, p.strip]
+                .into_iter()
+                .flat_map(|c| c.0);
+            RgbImage::from_raw(4, 1, pixels.collect()).map(Ok)
+        }
+        fn parsed_layout(&self, _: &RgbImage, _: &Palette) -> Option<(usize, usize)> {
+            Some((self.0, self.1))
+        }
+    }
+
+    #[test]
+    fn an_image_the_parse_stage_reads_nothing_off_is_refused() {
+        let text = "version = 1\nname = \"c\"\n[layout]\nimage = \"a.png\"\n";
+        let source = super::super::SpecSource {
+            path: "c.toml".into(),
+            text: text.to_string(),
+        };
+        let cases = [
+            ((1, 1), None),
+            ((0, 1), Some("found 0 roads and 1 block in a.png")),
+            ((1, 0), Some("found 1 road and 0 blocks in a.png")),
+        ];
+        for ((roads, blocks), want) in cases {
+            let got = super::super::load(&source, &ParsingWorld(roads, blocks));
+            match (got, want) {
+                (Ok(_), None) => {}
+                (Err(e), Some(want)) => {
+                    let e = e.to_string();
+                    assert!(e.contains(want), "{e}");
+                    assert!(
+                        e.contains("1 road, 1 line, 1 block and 1 strip pixels"),
+                        "{e}"
+                    );
+                }
+                (got, want) => panic!("{roads} roads, {blocks} blocks: {got:?}, want {want:?}"),
+            }
+        }
+    }
 
     /// Images `a.png` (640×480) and `big.png` (9000×9000) beside `specs/city.toml`.
     fn problems(body: &str) -> Vec<String> {

@@ -11,8 +11,10 @@
 //! | semantic | rules between values: one layout source, roads that fit, the image and models exist, one of a camera's `frames` and `spacing`, … | no |
 //!
 //! Then serde builds the [`Spec`] (defaults filled in). The only I/O is through
-//! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world the build
-//! driver passes in. Relative paths in a spec resolve against the spec's own folder.
+//! [`SpecWorld`], so the stage stays pure; [`FsWorld`] is the file-system world, which the
+//! build driver wraps with the parse stage's reading of a layout image (a layout image
+//! nothing can be read off is refused here, with the spec's other errors). Relative paths
+//! in a spec resolve against the spec's own folder.
 
 mod camera_checks;
 mod camera_path_checks;
@@ -57,13 +59,14 @@ pub use diagnostic::Diagnostic;
 pub use fs_world::FsWorld;
 pub use input_file::{
     InputFileError, MAX_FLOORS_BYTES, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, MAX_MTL_BYTES,
-    MAX_SPEC_BYTES, MAX_TEXTURE_BYTES, check_file, read_capped, read_text_capped,
+    MAX_SPEC_BYTES, MAX_TEXTURE_BYTES, check_file, open_capped, read_capped, read_text_capped,
 };
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{
-    CarBody, Ground, ObjectKind, ObjectSpec, RIDER_CLASS, SignKind, TextCase, TreeSpecies,
+    CarBody, Ground, KIND_KEYS, ObjectKind, ObjectSpec, RIDER_CLASS, SignKind, TextCase,
+    TreeSpecies, kinds_of_key,
 };
 pub use output_spec::{OutputLayout, OutputSpec};
 pub use report::report;
@@ -102,6 +105,17 @@ pub trait SpecWorld {
     /// when this world does not decode images (the checks then use the header's size).
     /// Err(message) completes "expected a whole PNG or JPEG layout image at …, found …".
     fn layout_pixels(&self, _path: &Path) -> Option<Result<image::RgbImage, String>> {
+        None
+    }
+    /// What the parse stage reads off a layout image drawn with `palette`: how many roads
+    /// and how many blocks, as `(roads, blocks)`. None when this world does not parse
+    /// layouts: the spec stage may not run another stage, so the build driver's world
+    /// (`build::BuildWorld`) answers this, and [`FsWorld`] does not.
+    fn parsed_layout(
+        &self,
+        _pixels: &image::RgbImage,
+        _palette: &Palette,
+    ) -> Option<(usize, usize)> {
         None
     }
 }

@@ -4,7 +4,10 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// One class of inserted objects. Keys that do not apply to the `kind` are ignored.
+/// One class of inserted objects. A key that does not apply to the `kind` (a `model` on a
+/// `traffic_light`) is an error, as an unknown key is: [`KIND_KEYS`] says which kinds each
+/// key applies to, and the schema carries it as one `if kind … then` rule per kind, so
+/// editors flag such a key too.
 ///
 /// `count` objects are attempted; one that does not fit is drawn again a few times (other
 /// words and size, another body, another species); when the city still has no room for
@@ -12,6 +15,7 @@ use serde::{Deserialize, Serialize};
 /// the shortfall.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(transform = kind_rules)]
 pub struct ObjectSpec {
     /// What to insert: `"text"` (words on walls facing a road), `"sign"` (traffic signs on
     /// poles beside the roads), `"mesh"` (a user OBJ model), `"car"` (cars, vans, buses
@@ -162,6 +166,62 @@ impl ObjectSpec {
     }
 }
 
+/// The keys of an `[[objects]]` table that apply to some kinds only, with those kinds; the
+/// others (`kind`, `label`, `count`) apply to every kind. A key written for a kind it does
+/// not apply to is an error.
+pub const KIND_KEYS: &[(&str, &[ObjectKind])] = {
+    use ObjectKind::*;
+    &[
+        ("letter_height", &[Text, StreetName]),
+        ("case", &[Text, StreetName]),
+        ("words", &[Text]),
+        ("words_file", &[Text, StreetName]),
+        ("signs", &[Sign]),
+        ("model", &[Mesh]),
+        ("scale", &[Mesh]),
+        ("rotation", &[Mesh]),
+        ("on", &[Mesh]),
+        ("bodies", &[Car]),
+        ("parked", &[Car, Bicycle]),
+        ("species", &[Tree]),
+        ("height", &[Tree, Person, Bicycle]),
+        ("crossing", &[Person]),
+        ("waiting", &[Person]),
+        ("plazas", &[Tree]),
+    ]
+};
+
+/// The kinds `key` applies to; None when it applies to every kind (or is no key of an
+/// `[[objects]]` table).
+pub fn kinds_of_key(key: &str) -> Option<&'static [ObjectKind]> {
+    KIND_KEYS
+        .iter()
+        .find(|(k, _)| *k == key)
+        .map(|(_, kinds)| *kinds)
+}
+
+/// Adds to the `[[objects]]` schema one rule per kind: `if` the kind is this one, `then`
+/// each key of [`KIND_KEYS`] that does not apply to it is `false` (allowed no value). An
+/// unknown key stays `additionalProperties`' alone, so nothing is reported twice.
+fn kind_rules(schema: &mut schemars::Schema) {
+    use serde_json::{Map, Value, json};
+    let rules: Vec<Value> = ObjectKind::ALL
+        .iter()
+        .map(|kind| {
+            let refused: Map<String, Value> = KIND_KEYS
+                .iter()
+                .filter(|(_, kinds)| !kinds.contains(kind))
+                .map(|(key, _)| ((*key).to_string(), Value::Bool(false)))
+                .collect();
+            json!({
+                "if": {"properties": {"kind": {"const": kind.name()}}, "required": ["kind"]},
+                "then": {"properties": refused},
+            })
+        })
+        .collect();
+    schema.insert("allOf".to_string(), Value::Array(rules));
+}
+
 /// The class of the riders a bicycle entry puts on its ridden bicycles.
 pub const RIDER_CLASS: &str = "rider";
 
@@ -252,6 +312,19 @@ pub enum ObjectKind {
 }
 
 impl ObjectKind {
+    /// Every kind, in declaration order.
+    pub const ALL: [ObjectKind; 9] = [
+        ObjectKind::Text,
+        ObjectKind::Sign,
+        ObjectKind::Mesh,
+        ObjectKind::Car,
+        ObjectKind::Tree,
+        ObjectKind::StreetName,
+        ObjectKind::Person,
+        ObjectKind::TrafficLight,
+        ObjectKind::Bicycle,
+    ];
+
     /// The snake_case name the spec uses.
     pub fn name(self) -> &'static str {
         match self {
@@ -378,18 +451,7 @@ mod tests {
 
     #[test]
     fn kind_names_are_what_the_spec_reads() {
-        let kinds = [
-            ObjectKind::Text,
-            ObjectKind::Sign,
-            ObjectKind::Mesh,
-            ObjectKind::Car,
-            ObjectKind::Tree,
-            ObjectKind::StreetName,
-            ObjectKind::Person,
-            ObjectKind::TrafficLight,
-            ObjectKind::Bicycle,
-        ];
-        for kind in kinds {
+        for kind in ObjectKind::ALL {
             let spec: ObjectSpec = toml::from_str(&format!("kind = {:?}\n", kind.name())).unwrap();
             assert_eq!(spec.kind, kind);
         }
@@ -434,6 +496,21 @@ mod tests {
         assert_eq!(specs[6].height_range(), [1.5, 1.95]);
         let tall: ObjectSpec = toml::from_str("kind = \"person\"\nheight = [1.8, 2]\n").unwrap();
         assert_eq!(tall.height_range(), [1.8, 2.0]);
+    }
+
+    #[test]
+    fn every_key_applies_to_every_kind_or_is_listed() {
+        let schema = schemars::schema_for!(ObjectSpec);
+        let keys = schema.as_value()["properties"].as_object().unwrap();
+        for key in keys.keys() {
+            let general = ["kind", "label", "count"].contains(&key.as_str());
+            assert!(general != kinds_of_key(key).is_some(), "{key}");
+        }
+        for (key, kinds) in KIND_KEYS {
+            assert!(keys.contains_key(*key), "{key} is no key of ObjectSpec");
+            assert!(!kinds.is_empty(), "{key}");
+        }
+        assert_eq!(schema.as_value()["allOf"].as_array().unwrap().len(), 9);
     }
 
     #[test]

@@ -60,12 +60,27 @@ pub(crate) fn check(
         }
     };
     let mut out = Vec::new();
-    for error in validator.iter_errors(instance) {
-        let path = locator.pointer_path(error.instance_path().as_str());
-        if skip.contains(&path) {
-            continue;
+    let errors: Vec<(ValidationError<'_>, KeyPath)> = validator
+        .iter_errors(instance)
+        .map(|error| {
+            let path = locator.pointer_path(error.instance_path().as_str());
+            (error, path)
+        })
+        .filter(|(_, path)| !skip.contains(path))
+        .collect();
+    // A key that does not apply to its object's kind is reported as that alone, not also
+    // for the value it holds.
+    let refused: Vec<&KeyPath> = errors
+        .iter()
+        .filter(|(error, _)| matches!(error.kind(), ValidationErrorKind::FalseSchema))
+        .map(|(_, path)| path)
+        .collect();
+    for (error, path) in &errors {
+        let refused_value = !matches!(error.kind(), ValidationErrorKind::FalseSchema)
+            && refused.iter().any(|r| path.0.starts_with(&r.0));
+        if !refused_value {
+            diagnose(error, path, locator, text, &mut out);
         }
-        diagnose(&error, &path, locator, text, &mut out);
     }
     out
 }
@@ -176,8 +191,19 @@ fn diagnose(
                     .join(", "),
                 None => options.to_string(),
             };
-            at_value(format!("expected one of {listed}, found {}", found()))
+            let mut message = format!("expected one of {listed}, found {}", found());
+            if let Some(near) = closest_option(locator, path, options) {
+                message.push_str(&format!(" (did you mean \"{near}\"?)"));
+            }
+            at_value(message)
         }
+        // The only `false` schemas are the per-kind rules of `[[objects]]` (`kind_rules`).
+        ValidationErrorKind::FalseSchema => Diagnostic::new(
+            text,
+            locator.key_span(path),
+            path,
+            inapplicable_key_message(path, locator),
+        ),
         ValidationErrorKind::Constant { expected_value } => {
             at_value(format!("expected {expected_value}, found {}", found()))
         }
@@ -212,6 +238,47 @@ fn unknown_key_message(key: &str, known: &[&str]) -> String {
         message.push_str(&format!(" (did you mean `{near}`?)"));
     }
     message
+}
+
+/// Why the key at `path` (`objects[2].model`) may not be written for its table's `kind`.
+fn inapplicable_key_message(path: &KeyPath, locator: &Locator<'_>) -> String {
+    let (key, table) = match path.0.split_last() {
+        Some((Segment::Key(key), table)) => (key.as_str(), KeyPath(table.to_vec())),
+        _ => return "expected no value here, found one".to_string(),
+    };
+    let kind = match locator.value(&table.key("kind")).map(|v| v.get_ref()) {
+        Some(toml::de::DeValue::String(kind)) => format!("kind \"{kind}\""),
+        _ => "this kind".to_string(),
+    };
+    let applies = match super::object_spec::kinds_of_key(key) {
+        Some(kinds) => {
+            let names: Vec<String> = kinds.iter().map(|k| format!("\"{}\"", k.name())).collect();
+            let plural = if names.len() == 1 { "kind" } else { "kinds" };
+            let listed = match names.split_last() {
+                Some((last, [])) => last.clone(),
+                Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+                None => String::new(),
+            };
+            format!(", which applies only to {plural} {listed}")
+        }
+        None => String::new(),
+    };
+    format!("expected only keys that apply to {kind}, found `{key}`{applies}")
+}
+
+/// The allowed string nearest to the string written at `path`, when it is near enough to
+/// be a typo (as [`closest`] judges for unknown keys).
+fn closest_option<'v>(
+    locator: &Locator<'_>,
+    path: &KeyPath,
+    options: &'v Value,
+) -> Option<&'v str> {
+    let written = locator.value(path)?;
+    let toml::de::DeValue::String(written) = written.get_ref() else {
+        return None;
+    };
+    let allowed = options.as_array()?.iter().filter_map(Value::as_str);
+    closest(written, allowed)
 }
 
 /// A friendlier "expected" for values whose range has a meaning beyond the numbers.
@@ -371,6 +438,84 @@ mod tests {
             messages("version = 1\nname = \"a\"\n[lamps]\n"),
             ["1:1 layout: expected a `layout` key at the top level, found none"]
         );
+    }
+
+    #[test]
+    fn keys_that_do_not_apply_to_the_kind_are_refused_once() {
+        const HEAD: &str = "version = 1\nname = \"a\"\n[layout.generate]\n";
+        let cases: &[(&str, &[&str])] = &[
+            (
+                "[[objects]]\nkind = \"traffic_light\"\nmodel = \"a.obj\"\n",
+                &[
+                    "6:1 objects[0].model: expected only keys that apply to kind \"traffic_light\", found `model`, which applies only to kind \"mesh\"",
+                ],
+            ),
+            // The value's own problem is not reported besides.
+            (
+                "[[objects]]\nkind = \"car\"\nheight = \"tall\"\n",
+                &[
+                    "6:1 objects[0].height: expected only keys that apply to kind \"car\", found `height`, which applies only to kinds \"tree\", \"person\" and \"bicycle\"",
+                ],
+            ),
+            (
+                "[[objects]]\nkind = \"mesh\"\nmodel = \"a.obj\"\nscale = [1, 2]\n",
+                &[],
+            ),
+            // An unknown key is unknown, not also inapplicable; a bad kind matches no rule.
+            (
+                "[[objects]]\nkind = \"car\"\nmodle = 1\n",
+                &["6:1 objects[0].modle: expected one of `kind`"],
+            ),
+            (
+                "[[objects]]\nkind = \"cars\"\nmodel = \"a.obj\"\n",
+                &["5:8 objects[0].kind: expected one of"],
+            ),
+        ];
+        for (body, want) in cases {
+            let got = messages(&format!("{HEAD}{body}"));
+            assert_eq!(got.len(), want.len(), "{body}: {got:?}");
+            for (got, want) in got.iter().zip(*want) {
+                assert!(got.starts_with(want), "{body}: {got:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn enum_values_near_an_allowed_one_get_a_suggestion() {
+        const HEAD: &str = "version = 1\nname = \"a\"\n[layout.generate]\n";
+        let cases: &[(&str, &str)] = &[
+            (
+                "[[objects]]\nkind = \"texts\"\n",
+                "found \"texts\" (did you mean \"text\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"traffic_lights\"\n",
+                "(did you mean \"traffic_light\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"sign\"\nsigns = [\"stpo\"]\n",
+                "(did you mean \"stop\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"car\"\nbodies = [\"Sedan\"]\n",
+                "(did you mean \"sedan\"?)",
+            ),
+            (
+                "[[objects]]\nkind = \"text\"\ncase = \"uper\"\n",
+                "(did you mean \"upper\"?)",
+            ),
+            (
+                "[facades]\non_error = \"skpi\"\n",
+                "(did you mean \"skip\"?)",
+            ),
+        ];
+        for (body, want) in cases {
+            let got = messages(&format!("{HEAD}{body}"));
+            assert_eq!(got.len(), 1, "{body}: {got:?}");
+            assert!(got[0].ends_with(want), "{body}: {got:?}");
+        }
+        let far = messages(&format!("{HEAD}[[objects]]\nkind = \"poster\"\n"));
+        assert!(!far[0].contains("did you mean"), "{far:?}");
     }
 
     #[test]

@@ -8,13 +8,14 @@
 //! ```
 //!
 //! (`line:col key: message-substring`, one line per diagnostic). The test loads each with
-//! the real [`FsWorld`] and requires, for each expectation, a line of the report starting
+//! the build's world ([`BuildWorld`]: the file system and the parse stage) and requires, for each expectation, a line of the report starting
 //! `{fixture path}:{line}:{col}: error: {key}: ` that contains the message, and exactly as
 //! many diagnostics as expectations.
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
+use cityspec::build::BuildWorld;
 use cityspec::spec::{self, FsWorld, SpecSource, SpecWorld};
 
 const SCHEMA_PATH: &str = "schemas/cityspec.schema.json";
@@ -85,7 +86,7 @@ fn check_bad_fixture(path: &Path) -> Option<String> {
         Ok(e) => e,
         Err(e) => return Some(e),
     };
-    let errors = match spec::load(&source, &FsWorld) {
+    let errors = match spec::load(&source, &BuildWorld) {
         Ok(_) => return Some("loaded without errors".to_string()),
         Err(errors) => errors,
     };
@@ -141,7 +142,7 @@ fn good_fixtures_load() {
     let failures: Vec<String> = paths
         .iter()
         .filter_map(|p| {
-            spec::load(&source(p), &FsWorld)
+            spec::load(&source(p), &BuildWorld)
                 .err()
                 .map(|e| e.to_string())
         })
