@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# README "Scaling out": one -j1 build of a 200-frame street path against 2 -j1 shards at
+# docs/scaling.md, "Scaling out": one -j1 build of a 200-frame street path against 2 -j1 shards at
 # once sharing one cache, then the merge; wall and CPU seconds of each (`time -p`), and
 # the two output folders compared byte for byte. Then, when moto is installed (MOTO_SERVER,
 # or moto_server on PATH: pip install 'moto[server]'), the S3 overhead: the same -j1 build

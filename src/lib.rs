@@ -25,7 +25,9 @@
 //!
 //! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,
 //! facade heights, vector and trig helpers) in [`model::geometry`] and image-file checks and
-//! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`] and [`hash`], never on each
+//! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`], [`hash`],
+//! [`diagnostic`] (the warnings a stage reports, cached with its result) and
+//! [`regular_file`] (opening inputs without following or blocking), never on each
 //! other. `tests/integration/stage_imports.rs` fails when a stage names another; tests that need
 //! another stage's output get it through `test_support`.
 

@@ -283,7 +283,7 @@ impl Cache {
         self.remote.as_deref()
     }
 
-    /// Whether the cache holds the marker [`MARKER`] written by cityspec (`cache gc`
+    /// Whether the cache holds the marker `CACHEDIR.TAG` ([`MARKER`]) written by cityspec (`cache gc`
     /// removes nothing where it does not).
     pub fn is_marked(&self) -> io::Result<bool> {
         let text = match &self.remote {

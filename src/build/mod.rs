@@ -47,7 +47,7 @@ use std::path::{Path, PathBuf};
 pub use crate::place::widths_px;
 pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use build_world::BuildWorld;
-pub use cache::{Blob, Cache, Load, Miss};
+pub use cache::{Blob, Cache, CacheName, Load, MARKER, Miss};
 pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
 pub use cache_remote::cache_location;
 /// The driver's encodings' version (PNG settings, JSON layout), in every stage key.

@@ -41,7 +41,7 @@ pub struct CameraSpec {
     /// sidewalks, so a walk looks at shop fronts on the right and the street on the
     /// left); objects turn the aim from the line of sight to the target (default
     /// [-15, 15], so the target is not always in the centre). Orbit: unused. On roads, a
-    /// drawn aim whose view one vehicle within 3 m fills more than half of is drawn again
+    /// drawn aim whose view one vehicle within 8 m fills more than half of is drawn again
     /// (up to 8 draws, then the least filled); on sidewalks, one whose view is more than
     /// 30 % nearer than 2 m (a wall, a trunk, a car door).
     #[serde(default, skip_serializing_if = "Option::is_none")]
