@@ -332,3 +332,39 @@ fn strict_fails_on_a_warm_cache_exactly_when_on_a_cold_one() {
     assert_eq!(warm.status.code(), Some(2), "{}", stderr(&warm));
     assert!(stderr(&warm).contains("objects-short"), "{}", stderr(&warm));
 }
+
+#[test]
+fn a_camera_path_with_no_frames_warns_on_every_build() {
+    // Aimed at signs from 40–50 m up but at most 5 m away: no view is steep enough to
+    // keep, so the path has no frame.
+    let (ws, _) = small(|spec| {
+        let cameras = spec["cameras"].as_array_mut().unwrap();
+        let camera: toml::Table = toml::from_str(
+            "name = \"signs\"\npath = \"objects\"\nclasses = [\"traffic_sign\"]\n\
+             frames = 3\ndistance = [4, 5]\nheight = [40, 50]\nresolution = [64, 48]",
+        )
+        .unwrap();
+        cameras.push(toml::Value::Table(camera));
+    });
+    let build = |strict: bool| {
+        let mut args = vec!["build", "-q", "--out", "out", "--cache", "cache"];
+        if strict {
+            args.push("--strict");
+        }
+        args.push("specs/small.toml");
+        cityspec(&ws, &args)
+    };
+    let cold = build(false);
+    assert_eq!(cold.status.code(), Some(0), "{}", stderr(&cold));
+    let warned = stderr(&cold);
+    assert!(
+        warned.contains("warning[camera-no-frames]: camera path \"signs\" yields 0 frames"),
+        "{warned}"
+    );
+    // At the camera's table in the spec.
+    assert!(warned.starts_with("specs/small.toml:"), "{warned}");
+    let warm = build(false);
+    assert_eq!(stderr(&warm), warned);
+    let strict = build(true);
+    assert_eq!(strict.status.code(), Some(2), "{}", stderr(&strict));
+}

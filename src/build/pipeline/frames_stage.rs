@@ -68,9 +68,9 @@ impl Pipeline<'_> {
                 let camera = &p.spec.cameras[index];
                 if state.plan.poses.is_empty() {
                     let message = format!(
-                        "camera path {:?} yields 0 frames: nothing along its path fits \
-                         (a layout too small for its spacing, or no road or sidewalk it can \
-                         drive)",
+                        "camera path {:?} yields 0 frames: no pose along it fits (roads and \
+                         sidewalks: none to drive or walk; objects: no target of its classes \
+                         seen within its distance and height; orbit: an empty layout)",
                         camera.name
                     );
                     p.report(
