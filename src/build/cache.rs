@@ -212,6 +212,24 @@ pub fn is_sha256(text: &str) -> bool {
     text.len() == 64 && text.bytes().all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'))
 }
 
+/// What the cache holds under a key ([`Cache::entry_state`]).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "state", rename_all = "lowercase")]
+pub enum EntryState {
+    /// No entry: the stage runs at the next build.
+    Missing,
+    /// An entry naming `outputs` objects of `bytes` in all, with `diagnostics` warnings.
+    Cached {
+        outputs: usize,
+        bytes: u64,
+        diagnostics: usize,
+    },
+    /// An entry an older cityspec wrote: the stage runs again, quietly.
+    Older,
+    /// An entry that cannot be used (unreadable, not an entry): rebuilt, with a warning.
+    Damaged(String),
+}
+
 /// A stage's cached result: its outputs and its diagnostics.
 #[derive(Debug)]
 pub struct Hit {
@@ -329,6 +347,25 @@ impl Cache {
     pub fn entry(&self, key: &str) -> Option<Entry> {
         let entry = Entry::parse(&self.read_entry(key).ok()??).ok()?;
         (entry.key == key).then_some(entry)
+    }
+
+    /// What the cache holds under `key`, from the entry alone (its objects are verified
+    /// when a build reads them): for `cityspec explain`.
+    pub fn entry_state(&self, key: &str) -> EntryState {
+        match self.read_entry(key) {
+            Ok(None) => EntryState::Missing,
+            Err(e) => EntryState::Damaged(e.to_string()),
+            Ok(Some(text)) => match Entry::parse(&text) {
+                Ok(entry) if entry.key == key => EntryState::Cached {
+                    outputs: entry.outputs.len(),
+                    bytes: entry.outputs.values().map(|o| o.bytes).sum(),
+                    diagnostics: entry.diagnostics.len(),
+                },
+                Ok(_) => EntryState::Damaged("it records another key".to_owned()),
+                Err(BadEntry::Older) => EntryState::Older,
+                Err(BadEntry::Damaged(why)) => EntryState::Damaged(why),
+            },
+        }
     }
 
     /// Whether an entry is recorded under `key` (whatever it holds).

@@ -226,10 +226,11 @@ fn spec_keys(path: &Path, cache: &Cache) -> Result<Vec<String>, BuildError> {
 
 /// The objects a lock file lists.
 fn lock_objects(path: &Path) -> Result<Vec<String>, BuildError> {
-    let text = fs::read_to_string(path).map_err(|source| BuildError::ReadSpec {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::regular_file::read_to_string(path, crate::regular_file::Follow::Yes)
+        .map_err(|source| BuildError::ReadSpec {
+            path: path.to_path_buf(),
+            source,
+        })?;
     super::lock::hashes(&text).map_err(|why| BuildError::ReadSpec {
         path: path.to_path_buf(),
         source: io::Error::other(why),

@@ -46,7 +46,8 @@ pub fn render(manifest: &Manifest) -> String {
 /// `--locked`: the spec's lock file agrees with `manifest`, or every difference.
 pub fn check(spec: &Path, manifest: &Manifest) -> Result<(), super::BuildError> {
     let lock = lock_path(spec);
-    let differences = match std::fs::read_to_string(&lock) {
+    let read = crate::regular_file::read_to_string(&lock, crate::regular_file::Follow::Yes);
+    let differences = match read {
         Ok(text) => differences(&text, manifest),
         Err(e) => vec![format!(
             "no lock file ({e}): run `cityspec lock {}` and commit it",

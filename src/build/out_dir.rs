@@ -149,7 +149,8 @@ impl OutDir {
             if recorded.is_some_and(|s| s.bytes == bytes && s.mtime_ns == mtime_ns) {
                 return recorded.is_some_and(|s| s.sha256 == sha256);
             }
-            fs::read(self.dir.join(path)).is_ok_and(|b| sha256_hex(&b) == sha256)
+            crate::regular_file::read(&self.dir.join(path), crate::regular_file::Follow::No)
+                .is_ok_and(|b| sha256_hex(&b) == sha256)
         };
         let mut synced = Synced::default();
         let mut keep = BTreeSet::new();
@@ -318,11 +319,10 @@ impl OutDir {
             return Err(self.refuse("is not a folder".to_owned()));
         }
         let manifest = self.dir.join("manifest.json");
-        let ours = fs::symlink_metadata(&manifest).is_ok_and(|m| m.is_file())
-            && fs::read(&manifest)
-                .ok()
-                .and_then(|b| Manifest::from_bytes(&b))
-                .is_some_and(|m| m.name == self.name);
+        let ours = crate::regular_file::read(&manifest, crate::regular_file::Follow::No)
+            .ok()
+            .and_then(|b| Manifest::from_bytes(&b))
+            .is_some_and(|m| m.name == self.name);
         let empty = fs::read_dir(&self.dir).is_ok_and(|mut d| d.next().is_none());
         if ours || empty {
             Ok(())

@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::hash::sha256_hex;
 
 /// What a stage key is the hash of.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct StageKey {
     stage: &'static str,
     cityspec: &'static str,
@@ -53,6 +53,32 @@ impl StageKey {
     pub fn input(mut self, name: &'static str, key: &str) -> StageKey {
         self.inputs.insert(name, key.to_owned());
         self
+    }
+
+    /// [`StageKey::finish`], keeping what the key is the hash of in `made` (by key), for
+    /// `cityspec explain`.
+    pub fn finish_into(self, made: &mut BTreeMap<String, StageKey>) -> String {
+        let key = self.finish();
+        made.insert(key.clone(), self);
+        key
+    }
+
+    /// The stage's `VERSION`.
+    pub fn stage_version(&self) -> u32 {
+        self.stage_version
+    }
+
+    /// The names of the spec parts the key holds, in order.
+    pub fn spec_parts(&self) -> Vec<String> {
+        match &self.spec {
+            serde_json::Value::Object(map) => map.keys().cloned().collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The consumed stages' keys and input files' hashes, by name.
+    pub fn inputs(&self) -> &BTreeMap<&'static str, String> {
+        &self.inputs
     }
 
     /// The key: SHA-256 of the canonical JSON of all of the above.

@@ -142,6 +142,25 @@ pub enum Command {
     /// Work with the stage cache.
     #[command(subcommand)]
     Cache(CacheCommand),
+    /// Show each cached stage of a spec: what its key is the hash of (its version, the
+    /// spec parts it reads, the stages and input files it consumes) and what the cache
+    /// holds under it. Runs nothing and writes nothing.
+    ///
+    /// A stage whose key changed after an edit is `missing` and runs at the next build;
+    /// the stages it consumes show which of them changed too.
+    #[command(
+        after_help = "Examples:\n  cityspec explain specs/day.toml\n  cityspec explain --json --cache /shared/cache specs/day.toml"
+    )]
+    Explain {
+        /// Spec files (TOML).
+        #[arg(required = true, value_name = "SPEC")]
+        specs: Vec<PathBuf>,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Print the spec's JSON schema (Draft 2020-12), as committed in schemas/.
     ///
     /// Editors that read `#:schema` comments (Taplo, Even Better TOML) complete and check

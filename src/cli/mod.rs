@@ -139,6 +139,11 @@ pub fn run() -> ExitCode {
             };
             cache_gc(&cx, &specs, &options)
         }
+        Command::Explain {
+            specs,
+            cache: CacheArg { cache },
+            json,
+        } => explain_command(&cx, &specs, &cache, json),
         Command::Schema => {
             print!("{}", crate::spec::schema_json());
             ExitCode::SUCCESS
@@ -325,6 +330,30 @@ fn cache_gc(cx: &Context, specs: &[PathBuf], options: &build::GcOptions) -> Exit
             r.skipped.len(),
             names.join(", ")
         );
+    }
+    ExitCode::SUCCESS
+}
+
+/// `cityspec explain`: each spec's stages, on standard output.
+fn explain_command(cx: &Context, specs: &[PathBuf], cache: &Path, json: bool) -> ExitCode {
+    let mut explained = Vec::new();
+    let mut errors = Vec::new();
+    for path in specs {
+        match build::explain(path, cache) {
+            Ok(one) => explained.push(one),
+            Err(e) => errors.push(e),
+        }
+    }
+    if !errors.is_empty() {
+        return exit_for(&errors, &cx.out);
+    }
+    if json {
+        let text = serde_json::to_string_pretty(&explained).expect("explanations serialize");
+        println!("{text}");
+    } else {
+        explained
+            .iter()
+            .for_each(|e| print!("{}", print::explained(e)));
     }
     ExitCode::SUCCESS
 }

@@ -253,6 +253,57 @@ pub fn waiting_line() -> crate::build::Waiting {
     })
 }
 
+/// `cityspec explain`'s text for one spec: a line per stage (name, camera, short key,
+/// cache state), then what its key reads.
+pub fn explained(explained: &crate::build::Explained) -> String {
+    use crate::build::EntryState;
+    let mut text = format!(
+        "{} ({}), cache {}\n",
+        explained.name,
+        explained.spec.display(),
+        explained.cache.display()
+    );
+    for line in &explained.stages {
+        let stage = match &line.camera {
+            Some(camera) => format!("{} {camera}", line.stage),
+            None => line.stage.to_owned(),
+        };
+        let state = match &line.state {
+            EntryState::Missing => "missing: runs at the next build".to_owned(),
+            EntryState::Cached {
+                outputs,
+                bytes,
+                diagnostics,
+            } => {
+                let warned = match diagnostics {
+                    0 => String::new(),
+                    n => format!(", {n} warnings"),
+                };
+                let plural = if *outputs == 1 { "" } else { "s" };
+                let size = if *bytes < 1 << 20 {
+                    format!("{:.1} KiB", *bytes as f64 / 1024.0)
+                } else {
+                    format!("{:.1} MiB", *bytes as f64 / 1_048_576.0)
+                };
+                format!("cached: {outputs} output{plural}, {size}{warned}")
+            }
+            EntryState::Older => "older: an earlier cityspec's entry, runs again".to_owned(),
+            EntryState::Damaged(why) => format!("damaged: rebuilt at the next build ({why})"),
+        };
+        let key = line.key.get(..12).unwrap_or(&line.key);
+        text.push_str(&format!("  {stage:<22} {key}  {state}\n"));
+        let mut reads = vec![format!("version {}", line.version)];
+        if !line.spec.is_empty() {
+            reads.push(format!("spec {}", line.spec.join(", ")));
+        }
+        for (name, value) in &line.inputs {
+            reads.push(format!("{name} {}", value.get(..12).unwrap_or(value)));
+        }
+        text.push_str(&format!("  {:<22} reads {}\n", "", reads.join("; ")));
+    }
+    text
+}
+
 /// One diagnostic as `spec.toml:LINE:COL: warning[code]: message (file)`, placed at its
 /// key in the spec when it names one that the spec file still holds.
 pub fn diagnostic_line(spec: &Path, diagnostic: &Diagnostic) -> String {

@@ -63,7 +63,7 @@ pub fn object_names(path: &Path) -> Result<Vec<String>, StatsError> {
         path: path.to_path_buf(),
         source,
     };
-    let file = std::fs::File::open(path).map_err(io)?;
+    let file = crate::regular_file::open(path, crate::regular_file::Follow::Yes).map_err(io)?;
     let mut names = Vec::new();
     for line in std::io::BufReader::new(file).split(b'\n') {
         let line = line.map_err(io)?;

@@ -76,10 +76,12 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
     shares.sort_by(|a, b| b.pixels.cmp(&a.pixels).then(a.kind.cmp(&b.kind)));
 
     let coco_path = dir.join("coco.json");
-    let bytes = std::fs::read(&coco_path).map_err(|source| StatsError::Io {
-        path: coco_path.clone(),
-        source,
-    })?;
+    let bytes = crate::regular_file::read(&coco_path, crate::regular_file::Follow::Yes).map_err(
+        |source| StatsError::Io {
+            path: coco_path.clone(),
+            source,
+        },
+    )?;
     let bad = |message: &str| StatsError::Bad {
         path: coco_path.clone(),
         message: message.to_owned(),

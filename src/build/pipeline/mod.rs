@@ -67,6 +67,8 @@ struct Keys {
     /// Per camera, the key of its frames' content, whatever `[output]` says: its plan
     /// and chunks are keyed by it, so a change of layout renders nothing again.
     paths: Vec<String>,
+    /// What each key above is the hash of, by key (for `cityspec explain`).
+    made: BTreeMap<String, StageKey>,
 }
 
 /// A stage's outputs, its typed value once computed or decoded, and its diagnostics (its
@@ -203,6 +205,33 @@ impl<'a> Pipeline<'a> {
         stages
     }
 
+    /// Each cached stage in evaluation order, what its key is the hash of, and what the
+    /// cache holds under it (`cityspec explain`).
+    pub fn explain(&self) -> Vec<super::explain::StageLine> {
+        self.all_stages()
+            .into_iter()
+            .map(|(stage, key)| {
+                let made = self.keys.made.get(&key);
+                super::explain::StageLine {
+                    stage,
+                    camera: self.camera_of(&key).map(str::to_owned),
+                    version: made.map_or(0, StageKey::stage_version),
+                    spec: made.map(StageKey::spec_parts).unwrap_or_default(),
+                    inputs: made
+                        .map(|m| {
+                            m.inputs()
+                                .iter()
+                                .map(|(name, value)| ((*name).to_owned(), value.clone()))
+                                .collect()
+                        })
+                        .unwrap_or_default(),
+                    state: self.cache.entry_state(&key),
+                    key,
+                }
+            })
+            .collect()
+    }
+
     /// Runs stage `stage` (key `key`) again, its inputs from the cache, and compares its
     /// outputs with its cache entry: `None` when they match, else what differs.
     pub fn recheck(&mut self, stage: &str, key: &str) -> Result<Option<String>, BuildError> {
@@ -301,6 +330,7 @@ impl<'a> Pipeline<'a> {
 
 /// Every stage's key, from the spec and the input files' hashes alone.
 fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
+    let mut made = BTreeMap::new();
     let l = &spec.layout;
     let layout = match &inputs.layout {
         LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
@@ -311,22 +341,22 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
             StageKey::new("layout", layout::VERSION).input("image", &crate::hash::sha256_hex(bytes))
         }
     }
-    .finish();
+    .finish_into(&mut made);
     let mirror = StageKey::new("mirror", mirror::VERSION)
         .spec("mirror", &l.mirror)
         .input("layout", &layout)
-        .finish();
+        .finish_into(&mut made);
     let parse = StageKey::new("parse", parse::VERSION)
         .spec("palette", &l.palette)
         .input("mirror", &mirror)
-        .finish();
+        .finish_into(&mut made);
     let lamps = StageKey::new("lamps", lamps::VERSION)
         .spec("lamps", &spec.lamps)
         .spec("palette", &l.palette)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .input("mirror", &mirror)
         .input("parse", &parse)
-        .finish();
+        .finish_into(&mut made);
     let facades = StageKey::new("facades", facades::VERSION)
         .spec("floor_height", &spec.facades.floor_height)
         .spec("on_error", &spec.facades.on_error);
@@ -334,7 +364,7 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
         FacadeInput::Builtin => facades.input("builtin", &facades::BUILTIN_VERSION.to_string()),
         FacadeInput::Folder { digest, .. } => facades.input("folder", digest),
     }
-    .finish();
+    .finish_into(&mut made);
     let mut place = StageKey::new("place", place::VERSION)
         .spec("buildings", &spec.buildings)
         .spec("metres_per_pixel", &l.metres_per_pixel)
@@ -343,19 +373,19 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
     if spec.buildings.widths.is_none() {
         place = place.input("facades", &facades);
     }
-    let place = place.finish();
+    let place = place.finish_into(&mut made);
     let plan = StageKey::new("plan", plan::VERSION)
         .spec("metres_per_pixel", &l.metres_per_pixel)
         .input("parse", &parse)
         .input("lamps", &lamps)
         .input("place", &place)
-        .finish();
+        .finish_into(&mut made);
     let preview = StageKey::new("preview", preview::VERSION)
         .input("mirror", &mirror)
         .input("parse", &parse)
         .input("lamps", &lamps)
         .input("place", &place)
-        .finish();
+        .finish_into(&mut made);
     // The scene is not cached: the export key holds everything the scene reads.
     let export = StageKey::new("export", export::VERSION)
         .spec("scene_version", &scene::VERSION)
@@ -369,13 +399,13 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
         .input("lamps", &lamps)
         .input("place", &place)
         .input("facades", &facades)
-        .finish();
+        .finish_into(&mut made);
     let overview = StageKey::new("overview", render::VERSION)
         .spec("cameras_version", &cameras::VERSION)
         .spec("lighting", &spec.lighting)
         .spec("seed", &spec.seed)
         .input("export", &export)
-        .finish();
+        .finish_into(&mut made);
     let paths: Vec<String> = spec
         .cameras
         .iter()
@@ -389,7 +419,7 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
                 .spec("annotations", &spec.annotations)
                 .spec("seed", &spec.seed)
                 .input("export", &export)
-                .finish()
+                .finish_into(&mut made)
         })
         .collect();
     let frames = paths
@@ -399,10 +429,11 @@ fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
             OutputLayout::Webdataset => StageKey::new("frames", super::webdataset::VERSION)
                 .spec("output", &spec.output)
                 .input("path", path)
-                .finish(),
+                .finish_into(&mut made),
         })
         .collect();
     Keys {
+        made,
         frames,
         paths,
         overview,
