@@ -471,7 +471,7 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
 /// absolute path got that file deleted, and so did a path through a directory symlink.
 #[cfg(unix)]
 #[test]
-fn issue_8_an_old_manifest_cannot_delete_files_outside_the_output_folder() {
+fn an_old_manifest_cannot_delete_files_outside_the_output_folder() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let day = ws.out().join("day");
@@ -506,7 +506,7 @@ fn issue_8_an_old_manifest_cannot_delete_files_outside_the_output_folder() {
 /// Issue 8, case 1 (and 9): a build wrote through directory symlinks inside `out/`.
 #[cfg(unix)]
 #[test]
-fn issue_8_a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
+fn a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let day = ws.out().join("day");
@@ -529,7 +529,7 @@ fn issue_8_a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
 /// Issue 8, case 1: the output folder itself a link, or a folder that is not cityspec's.
 #[cfg(unix)]
 #[test]
-fn issue_8_a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
+fn a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
     let ws = Workspace::with_spec("day");
     let mine = ws.path().join("mine");
     fs::create_dir_all(&mine).unwrap();
@@ -554,7 +554,7 @@ fn issue_8_a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
 
 /// Issue 8, case 2: a cache entry whose output name is an absolute path wrote that file.
 #[test]
-fn issue_8_a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
+fn a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
@@ -601,7 +601,7 @@ fn issue_8_a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
 /// Issue 8, case 6: the no-op fast path returned before temporaries were swept, and
 /// orphans of a killed build survived.
 #[test]
-fn issue_8_no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
+fn no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());

@@ -267,7 +267,7 @@ fn leftovers(out_root: &std::path::Path) -> Vec<String> {
 /// that disagree with `manifest.json`. Here the sync aborts the process right after its
 /// N-th change to the file system, for every N, so each kill lands mid-write for sure.
 #[test]
-fn issue_8_a_build_killed_after_any_write_leaves_the_old_folder_or_the_new() {
+fn a_build_killed_after_any_write_leaves_the_old_folder_or_the_new() {
     let ws = Workspace::with_spec("day");
     // Each of the kills copies, rebuilds and compares whole output folders, and every file
     // is one more kill: day.toml with every kind of file, but fewer of each.
@@ -340,7 +340,7 @@ fn issue_8_a_build_killed_after_any_write_leaves_the_old_folder_or_the_new() {
 /// Issue 8, case 7: concurrent builds into one output folder with a cold cache failed
 /// ("cannot write out/day20/city.glb") in 11 of 13 rounds. Now they take turns.
 #[test]
-fn issue_8_concurrent_builds_of_one_output_folder_take_turns() {
+fn concurrent_builds_of_one_output_folder_take_turns() {
     let ws = Workspace::with_spec("day");
     // Thirteen cold builds: a small city.
     ws.shrink_day();
@@ -391,7 +391,7 @@ fn issue_8_concurrent_builds_of_one_output_folder_take_turns() {
 /// Issue 8: a cache shared by concurrent builds (into separate folders) stays whole, and
 /// `verify --all` finds every cached stage rebuilding to its cached bytes.
 #[test]
-fn issue_8_a_shared_cache_stays_whole_under_concurrent_builds() {
+fn a_shared_cache_stays_whole_under_concurrent_builds() {
     let ws = Workspace::with_spec("day");
     ws.shrink_day();
     let children: Vec<_> = ["a", "b", "c"]
@@ -424,7 +424,7 @@ fn issue_8_a_shared_cache_stays_whole_under_concurrent_builds() {
 /// Issue 8, case 2: an entry naming another stage's valid object went unnoticed, and
 /// later builds said "up to date". `cityspec verify` reruns the stage and names it.
 #[test]
-fn issue_8_verify_names_a_poisoned_entry() {
+fn verify_names_a_poisoned_entry() {
     let ws = Workspace::with_spec("day");
     assert!(
         cityspec(&ws, &["build", "-q", "specs/day.toml"])
@@ -516,7 +516,7 @@ fn word_files_feed_the_text_and_bad_ones_exit_2() {
 }
 
 #[test]
-fn issue_8_objects_placed_short_of_count_warn_and_fail_under_strict() {
+fn objects_placed_short_of_count_warn_and_fail_under_strict() {
     let ws = Workspace::with_spec("day");
     // A small city holds about 3,900 plates of 5,000 asked for (a default-sized one about
     // 9,200, and placing 100,000 tries took 22 s in this test).
@@ -561,7 +561,7 @@ fn issue_8_objects_placed_short_of_count_warn_and_fail_under_strict() {
 /// Issue 8 leftover: `validate` read a facade folder's photos only as far as `build` did
 /// not, so a truncated photo passed `validate` and then failed (or was skipped by) `build`.
 #[test]
-fn issue_8_validate_refuses_a_truncated_facade_photo_as_build_does() {
+fn validate_refuses_a_truncated_facade_photo_as_build_does() {
     let ws = Workspace::with_spec("cmp");
     let photo = ws.path().join("assets/facades/sample/street_04.jpg");
     let bytes = fs::read(&photo).unwrap();
