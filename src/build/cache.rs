@@ -317,8 +317,10 @@ impl Cache {
     }
 
     /// Writes the marker unless this process saw it already: before the first object of
-    /// every build, so a folder that holds cache files holds the marker too.
-    fn mark(&self) -> io::Result<()> {
+    /// every build (and at the start of every build, so a cache an older cityspec made is
+    /// marked by its next build even when that build writes nothing), so a folder that
+    /// holds cache files holds the marker too.
+    pub fn mark(&self) -> io::Result<()> {
         if self.marked.get().is_some() {
             return Ok(());
         }

@@ -150,6 +150,8 @@ fn shard_spec(
     let start = Instant::now();
     let inputs = SpecInputs::read(path, spec)?;
     let cache = Cache::open(&options.cache_dir)?;
+    // Best effort, as in a plain build.
+    let _ = cache.mark();
     let progress = spec_build::progress_of(spec, options);
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;

@@ -29,6 +29,8 @@ pub fn build_spec(
     let start = Instant::now();
     let inputs = SpecInputs::read(path, spec)?;
     let cache = Cache::open(&options.cache_dir)?;
+    // Best effort: a read-only cache that holds every stage still builds.
+    let _ = cache.mark();
     let progress = progress_of(spec, options);
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &progress);
     pipeline.strict = options.strict;

@@ -102,6 +102,18 @@ fn gc_removes_only_names_the_cache_writes_and_follows_no_symlink() {
         cache.join("CACHEDIR.TAG").is_file(),
         "the first write marks it"
     );
+    // A cache an older cityspec made has no marker: gc refuses it until a build, even
+    // one with nothing to do, marks it.
+    fs::remove_file(cache.join("CACHEDIR.TAG")).unwrap();
+    assert!(matches!(
+        gc_all(&cache).unwrap_err()[..],
+        [BuildError::NotACache { .. }]
+    ));
+    assert!(build::build(&spec, &ws.options()).unwrap().up_to_date());
+    assert!(
+        cache.join("CACHEDIR.TAG").is_file(),
+        "a no-op build marks it"
+    );
     // Foreign files inside a real cache: a note, git-like objects, odd entries.
     let sha = "3f".repeat(32);
     let foreign = [
