@@ -53,8 +53,9 @@ pub enum Command {
         cache: CacheArg,
         #[command(flatten)]
         jobs: JobsArg,
-        /// Treat warnings (objects placed fewer times than `count` asks, facade problems)
-        /// as errors: exit code 2, and the output folder is left as it was.
+        /// Treat warnings (objects placed fewer times than `count` asks, facade problems, a
+        /// camera path with no frames) as errors: exit code 2, and the output folder is left
+        /// as it was. Warnings are kept with the cache, so a warm build fails as a cold one.
         #[arg(long)]
         strict: bool,
         /// Build only shard I of N (0-based) into the cache, no output folder: the city's
