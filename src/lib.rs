@@ -21,6 +21,7 @@
 //! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
+//! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
 //! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,

@@ -1,5 +1,6 @@
-//! The README stays a newcomer's page (STYLE.md, "Docs"): short, the two commands first,
-//! and every relative link in it and in `docs/` pointing at a file that exists.
+//! The docs stay true: the README stays a newcomer's page (STYLE.md, "Docs"): short, the
+//! two commands first, and every relative link in it and in `docs/` pointing at a file
+//! that exists; and the module map in `src/lib.rs` names every public module.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -94,4 +95,44 @@ fn relative_links(text: &str) -> Vec<String> {
         }
     }
     links
+}
+
+/// Every `pub mod` of `src/lib.rs` is named as a link (`` [`name`] ``) in its module docs:
+/// in the stage table, or in the paragraph on shared modules (a hidden one is exempt).
+#[test]
+fn the_lib_rs_map_names_every_public_module() {
+    let lib = fs::read_to_string(Path::new(ROOT).join("src/lib.rs")).expect("src/lib.rs");
+    let docs: String = lib
+        .lines()
+        .filter_map(|line| line.strip_prefix("//!"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let mut hidden = false;
+    let mut missing = Vec::new();
+    let mut modules = 0;
+    for line in lib.lines() {
+        if line.starts_with("#[doc(hidden)]") {
+            hidden = true;
+            continue;
+        }
+        if let Some(name) = line
+            .strip_prefix("pub mod ")
+            .and_then(|l| l.strip_suffix(';'))
+        {
+            modules += 1;
+            if !hidden && !docs.contains(&format!("[`{name}`]")) {
+                missing.push(name.to_owned());
+            }
+        }
+        hidden = false;
+    }
+    assert!(
+        modules > 10,
+        "found only {modules} `pub mod` lines in src/lib.rs"
+    );
+    assert!(
+        missing.is_empty(),
+        "src/lib.rs's module docs do not name {missing:?}: add each to the stage table or \
+         the paragraph on shared modules"
+    );
 }
