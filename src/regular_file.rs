@@ -21,17 +21,29 @@ pub enum Follow {
     No,
 }
 
-/// The error for a path that exists but is not a regular file (kind `InvalidInput`).
-pub fn not_regular(what: &str) -> io::Error {
-    io::Error::new(
-        io::ErrorKind::InvalidInput,
-        format!("is {what}, not a regular file"),
-    )
+/// A path that exists but is not a regular file: what it is instead (`"a FIFO"`,
+/// `"a folder"`, …). Carried inside the [`io::Error`]s of this module (kind
+/// `InvalidInput`), so callers tell it apart by type, not by message.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("is {0}, not a regular file")]
+pub struct NotRegular(pub &'static str);
+
+/// The error for a path that exists but is `what` instead of a regular file.
+pub fn not_regular(what: &'static str) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, NotRegular(what))
 }
 
-/// Whether an error is [`not_regular`]'s (the path exists but is a FIFO, folder, …).
+/// What the path is instead, when `error` is [`not_regular`]'s.
+pub fn not_regular_kind(error: &io::Error) -> Option<&'static str> {
+    error
+        .get_ref()
+        .and_then(|inner| inner.downcast_ref::<NotRegular>())
+        .map(|not| not.0)
+}
+
+/// Whether `error` is [`not_regular`]'s (the path exists but is a FIFO, folder, …).
 pub fn is_not_regular(error: &io::Error) -> bool {
-    error.kind() == io::ErrorKind::InvalidInput && error.to_string().contains("not a regular file")
+    not_regular_kind(error).is_some()
 }
 
 /// Opens `path` for reading when it is a regular file; a FIFO, socket, device or folder is

@@ -37,7 +37,8 @@ pub fn build_spec(
     // Held until this build returns: builds of one output folder take turns.
     let out = lock_output_folder(spec, options)?;
     if let Some((manifest, report)) = up_to_date(path, spec, &pipeline, &cache, &out, start) {
-        let report = strict_report(path, report, options)?;
+        // A no-op build: its entries replayed the warnings.
+        strict_failure(path, &report.warnings, options)?;
         check_lock(path, &manifest, options)?;
         return Ok(report);
     }
@@ -79,28 +80,23 @@ pub(super) fn strict_check<'a>(
     pipeline: Pipeline<'a>,
     options: &BuildOptions,
 ) -> Result<Pipeline<'a>, BuildError> {
-    if options.strict && pipeline.diagnostics.iter().any(Diagnostic::is_warning) {
-        return Err(BuildError::Strict {
-            spec: path.to_path_buf(),
-            warnings: sorted(pipeline.diagnostics),
-        });
-    }
+    strict_failure(path, &pipeline.diagnostics, options)?;
     Ok(pipeline)
 }
 
-/// [`strict_check`] of a no-op build, whose warnings its entries replayed.
-fn strict_report(
+/// `--strict` and a warning among `diagnostics`: [`BuildError::Strict`] with them, sorted.
+fn strict_failure(
     path: &Path,
-    report: BuildReport,
+    diagnostics: &[Diagnostic],
     options: &BuildOptions,
-) -> Result<BuildReport, BuildError> {
-    if options.strict && report.warnings.iter().any(Diagnostic::is_warning) {
+) -> Result<(), BuildError> {
+    if options.strict && diagnostics.iter().any(Diagnostic::is_warning) {
         return Err(BuildError::Strict {
             spec: path.to_path_buf(),
-            warnings: report.warnings,
+            warnings: sorted(diagnostics.to_vec()),
         });
     }
-    Ok(report)
+    Ok(())
 }
 
 /// Diagnostics in one order, whatever order the stages were evaluated or looked up in: a

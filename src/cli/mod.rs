@@ -265,8 +265,8 @@ fn validate_command(cx: &Context, specs: &[PathBuf]) -> ExitCode {
     for path in specs {
         match build::validate(path) {
             Ok((spec, warnings)) => {
-                for warning in warnings {
-                    eprintln!("{}", print::diagnostic_line(path, &warning));
+                for line in print::diagnostic_lines(path, &warnings) {
+                    eprintln!("{line}");
                 }
                 cx.out
                     .info(&format!("{}: ok ({})", path.display(), spec.name));

@@ -52,8 +52,8 @@ impl Printer {
                 eprintln!("warning: {}: damaged cache entry rebuilt: {why}", run.stage);
             }
         }
-        for warning in &report.warnings {
-            eprintln!("{}", diagnostic_line(&report.spec, warning));
+        for line in diagnostic_lines(&report.spec, &report.warnings) {
+            eprintln!("{line}");
         }
         if self.quiet {
             return;
@@ -304,13 +304,26 @@ pub fn explained(explained: &crate::build::Explained) -> String {
     text
 }
 
-/// One diagnostic as `spec.toml:LINE:COL: warning[code]: message (file)`, placed at its
-/// key in the spec when it names one that the spec file still holds.
-pub fn diagnostic_line(spec: &Path, diagnostic: &Diagnostic) -> String {
-    let position = diagnostic.key.as_deref().and_then(|key| {
-        let text = regular_file::read_to_string(spec, Follow::Yes).ok()?;
-        crate::spec::key_position(&text, key)
-    });
+/// Each diagnostic as `spec.toml:LINE:COL: warning[code]: message (file)`, placed at its
+/// key in the spec when it names one that the spec file still holds (the spec is read
+/// once for all of them).
+pub fn diagnostic_lines(spec: &Path, diagnostics: &[Diagnostic]) -> Vec<String> {
+    if diagnostics.is_empty() {
+        return Vec::new();
+    }
+    let text = regular_file::read_to_string(spec, Follow::Yes).ok();
+    diagnostics
+        .iter()
+        .map(|d| diagnostic_line(spec, text.as_deref(), d))
+        .collect()
+}
+
+fn diagnostic_line(spec: &Path, text: Option<&str>, diagnostic: &Diagnostic) -> String {
+    let position = diagnostic
+        .key
+        .as_deref()
+        .zip(text)
+        .and_then(|(key, text)| crate::spec::key_position(text, key));
     let place = match position {
         Some((line, column)) => format!("{}:{line}:{column}", spec.display()),
         None => spec.display().to_string(),

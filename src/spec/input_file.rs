@@ -36,9 +36,9 @@ pub enum InputFileError {
     PermissionDenied,
     #[error("an unreadable file ({0})")]
     Unreadable(#[source] io::Error),
-    /// A FIFO, device, socket or folder: the text says which ("a FIFO, not a regular file").
-    #[error("{}", not_regular_text(.0))]
-    NotRegular(#[source] io::Error),
+    /// A FIFO, device, socket or folder: which one ("a FIFO").
+    #[error("{0}, not a regular file")]
+    NotRegular(&'static str),
     #[error("a file of {size} bytes, over the limit of {cap} bytes for this kind of input")]
     TooLarge { size: u64, cap: u64 },
     #[error("a file that is not UTF-8 text (byte {valid_up_to})")]
@@ -48,8 +48,8 @@ pub enum InputFileError {
 impl InputFileError {
     /// The error of a failed open, read or metadata call.
     pub fn of_io(e: io::Error) -> InputFileError {
-        if regular_file::is_not_regular(&e) {
-            return InputFileError::NotRegular(e);
+        if let Some(what) = regular_file::not_regular_kind(&e) {
+            return InputFileError::NotRegular(what);
         }
         match e.kind() {
             ErrorKind::NotFound => InputFileError::NotFound,
@@ -57,12 +57,6 @@ impl InputFileError {
             _ => InputFileError::Unreadable(e),
         }
     }
-}
-
-/// `regular_file`'s "is a FIFO, not a regular file" as a "found …" completes it.
-fn not_regular_text(e: &io::Error) -> String {
-    let text = e.to_string();
-    text.strip_prefix("is ").unwrap_or(&text).to_string()
 }
 
 /// `path` opened for reading (see [`crate::regular_file::open`]) with its size, refused when

@@ -8,7 +8,7 @@
 //! a cold one said, `--strict` included.
 
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use super::super::BuildError;
 use super::super::cache::{Blob, Load, Miss, Outputs};
@@ -33,15 +33,7 @@ impl Pipeline<'_> {
         if self.recheck.as_deref() == Some(key.as_str()) {
             // `cityspec verify`: run the stage whatever the cache holds, and compare.
             let cached = self.cache.get_stage(name, &key, Load::References, &names);
-            self.reading.push(Vec::new());
-            let inputs = gather(self);
-            let mut diagnostics = self.reading.pop().unwrap_or_default();
-            let inputs = inputs?;
-            self.rechecking = true;
-            let ran = run(self, inputs);
-            self.rechecking = false;
-            let (value, outputs) = ran?;
-            extend_unique(&mut diagnostics, &self.take_reported());
+            let (value, outputs, diagnostics, _) = self.gather_and_run(gather, run, true)?;
             self.verdict = Some(super::super::verify::compare(&cached, &outputs));
             *slot(self) = Some(Slot {
                 outputs,
@@ -71,13 +63,8 @@ impl Pipeline<'_> {
                     Miss::Absent => None,
                     Miss::Corrupt(why) => Some(why),
                 };
-                self.reading.push(Vec::new());
-                let inputs = gather(self);
-                let mut diagnostics = self.reading.pop().unwrap_or_default();
-                let inputs = inputs?;
-                let start = Instant::now();
-                let (value, mut outputs) = run(self, inputs)?;
-                extend_unique(&mut diagnostics, &self.take_reported());
+                let (value, mut outputs, diagnostics, time) =
+                    self.gather_and_run(gather, run, false)?;
                 let refs =
                     self.cache
                         .put(name, &key, &outputs, &diagnostics)
@@ -98,7 +85,7 @@ impl Pipeline<'_> {
                     value: Some(Arc::new(value)),
                     diagnostics,
                 };
-                (slot, StageStatus::Ran, repaired, start.elapsed())
+                (slot, StageStatus::Ran, repaired, time)
             }
         };
         let camera = self.camera_of(&key).map(str::to_owned);
@@ -113,6 +100,28 @@ impl Pipeline<'_> {
         let diagnostics = filled.diagnostics.clone();
         *slot(self) = Some(filled);
         self.read_diagnostics(&diagnostics)
+    }
+
+    /// Gathers a stage's inputs, collecting what the stages it reads carry, then runs it
+    /// (storing nothing while `rechecking`): its value and outputs, every diagnostic (read
+    /// and its own) and how long the run took.
+    fn gather_and_run<I, T>(
+        &mut self,
+        gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
+        run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
+        rechecking: bool,
+    ) -> Result<(T, Outputs, Vec<Diagnostic>, Duration), BuildError> {
+        self.reading.push(Vec::new());
+        let inputs = gather(self);
+        let mut diagnostics = self.reading.pop().unwrap_or_default();
+        let inputs = inputs?;
+        let start = Instant::now();
+        self.rechecking = rechecking;
+        let ran = run(self, inputs);
+        self.rechecking = false;
+        let (value, outputs) = ran?;
+        extend_unique(&mut diagnostics, &self.take_reported());
+        Ok((value, outputs, diagnostics, start.elapsed()))
     }
 
     /// A stage (or the scene) was read with `diagnostics`: the stage gathering its inputs
