@@ -136,3 +136,36 @@ fn the_lib_rs_map_names_every_public_module() {
          the paragraph on shared modules"
     );
 }
+
+const TABLE_START: &str = "<!-- stage table: made by cityspec::build::key_table; \
+                           CITYSPEC_BLESS=1 cargo test --test readme rewrites it -->\n";
+const TABLE_END: &str = "<!-- end of stage table -->";
+
+/// ARCHITECTURE's table of stages and what their keys hold is the stage table's own
+/// account of itself, so it cannot go stale.
+#[test]
+fn architecture_s_stage_table_is_the_stage_table() {
+    let path = Path::new(ROOT).join("ARCHITECTURE.md");
+    let text = fs::read_to_string(&path).expect("ARCHITECTURE.md");
+    let spec_text = fs::read_to_string(Path::new(ROOT).join("specs/day.toml")).expect("day.toml");
+    let spec: cityspec::spec::Spec = toml::from_str(&spec_text).expect("day.toml parses");
+    let table = cityspec::build::key_table(&spec);
+    let start = text
+        .find(TABLE_START)
+        .expect("ARCHITECTURE.md has the stage table's start marker")
+        + TABLE_START.len();
+    let end = start
+        + text[start..]
+            .find(TABLE_END)
+            .expect("ARCHITECTURE.md has the stage table's end marker");
+    if std::env::var_os("CITYSPEC_BLESS").is_some() {
+        let renewed = format!("{}{table}{}", &text[..start], &text[end..]);
+        fs::write(&path, renewed).expect("ARCHITECTURE.md written");
+        return;
+    }
+    assert_eq!(
+        text[start..end],
+        table,
+        "ARCHITECTURE.md's stage table is stale: CITYSPEC_BLESS=1 cargo test --test readme"
+    );
+}

@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::{Category, ObjectLabel, YoloClasses};
-use crate::spec::{CameraSpec, ObjectKind, ObjectSpec, SignKind, Spec};
+use crate::spec::{AnnotationsSpec, CameraSpec, ObjectKind, ObjectSpec, SignKind};
 
 /// The class every lamp head is labelled with.
 const LAMP_CLASS: &str = "lamp";
@@ -34,13 +34,18 @@ pub struct PathLabels {
 ///
 /// A traffic sign is its label's category only seen from the front; seen from behind it
 /// is `<label>_back` when that class is listed, else nothing.
-pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>) -> PathLabels {
-    let classes: Vec<String> = match (&camera.label_classes, spec.annotations.classes.is_empty()) {
+pub fn path_labels(
+    annotations: &AnnotationsSpec,
+    specs: &[ObjectSpec],
+    camera: &CameraSpec,
+    objects: Vec<ClassedObject>,
+) -> PathLabels {
+    let classes: Vec<String> = match (&camera.label_classes, annotations.classes.is_empty()) {
         (Some(classes), _) => classes.clone(),
-        (None, false) => spec.annotations.classes.clone(),
+        (None, false) => annotations.classes.clone(),
         (None, true) => {
             let mut classes: Vec<String> = Vec::new();
-            for object in &spec.objects {
+            for object in specs {
                 let companions = ObjectSpec::annotated_companions(object.kind);
                 for class in
                     std::iter::once(object.label.as_str()).chain(companions.iter().copied())
@@ -73,10 +78,10 @@ pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>
             label
         })
         .collect();
-    let yolo = spec.annotations.yolo.then(|| {
+    let yolo = annotations.yolo.then(|| {
         let mut split: BTreeMap<u32, Vec<String>> = BTreeMap::new();
-        if spec.annotations.yolo_sign_types {
-            for entry in spec.objects.iter().filter(|o| o.kind == ObjectKind::Sign) {
+        if annotations.yolo_sign_types {
+            for entry in specs.iter().filter(|o| o.kind == ObjectKind::Sign) {
                 let Some(id) = id_of(&entry.label) else {
                     continue;
                 };
@@ -106,6 +111,7 @@ pub fn path_labels(spec: &Spec, camera: &CameraSpec, objects: Vec<ClassedObject>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spec::Spec;
 
     #[test]
     fn by_default_every_label_then_riders_after_bicycles_then_lamps() {
@@ -115,7 +121,12 @@ mod tests {
                     [[objects]]\nkind = 'person'\nlabel = 'person'\n\
                     [[cameras]]\nname = 'c'\npath = 'roads'\nframes = 1\n";
         let spec: Spec = toml::from_str(text).unwrap();
-        let labels = path_labels(&spec, &spec.cameras[0], Vec::new());
+        let labels = path_labels(
+            &spec.annotations,
+            &spec.objects,
+            &spec.cameras[0],
+            Vec::new(),
+        );
         let names: Vec<&str> = labels.categories.iter().map(|c| c.name.as_str()).collect();
         assert_eq!(names, ["car", "bicycle", "rider", "person", "lamp"]);
         let ids: Vec<u32> = labels.categories.iter().map(|c| c.id).collect();

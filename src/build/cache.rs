@@ -982,7 +982,7 @@ mod tests {
                 "facades",
                 "k7",
                 Load::Bytes,
-                &crate::build::output_names::OutputNames::of("facades", None),
+                &crate::build::output_names::OutputNames::of(crate::build::Stage::Facades, None),
             )
             .unwrap();
         assert_eq!(hit.diagnostics, warned);

@@ -12,12 +12,13 @@ use serde::Serialize;
 use super::cache::{Cache, EntryState};
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
+use super::stages::Stage;
 use super::{BuildError, load_spec};
 
 /// One stage of a spec.
 #[derive(Clone, Debug, Serialize)]
 pub struct StageLine {
-    pub stage: &'static str,
+    pub stage: Stage,
     /// The camera path, for a `frames` stage.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub camera: Option<String>,

@@ -6,15 +6,14 @@
 
 use std::collections::BTreeMap;
 
+use super::stages::PathInputs;
 use crate::annotate::{self, ClassedObject, ObjectLabel, PathLabels, SignLabel};
 use crate::model::Scene;
 use crate::objects::{ObjectInfo, SignFace};
-use crate::spec::{CameraSpec, Spec};
 
-/// What `camera`'s path annotates, for every object of `scene`.
+/// What a camera path annotates, for every object of `scene`.
 pub fn labels(
-    spec: &Spec,
-    camera: &CameraSpec,
+    path: &PathInputs,
     scene: &Scene,
     info: &[Option<ObjectInfo>],
     sign_faces: &BTreeMap<usize, SignFace>,
@@ -42,5 +41,10 @@ pub fn labels(
             }
         })
         .collect();
-    annotate::path_labels(spec, camera, objects)
+    annotate::path_labels(
+        &path.annotations,
+        &path.export.objects,
+        &path.camera,
+        objects,
+    )
 }

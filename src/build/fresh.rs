@@ -12,6 +12,7 @@
 //! removed or renamed anywhere (a temporary or an orphan) changes its folder's mtime, so
 //! the fast path never leaves a stray file in place; the full path removes it.
 
+use super::stages::Stage;
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
@@ -77,7 +78,7 @@ pub fn check(
     cache: &Cache,
     out_dir: &Path,
     name: &str,
-    stages: &[(&'static str, &str)],
+    stages: &[(Stage, &str)],
 ) -> Option<(Manifest, Vec<Diagnostic>)> {
     let record = load(cache, out_dir)?;
     let mut artifacts = Vec::new();
@@ -93,7 +94,7 @@ pub fn check(
                 path: path.clone(),
                 sha256: object.sha256.clone(),
                 bytes: object.bytes,
-                stage: (*stage).to_owned(),
+                stage: stage.name().to_owned(),
                 key: (*key).to_owned(),
             });
         }

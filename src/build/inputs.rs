@@ -44,6 +44,18 @@ impl SpecInputs {
             meshes_digest,
         })
     }
+
+    /// A spec's inputs when it names no file: a generated layout, the built-in facades and
+    /// no models.
+    #[cfg(test)]
+    pub fn generated() -> SpecInputs {
+        SpecInputs {
+            layout: LayoutSource::Generate,
+            facades: FacadeInput::Builtin,
+            meshes: BTreeMap::new(),
+            meshes_digest: hex(&Sha256::new().finalize()),
+        }
+    }
 }
 
 /// Where the layout comes from.

@@ -36,6 +36,7 @@ mod shard;
 mod source_frame;
 mod spec_build;
 mod stage_key;
+mod stages;
 mod verified_memo;
 mod verify;
 mod webdataset;
@@ -64,6 +65,7 @@ pub use report::{BuildReport, StageRun, StageStatus};
 pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
 pub use source_frame::{SourceFrame, framed_report};
 pub use spec_build::build_spec;
+pub use stages::{Declaration, Produces, Stage, key_table};
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
 use crate::spec::{self, Spec, SpecSource};

@@ -7,6 +7,8 @@
 //! always relative, never with `..`; anything else makes the entry corrupt, and the stage is
 //! rebuilt. A new artifact file name must be added here, or every build rebuilds its stage.
 
+use super::stages::{Produces, Stage};
+
 /// What names a stage's outputs may have.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum OutputNames {
@@ -23,23 +25,25 @@ pub enum OutputNames {
 }
 
 impl OutputNames {
-    /// The names stage `stage` writes; `camera` is the camera path's name for `frames`.
-    pub fn of(stage: &str, camera: Option<&str>) -> OutputNames {
-        match stage {
-            "layout" | "mirror" => OutputNames::Fixed(&["layout.png"]),
-            "parse" => OutputNames::Fixed(&["parsed.json"]),
-            "lamps" => OutputNames::Fixed(&["lamps.json"]),
-            "place" => OutputNames::Fixed(&["buildings.json"]),
-            "plan" => OutputNames::Fixed(&["plan.json"]),
-            "preview" => OutputNames::Fixed(&["plan.png"]),
-            "overview" => OutputNames::Fixed(&["overview.png"]),
-            "facades" => OutputNames::Facades,
-            "export" => OutputNames::Export,
-            "frames" => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
-            "frames-chunk" => OutputNames::Chunk(camera.unwrap_or_default().to_owned()),
-            "frames-plan" => OutputNames::Fixed(&["path.json"]),
-            _ => OutputNames::Fixed(&[]),
+    /// The names stage `stage` writes, as its declaration says; `camera` is the camera
+    /// path's name for `frames`.
+    pub fn of(stage: Stage, camera: Option<&str>) -> OutputNames {
+        match stage.declaration().produces {
+            Produces::Fixed(names) => OutputNames::Fixed(names),
+            Produces::Facades => OutputNames::Facades,
+            Produces::Export => OutputNames::Export,
+            Produces::Frames => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
         }
+    }
+
+    /// The names a chunk of camera path `camera`'s frames writes.
+    pub fn chunk(camera: &str) -> OutputNames {
+        OutputNames::Chunk(camera.to_owned())
+    }
+
+    /// The names a camera path's plan writes.
+    pub fn path_plan() -> OutputNames {
+        OutputNames::Fixed(&["path.json"])
     }
 
     /// Whether `name` is one of these.
@@ -178,83 +182,80 @@ mod tests {
 
     #[test]
     fn each_stage_allows_only_its_own_names() {
-        let cases: &[(&str, Option<&str>, &str, bool)] = &[
-            ("preview", None, "plan.png", true),
-            ("preview", None, "plan.json", false),
-            ("preview", None, "/tmp/plan.png", false),
-            ("mirror", None, "layout.png", true),
-            ("export", None, "textures/0123abcd.png", true),
-            ("export", None, "textures/.hidden.png", false),
-            ("export", None, "textures/a/b.png", false),
-            ("export", None, "textures/../../x.png", false),
-            ("facades", None, "textures/street_01.png", true),
+        use Stage::*;
+        let cases: &[(Stage, Option<&str>, &str, bool)] = &[
+            (Preview, None, "plan.png", true),
+            (Preview, None, "plan.json", false),
+            (Preview, None, "/tmp/plan.png", false),
+            (Mirror, None, "layout.png", true),
+            (Export, None, "textures/0123abcd.png", true),
+            (Export, None, "textures/.hidden.png", false),
+            (Export, None, "textures/a/b.png", false),
+            (Export, None, "textures/../../x.png", false),
+            (Facades, None, "textures/street_01.png", true),
+            (Frames, Some("street"), "frames/street/rgb/000003.png", true),
             (
-                "frames",
-                Some("street"),
-                "frames/street/rgb/000003.png",
-                true,
-            ),
-            (
-                "frames",
+                Frames,
                 Some("street"),
                 "frames/street/icdar/gt_000003.txt",
                 true,
             ),
             (
-                "frames",
+                Frames,
                 Some("street"),
                 "frames/street/yolo/000003.txt",
                 true,
             ),
             (
-                "frames",
+                Frames,
                 Some("street"),
                 "frames/street/yolo/classes.txt",
                 true,
             ),
             (
-                "frames",
+                Frames,
                 Some("street"),
                 "frames/street/depth/000003.npy",
                 true,
             ),
-            ("frames", Some("street"), "frames/street/coco.json", true),
-            ("frames", Some("street"), "frames/aerial/coco.json", false),
-            ("frames", Some("street"), "frames/street/rgb/3.png", false),
+            (Frames, Some("street"), "frames/street/coco.json", true),
+            (Frames, Some("street"), "frames/aerial/coco.json", false),
+            (Frames, Some("street"), "frames/street/rgb/3.png", false),
             (
-                "frames",
+                Frames,
                 Some("street"),
                 "frames/street/../../x/000001.png",
                 false,
             ),
-            ("frames", Some("street"), "frames/streetx/coco.json", false),
+            (Frames, Some("street"), "frames/streetx/coco.json", false),
         ];
         for (stage, camera, name, allowed) in cases {
             assert_eq!(
-                OutputNames::of(stage, *camera).allows(name),
+                OutputNames::of(*stage, *camera).allows(name),
                 *allowed,
-                "{stage} {name}"
+                "{stage:?} {name}"
             );
         }
     }
 
     #[test]
     fn entries_need_their_stage_s_outputs() {
-        assert!(OutputNames::of("plan", None).check(["plan.json"]).is_ok());
+        use Stage::*;
+        assert!(OutputNames::of(Plan, None).check(["plan.json"]).is_ok());
         assert!(
-            OutputNames::of("plan", None)
+            OutputNames::of(Plan, None)
                 .check([])
                 .unwrap_err()
                 .contains("lacks")
         );
-        let export = OutputNames::of("export", None);
+        let export = OutputNames::of(Export, None);
         assert!(export.check(["city.obj", "city.mtl", "city.glb"]).is_ok());
         assert!(export.check(["city.obj", "city.glb"]).is_err());
-        let frames = OutputNames::of("frames", Some("a"));
+        let frames = OutputNames::of(Frames, Some("a"));
         assert!(frames.check(["frames/a/coco.json"]).is_ok());
         assert!(frames.check(["frames/a/poses.json"]).is_err());
         assert!(
-            OutputNames::of("plan", None)
+            OutputNames::of(Plan, None)
                 .check(["plan.json", "/home/u/.bashrc"])
                 .unwrap_err()
                 .contains("/home/u/.bashrc")

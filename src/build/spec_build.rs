@@ -137,7 +137,7 @@ fn up_to_date(
     let stages = stages
         .iter()
         .map(|(stage, key)| StageRun {
-            stage,
+            stage: stage.name(),
             camera: pipeline.camera_of(key).map(str::to_owned),
             key: (*key).to_owned(),
             status: StageStatus::Cached,
@@ -179,7 +179,7 @@ fn manifest_of(spec: &Spec, artifacts: &[ArtifactOut]) -> Manifest {
                 path: artifact.path.clone(),
                 sha256: artifact.blob.sha256(),
                 bytes: artifact.blob.size(),
-                stage: artifact.stage.to_owned(),
+                stage: artifact.stage.name().to_owned(),
                 key: artifact.key.clone(),
             })
             .collect(),

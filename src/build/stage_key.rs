@@ -49,6 +49,12 @@ impl StageKey {
         self
     }
 
+    /// Sets the whole spec part: a stage's inputs, serialized (a JSON object).
+    pub fn spec_whole(mut self, part: serde_json::Value) -> StageKey {
+        self.spec = part;
+        self
+    }
+
     /// Adds the key of a consumed stage, or the hash of an input file.
     pub fn input(mut self, name: &'static str, key: &str) -> StageKey {
         self.inputs.insert(name, key.to_owned());

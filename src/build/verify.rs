@@ -8,6 +8,7 @@
 //! is blamed on its own stage, not on the stages downstream of it. Nothing is written to
 //! the output folder; the cache gains only entries of input stages that were missing.
 
+use super::stages::Stage;
 use std::path::{Path, PathBuf};
 
 use rand::RngExt;
@@ -75,7 +76,7 @@ pub fn verify(
     let cache = Cache::open(&options.cache_dir)?;
     let quiet = |_: &str, _: usize, _: usize| {};
     let mut pipeline = Pipeline::new(spec, path.to_path_buf(), inputs, &cache, &quiet);
-    let cached: Vec<(&'static str, String)> = pipeline
+    let cached: Vec<(Stage, String)> = pipeline
         .all_stages()
         .into_iter()
         .filter(|(_, key)| cache.has_entry(key))
@@ -95,9 +96,9 @@ pub fn verify(
     let mut verdicts = Vec::new();
     for i in chosen {
         let (stage, key) = &cached[i];
-        let verdict = pipeline.recheck(stage, key)?;
+        let verdict = pipeline.recheck(*stage, key)?;
         verdicts.push(Verdict {
-            stage,
+            stage: stage.name(),
             key: key.clone(),
             entry: cache.entry_path(key),
             problem: verdict,

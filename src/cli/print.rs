@@ -266,7 +266,7 @@ pub fn explained(explained: &crate::build::Explained) -> String {
     for line in &explained.stages {
         let stage = match &line.camera {
             Some(camera) => format!("{} {camera}", line.stage),
-            None => line.stage.to_owned(),
+            None => line.stage.to_string(),
         };
         let state = match &line.state {
             EntryState::Missing => "missing: runs at the next build".to_owned(),

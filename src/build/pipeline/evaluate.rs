@@ -15,6 +15,7 @@ use super::super::cache::{Blob, Load, Miss, Outputs};
 use super::super::decode_error::DecodeError;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
+use super::super::stages::Stage;
 use super::{Pipeline, Slot};
 use crate::diagnostic::{Diagnostic, extend_unique};
 
@@ -22,14 +23,15 @@ impl Pipeline<'_> {
     /// Fills `slot` from the cache, or gathers the inputs and runs the stage.
     pub(super) fn stage<I, T>(
         &mut self,
-        name: &'static str,
-        key: String,
-        load: Load,
+        stage: Stage,
+        camera: Option<usize>,
         slot: impl for<'x> Fn(&'x mut Self) -> &'x mut Option<Slot<T>>,
         gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
         run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
     ) -> Result<(), BuildError> {
-        let names = self.output_names(name, &key);
+        let (name, load) = (stage.name(), stage.declaration().load);
+        let key = self.keys.of_stage(stage, camera).to_owned();
+        let names = self.output_names(stage, camera);
         if self.recheck.as_deref() == Some(key.as_str()) {
             // `cityspec verify`: run the stage whatever the cache holds, and compare.
             let cached = self.cache.get_stage(name, &key, Load::References, &names);
@@ -88,7 +90,7 @@ impl Pipeline<'_> {
                 (slot, StageStatus::Ran, repaired, time)
             }
         };
-        let camera = self.camera_of(&key).map(str::to_owned);
+        let camera = camera.map(|c| self.camera_name(c).to_owned());
         self.runs.push(StageRun {
             stage: name,
             camera,
@@ -160,27 +162,30 @@ impl Pipeline<'_> {
 }
 
 impl Pipeline<'_> {
-    /// The names stage `stage` (of key `key`, which tells camera paths apart) writes.
-    pub(super) fn output_names(&self, stage: &str, key: &str) -> OutputNames {
-        OutputNames::of(stage, self.camera_of(key))
+    /// The names stage `stage` (`camera`'s, for `frames`) writes.
+    pub(super) fn output_names(&self, stage: Stage, camera: Option<usize>) -> OutputNames {
+        OutputNames::of(stage, camera.map(|c| self.camera_name(c)))
     }
 
     /// The camera whose `frames` stage has key `key`, if any.
     pub fn camera_of(&self, key: &str) -> Option<&str> {
         let camera = self.keys.frames.iter().position(|k| k == key)?;
-        Some(self.spec.cameras[camera].name.as_str())
+        Some(self.camera_name(camera))
     }
 }
 
 /// The slot's typed value, decoding its cached outputs on first use.
 pub(super) fn value<T>(
     slot: &mut Option<Slot<T>>,
-    stage: &'static str,
+    stage: Stage,
     decode: impl FnOnce(&Outputs) -> Result<T, DecodeError>,
 ) -> Result<Arc<T>, BuildError> {
     let slot = slot.as_mut().expect("stage was evaluated");
     if slot.value.is_none() {
-        let value = decode(&slot.outputs).map_err(|source| BuildError::Decode { stage, source })?;
+        let value = decode(&slot.outputs).map_err(|source| BuildError::Decode {
+            stage: stage.name(),
+            source,
+        })?;
         slot.value = Some(Arc::new(value));
     }
     Ok(Arc::clone(slot.value.as_ref().expect("just set")))

@@ -18,12 +18,13 @@ use super::super::frames;
 use super::super::object_views;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
+use super::super::stages::{FramesInputs, PathInputs, Stage};
 use super::Pipeline;
 use super::evaluate::one;
 use crate::build::chunks::{self, PathPlan};
 use crate::build::shard::{Shard, ShardStats};
 use crate::model::{CameraPose, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{CameraPath, OutputLayout, Spec, Vary};
+use crate::spec::{CameraPath, LightingSpec, OutputLayout, Vary};
 use crate::{annotate, cameras, render, rng, scene};
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
@@ -56,16 +57,15 @@ pub(super) struct PathState {
 impl Pipeline<'_> {
     /// Frames and annotations of `[[cameras]]` entry `index`.
     pub(super) fn need_frames(&mut self, index: usize) -> Result<(), BuildError> {
-        let key = self.keys.frames[index].clone();
-        let recheck = self.recheck.as_deref() == Some(key.as_str());
+        let recheck = self.recheck.as_deref() == Some(self.keys.frames[index].as_str());
         self.stage(
-            "frames",
-            key,
-            Load::References,
+            Stage::Frames,
+            Some(index),
             move |p| &mut p.frames[index],
             move |p| p.path_state(index, recheck, None),
             move |p, mut state| {
-                let camera = &p.spec.cameras[index];
+                let FramesInputs { path, output } = &p.inputs.frames[index];
+                let camera = &path.camera;
                 if state.plan.poses.is_empty() {
                     let message = format!(
                         "camera path {:?} yields 0 frames: no pose along it fits (roads and \
@@ -81,7 +81,7 @@ impl Pipeline<'_> {
                 let chunks = p.render_chunks(index, &mut state)?;
                 let store = !p.rechecking;
                 let outputs =
-                    chunks::assemble(p.cache, camera, &state.plan, &chunks, store, &p.spec.output)
+                    chunks::assemble(p.cache, camera, &state.plan, &chunks, store, output)
                         .map_err(|source| p.cache_error(source))?;
                 Ok(((), outputs))
             },
@@ -98,7 +98,7 @@ impl Pipeline<'_> {
         self.need_export()?;
         self.need_overview()?;
         let mut stats = ShardStats::default();
-        for index in 0..self.spec.cameras.len() {
+        for index in 0..self.cameras() {
             // A path already assembled needs nothing more from any shard.
             if self.cache.entry(&self.keys.frames[index]).is_some() {
                 continue;
@@ -126,7 +126,7 @@ impl Pipeline<'_> {
             if render > 0 {
                 self.runs.push(StageRun {
                     stage: "frames-chunk",
-                    camera: Some(self.spec.cameras[index].name.clone()),
+                    camera: Some(self.camera_name(index).to_owned()),
                     key: self.keys.frames[index].clone(),
                     status: StageStatus::Ran,
                     time: start.elapsed(),
@@ -141,7 +141,7 @@ impl Pipeline<'_> {
     /// path's plan and (when the plan is cached, which says how many frames) chunks.
     pub fn cache_keys(&self) -> Vec<String> {
         let mut keys: Vec<String> = self.all_stages().into_iter().map(|(_, k)| k).collect();
-        let names = OutputNames::of("frames-plan", None);
+        let names = OutputNames::path_plan();
         for path in &self.keys.paths {
             let plan_key = chunks::plan_key(path);
             let plan = self
@@ -188,7 +188,7 @@ impl Pipeline<'_> {
         recheck: bool,
     ) -> Result<(PathPlan, Option<Gathered>), BuildError> {
         let key = chunks::plan_key(&self.keys.paths[index]);
-        let names = OutputNames::of("frames-plan", None);
+        let names = OutputNames::path_plan();
         // Why a cached plan was not used, when it was there.
         let mut repaired = None;
         if !recheck {
@@ -217,7 +217,7 @@ impl Pipeline<'_> {
                 .map_err(|source| self.cache_error(source))?;
             self.runs.push(StageRun {
                 stage: "frames-plan",
-                camera: Some(self.spec.cameras[index].name.clone()),
+                camera: Some(self.camera_name(index).to_owned()),
                 key,
                 status: StageStatus::Ran,
                 time: start.elapsed(),
@@ -242,7 +242,7 @@ impl Pipeline<'_> {
     ) -> Result<PathState, BuildError> {
         let (plan, mut gathered) = self.path_plan(index, recheck)?;
         let frames_key = &self.keys.paths[index];
-        let names = OutputNames::of("frames-chunk", Some(&self.spec.cameras[index].name));
+        let names = OutputNames::chunk(self.camera_name(index));
         let chunks: Vec<Chunk> = chunks::ranges(plan.poses.len())
             .iter()
             .enumerate()
@@ -280,7 +280,7 @@ impl Pipeline<'_> {
         index: usize,
         state: &mut PathState,
     ) -> Result<Vec<Outputs>, BuildError> {
-        let camera = &self.spec.cameras[index];
+        let camera = &self.inputs.frames[index].path.camera;
         let frames_key = &self.keys.paths[index];
         let ranges = chunks::ranges(state.plan.poses.len());
         let total: usize = ranges
@@ -293,26 +293,27 @@ impl Pipeline<'_> {
         let poses = &state.plan.poses;
         let done = std::sync::atomic::AtomicUsize::new(0);
         let chunk_list = std::mem::take(&mut state.chunks);
-        let render =
-            |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
-                let key = chunks::chunk_key(frames_key, &range);
-                let outputs = self.with_path_input(index, gathered, |input| {
-                    let path = frames::PathFrames::new(input, poses);
-                    let keep_all = self.spec.output.layout == OutputLayout::Webdataset;
-                    let modes = (store, keep_all);
-                    chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
-                        let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        (self.progress)(&camera.name, n, total);
-                    })
-                });
-                let outputs = outputs.map_err(|source| self.cache_error(source))?;
-                if store {
-                    self.cache
-                        .put("frames-chunk", &key, &outputs, &[])
-                        .map_err(|source| self.cache_error(source))?;
-                }
-                Ok(outputs)
-            };
+        let render = |range: std::ops::Range<usize>,
+                      gathered: &Gathered|
+         -> Result<Outputs, BuildError> {
+            let key = chunks::chunk_key(frames_key, &range);
+            let outputs = self.with_path_input(index, gathered, |input| {
+                let path = frames::PathFrames::new(input, poses);
+                let keep_all = self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
+                let modes = (store, keep_all);
+                chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
+                    let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    (self.progress)(&camera.name, n, total);
+                })
+            });
+            let outputs = outputs.map_err(|source| self.cache_error(source))?;
+            if store {
+                self.cache
+                    .put("frames-chunk", &key, &outputs, &[])
+                    .map_err(|source| self.cache_error(source))?;
+            }
+            Ok(outputs)
+        };
         // What every frame reads (the shadow map, the cloud field) once, with every core,
         // before chunks start side by side and each asks for it (`render_chunk` does not:
         // two chunks starting together would each build the same map).
@@ -373,18 +374,17 @@ impl Pipeline<'_> {
     /// and the sun it was drawn with.
     fn first_lighting(&self, index: usize, g: &Gathered) -> (render::Lighting, render::Sun) {
         let (_, scene, _, lamps, facades) = g;
-        let spec = self.spec;
-        let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, 0);
-        (lighting(spec, &sun, scene, lamps, facades), sun)
+        let path = &self.inputs.frames[index].path;
+        let sun = render::Sun::draw(&path.lighting, path.seed, index as u32, 0);
+        (path_lighting(path, &sun, scene, lamps, facades), sun)
     }
 
     /// Poses, categories and YOLO classes of path `index`.
     fn compute_plan(&self, index: usize, g: &Gathered) -> PathPlan {
         let (prepared, scene, parsed, _, _) = g;
-        let spec = self.spec;
-        let camera = &spec.cameras[index];
         let poses = self.poses(index, prepared, scene, parsed);
-        let labels = frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        let path = &self.inputs.frames[index].path;
+        let labels = frame_labels::labels(path, scene, &self.object_info, &self.sign_faces);
         PathPlan {
             poses,
             categories: labels.categories,
@@ -399,12 +399,12 @@ impl Pipeline<'_> {
         scene: &Scene,
         parsed: &ParsedLayout,
     ) -> Vec<CameraPose> {
-        let spec = self.spec;
-        let camera = &spec.cameras[index];
-        let mpp = spec.layout.metres_per_pixel;
+        let path = &self.inputs.frames[index].path;
+        let camera = &path.camera;
+        let mpp = path.export.metres_per_pixel;
         // Seeded by the camera's name, not its place in the list: adding or reordering
         // cameras leaves every other camera's poses as they were.
-        let camera_seed = rng::stream(spec.seed, &format!("camera/{}", camera.name), 0).next_u64();
+        let camera_seed = rng::stream(path.seed, &format!("camera/{}", camera.name), 0).next_u64();
         let aim = cameras::Aim::of(camera);
         match camera.path {
             CameraPath::Roads => {
@@ -463,20 +463,19 @@ impl Pipeline<'_> {
         f: impl FnOnce(&frames::PathInput) -> R,
     ) -> R {
         let (prepared, scene, _, lamps, facades) = g;
-        let spec = self.spec;
-        let camera = &spec.cameras[index];
+        let path = &self.inputs.frames[index].path;
+        let camera = &path.camera;
         let (lighting, sun) = self.first_lighting(index, g);
-        let relight = (spec.lighting.vary == Vary::Frame).then_some({
+        let relight = (path.lighting.vary == Vary::Frame).then_some({
             |i: usize| {
-                let sun = render::Sun::draw(&spec.lighting, spec.seed, index as u32, i as u32);
-                (self::lighting(spec, &sun, scene, lamps, facades), sun)
+                let sun = render::Sun::draw(&path.lighting, path.seed, index as u32, i as u32);
+                (path_lighting(path, &sun, scene, lamps, facades), sun)
             }
         });
-        let path_labels =
-            frame_labels::labels(spec, camera, scene, &self.object_info, &self.sign_faces);
+        let path_labels = frame_labels::labels(path, scene, &self.object_info, &self.sign_faces);
         let thresholds = annotate::Thresholds {
-            min_pixels: spec.annotations.min_pixels,
-            min_fraction: spec.annotations.min_fraction,
+            min_pixels: path.annotations.min_pixels,
+            min_fraction: path.annotations.min_fraction,
         };
         // Per text object: its words' world corners.
         let corners: BTreeMap<u32, Vec<[[f64; 3]; 4]>> = self
@@ -497,25 +496,38 @@ impl Pipeline<'_> {
             labels: &path_labels.labels,
             thresholds: &thresholds,
             yolo: path_labels.yolo.as_ref(),
-            weather: &spec.weather,
-            conditions_seed: rng::stream(spec.seed, "conditions", index as u64).next_u64(),
+            weather: &path.weather,
+            conditions_seed: rng::stream(path.seed, "conditions", index as u64).next_u64(),
         };
         f(&input)
     }
 }
 
-/// The spec's lighting under `sun`, with a light at every lamp head.
-pub(super) fn lighting(
-    spec: &Spec,
+/// A camera path's lighting under `sun`.
+fn path_lighting(
+    path: &PathInputs,
     sun: &render::Sun,
     scene: &Scene,
     lamps: &[Lamp],
     facades: &FacadeSet,
 ) -> render::Lighting {
-    let mpp = spec.layout.metres_per_pixel;
+    let mpp = path.export.metres_per_pixel;
+    lighting(&path.lighting, path.seed, mpp, sun, scene, lamps, facades)
+}
+
+/// `[lighting]` under `sun`, with a light at every lamp head.
+pub(super) fn lighting(
+    spec: &LightingSpec,
+    seed: u64,
+    metres_per_pixel: f64,
+    sun: &render::Sun,
+    scene: &Scene,
+    lamps: &[Lamp],
+    facades: &FacadeSet,
+) -> render::Lighting {
     let heads: Vec<[f64; 3]> = lamps
         .iter()
-        .map(|lamp| scene::light_position(lamp, mpp))
+        .map(|lamp| scene::light_position(lamp, metres_per_pixel))
         .collect();
-    render::lighting_for(&spec.lighting, sun, scene, facades, &heads, spec.seed)
+    render::lighting_for(spec, sun, scene, facades, &heads, seed)
 }

@@ -6,35 +6,36 @@ use std::sync::Arc;
 use image::RgbImage;
 
 use super::super::BuildError;
-use super::super::cache::{Blob, Load};
+use super::super::cache::Blob;
 use super::super::codec;
-use super::super::inputs::{FacadeInput, LayoutSource};
+use super::super::inputs::FacadeInput;
+use super::super::stages::{LayoutInputs, OverviewInputs, Stage};
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
 use super::{OVERVIEW_SUN, Pipeline};
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::Spec;
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
 };
 
 impl Pipeline<'_> {
     pub(super) fn need_layout(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.layout.clone();
         self.stage(
-            "layout",
-            key,
-            Load::Bytes,
+            Stage::Layout,
+            None,
             |p| &mut p.layout,
             |_| Ok(()),
             |p, ()| {
-                let image = match &p.source {
-                    LayoutSource::Generate => {
-                        let generate = p.spec.layout.generate.clone().unwrap_or_default();
-                        let mut stream = rng::stream(p.spec.seed, "layout", 0);
-                        layout::generate(&generate, &p.spec.layout.palette, &mut stream).image
+                let image = match &p.inputs.layout {
+                    LayoutInputs::Generate {
+                        generate,
+                        palette,
+                        seed,
+                    } => {
+                        let mut stream = rng::stream(*seed, "layout", 0);
+                        layout::generate(generate, palette, &mut stream).image
                     }
-                    LayoutSource::Image { path, bytes } => {
+                    LayoutInputs::Drawn { path, bytes } => {
                         layout::decode(bytes).map_err(|source| BuildError::Layout {
                             spec: p.spec_path.clone(),
                             file: path.clone(),
@@ -50,21 +51,19 @@ impl Pipeline<'_> {
 
     pub(super) fn layout_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
         self.need_layout()?;
-        value(&mut self.layout, "layout", |o| {
+        value(&mut self.layout, Stage::Layout, |o| {
             codec::decode_png(codec::output(o, "layout.png")?)
         })
     }
 
     pub(super) fn need_mirror(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.mirror.clone();
         self.stage(
-            "mirror",
-            key,
-            Load::Bytes,
+            Stage::Mirror,
+            None,
             |p| &mut p.mirror,
             |p| p.layout_image(),
             |p, layout| {
-                let image = mirror::mirror(&layout, &p.spec.layout.mirror);
+                let image = mirror::mirror(&layout, &p.inputs.mirror.mirror);
                 let png = codec::encode_png(&image);
                 Ok((image, one("layout.png", png)))
             },
@@ -73,21 +72,19 @@ impl Pipeline<'_> {
 
     pub(super) fn mirrored_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
         self.need_mirror()?;
-        value(&mut self.mirror, "mirror", |o| {
+        value(&mut self.mirror, Stage::Mirror, |o| {
             codec::decode_png(codec::output(o, "layout.png")?)
         })
     }
 
     pub(super) fn need_parse(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.parse.clone();
         self.stage(
-            "parse",
-            key,
-            Load::Bytes,
+            Stage::Parse,
+            None,
             |p| &mut p.parse,
             |p| p.mirrored_image(),
             |p, image| {
-                let parsed = parse::parse(&image, &p.spec.layout.palette);
+                let parsed = parse::parse(&image, &p.inputs.parse.palette);
                 let json = codec::to_json(&parsed);
                 Ok((parsed, one("parsed.json", json)))
             },
@@ -96,27 +93,25 @@ impl Pipeline<'_> {
 
     pub(super) fn parsed(&mut self) -> Result<Arc<ParsedLayout>, BuildError> {
         self.need_parse()?;
-        value(&mut self.parse, "parse", |o| {
+        value(&mut self.parse, Stage::Parse, |o| {
             codec::from_json(codec::output(o, "parsed.json")?)
         })
     }
 
     pub(super) fn need_lamps(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.lamps.clone();
         let gather = |p: &mut Self| Ok((p.mirrored_image()?, p.parsed()?));
         self.stage(
-            "lamps",
-            key,
-            Load::Bytes,
+            Stage::Lamps,
+            None,
             |p| &mut p.lamps,
             gather,
             |p, (image, parsed)| {
-                let mpp = p.spec.layout.metres_per_pixel;
-                let lamps = &p.spec.lamps;
+                let inputs = &p.inputs.lamps;
+                let (mpp, lamps) = (inputs.metres_per_pixel, &inputs.lamps);
                 let sites = lamps::site_lamps(
                     &image,
                     &parsed,
-                    &p.spec.layout.palette,
+                    &inputs.palette,
                     lamps.spacing / mpp,
                     lamps.min_distance / mpp,
                 );
@@ -128,37 +123,36 @@ impl Pipeline<'_> {
 
     pub(super) fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
         self.need_lamps()?;
-        value(&mut self.lamps, "lamps", |o| {
+        value(&mut self.lamps, Stage::Lamps, |o| {
             codec::from_json(codec::output(o, "lamps.json")?)
         })
     }
 
     pub(super) fn need_place(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.place.clone();
         let gather = |p: &mut Self| {
-            let facades = match p.spec.buildings.widths {
-                Some(_) => None,
-                None => Some(p.facade_set()?),
+            let facades = match p.inputs.place.reads_facades() {
+                false => None,
+                true => Some(p.facade_set()?),
             };
             Ok((p.parsed()?, facades))
         };
         self.stage(
-            "place",
-            key,
-            Load::Bytes,
+            Stage::Place,
+            None,
             |p| &mut p.place,
             gather,
             |p, (parsed, facades)| {
-                let mpp = p.spec.layout.metres_per_pixel;
+                let inputs = &p.inputs.place;
+                let mpp = inputs.metres_per_pixel;
                 // Paper 3.2: without explicit widths, every facade is one building size.
-                let widths_m: Vec<f64> = match (&p.spec.buildings.widths, &facades) {
+                let widths_m: Vec<f64> = match (&inputs.buildings.widths, &facades) {
                     (Some(widths), _) => widths.clone(),
                     (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
                     (None, None) => Vec::new(),
                 };
                 let widths = place::widths_px(&widths_m, mpp);
-                let gap = (p.spec.buildings.gap / mpp).round() as u32;
-                let buildings = place::place(&parsed.blocks, &widths, gap, p.spec.seed);
+                let gap = (inputs.buildings.gap / mpp).round() as u32;
+                let buildings = place::place(&parsed.blocks, &widths, gap, inputs.seed);
                 let json = codec::to_json(&buildings);
                 Ok((buildings, one("buildings.json", json)))
             },
@@ -167,22 +161,20 @@ impl Pipeline<'_> {
 
     pub(super) fn buildings(&mut self) -> Result<Arc<Vec<Building>>, BuildError> {
         self.need_place()?;
-        value(&mut self.place, "place", |o| {
+        value(&mut self.place, Stage::Place, |o| {
             codec::from_json(codec::output(o, "buildings.json")?)
         })
     }
 
     pub(super) fn need_plan(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.plan.clone();
         let gather = |p: &mut Self| Ok((p.parsed()?, p.lamp_sites()?, p.buildings()?));
         self.stage(
-            "plan",
-            key,
-            Load::References,
+            Stage::Plan,
+            None,
             |p| &mut p.plan,
             gather,
             |p, (parsed, lamps, buildings)| {
-                let mpp = p.spec.layout.metres_per_pixel;
+                let mpp = p.inputs.plan.metres_per_pixel;
                 let city = plan::assemble(&parsed, &lamps, &buildings, mpp);
                 Ok(((), one("plan.json", codec::to_pretty_json(&city))))
             },
@@ -190,7 +182,6 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn need_preview(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.preview.clone();
         let gather = |p: &mut Self| {
             Ok((
                 p.mirrored_image()?,
@@ -200,9 +191,8 @@ impl Pipeline<'_> {
             ))
         };
         self.stage(
-            "preview",
-            key,
-            Load::References,
+            Stage::Preview,
+            None,
             |p| &mut p.preview,
             gather,
             |_, (image, parsed, lamps, buildings)| {
@@ -213,15 +203,13 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn need_facades(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.facades.clone();
         self.stage(
-            "facades",
-            key,
-            Load::Bytes,
+            Stage::Facades,
+            None,
             |p| &mut p.facades,
             |_| Ok(()),
             |p, ()| {
-                let f = &p.spec.facades;
+                let f = &p.inputs.facades;
                 let processed = match &p.facade_input {
                     FacadeInput::Builtin => facades::process_builtin(f.floor_height, f.on_error),
                     FacadeInput::Folder { source, .. } => {
@@ -243,15 +231,17 @@ impl Pipeline<'_> {
 
     pub(super) fn facade_set(&mut self) -> Result<Arc<FacadeSet>, BuildError> {
         self.need_facades()?;
-        value(&mut self.facades, "facades", codec::facade_set_from_outputs)
+        value(
+            &mut self.facades,
+            Stage::Facades,
+            codec::facade_set_from_outputs,
+        )
     }
 
     pub(super) fn need_export(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.export.clone();
         self.stage(
-            "export",
-            key,
-            Load::References,
+            Stage::Export,
+            None,
             |p| &mut p.export,
             |p| Ok((p.scene()?, p.lamp_sites()?, p.facade_set()?)),
             |p, (scene, lamps, facades)| {
@@ -277,7 +267,7 @@ impl Pipeline<'_> {
         let Ok(prepared) = render::prepare_with(scene, &self.mips) else {
             return;
         };
-        let lighting = overview_lighting(self.spec, scene, lamps, facades);
+        let lighting = overview_lighting(&self.inputs.overview, scene, lamps, facades);
         if lighting.shadows {
             prepared.shadow_map(lighting.sun_direction, lighting.shadow_map_side);
         }
@@ -286,7 +276,6 @@ impl Pipeline<'_> {
 
     /// `overview.png`: the textured city from the air, rendered by cityspec's renderer.
     pub(super) fn need_overview(&mut self) -> Result<(), BuildError> {
-        let key = self.keys.overview.clone();
         let gather = |p: &mut Self| {
             Ok((
                 p.prepared_scene()?,
@@ -297,14 +286,13 @@ impl Pipeline<'_> {
             ))
         };
         self.stage(
-            "overview",
-            key,
-            Load::References,
+            Stage::Overview,
+            None,
             |p| &mut p.overview,
             gather,
             |p, (prepared, scene, parsed, lamps, facades)| {
-                let lighting = overview_lighting(p.spec, &scene, &lamps, &facades);
-                let shot = cameras::overview(&parsed, p.spec.layout.metres_per_pixel);
+                let lighting = overview_lighting(&p.inputs.overview, &scene, &lamps, &facades);
+                let shot = cameras::overview(&parsed, p.inputs.overview.export.metres_per_pixel);
                 let frame = match &shot.pose {
                     Some(pose) => {
                         let mut intrinsics = render::Intrinsics::from_fov(
@@ -327,17 +315,25 @@ impl Pipeline<'_> {
 /// The overview's lighting: the spec's light, a drawn sun drawn for the overview on its
 /// own.
 fn overview_lighting(
-    spec: &Spec,
+    inputs: &OverviewInputs,
     scene: &Scene,
     lamps: &[Lamp],
     facades: &FacadeSet,
 ) -> render::Lighting {
-    let sun = render::Sun::draw(&spec.lighting, spec.seed, OVERVIEW_SUN, 0);
+    let sun = render::Sun::draw(&inputs.lighting, inputs.seed, OVERVIEW_SUN, 0);
     // Without ambient occlusion: its metre-wide creases are a pixel or two from the air,
     // and it would cost the cold build a tenth of a second.
     render::Lighting {
         ambient_occlusion: 0.0,
         shadow_map_side: cameras::OVERVIEW_SHADOW_MAP_SIDE,
-        ..lighting(spec, &sun, scene, lamps, facades)
+        ..lighting(
+            &inputs.lighting,
+            inputs.seed,
+            inputs.export.metres_per_pixel,
+            &sun,
+            scene,
+            lamps,
+            facades,
+        )
     }
 }

@@ -27,16 +27,14 @@ use evaluate::evaluated;
 
 use super::BuildError;
 use super::cache::{Blob, Cache, Outputs};
-use super::inputs::{FacadeInput, LayoutSource, SpecInputs};
+use super::inputs::{FacadeInput, SpecInputs};
 use super::report::StageRun;
 use super::stage_key::StageKey;
+use super::stages::{Inputs, Keys, Stage};
 use crate::diagnostic::Diagnostic;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{OutputLayout, Spec};
-use crate::{
-    annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
-    preview, render, scene, sensor,
-};
+use crate::spec::Spec;
+use crate::{objects, render};
 
 /// The sun stream of the overview (camera paths use their index): with `[lighting] sun`
 /// drawn, the overview's sun is a draw of its own.
@@ -47,28 +45,8 @@ const OVERVIEW_SUN: u32 = u32::MAX;
 pub struct ArtifactOut {
     pub path: String,
     pub blob: Blob,
-    pub stage: &'static str,
+    pub stage: Stage,
     pub key: String,
-}
-
-struct Keys {
-    layout: String,
-    mirror: String,
-    parse: String,
-    lamps: String,
-    place: String,
-    plan: String,
-    preview: String,
-    facades: String,
-    export: String,
-    overview: String,
-    /// One per `[[cameras]]` entry.
-    frames: Vec<String>,
-    /// Per camera, the key of its frames' content, whatever `[output]` says: its plan
-    /// and chunks are keyed by it, so a change of layout renders nothing again.
-    paths: Vec<String>,
-    /// What each key above is the hash of, by key (for `cityspec explain`).
-    made: BTreeMap<String, StageKey>,
 }
 
 /// A stage's outputs, its typed value once computed or decoded, and its diagnostics (its
@@ -80,9 +58,9 @@ struct Slot<T> {
 }
 
 pub struct Pipeline<'a> {
-    spec: &'a Spec,
+    /// Every stage's inputs: all the pipeline knows of the spec (see `stages`).
+    inputs: Inputs,
     spec_path: PathBuf,
-    source: LayoutSource,
     facade_input: FacadeInput,
     meshes: BTreeMap<String, objects::MeshFiles>,
     /// Per scene object: what annotations need (inserted objects' text and quads).
@@ -135,19 +113,20 @@ pub struct Pipeline<'a> {
 
 impl<'a> Pipeline<'a> {
     pub fn new(
-        spec: &'a Spec,
+        spec: &Spec,
         spec_path: PathBuf,
-        inputs: SpecInputs,
+        files: SpecInputs,
         cache: &'a Cache,
         progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     ) -> Self {
-        let keys = keys(spec, &inputs);
+        let inputs = Inputs::of(spec, &files.layout);
+        let keys = Keys::of(&inputs, &files);
+        let cameras = inputs.frames.len();
         Pipeline {
-            spec,
+            inputs,
             spec_path,
-            source: inputs.layout,
-            facade_input: inputs.facades,
-            meshes: inputs.meshes,
+            facade_input: files.facades,
+            meshes: files.meshes,
             object_info: Vec::new(),
             sign_faces: BTreeMap::new(),
             cache,
@@ -163,10 +142,7 @@ impl<'a> Pipeline<'a> {
             facades: None,
             export: None,
             overview: None,
-            frames: vec![None; spec.cameras.len()]
-                .into_iter()
-                .map(|_: Option<()>| None)
-                .collect(),
+            frames: (0..cameras).map(|_| None).collect(),
             prepared: OnceLock::new(),
             mips: render::TextureMips::default(),
             progress,
@@ -183,38 +159,26 @@ impl<'a> Pipeline<'a> {
         }
     }
 
-    /// Every cached stage's (name, key), in evaluation order.
-    pub fn all_stages(&self) -> Vec<(&'static str, String)> {
-        let k = &self.keys;
-        let mut stages: Vec<(&'static str, String)> = [
-            ("layout", &k.layout),
-            ("mirror", &k.mirror),
-            ("parse", &k.parse),
-            ("lamps", &k.lamps),
-            ("facades", &k.facades),
-            ("place", &k.place),
-            ("plan", &k.plan),
-            ("preview", &k.preview),
-            ("export", &k.export),
-            ("overview", &k.overview),
-        ]
-        .into_iter()
-        .map(|(stage, key)| (stage, key.clone()))
-        .collect();
-        stages.extend(k.frames.iter().map(|key| ("frames", key.clone())));
-        stages
+    /// Every cached stage's (stage, key), in evaluation order.
+    pub fn all_stages(&self) -> Vec<(Stage, String)> {
+        self.keys
+            .all()
+            .into_iter()
+            .map(|(stage, _, key)| (stage, key.to_owned()))
+            .collect()
     }
 
     /// Each cached stage in evaluation order, what its key is the hash of, and what the
     /// cache holds under it (`cityspec explain`).
     pub fn explain(&self) -> Vec<super::explain::StageLine> {
-        self.all_stages()
+        self.keys
+            .all()
             .into_iter()
-            .map(|(stage, key)| {
-                let made = self.keys.made.get(&key);
+            .map(|(stage, camera, key)| {
+                let made = self.keys.made.get(key);
                 super::explain::StageLine {
                     stage,
-                    camera: self.camera_of(&key).map(str::to_owned),
+                    camera: camera.map(|c| self.camera_name(c).to_owned()),
                     version: made.map_or(0, StageKey::stage_version),
                     spec: made.map(StageKey::spec_parts).unwrap_or_default(),
                     inputs: made
@@ -225,8 +189,8 @@ impl<'a> Pipeline<'a> {
                                 .collect()
                         })
                         .unwrap_or_default(),
-                    state: self.cache.entry_state(&key),
-                    key,
+                    state: self.cache.entry_state(key),
+                    key: key.to_owned(),
                 }
             })
             .collect()
@@ -234,217 +198,109 @@ impl<'a> Pipeline<'a> {
 
     /// Runs stage `stage` (key `key`) again, its inputs from the cache, and compares its
     /// outputs with its cache entry: `None` when they match, else what differs.
-    pub fn recheck(&mut self, stage: &str, key: &str) -> Result<Option<String>, BuildError> {
+    pub fn recheck(&mut self, stage: Stage, key: &str) -> Result<Option<String>, BuildError> {
+        let Some((_, camera, _)) = self
+            .keys
+            .all()
+            .into_iter()
+            .find(|(s, _, k)| (*s, *k) == (stage, key))
+        else {
+            return Ok(Some(format!(
+                "no {} stage of this spec has key {key}",
+                stage.name()
+            )));
+        };
         self.recheck = Some(key.to_owned());
         self.verdict = None;
-        match stage {
-            "layout" => self.need_layout(),
-            "mirror" => self.need_mirror(),
-            "parse" => self.need_parse(),
-            "lamps" => self.need_lamps(),
-            "facades" => self.need_facades(),
-            "place" => self.need_place(),
-            "plan" => self.need_plan(),
-            "preview" => self.need_preview(),
-            "export" => self.need_export(),
-            "overview" => self.need_overview(),
-            _ => match self.keys.frames.iter().position(|k| k == key) {
-                Some(camera) => self.need_frames(camera),
-                None => Ok(()),
-            },
-        }?;
+        self.need(stage, camera)?;
         self.recheck = None;
         Ok(self.verdict.take().unwrap_or_else(|| {
             Some("already evaluated from the cache before it could be rechecked".to_owned())
         }))
     }
 
-    /// The artifact stages' (name, key), in the order [`Pipeline::artifacts`] evaluates them.
-    pub fn artifact_stages(&self) -> Vec<(&'static str, &str)> {
-        let k = &self.keys;
-        let mut stages = vec![
-            ("mirror", k.mirror.as_str()),
-            ("plan", k.plan.as_str()),
-            ("preview", k.preview.as_str()),
-            ("export", k.export.as_str()),
-            ("overview", k.overview.as_str()),
-        ];
-        stages.extend(k.frames.iter().map(|key| ("frames", key.as_str())));
-        stages
+    /// Evaluates `stage` (`camera`'s for `frames`): from the cache, or run.
+    fn need(&mut self, stage: Stage, camera: Option<usize>) -> Result<(), BuildError> {
+        match stage {
+            Stage::Layout => self.need_layout(),
+            Stage::Mirror => self.need_mirror(),
+            Stage::Parse => self.need_parse(),
+            Stage::Lamps => self.need_lamps(),
+            Stage::Facades => self.need_facades(),
+            Stage::Place => self.need_place(),
+            Stage::Plan => self.need_plan(),
+            Stage::Preview => self.need_preview(),
+            Stage::Export => self.need_export(),
+            Stage::Overview => self.need_overview(),
+            Stage::Frames => self.need_frames(camera.unwrap_or_default()),
+        }
+    }
+
+    /// The outputs of `stage` (`camera`'s for `frames`), once evaluated.
+    fn outputs_of(&self, stage: Stage, camera: Option<usize>) -> &Outputs {
+        match stage {
+            Stage::Layout => &evaluated(&self.layout).outputs,
+            Stage::Mirror => &evaluated(&self.mirror).outputs,
+            Stage::Parse => &evaluated(&self.parse).outputs,
+            Stage::Lamps => &evaluated(&self.lamps).outputs,
+            Stage::Facades => &evaluated(&self.facades).outputs,
+            Stage::Place => &evaluated(&self.place).outputs,
+            Stage::Plan => &evaluated(&self.plan).outputs,
+            Stage::Preview => &evaluated(&self.preview).outputs,
+            Stage::Export => &evaluated(&self.export).outputs,
+            Stage::Overview => &evaluated(&self.overview).outputs,
+            Stage::Frames => &evaluated(&self.frames[camera.unwrap_or_default()]).outputs,
+        }
+    }
+
+    /// The artifact stages' (stage, key), in the order [`Pipeline::artifacts`] evaluates
+    /// them.
+    pub fn artifact_stages(&self) -> Vec<(Stage, &str)> {
+        self.keys
+            .all()
+            .into_iter()
+            .filter(|(stage, _, _)| stage.declaration().artifact)
+            .map(|(stage, _, key)| (stage, key))
+            .collect()
+    }
+
+    /// The number of camera paths.
+    pub fn cameras(&self) -> usize {
+        self.inputs.frames.len()
+    }
+
+    /// The name of camera path `camera`.
+    pub fn camera_name(&self, camera: usize) -> &str {
+        &self.inputs.frames[camera].path.camera.name
     }
 
     /// Every artifact of the spec, from the cache where possible.
     pub fn artifacts(&mut self) -> Result<Vec<ArtifactOut>, BuildError> {
-        self.need_mirror()?;
-        self.need_plan()?;
-        self.need_preview()?;
-        self.need_export()?;
-        self.need_overview()?;
-        for camera in 0..self.spec.cameras.len() {
-            self.need_frames(camera)?;
+        let stages: Vec<(Stage, Option<usize>, String)> = self
+            .keys
+            .all()
+            .into_iter()
+            .filter(|(stage, _, _)| stage.declaration().artifact)
+            .map(|(stage, camera, key)| (stage, camera, key.to_owned()))
+            .collect();
+        for &(stage, camera, _) in &stages {
+            self.need(stage, camera)?;
         }
-        let stages: [(&Outputs, &'static str, &String); 5] = [
-            (
-                &evaluated(&self.mirror).outputs,
-                "mirror",
-                &self.keys.mirror,
-            ),
-            (&evaluated(&self.plan).outputs, "plan", &self.keys.plan),
-            (
-                &evaluated(&self.preview).outputs,
-                "preview",
-                &self.keys.preview,
-            ),
-            (
-                &evaluated(&self.export).outputs,
-                "export",
-                &self.keys.export,
-            ),
-            (
-                &evaluated(&self.overview).outputs,
-                "overview",
-                &self.keys.overview,
-            ),
-        ];
-        let frames = self
-            .frames
-            .iter()
-            .zip(&self.keys.frames)
-            .map(|(slot, key)| (&evaluated(slot).outputs, "frames", key));
         let mut artifacts: Vec<ArtifactOut> = stages
             .into_iter()
-            .chain(frames)
-            .flat_map(|(outputs, stage, key)| {
-                outputs.iter().map(move |(path, blob)| ArtifactOut {
-                    path: path.clone(),
-                    blob: blob.clone(),
-                    stage,
-                    key: key.clone(),
-                })
+            .flat_map(|(stage, camera, key)| {
+                self.outputs_of(stage, camera)
+                    .iter()
+                    .map(move |(path, blob)| ArtifactOut {
+                        path: path.clone(),
+                        blob: blob.clone(),
+                        stage,
+                        key: key.clone(),
+                    })
+                    .collect::<Vec<_>>()
             })
             .collect();
         artifacts.sort_by(|a, b| a.path.cmp(&b.path));
         Ok(artifacts)
-    }
-}
-
-/// Every stage's key, from the spec and the input files' hashes alone.
-fn keys(spec: &Spec, inputs: &SpecInputs) -> Keys {
-    let mut made = BTreeMap::new();
-    let l = &spec.layout;
-    let layout = match &inputs.layout {
-        LayoutSource::Generate => StageKey::new("layout", layout::VERSION)
-            .spec("generate", &l.generate.clone().unwrap_or_default())
-            .spec("palette", &l.palette)
-            .spec("seed", &spec.seed),
-        LayoutSource::Image { bytes, .. } => {
-            StageKey::new("layout", layout::VERSION).input("image", &crate::hash::sha256_hex(bytes))
-        }
-    }
-    .finish_into(&mut made);
-    let mirror = StageKey::new("mirror", mirror::VERSION)
-        .spec("mirror", &l.mirror)
-        .input("layout", &layout)
-        .finish_into(&mut made);
-    let parse = StageKey::new("parse", parse::VERSION)
-        .spec("palette", &l.palette)
-        .input("mirror", &mirror)
-        .finish_into(&mut made);
-    let lamps = StageKey::new("lamps", lamps::VERSION)
-        .spec("lamps", &spec.lamps)
-        .spec("palette", &l.palette)
-        .spec("metres_per_pixel", &l.metres_per_pixel)
-        .input("mirror", &mirror)
-        .input("parse", &parse)
-        .finish_into(&mut made);
-    let facades = StageKey::new("facades", facades::VERSION)
-        .spec("floor_height", &spec.facades.floor_height)
-        .spec("on_error", &spec.facades.on_error);
-    let facades = match &inputs.facades {
-        FacadeInput::Builtin => facades.input("builtin", &facades::BUILTIN_VERSION.to_string()),
-        FacadeInput::Folder { digest, .. } => facades.input("folder", digest),
-    }
-    .finish_into(&mut made);
-    let mut place = StageKey::new("place", place::VERSION)
-        .spec("buildings", &spec.buildings)
-        .spec("metres_per_pixel", &l.metres_per_pixel)
-        .spec("seed", &spec.seed)
-        .input("parse", &parse);
-    if spec.buildings.widths.is_none() {
-        place = place.input("facades", &facades);
-    }
-    let place = place.finish_into(&mut made);
-    let plan = StageKey::new("plan", plan::VERSION)
-        .spec("metres_per_pixel", &l.metres_per_pixel)
-        .input("parse", &parse)
-        .input("lamps", &lamps)
-        .input("place", &place)
-        .finish_into(&mut made);
-    let preview = StageKey::new("preview", preview::VERSION)
-        .input("mirror", &mirror)
-        .input("parse", &parse)
-        .input("lamps", &lamps)
-        .input("place", &place)
-        .finish_into(&mut made);
-    // The scene is not cached: the export key holds everything the scene reads.
-    let export = StageKey::new("export", export::VERSION)
-        .spec("scene_version", &scene::VERSION)
-        .spec("objects_version", &objects::VERSION)
-        .spec("objects", &spec.objects)
-        .input("meshes", &inputs.meshes_digest)
-        .spec("widths", &spec.buildings.widths)
-        .spec("metres_per_pixel", &l.metres_per_pixel)
-        .spec("seed", &spec.seed)
-        .input("parse", &parse)
-        .input("lamps", &lamps)
-        .input("place", &place)
-        .input("facades", &facades)
-        .finish_into(&mut made);
-    let overview = StageKey::new("overview", render::VERSION)
-        .spec("cameras_version", &cameras::VERSION)
-        .spec("lighting", &spec.lighting)
-        .spec("seed", &spec.seed)
-        .input("export", &export)
-        .finish_into(&mut made);
-    let paths: Vec<String> = spec
-        .cameras
-        .iter()
-        .map(|camera| {
-            StageKey::new("frames", render::VERSION)
-                .spec("versions", &[cameras::VERSION, annotate::VERSION])
-                .spec("sensor_version", &sensor::VERSION)
-                .spec("camera", camera)
-                .spec("lighting", &spec.lighting)
-                .spec("weather", &spec.weather)
-                .spec("annotations", &spec.annotations)
-                .spec("seed", &spec.seed)
-                .input("export", &export)
-                .finish_into(&mut made)
-        })
-        .collect();
-    let frames = paths
-        .iter()
-        .map(|path| match spec.output.layout {
-            OutputLayout::Files => path.clone(),
-            OutputLayout::Webdataset => StageKey::new("frames", super::webdataset::VERSION)
-                .spec("output", &spec.output)
-                .input("path", path)
-                .finish_into(&mut made),
-        })
-        .collect();
-    Keys {
-        made,
-        frames,
-        paths,
-        overview,
-        layout,
-        mirror,
-        parse,
-        lamps,
-        place,
-        plan,
-        preview,
-        facades,
-        export,
     }
 }

@@ -25,14 +25,15 @@ impl Pipeline<'_> {
         let buildings = self.buildings()?;
         let facades = self.facade_set()?;
         let start = Instant::now();
+        let inputs = Arc::clone(&self.inputs.export);
         let built = scene::build(&scene::SceneInput {
             layout: &parsed,
             lamps: &lamps,
             buildings: &buildings,
             facades: &facades,
-            widths: self.spec.buildings.widths.as_deref(),
-            metres_per_pixel: self.spec.layout.metres_per_pixel,
-            seed: self.spec.seed,
+            widths: inputs.widths.as_deref(),
+            metres_per_pixel: inputs.metres_per_pixel,
+            seed: inputs.seed,
         });
         let mut built = built;
         // Inserting objects is mostly serial (each entry's placing follows its stream): the
@@ -41,15 +42,15 @@ impl Pipeline<'_> {
         let (inserted, mips) = rayon::join(
             || {
                 objects::insert(&objects::ObjectsInput {
-                    specs: &self.spec.objects,
+                    specs: &inputs.objects,
                     layout: &parsed,
                     lamps: &lamps,
                     buildings: &buildings,
                     facades: &facades,
-                    widths: self.spec.buildings.widths.as_deref(),
+                    widths: inputs.widths.as_deref(),
                     meshes: &self.meshes,
-                    metres_per_pixel: self.spec.layout.metres_per_pixel,
-                    seed: self.spec.seed,
+                    metres_per_pixel: inputs.metres_per_pixel,
+                    seed: inputs.seed,
                 })
             },
             || render::TextureMips::of(&built.textures),
@@ -61,7 +62,7 @@ impl Pipeline<'_> {
         })?;
         // `count` is an upper bound; falling short is told, with the numbers, by every
         // stage that reads the scene (see `read_diagnostics` below).
-        self.scene_diagnostics = inserted.shortfalls(&self.spec.objects);
+        self.scene_diagnostics = inserted.shortfalls(&inputs.objects);
         let sign_faces = std::mem::take(&mut inserted.sign_faces);
         let info = std::mem::take(&mut inserted.info);
         let first = objects::merge(&mut built, inserted);
