@@ -18,7 +18,8 @@
 //! | scene | [`scene`] | blocks, roads, lamps, buildings, facades | [`model::Scene`]: the 3D city |
 //! | objects | [`objects`] | `spec.objects`, plan, buildings, facades, mesh files | [`objects::Inserted`]: text, signs, user meshes |
 //! | export | [`export`] | scene | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
-//! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s |
+//! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s drawn from the layout alone |
+//! | views | [`views`] | a camera path, the scene, the layout | one [`cameras::CameraPose`] per frame, each a view worth rendering |
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
@@ -28,9 +29,10 @@
 //! facade heights, vector and trig helpers) in [`model::geometry`] and image-file checks and
 //! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`], [`hash`],
 //! [`diagnostic`] (the warnings a stage reports, cached with its result) and
-//! [`regular_file`] (opening inputs without following or blocking), never on each
-//! other. `tests/integration/stage_imports.rs` fails when a stage names another; tests that need
-//! another stage's output get it through `test_support`.
+//! [`regular_file`] (opening inputs without following or blocking), and on another stage
+//! only along a declared edge (`views` reads `cameras`, `render` and `scene`).
+//! `tests/integration/stage_imports.rs` fails when a stage names another off those edges;
+//! tests that need another stage's output get it through `test_support`.
 
 pub mod annotate;
 pub mod build;
@@ -60,3 +62,4 @@ pub mod stats;
 pub mod test_seed;
 #[cfg(test)]
 mod test_support;
+pub mod views;

@@ -24,7 +24,7 @@ use crate::annotate::{
 use crate::cameras::tan_half_degrees;
 use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Light, Lighting, PreparedScene, Sun};
-use crate::sensor::{self, CloudLight, SensorFrame, WeatherLight};
+use crate::sensor::{self, CloudLight, SensorFrame};
 use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
 
 /// Everything one camera path needs besides its poses.
@@ -173,7 +173,12 @@ impl<'a> PathFrames<'a> {
             lighting.sun_direction,
         );
         let weather = sensor::weather_light(&conditions).under_cloud(shade);
-        let adjusted = frame_lighting(lighting, &weather, headlights);
+        let adjusted = lighting.under_weather(
+            weather.sun_scale,
+            weather.sky_scale,
+            weather.shadow_strength,
+            headlights,
+        );
         let lighting = adjusted.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
@@ -305,26 +310,6 @@ pub fn preview_png(frames: Vec<(RgbImage, Vec<[u32; 5]>)>, categories: &[Categor
         sheet.add(rgb, boxes);
     }
     codec::encode_png(&sheet.draw(categories))
-}
-
-/// A frame's lighting, when it differs from the path's: under the frame's weather (the
-/// sun and the sky light scaled, shadows weakened) and with `extra` lights (the camera
-/// car's headlights). One copy of the path's lighting at most.
-fn frame_lighting(
-    lighting: &Lighting,
-    light: &WeatherLight,
-    extra: Vec<Light>,
-) -> Option<Lighting> {
-    let clear = light.sun_scale == 1.0 && light.sky_scale == 1.0 && light.shadow_strength == 1.0;
-    if clear && extra.is_empty() {
-        return None;
-    }
-    let mut out = lighting.clone();
-    out.sun_colour = out.sun_colour.map(|c| c * light.sun_scale);
-    out.ambient = out.ambient.map(|c| c * light.sky_scale);
-    out.shadow_strength *= light.shadow_strength;
-    out.lights.extend(extra);
-    Some(out)
 }
 
 /// The sun a frame was lit by, as its `conditions` record it (degrees, 6 decimals; the

@@ -32,7 +32,7 @@ use crate::spec::{
 };
 use crate::{
     annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
-    preview, render, scene, sensor,
+    preview, render, scene, sensor, views,
 };
 
 /// A cached stage, in evaluation order.
@@ -216,12 +216,13 @@ const TABLE: [Declaration; 11] = [
     Declaration {
         stage: Frames,
         name: "frames",
-        entry: "`cameras::*_path`, `render::render`, `sensor::develop`, `annotate::*`",
+        entry: "`views::poses`, `render::render`, `sensor::develop`, `annotate::*`",
         versions: &[
             ("render::VERSION", render::VERSION),
             ("cameras::VERSION", cameras::VERSION),
             ("annotate::VERSION", annotate::VERSION),
             ("sensor::VERSION", sensor::VERSION),
+            ("views::VERSION", views::VERSION),
         ],
         reads: &[Export],
         files: "",
@@ -361,6 +362,7 @@ pub struct PathInputs {
     /// `cameras::VERSION`, `annotate::VERSION`.
     pub versions: [u32; 2],
     pub sensor_version: u32,
+    pub views_version: u32,
     pub camera: CameraSpec,
     pub lighting: LightingSpec,
     pub weather: WeatherSpec,
@@ -408,6 +410,7 @@ impl Inputs {
                 path: PathInputs {
                     versions: [cameras::VERSION, annotate::VERSION],
                     sensor_version: sensor::VERSION,
+                    views_version: views::VERSION,
                     camera: camera.clone(),
                     lighting: spec.lighting.clone(),
                     weather: spec.weather.clone(),

@@ -54,7 +54,7 @@ pub fn sidewalk_path(
 /// Up to `draws` (at least one) poses per frame of [`sidewalk_path`]: each frame's stream
 /// drawn on, so the first draw is the pose `sidewalk_path` gives and the others are the
 /// same walker at the same spot looking elsewhere. The build keeps one per frame (a view
-/// not filled by something right in front of the eye, `build/clear_views.rs`).
+/// not filled by something right in front of the eye, `views::clear`).
 pub fn sidewalk_path_draws(
     layout: &ParsedLayout,
     metres_per_pixel: f64,

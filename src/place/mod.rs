@@ -21,7 +21,27 @@ pub use widths::widths_px;
 
 use rayon::prelude::*;
 
-use crate::model::{Block, Building, PxRect};
+use crate::model::{Block, Building, FacadeSet, PxRect};
+use crate::spec::BuildingsSpec;
+
+/// The city's buildings: `spec`'s widths, or (paper 3.2) one building size per facade of
+/// `facades` when the spec gives none; its gap; metres turned into layout pixels.
+pub fn place_city(
+    blocks: &[Block],
+    spec: &BuildingsSpec,
+    facades: Option<&FacadeSet>,
+    metres_per_pixel: f64,
+    seed: u64,
+) -> Vec<Building> {
+    let widths_m: Vec<f64> = match (&spec.widths, facades) {
+        (Some(widths), _) => widths.clone(),
+        (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
+        (None, None) => Vec::new(),
+    };
+    let widths = widths_px(&widths_m, metres_per_pixel);
+    let gap = (spec.gap / metres_per_pixel).round() as u32;
+    place(blocks, &widths, gap, seed)
+}
 use block_mask::BlockMask;
 use filler::Filler;
 

@@ -120,6 +120,39 @@ pub const AMBIENT_OCCLUSION: f32 = 1.0;
 pub const WINDOW_COLOUR: [f32; 3] = [1.0, 0.82, 0.5];
 
 impl Lighting {
+    /// This lighting for a view from the air with a shadow map of `shadow_map_side`
+    /// texels: without ambient occlusion, whose metre-wide creases are a pixel or two from
+    /// the air and would cost the cold build a tenth of a second.
+    pub fn from_the_air(self, shadow_map_side: u32) -> Lighting {
+        Lighting {
+            ambient_occlusion: 0.0,
+            shadow_map_side,
+            ..self
+        }
+    }
+
+    /// This lighting under a frame's weather (the sun and the sky light scaled by
+    /// `sun_scale` and `sky_scale`, shadows weakened by `shadow_strength`) and with `extra`
+    /// lights (a camera car's headlights); `None` when that changes nothing.
+    pub fn under_weather(
+        &self,
+        sun_scale: f32,
+        sky_scale: f32,
+        shadow_strength: f32,
+        extra: Vec<Light>,
+    ) -> Option<Lighting> {
+        let clear = sun_scale == 1.0 && sky_scale == 1.0 && shadow_strength == 1.0;
+        if clear && extra.is_empty() {
+            return None;
+        }
+        let mut out = self.clone();
+        out.sun_colour = out.sun_colour.map(|c| c * sun_scale);
+        out.ambient = out.ambient.map(|c| c * sky_scale);
+        out.shadow_strength *= shadow_strength;
+        out.lights.extend(extra);
+        Some(out)
+    }
+
     /// A clear day: the `day` preset's sun (high, south-east), turbidity 3, shadows, no
     /// lamps.
     pub fn day() -> Lighting {

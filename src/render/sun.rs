@@ -43,7 +43,16 @@ pub const NIGHT: Sun = Sun {
     hour: None,
 };
 
+/// The sun stream of the overview (camera paths use their index): with `[lighting] sun`
+/// drawn, the overview's sun is a draw of its own.
+const OVERVIEW_SUN: u32 = u32::MAX;
+
 impl Sun {
+    /// The overview's sun: [`Sun::draw`] on a stream of its own.
+    pub fn overview(spec: &LightingSpec, seed: u64) -> Sun {
+        Sun::draw(spec, seed, OVERVIEW_SUN, 0)
+    }
+
     /// Unit vector towards the sun in world coordinates (x east, y up, z south).
     pub fn direction(&self) -> [f64; 3] {
         let (e, a) = (self.elevation.to_radians(), self.azimuth.to_radians());

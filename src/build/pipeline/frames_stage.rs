@@ -11,11 +11,9 @@ use rayon::prelude::*;
 
 use super::super::BuildError;
 use super::super::cache::{Load, Miss, Outputs};
-use super::super::clear_views;
 use super::super::codec;
 use super::super::frame_labels;
 use super::super::frames;
-use super::super::object_views;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
 use super::super::stages::{FramesInputs, PathInputs, Stage};
@@ -24,8 +22,8 @@ use super::evaluate::one;
 use crate::build::chunks::{self, PathPlan};
 use crate::build::shard::{Shard, ShardStats};
 use crate::model::{CameraPose, FacadeSet, Lamp, ParsedLayout, Scene};
-use crate::spec::{CameraPath, LightingSpec, OutputLayout, Vary};
-use crate::{annotate, cameras, render, rng, scene};
+use crate::spec::{LightingSpec, OutputLayout, Vary};
+use crate::{annotate, render, rng, scene, views};
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
 /// parsed layout, the lamps and the facades.
@@ -400,59 +398,14 @@ impl Pipeline<'_> {
         parsed: &ParsedLayout,
     ) -> Vec<CameraPose> {
         let path = &self.inputs.frames[index].path;
-        let camera = &path.camera;
-        let mpp = path.export.metres_per_pixel;
-        // Seeded by the camera's name, not its place in the list: adding or reordering
-        // cameras leaves every other camera's poses as they were.
-        let camera_seed = rng::stream(path.seed, &format!("camera/{}", camera.name), 0).next_u64();
-        let aim = cameras::Aim::of(camera);
-        match camera.path {
-            CameraPath::Roads => {
-                let draws = cameras::road_path_draws(
-                    parsed,
-                    mpp,
-                    &cameras::RoadPath {
-                        frames: camera.frame_rule(),
-                        aim,
-                        look_ahead: camera.look_ahead,
-                        jitter: camera.jitter,
-                        lane_offset: camera.lane_offset,
-                    },
-                    camera_seed,
-                    clear_views::DRAWS,
-                );
-                // Fields of view down and across the picture.
-                let down = cameras::tan_half_degrees(camera.fov);
-                let aspect =
-                    f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
-                let boxes = clear_views::vehicle_boxes(scene);
-                clear_views::unblocked(draws, &boxes, [down * aspect, down])
-            }
-            CameraPath::Sidewalks => {
-                let draws = cameras::sidewalk_path_draws(
-                    parsed,
-                    mpp,
-                    &cameras::SidewalkPath {
-                        frames: camera.frame_rule(),
-                        aim,
-                        sidewalk: f64::from(scene::strip_width_px(parsed)) * mpp,
-                    },
-                    camera_seed,
-                    clear_views::DRAWS,
-                );
-                let check = object_views::check_intrinsics(camera);
-                clear_views::unfilled(prepared, draws, &check)
-            }
-            CameraPath::Objects => {
-                object_views::aimed_poses(prepared, scene, parsed, mpp, camera, camera_seed)
-            }
-            CameraPath::Orbit => {
-                let length = cameras::orbit_length(parsed, mpp);
-                let frames = camera.frame_rule().frames(length);
-                // A range of heights: the orbit flies at its middle.
-                cameras::orbit_path(parsed, mpp, frames, camera.height.at(0.5))
-            }
-        }
+        views::poses(&views::ViewsInput {
+            camera: &path.camera,
+            layout: parsed,
+            scene,
+            prepared,
+            metres_per_pixel: path.export.metres_per_pixel,
+            seed: path.seed,
+        })
     }
 
     /// Calls `f` with path `index`'s rendering input.

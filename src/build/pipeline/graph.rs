@@ -10,9 +10,9 @@ use super::super::cache::Blob;
 use super::super::codec;
 use super::super::inputs::FacadeInput;
 use super::super::stages::{LayoutInputs, OverviewInputs, Stage};
+use super::Pipeline;
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
-use super::{OVERVIEW_SUN, Pipeline};
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
@@ -143,16 +143,13 @@ impl Pipeline<'_> {
             gather,
             |p, (parsed, facades)| {
                 let inputs = &p.inputs.place;
-                let mpp = inputs.metres_per_pixel;
-                // Paper 3.2: without explicit widths, every facade is one building size.
-                let widths_m: Vec<f64> = match (&inputs.buildings.widths, &facades) {
-                    (Some(widths), _) => widths.clone(),
-                    (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
-                    (None, None) => Vec::new(),
-                };
-                let widths = place::widths_px(&widths_m, mpp);
-                let gap = (inputs.buildings.gap / mpp).round() as u32;
-                let buildings = place::place(&parsed.blocks, &widths, gap, inputs.seed);
+                let buildings = place::place_city(
+                    &parsed.blocks,
+                    &inputs.buildings,
+                    facades.as_deref(),
+                    inputs.metres_per_pixel,
+                    inputs.seed,
+                );
                 let json = codec::to_json(&buildings);
                 Ok((buildings, one("buildings.json", json)))
             },
@@ -312,28 +309,23 @@ impl Pipeline<'_> {
     }
 }
 
-/// The overview's lighting: the spec's light, a drawn sun drawn for the overview on its
-/// own.
+/// The overview's lighting: the spec's light under the overview's sun, seen from the air.
 fn overview_lighting(
     inputs: &OverviewInputs,
     scene: &Scene,
     lamps: &[Lamp],
     facades: &FacadeSet,
 ) -> render::Lighting {
-    let sun = render::Sun::draw(&inputs.lighting, inputs.seed, OVERVIEW_SUN, 0);
-    // Without ambient occlusion: its metre-wide creases are a pixel or two from the air,
-    // and it would cost the cold build a tenth of a second.
-    render::Lighting {
-        ambient_occlusion: 0.0,
-        shadow_map_side: cameras::OVERVIEW_SHADOW_MAP_SIDE,
-        ..lighting(
-            &inputs.lighting,
-            inputs.seed,
-            inputs.export.metres_per_pixel,
-            &sun,
-            scene,
-            lamps,
-            facades,
-        )
-    }
+    let sun = render::Sun::overview(&inputs.lighting, inputs.seed);
+    let mpp = inputs.export.metres_per_pixel;
+    lighting(
+        &inputs.lighting,
+        inputs.seed,
+        mpp,
+        &sun,
+        scene,
+        lamps,
+        facades,
+    )
+    .from_the_air(cameras::OVERVIEW_SHADOW_MAP_SIDE)
 }

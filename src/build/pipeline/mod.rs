@@ -36,10 +36,6 @@ use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::Spec;
 use crate::{objects, render};
 
-/// The sun stream of the overview (camera paths use their index): with `[lighting] sun`
-/// drawn, the overview's sun is a draw of its own.
-const OVERVIEW_SUN: u32 = u32::MAX;
-
 /// An artifact a build writes: name in the output folder, bytes (in memory or a cache
 /// object), producing stage and key.
 pub struct ArtifactOut {

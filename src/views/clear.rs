@@ -1,8 +1,7 @@
 //! Moving cameras' poses: scene + each frame's draws of its aim → one pose per frame whose
 //! view is not filled by something right in front of the eye.
 //!
-//! Glue between the cameras stage, which draws aims from the layout alone, and the
-//! scene. Each frame keeps its first clear draw of [`DRAWS`]; when none is clear, the least
+//! The cameras stage draws aims from the layout alone; here they meet the scene. Each frame keeps its first clear draw of [`DRAWS`]; when none is clear, the least
 //! filled (the first of equals). Frames whose first draw is clear keep the pose they had
 //! before. Two paths are checked, each by the rule that catches what it meets:
 //!
@@ -22,9 +21,8 @@
 //!   [`WALK_NEAR`] metres (depth along the view): anything counts, as the renderer sees it.
 //!
 //! Everything here is deterministic (`f64` rays in a fixed order; renders that are the
-//! same on every machine, one per draw, frames in parallel but collected in order). The
-//! poses are the cameras stage's output as far as the cache is concerned: bump
-//! [`cameras::VERSION`](crate::cameras::VERSION) with any change here.
+//! same on every machine, one per draw, frames in parallel but collected in order). Bump
+//! [`VERSION`](super::VERSION) with any change here.
 
 use rayon::prelude::*;
 

@@ -1,7 +1,7 @@
 //! An objects camera's poses: scene + parsed layout + camera spec → one pose per frame,
 //! aimed at an object of the camera's classes that the renderer shows.
 //!
-//! Glue between the cameras and render stages: the cameras stage proposes candidates
+//! The cameras stage proposes candidates
 //! ([`cameras::object_views`]) from geometry alone; here each candidate is rendered at a
 //! quarter of the camera's resolution and kept only if its object shows, so a target
 //! behind a building, a lamp or another object is never aimed at.

@@ -1,0 +1,93 @@
+//! Stage `views`: a camera path's spec + the city → one pose per frame, each a view worth
+//! rendering.
+//!
+//! The cameras stage draws poses from the layout alone (roads to drive, sidewalks to walk,
+//! candidates around an object, an orbit); this stage chooses among them with the scene in
+//! hand: a driver's view not filled by a parked bus ([`clear::unblocked`]), a walker's
+//! not filled by a wall a metre away ([`clear::unfilled`]), an object camera's target
+//! shown, not hidden ([`aimed::aimed_poses`]). It reads the cameras, render and scene
+//! stages along the graph's declared edges (`tests/integration/stage_imports.rs`), and
+//! every choice of which pose a frame gets is here, under [`VERSION`].
+//!
+//! | file | holds |
+//! |---|---|
+//! | [`clear`] | roads' and sidewalks' clear-view checks |
+//! | [`aimed`] | an objects camera's candidates, kept when their object shows |
+
+pub mod aimed;
+pub mod clear;
+
+use rand::Rng;
+
+use crate::cameras::{self, CameraPose};
+use crate::model::{ParsedLayout, Scene};
+use crate::render::PreparedScene;
+use crate::rng;
+use crate::scene;
+use crate::spec::{CameraPath, CameraSpec};
+
+/// Bump when the poses a camera path gets change.
+pub const VERSION: u32 = 1;
+
+/// What choosing a path's views reads.
+pub struct ViewsInput<'a> {
+    pub camera: &'a CameraSpec,
+    pub layout: &'a ParsedLayout,
+    pub scene: &'a Scene,
+    pub prepared: &'a PreparedScene,
+    pub metres_per_pixel: f64,
+    /// The spec's seed.
+    pub seed: u64,
+}
+
+/// One pose per frame of `input.camera`'s path (fewer when a frame has no view to keep).
+pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
+    let ViewsInput {
+        camera,
+        layout,
+        scene,
+        prepared,
+        metres_per_pixel: mpp,
+        seed,
+    } = *input;
+    // Seeded by the camera's name, not its place in the list: adding or reordering
+    // cameras leaves every other camera's poses as they were.
+    let camera_seed = rng::stream(seed, &format!("camera/{}", camera.name), 0).next_u64();
+    let aim = cameras::Aim::of(camera);
+    match camera.path {
+        CameraPath::Roads => {
+            let path = cameras::RoadPath {
+                frames: camera.frame_rule(),
+                aim,
+                look_ahead: camera.look_ahead,
+                jitter: camera.jitter,
+                lane_offset: camera.lane_offset,
+            };
+            let draws = cameras::road_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
+            // Fields of view down and across the picture.
+            let down = cameras::tan_half_degrees(camera.fov);
+            let aspect = f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
+            let boxes = clear::vehicle_boxes(scene);
+            clear::unblocked(draws, &boxes, [down * aspect, down])
+        }
+        CameraPath::Sidewalks => {
+            let path = cameras::SidewalkPath {
+                frames: camera.frame_rule(),
+                aim,
+                sidewalk: f64::from(scene::strip_width_px(layout)) * mpp,
+            };
+            let draws = cameras::sidewalk_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
+            let check = aimed::check_intrinsics(camera);
+            clear::unfilled(prepared, draws, &check)
+        }
+        CameraPath::Objects => {
+            aimed::aimed_poses(prepared, scene, layout, mpp, camera, camera_seed)
+        }
+        CameraPath::Orbit => {
+            let length = cameras::orbit_length(layout, mpp);
+            let frames = camera.frame_rule().frames(length);
+            // A range of heights: the orbit flies at its middle.
+            cameras::orbit_path(layout, mpp, frames, camera.height.at(0.5))
+        }
+    }
+}
