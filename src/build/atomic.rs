@@ -7,10 +7,15 @@
 
 use std::fs::{self, File};
 use std::io::{self, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::path::Path;
 
+use tempfile::NamedTempFile;
+
+/// What every temporary's name holds: `.<name>.cityspec-tmp-<random>` (older cityspec
+/// versions wrote `<pid>-<n>` after it).
 pub(super) const TEMP_MARK: &str = ".cityspec-tmp-";
+/// How many random letters and digits `tempfile` puts after [`TEMP_MARK`].
+pub(super) const TEMP_RANDOM: usize = 6;
 
 /// Writes `bytes` to `path` atomically, creating the parent folder if needed.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
@@ -28,20 +33,12 @@ pub fn write_atomic_with(
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     fs::create_dir_all(dir)?;
-    let temp = temp_path(dir, path);
-    let result = (|| {
-        // A new file, never one that is there already (nor through a symlink planted at
-        // the name).
-        let mut file = File::create_new(&temp)?;
-        fill(&mut file)?;
-        file.flush()?;
-        drop(file);
-        fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    result
+    // Dropped on every early return, which removes the temporary.
+    let mut temp = temp_file(dir, path)?;
+    fill(temp.as_file_mut())?;
+    temp.as_file_mut().flush()?;
+    temp.persist(path).map_err(|e| e.error)?;
+    Ok(())
 }
 
 /// Removes the temporary files an interrupted build left in `dir` (not recursive).
@@ -62,14 +59,24 @@ pub fn sweep_temporaries(dir: &Path) -> io::Result<usize> {
     Ok(removed)
 }
 
-pub(super) fn temp_path(dir: &Path, path: &Path) -> PathBuf {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
+/// A new hidden temporary file in `dir` for `path`, `.<name>.cityspec-tmp-<random>`:
+/// created new (never one that is there already, nor through a symlink planted at the
+/// name) and removed when dropped unless persisted. Its mode is what `File::create` gives
+/// (0666 less the umask), not tempfile's private 0600: it becomes an output file.
+pub(super) fn temp_file(dir: &Path, path: &Path) -> io::Result<NamedTempFile> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    dir.join(format!(".{name}{TEMP_MARK}{}-{n}", std::process::id()))
+    let prefix = format!(".{name}{TEMP_MARK}");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).rand_bytes(TEMP_RANDOM);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(dir)
 }
 
 #[cfg(test)]
@@ -84,6 +91,35 @@ mod tests {
         write_atomic(&path, b"second").unwrap();
         assert_eq!(fs::read(&path).unwrap(), b"second");
         assert_eq!(fs::read_dir(path.parent().unwrap()).unwrap().count(), 1);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn written_files_get_the_usual_mode_not_a_private_one() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let (atomic, plain) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        write_atomic(&atomic, b"a").unwrap();
+        fs::write(&plain, b"b").unwrap();
+        let mode = |p: &Path| fs::metadata(p).unwrap().permissions().mode();
+        assert_eq!(mode(&atomic), mode(&plain));
+    }
+
+    #[test]
+    fn temporaries_are_hidden_and_marked() {
+        let dir = tempfile::tempdir().unwrap();
+        let temp = temp_file(dir.path(), Path::new("plan.png")).unwrap();
+        let name = temp
+            .path()
+            .file_name()
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .to_owned();
+        let random = name.strip_prefix(".plan.png.cityspec-tmp-").unwrap();
+        assert_eq!(random.len(), TEMP_RANDOM, "{name}");
+        assert!(random.bytes().all(|b| b.is_ascii_alphanumeric()), "{name}");
+        assert_eq!(sweep_temporaries(dir.path()).unwrap(), 1);
     }
 
     #[test]

@@ -553,39 +553,29 @@ impl Cache {
             None => self.root.join("objects"),
         };
         fs::create_dir_all(&dir)?;
-        let temp = super::atomic::temp_path(&dir, Path::new("stream"));
-        let written = (|| {
-            let mut out = Hashing::new(io::BufWriter::new(fs::File::create_new(&temp)?));
+        // Removed when dropped, on every path but the rename into place.
+        let mut temp = super::atomic::temp_file(&dir, Path::new("stream"))?;
+        let object = {
+            let mut out = Hashing::new(io::BufWriter::new(temp.as_file_mut()));
             fill(&mut out)?;
             out.inner.flush()?;
-            Ok::<_, io::Error>(out.finish())
-        })();
-        let object = match written {
-            Ok(object) => object,
-            Err(e) => {
-                let _ = fs::remove_file(&temp);
-                return Err(e);
-            }
+            out.finish()
         };
         if let Some(remote) = &self.remote {
-            let uploaded = remote.put_file(&object_name(&object.sha256), &temp);
-            let _ = fs::remove_file(&temp);
-            return uploaded.map(|()| object);
+            return remote
+                .put_file(&object_name(&object.sha256), temp.path())
+                .map(|()| object);
         }
         let path = self.object_path(&object.sha256);
         let intact = regular_file::read(&path, Follow::No)
             .is_ok_and(|old| sha256_hex(&old) == object.sha256);
-        let placed = if intact {
+        if intact {
             touch(&path);
-            fs::remove_file(&temp)
         } else {
-            fs::create_dir_all(path.parent().expect("objects have a folder"))
-                .and_then(|()| fs::rename(&temp, &path))
-        };
-        if placed.is_err() {
-            let _ = fs::remove_file(&temp);
+            fs::create_dir_all(path.parent().expect("objects have a folder"))?;
+            temp.persist(&path).map_err(|e| e.error)?;
         }
-        placed.map(|()| object)
+        Ok(object)
     }
 
     /// Records `outputs` and `diagnostics` under `key`: objects first (those in memory are
@@ -668,8 +658,9 @@ pub enum CacheName {
     Entry(String),
     /// `objects/ab/<sha256>`, the shard the hash's first two digits.
     Object(String),
-    /// What a killed write left: `.<one of those names>.cityspec-tmp-<pid>-<n>` beside
-    /// it, or `objects/.stream.cityspec-tmp-<pid>-<n>`.
+    /// What a killed write left: `.<one of those names>.cityspec-tmp-<random>` beside
+    /// it, or `objects/.stream.cityspec-tmp-<random>` (`<random>` is tempfile's six
+    /// letters and digits; older cityspec versions wrote `<pid>-<n>` there).
     Temporary,
 }
 
@@ -702,9 +693,13 @@ fn temporary_of(name: &str, base: impl Fn(&str) -> bool) -> Option<CacheName> {
     let (stem, tail) = name
         .strip_prefix('.')?
         .split_once(super::atomic::TEMP_MARK)?;
-    let (pid, n) = tail.split_once('-')?;
+    let random =
+        tail.len() == super::atomic::TEMP_RANDOM && tail.bytes().all(|b| b.is_ascii_alphanumeric());
     let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
-    (base(stem) && digits(pid) && digits(n)).then_some(CacheName::Temporary)
+    let pid_and_count = tail
+        .split_once('-')
+        .is_some_and(|(pid, n)| digits(pid) && digits(n));
+    (base(stem) && (random || pid_and_count)).then_some(CacheName::Temporary)
 }
 
 fn is_lower_hex(text: &str) -> bool {
@@ -866,6 +861,18 @@ mod tests {
                 "objects/.stream.cityspec-tmp-7-2".to_owned(),
                 CacheName::Temporary,
             ),
+            (
+                format!("entries/.{SHA}.json.cityspec-tmp-aZ09xy"),
+                CacheName::Temporary,
+            ),
+            (
+                format!("objects/3f/.{SHA}.cityspec-tmp-Qr5tUv"),
+                CacheName::Temporary,
+            ),
+            (
+                "objects/.stream.cityspec-tmp-k3Jd8w".to_owned(),
+                CacheName::Temporary,
+            ),
         ];
         for (name, kind) in own {
             assert_eq!(CacheName::of(&name), Some(kind), "{name}");
@@ -882,6 +889,8 @@ mod tests {
             format!("entries/{SHA}.json.bak"),
             format!("entries/.{SHA}.json.cityspec-tmp-x-0"),
             "entries/.notes.cityspec-tmp-1-0".to_owned(),
+            "objects/.stream.cityspec-tmp-k3Jd8".to_owned(),
+            "objects/.stream.cityspec-tmp-k3Jd8w.bak".to_owned(),
             "objects/info/packs".to_owned(),
             format!("fresh/{SHA}.json"),
         ];

@@ -300,7 +300,7 @@ struct Tars<'a> {
 impl Tars<'_> {
     /// Writes the tar of frames `range` to `out`, one frame's files in memory at a time.
     fn write(&self, range: Range<usize>, out: &mut dyn Write) -> io::Result<()> {
-        let mut out = io::BufWriter::new(out);
+        let mut tar = webdataset::writer(io::BufWriter::new(out));
         for k in range.start / CHUNK_FRAMES..range.end.div_ceil(CHUNK_FRAMES) {
             let chunk = &self.chunks[k];
             let summary = chunk
@@ -332,12 +332,11 @@ impl Tars<'_> {
                 members.push((format!("{i:06}.json"), Arc::new(json)));
                 members.sort_by(|a, b| a.0.cmp(&b.0));
                 for (member, bytes) in &members {
-                    webdataset::append(&mut out, member, bytes)?;
+                    webdataset::append(&mut tar, member, bytes)?;
                 }
             }
         }
-        webdataset::finish(&mut out)?;
-        out.flush()
+        webdataset::finish(tar)?.flush()
     }
 }
 

@@ -344,6 +344,12 @@ impl OutDir {
     }
 
     /// A fresh hidden name beside the folder: `.<name>~cityspec-<what>-<pid>-<n>`.
+    ///
+    /// Not a `tempfile::TempDir`: the staging folder is swapped in by name and its
+    /// leftovers are found by name ([`OutDir::recover`]); the old folder set aside is no
+    /// temporary at all (a kill between the two renames moves it back); and removing
+    /// what a swap left is a step whose error must reach the build, where a `TempDir`'s
+    /// drop would ignore it.
     fn reserved(&self, what: &str) -> PathBuf {
         static COUNTER: AtomicU64 = AtomicU64::new(0);
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);

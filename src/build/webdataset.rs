@@ -5,9 +5,10 @@
 //! `.depth.npy`), `000000.json` (its COCO image entry and annotations, with the ids of
 //! the path's `coco.json`, its sun and drawn conditions) and, when written,
 //! `000000.yolo.txt` and `000000.icdar.txt`, members in name order. The tars are
-//! byte-reproducible: ustar headers written here with everything fixed (mode 0644, uid and
-//! gid 0, no user or group name, mtime 0), so the same frames give the same bytes on every
-//! machine, whoever rendered them.
+//! byte-reproducible: the `tar` crate writes ustar headers with everything fixed here
+//! (mode 0644, uid and gid 0, no user or group name, mtime 0), so the same frames give the
+//! same bytes on every machine, whoever rendered them. A member name over 100 bytes that
+//! ustar's prefix field cannot hold goes in a GNU long-name entry before its header.
 
 use std::io::{self, Write};
 
@@ -15,8 +16,10 @@ use serde_json::Value;
 
 use crate::annotate::CocoLines;
 
-/// Version of the tar and sample layout (in the path's key with this layout).
-pub const VERSION: u32 = 1;
+/// Version of the tar and sample layout (in the path's key with this layout). 2: headers
+/// written by the `tar` crate, whose checksum field is seven digits and a NUL (ours was six
+/// digits, a NUL and a space).
+pub const VERSION: u32 = 2;
 
 /// The sample member name of frame file `rest` (relative to `frames/<camera>/`), or
 /// `None` when it is not one frame's file: `rgb/000007.png` → `000007.rgb.png`.
@@ -56,38 +59,27 @@ pub fn sample_json(coco: &CocoLines, first_id: u64, conditions: &Value) -> Vec<u
     text.into_bytes()
 }
 
-/// Appends one regular file to a tar stream: a ustar header with every field fixed but
-/// the name, size and checksum, then the bytes padded to 512.
-pub fn append(out: &mut dyn Write, name: &str, bytes: &[u8]) -> io::Result<()> {
-    if name.len() > 100 {
-        return Err(io::Error::other(format!(
-            "tar member name too long: {name}"
-        )));
-    }
-    let mut header = [0u8; 512];
-    header[..name.len()].copy_from_slice(name.as_bytes());
-    let mut field =
-        |at: usize, text: &str| header[at..at + text.len()].copy_from_slice(text.as_bytes());
-    field(100, "0000644\0"); // mode
-    field(108, "0000000\0"); // uid
-    field(116, "0000000\0"); // gid
-    field(124, &format!("{:011o}\0", bytes.len())); // size
-    field(136, "00000000000\0"); // mtime
-    field(156, "0"); // a regular file
-    field(257, "ustar\0");
-    field(263, "00");
-    // The checksum: the header's bytes summed with its own field as spaces.
-    header[148..156].copy_from_slice(b"        ");
-    let sum: u32 = header.iter().map(|&b| u32::from(b)).sum();
-    header[148..156].copy_from_slice(format!("{sum:06o}\0 ").as_bytes());
-    out.write_all(&header)?;
-    out.write_all(bytes)?;
-    out.write_all(&[0u8; 512][..(512 - bytes.len() % 512) % 512])
+/// A tar stream over `out`: [`append`] its members, then [`finish`] it.
+pub fn writer<W: Write>(out: W) -> tar::Builder<W> {
+    tar::Builder::new(out)
 }
 
-/// Ends a tar stream: two zero blocks.
-pub fn finish(out: &mut dyn Write) -> io::Result<()> {
-    out.write_all(&[0u8; 1024])
+/// Appends one regular file: a ustar header with every field fixed but the name, size and
+/// checksum, then the bytes padded to 512.
+pub fn append<W: Write>(tar: &mut tar::Builder<W>, name: &str, bytes: &[u8]) -> io::Result<()> {
+    let mut header = tar::Header::new_ustar();
+    header.set_entry_type(tar::EntryType::Regular);
+    header.set_mode(0o644);
+    header.set_uid(0);
+    header.set_gid(0);
+    header.set_mtime(0);
+    header.set_size(bytes.len() as u64);
+    tar.append_data(&mut header, name, bytes)
+}
+
+/// Ends a tar stream (two zero blocks) and hands back its writer.
+pub fn finish<W: Write>(tar: tar::Builder<W>) -> io::Result<W> {
+    tar.into_inner()
 }
 
 #[cfg(test)]
@@ -108,18 +100,38 @@ mod tests {
         assert_eq!(member_frame("000007.rgb.png"), Some(7));
     }
 
+    fn members(tar: &[u8]) -> Vec<(String, Vec<u8>)> {
+        let mut archive = tar::Archive::new(tar);
+        archive
+            .entries()
+            .unwrap()
+            .map(|entry| {
+                let mut entry = entry.unwrap();
+                let name = entry.path().unwrap().to_string_lossy().into_owned();
+                let mut bytes = Vec::new();
+                io::Read::read_to_end(&mut entry, &mut bytes).unwrap();
+                (name, bytes)
+            })
+            .collect()
+    }
+
     #[test]
     fn tar_headers_are_fixed_and_checksummed() {
-        let mut tar = Vec::new();
+        let mut tar = writer(Vec::new());
         append(&mut tar, "000000.json", b"{}\n").unwrap();
-        finish(&mut tar).unwrap();
+        let tar = finish(tar).unwrap();
         assert_eq!(tar.len(), 512 + 512 + 1024);
         let header = &tar[..512];
         assert_eq!(&header[..11], b"000000.json");
+        assert_eq!(&header[100..124], b"0000644\x000000000\x000000000\x00");
         assert_eq!(&header[124..136], b"00000000003\0");
         assert_eq!(&header[136..148], b"00000000000\0");
-        assert_eq!(&header[257..263], b"ustar\0");
-        let stored = u32::from_str_radix(std::str::from_utf8(&header[148..154]).unwrap(), 8);
+        assert_eq!(&header[257..265], b"ustar\x0000");
+        assert!(
+            header[265..].iter().all(|&b| b == 0),
+            "no user or group name"
+        );
+        let stored = u32::from_str_radix(std::str::from_utf8(&header[148..155]).unwrap(), 8);
         let mut blank = header.to_vec();
         blank[148..156].copy_from_slice(b"        ");
         assert_eq!(
@@ -127,5 +139,32 @@ mod tests {
             blank.iter().map(|&b| u32::from(b)).sum::<u32>()
         );
         assert_eq!(&tar[512..515], b"{}\n");
+        assert_eq!(
+            members(&tar),
+            [("000000.json".to_owned(), b"{}\n".to_vec())]
+        );
+    }
+
+    #[test]
+    fn member_names_over_100_bytes_round_trip() {
+        let long = format!("{}.rgb.png", "7".repeat(120));
+        let slashed = format!("{}/{}.json", "a".repeat(90), "b".repeat(60));
+        let write = || {
+            let mut tar = writer(Vec::new());
+            append(&mut tar, &long, b"long").unwrap();
+            append(&mut tar, &slashed, b"slashed").unwrap();
+            append(&mut tar, "000000.json", b"short").unwrap();
+            finish(tar).unwrap()
+        };
+        let tar = write();
+        assert_eq!(
+            members(&tar),
+            [
+                (long.clone(), b"long".to_vec()),
+                (slashed.clone(), b"slashed".to_vec()),
+                ("000000.json".to_owned(), b"short".to_vec()),
+            ]
+        );
+        assert_eq!(write(), tar, "the same members give the same bytes");
     }
 }

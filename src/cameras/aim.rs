@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{CameraPose, mm};
 use crate::model::PoseAngles;
+use crate::model::geometry::cos_sin_deg;
 use crate::spec::{CameraPath, CameraSpec, ValueRange};
 
 /// Ranges of a moving camera's aim, drawn per frame (degrees; height in metres).
@@ -75,12 +76,6 @@ pub(super) fn unit(bits: u64) -> f64 {
     ((bits >> 11) as f64) * (1.0 / (1u64 << 53) as f64)
 }
 
-/// `(cos, sin)` of `degrees`.
-pub(super) fn cos_sin(degrees: f64) -> (f64, f64) {
-    let (s, c) = libm::sincos(degrees * (std::f64::consts::PI / 180.0));
-    (c, s)
-}
-
 /// The pose of an eye at `ground` (`[x, z]`, metres) and `angles.height`, turned
 /// `angles.heading` to the right of the horizontal unit direction `dir` (`[x, z]`),
 /// pitched `angles.pitch` up from `base_pitch` (`(cos, sin)` of the pitch `dir` already
@@ -93,11 +88,11 @@ pub(super) fn aimed_pose(
     angles: PoseAngles,
     look: f64,
 ) -> CameraPose {
-    let (ch, sh) = cos_sin(angles.heading);
+    let (ch, sh) = cos_sin_deg(angles.heading);
     // Right of `dir` (x east, z south): clockwise seen from above.
     let right = [-dir[1], dir[0]];
     let h = [ch * dir[0] + sh * right[0], ch * dir[1] + sh * right[1]];
-    let (cp, sp) = cos_sin(angles.pitch);
+    let (cp, sp) = cos_sin_deg(angles.pitch);
     let (cp, sp) = (
         base_pitch.0 * cp - base_pitch.1 * sp,
         base_pitch.1 * cp + base_pitch.0 * sp,
@@ -106,7 +101,7 @@ pub(super) fn aimed_pose(
     // The level camera's right and up, then the roll turns up towards right.
     let right0 = [-h[1], 0.0, h[0]];
     let up0 = [-sp * h[0], cp, -sp * h[1]];
-    let (cr, sr) = cos_sin(angles.roll);
+    let (cr, sr) = cos_sin_deg(angles.roll);
     let up: [f64; 3] = std::array::from_fn(|k| micro(cr * up0[k] + sr * right0[k]));
     let eye = [ground[0], angles.height, ground[1]];
     CameraPose {
@@ -163,7 +158,7 @@ mod tests {
     #[test]
     fn a_base_pitch_adds_to_the_drawn_pitch() {
         // The line of sight is 30° up; a drawn −30° makes the camera level.
-        let base = cos_sin(30.0);
+        let base = cos_sin_deg(30.0);
         let p = aimed_pose([0.0, 0.0], [0.0, 1.0], base, angles(0.0, -30.0, 0.0), 4.0);
         assert_eq!(p.target, [0.0, 1.5, 4.0]);
     }

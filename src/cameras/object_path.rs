@@ -9,8 +9,9 @@ use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 use super::CameraPose;
-use super::aim::{Aim, aimed_pose, cos_sin, unit};
+use super::aim::{Aim, aimed_pose, unit};
 use crate::model::ParsedLayout;
+use crate::model::geometry::cos_sin_deg;
 use crate::rng;
 use crate::spec::ValueRange;
 
@@ -140,7 +141,7 @@ pub fn object_views(
 
 /// Unit `v` turned `degrees` clockwise seen from above (x east, z south).
 fn turned(v: [f64; 2], degrees: f64) -> [f64; 2] {
-    let (c, s) = cos_sin(degrees);
+    let (c, s) = cos_sin_deg(degrees);
     [c * v[0] - s * v[1], c * v[1] + s * v[0]]
 }
 

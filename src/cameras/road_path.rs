@@ -136,6 +136,7 @@ fn signed_unit(bits: u64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::geometry::cos_sin_deg;
     use crate::model::{Axis, Road};
     use crate::spec::ValueRange;
 
@@ -448,8 +449,8 @@ mod tests {
             } else {
                 d[1]
             };
-            let (ch, _) = super::super::aim::cos_sin(a.heading);
-            let (cp, _) = super::super::aim::cos_sin(a.pitch);
+            let (ch, _) = cos_sin_deg(a.heading);
+            let (cp, _) = cos_sin_deg(a.pitch);
             assert!((along - 10.0 * ch * cp).abs() < 2e-3, "{p:?}");
             if a.heading < 0.0 {
                 left += 1

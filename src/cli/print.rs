@@ -168,18 +168,19 @@ impl Printer {
     }
 }
 
-/// A one-line progress report of rendered frames, redrawn in place on a terminal (at most
-/// ten times a second) and printed once per path otherwise. The rate is shown once it
-/// means something: measured from the first frame over at least half a second.
+/// A one-line progress report of rendered frames: on a terminal an `indicatif` bar per
+/// camera path, redrawn in place (at most ten times a second); otherwise one line per path
+/// when it is done, and no bar at all. The rate is shown once it means something: measured
+/// from the first frame over at least half a second.
 pub fn progress_line(terminal: bool) -> crate::build::Progress {
     use std::sync::Mutex;
-    use std::time::{Duration, Instant};
+    use std::time::Instant;
     /// The path being rendered, when its first frame was reported (and how many were done
-    /// then), and when the line was last drawn.
+    /// then), and its bar on a terminal.
     struct PathProgress {
         path: String,
         first: (Instant, usize),
-        drawn: Instant,
+        bar: Option<indicatif::ProgressBar>,
     }
     let state: Mutex<Option<PathProgress>> = Mutex::new(None);
     std::sync::Arc::new(move |spec: &str, camera: &str, done: usize, total: usize| {
@@ -188,26 +189,51 @@ pub fn progress_line(terminal: bool) -> crate::build::Progress {
         let now = Instant::now();
         let current = match state.take() {
             Some(p) if p.path == path => p,
-            _ => PathProgress {
-                path: path.clone(),
-                first: (now, done),
-                drawn: now - Duration::from_secs(1),
-            },
+            previous => {
+                if let Some(bar) = previous.and_then(|p| p.bar) {
+                    bar.abandon();
+                }
+                PathProgress {
+                    bar: terminal.then(|| path_bar(&path, total)),
+                    path,
+                    first: (now, done),
+                }
+            }
         };
         let rate = frame_rate(current.first, (now, done));
         let finished = done == total;
-        let mut drawn = current.drawn;
-        if terminal && (finished || now.duration_since(drawn) >= Duration::from_millis(100)) {
-            eprint!("\r  rendering {path}: {done}/{total} frames{rate}   ");
-            if finished {
-                eprintln!();
+        match &current.bar {
+            Some(bar) => {
+                bar.set_message(rate);
+                bar.set_position(done as u64);
+                if finished {
+                    bar.finish();
+                }
             }
-            drawn = now;
-        } else if !terminal && finished {
-            eprintln!("  rendered {path}: {}{rate}", plural(total, "frame"));
+            None if finished => {
+                eprintln!(
+                    "  rendered {}: {}{rate}",
+                    current.path,
+                    plural(total, "frame")
+                );
+            }
+            None => {}
         }
-        *state = Some(PathProgress { drawn, ..current });
+        *state = Some(current);
     })
+}
+
+/// `  rendering <spec>/<camera>: 12/40 frames, 3.1 frames/s` on stderr, the rate its
+/// message.
+fn path_bar(path: &str, total: usize) -> indicatif::ProgressBar {
+    let target = indicatif::ProgressDrawTarget::stderr_with_hz(10);
+    let bar = indicatif::ProgressBar::with_draw_target(Some(total as u64), target);
+    let style =
+        indicatif::ProgressStyle::with_template("  rendering {prefix}: {pos}/{len} frames{msg}")
+            .expect("the template is valid");
+    bar.set_style(style);
+    bar.set_prefix(path.to_owned());
+    bar
 }
 
 /// ", 12.3 frames/s" from the first report to now, or nothing while too little has been
