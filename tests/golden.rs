@@ -6,10 +6,18 @@
 //! stage's bytes change while its versions stay, and names the constant to bump; it also
 //! fails when a version moved but the pins were not renewed. `CITYSPEC_BLESS=1 cargo test
 //! --test golden` rewrites the pins (after the bump).
+//!
+//! A digest says only "different": the golden city's `plan.json` and its street camera's
+//! `coco.json` are also kept whole as `insta` snapshots (`tests/snapshots/golden__*.snap`),
+//! so a change shows as a diff. Plain `cargo test` checks them against the committed files
+//! and fails on any difference, with the diff; no `cargo-insta` is needed. After a wanted
+//! change, rewrite them with `INSTA_UPDATE=always cargo test --test golden` (or review each
+//! with `cargo insta review`), beside the `CITYSPEC_BLESS=1` above, and commit both.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
+use std::sync::LazyLock;
 
 use cityspec::build::{self, BuildOptions, Cache, Stage, StageStatus};
 
@@ -70,8 +78,21 @@ fn digest(outputs: &BTreeMap<String, String>) -> String {
     cityspec::hash::sha256_hex(text.as_bytes())
 }
 
-/// Builds the golden city and returns each pinned output's digest.
-fn build_digests() -> BTreeMap<String, String> {
+/// What the tests read of one build of the golden city.
+struct Golden {
+    /// Each pinned output's digest.
+    digests: BTreeMap<String, String>,
+    /// `plan.json`, as written.
+    plan: String,
+    /// The street camera's `coco.json`.
+    coco: String,
+}
+
+/// The golden city, built once for all the tests here.
+static GOLDEN: LazyLock<Golden> = LazyLock::new(build_golden);
+
+/// Builds the golden city and reads each pinned output's digest and the snapshotted files.
+fn build_golden() -> Golden {
     let dir = tempfile::tempdir().unwrap();
     let options = BuildOptions {
         out_root: dir.path().join("out"),
@@ -104,12 +125,30 @@ fn build_digests() -> BTreeMap<String, String> {
         }
         digests.insert(name, digest(&outputs));
     }
-    digests
+    let read = |name: &str| std::fs::read_to_string(report.out_dir.join(name)).unwrap();
+    Golden {
+        digests,
+        plan: read("plan.json"),
+        coco: read("frames/street/coco.json"),
+    }
+}
+
+#[test]
+fn the_plan_is_as_snapshotted() {
+    insta::assert_snapshot!("plan.json", GOLDEN.plan);
+}
+
+#[test]
+fn the_street_cameras_coco_is_as_snapshotted() {
+    // Written one record a line; pretty-printed here, so a diff names the field that
+    // changed. Every byte is pinned by the digests anyway.
+    let coco: serde_json::Value = serde_json::from_str(&GOLDEN.coco).unwrap();
+    insta::assert_snapshot!("coco.json", serde_json::to_string_pretty(&coco).unwrap());
 }
 
 #[test]
 fn every_stage_output_is_pinned_to_its_versions() {
-    let digests = build_digests();
+    let digests = &GOLDEN.digests;
     let table = table();
     for (stage, _, _) in &table {
         assert!(

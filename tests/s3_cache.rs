@@ -351,11 +351,7 @@ fn s3_cache_gives_local_bytes_repairs_damage_and_collects_garbage() {
     );
     assert_same(&local, &dir.join("gc-out/small"), "after gc");
     // gc for another spec: everything of this one goes.
-    fs::write(
-        dir.join("other.toml"),
-        SPEC.replace("seed = 11", "seed = 12"),
-    )
-    .unwrap();
+    fs::write(dir.join("other.toml"), common::set(SPEC, "seed", 12)).unwrap();
     let said = gc("other.toml");
     // It shares a stage or two (the built-in facades) with small.toml: what the bucket
     // still holds is exactly what gc says it kept.

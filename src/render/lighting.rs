@@ -259,7 +259,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn presets_are_sane() {
+    fn day_has_a_unit_sun_and_no_emission_and_night_no_sun_and_a_darker_sky() {
         let day = Lighting::day();
         let d = day.sun_direction;
         let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];

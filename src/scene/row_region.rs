@@ -165,7 +165,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn subtract_cases() {
+    fn subtract_removes_the_second_spans_from_the_first() {
         type Spans = &'static [[u32; 2]];
         let cases: &[(Spans, Spans, Spans)] = &[
             (&[[0, 10]], &[], &[[0, 10]]),

@@ -7,7 +7,26 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 mod copy_tree;
+mod spec_edit;
 pub use copy_tree::copy_tree;
+pub use spec_edit::{SpecEdit, SpecValue, set};
+
+/// Frames the examples' cameras render in the tests (`spec`, key path, frames): far fewer
+/// than the examples ask, so the suite stays quick in debug builds. Other specs build as
+/// they are.
+const QUICK_FRAMES: &[(&str, &str, i64)] = &[
+    ("day", "cameras[0].frames", 4),   // street, 100
+    ("day", "cameras[1].frames", 2),   // aerial, 12
+    ("dusk", "cameras[0].frames", 4),  // street, 100
+    ("dusk", "cameras[1].frames", 2),  // aerial, 12
+    ("night", "cameras[0].frames", 4), // street, 100
+    ("night", "cameras[1].frames", 2), // aerial, 12
+    ("signs", "cameras[0].frames", 4), // street, 120
+    ("signs", "cameras[1].frames", 3), // signs (aimed), 60
+    ("text", "cameras[0].frames", 4),  // street, 100
+    ("text", "cameras[1].frames", 4),  // words (aimed), 100
+    ("text", "cameras[2].frames", 3),  // walk, 60
+];
 
 /// Runs the `cityspec` binary in `ws` with `args`, to the end.
 pub fn cityspec(ws: &Workspace, args: &[&str]) -> Output {
@@ -54,16 +73,14 @@ impl Workspace {
             )
             .unwrap();
         }
-        // Fewer frames than the examples render, so the suite stays quick in debug builds
-        // (60: text.toml's walk and signs.toml's aimed camera).
-        for entry in fs::read_dir(dir.path().join("specs")).unwrap() {
-            let path = entry.unwrap().path();
-            let text = fs::read_to_string(&path).unwrap();
-            let text = text
-                .replace("frames = 100", "frames = 4")
-                .replace("frames = 60", "frames = 3")
-                .replace("frames = 12", "frames = 2");
-            fs::write(&path, text).unwrap();
+        // Fewer frames than the examples render, so the suite stays quick in debug builds.
+        for (name, path, frames) in QUICK_FRAMES {
+            let spec = dir.path().join("specs").join(format!("{name}.toml"));
+            let text =
+                fs::read_to_string(&spec).unwrap_or_else(|e| panic!("{}: {e}", spec.display()));
+            let mut edit = SpecEdit::parse(&format!("specs/{name}.toml"), &text);
+            edit.set(path, *frames);
+            fs::write(&spec, edit.text()).unwrap();
         }
         // Specs name layout images and facade folders under assets/, relative to their folder.
         copy_tree(&repo.join("assets"), &dir.path().join("assets"));
@@ -77,31 +94,35 @@ impl Workspace {
     }
 
     /// Shrinks `specs/day.toml` to a quarter of its ground (384 px, 2 + 2 roads), 2 + 1
-    /// frames and about a tenth of its objects, keeping every kind of object, camera and
-    /// output file: for tests that build it many times over.
+    /// frames and about a tenth of most of its objects, keeping every kind of object, camera
+    /// and output file: for tests that build it many times over.
     pub fn shrink_day(&self) {
         self.shrink("day");
     }
 
     /// [`Workspace::shrink_day`] for another spec of the day city (`night`, `dusk`, …).
     pub fn shrink(&self, name: &str) {
-        for (from, to) in [
-            ("width = 768", "width = 384"),
-            ("height = 768", "height = 384"),
-            ("horizontal_roads = 3", "horizontal_roads = 2"),
-            ("vertical_roads = 3", "vertical_roads = 2"),
-            // The aerial camera's 2 first, then the street's 4.
-            ("frames = 2\n", "frames = 1\n"),
-            ("frames = 4", "frames = 2"),
-            ("count = 240", "count = 40"),
-            ("count = 120", "count = 20"),
-            ("count = 60\n", "count = 6\n"),
-            ("count = 450", "count = 40"),
-            ("count = 300", "count = 30"),
-            ("count = 500", "count = 50"),
-        ] {
-            self.edit_spec(name, from, to);
-        }
+        self.edit_spec(name, |spec| {
+            spec.set("layout.generate.width", 384)
+                .set("layout.generate.height", 384)
+                .set("layout.generate.horizontal_roads", 2)
+                .set("layout.generate.vertical_roads", 2)
+                .set("cameras[0].frames", 2)
+                .set("cameras[1].frames", 1);
+            // The street-name signs (16), traffic lights (14) and bicycles (120) keep their
+            // counts.
+            for (i, kind, count) in [
+                (0, "text", 40),
+                (3, "sign", 20),
+                (4, "mesh", 6),
+                (5, "tree", 40),
+                (6, "car", 30),
+                (7, "person", 50),
+            ] {
+                spec.expect(&format!("objects[{i}].kind"), kind)
+                    .set(&format!("objects[{i}].count"), count);
+            }
+        });
     }
 
     pub fn path(&self) -> &Path {
@@ -124,12 +145,21 @@ impl Workspace {
         quiet_options(self.out(), self.cache())
     }
 
-    /// Replaces `from` with `to` in a spec file (panics if `from` is absent).
-    pub fn edit_spec(&self, name: &str, from: &str, to: &str) {
+    /// Changes `specs/<name>.toml` through its parsed value: each change `change` makes
+    /// panics unless it takes effect (see [`SpecEdit`]).
+    pub fn edit_spec(&self, name: &str, change: impl FnOnce(&mut SpecEdit)) {
         let path = self.spec(name);
-        let text = fs::read_to_string(&path).unwrap();
-        assert!(text.contains(from), "{from:?} not in {}", path.display());
-        fs::write(&path, text.replacen(from, to, 1)).unwrap();
+        let text = fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let mut spec = SpecEdit::parse(&format!("specs/{name}.toml"), &text);
+        change(&mut spec);
+        fs::write(&path, spec.text()).unwrap();
+    }
+
+    /// Sets the value at key path `key` of `specs/<name>.toml` (see [`SpecEdit::set`]).
+    pub fn set(&self, name: &str, key: &str, value: impl SpecValue) {
+        self.edit_spec(name, |spec| {
+            spec.set(key, value);
+        });
     }
 }
 

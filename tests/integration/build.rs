@@ -107,7 +107,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
     let plan_before = fs::read(ws.out().join("day/plan.json")).unwrap();
-    ws.edit_spec("day", "spacing = 30 ", "spacing = 20 ");
+    ws.set("day", "lamps.spacing", 20);
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
     use StageStatus::{Cached, Ran};
     assert_eq!(
@@ -173,7 +173,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
 fn changing_buildings_leaves_lamps_and_layout_cached() {
     let ws = Workspace::with_spec("day");
     build::build(&ws.spec("day"), &ws.options()).unwrap();
-    ws.edit_spec("day", "gap = 2", "gap = 4");
+    ws.set("day", "buildings.gap", 4);
     let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
     use StageStatus::{Cached, Ran};
     assert_eq!(
@@ -313,7 +313,7 @@ fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
         ws.path().join("specs/drawn.png"),
     )
     .unwrap();
-    ws.edit_spec("drawn", "../assets/layouts/drawn.png", "drawn.png");
+    ws.set("drawn", "layout.image", "drawn.png");
     assert!(
         build::build(&ws.spec("drawn"), &ws.options())
             .unwrap()
@@ -369,7 +369,7 @@ fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says(
     assert!(err.to_string().contains("street_04.xml"), "{err}");
 
     // …and with on_error = "error" the build stops, naming the file, as bad input.
-    ws.edit_spec("cmp", "on_error = \"skip\"", "on_error = \"error\"");
+    ws.set("cmp", "facades.on_error", "error");
     let err = build::build(&ws.spec("cmp"), &ws.options()).unwrap_err();
     assert!(matches!(err, build::BuildError::Facades { .. }), "{err}");
     assert!(err.to_string().contains("street_04.xml"), "{err}");
@@ -442,9 +442,9 @@ fn street_annotations(ws: &Workspace, spec: &str) -> Vec<([f64; 4], [f64; 4], f6
 fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
     let ws = Workspace::with_spec("text");
     // Plates keep off windows and hidden walls, so partly hidden ones are rarer: more frames.
-    ws.edit_spec("text", "frames = 4", "frames = 24");
+    ws.set("text", "cameras[0].frames", 24);
     // Words on walls are seldom hidden (by a sign, a lamp, a corner): a high threshold.
-    ws.edit_spec("text", "min_fraction = 0.3", "min_fraction = 0.95");
+    ws.set("text", "annotations.min_fraction", 0.95);
     build::build(&ws.spec("text"), &ws.options()).unwrap();
     let kept = street_annotations(&ws, "text");
     assert!(kept.len() > 10, "{} annotations", kept.len());
@@ -459,7 +459,7 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
         );
     }
     // Without the fraction threshold, partly hidden words come back.
-    ws.edit_spec("text", "min_fraction = 0.95", "min_fraction = 0.0");
+    ws.set("text", "annotations.min_fraction", 0.0);
     build::build(&ws.spec("text"), &ws.options()).unwrap();
     let all = street_annotations(&ws, "text");
     let hidden = all.iter().filter(|(_, _, f)| *f < 0.95).count();
@@ -640,14 +640,13 @@ fn poses(ws: &Workspace, name: &str) -> serde_json::Value {
 #[test]
 fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_camera() {
     let ws = Workspace::with_spec("text");
-    // The street camera's ranges, narrowed and widened.
-    ws.edit_spec(
-        "text",
-        "frames = 4\nheight = [1.4, 2.2]\nheading = [-80, 80]",
-        "frames = 4\nheight = [1.4, 2.0]\nheading = [-60, 60]",
-    );
-    ws.edit_spec("text", "roll = [-2, 2]", "roll = [-5, 5]");
-    ws.edit_spec("text", "frames = 4\ndistance", "frames = 3\ndistance");
+    ws.edit_spec("text", |spec| {
+        // The street camera's ranges, narrowed and widened; one frame fewer of the words.
+        spec.set("cameras[0].height", [1.4, 2.0])
+            .set("cameras[0].heading", [-60, 60])
+            .set("cameras[0].roll", [-5, 5])
+            .set("cameras[1].frames", 3);
+    });
     in_pool(1, || build::build(&ws.spec("text"), &ws.options())).unwrap();
     let first = tree(&ws.out());
     let other = Workspace::with_spec("text");
@@ -669,12 +668,13 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
     assert_eq!(words["frames"].as_array().unwrap().len(), 3);
 
     // A camera added in front of the others leaves their poses as they were.
-    ws.edit_spec(
-        "text",
-        "name = \"street\"",
-        "name = \"extra\"\nframes = 2\nheading = [-90, 90]\n\n\
-         [[cameras]]\nname = \"street\"",
-    );
+    ws.edit_spec("text", |spec| {
+        spec.expect("cameras[0].name", "street").insert_table(
+            "cameras",
+            0,
+            "name = \"extra\"\nframes = 2\nheading = [-90, 90]",
+        );
+    });
     build::build(&ws.spec("text"), &ws.options()).unwrap();
     assert_eq!(poses(&ws, "street"), street);
     assert_eq!(poses(&ws, "words"), words);

@@ -7,7 +7,7 @@ use std::fs;
 use std::time::{Duration, SystemTime};
 
 use cityspec::build::{self, GcOptions};
-use common::Workspace;
+use common::{SpecEdit, Workspace};
 
 fn ran(report: &build::BuildReport) -> Vec<&'static str> {
     report.ran().map(|s| s.stage).collect()
@@ -20,10 +20,11 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
     fs::write(&small, include_str!("../fixtures/shards.toml")).unwrap();
     // Another city (another seed and name): nothing in common with the first but facades.
     let other_spec = ws.path().join("specs/other.toml");
-    let other_text = include_str!("../fixtures/shards.toml")
-        .replace("name = \"small\"", "name = \"other\"")
-        .replace("seed = 11", "seed = 12")
-        .replace("frames = 43", "frames = 3");
+    let other_text = SpecEdit::parse("shards.toml", include_str!("../fixtures/shards.toml"))
+        .set("name", "other")
+        .set("seed", 12)
+        .set("cameras[0].frames", 3)
+        .text();
     fs::write(&other_spec, other_text).unwrap();
     let options = ws.options();
     build::build(&small, &options).unwrap();

@@ -98,7 +98,7 @@ fn thread_count_does_not_change_bytes() {
 #[test]
 fn invalid_spec_exits_2_with_location_and_writes_nothing() {
     let ws = Workspace::with_spec("day");
-    ws.edit_spec("day", "road_width = 32", "road_width = 3200");
+    ws.set("day", "layout.generate.road_width", 3200);
     let out = cityspec(&ws, &["build", "specs/day.toml"]);
     assert_eq!(out.status.code(), Some(2));
     let text = stderr(&out);
@@ -146,7 +146,7 @@ fn two_specs_with_one_name_are_refused() {
 }
 
 #[test]
-fn validate_and_schema() {
+fn validate_accepts_the_examples_and_schema_prints_the_committed_schema() {
     let ws = Workspace::with_spec("day");
     let out = cityspec(&ws, &["validate", "specs/day.toml", "specs/mirrored.toml"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
@@ -275,7 +275,7 @@ fn a_build_killed_after_any_write_leaves_the_old_folder_or_the_new() {
     let text = fs::read_to_string(ws.spec("day")).unwrap();
     fs::write(
         ws.path().join("specs/day-b.toml"),
-        text.replacen("seed = 7", "seed = 8", 1),
+        common::set(&text, "seed", 8),
     )
     .unwrap();
     let build = |spec: &str, out: &str, abort_after: Option<u64>| {
@@ -475,11 +475,10 @@ fn verify_names_a_poisoned_entry() {
 #[test]
 fn word_files_feed_the_text_and_bad_ones_exit_2() {
     let ws = Workspace::with_spec("text");
-    ws.edit_spec(
-        "text",
-        "case = \"mixed\"",
-        "case = \"upper\"\nwords_file = \"shops.txt\"",
-    );
+    ws.edit_spec("text", |spec| {
+        spec.set("objects[0].case", "upper")
+            .insert("objects[0].words_file", "shops.txt");
+    });
     let words = ws.path().join("specs/shops.txt");
     let bad: [(Option<&[u8]>, &str); 3] = [
         (None, "objects[0].words_file"),
@@ -547,11 +546,11 @@ fn objects_placed_short_of_count_warn_and_fail_under_strict() {
     assert!(ws.path().join("out/crowded/manifest.json").is_file());
 
     // An entry that fits places all it asks for: no warning, and --strict builds.
-    ws.edit_spec(
-        "crowded",
-        "kind = \"text\"\nlabel = \"text\"\ncount = 5000",
-        "kind = \"sign\"\nlabel = \"traffic_sign\"\ncount = 2",
-    );
+    ws.edit_spec("crowded", |spec| {
+        spec.set("objects[0].kind", "sign")
+            .set("objects[0].label", "traffic_sign")
+            .set("objects[0].count", 2);
+    });
     let fits = cityspec(&ws, &["build", "--strict", "specs/crowded.toml"]);
     let text = stderr(&fits);
     assert_eq!(fits.status.code(), Some(0), "{text}");
@@ -575,7 +574,7 @@ fn validate_refuses_a_truncated_facade_photo_as_build_does() {
         stderr(&out)
     );
     // on_error = "error": refused, naming the photo, with exit code 2.
-    ws.edit_spec("cmp", "on_error = \"skip\"", "on_error = \"error\"");
+    ws.set("cmp", "facades.on_error", "error");
     let out = cityspec(&ws, &["validate", "specs/cmp.toml"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("street_04.jpg"), "{}", stderr(&out));

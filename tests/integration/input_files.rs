@@ -47,7 +47,10 @@ fn make_fifo(path: &Path) {
 #[test]
 fn a_fifo_as_spec_layout_image_model_or_word_file_exits_2_at_once() {
     let ws = Workspace::with_spec("day");
-    ws.edit_spec("text", "case = \"mixed\"", "words_file = \"words.fifo\"");
+    ws.edit_spec("text", |spec| {
+        spec.remove("objects[0].case")
+            .insert("objects[0].words_file", "words.fifo");
+    });
     make_fifo(&ws.path().join("specs/fifo.toml"));
     make_fifo(&ws.path().join("specs/words.fifo"));
     make_fifo(&ws.path().join("assets/layouts/drawn.png"));

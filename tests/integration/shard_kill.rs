@@ -25,9 +25,7 @@ const SPEC: &str = include_str!("../fixtures/shards.toml");
 /// chunk. At 256 × 192 a chunk takes about 170 ms in a debug build: a wide window for a
 /// kill that polls every millisecond to land inside the next chunk.
 fn spec_text() -> String {
-    let spec = SPEC.replace("resolution = [64, 48]", "resolution = [256, 192]");
-    assert_ne!(spec, SPEC, "the fixture's street resolution changed");
-    spec
+    common::set(SPEC, "cameras[0].resolution", [256, 192])
 }
 
 /// When a shard is killed.

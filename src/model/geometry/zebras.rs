@@ -148,7 +148,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn free_stretches_cases() {
+    fn free_stretches_are_the_unblocked_gaps_of_the_range() {
         type Spans = Vec<[f64; 2]>;
         let cases: [(Spans, Spans); 5] = [
             (vec![], vec![[0.0, 100.0]]),

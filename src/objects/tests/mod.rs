@@ -1,0 +1,134 @@
+//! Objects tests on the default 768 × 768 city (layout → parse → lamps → place, builtin
+//! facade sizes) with text, sign and mesh entries: the city and entry helpers they share,
+//! one file per kind of object.
+
+use std::collections::BTreeMap;
+
+use image::RgbImage;
+
+use super::*;
+use crate::model::{Facade, Lamp, Roof};
+use crate::spec::{Ground, ObjectKind, TextCase};
+use crate::test_support::{TestCity, test_city};
+
+mod entries;
+mod models;
+mod people;
+mod signs;
+mod text;
+mod vehicles;
+
+const SEED: u64 = 42;
+const BENCH: &str = "models/bench.obj";
+
+struct City {
+    image: RgbImage,
+    layout: ParsedLayout,
+    lamps: Vec<Lamp>,
+    buildings: Vec<Building>,
+    facades: FacadeSet,
+    meshes: BTreeMap<String, MeshFiles>,
+}
+
+/// Three facades 12, 15 and 21 m high (10, 14, 18 m wide).
+fn facade_set() -> FacadeSet {
+    let texture = Texture::from_rgb("t", RgbImage::new(4, 4));
+    let facade = |name: &str, floors: u32, width: f64| Facade {
+        name: name.to_owned(),
+        floors,
+        height: f64::from(floors) * 3.0,
+        width,
+        molding: [0, 0, 0],
+        roof: 0,
+        windows: Vec::new(),
+        texture: texture.clone(),
+    };
+    FacadeSet {
+        facades: vec![
+            facade("a", 4, 10.0),
+            facade("b", 5, 14.0),
+            facade("c", 7, 18.0),
+        ],
+        roofs: vec![Roof {
+            name: "r".to_owned(),
+            colour: [0, 0, 0],
+            tile: 3.0,
+            texture,
+        }],
+    }
+}
+
+fn city() -> City {
+    let facades = facade_set();
+    let metric: Vec<f64> = facades.facades.iter().map(|f| f.width).collect();
+    let TestCity {
+        image,
+        layout,
+        lamps,
+        buildings,
+    } = test_city(SEED, &metric);
+    let bench = MeshFiles {
+        obj: include_bytes!("../../../assets/models/bench.obj").to_vec(),
+        mtl: Some(include_bytes!("../../../assets/models/bench.mtl").to_vec()),
+        textures: BTreeMap::new(),
+    };
+    City {
+        image,
+        layout,
+        lamps,
+        buildings,
+        facades,
+        meshes: BTreeMap::from([(BENCH.to_owned(), bench)]),
+    }
+}
+
+fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
+    toml::from_str(&format!(
+        "kind = {:?}\nlabel = {label:?}\ncount = {count}\n",
+        kind.name()
+    ))
+    .unwrap()
+}
+
+fn bench(count: u32, on: Ground) -> ObjectSpec {
+    ObjectSpec {
+        model: Some(BENCH.to_owned()),
+        scale: [0.8, 1.2],
+        on,
+        ..spec(ObjectKind::Mesh, "bench", count)
+    }
+}
+
+fn run(city: &City, specs: &[ObjectSpec]) -> Result<Inserted, ObjectsError> {
+    insert(&input(city, specs))
+}
+
+fn input<'a>(city: &'a City, specs: &'a [ObjectSpec]) -> ObjectsInput<'a> {
+    ObjectsInput {
+        specs,
+        layout: &city.layout,
+        lamps: &city.lamps,
+        buildings: &city.buildings,
+        facades: &city.facades,
+        widths: None,
+        meshes: &city.meshes,
+        metres_per_pixel: 1.0,
+        seed: SEED,
+    }
+}
+
+fn all_kinds() -> Vec<ObjectSpec> {
+    vec![
+        ObjectSpec {
+            case: TextCase::Mixed,
+            words: [1, 3],
+            ..spec(ObjectKind::Text, "text", 40)
+        },
+        spec(ObjectKind::Sign, "traffic_sign", 25),
+        bench(10, Ground::Sidewalk),
+        ObjectSpec {
+            label: "car".to_owned(),
+            ..bench(6, Ground::Lane)
+        },
+    ]
+}

@@ -1,0 +1,298 @@
+//! Pedestrians: standing in the strips, waiting at and walking across zebra crossings.
+
+use super::*;
+use crate::model::Axis;
+use crate::model::geometry::{KERB_Y, RoadRect};
+
+#[test]
+fn people_stand_in_the_strips_apart_from_each_other_and_from_trunks() {
+    let city = city();
+    let specs = [
+        spec(ObjectKind::Sign, "traffic_sign", 60),
+        spec(ObjectKind::Tree, "tree", 200),
+        spec(ObjectKind::Car, "car", 300),
+        spec(ObjectKind::Person, "person", 300),
+    ];
+    let mpp = 0.55;
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    // Where an object stands: the mean of its vertices on its lowest level (a person's
+    // soles, a tree trunk's foot), and that level.
+    let foot = |meshes: &[crate::model::Mesh]| -> ([f64; 2], f64) {
+        let points: Vec<[f64; 3]> = meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.map(f64::from))
+            .collect();
+        let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        let soles: Vec<&[f64; 3]> = points.iter().filter(|p| p[1] < low + 1e-4).collect();
+        let n = soles.len() as f64;
+        let mean = soles
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+        (mean, low)
+    };
+    let people: Vec<[f64; 2]> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "person")
+        .map(|o| {
+            let (at, low) = foot(&o.meshes);
+            assert!((low - KERB_Y).abs() < 1e-4, "{} stands at {low}", o.name);
+            assert!(o.name.starts_with("person_"));
+            at
+        })
+        .collect();
+    assert_eq!(inserted.placed[3] as usize, people.len());
+    assert!(people.len() >= 250, "{} people", people.len());
+    let trunks: Vec<[f64; 2]> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "tree")
+        .map(|o| foot(&o.meshes[..1]).0)
+        .collect();
+    let apart = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    // Soles centre 2 cm ahead of the spot a person took: 5 cm of slack.
+    for (i, &p) in people.iter().enumerate() {
+        for &q in &people[i + 1..] {
+            assert!(apart(p, q) >= 2.0 * person::ROOM - 0.05, "{p:?} {q:?}");
+        }
+        for &t in &trunks {
+            assert!(
+                apart(p, t) >= person::ROOM + tree::TRUNK_ROOM - 0.05,
+                "{p:?} {t:?}"
+            );
+        }
+        // Off the roads: in a strip, at least CURB_ROOM from the curb.
+        for r in &city.layout.roads {
+            let px = RoadRect::of(r);
+            let inside = (px.x[0] * mpp - person::CURB_ROOM + 0.05
+                ..=px.x[1] * mpp + person::CURB_ROOM - 0.05)
+                .contains(&p[0])
+                && (px.y[0] * mpp - person::CURB_ROOM + 0.05
+                    ..=px.y[1] * mpp + person::CURB_ROOM - 0.05)
+                    .contains(&p[1]);
+            assert!(!inside, "{p:?} on or by road {r:?}");
+        }
+    }
+}
+
+/// Every zebra crossing of `city` at `mpp` metres a pixel: its road's index and its
+/// along-road range, metres.
+fn zebras_of(city: &City, mpp: f64) -> Vec<(usize, [f64; 2])> {
+    crate::model::geometry::zebras::road_stretches(&city.layout, mpp)
+        .into_iter()
+        .enumerate()
+        .flat_map(|(i, s)| s.zebras.into_iter().map(move |(z, _)| (i, z)))
+        .collect()
+}
+
+/// An object's middle seen from above (the mean of its vertices' x and z) and its lowest
+/// point's height.
+fn plan_middle_and_low(object: &SceneObject) -> ([f64; 2], f64) {
+    let points: Vec<[f64; 3]> = object
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .map(|p| p.map(f64::from))
+        .collect();
+    let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+    let n = points.len() as f64;
+    let mid = points
+        .iter()
+        .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[2] / n]);
+    (mid, low)
+}
+
+#[test]
+fn crossers_walk_across_the_zebras_near_the_centre_line() {
+    use crate::model::geometry::MARKING_Y;
+    use crate::objects::person::ZEBRA_REACH;
+    let city = city();
+    let mpp = 0.55;
+    let specs = [
+        spec(ObjectKind::Car, "car", 200),
+        ObjectSpec {
+            crossing: 1.0,
+            ..spec(ObjectKind::Person, "person", 40)
+        },
+    ];
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    let zebras = zebras_of(&city, mpp);
+    assert!(!zebras.is_empty());
+    let people: Vec<&SceneObject> = inserted
+        .objects
+        .iter()
+        .filter(|o| o.class == "person")
+        .collect();
+    assert_eq!(people.len(), 40);
+    assert_eq!(inserted.placed[1], 40);
+    for person in people {
+        let (mid, low) = plan_middle_and_low(person);
+        assert!((low - MARKING_Y).abs() < 1e-4, "{} at {low}", person.name);
+        // Its middle lies on a zebra, within reach of the centre line.
+        let on_zebra = zebras.iter().any(|&(i, [a, b])| {
+            let road = &city.layout.roads[i];
+            let (along, across) = match road.axis {
+                Axis::Horizontal => (mid[0], mid[1]),
+                Axis::Vertical => (mid[1], mid[0]),
+            };
+            a - 0.1 <= along
+                && along <= b + 0.1
+                && (across - road.line * mpp).abs() <= ZEBRA_REACH + 0.1
+        });
+        assert!(on_zebra, "{} at {mid:?}", person.name);
+    }
+    // Without crossers an entry places no one on the road.
+    let specs = [spec(ObjectKind::Person, "person", 40)];
+    let strips = run(&city, &specs).unwrap();
+    for person in &strips.objects {
+        let low = person
+            .meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| f64::from(p[1]))
+            .fold(f64::MAX, f64::min);
+        assert!((low - KERB_Y).abs() < 1e-4);
+    }
+}
+
+#[test]
+fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
+    use crate::objects::person::{CURB_ROOM, ROOM, WAITING_DEPTH};
+    let city = city();
+    let mpp = 0.55;
+    let zebras = zebras_of(&city, mpp);
+    // Where a point in metres lies against zebra `i`'s road: along it, and how far past
+    // its nearer curb (negative on the road).
+    let beside = |i: usize, p: [f64; 2]| {
+        let road = &city.layout.roads[i];
+        let (along, across) = match road.axis {
+            Axis::Horizontal => (p[0], p[1]),
+            Axis::Vertical => (p[1], p[0]),
+        };
+        let (low, high) = (road.edges[0] * mpp, road.edges[1] * mpp);
+        (along, (low - across).max(across - high))
+    };
+    let at_an_end = |p: [f64; 2], slack: f64| {
+        zebras.iter().any(|&(i, [a, b])| {
+            let (along, past) = beside(i, p);
+            a - slack <= along
+                && along <= b + slack
+                && CURB_ROOM - slack <= past
+                && past <= CURB_ROOM + WAITING_DEPTH + slack
+        })
+    };
+    // The spots: at a zebra's end in the strip, apart, their travel straight at the road.
+    let specs: [ObjectSpec; 0] = [];
+    let objects_input = ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    };
+    let mut spots = crate::objects::ground_spots::GroundSpots::new(&objects_input);
+    let mut rng = crate::rng::stream(7, "test", 0);
+    let mut found = 0;
+    for k in 0..20 {
+        let from_curb = CURB_ROOM + WAITING_DEPTH * f64::from(k % 3) / 2.0;
+        let Some(spot) = spots.zebra_kerb(&mut rng, ROOM, from_curb, 40) else {
+            continue;
+        };
+        found += 1;
+        assert!(at_an_end(spot.position, 1e-6), "{:?}", spot.position);
+        let road = city
+            .layout
+            .roads
+            .iter()
+            .find(|r| r.id == spot.road)
+            .unwrap();
+        let step = spot.position.map(|v| v / mpp);
+        let ahead = [step[0] + spot.travel[0], step[1] + spot.travel[1]];
+        let centre = |q: [f64; 2]| match road.axis {
+            Axis::Horizontal => (q[1] - road.line).abs(),
+            Axis::Vertical => (q[0] - road.line).abs(),
+        };
+        assert!(
+            (centre(step) - centre(ahead) - 1.0).abs() < 1e-9,
+            "{:?} from {:?}",
+            spot.travel,
+            spot.position
+        );
+    }
+    assert!(found >= 15, "{found}");
+    // An entry that waits: all placed, on the kerb, and those at the ends are as many
+    // as the ends hold (the others stand in the strips).
+    let specs = [ObjectSpec {
+        waiting: 1.0,
+        ..spec(ObjectKind::Person, "person", 30)
+    }];
+    let inserted = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    assert_eq!(inserted.placed[0], 30);
+    let mut waiting = 0;
+    for person in &inserted.objects {
+        let (mid, low) = plan_middle_and_low(person);
+        assert!((low - KERB_Y).abs() < 1e-4, "{} at {low}", person.name);
+        if at_an_end(mid, ROOM) {
+            waiting += 1;
+        }
+    }
+    assert!(waiting >= 15, "{waiting} of 30 at the zebras' ends");
+    // Without `waiting`, the same entry's people stand along the strips: few by chance
+    // at a zebra's end.
+    let specs = [spec(ObjectKind::Person, "person", 30)];
+    let strips = insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(&city, &specs)
+    })
+    .unwrap();
+    let by_chance = strips
+        .objects
+        .iter()
+        .filter(|person| at_an_end(plan_middle_and_low(person).0, ROOM))
+        .count();
+    assert!(by_chance < waiting / 2, "{by_chance} vs {waiting}");
+}
+
+#[test]
+fn zebra_spots_travel_across_their_road_and_never_overlap() {
+    let city = city();
+    let specs: [ObjectSpec; 0] = [];
+    let input = input(&city, &specs);
+    let mut spots = crate::objects::ground_spots::GroundSpots::new(&input);
+    let mut rng = crate::rng::stream(7, "test", 0);
+    let mut taken: Vec<[f64; 2]> = Vec::new();
+    for _ in 0..30 {
+        let Some(spot) = spots.zebra(&mut rng, 0.6, 2.4, 40) else {
+            continue;
+        };
+        let road = city
+            .layout
+            .roads
+            .iter()
+            .find(|r| r.id == spot.road)
+            .unwrap();
+        let across = match road.axis {
+            Axis::Horizontal => [0.0, 1.0],
+            Axis::Vertical => [1.0, 0.0],
+        };
+        let d = spot.travel[0] * across[0] + spot.travel[1] * across[1];
+        assert!((d.abs() - 1.0).abs() < 1e-12, "{:?}", spot.travel);
+        for p in &taken {
+            let gap =
+                ((p[0] - spot.position[0]).powi(2) + (p[1] - spot.position[1]).powi(2)).sqrt();
+            assert!(gap >= 1.2 - 1e-9, "{gap}");
+        }
+        taken.push(spot.position);
+    }
+    assert!(taken.len() >= 20, "{}", taken.len());
+}

@@ -1,0 +1,143 @@
+//! Buildings: footprints, heights, walls and how their facades tile.
+
+use std::collections::BTreeSet;
+
+use super::*;
+use crate::model::geometry::{KERB_Y, cross, dot, sub};
+
+#[test]
+fn buildings_stand_on_their_footprints_as_tall_as_their_facades() {
+    let city = city(None);
+    let scene = scene_of(&city, None);
+    let buildings: Vec<&SceneObject> = of_class(&scene, "building").collect();
+    for (object, building) in buildings.iter().zip(&city.buildings) {
+        let (lo, hi) = bounds(object);
+        let fp = building.footprint;
+        assert_eq!(
+            [lo[0], lo[2]],
+            [f64::from(fp.x0), f64::from(fp.y0)],
+            "{}",
+            object.name
+        );
+        assert_eq!(
+            [hi[0], hi[2]],
+            [f64::from(fp.x1), f64::from(fp.y1)],
+            "{}",
+            object.name
+        );
+        let facade = &city.facades.facades[building.kind as usize];
+        assert_eq!(
+            f64::from(fp.width()),
+            facade.width,
+            "paper: footprint = facade width"
+        );
+        assert!((lo[1] - KERB_Y).abs() < 1e-6);
+        assert!(
+            (hi[1] - lo[1] - facade.height).abs() < 1e-4,
+            "{}",
+            object.name
+        );
+        let walls = &scene.materials[object.meshes[0].material as usize];
+        assert_eq!(walls.name, format!("facade_{}", facade.name));
+        let roof = &scene.materials[object.meshes[1].material as usize];
+        let roof_name = &city.facades.roofs[facade.roof as usize].name;
+        assert_eq!(roof.name, format!("roof_{roof_name}"));
+    }
+    // One material per facade texture and per roof texture, shared by their buildings.
+    let facade_materials = scene
+        .materials
+        .iter()
+        .filter(|m| m.name.starts_with("facade_"));
+    assert_eq!(facade_materials.count(), 3);
+    let roof_materials = scene
+        .materials
+        .iter()
+        .filter(|m| m.name.starts_with("roof_"));
+    assert_eq!(roof_materials.count(), 2);
+}
+
+/// u range of the walls of each building (min, max), and the building's wall width.
+fn wall_u(scene: &Scene, city: &City) -> Vec<(f32, f32, f64, usize)> {
+    of_class(scene, "building")
+        .zip(&city.buildings)
+        .map(|(object, building)| {
+            let walls = &object.meshes[0];
+            let lo = walls
+                .uvs
+                .iter()
+                .map(|uv| uv[0])
+                .fold(f32::INFINITY, f32::min);
+            let hi = walls
+                .uvs
+                .iter()
+                .map(|uv| uv[0])
+                .fold(f32::NEG_INFINITY, f32::max);
+            let name = &scene.materials[walls.material as usize].name;
+            let facade = city
+                .facades
+                .facades
+                .iter()
+                .position(|f| format!("facade_{}", f.name) == *name)
+                .unwrap();
+            (lo, hi, f64::from(building.footprint.width()), facade)
+        })
+        .collect()
+}
+
+#[test]
+fn wall_u_spans_one_facade_or_tiles_it_by_width() {
+    let city_a = city(None);
+    for (lo, hi, _, _) in wall_u(&scene_of(&city_a, None), &city_a) {
+        assert_eq!((lo, hi), (0.0, 1.0));
+    }
+    let widths = [12.0, 25.0];
+    let city_b = city(Some(&widths));
+    let scene = scene_of(&city_b, Some(&widths));
+    let mut used = BTreeSet::new();
+    for (lo, hi, width, facade) in wall_u(&scene, &city_b) {
+        let want = (width / city_b.facades.facades[facade].width) as f32;
+        assert_eq!((lo, hi), (0.0, want), "width {width}, facade {facade}");
+        used.insert(facade);
+    }
+    // The seeded choice uses every facade across a thousand buildings.
+    assert_eq!(used.len(), 3);
+    for object in of_class(&scene, "building") {
+        let v: BTreeSet<u32> = object.meshes[0]
+            .uvs
+            .iter()
+            .map(|uv| uv[1].to_bits())
+            .collect();
+        assert_eq!(v, BTreeSet::from([0.0f32.to_bits(), 1.0f32.to_bits()]));
+    }
+}
+
+#[test]
+fn building_walls_face_outwards_with_the_facade_top_at_the_roof() {
+    let city = city(None);
+    let scene = scene_of(&city, None);
+    for object in of_class(&scene, "building").take(50) {
+        let (lo, hi) = bounds(object);
+        let centre = [
+            (lo[0] + hi[0]) / 2.0,
+            (lo[1] + hi[1]) / 2.0,
+            (lo[2] + hi[2]) / 2.0,
+        ];
+        let walls = &object.meshes[0];
+        assert_eq!(walls.indices.len(), 4 * 6);
+        for (t, normal) in triangles(walls) {
+            let g = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+            let mid = [
+                (t[0][0] + t[1][0] + t[2][0]) / 3.0,
+                (t[0][1] + t[1][1] + t[2][1]) / 3.0,
+                (t[0][2] + t[1][2] + t[2][2]) / 3.0,
+            ];
+            assert!(dot(g, sub(mid, centre)) > 0.0, "{}: {t:?}", object.name);
+            assert!(dot(g, normal) > 0.0, "{}: {t:?}", object.name);
+            assert_eq!(g[1], 0.0, "walls are vertical");
+        }
+        for (p, uv) in walls.positions.iter().zip(&walls.uvs) {
+            let at_top = f64::from(p[1]) == hi[1];
+            assert_eq!(uv[1], if at_top { 0.0 } else { 1.0 }, "{}", object.name);
+        }
+    }
+}
