@@ -17,7 +17,7 @@ use std::hint::black_box;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use cityspec::build::{self, BuildOptions, widths_px};
+use cityspec::driver::{self, BuildOptions, widths_px};
 use cityspec::spec::{GenerateSpec, Palette, Spec};
 use cityspec::{lamps, layout, mirror, parse, place, rng};
 use support::{bench_runs, copy_tree, day_without_cameras, repo};
@@ -38,7 +38,7 @@ fn main() {
 }
 
 fn stages(label: &str, ops: &[u8], runs: usize) {
-    let spec: Spec = build::load_spec(&repo().join("specs/day.toml")).unwrap();
+    let spec: Spec = driver::load_spec(&repo().join("specs/day.toml")).unwrap();
     let generate: GenerateSpec = spec.layout.generate.clone().unwrap();
     let palette = Palette::default();
     // Fixed widths, so the figure measures placement, not the facade set's choice of sizes.
@@ -130,7 +130,7 @@ fn noop_case(label: &str, text: &str, runs: usize, cold_runs: usize) {
         let _ = std::fs::remove_dir_all(&options.cache_dir);
         let _ = std::fs::remove_dir_all(&options.out_root);
         let cold = Instant::now();
-        let report = build::build(&spec, &options).unwrap();
+        let report = driver::build(&spec, &options).unwrap();
         let total = cold.elapsed();
         cold_times.push(total);
         // A stage's runs summed (one `frames` per camera); the rest of the time is the
@@ -149,7 +149,7 @@ fn noop_case(label: &str, text: &str, runs: usize, cold_runs: usize) {
     let mut lib = Vec::new();
     for _ in 0..runs {
         let start = Instant::now();
-        let report = build::build(&spec, &options).unwrap();
+        let report = driver::build(&spec, &options).unwrap();
         lib.push(start.elapsed());
         assert!(report.up_to_date());
     }

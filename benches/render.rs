@@ -23,7 +23,7 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
 
-use cityspec::build::{PathRenderInput, path_render_input};
+use cityspec::driver::{PathRenderInput, path_render_input};
 use cityspec::render::{self, CameraPose, Lighting, Sky, develop};
 use support::{bench_runs, cpu_ms, repo};
 

@@ -1,8 +1,10 @@
 //! cityspec: a versioned TOML spec in, a synthetic city dataset out.
 //!
 //! The crate is a compiler in stages (see `ARCHITECTURE.md`). Each stage is a pure function
-//! from one named type to the next; only [`build`] knows their order, touches the file
-//! system and keeps the content-addressed cache; only [`cli`] prints.
+//! from one named type to the next; only [`driver`] knows their order (its stage table,
+//! `driver::Stage`), touches the file system and keeps the content-addressed [`cache`]
+//! (which knows no stage) and the [`out_dir`] it writes (lock, manifest, the whole-folder
+//! replace), both with [`atomic_file`]; only [`cli`] prints.
 //!
 //! | stage | module | consumes | produces |
 //! |---|---|---|---|
@@ -35,10 +37,12 @@
 //! tests that need another stage's output get it through `test_support`.
 
 pub mod annotate;
-pub mod build;
+pub mod atomic_file;
+pub mod cache;
 pub mod cameras;
 pub mod cli;
 pub mod diagnostic;
+pub mod driver;
 pub mod export;
 pub mod facades;
 pub mod hash;
@@ -47,6 +51,7 @@ pub mod layout;
 pub mod mirror;
 pub mod model;
 pub mod objects;
+pub mod out_dir;
 pub mod parse;
 pub mod place;
 pub mod plan;

@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::sync::LazyLock;
 
-use cityspec::build::{self, BuildOptions, Cache, Stage, StageStatus};
+use cityspec::driver::{self, BuildOptions, Cache, Stage, StageStatus};
 
 const PINS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/digests.toml");
 const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/city.toml");
@@ -65,7 +65,7 @@ fn table() -> Vec<Pinned> {
 /// "render::VERSION 3, cameras::VERSION 3, codec::VERSION 2".
 fn versions_text(versions: &[(&str, u32)]) -> String {
     let mut all: Vec<String> = versions.iter().map(|(n, v)| format!("{n} {v}")).collect();
-    all.push(format!("codec::VERSION {}", build::CODEC_VERSION));
+    all.push(format!("codec::VERSION {}", driver::CODEC_VERSION));
     all.join(", ")
 }
 
@@ -99,7 +99,7 @@ fn build_golden() -> Golden {
         cache_dir: dir.path().join("cache"),
         ..BuildOptions::default()
     };
-    let report = build::build(Path::new(SPEC), &options).unwrap();
+    let report = driver::build(Path::new(SPEC), &options).unwrap();
     let cache = Cache::new(&options.cache_dir);
     let mut digests = BTreeMap::new();
     for run in report.stages.iter().filter(|r| !r.key.is_empty()) {

@@ -137,7 +137,7 @@ fn the_lib_rs_map_names_every_public_module() {
     );
 }
 
-const TABLE_START: &str = "<!-- stage table: made by cityspec::build::key_table; \
+const TABLE_START: &str = "<!-- stage table: made by cityspec::driver::key_table; \
                            CITYSPEC_BLESS=1 cargo test --test readme rewrites it -->\n";
 const TABLE_END: &str = "<!-- end of stage table -->";
 
@@ -149,7 +149,7 @@ fn architecture_s_stage_table_is_the_stage_table() {
     let text = fs::read_to_string(&path).expect("ARCHITECTURE.md");
     let spec_text = fs::read_to_string(Path::new(ROOT).join("specs/day.toml")).expect("day.toml");
     let spec: cityspec::spec::Spec = toml::from_str(&spec_text).expect("day.toml parses");
-    let table = cityspec::build::key_table(&spec);
+    let table = cityspec::driver::key_table(&spec);
     let start = text
         .find(TABLE_START)
         .expect("ARCHITECTURE.md has the stage table's start marker")

@@ -70,10 +70,10 @@ pub fn child_args() -> Option<[PathBuf; 3]> {
 }
 
 /// Builds `spec` with this cache and output folder, without progress output.
-pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::build::BuildReport {
-    cityspec::build::build(
+pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::driver::BuildReport {
+    cityspec::driver::build(
         spec,
-        &cityspec::build::BuildOptions {
+        &cityspec::driver::BuildOptions {
             progress: None,
             out_root: out.to_path_buf(),
             cache_dir: cache.to_path_buf(),

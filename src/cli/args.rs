@@ -62,8 +62,8 @@ pub enum Command {
         /// stages and every I-th chunk of each camera path. `auto` reads
         /// SLURM_ARRAY_TASK_ID/_COUNT or JOB_COMPLETION_INDEX. A plain build afterwards
         /// (the merge) writes the output folder from the cache.
-        #[arg(long, value_name = "I/N|auto", value_parser = crate::build::ShardArg::parse)]
-        shard: Option<crate::build::ShardArg>,
+        #[arg(long, value_name = "I/N|auto", value_parser = crate::driver::ShardArg::parse)]
+        shard: Option<crate::driver::ShardArg>,
         /// The number of shards, for `--shard auto` under Kubernetes (or
         /// CITYSPEC_SHARD_COUNT).
         #[arg(long, value_name = "N", requires = "shard")]
@@ -211,7 +211,7 @@ pub enum CacheCommand {
         cache: CacheArg,
         /// Remove unneeded files, oldest first, only until the cache holds at most SIZE
         /// (bytes, or 500M, 20G, …).
-        #[arg(long, value_name = "SIZE", value_parser = crate::build::parse_size)]
+        #[arg(long, value_name = "SIZE", value_parser = crate::driver::parse_size)]
         max_size: Option<u64>,
         /// Remove only unneeded files older than DAYS.
         #[arg(long, value_name = "DAYS")]

@@ -1,7 +1,7 @@
 //! Build errors → exit codes: 2 when the spec or its input files are to blame, 1 when the
 //! build itself failed. Decided by the typed cause, never by the message.
 
-use crate::build::BuildError;
+use crate::driver::BuildError;
 use crate::render::RenderError;
 
 /// Exit code 2: invalid spec, input or usage.

@@ -15,7 +15,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::build::{self, BuildError, BuildOptions};
+use crate::driver::{self, BuildError, BuildOptions};
 use args::{Args, CacheCommand, Command, FacadesCommand};
 use shared_args::{CacheArg, JobsArg, OutArg};
 
@@ -106,7 +106,7 @@ pub fn run() -> ExitCode {
             seed,
             jobs: JobsArg { jobs },
         } => {
-            let options = build::VerifyOptions {
+            let options = driver::VerifyOptions {
                 cache_dir: cache,
                 all,
                 sample,
@@ -131,7 +131,7 @@ pub fn run() -> ExitCode {
                 eprintln!("error: --max-age and --grace-minutes take a number");
                 return ExitCode::from(2);
             };
-            let options = build::GcOptions {
+            let options = driver::GcOptions {
                 cache_dir: cache,
                 max_size,
                 max_age,
@@ -162,7 +162,7 @@ struct Context {
 
 impl Context {
     /// The progress line of frames rendered, unless `--quiet`.
-    fn progress(&self) -> Option<build::Progress> {
+    fn progress(&self) -> Option<driver::Progress> {
         (!self.quiet).then(|| print::progress_line(self.terminal))
     }
 }
@@ -175,7 +175,7 @@ fn build_command(
     specs: &[PathBuf],
     options: &BuildOptions,
     jobs: Option<u16>,
-    shards: Option<(Option<build::ShardArg>, Option<u32>)>,
+    shards: Option<(Option<driver::ShardArg>, Option<u32>)>,
 ) -> ExitCode {
     let pool = match pool(jobs) {
         Ok(pool) => pool,
@@ -190,7 +190,7 @@ fn build_command(
             Some(Ok(shard)) => Some(shard),
             None => None,
         };
-        return match pool.install(|| build::build_shards(specs, options, shard)) {
+        return match pool.install(|| driver::build_shards(specs, options, shard)) {
             Ok(reports) => {
                 reports.iter().for_each(|r| cx.out.shard_report(r));
                 ExitCode::SUCCESS
@@ -198,7 +198,7 @@ fn build_command(
             Err(errors) => exit_for(&errors, &cx.out),
         };
     }
-    match pool.install(|| build::build_all(specs, options)) {
+    match pool.install(|| driver::build_all(specs, options)) {
         Ok(reports) => {
             for report in &reports {
                 cx.out.report(report);
@@ -220,7 +220,7 @@ fn lock_command(
         Ok(pool) => pool,
         Err(code) => return code,
     };
-    match pool.install(|| build::lock_all(specs, options)) {
+    match pool.install(|| driver::lock_all(specs, options)) {
         Ok(locks) => {
             for lock in &locks {
                 cx.out.info(&format!("wrote {}", lock.display()));
@@ -235,14 +235,14 @@ fn lock_command(
 fn verify_command(
     cx: &Context,
     specs: &[PathBuf],
-    options: &build::VerifyOptions,
+    options: &driver::VerifyOptions,
     jobs: Option<u16>,
 ) -> ExitCode {
     let pool = match pool(jobs) {
         Ok(pool) => pool,
         Err(code) => return code,
     };
-    match pool.install(|| build::verify_all(specs, options)) {
+    match pool.install(|| driver::verify_all(specs, options)) {
         Ok(reports) => {
             let failed = reports.iter().any(|r| r.failed().next().is_some());
             for report in &reports {
@@ -263,7 +263,7 @@ fn verify_command(
 fn validate_command(cx: &Context, specs: &[PathBuf]) -> ExitCode {
     let mut errors = Vec::new();
     for path in specs {
-        match build::validate(path) {
+        match driver::validate(path) {
             Ok((spec, warnings)) => {
                 for line in print::diagnostic_lines(path, &warnings) {
                     eprintln!("{line}");
@@ -283,7 +283,7 @@ fn validate_command(cx: &Context, specs: &[PathBuf]) -> ExitCode {
 
 /// `cityspec facades export DIR`.
 fn facades_export(cx: &Context, dir: &Path) -> ExitCode {
-    match build::export_builtin_facades(dir) {
+    match driver::export_builtin_facades(dir) {
         Ok(count) => {
             cx.out.info(&format!(
                 "wrote {count} built-in facades to {}",
@@ -297,8 +297,8 @@ fn facades_export(cx: &Context, dir: &Path) -> ExitCode {
 
 /// `cityspec cache gc`: what it kept and removed, and (even with `--quiet`) what it left
 /// because the cache does not write it.
-fn cache_gc(cx: &Context, specs: &[PathBuf], options: &build::GcOptions) -> ExitCode {
-    let r = match build::gc(specs, options) {
+fn cache_gc(cx: &Context, specs: &[PathBuf], options: &driver::GcOptions) -> ExitCode {
+    let r = match driver::gc(specs, options) {
         Ok(report) => report,
         Err(errors) => return exit_for(&errors, &cx.out),
     };
@@ -339,7 +339,7 @@ fn explain_command(cx: &Context, specs: &[PathBuf], cache: &Path, json: bool) ->
     let mut explained = Vec::new();
     let mut errors = Vec::new();
     for path in specs {
-        match build::explain(path, cache) {
+        match driver::explain(path, cache) {
             Ok(one) => explained.push(one),
             Err(e) => errors.push(e),
         }
@@ -403,7 +403,7 @@ fn clock_seed() -> u64 {
 fn exit_for(errors: &[BuildError], out: &print::Printer) -> ExitCode {
     for error in errors {
         // An error about a line of a model's OBJ or MTL shows that line, as spec errors do.
-        match build::framed_report(error, out.color) {
+        match driver::framed_report(error, out.color) {
             Some(report) => eprint!("{report}"),
             None => out.error(error),
         }

@@ -1,7 +1,7 @@
 //! Terminal output: build summaries, per-stage lines and rendered errors, on stderr.
 
-use crate::build::{BuildError, BuildReport, StageStatus, VerifyReport};
 use crate::diagnostic::Diagnostic;
+use crate::driver::{BuildError, BuildReport, StageStatus, VerifyReport};
 use crate::regular_file::{self, Follow};
 
 use std::collections::BTreeMap;
@@ -23,7 +23,7 @@ impl Printer {
     }
 
     /// One line per spec a shard (or `--stage city`) worked on.
-    pub fn shard_report(&self, report: &crate::build::ShardReport) {
+    pub fn shard_report(&self, report: &crate::driver::ShardReport) {
         let s = &report.stats;
         let line = match report.shard {
             Some(shard) => format!(
@@ -172,7 +172,7 @@ impl Printer {
 /// camera path, redrawn in place (at most ten times a second); otherwise one line per path
 /// when it is done, and no bar at all. The rate is shown once it means something: measured
 /// from the first frame over at least half a second.
-pub fn progress_line(terminal: bool) -> crate::build::Progress {
+pub fn progress_line(terminal: bool) -> crate::driver::Progress {
     use std::sync::Mutex;
     use std::time::Instant;
     /// The path being rendered, when its first frame was reported (and how many were done
@@ -270,7 +270,7 @@ fn per_folder(paths: &[String]) -> BTreeMap<&str, usize> {
 
 /// Says that this build waits for another build of the same output folder (even with
 /// `--quiet`: a build that seems to hang should say why).
-pub fn waiting_line() -> crate::build::Waiting {
+pub fn waiting_line() -> crate::driver::Waiting {
     std::sync::Arc::new(|dir: &std::path::Path| {
         eprintln!(
             "waiting for another cityspec build of {} to finish…",
@@ -281,8 +281,8 @@ pub fn waiting_line() -> crate::build::Waiting {
 
 /// `cityspec explain`'s text for one spec: a line per stage (name, camera, short key,
 /// cache state), then what its key reads.
-pub fn explained(explained: &crate::build::Explained) -> String {
-    use crate::build::EntryState;
+pub fn explained(explained: &crate::driver::Explained) -> String {
+    use crate::driver::EntryState;
     let mut text = format!(
         "{} ({}), cache {}\n",
         explained.name,

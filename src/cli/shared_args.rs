@@ -9,7 +9,7 @@ pub struct CacheArg {
     /// by several machines (credentials and endpoint from the environment as the
     /// cloud's SDK reads them: AWS_ACCESS_KEY_ID, AWS_REGION, AWS_ENDPOINT_URL,
     /// AWS_ALLOW_HTTP=true for a plain-HTTP S3-compatible server, …).
-    #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::build::cache_location)]
+    #[arg(long, value_name = "DIR|URL", default_value = ".cityspec-cache", value_parser = crate::driver::cache_location)]
     pub cache: PathBuf,
 }
 

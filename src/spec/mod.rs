@@ -110,7 +110,7 @@ pub trait SpecWorld {
     /// What the parse stage reads off a layout image drawn with `palette`: how many roads
     /// and how many blocks, as `(roads, blocks)`. None when this world does not parse
     /// layouts: the spec stage may not run another stage, so the build driver's world
-    /// (`build::BuildWorld`) answers this, and [`FsWorld`] does not.
+    /// (`driver::BuildWorld`) answers this, and [`FsWorld`] does not.
     fn parsed_layout(
         &self,
         _pixels: &image::RgbImage,

@@ -43,8 +43,8 @@ pub fn stderr(out: &Output) -> String {
 }
 
 /// Options for a quiet, non-strict, unlocked build of `out_root` with `cache_dir`.
-pub fn quiet_options(out_root: PathBuf, cache_dir: PathBuf) -> cityspec::build::BuildOptions {
-    cityspec::build::BuildOptions {
+pub fn quiet_options(out_root: PathBuf, cache_dir: PathBuf) -> cityspec::driver::BuildOptions {
+    cityspec::driver::BuildOptions {
         out_root,
         cache_dir,
         progress: None,
@@ -141,7 +141,7 @@ impl Workspace {
         self.path().join("cache")
     }
 
-    pub fn options(&self) -> cityspec::build::BuildOptions {
+    pub fn options(&self) -> cityspec::driver::BuildOptions {
         quiet_options(self.out(), self.cache())
     }
 
@@ -203,7 +203,7 @@ pub fn tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
 /// other files, each with its bytes' hash.
 pub fn assert_matches_manifest(out: &Path) {
     let files = tree(out);
-    let manifest = cityspec::build::Manifest::from_bytes(&files["manifest.json"])
+    let manifest = cityspec::driver::Manifest::from_bytes(&files["manifest.json"])
         .unwrap_or_else(|| panic!("{}: manifest.json does not parse", out.display()));
     let listed: std::collections::BTreeMap<&str, &str> = manifest
         .artifacts

@@ -5,7 +5,7 @@ use crate::common;
 
 use std::fs;
 
-use cityspec::build::{self, StageStatus};
+use cityspec::driver::{self, StageStatus};
 use common::{Workspace, tree};
 
 fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -16,7 +16,7 @@ fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
         .install(f)
 }
 
-fn statuses(report: &build::BuildReport) -> Vec<(&'static str, StageStatus)> {
+fn statuses(report: &driver::BuildReport) -> Vec<(&'static str, StageStatus)> {
     let mut s: Vec<_> = report.stages.iter().map(|r| (r.stage, r.status)).collect();
     s.sort();
     s
@@ -26,7 +26,7 @@ fn statuses(report: &build::BuildReport) -> Vec<(&'static str, StageStatus)> {
 fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let ws = Workspace::with_spec("day");
     let spec = ws.spec("day");
-    let cold = in_pool(1, || build::build(&spec, &ws.options())).unwrap();
+    let cold = in_pool(1, || driver::build(&spec, &ws.options())).unwrap();
     // Every stage, with each camera path's plan (poses) as its own stage.
     assert_eq!(cold.ran().count(), 15, "a cold build runs every stage");
     let first = tree(&ws.out());
@@ -54,13 +54,13 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
         "the facade and roof textures: {names:?}"
     );
 
-    let warm = in_pool(8, || build::build(&spec, &ws.options())).unwrap();
+    let warm = in_pool(8, || driver::build(&spec, &ws.options())).unwrap();
     assert!(warm.up_to_date());
     assert_eq!(tree(&ws.out()), first);
 
     // A second, independent cache and output folder, eight threads.
     let other = Workspace::with_spec("day");
-    in_pool(8, || build::build(&other.spec("day"), &other.options())).unwrap();
+    in_pool(8, || driver::build(&other.spec("day"), &other.options())).unwrap();
     assert_eq!(tree(&other.out()), first);
     // The caches hold the same objects too.
     for part in ["objects", "entries"] {
@@ -75,7 +75,7 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
 #[test]
 fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let stamp = |p: &str| {
         fs::metadata(ws.out().join("day").join(p))
             .unwrap()
@@ -85,7 +85,7 @@ fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
     let names: Vec<String> = tree(&ws.out().join("day")).into_keys().collect();
     let before: Vec<_> = names.iter().map(|n| stamp(n)).collect();
     std::thread::sleep(std::time::Duration::from_millis(20));
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert!(report.up_to_date());
     assert!(
         report
@@ -105,10 +105,10 @@ fn noop_rebuild_does_no_stage_work_and_rewrites_nothing() {
 #[test]
 fn changing_only_lamps_reruns_only_what_reads_lamps() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let plan_before = fs::read(ws.out().join("day/plan.json")).unwrap();
     ws.set("day", "lamps.spacing", 20);
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     use StageStatus::{Cached, Ran};
     assert_eq!(
         statuses(&report),
@@ -172,9 +172,9 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
 #[test]
 fn changing_buildings_leaves_lamps_and_layout_cached() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     ws.set("day", "buildings.gap", 4);
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     use StageStatus::{Cached, Ran};
     assert_eq!(
         statuses(&report),
@@ -200,7 +200,7 @@ fn changing_buildings_leaves_lamps_and_layout_cached() {
 #[test]
 fn damaged_cache_objects_are_detected_and_rebuilt() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
     // Flip one byte in every cached object, and drop the outputs.
     for (rel, mut bytes) in tree(&ws.cache().join("objects")) {
@@ -211,7 +211,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
         fs::write(ws.cache().join("objects").join(rel), bytes).unwrap();
     }
     fs::remove_dir_all(ws.out()).unwrap();
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert_eq!(report.ran().count(), 15, "no damaged object may be used");
     // Every cached stage found its entry damaged (the scene is never cached).
     assert!(
@@ -224,7 +224,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
     assert_eq!(tree(&ws.out()), good);
     // The repaired cache now serves a no-op build.
     assert!(
-        build::build(&ws.spec("day"), &ws.options())
+        driver::build(&ws.spec("day"), &ws.options())
             .unwrap()
             .up_to_date()
     );
@@ -233,7 +233,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
 #[test]
 fn tampered_artifact_is_restored_and_stale_temporaries_swept() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
     fs::write(ws.out().join("day/plan.json"), b"{}").unwrap();
     fs::write(
@@ -241,7 +241,7 @@ fn tampered_artifact_is_restored_and_stale_temporaries_swept() {
         b"half a png",
     )
     .unwrap();
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert_eq!(report.ran().count(), 0);
     assert_eq!(report.written, ["plan.json"]);
     assert_eq!(tree(&ws.out()), good);
@@ -250,9 +250,9 @@ fn tampered_artifact_is_restored_and_stale_temporaries_swept() {
 #[test]
 fn manifest_lists_every_artifact_with_its_hash() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let files = tree(&ws.out().join("day"));
-    let manifest = build::Manifest::from_bytes(&files["manifest.json"]).unwrap();
+    let manifest = driver::Manifest::from_bytes(&files["manifest.json"]).unwrap();
     assert_eq!(manifest.name, "day");
     assert_eq!(manifest.artifacts.len(), files.len() - 1);
     for artifact in &manifest.artifacts {
@@ -296,7 +296,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
 #[test]
 fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
     let ws = Workspace::with_spec("drawn");
-    let report = build::build(&ws.spec("drawn"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("drawn"), &ws.options()).unwrap();
     assert_eq!(report.ran().count(), 11);
     let plan: serde_json::Value =
         serde_json::from_slice(&fs::read(ws.out().join("drawn/plan.json")).unwrap()).unwrap();
@@ -315,7 +315,7 @@ fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
     .unwrap();
     ws.set("drawn", "layout.image", "drawn.png");
     assert!(
-        build::build(&ws.spec("drawn"), &ws.options())
+        driver::build(&ws.spec("drawn"), &ws.options())
             .unwrap()
             .up_to_date()
     );
@@ -324,7 +324,7 @@ fn drawn_layout_builds_and_moving_the_image_changes_nothing() {
 #[test]
 fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says() {
     let ws = Workspace::with_spec("cmp");
-    let report = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("cmp"), &ws.options()).unwrap();
     assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     let obj = String::from_utf8(fs::read(ws.out().join("cmp/city.obj")).unwrap()).unwrap();
     assert!(
@@ -335,7 +335,7 @@ fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says(
     // Break one facade's boxes: with on_error = "skip" it is left out with a warning…
     let xml = ws.path().join("assets/facades/sample/street_04.xml");
     fs::write(&xml, "<object><points><x>oops</x></points>").unwrap();
-    let report = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("cmp"), &ws.options()).unwrap();
     assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
     assert_eq!(report.warnings[0].code, "facade-skipped");
     assert!(
@@ -349,38 +349,38 @@ fn cmp_facade_folder_builds_and_bad_facade_data_warns_or_fails_as_the_spec_says(
     // The warning is part of the stages' results: a warm build (the no-op fast path, then
     // a full build from the cache) says it again, and `--strict` fails on it whatever the
     // cache holds.
-    let warm = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    let warm = driver::build(&ws.spec("cmp"), &ws.options()).unwrap();
     assert!(warm.up_to_date());
     assert_eq!(warm.warnings, report.warnings);
     fs::remove_dir_all(ws.out()).unwrap();
-    let from_cache = build::build(&ws.spec("cmp"), &ws.options()).unwrap();
+    let from_cache = driver::build(&ws.spec("cmp"), &ws.options()).unwrap();
     assert_eq!(
         from_cache.ran().count(),
         0,
         "every stage came from the cache"
     );
     assert_eq!(from_cache.warnings, report.warnings);
-    let strict = build::BuildOptions {
+    let strict = driver::BuildOptions {
         strict: true,
         ..ws.options()
     };
-    let err = build::build(&ws.spec("cmp"), &strict).unwrap_err();
-    assert!(matches!(err, build::BuildError::Strict { .. }), "{err}");
+    let err = driver::build(&ws.spec("cmp"), &strict).unwrap_err();
+    assert!(matches!(err, driver::BuildError::Strict { .. }), "{err}");
     assert!(err.to_string().contains("street_04.xml"), "{err}");
 
     // …and with on_error = "error" the build stops, naming the file, as bad input.
     ws.set("cmp", "facades.on_error", "error");
-    let err = build::build(&ws.spec("cmp"), &ws.options()).unwrap_err();
-    assert!(matches!(err, build::BuildError::Facades { .. }), "{err}");
+    let err = driver::build(&ws.spec("cmp"), &ws.options()).unwrap_err();
+    assert!(matches!(err, driver::BuildError::Facades { .. }), "{err}");
     assert!(err.to_string().contains("street_04.xml"), "{err}");
 }
 
 #[test]
 fn noop_fast_path_reads_no_object_and_falls_back_when_a_file_changes() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
-    let manifest = build::Manifest::from_bytes(&good["day/manifest.json"]).unwrap();
+    let manifest = driver::Manifest::from_bytes(&good["day/manifest.json"]).unwrap();
     let plan = manifest
         .artifacts
         .iter()
@@ -393,7 +393,7 @@ fn noop_fast_path_reads_no_object_and_falls_back_when_a_file_changes() {
         .join(&plan.sha256);
     fs::write(&object, b"damaged").unwrap();
     // The output folder is as recorded: nothing is read, so the damage is not even seen.
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert!(report.up_to_date());
     assert!(report.stages.iter().all(|s| s.repaired.is_none()));
     // A changed output file (same size, new bytes) takes the full path, which re-verifies
@@ -404,7 +404,7 @@ fn noop_fast_path_reads_no_object_and_falls_back_when_a_file_changes() {
     bytes[last] ^= 1;
     std::thread::sleep(std::time::Duration::from_millis(20));
     fs::write(&png, &bytes).unwrap();
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert!(!report.up_to_date());
     assert_eq!(report.written, ["plan.png"]);
     let plan_run = report.stages.iter().find(|s| s.stage == "plan").unwrap();
@@ -445,7 +445,7 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
     ws.set("text", "cameras[0].frames", 24);
     // Words on walls are seldom hidden (by a sign, a lamp, a corner): a high threshold.
     ws.set("text", "annotations.min_fraction", 0.95);
-    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    driver::build(&ws.spec("text"), &ws.options()).unwrap();
     let kept = street_annotations(&ws, "text");
     assert!(kept.len() > 10, "{} annotations", kept.len());
     for (bbox, full, fraction) in &kept {
@@ -460,7 +460,7 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
     }
     // Without the fraction threshold, partly hidden words come back.
     ws.set("text", "annotations.min_fraction", 0.0);
-    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    driver::build(&ws.spec("text"), &ws.options()).unwrap();
     let all = street_annotations(&ws, "text");
     let hidden = all.iter().filter(|(_, _, f)| *f < 0.95).count();
     assert!(hidden > 0, "no annotation below 0.95 of {}", all.len());
@@ -473,7 +473,7 @@ fn coco_full_boxes_hold_the_visible_ones_and_min_fraction_filters() {
 #[test]
 fn an_old_manifest_cannot_delete_files_outside_the_output_folder() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let day = ws.out().join("day");
     let far = ws.path().join("far");
     fs::create_dir_all(&far).unwrap();
@@ -482,7 +482,7 @@ fn an_old_manifest_cannot_delete_files_outside_the_output_folder() {
     fs::write(&absolute, b"keep me too").unwrap();
     std::os::unix::fs::symlink(&far, day.join("link")).unwrap();
     let manifest_file = day.join("manifest.json");
-    let mut manifest = build::Manifest::from_bytes(&fs::read(&manifest_file).unwrap()).unwrap();
+    let mut manifest = driver::Manifest::from_bytes(&fs::read(&manifest_file).unwrap()).unwrap();
     for path in [
         absolute.to_string_lossy().into_owned(),
         "link/victim.txt".into(),
@@ -493,7 +493,7 @@ fn an_old_manifest_cannot_delete_files_outside_the_output_folder() {
     }
     fs::write(&manifest_file, manifest.to_bytes()).unwrap();
 
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert_eq!(fs::read(&absolute).unwrap(), b"keep me too");
     assert_eq!(fs::read(far.join("victim.txt")).unwrap(), b"keep me");
     assert!(
@@ -508,7 +508,7 @@ fn an_old_manifest_cannot_delete_files_outside_the_output_folder() {
 #[test]
 fn a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let day = ws.out().join("day");
     let good = tree(&day);
     let far = ws.path().join("far");
@@ -516,7 +516,7 @@ fn a_directory_symlink_in_the_output_folder_is_replaced_not_followed() {
     fs::rename(day.join("frames"), ws.path().join("frames-moved")).unwrap();
     std::os::unix::fs::symlink(&far, day.join("frames")).unwrap();
 
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert_eq!(
         fs::read_dir(&far).unwrap().count(),
         0,
@@ -536,11 +536,11 @@ fn a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
     fs::write(mine.join("notes.txt"), b"mine").unwrap();
     fs::create_dir_all(ws.out()).unwrap();
     std::os::unix::fs::symlink(&mine, ws.out().join("day")).unwrap();
-    let err = build::build(&ws.spec("day"), &ws.options()).unwrap_err();
+    let err = driver::build(&ws.spec("day"), &ws.options()).unwrap_err();
     assert!(err.to_string().contains("is a symbolic link"), "{err}");
     fs::remove_file(ws.out().join("day")).unwrap();
     fs::rename(&mine, ws.out().join("day")).unwrap();
-    let err = build::build(&ws.spec("day"), &ws.options()).unwrap_err();
+    let err = driver::build(&ws.spec("day"), &ws.options()).unwrap_err();
     assert!(
         err.to_string()
             .contains("not the output folder of spec \"day\""),
@@ -556,10 +556,10 @@ fn a_linked_or_foreign_output_folder_is_refused_and_left_alone() {
 #[test]
 fn a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
     let files = tree(&ws.out().join("day"));
-    let manifest = build::Manifest::from_bytes(&files["manifest.json"]).unwrap();
+    let manifest = driver::Manifest::from_bytes(&files["manifest.json"]).unwrap();
     let plan = manifest
         .artifacts
         .iter()
@@ -577,7 +577,7 @@ fn a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
     fs::write(&entry_file, serde_json::to_vec(&entry).unwrap()).unwrap();
     fs::remove_dir_all(ws.out()).unwrap();
 
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let run = report.stages.iter().find(|s| s.stage == "plan").unwrap();
     assert_eq!(run.status, StageStatus::Ran);
     let why = run.repaired.as_deref().unwrap_or_default();
@@ -592,7 +592,7 @@ fn a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
     assert_eq!(tree(&ws.out()), good);
     // The rebuilt entry is whole again.
     assert!(
-        build::build(&ws.spec("day"), &ws.options())
+        driver::build(&ws.spec("day"), &ws.options())
             .unwrap()
             .up_to_date()
     );
@@ -603,7 +603,7 @@ fn a_cache_entry_naming_a_path_outside_is_corrupt_and_rebuilt() {
 #[test]
 fn no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
     let ws = Workspace::with_spec("day");
-    build::build(&ws.spec("day"), &ws.options()).unwrap();
+    driver::build(&ws.spec("day"), &ws.options()).unwrap();
     let good = tree(&ws.out());
     let day = ws.out().join("day");
     fs::write(day.join(".plan.png.cityspec-tmp-999-0"), b"").unwrap();
@@ -611,7 +611,7 @@ fn no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
     let staged = ws.out().join(".day~cityspec-stage-999-0");
     fs::create_dir_all(staged.join("frames")).unwrap();
     fs::write(staged.join("plan.png"), b"half").unwrap();
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert_eq!(report.ran().count(), 0);
     assert!(report.written.is_empty(), "{:?}", report.written);
     assert_eq!(
@@ -626,7 +626,7 @@ fn no_temporary_or_orphan_survives_the_next_build_even_a_no_op() {
     // A staging folder left beside an up-to-date folder: the fast path removes it too.
     fs::create_dir_all(&staged).unwrap();
     fs::write(staged.join("plan.png"), b"half").unwrap();
-    let report = build::build(&ws.spec("day"), &ws.options()).unwrap();
+    let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
     assert!(report.up_to_date());
     assert_eq!(tree(&ws.out()), good);
 }
@@ -647,11 +647,11 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
             .set("cameras[0].roll", [-5, 5])
             .set("cameras[1].frames", 3);
     });
-    in_pool(1, || build::build(&ws.spec("text"), &ws.options())).unwrap();
+    in_pool(1, || driver::build(&ws.spec("text"), &ws.options())).unwrap();
     let first = tree(&ws.out());
     let other = Workspace::with_spec("text");
     fs::copy(ws.spec("text"), other.spec("text")).unwrap();
-    in_pool(8, || build::build(&other.spec("text"), &other.options())).unwrap();
+    in_pool(8, || driver::build(&other.spec("text"), &other.options())).unwrap();
     assert_eq!(tree(&other.out()), first);
 
     let street = poses(&ws, "street");
@@ -675,7 +675,7 @@ fn ranged_and_aimed_cameras_give_the_same_bytes_at_any_thread_count_and_per_came
             "name = \"extra\"\nframes = 2\nheading = [-90, 90]",
         );
     });
-    build::build(&ws.spec("text"), &ws.options()).unwrap();
+    driver::build(&ws.spec("text"), &ws.options()).unwrap();
     assert_eq!(poses(&ws, "street"), street);
     assert_eq!(poses(&ws, "words"), words);
 }
@@ -687,9 +687,9 @@ fn path_render_input_renders_the_ids_and_depth_a_build_writes() {
     fs::write(&spec, include_str!("../fixtures/shards.toml")).unwrap();
     let cache = dir.path().join("cache");
     let options = common::quiet_options(dir.path().join("out"), cache.clone());
-    let out = build::build(&spec, &options).unwrap().out_dir;
+    let out = driver::build(&spec, &options).unwrap().out_dir;
     // From the cache the build filled: the same scene, poses and intrinsics.
-    let input = build::path_render_input(&spec, "street", &cache)
+    let input = driver::path_render_input(&spec, "street", &cache)
         .unwrap()
         .expect("the fixture has a street camera");
     assert_eq!(input.poses.len(), 43);
@@ -713,7 +713,7 @@ fn path_render_input_renders_the_ids_and_depth_a_build_writes() {
         );
     }
     assert!(
-        build::path_render_input(&spec, "nowhere", &cache)
+        driver::path_render_input(&spec, "nowhere", &cache)
             .unwrap()
             .is_none()
     );

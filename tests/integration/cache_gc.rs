@@ -6,10 +6,10 @@ use crate::common;
 use std::fs;
 use std::time::{Duration, SystemTime};
 
-use cityspec::build::{self, GcOptions};
+use cityspec::driver::{self, GcOptions};
 use common::{SpecEdit, Workspace};
 
-fn ran(report: &build::BuildReport) -> Vec<&'static str> {
+fn ran(report: &driver::BuildReport) -> Vec<&'static str> {
     report.ran().map(|s| s.stage).collect()
 }
 
@@ -27,11 +27,11 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
         .text();
     fs::write(&other_spec, other_text).unwrap();
     let options = ws.options();
-    build::build(&small, &options).unwrap();
-    let other = build::build(&other_spec, &options).unwrap();
+    driver::build(&small, &options).unwrap();
+    let other = driver::build(&other_spec, &options).unwrap();
     let object = |sha: &str| ws.cache().join("objects").join(&sha[..2]).join(sha);
     let manifest = |dir: &std::path::Path| {
-        build::Manifest::from_bytes(&fs::read(dir.join("manifest.json")).unwrap()).unwrap()
+        driver::Manifest::from_bytes(&fs::read(dir.join("manifest.json")).unwrap()).unwrap()
     };
     let other_manifest = manifest(&other.out_dir);
 
@@ -49,7 +49,7 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
         .unwrap();
 
     let gc = |specs: &[std::path::PathBuf], grace: u64, max_age: Option<u64>| {
-        build::gc(
+        driver::gc(
             specs,
             &GcOptions {
                 cache_dir: ws.cache(),
@@ -99,12 +99,12 @@ fn gc_keeps_the_given_specs_and_removes_the_rest() {
     assert!(!object(&other_manifest.artifacts[1].sha256).exists());
 
     // The kept spec builds from the cache alone, into a new folder; the other builds again.
-    let fresh = build::BuildOptions {
+    let fresh = driver::BuildOptions {
         out_root: ws.path().join("out2"),
         ..options.clone()
     };
-    assert!(ran(&build::build(&small, &fresh).unwrap()).is_empty());
-    assert!(!ran(&build::build(&other_spec, &fresh).unwrap()).is_empty());
+    assert!(ran(&driver::build(&small, &fresh).unwrap()).is_empty());
+    assert!(!ran(&driver::build(&other_spec, &fresh).unwrap()).is_empty());
     // A shard's chunks are needed too: after a gc, a merge of a sharded build renders
     // nothing. (Every chunk and plan of `small` is in the cache from its build.)
     let chunk_keys = fs::read_dir(ws.cache().join("entries")).unwrap().count();

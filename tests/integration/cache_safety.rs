@@ -10,7 +10,7 @@ use std::process::Command;
 use std::sync::mpsc;
 use std::time::Duration;
 
-use cityspec::build::{self, BuildError, GcOptions};
+use cityspec::driver::{self, BuildError, GcOptions};
 use common::{Workspace, cityspec, stderr};
 
 /// A workspace with `specs/small.toml`: the shards fixture, edited through its parsed
@@ -28,8 +28,8 @@ fn small(edit: impl FnOnce(&mut toml::Table)) -> (Workspace, PathBuf) {
     (ws, path)
 }
 
-fn gc_all(cache: &Path) -> Result<build::GcReport, Vec<BuildError>> {
-    build::gc(
+fn gc_all(cache: &Path) -> Result<driver::GcReport, Vec<BuildError>> {
+    driver::gc(
         &[],
         &GcOptions {
             cache_dir: cache.to_path_buf(),
@@ -96,7 +96,7 @@ fn gc_refuses_a_git_repository_and_deletes_nothing() {
 #[test]
 fn gc_removes_only_names_the_cache_writes_and_follows_no_symlink() {
     let (ws, spec) = small(|_| {});
-    build::build(&spec, &ws.options()).unwrap();
+    driver::build(&spec, &ws.options()).unwrap();
     let cache = ws.cache();
     assert!(
         cache.join("CACHEDIR.TAG").is_file(),
@@ -109,7 +109,7 @@ fn gc_removes_only_names_the_cache_writes_and_follows_no_symlink() {
         gc_all(&cache).unwrap_err()[..],
         [BuildError::NotACache { .. }]
     ));
-    assert!(build::build(&spec, &ws.options()).unwrap().up_to_date());
+    assert!(driver::build(&spec, &ws.options()).unwrap().up_to_date());
     assert!(
         cache.join("CACHEDIR.TAG").is_file(),
         "a no-op build marks it"
@@ -205,7 +205,7 @@ fn within_a_minute<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) ->
 #[test]
 fn damaged_entries_are_misses_never_panics_or_hangs() {
     let (ws, spec) = small(|_| {});
-    let first = build::build(&spec, &ws.options()).unwrap();
+    let first = driver::build(&spec, &ws.options()).unwrap();
     let entries = ws.cache().join("entries");
     let mirror = first.stages.iter().find(|s| s.stage == "mirror").unwrap();
     let entry = entries.join(format!("{}.json", mirror.key));
@@ -218,7 +218,7 @@ fn damaged_entries_are_misses_never_panics_or_hangs() {
     for damaged in ["", "a"] {
         fs::write(&entry, text.replace(&sha, damaged)).unwrap();
         fs::remove_dir_all(ws.out()).unwrap();
-        let report = build::build(&spec, &ws.options()).unwrap();
+        let report = driver::build(&spec, &ws.options()).unwrap();
         let rebuilt = report.stages.iter().find(|s| s.stage == "mirror").unwrap();
         let why = rebuilt.repaired.as_deref().unwrap_or_default();
         assert!(why.contains("not a cache entry"), "{damaged:?}: {why}");
@@ -238,7 +238,7 @@ fn damaged_entries_are_misses_never_panics_or_hangs() {
     fs::remove_dir_all(ws.out()).unwrap();
     let options = ws.options();
     let spec_path = spec.clone();
-    let report = within_a_minute(move || build::build(&spec_path, &options).unwrap());
+    let report = within_a_minute(move || driver::build(&spec_path, &options).unwrap());
     let rebuilt = report.stages.iter().find(|s| s.stage == "mirror").unwrap();
     let why = rebuilt.repaired.as_deref().unwrap_or_default();
     assert!(why.contains("a FIFO"), "{why}");
@@ -257,7 +257,7 @@ fn a_planted_lock_symlink_is_refused_and_its_target_never_made() {
     fs::create_dir_all(ws.out()).unwrap();
     let target = ws.path().join("planted-target");
     std::os::unix::fs::symlink(&target, ws.out().join(".small~cityspec-lock")).unwrap();
-    let err = build::build(&spec, &ws.options()).unwrap_err();
+    let err = driver::build(&spec, &ws.options()).unwrap_err();
     assert!(err.to_string().contains("a symlink"), "{err}");
     assert!(!target.exists(), "the build created the symlink's target");
     assert!(!ws.out().join("small").exists());

@@ -213,13 +213,13 @@ fn killed_build_leaves_no_partial_artifact() {
             );
         }
         // Cache entries only ever point at whole objects: whatever was recorded verifies.
-        let cache = cityspec::build::Cache::new(ws.path().join(".cityspec-cache"));
+        let cache = cityspec::driver::Cache::new(ws.path().join(".cityspec-cache"));
         if let Ok(entries) = fs::read_dir(ws.path().join(".cityspec-cache/entries")) {
             for entry in entries {
                 let name = entry.unwrap().file_name().to_string_lossy().into_owned();
                 if let Some(key) = name.strip_suffix(".json") {
                     assert!(
-                        cache.get(key, cityspec::build::Load::References).is_ok(),
+                        cache.get(key, cityspec::driver::Load::References).is_ok(),
                         "entry {key} is not whole after a kill"
                     );
                 }
@@ -442,7 +442,7 @@ fn verify_names_a_poisoned_entry() {
         stderr(&sample)
     );
 
-    let manifest = cityspec::build::Manifest::from_bytes(
+    let manifest = cityspec::driver::Manifest::from_bytes(
         &fs::read(ws.path().join("out/day/manifest.json")).unwrap(),
     )
     .unwrap();

@@ -54,7 +54,7 @@ fn locked_builds_fail_with_3_on_a_missing_lock_and_on_every_changed_artifact() {
 
     let manifest_file = ws.path().join("out/mirrored/manifest.json");
     let manifest =
-        cityspec::build::Manifest::from_bytes(&fs::read(&manifest_file).unwrap()).unwrap();
+        cityspec::driver::Manifest::from_bytes(&fs::read(&manifest_file).unwrap()).unwrap();
     let find = |path: &str| manifest.artifacts.iter().find(|a| a.path == path).unwrap();
 
     // One byte flipped in a cached object, the output folder gone: the cache sees the

@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use cityspec::build;
+use cityspec::driver;
 use common::{Workspace, tree};
 
 /// COCO without the images' `conditions` (the only key the conditions add).
@@ -24,13 +24,13 @@ fn weather_and_sensor_change_rgb_only() {
         spec.set("cameras[0].frames", 4)
             .set("weather.kind", ["fog", "rain"]);
     });
-    build::build(&ws.spec("randomized"), &ws.options()).unwrap();
+    driver::build(&ws.spec("randomized"), &ws.options()).unwrap();
     let with = tree(&ws.out().join("randomized/frames/street"));
 
     ws.edit_spec("randomized", |spec| {
         spec.remove("cameras[0].sensor").remove("weather");
     });
-    build::build(&ws.spec("randomized"), &ws.options()).unwrap();
+    driver::build(&ws.spec("randomized"), &ws.options()).unwrap();
     let without = tree(&ws.out().join("randomized/frames/street"));
 
     assert_eq!(
@@ -93,12 +93,12 @@ fn lower_half_mean(png: &[u8]) -> f64 {
 fn a_night_drive_lights_the_road_ahead_with_its_own_headlights_in_rgb_only() {
     let ws = Workspace::with_spec("night");
     ws.shrink("night");
-    build::build(&ws.spec("night"), &ws.options()).unwrap();
+    driver::build(&ws.spec("night"), &ws.options()).unwrap();
     let with = tree(&ws.out().join("night/frames/street"));
     ws.edit_spec("night", |spec| {
         spec.insert("cameras[0].headlights", false);
     });
-    build::build(&ws.spec("night"), &ws.options()).unwrap();
+    driver::build(&ws.spec("night"), &ws.options()).unwrap();
     let without = tree(&ws.out().join("night/frames/street"));
 
     assert_eq!(

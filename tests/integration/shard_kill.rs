@@ -16,7 +16,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-use cityspec::build::{self, BuildOptions};
+use cityspec::driver::{self, BuildOptions};
 use common::tree;
 
 const SPEC: &str = include_str!("../fixtures/shards.toml");
@@ -96,7 +96,7 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
     let dir = dir.path();
     let spec = dir.join("small.toml");
     fs::write(&spec, spec_text()).unwrap();
-    let one = build::build(&spec, &options(dir, "one", "one-cache")).unwrap();
+    let one = driver::build(&spec, &options(dir, "one", "one-cache")).unwrap();
     let one = tree(&one.out_dir);
 
     // The shared stages first (`--stage city`), as an array would: the shard's run is then
@@ -166,7 +166,7 @@ fn a_killed_shard_rerun_renders_only_what_was_lost_and_merges_to_the_same_bytes(
         );
         let other = shard(dir, &cache, "1/2").output().unwrap();
         assert_eq!(counts(&other).0 + mine, 5 + 2, "shard 1/2 renders the rest");
-        let merged = build::build(&spec, &options(dir, &format!("out{n}"), &cache)).unwrap();
+        let merged = driver::build(&spec, &options(dir, &format!("out{n}"), &cache)).unwrap();
         let ran: Vec<&str> = merged.ran().map(|s| s.stage).collect();
         assert_eq!(ran, ["frames", "frames"], "the merge only assembles");
         let merged = tree(&merged.out_dir);

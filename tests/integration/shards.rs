@@ -7,7 +7,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use cityspec::build::{self, BuildOptions, Shard};
+use cityspec::driver::{self, BuildOptions, Shard};
 use common::tree;
 
 /// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
@@ -33,12 +33,12 @@ fn sharded(dir: &Path, spec: &Path, shards: u32, city_first: bool) -> Vec<(Strin
     let options = options(dir, &out, &cache);
     let specs = [spec.to_path_buf()];
     if city_first {
-        build::build_shards(&specs, &options, None).unwrap();
+        driver::build_shards(&specs, &options, None).unwrap();
     }
     let mut rendered = 0;
     for index in 0..shards {
         let shard = Shard::new(index, shards).unwrap();
-        let reports = build::build_shards(&specs, &options, Some(shard)).unwrap();
+        let reports = driver::build_shards(&specs, &options, Some(shard)).unwrap();
         rendered += reports[0].stats.rendered_chunks;
         assert!(!dir.join(&out).exists(), "shard {index} wrote the output");
     }
@@ -48,7 +48,7 @@ fn sharded(dir: &Path, spec: &Path, shards: u32, city_first: bool) -> Vec<(Strin
 
 /// The merge: a plain build that must find every chunk and plan in the cache.
 fn merge(dir: &Path, options: &BuildOptions, spec: &Path) -> Vec<(String, Vec<u8>)> {
-    let report = build::build(spec, options).unwrap();
+    let report = driver::build(spec, options).unwrap();
     let ran: Vec<&str> = report.ran().map(|s| s.stage).collect();
     assert_eq!(ran, ["frames", "frames"], "the merge only assembles");
     let _ = dir;
@@ -60,7 +60,7 @@ fn one_machine_and_2_4_7_shards_give_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     let spec = spec(dir);
-    let one = build::build(&spec, &options(dir, "one", "cache1")).unwrap();
+    let one = driver::build(&spec, &options(dir, "one", "cache1")).unwrap();
     let one = tree(&one.out_dir).into_iter().collect::<Vec<_>>();
     assert!(one.iter().any(|(p, _)| p == "frames/street/coco.json"));
     assert!(one.iter().any(|(p, _)| p == "frames/street/rgb/000042.png"));
@@ -111,7 +111,7 @@ fn shards_as_concurrent_processes_share_one_cache_and_a_merge_finds_everything()
     assert!(auto.status.success(), "{text}");
     assert!(text.contains("shard 2/4: rendered 0 chunks"), "{text}");
     let merged = merge(dir, &options(dir, "out", "cache"), &spec);
-    let one = build::build(&spec, &options(dir, "one", "cache1")).unwrap();
+    let one = driver::build(&spec, &options(dir, "one", "cache1")).unwrap();
     let one: Vec<_> = tree(&one.out_dir).into_iter().collect();
     assert!(
         one == merged,
@@ -162,7 +162,7 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     let files_spec = spec(dir);
-    let files = build::build(&files_spec, &options(dir, "files", "cache")).unwrap();
+    let files = driver::build(&files_spec, &options(dir, "files", "cache")).unwrap();
     let wds_spec = dir.join("wds.toml");
     fs::write(
         &wds_spec,
@@ -170,7 +170,7 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     )
     .unwrap();
     // The frames' content keys ignore the layout: only the paths are assembled again.
-    let wds = build::build(&wds_spec, &options(dir, "wds", "cache")).unwrap();
+    let wds = driver::build(&wds_spec, &options(dir, "wds", "cache")).unwrap();
     let ran: Vec<&str> = wds.ran().map(|s| s.stage).collect();
     assert_eq!(ran, ["frames", "frames"]);
     let out = tree(&wds.out_dir);
@@ -233,6 +233,6 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     }
     assert_eq!(frame, 43);
     // Rendered from scratch into another cache: the same tar bytes.
-    let fresh = build::build(&wds_spec, &options(dir, "wds2", "cache2")).unwrap();
+    let fresh = driver::build(&wds_spec, &options(dir, "wds2", "cache2")).unwrap();
     assert!(tree(&fresh.out_dir) == out, "the tars are not reproducible");
 }

@@ -15,7 +15,7 @@
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
-use cityspec::build::BuildWorld;
+use cityspec::driver::BuildWorld;
 use cityspec::spec::{self, FsWorld, SpecSource, SpecWorld};
 
 const SCHEMA_PATH: &str = "schemas/cityspec.schema.json";

@@ -1,7 +1,7 @@
 //! The output folder: a build's artifacts → `<out>/<name>/`, replaced whole or not at all.
 //!
 //! The folder is closed. Every path written is one of the stage's known relative names
-//! ([`super::output_names`]), checked again here; nothing is read from or trusted in the
+//! (`driver::OutputNames`), checked again here; nothing is read from or trusted in the
 //! old folder except the bytes of regular files found by walking it without following
 //! symbolic links; the old `manifest.json` only tells a cityspec output folder from a
 //! foreign one.
@@ -33,13 +33,16 @@ use std::time::UNIX_EPOCH;
 
 use rayon::prelude::*;
 
-use super::BuildError;
-use super::cache::{Blob, Cache};
-use super::fresh::FreshRecord;
-use super::manifest::Manifest;
-use super::output_names::is_safe_relative;
-use super::pipeline::ArtifactOut;
+use crate::cache::{Blob, Cache};
+use crate::driver::{ArtifactOut, BuildError, is_safe_relative};
+use fresh::FreshRecord;
+
+pub mod fresh;
+pub mod lock;
+mod manifest;
+
 use crate::hash::sha256_hex;
+pub use manifest::{Artifact, Manifest};
 
 /// One spec's output folder, locked for this build.
 pub struct OutDir {
@@ -230,7 +233,7 @@ impl OutDir {
                     .map_err(io_err(&self.dir.join(&artifact.path)))?;
                 }
                 self.faults.step();
-                Ok(())
+                Ok::<(), BuildError>(())
             })?;
         let target = stage.join("manifest.json");
         let linked =

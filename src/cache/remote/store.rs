@@ -11,7 +11,7 @@ use object_store::path::Path as Key;
 use object_store::{ObjectStore, ObjectStoreExt, RetryConfig, WriteMultipart};
 
 use super::{Listed, RemoteLocation, Scheme};
-use crate::build::verified_memo::VerifiedMemo;
+use crate::cache::verified_memo::VerifiedMemo;
 
 /// A cache stored in a bucket. Every call blocks on the store's own runtime, so the
 /// cache's callers (rayon's workers) stay synchronous.
@@ -20,7 +20,7 @@ pub struct RemoteStore {
     prefix: String,
     runtime: tokio::runtime::Runtime,
     /// Objects verified while checking entries, for the folder writes that follow.
-    pub(in crate::build) verified: VerifiedMemo,
+    pub(in crate::cache) verified: VerifiedMemo,
 }
 
 impl std::fmt::Debug for RemoteStore {

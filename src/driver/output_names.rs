@@ -105,6 +105,12 @@ impl OutputNames {
     }
 }
 
+impl crate::cache::NameCheck for OutputNames {
+    fn check_names(&self, names: &[&str]) -> Result<(), String> {
+        self.check(names.iter().copied())
+    }
+}
+
 /// A relative, `/`-separated path that stays inside the folder it is joined to: no root,
 /// drive or `\`, no empty, `.` or `..` component, no NUL.
 pub fn is_safe_relative(path: &str) -> bool {

@@ -6,13 +6,13 @@ use std::sync::Arc;
 use image::RgbImage;
 
 use super::super::BuildError;
-use super::super::cache::Blob;
 use super::super::codec;
 use super::super::inputs::FacadeInput;
 use super::super::stages::{LayoutInputs, OverviewInputs, Stage};
 use super::Pipeline;
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
+use crate::cache::Blob;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,

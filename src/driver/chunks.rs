@@ -20,12 +20,12 @@ use std::sync::Arc;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
 use super::codec;
 use super::frames::{self, FrameRecord, PathFrames};
 use super::stage_key::StageKey;
 use super::webdataset;
 use crate::annotate::{self, Category};
+use crate::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
 use crate::model::CameraPose;
 use crate::spec::{CameraSpec, OutputLayout, OutputSpec};
 

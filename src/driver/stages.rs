@@ -23,9 +23,9 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
-use super::cache::Load;
 use super::inputs::{FacadeInput, LayoutSource, SpecInputs};
 use super::stage_key::StageKey;
+use crate::cache::Load;
 use crate::spec::{
     AnnotationsSpec, BuildingsSpec, CameraSpec, GenerateSpec, LampsSpec, LightingSpec, ObjectSpec,
     OnError, OutputLayout, OutputSpec, Palette, Spec, WeatherSpec,

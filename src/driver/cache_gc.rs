@@ -36,10 +36,10 @@ use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
-use super::cache::{Cache, CacheName, MARKER};
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
+use crate::cache::{Cache, CacheName, MARKER};
 
 /// What `cache gc` may remove.
 #[derive(Clone, Debug)]
@@ -97,7 +97,7 @@ struct Listing {
 /// Collects what `specs` (spec files, or lock files ending in `.lock`) need, then removes
 /// the rest of the cache as [`GcOptions`] allow.
 pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildError>> {
-    let cache = Cache::open(&options.cache_dir).map_err(|e| vec![e])?;
+    let cache = Cache::open(&options.cache_dir).map_err(|e| vec![e.into()])?;
     let refuse = |why: String| {
         vec![BuildError::NotACache {
             path: options.cache_dir.clone(),
@@ -231,7 +231,7 @@ fn lock_objects(path: &Path) -> Result<Vec<String>, BuildError> {
             path: path.to_path_buf(),
             source,
         })?;
-    super::lock::hashes(&text).map_err(|why| BuildError::ReadSpec {
+    crate::out_dir::lock::hashes(&text).map_err(|why| BuildError::ReadSpec {
         path: path.to_path_buf(),
         source: io::Error::other(why),
     })

@@ -36,12 +36,16 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use super::atomic::write_atomic;
-use super::cache_remote::{RemoteLocation, RemoteStore};
-use super::error::BuildError;
+use crate::atomic_file::write_atomic;
+use remote::{RemoteLocation, RemoteStore};
+
+pub mod remote;
+mod verified_memo;
+
 use crate::diagnostic::Diagnostic;
 use crate::hash::sha256_hex;
 use crate::regular_file::{self, Follow};
+pub use remote::cache_location;
 
 /// The marker file at the cache's root. Its text follows the Cache Directory Tagging
 /// specification (so backup tools skip the folder) and names cityspec, which is what
@@ -108,6 +112,20 @@ impl From<Vec<u8>> for Blob {
     fn from(bytes: Vec<u8>) -> Blob {
         Blob::Bytes(Arc::new(bytes))
     }
+}
+
+/// The names a stage's cache entry may hold, as its caller knows them: an entry naming
+/// another is corrupt. The cache itself knows no stage.
+pub trait NameCheck {
+    /// Why `names` are not the stage's, if they are not.
+    fn check_names(&self, names: &[&str]) -> Result<(), String>;
+}
+
+/// A cache that could not be opened: its location, and why.
+#[derive(Debug)]
+pub struct OpenError {
+    pub path: PathBuf,
+    pub source: io::Error,
 }
 
 /// Whether a looked-up stage's outputs are read into memory or only verified.
@@ -270,9 +288,9 @@ impl Cache {
     /// The cache `--cache` names: a folder, or an `s3://`, `gs://` or `az://` URL, which is
     /// connected to (credentials from the environment) and listed once, so a store that
     /// cannot be reached fails here.
-    pub fn open(location: &Path) -> Result<Cache, BuildError> {
+    pub fn open(location: &Path) -> Result<Cache, OpenError> {
         let text = location.to_string_lossy();
-        let failed = |message: String| BuildError::Cache {
+        let failed = |message: String| OpenError {
             path: location.to_path_buf(),
             source: io::Error::other(message),
         };
@@ -297,7 +315,7 @@ impl Cache {
     }
 
     /// The remote store, for a remote cache.
-    pub(super) fn remote(&self) -> Option<&RemoteStore> {
+    pub fn remote(&self) -> Option<&RemoteStore> {
         self.remote.as_deref()
     }
 
@@ -403,7 +421,7 @@ impl Cache {
         stage: &str,
         key: &str,
         load: Load,
-        names: &super::output_names::OutputNames,
+        names: &dyn NameCheck,
     ) -> Result<Outputs, Miss> {
         self.lookup(stage, key, load, names).map(|hit| hit.outputs)
     }
@@ -414,13 +432,14 @@ impl Cache {
         stage: &str,
         key: &str,
         load: Load,
-        names: &super::output_names::OutputNames,
+        names: &dyn NameCheck,
     ) -> Result<Hit, Miss> {
         self.get_checked(key, load, |entry| {
             if entry.stage != stage {
                 return Err(format!("it records stage {:?}, not {stage:?}", entry.stage));
             }
-            names.check(entry.outputs.keys().map(String::as_str))
+            let names_of: Vec<&str> = entry.outputs.keys().map(String::as_str).collect();
+            names.check_names(&names_of)
         })
     }
 
@@ -554,7 +573,7 @@ impl Cache {
         };
         fs::create_dir_all(&dir)?;
         // Removed when dropped, on every path but the rename into place.
-        let mut temp = super::atomic::temp_file(&dir, Path::new("stream"))?;
+        let mut temp = crate::atomic_file::temp_file(&dir, Path::new("stream"))?;
         let object = {
             let mut out = Hashing::new(io::BufWriter::new(temp.as_file_mut()));
             fill(&mut out)?;
@@ -692,9 +711,9 @@ impl CacheName {
 fn temporary_of(name: &str, base: impl Fn(&str) -> bool) -> Option<CacheName> {
     let (stem, tail) = name
         .strip_prefix('.')?
-        .split_once(super::atomic::TEMP_MARK)?;
-    let random =
-        tail.len() == super::atomic::TEMP_RANDOM && tail.bytes().all(|b| b.is_ascii_alphanumeric());
+        .split_once(crate::atomic_file::TEMP_MARK)?;
+    let random = tail.len() == crate::atomic_file::TEMP_RANDOM
+        && tail.bytes().all(|b| b.is_ascii_alphanumeric());
     let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
     let pid_and_count = tail
         .split_once('-')
@@ -758,6 +777,15 @@ impl<W: Write> Write for Hashing<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every name is a stage's.
+    struct AnyNames;
+
+    impl NameCheck for AnyNames {
+        fn check_names(&self, _: &[&str]) -> Result<(), String> {
+            Ok(())
+        }
+    }
 
     fn outputs(pairs: &[(&str, &[u8])]) -> Outputs {
         pairs
@@ -987,12 +1015,7 @@ mod tests {
             )
             .unwrap();
         let hit = cache
-            .lookup(
-                "facades",
-                "k7",
-                Load::Bytes,
-                &crate::build::output_names::OutputNames::of(crate::build::Stage::Facades, None),
-            )
+            .lookup("facades", "k7", Load::Bytes, &AnyNames)
             .unwrap();
         assert_eq!(hit.diagnostics, warned);
         assert!(cache.is_marked().unwrap());

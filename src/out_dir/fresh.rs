@@ -12,19 +12,17 @@
 //! removed or renamed anywhere (a temporary or an orphan) changes its folder's mtime, so
 //! the fast path never leaves a stray file in place; the full path removes it.
 
-use super::stages::Stage;
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::atomic::write_atomic;
-use super::cache::Cache;
-use super::manifest::{Artifact, Manifest};
-use super::out_dir::{folders_of, mtime_ns};
-use super::output_names::is_safe_relative;
+use super::{Artifact, Manifest, folders_of, mtime_ns};
+use crate::atomic_file::write_atomic;
+use crate::cache::Cache;
 use crate::diagnostic::{Diagnostic, extend_unique};
+use crate::driver::{Stage, is_safe_relative};
 use crate::hash::sha256_hex;
 use crate::regular_file::{self, Follow};
 

@@ -26,11 +26,11 @@ mod scene_values;
 use evaluate::evaluated;
 
 use super::BuildError;
-use super::cache::{Blob, Cache, Outputs};
 use super::inputs::{FacadeInput, SpecInputs};
 use super::report::StageRun;
 use super::stage_key::StageKey;
 use super::stages::{Inputs, Keys, Stage};
+use crate::cache::{Blob, Cache, Outputs};
 use crate::diagnostic::Diagnostic;
 use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::Spec;

@@ -122,3 +122,12 @@ fn joined(diagnostics: &[Diagnostic]) -> String {
     let lines: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
     lines.join("; ")
 }
+
+impl From<crate::cache::OpenError> for BuildError {
+    fn from(e: crate::cache::OpenError) -> BuildError {
+        BuildError::Cache {
+            path: e.path,
+            source: e.source,
+        }
+    }
+}

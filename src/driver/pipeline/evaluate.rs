@@ -11,12 +11,12 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use super::super::BuildError;
-use super::super::cache::{Blob, Load, Miss, Outputs};
 use super::super::decode_error::DecodeError;
 use super::super::output_names::OutputNames;
 use super::super::report::{StageRun, StageStatus};
 use super::super::stages::Stage;
 use super::{Pipeline, Slot};
+use crate::cache::{Blob, Load, Miss, Outputs};
 use crate::diagnostic::{Diagnostic, extend_unique};
 
 impl Pipeline<'_> {

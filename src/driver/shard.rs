@@ -11,10 +11,10 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::cache::Cache;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::{BuildError, BuildOptions, each_valid_spec, spec_build};
+use crate::cache::Cache;
 
 /// Shard `index` of `count` (0-based).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

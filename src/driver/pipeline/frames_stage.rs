@@ -1,4 +1,4 @@
-//! The frames stage of each camera path, through its plan and chunks (`build::chunks`):
+//! The frames stage of each camera path, through its plan and chunks (`driver::chunks`):
 //! a plain build renders the chunks nobody rendered yet and assembles the path; a shard
 //! ([`Pipeline::shard_work`]) renders only its own chunks and assembles nothing.
 
@@ -10,7 +10,6 @@ use rand::Rng;
 use rayon::prelude::*;
 
 use super::super::BuildError;
-use super::super::cache::{Load, Miss, Outputs};
 use super::super::codec;
 use super::super::frame_labels;
 use super::super::frames;
@@ -19,8 +18,9 @@ use super::super::report::{StageRun, StageStatus};
 use super::super::stages::{FramesInputs, PathInputs, Stage};
 use super::Pipeline;
 use super::evaluate::one;
-use crate::build::chunks::{self, PathPlan};
-use crate::build::shard::{Shard, ShardStats};
+use crate::cache::{Load, Miss, Outputs};
+use crate::driver::chunks::{self, PathPlan};
+use crate::driver::shard::{Shard, ShardStats};
 use crate::model::{CameraPose, FacadeSet, Lamp, ParsedLayout, Scene};
 use crate::spec::{LightingSpec, OutputLayout, Vary};
 use crate::{annotate, render, rng, scene, views};
@@ -350,7 +350,7 @@ impl Pipeline<'_> {
     }
 
     /// Path `index`'s prepared scene, poses and first frame's lighting, for
-    /// [`crate::build::path_render_input`]: the city stages run or load as in a build.
+    /// [`crate::driver::path_render_input`]: the city stages run or load as in a build.
     pub fn path_render_input(
         &mut self,
         index: usize,

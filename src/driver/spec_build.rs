@@ -8,16 +8,16 @@
 use std::path::Path;
 use std::time::Instant;
 
-use super::cache::Cache;
-use super::fresh;
 use super::inputs::SpecInputs;
-use super::lock;
-use super::manifest::{Artifact, Manifest};
-use super::out_dir::OutDir;
 use super::pipeline::{ArtifactOut, Pipeline};
 use super::report::{BuildReport, StageRun, StageStatus};
 use super::{BuildError, BuildOptions};
+use crate::cache::Cache;
 use crate::diagnostic::Diagnostic;
+use crate::out_dir::OutDir;
+use crate::out_dir::fresh;
+use crate::out_dir::lock;
+use crate::out_dir::{Artifact, Manifest};
 use crate::spec::Spec;
 
 /// Builds an already validated spec read from `path`.
@@ -195,7 +195,7 @@ fn write_output_folder(
     artifacts: &[ArtifactOut],
     manifest: &Manifest,
     cache: &Cache,
-) -> Result<super::out_dir::Synced, BuildError> {
+) -> Result<crate::out_dir::Synced, BuildError> {
     let bytes = manifest.to_bytes();
     let record = fresh::load(cache, out.path());
     let synced = out.sync(artifacts, &bytes, cache, record.as_ref())?;

@@ -18,7 +18,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use super::manifest::Manifest;
+use super::Manifest;
+use crate::driver::BuildError;
 
 const HEADER: &str =
     "# cityspec lock: `cityspec build --locked` makes exactly these artifacts or fails.\n";
@@ -44,7 +45,7 @@ pub fn render(manifest: &Manifest) -> String {
 }
 
 /// `--locked`: the spec's lock file agrees with `manifest`, or every difference.
-pub fn check(spec: &Path, manifest: &Manifest) -> Result<(), super::BuildError> {
+pub fn check(spec: &Path, manifest: &Manifest) -> Result<(), BuildError> {
     let lock = lock_path(spec);
     let read = crate::regular_file::read_to_string(&lock, crate::regular_file::Follow::Yes);
     let differences = match read {
@@ -57,7 +58,7 @@ pub fn check(spec: &Path, manifest: &Manifest) -> Result<(), super::BuildError> 
     if differences.is_empty() {
         Ok(())
     } else {
-        Err(super::BuildError::Locked { lock, differences })
+        Err(BuildError::Locked { lock, differences })
     }
 }
 
@@ -166,7 +167,7 @@ pub fn differences(lock_text: &str, manifest: &Manifest) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::build::manifest::Artifact;
+    use crate::out_dir::Artifact;
 
     fn manifest(files: &[(&str, &str, u64)]) -> Manifest {
         Manifest {

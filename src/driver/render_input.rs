@@ -9,11 +9,11 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use super::cache::Cache;
 use super::frames::camera_intrinsics;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::{BuildError, load_spec};
+use crate::cache::Cache;
 use crate::model::CameraPose;
 use crate::render::{DepthFormat, Intrinsics, Lighting, PreparedScene};
 

@@ -6,12 +6,12 @@ use std::io;
 use std::path::Path;
 
 use super::{Listed, RemoteLocation};
-use crate::build::verified_memo::VerifiedMemo;
+use crate::cache::verified_memo::VerifiedMemo;
 
 /// A cache stored in a bucket; this build has no client for one (see [`RemoteStore::open`]).
 pub struct RemoteStore {
     never: Infallible,
-    pub(in crate::build) verified: VerifiedMemo,
+    pub(in crate::cache) verified: VerifiedMemo,
 }
 
 impl std::fmt::Debug for RemoteStore {

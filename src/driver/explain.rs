@@ -9,11 +9,11 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::cache::{Cache, EntryState};
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::stages::Stage;
 use super::{BuildError, load_spec};
+use crate::cache::{Cache, EntryState};
 
 /// One stage of a spec.
 #[derive(Clone, Debug, Serialize)]

@@ -6,8 +6,8 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 use std::sync::Arc;
 
-use super::cache::{Blob, Outputs};
 use super::decode_error::DecodeError;
+use crate::cache::{Blob, Outputs};
 use crate::model::FacadeSet;
 
 /// Bump when any encoding here changes its bytes: it is part of every stage key.

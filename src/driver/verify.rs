@@ -13,11 +13,11 @@ use std::path::{Path, PathBuf};
 
 use rand::RngExt;
 
-use super::cache::{Cache, Miss, Outputs};
 use super::each_valid_spec;
 use super::error::BuildError;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
+use crate::cache::{Cache, Miss, Outputs};
 use crate::spec::Spec;
 
 /// Which cached stages to recheck.

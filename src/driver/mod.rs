@@ -7,11 +7,8 @@
 //! that makes builds of one folder take turns. Files that already hold the right bytes are
 //! kept, so a rebuild with nothing changed writes nothing.
 
-mod atomic;
 mod build_world;
-mod cache;
 mod cache_gc;
-mod cache_remote;
 mod chunks;
 mod codec;
 mod decode_error;
@@ -19,13 +16,9 @@ mod error;
 mod explain;
 mod frame_labels;
 mod frames;
-mod fresh;
 mod input_problem;
 mod inputs;
-mod lock;
-mod manifest;
 mod model_files;
-mod out_dir;
 mod output_names;
 mod pipeline;
 mod render_input;
@@ -35,7 +28,6 @@ mod source_frame;
 mod spec_build;
 mod stage_key;
 mod stages;
-mod verified_memo;
 mod verify;
 mod webdataset;
 
@@ -43,21 +35,21 @@ use std::collections::BTreeMap;
 use std::io;
 use std::path::{Path, PathBuf};
 
+pub use crate::atomic_file::{sweep_temporaries, write_atomic, write_atomic_with};
+pub use crate::cache::cache_location;
+pub use crate::cache::{Blob, Cache, CacheName, EntryState, Load, MARKER, Miss};
+pub use crate::out_dir::{Artifact, Manifest};
 /// Kept here for the tests and benches that place buildings by hand.
 pub use crate::place::widths_px;
-pub use atomic::{sweep_temporaries, write_atomic, write_atomic_with};
 pub use build_world::BuildWorld;
-pub use cache::EntryState;
-pub use cache::{Blob, Cache, CacheName, Load, MARKER, Miss};
 pub use cache_gc::{GcOptions, GcReport, gc, parse_size};
-pub use cache_remote::cache_location;
 /// The driver's encodings' version (PNG settings, JSON layout), in every stage key.
 pub use codec::VERSION as CODEC_VERSION;
 pub use decode_error::DecodeError;
 pub use error::BuildError;
 pub use explain::{Explained, StageLine, explain};
-pub use manifest::{Artifact, Manifest};
 pub use output_names::{OutputNames, is_safe_relative};
+pub use pipeline::ArtifactOut;
 pub use render_input::{PathRenderInput, path_render_input};
 pub use report::{BuildReport, StageRun, StageStatus};
 pub use shard::{Shard, ShardArg, ShardReport, ShardStats, build_shards};
@@ -66,6 +58,7 @@ pub use spec_build::build_spec;
 pub use stages::{Declaration, Produces, Stage, key_table};
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
+use crate::out_dir::lock;
 use crate::spec::{self, Spec, SpecSource};
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
