@@ -21,5 +21,6 @@ mod mutations;
 mod sensor;
 mod shard_kill;
 mod shards;
+mod spec_edit;
 mod spec_errors;
 mod stage_imports;
