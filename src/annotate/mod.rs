@@ -19,12 +19,13 @@
 //! | COCO JSON (pycocotools loads it) | [`CocoWriter`] (or [`coco`] for frames in memory) | camera path |
 //! | YOLO `class cx cy w h` | [`yolo`] | frame |
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
+//! | `instances.json`: instance id → kind, class, category, words, attributes | [`instances`] | camera path |
 //!
 //! Output is deterministic: objects in instance-id order, JSON keys in a fixed order, and
 //! floats rounded to fixed decimals before printing.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 
 mod coco;
 mod contact_sheet;
@@ -33,6 +34,7 @@ mod fixture_tests;
 mod frame_annotations;
 mod frame_input;
 mod icdar;
+mod instances;
 mod object_label;
 mod path_labels;
 mod project_quad;
@@ -47,6 +49,7 @@ pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
+pub use instances::instances;
 pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;

@@ -50,6 +50,8 @@ pub struct PathPlan {
     pub categories: Vec<Category>,
     /// `yolo/classes.txt`, when the path writes YOLO files.
     pub yolo: Option<String>,
+    /// `instances.json`: every instance id's kind, class and category on this path.
+    pub instances: crate::model::Instances,
 }
 
 /// The frame ranges of a path of `frames` frames.
@@ -245,6 +247,10 @@ pub fn assemble(
         (
             format!("{dir}/preview.png"),
             frames::preview_png(sheet, &plan.categories),
+        ),
+        (
+            format!("{dir}/instances.json"),
+            codec::to_pretty_json(&plan.instances),
         ),
     ];
     if let Some(classes) = &plan.yolo {

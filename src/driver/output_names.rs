@@ -139,7 +139,7 @@ fn is_frame_file(rest: &str) -> bool {
         .and_then(|s| s.strip_suffix(".tar"));
     matches!(
         rest,
-        "coco.json" | "poses.json" | "preview.png" | "yolo/classes.txt"
+        "coco.json" | "instances.json" | "poses.json" | "preview.png" | "yolo/classes.txt"
     ) || is_numbered_frame_file(rest)
         || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
 }

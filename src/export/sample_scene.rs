@@ -4,7 +4,7 @@
 use image::RgbImage;
 
 use crate::model::geometry::cross;
-use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
+use crate::model::{Material, Mesh, ObjectKind, Scene, SceneObject, Texture};
 
 fn texture(name: &str, size: u32, salt: u8) -> Texture {
     let image = RgbImage::from_fn(size, size, |x, y| {
@@ -85,10 +85,11 @@ fn boxed(min: [f32; 3], max: [f32; 3], wall: u32, roof: u32) -> Vec<Mesh> {
     vec![walls, top]
 }
 
-fn object(name: &str, class: &str, meshes: Vec<Mesh>) -> SceneObject {
+fn object(name: &str, kind: ObjectKind, meshes: Vec<Mesh>) -> SceneObject {
     SceneObject {
         name: name.to_owned(),
-        class: class.to_owned(),
+        kind,
+        class: kind.name().to_owned(),
         meshes,
     }
 }
@@ -133,23 +134,23 @@ pub fn sample_scene() -> Scene {
             material("sign", [1.0, 1.0, 1.0], Some(2), [0.0; 3]),
         ],
         objects: vec![
-            object("ground", "ground", vec![ground]),
+            object("ground", ObjectKind::Ground, vec![ground]),
             object(
                 "building_0000",
-                "building",
+                ObjectKind::Building,
                 boxed([0.0; 3], [10.0, 12.0, 10.0], 0, 2),
             ),
             object(
                 "building_0001",
-                "building",
+                ObjectKind::Building,
                 boxed([-20.5, 0.0, -8.0], [-8.25, 30.0, 4.0], 1, 2),
             ),
             object(
                 "lamp_0000",
-                "lamp",
+                ObjectKind::Lamp,
                 boxed([12.0, 5.0, 12.0], [12.4, 5.4, 12.4], 3, 3),
             ),
-            object("sign_0000", "sign", vec![sign]),
+            object("sign_0000", ObjectKind::Sign, vec![sign]),
         ],
     }
 }

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::Texture;
+use super::{ObjectKind, Texture};
 
 /// Everything the exporter writes and the renderer draws.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -35,6 +35,8 @@ pub struct Material {
 pub struct SceneObject {
     /// Stable name: `building_0042`, `road_0003`, `lamp_0017`, …
     pub name: String,
+    /// What it is, set by the stage that made it.
+    pub kind: ObjectKind,
     /// Class label, kept for annotations: `building`, `road`, `lamp`, `ground`, …
     pub class: String,
     pub meshes: Vec<Mesh>,
@@ -66,11 +68,6 @@ impl Scene {
 }
 
 impl SceneObject {
-    /// Its kind: the name without its number ([`kind_of`]).
-    pub fn kind(&self) -> &str {
-        kind_of(&self.name)
-    }
-
     /// The box around all its vertices, `(min, max)` in world metres; `None` when it has
     /// no vertex or a coordinate is not finite.
     pub fn bounds(&self) -> Option<([f64; 3], [f64; 3])> {
@@ -89,36 +86,9 @@ impl SceneObject {
     }
 }
 
-/// An object's kind: its name without a trailing `_<digits>` (`building_0042` →
-/// `building`, `car_0093` → `car`, `ground` → `ground`).
-pub fn kind_of(name: &str) -> &str {
-    match name.rsplit_once('_') {
-        Some((kind, n))
-            if !kind.is_empty() && !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) =>
-        {
-            kind
-        }
-        _ => name,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn kinds_drop_the_number() {
-        for (name, kind) in [
-            ("building_0042", "building"),
-            ("sign_0003", "sign"),
-            ("ground", "ground"),
-            ("street_tree_0001", "street_tree"),
-            ("road_x", "road_x"),
-            ("_12", "_12"),
-        ] {
-            assert_eq!(kind_of(name), kind, "{name}");
-        }
-    }
 
     #[test]
     fn bounds_span_every_vertex_and_an_empty_object_has_none() {
@@ -128,13 +98,13 @@ mod tests {
         };
         let object = SceneObject {
             name: "car_0007".to_owned(),
+            kind: ObjectKind::Car,
             class: "car".to_owned(),
             meshes: vec![
                 mesh(vec![[1.0, 0.0, -2.0], [3.0, 1.5, 0.0]]),
                 mesh(vec![[-1.0, 0.5, 4.0]]),
             ],
         };
-        assert_eq!(object.kind(), "car");
         assert_eq!(object.bounds(), Some(([-1.0, 0.0, -2.0], [3.0, 1.5, 4.0])));
         let empty = SceneObject {
             meshes: vec![mesh(Vec::new())],

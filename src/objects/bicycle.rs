@@ -194,7 +194,12 @@ pub fn place(
             black: placing.material("bicycle_black", || (BLACK, None)),
         };
         let name = placing.name("bicycle");
-        placing.push_plain(name, &spec.label, bicycle_meshes(&frame, &bike, materials));
+        placing.push_plain(
+            crate::model::ObjectKind::Bicycle,
+            name,
+            &spec.label,
+            bicycle_meshes(&frame, &bike, materials),
+        );
         if ridden {
             let helmet = rng.random::<f64>() < 2.0 / 3.0;
             let mut pick =
@@ -212,6 +217,7 @@ pub fn place(
             };
             let name = placing.name("rider");
             placing.push_plain(
+                crate::model::ObjectKind::Rider,
                 name,
                 RIDER_CLASS,
                 rider_meshes(&frame, &bike, &rider, clothes),

@@ -336,7 +336,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         };
         let meshes = car_meshes(&shape, &frame, &paints);
         let name = placing.name("car");
-        placing.push_plain(name, &spec.label, meshes);
+        placing.push_plain(crate::model::ObjectKind::Car, name, &spec.label, meshes);
     }
 }
 

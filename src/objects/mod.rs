@@ -283,10 +283,17 @@ impl<'a> Placing<'a> {
         self.out.info.push(info);
     }
 
-    /// Pushes an object of class `label` that carries no text.
-    pub fn push_plain(&mut self, name: String, label: &str, meshes: Vec<Mesh>) {
+    /// Pushes an object of `kind` and class `label` that carries no text.
+    pub fn push_plain(
+        &mut self,
+        kind: crate::model::ObjectKind,
+        name: String,
+        label: &str,
+        meshes: Vec<Mesh>,
+    ) {
         let object = SceneObject {
             name,
+            kind,
             class: label.to_owned(),
             meshes,
         };

@@ -166,7 +166,12 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             forward,
         };
         let name = placing.name("person");
-        placing.push_plain(name, &spec.label, person_meshes(&frame, &figure, materials));
+        placing.push_plain(
+            crate::model::ObjectKind::Person,
+            name,
+            &spec.label,
+            person_meshes(&frame, &figure, materials),
+        );
         misses = 0;
     }
 }

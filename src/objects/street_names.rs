@@ -168,7 +168,12 @@ pub fn place(
             bottom += h;
         }
         let name = placing.name("street_pole");
-        placing.push_plain(name, "pole", vec![pole.finish()]);
+        placing.push_plain(
+            crate::model::ObjectKind::StreetPole,
+            name,
+            "pole",
+            vec![pole.finish()],
+        );
     }
     let page_name = format!("{}_street_atlas", spec.label);
     wall_text::finish_plates(spec, &faces, placed, &page_name, placing);

@@ -108,7 +108,12 @@ pub fn place(
             POLE_HEIGHT,
         );
         let name = placing.name("signal_pole");
-        placing.push_plain(name, "pole", vec![pole.finish()]);
+        placing.push_plain(
+            crate::model::ObjectKind::SignalPole,
+            name,
+            "pole",
+            vec![pole.finish()],
+        );
         // Along the horizontal road (x), then the vertical one (z), away from the crossing.
         let looks = [[corner.sides[0], 0.0], [0.0, corner.sides[1]]];
         for (road, facing) in looks.into_iter().enumerate() {
@@ -121,6 +126,7 @@ pub fn place(
             let name = placing.name("traffic_light");
             let object = SceneObject {
                 name,
+                kind: crate::model::ObjectKind::TrafficLight,
                 class: spec.label.clone(),
                 meshes,
             };

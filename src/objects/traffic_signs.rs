@@ -51,7 +51,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         let back = placing.material("sign_back", || (BACK_GREY, None));
         let meshes = sign_meshes(kind, spot.position, facing, [pole, face, back]);
         let name = placing.name("sign");
-        placing.push_plain(name, &spec.label, meshes);
+        placing.push_plain(crate::model::ObjectKind::Sign, name, &spec.label, meshes);
         let index = placing.out.objects.len() - 1;
         let centre = [
             spot.position[0] + facing[0] * FACE_OFFSET,

@@ -158,7 +158,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let bark = placing.material("tree_bark", || (BARK, None));
             let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
             let name = placing.name("tree");
-            placing.push_plain(name, &spec.label, meshes);
+            placing.push_plain(crate::model::ObjectKind::Tree, name, &spec.label, meshes);
             misses = 0;
             break;
         }

@@ -255,7 +255,7 @@ pub fn place(
         });
         let meshes = instance(&model, ids, &spot, scale, turn, ground);
         let name = placing.name(&spec.label);
-        placing.push_plain(name, &spec.label, meshes);
+        placing.push_plain(crate::model::ObjectKind::Mesh, name, &spec.label, meshes);
     }
     Ok(())
 }

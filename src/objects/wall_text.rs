@@ -330,6 +330,7 @@ pub(crate) fn finish_plates(
         let material = materials[atlas.slots[i].page];
         let object = SceneObject {
             name: p.name,
+            kind: crate::model::ObjectKind::Text,
             class: spec.label.clone(),
             meshes: vec![plate_mesh(
                 &walls[p.wall],

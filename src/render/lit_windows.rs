@@ -326,6 +326,7 @@ mod tests {
             }],
             objects: vec![SceneObject {
                 name: "building_0000".into(),
+                kind: crate::model::ObjectKind::Building,
                 class: "building".into(),
                 meshes: vec![Mesh {
                     material: 0,

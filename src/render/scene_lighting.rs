@@ -205,6 +205,7 @@ mod tests {
             materials: vec![material("car_headlight"), material("car_taillight")],
             objects: vec![SceneObject {
                 name: "car_0000".into(),
+                kind: crate::model::ObjectKind::Car,
                 class: "car".into(),
                 meshes: vec![lamp_mesh(0, 2.0), lamp_mesh(1, -2.0)],
             }],

@@ -2,6 +2,7 @@
 //! paved surface at kerb height.
 
 use super::{object, procedural};
+use crate::model::ObjectKind;
 use crate::model::geometry::{KERB_Y, MeshBuilder};
 use crate::model::{ParsedLayout, SceneObject};
 
@@ -18,7 +19,11 @@ pub fn block_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Scen
                     mesh.floor(x, z, KERB_Y, procedural::PAVING_TILE);
                 }
             }
-            object(format!("block_{:04}", block.id), "block", vec![mesh])
+            object(
+                ObjectKind::Block,
+                format!("block_{:04}", block.id),
+                vec![mesh],
+            )
         })
         .collect()
 }

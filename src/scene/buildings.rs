@@ -15,6 +15,7 @@
 //! gets the `roof_plain` material.
 
 use super::{SceneInput, object};
+use crate::model::ObjectKind;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, facade_height, usable};
 use crate::model::{Facade, SceneObject};
 
@@ -159,8 +160,8 @@ pub fn building_objects(input: &SceneInput, clad: &Cladding) -> Vec<SceneObject>
             let mut top = MeshBuilder::new(roof_material);
             top.floor(x, z, y[1], tile);
             object(
+                ObjectKind::Building,
                 format!("building_{:04}", building.id),
-                "building",
                 vec![walls, top],
             )
         })

@@ -22,6 +22,7 @@
 //!   crossings looks the same from both ends.
 
 use super::object;
+use crate::model::ObjectKind;
 use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH};
 use crate::model::geometry::zebras::{Stretches, road_stretches};
 use crate::model::geometry::{MARKING_Y, MeshBuilder, STOP_LINE_END, StreetProfile, ZEBRA_END};
@@ -72,8 +73,13 @@ pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Sc
                 let (across, along) = stop_line(road, mpp, along, at_start);
                 rect(&mut mesh, road, across, along);
             }
-            (!mesh.is_empty())
-                .then(|| object(format!("marking_{:04}", road.id), "marking", vec![mesh]))
+            (!mesh.is_empty()).then(|| {
+                object(
+                    ObjectKind::Marking,
+                    format!("marking_{:04}", road.id),
+                    vec![mesh],
+                )
+            })
         })
         .collect()
 }

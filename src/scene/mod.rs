@@ -47,7 +47,7 @@ mod surfaces;
 mod tests;
 
 use crate::model::geometry::{FacadeChoice, MaterialBook, MeshBuilder};
-use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene, SceneObject};
+use crate::model::{Building, FacadeSet, Lamp, ObjectKind, ParsedLayout, Scene, SceneObject};
 use surfaces::Surfaces;
 
 // The build driver measures the strip for its street cameras as the scene does.
@@ -124,14 +124,15 @@ fn ground(layout: &ParsedLayout, mpp: f64, material: u32) -> SceneObject {
         f64::from(layout.height) * mpp + GROUND_MARGIN,
     ];
     mesh.floor(x, z, 0.0, procedural::GRASS_TILE);
-    object("ground".to_owned(), "ground", vec![mesh])
+    object(ObjectKind::Ground, "ground".to_owned(), vec![mesh])
 }
 
-/// A named object of the non-empty meshes among `meshes`.
-fn object(name: String, class: &str, meshes: Vec<MeshBuilder>) -> SceneObject {
+/// A named object of the non-empty meshes among `meshes`, of class `kind`'s name.
+fn object(kind: ObjectKind, name: String, meshes: Vec<MeshBuilder>) -> SceneObject {
     SceneObject {
         name,
-        class: class.to_owned(),
+        kind,
+        class: kind.name().to_owned(),
         meshes: meshes
             .into_iter()
             .filter(|m| !m.is_empty())

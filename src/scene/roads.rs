@@ -2,6 +2,7 @@
 //! before it, so a crossing is paved once (by the road with the lower id).
 
 use super::{object, procedural};
+use crate::model::ObjectKind;
 use crate::model::geometry::{MeshBuilder, ROAD_Y, RoadRect};
 use crate::model::{ParsedLayout, SceneObject};
 
@@ -18,7 +19,7 @@ pub fn road_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<Scene
                 let z = piece.y.map(|v| v * mpp);
                 mesh.floor(x, z, ROAD_Y, procedural::ASPHALT_TILE);
             }
-            object(format!("road_{:04}", road.id), "road", vec![mesh])
+            object(ObjectKind::Road, format!("road_{:04}", road.id), vec![mesh])
         })
         .collect()
 }

@@ -8,6 +8,7 @@
 
 use super::row_region::{RowRegion, subtract};
 use super::{object, procedural};
+use crate::model::ObjectKind;
 use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
 use crate::model::{Band, ParsedLayout, SceneObject};
 
@@ -32,8 +33,8 @@ pub fn sidewalk_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<S
         let mut top = MeshBuilder::new(material);
         slab(&mut top, &ring.bands(), mpp);
         objects.push(object(
+            ObjectKind::Sidewalk,
             format!("sidewalk_{:04}", block.id),
-            "sidewalk",
             vec![top],
         ));
     }

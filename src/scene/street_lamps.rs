@@ -10,6 +10,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::object;
 use super::surfaces::Surfaces;
+use crate::model::ObjectKind;
 use crate::model::geometry::{KERB_Y, MeshBuilder, UP};
 use crate::model::{Lamp, SceneObject};
 
@@ -85,7 +86,11 @@ pub fn lamp_objects(lamps: &[Lamp], mpp: f64, surfaces: &Surfaces) -> Vec<SceneO
                 [HEAD_SIZE[0] / 2.0, HEAD_SIZE[1] / 2.0],
                 HEAD_SIZE[2],
             );
-            object(format!("lamp_{:04}", lamp.id), "lamp", vec![metal, head])
+            object(
+                ObjectKind::Lamp,
+                format!("lamp_{:04}", lamp.id),
+                vec![metal, head],
+            )
         })
         .collect()
 }

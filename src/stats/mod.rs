@@ -2,11 +2,10 @@
 //! object kind, labelled objects per frame by class, and box-height percentiles
 //! ([`Stats`]), for `cityspec stats`.
 //!
-//! The kind of an instance id comes from the scene's object names: `city.obj` lists one
-//! `o <name>` per object in scene order, so id `k` is the `k`-th name, and the kind is the
-//! name without its `_NNNN` number (`building_0042` → `building`, `sign_0003` → `sign`,
-//! `ground` → `ground`); id 0 is `sky`. Pixel shares are counted over every `ids/` image
-//! of a path (RGB-packed, `id = R + 256·G + 256²·B`). Labelled objects and box heights
+//! The kind of an instance id comes from the path's `instances.json` (written by every
+//! build: id → kind, set by the stage that made the object); id 0 is `sky`. Pixel shares
+//! are counted over every `ids/` image of a path (RGB-packed, `id = R + 256·G + 256²·B`).
+//! Labelled objects and box heights
 //! come from the path's `coco.json`: annotations with `iscrowd` 0, by category; ignore
 //! regions are counted apart.
 
@@ -18,13 +17,11 @@ pub use path_stats::{ClassStats, KindShare, PathStats, measure_path, percentile}
 pub use stats_error::StatsError;
 pub use table::table;
 
-/// An object's kind (kept here too: `cityspec stats` counts pixels by it).
-pub use crate::model::kind_of;
-
-use std::io::BufRead;
 use std::path::Path;
 
 use serde::Serialize;
+
+use crate::model::Instances;
 
 /// Stats of every camera path of an output folder, paths in name order.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -32,10 +29,9 @@ pub struct Stats {
     pub paths: Vec<PathStats>,
 }
 
-/// Reads `dir/city.obj`'s object names and measures each `dir/frames/<path>/`.
+/// Measures each camera path `dir/frames/<path>/`, the kinds of its instance ids read
+/// from its `instances.json`.
 pub fn measure(dir: &Path) -> Result<Stats, StatsError> {
-    let names = object_names(&dir.join("city.obj"))?;
-    let kinds: Vec<String> = names.iter().map(|n| kind_of(n).to_owned()).collect();
     let frames = dir.join("frames");
     let mut paths: Vec<_> = std::fs::read_dir(&frames)
         .map_err(|source| StatsError::Io {
@@ -52,24 +48,35 @@ pub fn measure(dir: &Path) -> Result<Stats, StatsError> {
     }
     let paths = paths
         .iter()
-        .map(|p| measure_path(p, &kinds))
+        .map(|p| measure_path(p, &instance_kinds(&p.join("instances.json"))?))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Stats { paths })
 }
 
-/// The `o` names of an OBJ file, in order.
-pub fn object_names(path: &Path) -> Result<Vec<String>, StatsError> {
-    let io = |source| StatsError::Io {
+/// The kind of every instance id of a path's `instances.json`, by id − 1.
+pub fn instance_kinds(path: &Path) -> Result<Vec<String>, StatsError> {
+    let bytes =
+        crate::regular_file::read(path, crate::regular_file::Follow::Yes).map_err(|source| {
+            StatsError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
+        })?;
+    let bad = |message: String| StatsError::Bad {
         path: path.to_path_buf(),
-        source,
+        message,
     };
-    let file = crate::regular_file::open(path, crate::regular_file::Follow::Yes).map_err(io)?;
-    let mut names = Vec::new();
-    for line in std::io::BufReader::new(file).split(b'\n') {
-        let line = line.map_err(io)?;
-        if let Some(name) = line.strip_prefix(b"o ") {
-            names.push(String::from_utf8_lossy(name).trim_end().to_owned());
+    let listed: Instances = serde_json::from_slice(&bytes)
+        .map_err(|e| bad(format!("not an instances.json ({e}): rebuild the folder")))?;
+    let mut kinds = Vec::with_capacity(listed.instances.len());
+    for (instance, want) in listed.instances.iter().zip(1u32..) {
+        if instance.id != want {
+            return Err(bad(format!(
+                "instance {} listed where id {want} belongs: ids must run 1, 2, 3, …",
+                instance.id
+            )));
         }
+        kinds.push(instance.kind.name().to_owned());
     }
-    Ok(names)
+    Ok(kinds)
 }

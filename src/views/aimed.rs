@@ -166,6 +166,10 @@ mod tests {
         };
         let object = |name: &str, class: &str, meshes| SceneObject {
             name: name.to_owned(),
+            kind: crate::model::ObjectKind::ALL
+                .into_iter()
+                .find(|k| k.name() == class)
+                .unwrap_or(crate::model::ObjectKind::Mesh),
             class: class.to_owned(),
             meshes,
         };

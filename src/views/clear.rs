@@ -28,7 +28,7 @@ use rayon::prelude::*;
 
 use crate::cameras::CameraPose;
 use crate::model::geometry::normalize;
-use crate::model::{CameraBasis, Scene};
+use crate::model::{CameraBasis, ObjectKind, Scene};
 use crate::render::{self, Intrinsics, PreparedScene};
 
 /// Draws tried per frame.
@@ -54,9 +54,6 @@ pub const COLUMNS: usize = 16;
 /// Rays down the picture.
 pub const ROWS: usize = 12;
 
-/// Object kind (its name without the number) of the scene's vehicles.
-const VEHICLE_KIND: &str = "car";
-
 /// An axis-aligned box, world metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Box3 {
@@ -69,7 +66,7 @@ pub fn vehicle_boxes(scene: &Scene) -> Vec<Box3> {
     scene
         .objects
         .iter()
-        .filter(|o| o.kind() == VEHICLE_KIND)
+        .filter(|o| o.kind == ObjectKind::Car)
         .filter_map(|o| o.bounds())
         .map(|(min, max)| Box3 { min, max })
         .collect()
@@ -309,6 +306,7 @@ mod tests {
             }],
             objects: vec![SceneObject {
                 name: "building_0000".into(),
+                kind: crate::model::ObjectKind::Building,
                 class: "building".into(),
                 meshes: vec![mesh.finish()],
             }],

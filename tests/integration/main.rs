@@ -16,6 +16,7 @@ mod cache_safety;
 mod cli;
 mod explain;
 mod input_files;
+mod instances;
 mod lock;
 mod mutations;
 mod sensor;

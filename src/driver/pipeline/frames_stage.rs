@@ -21,7 +21,7 @@ use super::evaluate::one;
 use crate::cache::{Load, Miss, Outputs};
 use crate::driver::chunks::{self, PathPlan};
 use crate::driver::shard::{Shard, ShardStats};
-use crate::model::{CameraPose, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::model::{CameraPose, FacadeSet, Lamp, ObjectKind, ParsedLayout, Scene};
 use crate::spec::{LightingSpec, OutputLayout, Vary};
 use crate::{annotate, render, rng, scene, views};
 
@@ -383,8 +383,14 @@ impl Pipeline<'_> {
         let poses = self.poses(index, prepared, scene, parsed);
         let path = &self.inputs.frames[index].path;
         let labels = frame_labels::labels(path, scene, &self.object_info, &self.sign_faces);
+        let objects: Vec<(ObjectKind, &str)> = scene
+            .objects
+            .iter()
+            .map(|o| (o.kind, o.class.as_str()))
+            .collect();
         PathPlan {
             poses,
+            instances: annotate::instances(&objects, &labels),
             categories: labels.categories,
             yolo: labels.yolo.map(|classes| classes.names_file()),
         }

@@ -94,6 +94,7 @@ pub(super) fn cuboid(material: u32, lo: [f32; 3], hi: [f32; 3]) -> Vec<Mesh> {
 pub(super) fn object(name: &str, meshes: Vec<Mesh>) -> SceneObject {
     SceneObject {
         name: name.into(),
+        kind: crate::model::ObjectKind::Mesh,
         class: "test".into(),
         meshes,
     }
