@@ -203,12 +203,15 @@ pub fn progress_line(terminal: bool) -> crate::driver::Progress {
         let rate = frame_rate(current.first, (now, done));
         let finished = done == total;
         match &current.bar {
+            // The finished line is printed by us, with its newline: the bar's own last
+            // draw pads to the terminal's width and leaves the next line to its wrapping.
+            Some(bar) if finished => {
+                bar.finish_and_clear();
+                eprintln!("  rendering {}: {done}/{total} frames{rate}", current.path);
+            }
             Some(bar) => {
                 bar.set_message(rate);
                 bar.set_position(done as u64);
-                if finished {
-                    bar.finish();
-                }
             }
             None if finished => {
                 eprintln!(

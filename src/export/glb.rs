@@ -158,20 +158,9 @@ fn plan<'s>(scene: &'s Scene, textures: &TextureFiles) -> Plan<'s> {
         },
         ..GltfDocument::default()
     };
-
     // Sizes first, so every view is placed up front.
-    let (mut positions, mut normals, mut uvs, mut indices) = (0, 0, 0, 0);
-    let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
-    for parts in meshes().filter_map(|mesh| PrimitiveParts::of(mesh, scene, textures)) {
-        positions += parts.vertices * 12;
-        normals += if parts.normals {
-            parts.vertices * 12
-        } else {
-            0
-        };
-        uvs += if parts.uvs { parts.vertices * 8 } else { 0 };
-        indices += parts.indices * 4;
-    }
+    let sizes = section_sizes(scene, textures);
+    let [positions, normals, uvs, indices] = sizes;
     // Section sizes are multiples of 4, so every section and the first image are aligned.
     let mut sections = Sections {
         positions: Section::new(&mut doc, 0, positions, Some(12), ARRAY_BUFFER),
@@ -185,21 +174,75 @@ fn plan<'s>(scene: &'s Scene, textures: &TextureFiles) -> Plan<'s> {
             ELEMENT_ARRAY_BUFFER,
         ),
     };
-    let mut end = positions + normals + uvs + indices;
+    let (images, end) = push_images(&mut doc, scene, textures, sizes.iter().sum());
+    let slots = push_nodes(&mut doc, &mut sections, scene, textures);
+    push_materials(&mut doc, scene, textures);
+    doc.scenes.push(GltfScene {
+        nodes: (0..doc.nodes.len() as u32).collect(),
+    });
+    if end > 0 {
+        doc.buffers.push(Buffer {
+            byte_length: end as u64,
+        });
+    }
+    Plan {
+        doc,
+        sections: sizes,
+        images,
+        primitives: slots,
+        end,
+    }
+}
+
+/// Byte lengths of the position, normal, uv and index sections, in BIN order.
+fn section_sizes(scene: &Scene, textures: &TextureFiles) -> [usize; 4] {
+    let (mut positions, mut normals, mut uvs, mut indices) = (0, 0, 0, 0);
+    let meshes = || scene.objects.iter().flat_map(|o| &o.meshes);
+    for parts in meshes().filter_map(|mesh| PrimitiveParts::of(mesh, scene, textures)) {
+        positions += parts.vertices * 12;
+        normals += if parts.normals {
+            parts.vertices * 12
+        } else {
+            0
+        };
+        uvs += if parts.uvs { parts.vertices * 8 } else { 0 };
+        indices += parts.indices * 4;
+    }
+    [positions, normals, uvs, indices]
+}
+
+/// Adds each texture file's PNG as a bufferView and an image, after the geometry's `end`;
+/// returns where each PNG starts in BIN, and the new end.
+fn push_images<'s>(
+    doc: &mut GltfDocument,
+    scene: &'s Scene,
+    textures: &TextureFiles,
+    mut end: usize,
+) -> (Vec<(usize, &'s [u8])>, usize) {
     let mut images = Vec::with_capacity(textures.files().len());
     for file in textures.files() {
         let texture = &scene.textures[file.texture];
         let start = align4(end);
         end = start + texture.png.len();
         images.push((start, &texture.png[..]));
-        let buffer_view = push_view(&mut doc, start, texture.png.len(), None, None);
+        let buffer_view = push_view(doc, start, texture.png.len(), None, None);
         doc.images.push(Image {
             name: texture.name.clone(),
             buffer_view,
             mime_type: "image/png",
         });
     }
+    (images, end)
+}
 
+/// Adds a node per scene object, and a mesh for each with a primitive; returns where
+/// every primitive's data goes.
+fn push_nodes<'s>(
+    doc: &mut GltfDocument,
+    sections: &mut Sections,
+    scene: &'s Scene,
+    textures: &TextureFiles,
+) -> Vec<PrimitiveSlots<'s>> {
     let mut slots = Vec::new();
     for object in &scene.objects {
         let primitives: Vec<Primitive> = object
@@ -207,7 +250,7 @@ fn plan<'s>(scene: &'s Scene, textures: &TextureFiles) -> Plan<'s> {
             .iter()
             .filter_map(|mesh| {
                 let parts = PrimitiveParts::of(mesh, scene, textures)?;
-                let (mut primitive, slot) = place_primitive(&mut doc, &mut sections, mesh, &parts);
+                let (mut primitive, slot) = place_primitive(doc, sections, mesh, &parts);
                 slots.push(slot);
                 primitive.material =
                     ((mesh.material as usize) < scene.materials.len()).then_some(mesh.material);
@@ -229,23 +272,7 @@ fn plan<'s>(scene: &'s Scene, textures: &TextureFiles) -> Plan<'s> {
             },
         });
     }
-
-    push_materials(&mut doc, scene, textures);
-    doc.scenes.push(GltfScene {
-        nodes: (0..doc.nodes.len() as u32).collect(),
-    });
-    if end > 0 {
-        doc.buffers.push(Buffer {
-            byte_length: end as u64,
-        });
-    }
-    Plan {
-        doc,
-        sections: [positions, normals, uvs, indices],
-        images,
-        primitives: slots,
-        end,
-    }
+    slots
 }
 
 /// Adds one mesh's accessors, claiming its share of each section; returns the primitive

@@ -129,48 +129,12 @@ fn write_mesh(
     let own_uvs = mesh.uvs.len() == mesh.positions.len();
     let has_uv = own_uvs || textured;
     let has_normal = mesh.normals.len() == mesh.positions.len();
-    for p in &mesh.positions {
-        out.push(b'v');
-        for &c in p {
-            out.push(b' ');
-            push_fixed(out, c, POSITION_DECIMALS);
-        }
-        out.push(b'\n');
-    }
-    if own_uvs {
-        for &[u, v] in &mesh.uvs {
-            out.extend_from_slice(b"vt ");
-            push_fixed(out, u, UNIT_DECIMALS);
-            out.push(b' ');
-            push_fixed(out, 1.0 - v, UNIT_DECIMALS);
-            out.push(b'\n');
-        }
-    } else if has_uv {
-        for _ in &mesh.positions {
-            out.extend_from_slice(b"vt 0.00000 1.00000\n");
-        }
-    }
-    // One `vn` per run of equal normals (a flat-shaded face's corners share one): the
-    // normal index of each vertex.
-    let mut normal_of = Vec::new();
-    if has_normal {
-        normal_of.reserve(mesh.normals.len());
-        let mut last: Option<[f32; 3]> = None;
-        let mut count = 0u64;
-        for &n in &mesh.normals {
-            if last.is_none_or(|l| l.map(f32::to_bits) != n.map(f32::to_bits)) {
-                out.extend_from_slice(b"vn");
-                for c in n {
-                    out.push(b' ');
-                    push_fixed(out, c, UNIT_DECIMALS);
-                }
-                out.push(b'\n');
-                last = Some(n);
-                count += 1;
-            }
-            normal_of.push(count - 1);
-        }
-    }
+    write_vertices(out, mesh, own_uvs, has_uv);
+    let normal_of = if has_normal {
+        write_normals(out, &mesh.normals)
+    } else {
+        Vec::new()
+    };
     if let Some(name) = material {
         out.extend_from_slice(b"usemtl ");
         push_name(out, name);
@@ -196,6 +160,54 @@ fn write_mesh(
         out.push(b'\n');
     }
     next.advance(mesh, textured);
+}
+
+/// The `v` lines of `mesh`, then its `vt` lines: its own uvs (v flipped up), zeros when
+/// it has none but needs them (`has_uv`), or none.
+fn write_vertices(out: &mut Vec<u8>, mesh: &Mesh, own_uvs: bool, has_uv: bool) {
+    for p in &mesh.positions {
+        out.push(b'v');
+        for &c in p {
+            out.push(b' ');
+            push_fixed(out, c, POSITION_DECIMALS);
+        }
+        out.push(b'\n');
+    }
+    if own_uvs {
+        for &[u, v] in &mesh.uvs {
+            out.extend_from_slice(b"vt ");
+            push_fixed(out, u, UNIT_DECIMALS);
+            out.push(b' ');
+            push_fixed(out, 1.0 - v, UNIT_DECIMALS);
+            out.push(b'\n');
+        }
+    } else if has_uv {
+        for _ in &mesh.positions {
+            out.extend_from_slice(b"vt 0.00000 1.00000\n");
+        }
+    }
+}
+
+/// One `vn` line per run of equal normals (a flat-shaded face's corners share one);
+/// returns each vertex's normal index, counted from 0.
+fn write_normals(out: &mut Vec<u8>, normals: &[[f32; 3]]) -> Vec<u64> {
+    let mut normal_of = Vec::with_capacity(normals.len());
+    let mut last: Option<[f32; 3]> = None;
+    let mut count = 0u64;
+    for &n in normals {
+        if last.is_none_or(|l| l.map(f32::to_bits) != n.map(f32::to_bits)) {
+            out.extend_from_slice(b"vn");
+            for c in n {
+                out.push(b' ');
+                push_fixed(out, c, UNIT_DECIMALS);
+            }
+            out.push(b'\n');
+            last = Some(n);
+            count += 1;
+        }
+        normal_of.push(count - 1);
+    }
+    normal_of
 }
 
 /// How many `vn` lines `normals` take: one per run of equal normals.

@@ -33,18 +33,11 @@ pub fn crop_facade(
     roofs: &[Roof],
 ) -> Result<Facade, FacadeError> {
     let xml_path = || source.path(&file.name, "xml");
-    let photo_path = || source.path(&file.name, "jpg");
     let xml = file
         .xml
         .as_deref()
         .ok_or_else(|| FacadeError::MissingXml { file: xml_path() })?;
-    let photo = match &file.photo {
-        Photo::File(bytes) => Cow::Owned(decode_photo(bytes, photo_path)?),
-        Photo::Painted(image) => {
-            check_size(image.width(), image.height(), photo_path)?;
-            Cow::Borrowed(image)
-        }
-    };
+    let photo = photo_of(file, || source.path(&file.name, "jpg"))?;
     let (width, height) = photo.dimensions();
     let boxes = parse_cmp_xml(xml, width, height).map_err(|message| FacadeError::BadXml {
         file: xml_path(),
@@ -79,21 +72,7 @@ pub fn crop_facade(
             .ok_or_else(|| FacadeError::NoWindows { file: xml_path() })?,
     };
 
-    let molding_colour = match molding {
-        Some(m) => mean_colour(&sub_image(&photo, m.rect)),
-        None => {
-            let rows = (height / 20).max(1);
-            mean_colour(&sub_image(
-                &photo,
-                PxRect {
-                    x0: 0,
-                    y0: 0,
-                    x1: width,
-                    y1: rows,
-                },
-            ))
-        }
-    };
+    let molding_colour = molding_colour(&photo, molding);
     let crop_rect = PxRect {
         x0: 0,
         y0: top,
@@ -103,14 +82,6 @@ pub fn crop_facade(
     let cropped = sub_image(&photo, crop_rect);
     let (cw, ch) = (f64::from(width), f64::from(height - top));
     let building_height = f64::from(floors) * floor_height;
-    let uv = |r: &PxRect| {
-        [
-            (f64::from(r.x0) / cw) as f32,
-            (f64::from(r.y0 - top) / ch) as f32,
-            (f64::from(r.x1) / cw) as f32,
-            (f64::from(r.y1 - top) / ch) as f32,
-        ]
-    };
     Ok(Facade {
         name: file.name.clone(),
         floors,
@@ -118,9 +89,54 @@ pub fn crop_facade(
         width: cw / ch * building_height,
         molding: molding_colour,
         roof: nearest_roof(molding_colour, roofs),
-        windows: windows.iter().map(uv).collect(),
+        windows: windows.iter().map(|r| crop_uv(r, top, cw, ch)).collect(),
         texture: Texture::from_rgb(format!("facade_{}", safe_name(&file.name)), cropped),
     })
+}
+
+/// The file's photo: decoded, or the painted image, of an accepted size.
+fn photo_of(
+    file: &FacadeFile,
+    photo_path: impl Fn() -> String,
+) -> Result<Cow<'_, RgbImage>, FacadeError> {
+    Ok(match &file.photo {
+        Photo::File(bytes) => Cow::Owned(decode_photo(bytes, photo_path)?),
+        Photo::Painted(image) => {
+            check_size(image.width(), image.height(), photo_path)?;
+            Cow::Borrowed(image)
+        }
+    })
+}
+
+/// The mean colour of the topmost molding box, or of the top 5 % of the rows without one.
+fn molding_colour(photo: &RgbImage, molding: Option<&CmpBox>) -> [u8; 3] {
+    match molding {
+        Some(m) => mean_colour(&sub_image(photo, m.rect)),
+        None => {
+            let (width, height) = photo.dimensions();
+            let rows = (height / 20).max(1);
+            mean_colour(&sub_image(
+                photo,
+                PxRect {
+                    x0: 0,
+                    y0: 0,
+                    x1: width,
+                    y1: rows,
+                },
+            ))
+        }
+    }
+}
+
+/// A box's texture coordinates `[u0, v0, u1, v1]` in the crop below row `top`, `cw` ×
+/// `ch` pixels.
+fn crop_uv(r: &PxRect, top: u32, cw: f64, ch: f64) -> [f32; 4] {
+    [
+        (f64::from(r.x0) / cw) as f32,
+        (f64::from(r.y0 - top) / ch) as f32,
+        (f64::from(r.x1) / cw) as f32,
+        (f64::from(r.y1 - top) / ch) as f32,
+    ]
 }
 
 /// The box with its top clipped to the crop line (its centre is below it).

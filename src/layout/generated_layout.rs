@@ -26,79 +26,31 @@ pub fn generate(spec: &GenerateSpec, palette: &Palette, rng: &mut Pcg64) -> Gene
     let rows = place_roads(height, spec.horizontal_roads, spec, rng);
     let columns = place_roads(width, spec.vertical_roads, spec, rng);
     let rw = spec.road_width;
-    let strip = spec.strip_width;
 
     let mut image = RgbImage::from_pixel(width, height, Rgb(palette.strip.0));
-
-    let mut blocks = Vec::new();
-    for &(y0, y1) in &gaps(&rows, rw, height) {
-        for &(x0, x1) in &gaps(&columns, rw, width) {
-            let blue = PxRect {
-                x0: x0 + strip,
-                y0: y0 + strip,
-                x1: x1.saturating_sub(strip),
-                y1: y1.saturating_sub(strip),
-            };
-            if blue.x0 < blue.x1 && blue.y0 < blue.y1 {
-                fill(&mut image, blue, palette.block);
-                blocks.push(blue);
-            }
+    let blocks = fill_blocks(&mut image, &rows, &columns, spec, palette);
+    let crossing = [(Axis::Horizontal, &rows), (Axis::Vertical, &columns)];
+    let mut roads = Vec::with_capacity(rows.len() + columns.len());
+    for (axis, starts) in crossing {
+        let length = match axis {
+            Axis::Horizontal => width,
+            Axis::Vertical => height,
+        };
+        for &at in starts {
+            fill(
+                &mut image,
+                band(axis, at, rw, [width, height]),
+                palette.road,
+            );
+            roads.push(full_span_road(axis, at, rw, length));
         }
     }
-
-    let mut roads = Vec::with_capacity(rows.len() + columns.len());
-    for &y in &rows {
-        fill(
-            &mut image,
-            PxRect {
-                x0: 0,
-                y0: y,
-                x1: width,
-                y1: y + rw,
-            },
-            palette.road,
-        );
-        roads.push(full_span_road(Axis::Horizontal, y, rw, width));
-    }
-    for &x in &columns {
-        fill(
-            &mut image,
-            PxRect {
-                x0: x,
-                y0: 0,
-                x1: x + rw,
-                y1: height,
-            },
-            palette.road,
-        );
-        roads.push(full_span_road(Axis::Vertical, x, rw, height));
-    }
     // Lines last, so that they run unbroken through the crossings.
-    for &y in &rows {
-        let line = y + rw / 2;
-        fill(
-            &mut image,
-            PxRect {
-                x0: 0,
-                y0: line,
-                x1: width,
-                y1: line + 1,
-            },
-            palette.line,
-        );
-    }
-    for &x in &columns {
-        let line = x + rw / 2;
-        fill(
-            &mut image,
-            PxRect {
-                x0: line,
-                y0: 0,
-                x1: line + 1,
-                y1: height,
-            },
-            palette.line,
-        );
+    for (axis, starts) in crossing {
+        for &at in starts {
+            let line = band(axis, at + rw / 2, 1, [width, height]);
+            fill(&mut image, line, palette.line);
+        }
     }
     for (id, road) in roads.iter_mut().enumerate() {
         road.id = id as u32;
@@ -108,6 +60,53 @@ pub fn generate(spec: &GenerateSpec, palette: &Palette, rng: &mut Pcg64) -> Gene
         image,
         roads,
         blocks,
+    }
+}
+
+/// Fills the blue of every block between the roads (`rows` and `columns`: their top or
+/// left edges), `strip_width` in from its edges; returns the blocks, row by row.
+fn fill_blocks(
+    image: &mut RgbImage,
+    rows: &[u32],
+    columns: &[u32],
+    spec: &GenerateSpec,
+    palette: &Palette,
+) -> Vec<PxRect> {
+    let (rw, strip) = (spec.road_width, spec.strip_width);
+    let mut blocks = Vec::new();
+    for &(y0, y1) in &gaps(rows, rw, spec.height) {
+        for &(x0, x1) in &gaps(columns, rw, spec.width) {
+            let blue = PxRect {
+                x0: x0 + strip,
+                y0: y0 + strip,
+                x1: x1.saturating_sub(strip),
+                y1: y1.saturating_sub(strip),
+            };
+            if blue.x0 < blue.x1 && blue.y0 < blue.y1 {
+                fill(image, blue, palette.block);
+                blocks.push(blue);
+            }
+        }
+    }
+    blocks
+}
+
+/// The band `thickness` px thick from `at` across the whole `[width, height]` image:
+/// rows for a horizontal road, columns for a vertical one.
+fn band(axis: Axis, at: u32, thickness: u32, [width, height]: [u32; 2]) -> PxRect {
+    match axis {
+        Axis::Horizontal => PxRect {
+            x0: 0,
+            y0: at,
+            x1: width,
+            y1: at + thickness,
+        },
+        Axis::Vertical => PxRect {
+            x0: at,
+            y0: 0,
+            x1: at + thickness,
+            y1: height,
+        },
     }
 }
 

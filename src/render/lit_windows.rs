@@ -93,107 +93,174 @@ impl LitWindows {
                 if mesh.uvs.len() != mesh.positions.len() {
                     continue;
                 }
-                let foot = mesh
-                    .positions
-                    .iter()
-                    .map(|p| f64::from(p[1]))
-                    .fold(f64::INFINITY, f64::min);
-                // A window on the diagonal of a wall's two triangles counts once.
-                let mut seen = BTreeSet::new();
-                for tri in mesh.indices.chunks_exact(3) {
-                    let Some(corners) = tri
-                        .iter()
-                        .map(|&i| {
-                            let i = i as usize;
-                            Some((*mesh.positions.get(i)?, *mesh.uvs.get(i)?))
-                        })
-                        .collect::<Option<Vec<_>>>()
-                    else {
-                        continue;
-                    };
-                    let p = corners
-                        .iter()
-                        .map(|c| c.0.map(f64::from))
-                        .collect::<Vec<_>>();
-                    let t = corners
-                        .iter()
-                        .map(|c| c.1.map(f64::from))
-                        .collect::<Vec<_>>();
-                    let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-                    let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-                    let n = [
-                        e1[1] * e2[2] - e1[2] * e2[1],
-                        e1[2] * e2[0] - e1[0] * e2[2],
-                        e1[0] * e2[1] - e1[1] * e2[0],
-                    ];
-                    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                    // Walls only: a window texture on a slope or a roof spills nothing.
-                    if len.is_nan() || len <= 1e-9 || (n[1] / len).abs() > 0.3 {
-                        continue;
-                    }
-                    let n = n.map(|v| v / len);
-                    let (f1, f2) = (
-                        [t[1][0] - t[0][0], t[1][1] - t[0][1]],
-                        [t[2][0] - t[0][0], t[2][1] - t[0][1]],
-                    );
-                    let det = f1[0] * f2[1] - f1[1] * f2[0];
-                    if det.is_nan() || det.abs() <= 1e-12 {
-                        continue;
-                    }
-                    let lo =
-                        |k: usize| t.iter().map(|t| t[k]).fold(f64::INFINITY, f64::min).floor();
-                    let hi = |k: usize| {
-                        t.iter()
-                            .map(|t| t[k])
-                            .fold(f64::NEG_INFINITY, f64::max)
-                            .ceil()
-                    };
-                    let (u0, u1, v0, v1) = (lo(0), hi(0), lo(1), hi(1));
-                    if !(u1 - u0 <= MAX_REPEATS && v1 - v0 <= MAX_REPEATS) {
-                        continue;
-                    }
-                    let mut rv = v0;
-                    while rv < v1 {
-                        let mut ru = u0;
-                        while ru < u1 {
-                            for (i, b) in grid.boxes.iter().enumerate() {
-                                let cu = ru + f64::from(b[0] + b[2]) * 0.5;
-                                let cv = rv + f64::from(b[1] + b[3]) * 0.5;
-                                let (du, dv) = (cu - t[0][0], cv - t[0][1]);
-                                let a = (du * f2[1] - dv * f2[0]) / det;
-                                let c = (f1[0] * dv - f1[1] * du) / det;
-                                if a < 0.0 || c < 0.0 || a + c > 1.0 {
-                                    continue;
-                                }
-                                let at = std::array::from_fn::<f64, 3, _>(|k| {
-                                    p[0][k] + a * e1[k] + c * e2[k]
-                                });
-                                if at[1] - foot > SPILL_HEIGHT
-                                    || !seen.insert((ru as i64, rv as i64, i))
-                                    || !lookup.is_lit(texture, instance, cu, cv)
-                                {
-                                    continue;
-                                }
-                                out.push(Light {
-                                    position: std::array::from_fn(|k| {
-                                        (at[k] + n[k] * SPILL_OFFSET) as f32
-                                    }),
-                                    colour,
-                                    range: SPILL_RANGE,
-                                    near: SPILL_NEAR,
-                                    aim: n.map(|v| v as f32),
-                                    edge: 0.0,
-                                    cutoff: None,
-                                });
-                            }
-                            ru += 1.0;
-                        }
-                        rv += 1.0;
-                    }
-                }
+                let spills = MeshSpills {
+                    lookup: &lookup,
+                    grid,
+                    texture,
+                    instance,
+                    colour,
+                };
+                spills.collect(mesh, &mut out);
             }
         }
         out
+    }
+}
+
+/// The lights of one textured mesh's lit windows.
+struct MeshSpills<'a> {
+    lookup: &'a WindowLookup,
+    /// The mesh texture's window boxes.
+    grid: &'a Grid,
+    texture: u32,
+    instance: u32,
+    colour: [f32; 3],
+}
+
+/// A wall triangle in `f64`: corners `p`, texture coordinates `t`, edges `e1`, `e2` and
+/// unit normal `n`; its texture edges `f1`, `f2` and their determinant.
+struct WallTriangle {
+    p: [[f64; 3]; 3],
+    t: [[f64; 2]; 3],
+    e1: [f64; 3],
+    e2: [f64; 3],
+    n: [f64; 3],
+    f1: [f64; 2],
+    f2: [f64; 2],
+    det: f64,
+}
+
+impl MeshSpills<'_> {
+    /// Appends to `out` a light per lit window box centre in `mesh`'s wall triangles, at
+    /// most [`SPILL_HEIGHT`] above the mesh's lowest point.
+    fn collect(&self, mesh: &crate::model::Mesh, out: &mut Vec<Light>) {
+        let foot = mesh
+            .positions
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(f64::INFINITY, f64::min);
+        // A window on the diagonal of a wall's two triangles counts once.
+        let mut seen = BTreeSet::new();
+        for tri in mesh.indices.chunks_exact(3) {
+            let Some(corners) = tri
+                .iter()
+                .map(|&i| {
+                    let i = i as usize;
+                    Some((*mesh.positions.get(i)?, *mesh.uvs.get(i)?))
+                })
+                .collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
+            if let Some(wall) = WallTriangle::new(&corners) {
+                self.collect_in(&wall, foot, &mut seen, out);
+            }
+        }
+    }
+
+    /// The lights of the lit windows whose box centres, in any texture repeat, lie in
+    /// `wall`; `seen` holds the windows (repeat and box) already lit.
+    fn collect_in(
+        &self,
+        wall: &WallTriangle,
+        foot: f64,
+        seen: &mut BTreeSet<(i64, i64, usize)>,
+        out: &mut Vec<Light>,
+    ) {
+        let WallTriangle {
+            p,
+            t,
+            e1,
+            e2,
+            n,
+            f1,
+            f2,
+            det,
+        } = wall;
+        let lo = |k: usize| t.iter().map(|t| t[k]).fold(f64::INFINITY, f64::min).floor();
+        let hi = |k: usize| {
+            t.iter()
+                .map(|t| t[k])
+                .fold(f64::NEG_INFINITY, f64::max)
+                .ceil()
+        };
+        let (u0, u1, v0, v1) = (lo(0), hi(0), lo(1), hi(1));
+        if !(u1 - u0 <= MAX_REPEATS && v1 - v0 <= MAX_REPEATS) {
+            return;
+        }
+        let mut rv = v0;
+        while rv < v1 {
+            let mut ru = u0;
+            while ru < u1 {
+                for (i, b) in self.grid.boxes.iter().enumerate() {
+                    let cu = ru + f64::from(b[0] + b[2]) * 0.5;
+                    let cv = rv + f64::from(b[1] + b[3]) * 0.5;
+                    let (du, dv) = (cu - t[0][0], cv - t[0][1]);
+                    let a = (du * f2[1] - dv * f2[0]) / det;
+                    let c = (f1[0] * dv - f1[1] * du) / det;
+                    if a < 0.0 || c < 0.0 || a + c > 1.0 {
+                        continue;
+                    }
+                    let at = std::array::from_fn::<f64, 3, _>(|k| p[0][k] + a * e1[k] + c * e2[k]);
+                    if at[1] - foot > SPILL_HEIGHT
+                        || !seen.insert((ru as i64, rv as i64, i))
+                        || !self.lookup.is_lit(self.texture, self.instance, cu, cv)
+                    {
+                        continue;
+                    }
+                    out.push(Light {
+                        position: std::array::from_fn(|k| (at[k] + n[k] * SPILL_OFFSET) as f32),
+                        colour: self.colour,
+                        range: SPILL_RANGE,
+                        near: SPILL_NEAR,
+                        aim: n.map(|v| v as f32),
+                        edge: 0.0,
+                        cutoff: None,
+                    });
+                }
+                ru += 1.0;
+            }
+            rv += 1.0;
+        }
+    }
+}
+
+impl WallTriangle {
+    /// The triangle of `corners` (position, uv), or `None` unless it is a wall (a window
+    /// texture on a slope or a roof spills nothing) with uvs that span an area.
+    fn new(corners: &[([f32; 3], [f32; 2])]) -> Option<WallTriangle> {
+        let p: [[f64; 3]; 3] = std::array::from_fn(|i| corners[i].0.map(f64::from));
+        let t: [[f64; 2]; 3] = std::array::from_fn(|i| corners[i].1.map(f64::from));
+        let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+        let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if len.is_nan() || len <= 1e-9 || (n[1] / len).abs() > 0.3 {
+            return None;
+        }
+        let n = n.map(|v| v / len);
+        let (f1, f2) = (
+            [t[1][0] - t[0][0], t[1][1] - t[0][1]],
+            [t[2][0] - t[0][0], t[2][1] - t[0][1]],
+        );
+        let det = f1[0] * f2[1] - f1[1] * f2[0];
+        if det.is_nan() || det.abs() <= 1e-12 {
+            return None;
+        }
+        Some(WallTriangle {
+            p,
+            t,
+            e1,
+            e2,
+            n,
+            f1,
+            f2,
+            det,
+        })
     }
 }
 

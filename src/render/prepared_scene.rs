@@ -10,7 +10,7 @@ use super::mip_texture::MipTexture;
 use super::occlusion;
 use super::shadow_map::ShadowMap;
 use crate::model::geometry::{cross, dot, normalize};
-use crate::model::{Scene, Texture};
+use crate::model::{Mesh, Scene, SceneObject, Texture};
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
 /// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.
@@ -157,6 +157,37 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
             count: scene.objects.len(),
         });
     }
+    let materials = shade_materials(scene)?;
+    let textures = decode_textures(scene, mips)?;
+    let mut objects = Vec::with_capacity(scene.objects.len());
+    let mut triangles = Vec::with_capacity(scene.triangle_count());
+    for (index, object) in scene.objects.iter().enumerate() {
+        let instance = (index + 1) as u32;
+        let first = triangles.len();
+        for mesh in &object.meshes {
+            if mesh.material as usize >= materials.len() {
+                return Err(RenderError::MissingMaterial {
+                    object: object.name.clone(),
+                    material: mesh.material,
+                    count: materials.len(),
+                });
+            }
+            flatten_mesh(object, mesh, instance, &mut triangles)?;
+        }
+        objects.push(ObjectBounds::of(&triangles, first));
+    }
+    Ok(PreparedScene {
+        textures,
+        materials,
+        objects,
+        triangles,
+        shadows: Mutex::new(None),
+    })
+}
+
+/// The scene's materials as the shader reads them; an error for one naming a texture
+/// the scene lacks.
+fn shade_materials(scene: &Scene) -> Result<Vec<ShadeMaterial>, RenderError> {
     let mut materials = Vec::with_capacity(scene.materials.len());
     for m in &scene.materials {
         if let Some(t) = m.texture
@@ -174,7 +205,12 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
             emissive: m.emissive,
         });
     }
-    let textures = scene
+    Ok(materials)
+}
+
+/// Every scene texture's mip chain, decoded in parallel unless `mips` has it.
+fn decode_textures(scene: &Scene, mips: &TextureMips) -> Result<Vec<Arc<MipTexture>>, RenderError> {
+    scene
         .textures
         .par_iter()
         .map(|t| {
@@ -188,62 +224,63 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
                     source,
                 })
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect()
+}
 
-    let mut objects = Vec::with_capacity(scene.objects.len());
-    let mut triangles = Vec::with_capacity(scene.triangle_count());
-    for (index, object) in scene.objects.iter().enumerate() {
-        let instance = (index + 1) as u32;
-        let first = triangles.len();
-        for mesh in &object.meshes {
-            if mesh.material as usize >= materials.len() {
-                return Err(RenderError::MissingMaterial {
-                    object: object.name.clone(),
-                    material: mesh.material,
-                    count: materials.len(),
-                });
-            }
-            for tri in mesh.indices.chunks_exact(3) {
-                let mut ids = [tri[0], tri[1], tri[2]];
-                if let Some(&bad) = ids.iter().find(|&&i| i as usize >= mesh.positions.len()) {
-                    return Err(RenderError::BadIndex {
-                        object: object.name.clone(),
-                        index: bad,
-                        count: mesh.positions.len(),
-                    });
-                }
-                let pos = |i: u32| mesh.positions[i as usize].map(f64::from);
-                if !ids.iter().all(|&i| pos(i).iter().all(|v| v.is_finite())) {
-                    continue;
-                }
-                let (a, b, c) = (pos(ids[0]), pos(ids[1]), pos(ids[2]));
-                let face = cross(
-                    [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-                    [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-                );
-                let Some(mut normal) = normalize(face) else {
-                    continue;
-                };
-                if ids.iter().all(|&i| (i as usize) < mesh.normals.len()) {
-                    let n = ids.iter().fold([0.0; 3], |s, &i| {
-                        let n = mesh.normals[i as usize].map(f64::from);
-                        [s[0] + n[0], s[1] + n[1], s[2] + n[2]]
-                    });
-                    if dot(n, normal) < 0.0 {
-                        ids.swap(1, 2);
-                        normal = normal.map(|v| -v);
-                    }
-                }
-                let uv = |i: u32| mesh.uvs.get(i as usize).copied().unwrap_or([0.0, 0.0]);
-                triangles.push(Triangle {
-                    p: ids.map(|i| mesh.positions[i as usize]),
-                    uv: ids.map(uv),
-                    normal: normal.map(|v| v as f32),
-                    material: mesh.material,
-                    instance,
-                });
+/// Appends `mesh`'s triangles (of object `instance`) to `triangles`, turned round where
+/// its vertex normals disagree with the winding; drops degenerate and non-finite ones.
+fn flatten_mesh(
+    object: &SceneObject,
+    mesh: &Mesh,
+    instance: u32,
+    triangles: &mut Vec<Triangle>,
+) -> Result<(), RenderError> {
+    for tri in mesh.indices.chunks_exact(3) {
+        let mut ids = [tri[0], tri[1], tri[2]];
+        if let Some(&bad) = ids.iter().find(|&&i| i as usize >= mesh.positions.len()) {
+            return Err(RenderError::BadIndex {
+                object: object.name.clone(),
+                index: bad,
+                count: mesh.positions.len(),
+            });
+        }
+        let pos = |i: u32| mesh.positions[i as usize].map(f64::from);
+        if !ids.iter().all(|&i| pos(i).iter().all(|v| v.is_finite())) {
+            continue;
+        }
+        let (a, b, c) = (pos(ids[0]), pos(ids[1]), pos(ids[2]));
+        let face = cross(
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        let Some(mut normal) = normalize(face) else {
+            continue;
+        };
+        if ids.iter().all(|&i| (i as usize) < mesh.normals.len()) {
+            let n = ids.iter().fold([0.0; 3], |s, &i| {
+                let n = mesh.normals[i as usize].map(f64::from);
+                [s[0] + n[0], s[1] + n[1], s[2] + n[2]]
+            });
+            if dot(n, normal) < 0.0 {
+                ids.swap(1, 2);
+                normal = normal.map(|v| -v);
             }
         }
+        let uv = |i: u32| mesh.uvs.get(i as usize).copied().unwrap_or([0.0, 0.0]);
+        triangles.push(Triangle {
+            p: ids.map(|i| mesh.positions[i as usize]),
+            uv: ids.map(uv),
+            normal: normal.map(|v| v as f32),
+            material: mesh.material,
+            instance,
+        });
+    }
+    Ok(())
+}
+
+impl ObjectBounds {
+    /// The bounds of the object whose triangles are `triangles[first..]`.
+    fn of(triangles: &[Triangle], first: usize) -> ObjectBounds {
         let mut min = [f64::INFINITY; 3];
         let mut max = [f64::NEG_INFINITY; 3];
         for t in &triangles[first..] {
@@ -254,19 +291,12 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
                 }
             }
         }
-        objects.push(ObjectBounds {
+        ObjectBounds {
             min,
             max,
             first,
             end: triangles.len(),
             occluder: occlusion::is_occluder(&triangles[first..]),
-        });
+        }
     }
-    Ok(PreparedScene {
-        textures,
-        materials,
-        objects,
-        triangles,
-        shadows: Mutex::new(None),
-    })
 }

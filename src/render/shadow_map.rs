@@ -61,27 +61,7 @@ impl ShadowMap {
             [1.0, 0.0, 0.0]
         };
         let up = cross(dir, right);
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for o in &scene.objects {
-            if o.min[0].is_nan() || o.min[0] > o.max[0] {
-                continue;
-            }
-            for i in 0..8 {
-                let p = [
-                    if i & 1 == 0 { o.min[0] } else { o.max[0] },
-                    if i & 2 == 0 { o.min[1] } else { o.max[1] },
-                    if i & 4 == 0 { o.min[2] } else { o.max[2] },
-                ];
-                let q = [dot(p, right), dot(p, up)];
-                for k in 0..2 {
-                    lo[k] = lo[k].min(q[k]);
-                    hi[k] = hi[k].max(q[k]);
-                }
-            }
-        }
-        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
-            return None;
-        }
+        let (lo, hi) = light_space_bounds(scene, right, up)?;
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
         let texel = (extent / f64::from(side.clamp(1, MAX_SIDE))).max(MIN_TEXEL);
         // One texel of margin on every side, for the filter.
@@ -104,33 +84,7 @@ impl ShadowMap {
                 })
             })
             .collect();
-        // Flat ground at the scene's lowest level shades nothing (nothing lies below it to
-        // receive its shadow) and is the largest area to fill: left out, its texels read
-        // as lit, as anything at or above it found them anyway.
-        let floor = scene
-            .objects
-            .iter()
-            .map(|o| o.min[1])
-            .fold(f64::INFINITY, f64::min);
-        let is_floor = |t: &super::prepared_scene::Triangle| {
-            t.normal[1] > 0.999 && t.p.iter().all(|p| f64::from(p[1]) <= floor + 1e-4)
-        };
-        let bands = height.div_ceil(BAND);
-        let mut bins = vec![Vec::new(); bands];
-        for (i, t) in tris.iter().enumerate() {
-            if is_floor(&scene.triangles[i]) {
-                continue;
-            }
-            let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);
-            let y1 = t.iter().map(|v| v[1]).fold(f64::NEG_INFINITY, f64::max);
-            let (b0, b1) = (
-                (y0.max(0.0) as usize / BAND).min(bands - 1),
-                (y1.max(0.0) as usize / BAND).min(bands - 1),
-            );
-            for bin in &mut bins[b0..=b1] {
-                bin.push(i as u32);
-            }
-        }
+        let bins = band_bins(scene, &tris, height.div_ceil(BAND));
         // Zeroed memory comes from the system untouched; each band fills its own rows, in
         // parallel, straight into the map (no per-band buffers to copy).
         let mut depth = vec![0.0f32; width * height];
@@ -318,6 +272,66 @@ fn row_span(t: &[[f64; 3]; 3], py: f64) -> Option<(usize, usize)> {
     let xa = (x_min - 1.0).floor().max(0.0) as usize;
     let xb = (x_max + 1.0).ceil().max(0.0) as usize;
     Some((xa, xb))
+}
+
+/// The light-space box (`right`, `up`) of every object's bounds' corners; `None` when no
+/// object has bounds.
+fn light_space_bounds(
+    scene: &PreparedScene,
+    right: [f64; 3],
+    up: [f64; 3],
+) -> Option<([f64; 2], [f64; 2])> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for o in &scene.objects {
+        if o.min[0].is_nan() || o.min[0] > o.max[0] {
+            continue;
+        }
+        for i in 0..8 {
+            let p = [
+                if i & 1 == 0 { o.min[0] } else { o.max[0] },
+                if i & 2 == 0 { o.min[1] } else { o.max[1] },
+                if i & 4 == 0 { o.min[2] } else { o.max[2] },
+            ];
+            let q = [dot(p, right), dot(p, up)];
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+        }
+    }
+    (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
+}
+
+/// Per band of [`BAND`] rows, the triangles (`tris`, in texel coordinates) that reach it.
+///
+/// Flat ground at the scene's lowest level shades nothing (nothing lies below it to
+/// receive its shadow) and is the largest area to fill: left out, its texels read as lit,
+/// as anything at or above it found them anyway.
+fn band_bins(scene: &PreparedScene, tris: &[[[f64; 3]; 3]], bands: usize) -> Vec<Vec<u32>> {
+    let floor = scene
+        .objects
+        .iter()
+        .map(|o| o.min[1])
+        .fold(f64::INFINITY, f64::min);
+    let is_floor = |t: &super::prepared_scene::Triangle| {
+        t.normal[1] > 0.999 && t.p.iter().all(|p| f64::from(p[1]) <= floor + 1e-4)
+    };
+    let mut bins = vec![Vec::new(); bands];
+    for (i, t) in tris.iter().enumerate() {
+        if is_floor(&scene.triangles[i]) {
+            continue;
+        }
+        let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);
+        let y1 = t.iter().map(|v| v[1]).fold(f64::NEG_INFINITY, f64::max);
+        let (b0, b1) = (
+            (y0.max(0.0) as usize / BAND).min(bands - 1),
+            (y1.max(0.0) as usize / BAND).min(bands - 1),
+        );
+        for bin in &mut bins[b0..=b1] {
+            bin.push(i as u32);
+        }
+    }
+    bins
 }
 
 #[cfg(test)]

@@ -382,6 +382,7 @@ impl<'a> Surface<'a> {
 
 /// Linear colour of `surface` at internal pixel `(x, y)`, where 1/w = `q`; `open` scales
 /// its ambient light (ambient occlusion).
+// Long on purpose: the per-pixel shader, texture to light in one pass over shared locals.
 #[allow(clippy::too_many_arguments)]
 fn shade(
     ctx: &FrameContext,

@@ -177,7 +177,43 @@ fn check_image(
     findings: &mut Findings<'_, '_>,
 ) -> Option<LayoutExtent> {
     let resolved = resolve(spec_path, image);
-    let (w, h) = match world.image_dimensions(&resolved) {
+    let (w, h) = check_image_size(&resolved, world, findings)?;
+    // Worlds that do not decode pixels (tests) get an upper bound.
+    let mut extent = LayoutExtent {
+        width: w,
+        height: h,
+        block_px: w * h,
+        line_px: w + h,
+    };
+    match world.layout_pixels(&resolved) {
+        None => {}
+        Some(Err(problem)) => {
+            findings.error(
+                "layout.image",
+                format!(
+                    "expected a whole PNG or JPEG layout image at {}, found {problem}",
+                    resolved.display()
+                ),
+            );
+            return None;
+        }
+        Some(Ok(pixels)) => {
+            let [_, line, block, _] = check_pixels(&pixels, palette, &resolved, world, findings)?;
+            extent.block_px = block;
+            extent.line_px = line;
+        }
+    }
+    Some(extent)
+}
+
+/// The image's width and height when it is an image of at most [`MAX_LAYOUT_SIDE`] a side
+/// and [`MAX_LAYOUT_PIXELS`] in all.
+fn check_image_size(
+    resolved: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) -> Option<(u64, u64)> {
+    let (w, h) = match world.image_dimensions(resolved) {
         Err(problem) => {
             findings.error(
                 "layout.image",
@@ -202,82 +238,70 @@ fn check_image(
         );
         return None;
     }
-    // Worlds that do not decode pixels (tests) get an upper bound.
-    let mut extent = LayoutExtent {
-        width: w,
-        height: h,
-        block_px: w * h,
-        line_px: w + h,
-    };
-    match world.layout_pixels(&resolved) {
-        None => {}
-        Some(Err(problem)) => {
-            findings.error(
-                "layout.image",
-                format!(
-                    "expected a whole PNG or JPEG layout image at {}, found {problem}",
-                    resolved.display()
-                ),
-            );
-            return None;
-        }
-        Some(Ok(pixels)) => {
-            let counts = palette_counts(&pixels, palette);
-            let [road, line, block, _] = counts;
-            if road + line == 0 || block == 0 {
-                let missing = match (road + line == 0, block == 0) {
-                    (true, true) => "neither road nor block colours",
-                    (true, false) => "no road colours",
-                    _ => "no block colours",
-                };
-                findings.error(
-                    "layout.image",
-                    format!(
-                        "expected a layout drawn with the palette (road {}, line {}, block {}, \
-                         strip {}, within {} of each), found {missing} in {}; its most common \
-                         colours are {}; draw with the palette or set `[layout.palette]` to \
-                         the image's colours",
-                        palette.road,
-                        palette.line,
-                        palette.block,
-                        palette.strip,
-                        palette.tolerance,
-                        resolved.display(),
-                        most_common(&pixels, 3)
-                    ),
-                );
-                return None;
-            }
-            if let Some((roads, blocks)) = world.parsed_layout(&pixels, palette)
-                && (roads == 0 || blocks == 0)
-            {
-                findings.error(
-                    "layout.image",
-                    format!(
-                        "expected a layout from which roads and blocks can be read, found \
-                         {roads} road{} and {blocks} block{} in {} (palette road {}, line {}, \
-                         block {}, strip {}, within {}: {road} road, {line} line, {block} \
-                         block and {} strip pixels); a road needs a centre line in the line \
-                         colour, a block an area in the block colour: is this a layout \
-                         drawing?",
-                        plural(roads),
-                        plural(blocks),
-                        resolved.display(),
-                        palette.road,
-                        palette.line,
-                        palette.block,
-                        palette.strip,
-                        palette.tolerance,
-                        counts[3],
-                    ),
-                );
-                return None;
-            }
-            extent.block_px = block;
-            extent.line_px = line;
-        }
+    Some((w, h))
+}
+
+/// The pixel counts per palette class (road, line, block, strip) when the image is drawn
+/// in the palette and roads and blocks can be read off it.
+fn check_pixels(
+    pixels: &RgbImage,
+    palette: &Palette,
+    resolved: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) -> Option<[u64; 4]> {
+    let counts = palette_counts(pixels, palette);
+    let [road, line, block, _] = counts;
+    if road + line == 0 || block == 0 {
+        let missing = match (road + line == 0, block == 0) {
+            (true, true) => "neither road nor block colours",
+            (true, false) => "no road colours",
+            _ => "no block colours",
+        };
+        findings.error(
+            "layout.image",
+            format!(
+                "expected a layout drawn with the palette (road {}, line {}, block {}, \
+                 strip {}, within {} of each), found {missing} in {}; its most common \
+                 colours are {}; draw with the palette or set `[layout.palette]` to \
+                 the image's colours",
+                palette.road,
+                palette.line,
+                palette.block,
+                palette.strip,
+                palette.tolerance,
+                resolved.display(),
+                most_common(pixels, 3)
+            ),
+        );
+        return None;
     }
-    Some(extent)
+    if let Some((roads, blocks)) = world.parsed_layout(pixels, palette)
+        && (roads == 0 || blocks == 0)
+    {
+        findings.error(
+            "layout.image",
+            format!(
+                "expected a layout from which roads and blocks can be read, found \
+                 {roads} road{} and {blocks} block{} in {} (palette road {}, line {}, \
+                 block {}, strip {}, within {}: {road} road, {line} line, {block} \
+                 block and {} strip pixels); a road needs a centre line in the line \
+                 colour, a block an area in the block colour: is this a layout \
+                 drawing?",
+                plural(roads),
+                plural(blocks),
+                resolved.display(),
+                palette.road,
+                palette.line,
+                palette.block,
+                palette.strip,
+                palette.tolerance,
+                counts[3],
+            ),
+        );
+        return None;
+    }
+    Some(counts)
 }
 
 fn plural(n: usize) -> &'static str {

@@ -39,64 +39,78 @@ pub(crate) fn check_objects(
             ObjectKind::Sign => {}
             ObjectKind::Car | ObjectKind::TrafficLight => {}
             ObjectKind::Tree | ObjectKind::Person | ObjectKind::Bicycle => {
-                let range = object.height_range();
-                check_range(&key("height"), range, findings);
-                if let Some([low, high]) = ObjectSpec::height_bounds(object.kind)
-                    && (range[0] < low || range[1] > high)
-                {
-                    findings.error(
-                        &key("height"),
-                        format!(
-                            "expected heights from {low} to {high} m for a {}, found {:?}",
-                            match object.kind {
-                                ObjectKind::Tree => "tree",
-                                ObjectKind::Bicycle => "bicycle's rider",
-                                _ => "person",
-                            },
-                            range
-                        ),
-                    );
-                }
+                check_heights(object, &key("height"), findings);
             }
             ObjectKind::Mesh if object.label.is_empty() => findings.error(
                 &format!("objects[{i}]"),
                 "expected a `label` for an object of kind \"mesh\" (its annotation \
                  category), found none",
             ),
-            ObjectKind::Mesh => {
-                // Mesh objects are named `<label>_NNNN`: a scene class would clash.
-                if SCENE_CLASSES.contains(&object.label.as_str()) {
-                    findings.error(
-                        &key("label"),
-                        format!(
-                            "expected a label other than the scene's own classes ({}), found \
-                             {:?}",
-                            SCENE_CLASSES.join(", "),
-                            object.label
-                        ),
-                    );
-                }
-                check_range(&key("scale"), object.scale, findings);
-                check_range(&key("rotation"), object.rotation, findings);
-                match &object.model {
-                    None => findings.error(
-                        &format!("objects[{i}]"),
-                        "expected a `model` (an OBJ file) for an object of kind \"mesh\", \
-                         found none",
+            ObjectKind::Mesh => check_mesh(object, i, spec_path, world, findings),
+        }
+    }
+}
+
+/// A tree's, person's or rider's height range runs low to high within its kind's bounds.
+fn check_heights(object: &ObjectSpec, key: &str, findings: &mut Findings<'_, '_>) {
+    let range = object.height_range();
+    check_range(key, range, findings);
+    if let Some([low, high]) = ObjectSpec::height_bounds(object.kind)
+        && (range[0] < low || range[1] > high)
+    {
+        findings.error(
+            key,
+            format!(
+                "expected heights from {low} to {high} m for a {}, found {:?}",
+                match object.kind {
+                    ObjectKind::Tree => "tree",
+                    ObjectKind::Bicycle => "bicycle's rider",
+                    _ => "person",
+                },
+                range
+            ),
+        );
+    }
+}
+
+/// A labelled mesh entry (`objects[i]`): a label that is no scene class, ranges low to
+/// high, a readable model file.
+fn check_mesh(
+    object: &ObjectSpec,
+    i: usize,
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings<'_, '_>,
+) {
+    let key = |name: &str| format!("objects[{i}].{name}");
+    // Mesh objects are named `<label>_NNNN`: a scene class would clash.
+    if SCENE_CLASSES.contains(&object.label.as_str()) {
+        findings.error(
+            &key("label"),
+            format!(
+                "expected a label other than the scene's own classes ({}), found {:?}",
+                SCENE_CLASSES.join(", "),
+                object.label
+            ),
+        );
+    }
+    check_range(&key("scale"), object.scale, findings);
+    check_range(&key("rotation"), object.rotation, findings);
+    match &object.model {
+        None => findings.error(
+            &format!("objects[{i}]"),
+            "expected a `model` (an OBJ file) for an object of kind \"mesh\", found none",
+        ),
+        Some(model) => {
+            let file = resolve(spec_path, model);
+            if let Err(problem) = world.file(&file) {
+                findings.error(
+                    &key("model"),
+                    format!(
+                        "expected an OBJ model file at {}, found {problem}",
+                        file.display()
                     ),
-                    Some(model) => {
-                        let file = resolve(spec_path, model);
-                        if let Err(problem) = world.file(&file) {
-                            findings.error(
-                                &key("model"),
-                                format!(
-                                    "expected an OBJ model file at {}, found {problem}",
-                                    file.display()
-                                ),
-                            );
-                        }
-                    }
-                }
+                );
             }
         }
     }

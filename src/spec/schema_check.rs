@@ -93,14 +93,7 @@ fn diagnose(
     out: &mut Vec<Diagnostic>,
 ) {
     let subschema = schema_parent(error.schema_path().as_str());
-    let found = || {
-        locator
-            .value(path)
-            .map_or_else(|| "nothing".to_string(), |v| show(v.get_ref()))
-    };
-    let noun = || type_noun(subschema.and_then(|s| s.get("type")));
     let at_value = |message: String| Diagnostic::new(text, locator.span(path), path, message);
-    let expected = |what: String| value_hint(path).map_or(what, str::to_string);
     let diagnostic = match error.kind() {
         ValidationErrorKind::AdditionalProperties { unexpected } => {
             let known = known_keys(subschema);
@@ -136,67 +129,6 @@ fn diagnose(
                 .map_or_else(|| "nothing".to_string(), |v| describe(v.get_ref()));
             at_value(format!("expected {}, found {found}", type_kind_noun(kind)))
         }
-        ValidationErrorKind::Minimum { limit } => at_value(format!(
-            "expected {}, found {}",
-            expected(format!("{} at least {limit}", noun())),
-            found()
-        )),
-        ValidationErrorKind::Maximum { limit } => at_value(format!(
-            "expected {}, found {}",
-            expected(format!("{} at most {limit}", noun())),
-            found()
-        )),
-        ValidationErrorKind::ExclusiveMinimum { limit } => at_value(format!(
-            "expected {}, found {}",
-            expected(format!("{} greater than {limit}", noun())),
-            found()
-        )),
-        ValidationErrorKind::ExclusiveMaximum { limit } => at_value(format!(
-            "expected {}, found {}",
-            expected(format!("{} less than {limit}", noun())),
-            found()
-        )),
-        ValidationErrorKind::MinItems { limit } => at_value(format!(
-            "expected at least {} in the array, found {}",
-            items(*limit),
-            found()
-        )),
-        ValidationErrorKind::MaxItems { limit } => at_value(format!(
-            "expected at most {} in the array, found {}",
-            items(*limit),
-            found()
-        )),
-        ValidationErrorKind::MinLength { limit: 1 } => {
-            at_value(format!("expected a non-empty string, found {}", found()))
-        }
-        ValidationErrorKind::MinLength { limit } => at_value(format!(
-            "expected a string of at least {limit} characters, found {}",
-            found()
-        )),
-        ValidationErrorKind::MaxLength { limit } => at_value(format!(
-            "expected a string of at most {limit} characters, found {}",
-            found()
-        )),
-        ValidationErrorKind::Pattern { pattern } => at_value(format!(
-            "expected {}, found {}",
-            pattern_noun(pattern),
-            found()
-        )),
-        ValidationErrorKind::Enum { options } => {
-            let listed = match options.as_array() {
-                Some(items) => items
-                    .iter()
-                    .map(|o| o.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                None => options.to_string(),
-            };
-            let mut message = format!("expected one of {listed}, found {}", found());
-            if let Some(near) = closest_option(locator, path, options) {
-                message.push_str(&format!(" (did you mean \"{near}\"?)"));
-            }
-            at_value(message)
-        }
         // The only `false` schemas are the per-kind rules of `[[objects]]` (`kind_rules`).
         ValidationErrorKind::FalseSchema => Diagnostic::new(
             text,
@@ -204,12 +136,83 @@ fn diagnose(
             path,
             inapplicable_key_message(path, locator),
         ),
-        ValidationErrorKind::Constant { expected_value } => {
-            at_value(format!("expected {expected_value}, found {}", found()))
-        }
-        _ => at_value(format!("expected a value the schema allows: {error}")),
+        _ => at_value(value_message(error, subschema, path, locator)),
     };
     out.push(diagnostic);
+}
+
+/// "expected …, found …" for a value the schema refuses: out of bounds, too many or too
+/// few, not matching a pattern, not one of the options or the constant.
+fn value_message(
+    error: &ValidationError<'_>,
+    subschema: Option<&Value>,
+    path: &KeyPath,
+    locator: &Locator<'_>,
+) -> String {
+    let found = || {
+        locator
+            .value(path)
+            .map_or_else(|| "nothing".to_string(), |v| show(v.get_ref()))
+    };
+    let noun = || type_noun(subschema.and_then(|s| s.get("type")));
+    let expected = |what: String| value_hint(path).map_or(what, str::to_string);
+    let bound = |what: String| format!("expected {}, found {}", expected(what), found());
+    match error.kind() {
+        ValidationErrorKind::Minimum { limit } => bound(format!("{} at least {limit}", noun())),
+        ValidationErrorKind::Maximum { limit } => bound(format!("{} at most {limit}", noun())),
+        ValidationErrorKind::ExclusiveMinimum { limit } => {
+            bound(format!("{} greater than {limit}", noun()))
+        }
+        ValidationErrorKind::ExclusiveMaximum { limit } => {
+            bound(format!("{} less than {limit}", noun()))
+        }
+        ValidationErrorKind::MinItems { limit } => format!(
+            "expected at least {} in the array, found {}",
+            items(*limit),
+            found()
+        ),
+        ValidationErrorKind::MaxItems { limit } => format!(
+            "expected at most {} in the array, found {}",
+            items(*limit),
+            found()
+        ),
+        ValidationErrorKind::MinLength { limit: 1 } => {
+            format!("expected a non-empty string, found {}", found())
+        }
+        ValidationErrorKind::MinLength { limit } => format!(
+            "expected a string of at least {limit} characters, found {}",
+            found()
+        ),
+        ValidationErrorKind::MaxLength { limit } => format!(
+            "expected a string of at most {limit} characters, found {}",
+            found()
+        ),
+        ValidationErrorKind::Pattern { pattern } => {
+            format!("expected {}, found {}", pattern_noun(pattern), found())
+        }
+        ValidationErrorKind::Enum { options } => enum_message(options, path, locator, found()),
+        ValidationErrorKind::Constant { expected_value } => {
+            format!("expected {expected_value}, found {}", found())
+        }
+        _ => format!("expected a value the schema allows: {error}"),
+    }
+}
+
+/// "expected one of …, found …", with the nearest option when one is near.
+fn enum_message(options: &Value, path: &KeyPath, locator: &Locator<'_>, found: String) -> String {
+    let listed = match options.as_array() {
+        Some(items) => items
+            .iter()
+            .map(|o| o.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        None => options.to_string(),
+    };
+    let mut message = format!("expected one of {listed}, found {found}");
+    if let Some(near) = closest_option(locator, path, options) {
+        message.push_str(&format!(" (did you mean \"{near}\"?)"));
+    }
+    message
 }
 
 /// The subschema holding the failed keyword (`/$defs/GenerateSpec/properties/width/maximum`

@@ -2,7 +2,7 @@
 //! instance id → [`PathStats`].
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -60,6 +60,37 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let (pixels, shares) = kind_shares(dir, kinds)?;
+    let coco = Coco::read(dir.join("coco.json"))?;
+    let images = coco.image_ids()?;
+    let categories = coco.categories()?;
+    let mut tally = coco.tally(&images, &categories)?;
+    let mut all_heights: Vec<f64> = tally.heights.iter().flatten().copied().collect();
+    let classes = categories
+        .iter()
+        .enumerate()
+        .map(|(c, (_, name))| ClassStats {
+            name: name.clone(),
+            labelled: tally.per_frame[c].iter().sum(),
+            ignored: tally.ignored[c],
+            per_frame: median_count(&tally.per_frame[c]),
+            box_height: quartiles(&mut tally.heights[c]),
+        })
+        .collect();
+    Ok(PathStats {
+        name,
+        frames: images.len(),
+        pixels,
+        kinds: shares,
+        labelled_per_frame: median_count(&tally.all_per_frame),
+        box_height: quartiles(&mut all_heights),
+        classes,
+    })
+}
+
+/// All pixels of the path's instance images, and each kind's share of them, largest
+/// first.
+fn kind_shares(dir: &Path, kinds: &[String]) -> Result<(u64, Vec<KindShare>), StatsError> {
     let (pixels, kind_pixels) = count_kinds(&dir.join("ids"), kinds)?;
     let mut shares: Vec<KindShare> = kind_pixels
         .into_iter()
@@ -74,86 +105,108 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
         })
         .collect();
     shares.sort_by(|a, b| b.pixels.cmp(&a.pixels).then(a.kind.cmp(&b.kind)));
+    Ok((pixels, shares))
+}
 
-    let coco_path = dir.join("coco.json");
-    let bytes = crate::regular_file::read(&coco_path, crate::regular_file::Follow::Yes).map_err(
-        |source| StatsError::Io {
-            path: coco_path.clone(),
-            source,
-        },
-    )?;
-    let bad = |message: &str| StatsError::Bad {
-        path: coco_path.clone(),
-        message: message.to_owned(),
-    };
-    let doc: Value = serde_json::from_slice(&bytes).map_err(|e| bad(&e.to_string()))?;
-    let list = |key: &str| {
-        doc[key]
-            .as_array()
-            .ok_or_else(|| bad(&format!("no {key} list")))
-    };
-    let images: Vec<u64> = list("images")?
-        .iter()
-        .map(|i| {
-            i["id"]
-                .as_u64()
-                .ok_or_else(|| bad("an image without an id"))
-        })
-        .collect::<Result<_, _>>()?;
-    let frame_of: BTreeMap<u64, usize> =
-        images.iter().enumerate().map(|(i, id)| (*id, i)).collect();
-    let categories: Vec<(u64, String)> = list("categories")?
-        .iter()
-        .map(|c| Some((c["id"].as_u64()?, c["name"].as_str()?.to_owned())))
-        .collect::<Option<_>>()
-        .ok_or_else(|| bad("a category without an id or name"))?;
-    // Per category: labelled count per frame, heights, ignore regions.
-    let mut per_frame = vec![vec![0u64; images.len()]; categories.len()];
-    let mut all_per_frame = vec![0u64; images.len()];
-    let mut heights: Vec<Vec<f64>> = vec![Vec::new(); categories.len()];
-    let mut ignored = vec![0u64; categories.len()];
-    for ann in list("annotations")? {
-        let category = ann["category_id"].as_u64();
-        let Some(c) = categories.iter().position(|(id, _)| Some(*id) == category) else {
-            return Err(bad("an annotation of an unlisted category"));
-        };
-        if ann["iscrowd"].as_u64() == Some(1) {
-            ignored[c] += 1;
-            continue;
+/// A path's `coco.json`, parsed.
+struct Coco {
+    path: PathBuf,
+    doc: Value,
+}
+
+/// Per category: labelled boxes per frame, their heights, ignore regions; and labelled
+/// boxes per frame of all categories.
+struct Tally {
+    per_frame: Vec<Vec<u64>>,
+    all_per_frame: Vec<u64>,
+    heights: Vec<Vec<f64>>,
+    ignored: Vec<u64>,
+}
+
+impl Coco {
+    fn read(path: PathBuf) -> Result<Coco, StatsError> {
+        let bytes = crate::regular_file::read(&path, crate::regular_file::Follow::Yes).map_err(
+            |source| StatsError::Io {
+                path: path.clone(),
+                source,
+            },
+        )?;
+        match serde_json::from_slice(&bytes) {
+            Ok(doc) => Ok(Coco { path, doc }),
+            Err(e) => Err(StatsError::Bad {
+                path,
+                message: e.to_string(),
+            }),
         }
-        let frame = ann["image_id"]
-            .as_u64()
-            .and_then(|id| frame_of.get(&id))
-            .ok_or_else(|| bad("an annotation of an unlisted image"))?;
-        per_frame[c][*frame] += 1;
-        all_per_frame[*frame] += 1;
-        heights[c].push(
-            ann["bbox"][3]
-                .as_f64()
-                .ok_or_else(|| bad("a bbox without a height"))?,
-        );
     }
-    let mut all_heights: Vec<f64> = heights.iter().flatten().copied().collect();
-    let classes = categories
-        .iter()
-        .enumerate()
-        .map(|(c, (_, name))| ClassStats {
-            name: name.clone(),
-            labelled: per_frame[c].iter().sum(),
-            ignored: ignored[c],
-            per_frame: median_count(&per_frame[c]),
-            box_height: quartiles(&mut heights[c]),
-        })
-        .collect();
-    Ok(PathStats {
-        name,
-        frames: images.len(),
-        pixels,
-        kinds: shares,
-        labelled_per_frame: median_count(&all_per_frame),
-        box_height: quartiles(&mut all_heights),
-        classes,
-    })
+
+    fn bad(&self, message: &str) -> StatsError {
+        StatsError::Bad {
+            path: self.path.clone(),
+            message: message.to_owned(),
+        }
+    }
+
+    fn list(&self, key: &str) -> Result<&Vec<Value>, StatsError> {
+        self.doc[key]
+            .as_array()
+            .ok_or_else(|| self.bad(&format!("no {key} list")))
+    }
+
+    /// The images' ids, in frame order.
+    fn image_ids(&self) -> Result<Vec<u64>, StatsError> {
+        self.list("images")?
+            .iter()
+            .map(|i| {
+                i["id"]
+                    .as_u64()
+                    .ok_or_else(|| self.bad("an image without an id"))
+            })
+            .collect()
+    }
+
+    /// The categories' ids and names.
+    fn categories(&self) -> Result<Vec<(u64, String)>, StatsError> {
+        self.list("categories")?
+            .iter()
+            .map(|c| Some((c["id"].as_u64()?, c["name"].as_str()?.to_owned())))
+            .collect::<Option<_>>()
+            .ok_or_else(|| self.bad("a category without an id or name"))
+    }
+
+    /// Counts the annotations of the `images` (ids, in frame order) per category.
+    fn tally(&self, images: &[u64], categories: &[(u64, String)]) -> Result<Tally, StatsError> {
+        let frame_of: BTreeMap<u64, usize> =
+            images.iter().enumerate().map(|(i, id)| (*id, i)).collect();
+        let mut tally = Tally {
+            per_frame: vec![vec![0u64; images.len()]; categories.len()],
+            all_per_frame: vec![0u64; images.len()],
+            heights: vec![Vec::new(); categories.len()],
+            ignored: vec![0u64; categories.len()],
+        };
+        for ann in self.list("annotations")? {
+            let category = ann["category_id"].as_u64();
+            let Some(c) = categories.iter().position(|(id, _)| Some(*id) == category) else {
+                return Err(self.bad("an annotation of an unlisted category"));
+            };
+            if ann["iscrowd"].as_u64() == Some(1) {
+                tally.ignored[c] += 1;
+                continue;
+            }
+            let frame = ann["image_id"]
+                .as_u64()
+                .and_then(|id| frame_of.get(&id))
+                .ok_or_else(|| self.bad("an annotation of an unlisted image"))?;
+            tally.per_frame[c][*frame] += 1;
+            tally.all_per_frame[*frame] += 1;
+            tally.heights[c].push(
+                ann["bbox"][3]
+                    .as_f64()
+                    .ok_or_else(|| self.bad("a bbox without a height"))?,
+            );
+        }
+        Ok(tally)
+    }
 }
 
 /// All pixels of the `ids/*.png` images in `dir`, and the pixels of each kind.
