@@ -20,6 +20,8 @@ use args::{Args, CacheCommand, Command, FacadesCommand};
 use shared_args::{CacheArg, JobsArg, OutArg};
 
 /// Runs the command line and returns the process exit code.
+// Long on purpose: the dispatch: one arm a command, each only turning its arguments into
+// the options of the command's own function below.
 pub fn run() -> ExitCode {
     let args = match Args::try_parse() {
         Ok(args) => args,

@@ -98,23 +98,41 @@ struct Listing {
 /// the rest of the cache as [`GcOptions`] allow.
 pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildError>> {
     let cache = Cache::open(&options.cache_dir).map_err(|e| vec![e.into()])?;
-    let refuse = |why: String| {
-        vec![BuildError::NotACache {
+    check_marked(&cache, options).map_err(|e| vec![e])?;
+    let (entries, objects) = needed(specs, &cache)?;
+    let now = SystemTime::now();
+    let listing = cache_files(&cache, now).map_err(|source| {
+        vec![BuildError::Cache {
             path: options.cache_dir.clone(),
-            why,
+            source,
         }]
+    })?;
+    Ok(sweep(&cache, listing, &entries, &objects, options, now))
+}
+
+/// Refuses a folder or prefix cityspec did not mark as its cache.
+fn check_marked(cache: &Cache, options: &GcOptions) -> Result<(), BuildError> {
+    let refuse = |why: String| BuildError::NotACache {
+        path: options.cache_dir.clone(),
+        why,
     };
     match cache.is_marked() {
-        Ok(true) => {}
-        Ok(false) => {
-            return Err(refuse(format!(
-                "it has no {MARKER} written by cityspec, so `cache gc` removes nothing from \
-                 it (a cache gets the marker with its first write; a cache made by an older \
-                 cityspec gets it at its next build)"
-            )));
-        }
-        Err(e) => return Err(refuse(format!("its {MARKER} cannot be read: {e}"))),
+        Ok(true) => Ok(()),
+        Ok(false) => Err(refuse(format!(
+            "it has no {MARKER} written by cityspec, so `cache gc` removes nothing from \
+             it (a cache gets the marker with its first write; a cache made by an older \
+             cityspec gets it at its next build)"
+        ))),
+        Err(e) => Err(refuse(format!("its {MARKER} cannot be read: {e}"))),
     }
+}
+
+/// The entries `specs` need (their stages' keys) and the objects they and `.lock` files
+/// name.
+fn needed(
+    specs: &[PathBuf],
+    cache: &Cache,
+) -> Result<(BTreeSet<String>, BTreeSet<String>), Vec<BuildError>> {
     let mut entries = BTreeSet::new();
     let mut objects = BTreeSet::new();
     let mut errors = Vec::new();
@@ -122,7 +140,7 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
         let needed = if path.extension().is_some_and(|e| e == "lock") {
             lock_objects(path).map(|hashes| objects.extend(hashes))
         } else {
-            spec_keys(path, &cache).map(|keys| entries.extend(keys))
+            spec_keys(path, cache).map(|keys| entries.extend(keys))
         };
         if let Err(e) = needed {
             errors.push(e);
@@ -136,14 +154,20 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
             objects.extend(entry.outputs.into_values().map(|o| o.sha256));
         }
     }
-    let io_error = |source| {
-        vec![BuildError::Cache {
-            path: options.cache_dir.clone(),
-            source,
-        }]
-    };
-    let now = SystemTime::now();
-    let listing = cache_files(&cache, now).map_err(io_error)?;
+    Ok((entries, objects))
+}
+
+/// Removes from `listing` the damaged files, old temporaries, and what no needed entry or
+/// object names, as `options` allow: past the grace period, older than `max_age`, oldest
+/// first until the cache fits `max_size`.
+fn sweep(
+    cache: &Cache,
+    listing: Listing,
+    entries: &BTreeSet<String>,
+    objects: &BTreeSet<String>,
+    options: &GcOptions,
+    now: SystemTime,
+) -> GcReport {
     let mut report = GcReport {
         skipped: listing.skipped,
         ..GcReport::default()
@@ -154,7 +178,7 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
     for file in listing.files {
         total += file.bytes;
         if file.damaged {
-            if remove(&cache, &file) {
+            if remove(cache, &file) {
                 report.removed_damaged += 1;
                 total -= file.bytes;
             }
@@ -179,7 +203,7 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
         }
     }
     for file in temporaries {
-        if remove(&cache, &file) {
+        if remove(cache, &file) {
             report.removed_temporaries += 1;
             report.removed_bytes += file.bytes;
             total -= file.bytes;
@@ -201,7 +225,7 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
     // Entries first: a kept entry never names a removed object.
     candidates.sort_by_key(|c| !c.entry);
     for c in candidates {
-        if remove(&cache, &c.file) {
+        if remove(cache, &c.file) {
             if c.entry {
                 report.removed_entries += 1;
             } else {
@@ -212,7 +236,7 @@ pub fn gc(specs: &[PathBuf], options: &GcOptions) -> Result<GcReport, Vec<BuildE
         }
     }
     report.bytes = total;
-    Ok(report)
+    report
 }
 
 /// Every key the spec's build reads or writes.

@@ -42,29 +42,8 @@ pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, Bu
     })?;
     let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
     let obj_text = String::from_utf8_lossy(&obj);
-    let mtl_names = RefCell::new(Vec::new());
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    tobj::load_obj_buf(&mut Cursor::new(&obj[..]), &options, |name| {
-        mtl_names
-            .borrow_mut()
-            .push(name.to_string_lossy().into_owned());
-        Ok((Vec::new(), Default::default()))
-    })
-    // Only whether it parses: the scene stage loads the models from these bytes.
-    .map(|_| ())
-    .map_err(|source| {
-        let at = obj_error_line(&obj_text, &source)
-            .and_then(|line| SourceFrame::line(&file, &obj_text, line));
-        fail(InputProblem::Obj {
-            at: at.map(Box::new),
-            source,
-        })
-    })?;
-    let Some(mtl_name) = mtl_names.into_inner().into_iter().next() else {
+    let mtl_names = obj_mtl_names(&file, &obj, &obj_text).map_err(&fail)?;
+    let Some(mtl_name) = mtl_names.into_iter().next() else {
         return Ok(MeshFiles {
             obj,
             mtl: None,
@@ -107,6 +86,33 @@ pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, Bu
         mtl: Some(mtl),
         textures,
     })
+}
+
+/// The MTL libraries an OBJ model names, once it is known to parse (only whether it
+/// parses: the scene stage loads the models from these bytes).
+fn obj_mtl_names(file: &Path, obj: &[u8], obj_text: &str) -> Result<Vec<String>, InputProblem> {
+    let mtl_names = RefCell::new(Vec::new());
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    tobj::load_obj_buf(&mut Cursor::new(obj), &options, |name| {
+        mtl_names
+            .borrow_mut()
+            .push(name.to_string_lossy().into_owned());
+        Ok((Vec::new(), Default::default()))
+    })
+    .map(|_| ())
+    .map_err(|source| {
+        let at = obj_error_line(obj_text, &source)
+            .and_then(|line| SourceFrame::line(file, obj_text, line));
+        InputProblem::Obj {
+            at: at.map(Box::new),
+            source,
+        }
+    })?;
+    Ok(mtl_names.into_inner())
 }
 
 /// The MTL statements that name the textures tobj reads.

@@ -122,6 +122,8 @@ pub fn saddle_for(height: f64) -> f64 {
 }
 
 /// Places the entry's bicycles (and riders); returns how many bicycles.
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
@@ -247,6 +249,8 @@ fn saddle_point(bike: &Bike) -> [f64; 2] {
 
 /// The solids of `bike` standing at `frame`'s origin, facing its forward: the frame paint,
 /// then the black parts (tyres, saddle, handlebar, cranks and pedals).
+// Long on purpose: builds one figure part by part from a dozen shared dimensions, in the
+// order its meshes are listed; split, each part would take them all as arguments.
 pub fn bicycle_meshes(frame: &Frame, bike: &Bike, m: BikeMaterials) -> Vec<Mesh> {
     let mut paint = Solid::new(m.paint);
     let mut black = Solid::new(m.black);

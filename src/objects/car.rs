@@ -123,87 +123,24 @@ impl Shape {
             panes,
             cargo: None,
         };
-        match body {
-            CarBody::Sedan => car(
-                4.6,
-                1.8,
-                0.3,
-                0.95,
-                0.85,
-                1.45,
-                [1.0, 1.5, 2.95, 3.55],
-                0.32,
-                [0.95, 3.65],
-                2,
-            ),
-            CarBody::Hatchback => car(
-                4.0,
-                1.75,
-                0.3,
-                0.95,
-                0.85,
-                1.5,
-                [0.12, 0.4, 2.35, 3.0],
-                0.31,
-                [0.75, 3.25],
-                2,
-            ),
-            CarBody::Suv => car(
-                4.7,
-                1.9,
-                0.4,
-                1.1,
-                1.0,
-                1.78,
-                [0.1, 0.28, 3.05, 3.65],
-                0.38,
-                [0.95, 3.75],
-                3,
-            ),
-            CarBody::Van => car(
-                5.0,
-                1.95,
-                0.35,
-                1.05,
-                0.95,
-                2.1,
-                [0.05, 0.1, 3.85, 4.5],
-                0.34,
-                [0.9, 4.1],
-                3,
-            ),
+        // One body a row: length, width, sill, belt, hood, roof, cabin, wheel, axles, panes.
+        #[rustfmt::skip]
+        let shape = match body {
+            CarBody::Sedan => car(4.6, 1.8, 0.3, 0.95, 0.85, 1.45, [1.0, 1.5, 2.95, 3.55], 0.32, [0.95, 3.65], 2),
+            CarBody::Hatchback => car(4.0, 1.75, 0.3, 0.95, 0.85, 1.5, [0.12, 0.4, 2.35, 3.0], 0.31, [0.75, 3.25], 2),
+            CarBody::Suv => car(4.7, 1.9, 0.4, 1.1, 1.0, 1.78, [0.1, 0.28, 3.05, 3.65], 0.38, [0.95, 3.75], 3),
+            CarBody::Van => car(5.0, 1.95, 0.35, 1.05, 0.95, 2.1, [0.05, 0.1, 3.85, 4.5], 0.34, [0.9, 4.1], 3),
             CarBody::Bus => Shape {
                 inset: 0.03,
-                ..car(
-                    11.0,
-                    2.5,
-                    0.35,
-                    1.2,
-                    1.2,
-                    3.0,
-                    [0.05, 0.08, 10.85, 10.96],
-                    0.5,
-                    [2.6, 8.9],
-                    7,
-                )
+                ..car(11.0, 2.5, 0.35, 1.2, 1.2, 3.0, [0.05, 0.08, 10.85, 10.96], 0.5, [2.6, 8.9], 7)
             },
             CarBody::Truck => Shape {
                 inset: 0.05,
                 cargo: Some(([0.1, 5.3], 3.4)),
-                ..car(
-                    7.5,
-                    2.35,
-                    0.45,
-                    1.25,
-                    1.15,
-                    2.85,
-                    [5.45, 5.5, 7.15, 7.45],
-                    0.48,
-                    [1.6, 6.1],
-                    1,
-                )
+                ..car(7.5, 2.35, 0.45, 1.25, 1.15, 2.85, [5.45, 5.5, 7.15, 7.45], 0.48, [1.6, 6.1], 1)
             },
-        }
+        };
+        shape
     }
 
     /// The lower body's side profile, convex, counter-clockwise.
@@ -246,6 +183,8 @@ struct Paints {
     tail: u32,
 }
 
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
 pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
     let bodies: &[CarBody] = if spec.bodies.is_empty() {
         &DEFAULT_MIX

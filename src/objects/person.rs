@@ -188,6 +188,8 @@ pub struct Clothes {
 
 /// The solids of `figure` standing at `frame`'s origin, facing its forward: one mesh per
 /// material used.
+// Long on purpose: builds one figure part by part from a dozen shared dimensions, in the
+// order its meshes are listed; split, each part would take them all as arguments.
 pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
     let h = figure.height;
     let s = h / 1.75 * figure.build;

@@ -48,6 +48,8 @@ pub fn outline(kind: SignKind) -> Vec<[f64; 2]> {
 }
 
 /// The face texture of `kind`; `speed` is the number on a speed-limit sign.
+// Long on purpose: one match arm a sign kind, each painting its face; an arm read apart from
+// the others hides that they share the outline, colours and sizes above.
 pub fn draw(kind: SignKind, speed: u32) -> RgbImage {
     let s = SIZE as i32;
     let c = s / 2;

@@ -56,6 +56,8 @@ const COLOURS: [([u8; 3], [u8; 3]); 5] = [
 pub(super) const POLE_GREY: [f32; 3] = [0.3, 0.31, 0.33];
 
 /// Places up to `spec.count` street-name signs; returns how many poles stand.
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,

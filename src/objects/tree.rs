@@ -64,6 +64,8 @@ const LEAVES: [[[f32; 3]; 3]; 4] = [
     [[0.1, 0.14, 0.03], [0.13, 0.15, 0.035], [0.08, 0.12, 0.03]],
 ];
 
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
 pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
     let species: &[TreeSpecies] = if spec.species.is_empty() {
         &TreeSpecies::ALL

@@ -65,28 +65,7 @@ impl Pipeline<'_> {
                     Miss::Absent => None,
                     Miss::Corrupt(why) => Some(why),
                 };
-                let (value, mut outputs, diagnostics, time) =
-                    self.gather_and_run(gather, run, false)?;
-                let refs =
-                    self.cache
-                        .put(name, &key, &outputs, &diagnostics)
-                        .map_err(|source| BuildError::Cache {
-                            path: self.cache.root().to_path_buf(),
-                            source,
-                        })?;
-                // Each output now knows its object, so its hash is not computed again;
-                // bytes the stage made stay in memory for the driver to write (a
-                // streamed stage's never were).
-                for (name, object) in refs {
-                    if let Some(blob) = outputs.remove(&name) {
-                        outputs.insert(name, blob.stored(object));
-                    }
-                }
-                let slot = Slot {
-                    outputs,
-                    value: Some(Arc::new(value)),
-                    diagnostics,
-                };
+                let (slot, time) = self.run_and_store(name, &key, gather, run)?;
                 (slot, StageStatus::Ran, repaired, time)
             }
         };
@@ -102,6 +81,38 @@ impl Pipeline<'_> {
         let diagnostics = filled.diagnostics.clone();
         *slot(self) = Some(filled);
         self.read_diagnostics(&diagnostics)
+    }
+
+    /// Runs stage `name` (key `key`), its inputs gathered, and stores its outputs and
+    /// diagnostics in the cache: the filled slot and how long the run took.
+    fn run_and_store<I, T>(
+        &mut self,
+        name: &'static str,
+        key: &str,
+        gather: impl FnOnce(&mut Self) -> Result<I, BuildError>,
+        run: impl FnOnce(&Self, I) -> Result<(T, Outputs), BuildError>,
+    ) -> Result<(Slot<T>, Duration), BuildError> {
+        let (value, mut outputs, diagnostics, time) = self.gather_and_run(gather, run, false)?;
+        let refs = self
+            .cache
+            .put(name, key, &outputs, &diagnostics)
+            .map_err(|source| BuildError::Cache {
+                path: self.cache.root().to_path_buf(),
+                source,
+            })?;
+        // Each output now knows its object, so its hash is not computed again; bytes the
+        // stage made stay in memory for the driver to write (a streamed stage's never were).
+        for (name, object) in refs {
+            if let Some(blob) = outputs.remove(&name) {
+                outputs.insert(name, blob.stored(object));
+            }
+        }
+        let slot = Slot {
+            outputs,
+            value: Some(Arc::new(value)),
+            diagnostics,
+        };
+        Ok((slot, time))
     }
 
     /// Gathers a stage's inputs, collecting what the stages it reads carry, then runs it
