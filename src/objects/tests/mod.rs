@@ -19,6 +19,18 @@ mod text;
 mod vehicles;
 
 const SEED: u64 = 42;
+
+/// The box around every vertex of `meshes`: (min, max) corners.
+fn mesh_bounds(meshes: &[Mesh]) -> ([f64; 3], [f64; 3]) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in meshes.iter().flat_map(|m| &m.positions) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(f64::from(p[k]));
+            hi[k] = hi[k].max(f64::from(p[k]));
+        }
+    }
+    (lo, hi)
+}
 const BENCH: &str = "models/bench.obj";
 
 struct City {

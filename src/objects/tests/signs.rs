@@ -159,16 +159,7 @@ fn traffic_lights_stand_at_corners_with_one_head_along_each_road() {
     let objects = &inserted.objects;
     assert_eq!(objects.len(), 30);
     // Bounding box of an object's meshes, and of one mesh.
-    let bounds = |meshes: &[Mesh]| {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in meshes.iter().flat_map(|m| &m.positions) {
-            for k in 0..3 {
-                lo[k] = lo[k].min(f64::from(p[k]));
-                hi[k] = hi[k].max(f64::from(p[k]));
-            }
-        }
-        (lo, hi)
-    };
+    let bounds = mesh_bounds;
     let centre = |(lo, hi): ([f64; 3], [f64; 3])| [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
     let mut states = BTreeSet::new();
     for pole_and_heads in objects.chunks(3) {

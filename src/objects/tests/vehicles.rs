@@ -163,16 +163,7 @@ fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() 
         ..input(&city, &specs)
     })
     .unwrap();
-    let bounds = |meshes: &[Mesh]| {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in meshes.iter().flat_map(|m| &m.positions) {
-            for k in 0..3 {
-                lo[k] = lo[k].min(f64::from(p[k]));
-                hi[k] = hi[k].max(f64::from(p[k]));
-            }
-        }
-        (lo, hi)
-    };
+    let bounds = mesh_bounds;
     let cars: Vec<([f64; 3], [f64; 3])> = inserted
         .objects
         .iter()

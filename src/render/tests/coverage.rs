@@ -7,16 +7,7 @@ use crate::render::view::View;
 
 /// A 64 × 64 view looking at −z from the origin, 16 px per metre at depth 1.
 fn coverage_view() -> View {
-    let k = Intrinsics {
-        width: 64,
-        height: 64,
-        fx: 16.0,
-        fy: 16.0,
-        cx: 32.0,
-        cy: 32.0,
-        near: 0.1,
-        far: 100.0,
-    };
+    let k = coverage_view_intrinsics();
     View::new(&pose([0.0; 3], [0.0, 0.0, -1.0]), &k, 1).unwrap()
 }
 
@@ -149,6 +140,7 @@ fn a_quad_in_front_of_the_camera_covers_the_expected_pixels() {
     assert_eq!(count(&frame, 1) + count(&frame, 2), 32 * 32);
 }
 
+/// [`coverage_view`]'s intrinsics.
 fn coverage_view_intrinsics() -> Intrinsics {
     Intrinsics {
         width: 64,

@@ -75,14 +75,7 @@ fn supersampling_smooths_colour_but_keeps_ids_exact() {
     );
 
     // A white square on black, with edges off the pixel grid: supersampled edges are grey.
-    let scene = Scene {
-        textures: Vec::new(),
-        materials: vec![material([1.0; 3], None, [0.0; 3])],
-        objects: vec![object("square", vec![wall(-3.0, 0.77)])],
-    };
-    let prepared = prepare(&scene).unwrap();
-    let k = Intrinsics::from_fov(32, 32, 0.5);
-    let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
+    let (prepared, k, eye) = off_grid_square();
     let grey = |f: &Frame| f.linear.iter().filter(|p| p[0] > 0.0 && p[0] < 1.0).count();
     assert_eq!(grey(&render(&prepared, &eye, &k, &flat(), 0)), 0);
     assert!(grey(&render(&prepared, &eye, &k, &flat(), 2)) > 10);
@@ -90,15 +83,7 @@ fn supersampling_smooths_colour_but_keeps_ids_exact() {
 
 #[test]
 fn edge_antialiasing_greys_edges_and_keeps_ids_and_depth_exact() {
-    // A white square on black, edges off the pixel grid.
-    let scene = Scene {
-        textures: Vec::new(),
-        materials: vec![material([1.0; 3], None, [0.0; 3])],
-        objects: vec![object("square", vec![wall(-3.0, 0.77)])],
-    };
-    let prepared = prepare(&scene).unwrap();
-    let k = Intrinsics::from_fov(32, 32, 0.5);
-    let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
+    let (prepared, k, eye) = off_grid_square();
     let hard = render(&prepared, &eye, &k, &flat(), 0);
     let soft = render(&prepared, &eye, &k, &flat(), 1);
     assert_eq!(hard.instance, soft.instance);
@@ -133,4 +118,18 @@ fn edge_antialiasing_greys_edges_and_keeps_ids_and_depth_exact() {
     let soft = render(&prepared, &eye, &k, &Lighting::day(), 1);
     assert_eq!((&hard.instance, &hard.depth), (&soft.instance, &soft.depth));
     assert_ne!(hard.rgb(), soft.rgb());
+}
+
+/// A white square on black with its edges off the pixel grid: the prepared scene, a 32 ×
+/// 32 camera and its pose.
+fn off_grid_square() -> (crate::render::PreparedScene, Intrinsics, CameraPose) {
+    let scene = Scene {
+        textures: Vec::new(),
+        materials: vec![material([1.0; 3], None, [0.0; 3])],
+        objects: vec![object("square", vec![wall(-3.0, 0.77)])],
+    };
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(32, 32, 0.5);
+    let eye = pose([0.1, 0.0, 0.0], [0.1, 0.0, -1.0]);
+    (prepared, k, eye)
 }
