@@ -162,6 +162,24 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Pack a spec and every file it reads (layout image, facade folder, models, word
+    /// files) into one tar, for a build on another machine.
+    ///
+    /// Entries keep their paths relative to the folder all the files share, so the spec's
+    /// relative paths resolve the same once unpacked; the command prints where the spec
+    /// is inside. The tar is the same bytes every time. `deploy/k8s/run.sh` ships a spec
+    /// to its jobs this way.
+    #[command(
+        after_help = "Examples:\n  cityspec pack specs/day.toml -o day.tar\n  tar xf day.tar -C /work && cityspec build /work/specs/day.toml"
+    )]
+    Pack {
+        /// The spec file (TOML).
+        #[arg(value_name = "SPEC")]
+        spec: PathBuf,
+        /// The tar to write.
+        #[arg(short, long, value_name = "FILE")]
+        out: PathBuf,
+    },
     /// Print the spec's JSON schema (Draft 2020-12), as committed in schemas/.
     ///
     /// Editors that read `#:schema` comments (Taplo, Even Better TOML) complete and check

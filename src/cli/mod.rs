@@ -151,6 +151,7 @@ pub fn run() -> ExitCode {
             ExitCode::SUCCESS
         }
         Command::Stats { dir, json } => stats_command(&dir, json),
+        Command::Pack { spec, out } => pack_command(&cx, &spec, &out),
     }
 }
 
@@ -356,6 +357,28 @@ fn explain_command(cx: &Context, specs: &[PathBuf], cache: &Path, json: bool) ->
         explained
             .iter()
             .for_each(|e| print!("{}", print::explained(e)));
+    }
+    ExitCode::SUCCESS
+}
+
+/// `cityspec pack SPEC -o FILE`: the spec and its files in one tar.
+fn pack_command(cx: &Context, spec: &Path, out: &Path) -> ExitCode {
+    let packed = match driver::pack(spec) {
+        Ok(packed) => packed,
+        Err(e) => return exit_for(&[e], &cx.out),
+    };
+    if let Err(e) = driver::write_atomic(out, &packed.bytes) {
+        eprintln!("error: cannot write {}: {e}", out.display());
+        return ExitCode::from(1);
+    }
+    if !cx.quiet {
+        println!(
+            "packed {} files ({} bytes) into {}; the spec is {} inside it",
+            packed.entries.len(),
+            packed.bytes.len(),
+            out.display(),
+            packed.spec
+        );
     }
     ExitCode::SUCCESS
 }

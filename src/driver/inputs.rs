@@ -28,20 +28,27 @@ pub struct SpecInputs {
     pub meshes: BTreeMap<String, MeshFiles>,
     /// A digest of every mesh model and word file, for the export key.
     pub meshes_digest: String,
+    /// Every file read, in the order it was read (`cityspec pack` ships them).
+    pub files: Vec<PathBuf>,
 }
 
 impl SpecInputs {
     /// Reads the layout image, the facade folder and the mesh and word files `spec` names
     /// (relative to `spec_path`).
     pub fn read(spec_path: &Path, spec: &Spec) -> Result<SpecInputs, BuildError> {
+        let mut files = Vec::new();
         let layout = layout_source(spec_path, spec)?;
-        let facades = facade_input(spec_path, spec)?;
-        let (meshes, meshes_digest) = mesh_files(spec_path, spec)?;
+        if let LayoutSource::Image { path, .. } = &layout {
+            files.push(path.clone());
+        }
+        let facades = facade_input(spec_path, spec, &mut files)?;
+        let (meshes, meshes_digest) = mesh_files(spec_path, spec, &mut files)?;
         Ok(SpecInputs {
             layout,
             facades,
             meshes,
             meshes_digest,
+            files,
         })
     }
 
@@ -54,6 +61,7 @@ impl SpecInputs {
             facades: FacadeInput::Builtin,
             meshes: BTreeMap::new(),
             meshes_digest: hex(&Sha256::new().finalize()),
+            files: Vec::new(),
         }
     }
 }
@@ -101,7 +109,11 @@ pub fn layout_source(spec_path: &Path, spec: &Spec) -> Result<LayoutSource, Buil
 
 /// Reads a CMP-layout facade folder: every `<name>.jpg` with its `<name>.xml` and
 /// `<name>.png` when present, sorted by name, and the floors side file.
-pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildError> {
+pub fn facade_input(
+    spec_path: &Path,
+    spec: &Spec,
+    read: &mut Vec<PathBuf>,
+) -> Result<FacadeInput, BuildError> {
     let facades = &spec.facades;
     if facades.source == BUILTIN_FACADES {
         return Ok(FacadeInput::Builtin);
@@ -143,9 +155,14 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
             .unwrap_or_else(|| folder.join(format!("{name}.jpg")));
         let photo = spec::read_capped(&photo_path, spec::MAX_TEXTURE_BYTES)
             .map_err(|e| read_error(&photo_path, "a facade photo", e))?;
-        let optional = |ext: &str| {
+        read.push(photo_path);
+        let mut optional = |ext: &str| {
             let path = folder.join(format!("{name}.{ext}"));
-            read_optional(&path).map_err(|e| read_error(&path, "a facade file", e))
+            let bytes = read_optional(&path).map_err(|e| read_error(&path, "a facade file", e))?;
+            if bytes.is_some() {
+                read.push(path);
+            }
+            Ok::<_, BuildError>(bytes)
         };
         let xml = optional("xml")?.map(|bytes| String::from_utf8_lossy(&bytes).into_owned());
         let labels = optional("png")?;
@@ -187,6 +204,7 @@ pub fn facade_input(spec_path: &Path, spec: &Spec) -> Result<FacadeInput, BuildE
             })?;
             digest.update((text.len() as u64 + 1).to_le_bytes());
             digest.update(text.as_bytes());
+            read.push(file);
             Some(text)
         }
         None => None,
@@ -225,6 +243,7 @@ pub const MAX_WORDS_FILE: u64 = 1 << 20;
 pub fn mesh_files(
     spec_path: &Path,
     spec: &Spec,
+    read: &mut Vec<PathBuf>,
 ) -> Result<(BTreeMap<String, MeshFiles>, String), BuildError> {
     let mut meshes = BTreeMap::new();
     let mut digest = Sha256::new();
@@ -234,6 +253,7 @@ pub fn mesh_files(
         {
             if !meshes.contains_key(words) {
                 let bytes = words_file(spec_path, words, index)?;
+                read.push(spec::resolve(spec_path, words));
                 for part in [words.as_bytes(), &bytes[..]] {
                     digest.update((part.len() as u64).to_le_bytes());
                     digest.update(part);
@@ -252,7 +272,7 @@ pub fn mesh_files(
         if meshes.contains_key(model) {
             continue;
         }
-        let MeshFiles { obj, mtl, textures } = model_files::read(spec_path, model, index)?;
+        let MeshFiles { obj, mtl, textures } = model_files::read(spec_path, model, index, read)?;
         for part in [
             model.as_bytes(),
             &obj[..],

@@ -25,7 +25,12 @@ use crate::spec::{self, InputFileError};
 
 /// The OBJ `model` (as the spec writes it, for `objects[index].model`), its MTL and the
 /// MTL's textures.
-pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, BuildError> {
+pub fn read(
+    spec_path: &Path,
+    model: &str,
+    index: usize,
+    read: &mut Vec<PathBuf>,
+) -> Result<MeshFiles, BuildError> {
     let file = spec::resolve(spec_path, model);
     let fail = |source: InputProblem| BuildError::Input {
         spec: spec_path.to_path_buf(),
@@ -40,6 +45,7 @@ pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, Bu
             source,
         })
     })?;
+    read.push(file.clone());
     let folder = file.parent().map(Path::to_path_buf).unwrap_or_default();
     let obj_text = String::from_utf8_lossy(&obj);
     let mtl_names = obj_mtl_names(&file, &obj, &obj_text).map_err(&fail)?;
@@ -54,6 +60,7 @@ pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, Bu
     let mtl_path = inside(&folder, &mtl_name).map_err(&fail)?;
     let mtl = spec::read_capped(&mtl_path, spec::MAX_MTL_BYTES)
         .map_err(|source| fail(named("an MTL file", &mtl_path, mtllib.clone(), source)))?;
+    read.push(mtl_path.clone());
     let mtl_text = String::from_utf8_lossy(&mtl);
     let (materials, _) = tobj::load_mtl_buf(&mut Cursor::new(&mtl[..])).map_err(|source| {
         let at = mtl_error_line(&mtl_text, &source)
@@ -80,6 +87,7 @@ pub fn read(spec_path: &Path, model: &str, index: usize) -> Result<MeshFiles, Bu
             fail(named("a texture image", &path, at, source))
         })?;
         textures.insert(name.clone(), bytes);
+        read.push(path);
     }
     Ok(MeshFiles {
         obj,

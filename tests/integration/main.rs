@@ -19,6 +19,7 @@ mod input_files;
 mod instances;
 mod lock;
 mod mutations;
+mod pack;
 mod sensor;
 mod shard_kill;
 mod shards;
