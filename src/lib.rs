@@ -25,6 +25,7 @@
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
+//! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
 //! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,
@@ -41,6 +42,7 @@ pub mod atomic_file;
 pub mod cache;
 pub mod cameras;
 pub mod cli;
+pub mod dataset;
 pub mod diagnostic;
 pub mod driver;
 pub mod export;

@@ -45,7 +45,7 @@ pub fn coco(
 ///   (inside the image by construction), `area` = visible pixel count, `iscrowd` 0 when
 ///   it passes the thresholds, else 1 (an ignore region), `segmentation` = compressed RLE
 ///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
-///   then the extra keys `instance_id` (the value in the instance image), `name`,
+///   then the extra keys `cityspec_instance` (the value in the instance image), `name`,
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
 ///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
@@ -131,7 +131,7 @@ impl CocoLines {
                 "area": v.pixels,
                 "iscrowd": u8::from(!object.passes),
                 "segmentation": {"size": v.rle.size, "counts": v.rle.to_compressed()},
-                "instance_id": v.id,
+                "cityspec_instance": v.id,
                 "name": object.label.name,
                 "full_bbox": object.full_box.map(|b| b.map(|x| round(x, 1e3))),
                 "visible_fraction": object.fraction.and_then(|f| round(f, 1e6)),
@@ -336,7 +336,7 @@ mod tests {
                 (
                     n("id"),
                     n("image_id"),
-                    n("instance_id"),
+                    n("cityspec_instance"),
                     a["bbox"].to_string(),
                     n("iscrowd"),
                 )
@@ -378,7 +378,7 @@ mod tests {
             let [h, w] = [0, 1].map(|i| seg["size"][i].as_u64().unwrap() as u32);
             assert_eq!((w, h), img.dimensions());
             let rle = Rle::from_compressed(seg["counts"].as_str().unwrap(), h, w).unwrap();
-            let id = ann["instance_id"].as_u64().unwrap() as u32;
+            let id = ann["cityspec_instance"].as_u64().unwrap() as u32;
             let mask: Vec<bool> = img.pixels().map(|p| p.0[0] == id).collect();
             assert_eq!(rle.to_row_major(), mask);
             assert_eq!(rle.area(), ann["area"].as_u64().unwrap());

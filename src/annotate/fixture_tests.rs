@@ -159,7 +159,7 @@ fn fixture_boxes_are_tight_boxes_of_the_written_pngs() {
     assert!(anns.len() < 4 * (OBJECTS as usize - 1));
     let ids: Vec<u64> = anns
         .iter()
-        .map(|a| a["instance_id"].as_u64().unwrap())
+        .map(|a| a["cityspec_instance"].as_u64().unwrap())
         .collect();
     assert!(ids.iter().any(|&id| id > 65_535) && ids.iter().any(|&id| id <= 65_535));
     for ann in anns {
@@ -167,7 +167,7 @@ fn fixture_boxes_are_tight_boxes_of_the_written_pngs() {
         let path = dir.join("instance").join(format!("{frame:06}.png"));
         let read: Instance = crate::model::unpack_ids(&image::open(&path).unwrap().into_rgb8());
         assert_eq!(read, images[frame]);
-        let id = ann["instance_id"].as_u64().unwrap() as u32;
+        let id = ann["cityspec_instance"].as_u64().unwrap() as u32;
         let (bbox, area) = tight_box(&read, id).unwrap();
         assert_eq!(ann["bbox"], serde_json::json!(bbox), "{ann}");
         assert_eq!(ann["area"], area, "{ann}");

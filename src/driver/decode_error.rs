@@ -11,4 +11,7 @@ pub enum DecodeError {
     Png(#[source] image::ImageError),
     #[error("not the expected JSON: {0}")]
     Json(#[source] serde_json::Error),
+    /// A stage's inputs (other stages' outputs) that do not read as those stages write them.
+    #[error("{0}")]
+    Inputs(String),
 }

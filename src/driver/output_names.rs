@@ -22,6 +22,9 @@ pub enum OutputNames {
     Frames(String),
     /// A chunk of a camera path: its frames' files and `summary.jsonl`.
     Chunk(String),
+    /// `coco/<split>.json`, `yolo/data.yaml`, `yolo/images/<split>/<file>.png` and
+    /// `yolo/labels/<split>/<file>.txt`.
+    Dataset,
 }
 
 impl OutputNames {
@@ -33,6 +36,7 @@ impl OutputNames {
             Produces::Facades => OutputNames::Facades,
             Produces::Export => OutputNames::Export,
             Produces::Frames => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
+            Produces::Dataset => OutputNames::Dataset,
         }
     }
 
@@ -70,6 +74,7 @@ impl OutputNames {
                         .and_then(|rest| rest.strip_prefix('/'))
                         .is_some_and(is_numbered_frame_file)
             }
+            OutputNames::Dataset => is_dataset_file(name),
         }
     }
 
@@ -81,6 +86,7 @@ impl OutputNames {
             OutputNames::Export => &["city.glb", "city.mtl", "city.obj"],
             OutputNames::Frames(_) => &[],
             OutputNames::Chunk(_) => &["summary.jsonl"],
+            OutputNames::Dataset => &[],
         }
     }
 
@@ -130,6 +136,29 @@ fn is_texture(name: &str) -> bool {
     name.strip_prefix("textures/")
         .and_then(|rest| rest.strip_suffix(".png"))
         .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
+}
+
+/// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml`, or a frame's
+/// image or label file of a split.
+fn is_dataset_file(name: &str) -> bool {
+    fn split(rest: &str) -> Option<&str> {
+        crate::spec::SPLIT_NAMES
+            .iter()
+            .find_map(|s| rest.strip_prefix(s)?.strip_prefix('/'))
+    }
+    let in_split = |folder: &str, extension: &str| {
+        name.strip_prefix(folder)
+            .and_then(split)
+            .and_then(|file| file.strip_suffix(extension))
+            .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
+    };
+    name == "yolo/data.yaml"
+        || name
+            .strip_prefix("coco/")
+            .and_then(|file| file.strip_suffix(".json"))
+            .is_some_and(|s| crate::spec::SPLIT_NAMES.contains(&s))
+        || in_split("yolo/images/", ".png")
+        || in_split("yolo/labels/", ".txt")
 }
 
 /// A file of one camera path, relative to `frames/<camera>/`.
@@ -234,6 +263,16 @@ mod tests {
                 false,
             ),
             (Frames, Some("street"), "frames/streetx/coco.json", false),
+            (Dataset, None, "coco/train.json", true),
+            (Dataset, None, "coco/other.json", false),
+            (Dataset, None, "yolo/data.yaml", true),
+            (Dataset, None, "yolo/images/val/street_000001.png", true),
+            (Dataset, None, "yolo/labels/test/street_000001.txt", true),
+            (Dataset, None, "yolo/labels/test/street_000001.png", false),
+            (Dataset, None, "yolo/images/dev/street_000001.png", false),
+            (Dataset, None, "yolo/images/val/.png", false),
+            (Dataset, None, "yolo/images/val/a/b.png", false),
+            (Dataset, None, "frames/street/coco.json", false),
         ];
         for (stage, camera, name, allowed) in cases {
             assert_eq!(

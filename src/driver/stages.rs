@@ -28,11 +28,11 @@ use super::stage_key::StageKey;
 use crate::cache::Load;
 use crate::spec::{
     AnnotationsSpec, BuildingsSpec, CameraSpec, GenerateSpec, LampsSpec, LightingSpec, ObjectSpec,
-    OnError, OutputLayout, OutputSpec, Palette, Spec, WeatherSpec,
+    OnError, OutputLayout, OutputSpec, Palette, Spec, SplitsSpec, WeatherSpec,
 };
 use crate::{
-    annotate, cameras, export, facades, lamps, layout, mirror, objects, parse, place, plan,
-    preview, render, scene, sensor, views,
+    annotate, cameras, dataset, export, facades, lamps, layout, mirror, objects, parse, place,
+    plan, preview, render, scene, sensor, views,
 };
 
 /// A cached stage, in evaluation order.
@@ -51,6 +51,8 @@ pub enum Stage {
     Overview,
     /// One per `[[cameras]]` entry.
     Frames,
+    /// One when the spec has `[splits]`, else none.
+    Dataset,
 }
 
 /// What a stage's cache entry may name (see `output_names`).
@@ -64,6 +66,8 @@ pub enum Produces {
     Export,
     /// Everything under `frames/<camera>/`.
     Frames,
+    /// `coco/<split>.json` and everything under `yolo/`.
+    Dataset,
 }
 
 /// One stage's declaration.
@@ -91,7 +95,7 @@ pub struct Declaration {
 use Stage::*;
 
 /// Every stage, in evaluation order (the order of [`Stage`]).
-const TABLE: [Declaration; 11] = [
+const TABLE: [Declaration; 12] = [
     Declaration {
         stage: Layout,
         name: "layout",
@@ -230,6 +234,18 @@ const TABLE: [Declaration; 11] = [
         load: Load::References,
         artifact: true,
     },
+    Declaration {
+        stage: Dataset,
+        name: "dataset",
+        entry: "`dataset::assemble`",
+        versions: &[("dataset::VERSION", dataset::VERSION)],
+        // Every camera path's frames.
+        reads: &[Frames],
+        files: "",
+        produces: Produces::Dataset,
+        load: Load::References,
+        artifact: true,
+    },
 ];
 
 impl std::fmt::Display for Stage {
@@ -240,8 +256,9 @@ impl std::fmt::Display for Stage {
 
 impl Stage {
     /// Every stage, in evaluation order.
-    pub const ALL: [Stage; 11] = [
+    pub const ALL: [Stage; 12] = [
         Layout, Mirror, Parse, Lamps, Facades, Place, Plan, Preview, Export, Overview, Frames,
+        Dataset,
     ];
 
     pub fn declaration(self) -> &'static Declaration {
@@ -373,6 +390,16 @@ pub struct PathInputs {
     pub export: Arc<ExportInputs>,
 }
 
+/// The dataset-level files: the splits, whether YOLO is written, and the camera paths
+/// they gather (by name, in spec order).
+#[derive(Clone, Debug, Serialize)]
+pub struct DatasetInputs {
+    pub splits: SplitsSpec,
+    pub yolo: bool,
+    pub cameras: Vec<String>,
+    pub seed: u64,
+}
+
 /// Every stage's inputs, for one spec: all the evaluator knows of it.
 #[derive(Clone, Debug)]
 pub struct Inputs {
@@ -388,6 +415,8 @@ pub struct Inputs {
     pub overview: OverviewInputs,
     /// One per `[[cameras]]` entry.
     pub frames: Vec<FramesInputs>,
+    /// With `[splits]`.
+    pub dataset: Option<DatasetInputs>,
 }
 
 impl Inputs {
@@ -465,6 +494,12 @@ impl Inputs {
             },
             export,
             frames,
+            dataset: spec.splits.as_ref().map(|splits| DatasetInputs {
+                splits: splits.clone(),
+                yolo: spec.annotations.yolo,
+                cameras: spec.cameras.iter().map(|c| c.name.clone()).collect(),
+                seed: spec.seed,
+            }),
         }
     }
 
@@ -483,6 +518,7 @@ impl Inputs {
             Export => serde_json::to_value(&*self.export),
             Overview => serde_json::to_value(&self.overview),
             Frames => serde_json::to_value(&self.frames[camera].path),
+            Dataset => serde_json::to_value(&self.dataset),
         };
         value.expect("stage inputs serialize to JSON")
     }
@@ -499,6 +535,8 @@ pub struct Keys {
     city: BTreeMap<Stage, String>,
     /// One per `[[cameras]]` entry.
     pub frames: Vec<String>,
+    /// With `[splits]`.
+    pub dataset: Option<String>,
     /// Per camera, the key of its frames' content, whatever `[output]` says: its plan
     /// and chunks are keyed by it, so a change of layout renders nothing again.
     pub paths: Vec<String>,
@@ -511,12 +549,14 @@ impl Keys {
         let mut keys = Keys {
             city: BTreeMap::new(),
             frames: Vec::new(),
+            dataset: None,
             paths: Vec::new(),
             made: BTreeMap::new(),
         };
         for stage in Stage::ALL {
             let cameras = match stage {
                 Frames => inputs.frames.len(),
+                Dataset => usize::from(inputs.dataset.is_some()),
                 _ => 1,
             };
             for camera in 0..cameras {
@@ -524,7 +564,11 @@ impl Keys {
                 let mut key = StageKey::new(declaration.name, declaration.versions[0].1)
                     .spec_whole(inputs.key_part(stage, camera));
                 for &read in declaration.reads {
-                    if inputs.uses(stage, read) {
+                    if read == Frames {
+                        // Every camera path's key, in spec order, as one input.
+                        let all = crate::hash::sha256_hex(keys.frames.join("\n").as_bytes());
+                        key = key.input("frames", &all);
+                    } else if inputs.uses(stage, read) {
                         key = key.input(read.name(), &keys.city[&read]);
                     }
                 }
@@ -534,6 +578,7 @@ impl Keys {
                 let key = key.finish_into(&mut keys.made);
                 match stage {
                     Frames => keys.add_path(key, &inputs.frames[camera].output),
+                    Dataset => keys.dataset = Some(key),
                     _ => {
                         keys.city.insert(stage, key);
                     }
@@ -561,6 +606,7 @@ impl Keys {
     pub fn of_stage(&self, stage: Stage, camera: Option<usize>) -> &str {
         match (stage, camera) {
             (Frames, Some(camera)) => &self.frames[camera],
+            (Dataset, _) => self.dataset.as_deref().unwrap_or_default(),
             _ => &self.city[&stage],
         }
     }
@@ -573,6 +619,11 @@ impl Keys {
                 Frames => (0..self.frames.len())
                     .map(|c| (stage, Some(c), self.frames[c].as_str()))
                     .collect::<Vec<_>>(),
+                Dataset => self
+                    .dataset
+                    .iter()
+                    .map(|key| (stage, None, key.as_str()))
+                    .collect(),
                 _ => vec![(stage, None, self.city[&stage].as_str())],
             })
             .collect()
@@ -600,7 +651,15 @@ fn file_digests(stage: Stage, files: &SpecInputs) -> Vec<(&'static str, String)>
 /// ARCHITECTURE's key table, made from the declarations and the inputs' field names (of
 /// `spec`'s inputs: pass one with a generated layout and a camera).
 pub fn key_table(spec: &Spec) -> String {
-    let inputs = Inputs::of(spec, &LayoutSource::Generate);
+    // With splits, so that the dataset stage has inputs to list.
+    let mut spec = spec.clone();
+    spec.splits.get_or_insert(SplitsSpec {
+        train: 1.0,
+        val: 0.0,
+        test: 0.0,
+        by: Default::default(),
+    });
+    let inputs = Inputs::of(&spec, &LayoutSource::Generate);
     let mut table = String::from(
         "| stage | entry | `VERSION`s in its key | spec parts in its key | stages it reads | input files |\n\
          |---|---|---|---|---|---|\n",

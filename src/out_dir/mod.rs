@@ -8,7 +8,9 @@
 //!
 //! A build that changes anything writes the new folder beside the old one, in a hidden
 //! staging folder `<out>/.<name>~cityspec-stage-…`: unchanged files are hard links to the
-//! old ones (no bytes copied), new ones are written, `manifest.json` last. Then one
+//! old ones (no bytes copied), new ones are written, `manifest.json` last; artifacts with
+//! the same bytes (a `yolo/images/` file and its camera's `rgb/` frame) are written once
+//! and hard-linked, so they are one file under two names. Then one
 //! `renameat2(RENAME_EXCHANGE)` (macOS: `RENAME_SWAP`) swaps the two folders, and the old
 //! one is deleted. So after a kill at any moment `<out>/<name>/` holds the whole previous
 //! build or the whole new one. Where the exchange is not available the swap is two renames
@@ -158,9 +160,11 @@ impl OutDir {
         let mut synced = Synced::default();
         let mut keep = BTreeSet::new();
         // Old files are read and hashed on every core; the answers come back in artifact order.
+        let shas: Vec<String> = artifacts.par_iter().map(|a| a.blob.sha256()).collect();
         let unchanged: Vec<bool> = artifacts
             .par_iter()
-            .map(|a| same(&a.path, &a.blob.sha256(), a.blob.size()))
+            .zip(&shas)
+            .map(|(a, sha)| same(&a.path, sha, a.blob.size()))
             .collect();
         for (artifact, unchanged) in artifacts.iter().zip(unchanged) {
             if unchanged {
@@ -211,7 +215,23 @@ impl OutDir {
             let target = stage.join(&dir);
             fs::create_dir_all(&target).map_err(io_err(&target))?;
         }
-        let mut largest_first: Vec<&ArtifactOut> = artifacts.iter().collect();
+        // Artifacts with the same bytes (a dataset's image and its camera's frame) are
+        // written once: the first in name order, the others hard-linked to it below.
+        let mut first_of: BTreeMap<&str, &str> = BTreeMap::new();
+        let mut twins: Vec<(&str, &str)> = Vec::new();
+        for (artifact, sha) in artifacts.iter().zip(&shas) {
+            match first_of.get(sha.as_str()) {
+                Some(first) => twins.push((artifact.path.as_str(), first)),
+                None => {
+                    first_of.insert(sha, &artifact.path);
+                }
+            }
+        }
+        let twin_paths: BTreeSet<&str> = twins.iter().map(|(path, _)| *path).collect();
+        let mut largest_first: Vec<&ArtifactOut> = artifacts
+            .iter()
+            .filter(|a| !twin_paths.contains(a.path.as_str()))
+            .collect();
         largest_first.sort_by_key(|a| std::cmp::Reverse(a.blob.size()));
         largest_first
             .into_par_iter()
@@ -235,6 +255,15 @@ impl OutDir {
                 self.faults.step();
                 Ok::<(), BuildError>(())
             })?;
+        twins.into_par_iter().try_for_each(|(path, first)| {
+            let target = stage.join(path);
+            if fs::hard_link(stage.join(first), &target).is_err() {
+                // A file system without hard links: a copy.
+                fs::copy(stage.join(first), &target).map_err(io_err(&self.dir.join(path)))?;
+            }
+            self.faults.step();
+            Ok::<(), BuildError>(())
+        })?;
         let target = stage.join("manifest.json");
         let linked =
             manifest_same && fs::hard_link(self.dir.join("manifest.json"), &target).is_ok();

@@ -41,6 +41,7 @@ mod sensor_spec;
 #[allow(clippy::module_inception)]
 mod spec;
 mod spec_errors;
+mod splits_spec;
 mod toml_json;
 mod value_checks;
 mod value_range;
@@ -76,6 +77,7 @@ pub use spec::{
     OnError, Palette, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
+pub use splits_spec::{SPLIT_NAMES, SplitBy, SplitsSpec};
 pub use value_range::ValueRange;
 pub use weather_spec::{Weather, WeatherKinds, WeatherSpec};
 
@@ -174,6 +176,12 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
         cost_checks::check_costs(&spec, extent, &mut findings);
     }
     lighting_spec::check_lighting(&spec.lighting, &mut findings);
+    splits_spec::check_splits(
+        spec.splits.as_ref(),
+        spec.cameras.len(),
+        spec.output.layout == OutputLayout::Webdataset,
+        &mut findings,
+    );
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)

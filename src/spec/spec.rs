@@ -15,6 +15,7 @@ use super::lighting_spec::LightingSpec;
 use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
 use super::output_spec::OutputSpec;
+use super::splits_spec::SplitsSpec;
 use super::weather_spec::WeatherSpec;
 use crate::model::PixelClass;
 
@@ -69,6 +70,11 @@ pub struct Spec {
     /// How the frames are written: one file per image, or WebDataset tar shards.
     #[serde(default)]
     pub output: OutputSpec,
+    /// Train, val and test: the dataset-level files (`coco/<split>.json`, and with
+    /// `[annotations] yolo = true` the ultralytics folder `yolo/`). Absent: neither.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "SplitsSpec")]
+    pub splits: Option<SplitsSpec>,
 }
 
 /// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).

@@ -5,7 +5,7 @@ usage: check_coco.py <coco.json> <instance-png-folder>
 
 The instance image of an image entry is <instance-png-folder>/<stem of file_name>.png: an
 8-bit RGB PNG packing 24-bit ids as COCO panoptic does, id = R + 256*G + 256**2*B
-(0 = background, k = object index + 1, the annotation's `instance_id`). A 16-bit
+(0 = background, k = object index + 1, the annotation's `cityspec_instance`). A 16-bit
 grayscale PNG (cityspec before ids were packed) is read as the ids directly. Checks, in
 order:
 
@@ -101,8 +101,8 @@ def check_pixels(gt, folder, base):
                 f"the entry says {img['width']}x{img['height']}"
             )
         for ann in gt.imgToAnns[img["id"]]:
-            where = f"annotation {ann['id']} (image {img['id']}, instance {ann['instance_id']})"
-            mask = ids == ann["instance_id"]
+            where = f"annotation {ann['id']} (image {img['id']}, instance {ann['cityspec_instance']})"
+            mask = ids == ann["cityspec_instance"]
             ys, xs = np.nonzero(mask)
             if len(xs) == 0:
                 raise CheckFailed(f"{where}: no pixel of that instance in {path}")

@@ -28,13 +28,14 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let spec = ws.spec("day");
     let cold = in_pool(1, || driver::build(&spec, &ws.options())).unwrap();
     // Every stage, with each camera path's plan (poses) as its own stage.
-    assert_eq!(cold.ran().count(), 15, "a cold build runs every stage");
+    assert_eq!(cold.ran().count(), 16, "a cold build runs every stage");
     let first = tree(&ws.out());
     let names: Vec<&str> = first.keys().map(String::as_str).collect();
     let named: Vec<&str> = names
         .iter()
         .copied()
         .filter(|n| !n.starts_with("day/textures/") && !n.starts_with("day/frames/"))
+        .filter(|n| !n.starts_with("day/yolo/images/") && !n.starts_with("day/yolo/labels/"))
         .collect();
     assert_eq!(
         named,
@@ -42,11 +43,14 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
             "day/city.glb",
             "day/city.mtl",
             "day/city.obj",
+            "day/coco/train.json",
+            "day/coco/val.json",
             "day/layout.png",
             "day/manifest.json",
             "day/overview.png",
             "day/plan.json",
-            "day/plan.png"
+            "day/plan.png",
+            "day/yolo/data.yaml"
         ]
     );
     assert!(
@@ -113,6 +117,7 @@ fn changing_only_lamps_reruns_only_what_reads_lamps() {
     assert_eq!(
         statuses(&report),
         [
+            ("dataset", Ran),
             ("export", Ran),
             ("facades", Cached),
             ("frames", Ran),
@@ -179,6 +184,7 @@ fn changing_buildings_leaves_lamps_and_layout_cached() {
     assert_eq!(
         statuses(&report),
         [
+            ("dataset", Ran),
             ("export", Ran),
             ("facades", Cached),
             ("frames", Ran),
@@ -212,7 +218,7 @@ fn damaged_cache_objects_are_detected_and_rebuilt() {
     }
     fs::remove_dir_all(ws.out()).unwrap();
     let report = driver::build(&ws.spec("day"), &ws.options()).unwrap();
-    assert_eq!(report.ran().count(), 15, "no damaged object may be used");
+    assert_eq!(report.ran().count(), 16, "no damaged object may be used");
     // Every cached stage found its entry damaged (the scene is never cached).
     assert!(
         report
@@ -270,6 +276,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
         .artifacts
         .iter()
         .filter(|a| !a.path.starts_with("textures/") && !a.path.starts_with("frames/"))
+        .filter(|a| !a.path.starts_with("yolo/images/") && !a.path.starts_with("yolo/labels/"))
         .map(|a| (a.path.as_str(), a.stage.as_str()))
         .collect();
     assert_eq!(
@@ -278,10 +285,13 @@ fn manifest_lists_every_artifact_with_its_hash() {
             ("city.glb", "export"),
             ("city.mtl", "export"),
             ("city.obj", "export"),
+            ("coco/train.json", "dataset"),
+            ("coco/val.json", "dataset"),
             ("layout.png", "mirror"),
             ("overview.png", "overview"),
             ("plan.json", "plan"),
-            ("plan.png", "preview")
+            ("plan.png", "preview"),
+            ("yolo/data.yaml", "dataset")
         ]
     );
     assert!(

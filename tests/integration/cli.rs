@@ -415,7 +415,7 @@ fn a_shared_cache_stays_whole_under_concurrent_builds() {
     let verify = cityspec(&ws, &["verify", "--all", "specs/day.toml"]);
     assert_eq!(verify.status.code(), Some(0), "{}", stderr(&verify));
     assert!(
-        stderr(&verify).contains("rechecked 12 of 12 cached stages: all rebuild"),
+        stderr(&verify).contains("rechecked 13 of 13 cached stages: all rebuild"),
         "{}",
         stderr(&verify)
     );
@@ -437,7 +437,7 @@ fn verify_names_a_poisoned_entry() {
     );
     assert_eq!(sample.status.code(), Some(0), "{}", stderr(&sample));
     assert!(
-        stderr(&sample).contains("rechecked 2 of 12 cached stages (a sample, --seed 7)"),
+        stderr(&sample).contains("rechecked 2 of 13 cached stages (a sample, --seed 7)"),
         "{}",
         stderr(&sample)
     );
@@ -467,7 +467,7 @@ fn verify_names_a_poisoned_entry() {
                 "plan.png is cached as {}",
                 &layout_png.sha256[..12]
             ))
-            && text.contains("rechecked 12 of 12 cached stages: 1 differ"),
+            && text.contains("rechecked 13 of 13 cached stages: 1 differ"),
         "{text}"
     );
 }

@@ -14,6 +14,7 @@ mod build;
 mod cache_gc;
 mod cache_safety;
 mod cli;
+mod dataset;
 mod explain;
 mod input_files;
 mod instances;

@@ -20,13 +20,16 @@ use std::path::{Path, PathBuf};
 /// The pipeline's stages: each one a function from the previous stage's type to its own.
 const STAGES: &[&str] = &[
     "layout", "parse", "mirror", "lamps", "place", "plan", "preview", "facades", "scene",
-    "objects", "export", "cameras", "render", "annotate", "sensor", "stats", "views",
+    "objects", "export", "cameras", "render", "annotate", "sensor", "stats", "views", "dataset",
 ];
 
 /// The stages a stage may read besides itself and the shared modules: the graph's
 /// declared edges. `views` chooses among the cameras stage's draws by rendering them in
-/// the scene.
-const EDGES: &[(&str, &[&str])] = &[("views", &["cameras", "render", "scene"])];
+/// the scene; `dataset` writes its COCO documents with the annotate stage's writer.
+const EDGES: &[(&str, &[&str])] = &[
+    ("views", &["cameras", "render", "scene"]),
+    ("dataset", &["annotate"]),
+];
 
 /// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing,
 /// image-file checks, the diagnostics stages report and regular-file opening.

@@ -9,7 +9,7 @@
 //! This file holds the [`Pipeline`], the order artifacts are pulled in and the key table
 //! ([`keys`]); `graph` says what each stage gathers and runs, `evaluate` how a stage is
 //! looked up or run and stored, `scene_values` the uncached scene, `frames_stage` one
-//! camera path. Every choice of what an output looks like lives in its stage's folder,
+//! camera path, `dataset_stage` the files over all paths. Every choice of what an output looks like lives in its stage's folder,
 //! under that stage's `VERSION`, which is in the key of every stage that reads it.
 
 use std::collections::BTreeMap;
@@ -18,6 +18,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use image::RgbImage;
 
+mod dataset_stage;
 mod evaluate;
 mod frames_stage;
 mod graph;
@@ -86,6 +87,7 @@ pub struct Pipeline<'a> {
     export: Option<Slot<()>>,
     overview: Option<Slot<()>>,
     frames: Vec<Option<Slot<()>>>,
+    dataset: Option<Slot<()>>,
     /// Set once: made beside the export when it runs (see `need_export`), else on demand.
     prepared: OnceLock<Arc<render::PreparedScene>>,
     /// Mip chains of the city's own textures, made beside the objects' insertion when the
@@ -139,6 +141,7 @@ impl<'a> Pipeline<'a> {
             export: None,
             overview: None,
             frames: (0..cameras).map(|_| None).collect(),
+            dataset: None,
             prepared: OnceLock::new(),
             mips: render::TextureMips::default(),
             progress,
@@ -229,6 +232,7 @@ impl<'a> Pipeline<'a> {
             Stage::Export => self.need_export(),
             Stage::Overview => self.need_overview(),
             Stage::Frames => self.need_frames(camera.unwrap_or_default()),
+            Stage::Dataset => self.need_dataset(),
         }
     }
 
@@ -246,6 +250,7 @@ impl<'a> Pipeline<'a> {
             Stage::Export => &evaluated(&self.export).outputs,
             Stage::Overview => &evaluated(&self.overview).outputs,
             Stage::Frames => &evaluated(&self.frames[camera.unwrap_or_default()]).outputs,
+            Stage::Dataset => &evaluated(&self.dataset).outputs,
         }
     }
 

@@ -1,0 +1,178 @@
+//! The cameras' `coco.json` → one COCO document per split: images renumbered over the
+//! dataset, `file_name`s made relative to the output folder, categories merged by name.
+
+use std::collections::BTreeMap;
+
+use serde_json::{Map, Value};
+
+use super::{DatasetError, Member};
+use crate::annotate::{Category, CocoLines, write_coco};
+
+/// One camera path's COCO document, read back.
+pub(super) struct CameraCoco<'a> {
+    pub camera: &'a str,
+    images: Vec<Map<String, Value>>,
+    categories: Vec<Category>,
+    /// Per image (by index), its annotations, `id` removed.
+    annotations: Vec<Vec<Map<String, Value>>>,
+}
+
+impl<'a> CameraCoco<'a> {
+    /// `bytes`, as the frames stage writes `frames/<camera>/coco.json`: image `i` has id
+    /// `i + 1` and file name `rgb/NNNNNN.png` for frame `i`.
+    pub fn parse(camera: &'a str, bytes: &[u8]) -> Result<CameraCoco<'a>, DatasetError> {
+        let bad = |why: String| DatasetError(format!("frames/{camera}/coco.json: {why}"));
+        let doc: Value = serde_json::from_slice(bytes).map_err(|e| bad(e.to_string()))?;
+        let list = |key: &str| -> Result<Vec<Map<String, Value>>, DatasetError> {
+            doc.get(key)
+                .and_then(Value::as_array)
+                .ok_or_else(|| bad(format!("no {key} list")))?
+                .iter()
+                .map(|v| {
+                    v.as_object()
+                        .cloned()
+                        .ok_or_else(|| bad(format!("an item of {key} is no object")))
+                })
+                .collect()
+        };
+        let images = list("images")?;
+        for (i, image) in images.iter().enumerate() {
+            if image.get("id").and_then(Value::as_u64) != Some(i as u64 + 1) {
+                return Err(bad(format!("image {i} has not id {}", i + 1)));
+            }
+        }
+        let categories = list("categories")?
+            .into_iter()
+            .map(|c| {
+                Ok(Category {
+                    id: c
+                        .get("id")
+                        .and_then(Value::as_u64)
+                        .ok_or_else(|| bad("a category without id".into()))?
+                        as u32,
+                    name: c
+                        .get("name")
+                        .and_then(Value::as_str)
+                        .ok_or_else(|| bad("a category without name".into()))?
+                        .to_owned(),
+                })
+            })
+            .collect::<Result<Vec<_>, DatasetError>>()?;
+        let mut annotations = vec![Vec::new(); images.len()];
+        for mut a in list("annotations")? {
+            let image = a.get("image_id").and_then(Value::as_u64).unwrap_or(0) as usize;
+            let slot = image
+                .checked_sub(1)
+                .and_then(|i| annotations.get_mut(i))
+                .ok_or_else(|| bad(format!("an annotation of image {image}, which it lacks")))?;
+            a.shift_remove("id");
+            slot.push(a);
+        }
+        Ok(CameraCoco {
+            camera,
+            images,
+            categories,
+            annotations,
+        })
+    }
+
+    pub fn frames(&self) -> usize {
+        self.images.len()
+    }
+
+    /// Frame `frame`'s image file, relative to `frames/<camera>/`.
+    pub fn file_name(&self, frame: usize) -> Option<&str> {
+        self.images.get(frame)?.get("file_name")?.as_str()
+    }
+}
+
+/// The categories of every camera merged by name, in order of first appearance, numbered
+/// from 1; and per camera, its category ids → the merged ones.
+fn merged_categories(documents: &[CameraCoco]) -> (Vec<Category>, Vec<BTreeMap<u64, u32>>) {
+    let mut merged: Vec<Category> = Vec::new();
+    let maps = documents
+        .iter()
+        .map(|d| {
+            d.categories
+                .iter()
+                .map(|c| {
+                    let id = match merged.iter().find(|m| m.name == c.name) {
+                        Some(m) => m.id,
+                        None => {
+                            let id = merged.len() as u32 + 1;
+                            merged.push(Category {
+                                id,
+                                name: c.name.clone(),
+                            });
+                            id
+                        }
+                    };
+                    (u64::from(c.id), id)
+                })
+                .collect()
+        })
+        .collect();
+    (merged, maps)
+}
+
+/// The COCO document of `members` (one split's frames, in dataset order).
+pub(super) fn document(
+    documents: &[CameraCoco],
+    members: &[Member],
+) -> Result<Vec<u8>, DatasetError> {
+    let (categories, maps) = merged_categories(documents);
+    // Image ids over the whole dataset: cameras in order, frames in order, from 1.
+    let mut first_id = Vec::with_capacity(documents.len());
+    let mut next = 1u64;
+    for d in documents {
+        first_id.push(next);
+        next += d.frames() as u64;
+    }
+    let lines: Vec<CocoLines> = members
+        .iter()
+        .map(|m| {
+            let d = &documents[m.camera];
+            let id = first_id[m.camera] + m.frame as u64;
+            let mut image = d.images[m.frame].clone();
+            image.insert("id".into(), Value::from(id));
+            let dir = format!("frames/{}/", d.camera);
+            prefix(&mut image, &dir);
+            if let Some(Value::Object(depth)) = image.get_mut("depth") {
+                prefix(depth, &dir);
+            }
+            let annotations = d.annotations[m.frame]
+                .iter()
+                .map(|a| {
+                    let mut a = a.clone();
+                    a.insert("image_id".into(), Value::from(id));
+                    let category = a.get("category_id").and_then(Value::as_u64).unwrap_or(0);
+                    let merged = maps[m.camera].get(&category).ok_or_else(|| {
+                        DatasetError(format!(
+                            "frames/{}/coco.json: an annotation of category {category}, which it does not list",
+                            d.camera
+                        ))
+                    })?;
+                    a.insert("category_id".into(), Value::from(*merged));
+                    Ok(Value::Object(a).to_string())
+                })
+                .collect::<Result<Vec<_>, DatasetError>>()?;
+            Ok(CocoLines {
+                image: Value::Object(image).to_string(),
+                annotations,
+            })
+        })
+        .collect::<Result<Vec<_>, DatasetError>>()?;
+    let mut out = Vec::new();
+    write_coco(&mut out, &categories, |pass| {
+        lines.iter().try_for_each(pass)
+    })
+    .expect("writing to memory does not fail");
+    Ok(out)
+}
+
+/// `file_name` made relative to the output folder.
+fn prefix(object: &mut Map<String, Value>, dir: &str) {
+    if let Some(Value::String(name)) = object.get_mut("file_name") {
+        *name = format!("{dir}{name}");
+    }
+}
