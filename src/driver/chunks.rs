@@ -138,6 +138,9 @@ type RenderedFrame = (Vec<(String, Blob)>, FrameRecord);
 /// `coco.json`, `poses.json`, `preview.png`, `yolo/classes.txt` assembled from their
 /// records; with `[output] layout = "webdataset"` the frames' files go into tar shards
 /// instead ([`webdataset`]). With `store` false nothing is written to the cache.
+// Long on purpose: two passes over the chunks' records run side by side (coco.json into
+// the cache, and the poses, preview and first ids), sharing the closures that read the
+// chunks one at a time; apart, each would take the chunks, the cache and the plan.
 pub fn assemble(
     cache: &Cache,
     camera: &CameraSpec,
@@ -239,6 +242,37 @@ pub fn assemble(
             plan.poses.len()
         )));
     }
+    let files = path_files(&dir, camera, plan, drawn, sheet);
+    if webdataset {
+        let tars = Tars {
+            dir: &dir,
+            chunks,
+            first_ids: &first_ids,
+            per_tar: output.samples_per_shard.max(1) as usize,
+            read: &read,
+        };
+        tars.store_all(cache, store, plan.poses.len(), &mut outputs)?;
+    }
+    for (name, bytes) in files {
+        let object = if store {
+            cache.put_object(&bytes)?
+        } else {
+            reference(&bytes)
+        };
+        outputs.insert(name, Blob::Stored(object, None));
+    }
+    Ok(outputs)
+}
+
+/// A path's files made from its plan and records: `poses.json`, `preview.png`,
+/// `instances.json` and `yolo/classes.txt`.
+fn path_files(
+    dir: &str,
+    camera: &CameraSpec,
+    plan: &PathPlan,
+    drawn: Vec<serde_json::Value>,
+    sheet: Vec<(image::RgbImage, Vec<[u32; 5]>)>,
+) -> Vec<(String, Vec<u8>)> {
     let mut files = vec![
         (
             format!("{dir}/poses.json"),
@@ -259,36 +293,33 @@ pub fn assemble(
             classes.clone().into_bytes(),
         ));
     }
-    if webdataset {
-        let frames = plan.poses.len();
-        let tars = Tars {
-            dir: &dir,
-            chunks,
-            first_ids: &first_ids,
-            per_tar: output.samples_per_shard.max(1) as usize,
-            read: &read,
-        };
-        for (n, start) in (0..frames).step_by(tars.per_tar).enumerate() {
-            let range = start..(start + tars.per_tar).min(frames);
+    files
+}
+
+impl Tars<'_> {
+    /// Writes the tars of a path of `frames` frames (into the cache unless `store` is
+    /// false) and adds them to `outputs`.
+    fn store_all(
+        &self,
+        cache: &Cache,
+        store: bool,
+        frames: usize,
+        outputs: &mut Outputs,
+    ) -> io::Result<()> {
+        for (n, start) in (0..frames).step_by(self.per_tar).enumerate() {
+            let range = start..(start + self.per_tar).min(frames);
             let object = if store {
-                cache.put_object_with(|out| tars.write(range, out))?
+                cache.put_object_with(|out| self.write(range, out))?
             } else {
                 let mut sink = Hashing::new(io::sink());
-                tars.write(range, &mut sink)?;
+                self.write(range, &mut sink)?;
                 sink.finish()
             };
+            let dir = self.dir;
             outputs.insert(format!("{dir}/wds/{n:06}.tar"), Blob::Stored(object, None));
         }
+        Ok(())
     }
-    for (name, bytes) in files {
-        let object = if store {
-            cache.put_object(&bytes)?
-        } else {
-            reference(&bytes)
-        };
-        outputs.insert(name, Blob::Stored(object, None));
-    }
-    Ok(outputs)
 }
 
 /// A path's WebDataset tars, from its chunks.

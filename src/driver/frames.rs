@@ -139,6 +139,58 @@ impl<'a> PathFrames<'a> {
         render::ego_headlights(pose.eye, height, travel, emission)
     }
 
+    /// What annotating frame `i` reads besides the labels: its instance image, the
+    /// objects' unoccluded footprints and the text objects' word quads projected.
+    fn annotation_input<'f>(
+        &self,
+        i: usize,
+        instance: &'f image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+        footprints: &[render::Footprint],
+    ) -> FrameInput<'f> {
+        let (intrinsics, pose) = (&self.intrinsics, &self.poses[i]);
+        let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
+        FrameInput {
+            file_name: format!("rgb/{i:06}.png"),
+            instance,
+            intrinsics: k,
+            pose: *pose,
+            full: footprints
+                .iter()
+                .map(|f| (f.id, (f.bbox().map(|v| v as f64), f.pixels)))
+                .collect(),
+            quads: self
+                .input
+                .corners
+                .iter()
+                .filter_map(|(id, words)| {
+                    let quads = words
+                        .iter()
+                        .map(|c| annotate::project_quad(pose, k, intrinsics.near, c));
+                    Some((*id, quads.collect::<Option<Vec<_>>>()?))
+                })
+                .collect(),
+        }
+    }
+
+    /// Frame `i`'s YOLO and ICDAR files, when the path writes them.
+    fn label_files(&self, i: usize, summary: &annotate::FrameAnnotations) -> Vec<(String, String)> {
+        let dir = &self.dir;
+        let mut files = Vec::new();
+        if let Some(classes) = self.input.yolo {
+            files.push((
+                format!("{dir}/yolo/{i:06}.txt"),
+                annotate::yolo(classes, summary),
+            ));
+        }
+        if self.has_text {
+            files.push((
+                format!("{dir}/icdar/gt_{i:06}.txt"),
+                annotate::icdar(summary),
+            ));
+        }
+        files
+    }
+
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
     /// as soon as it is ready; stops at the first error `emit` returns.
     pub fn render<E>(
@@ -156,29 +208,12 @@ impl<'a> PathFrames<'a> {
             Some((lighting, sun)) => (lighting, *sun),
             None => (input.lighting, input.sun),
         };
-        let conditions = sensor::draw(
-            input.weather,
-            &camera.sensor,
-            input.conditions_seed,
-            i as u64,
-        );
+        let seed = input.conditions_seed;
+        let conditions = sensor::draw(input.weather, &camera.sensor, seed, i as u64);
         let travel = sensor::travel_direction_with(self.poses, i, self.median_step);
         let headlights = self.headlights(lighting.emission, i, travel);
         let headlit = !headlights.is_empty();
-        // A cloud between the camera's ground and the sun dims the sun for the whole frame.
-        let shade = sensor::sun_shade(
-            conditions.clouds as f32,
-            conditions.cloud_offset,
-            [pose.eye[0], 0.0, pose.eye[2]],
-            lighting.sun_direction,
-        );
-        let weather = sensor::weather_light(&conditions).under_cloud(shade);
-        let adjusted = lighting.under_weather(
-            weather.sun_scale,
-            weather.sky_scale,
-            weather.shadow_strength,
-            headlights,
-        );
+        let (adjusted, shade) = weathered(lighting, &conditions, pose, headlights);
         let lighting = adjusted.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_measuring(
             input.scene,
@@ -200,11 +235,7 @@ impl<'a> PathFrames<'a> {
                 intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
                 motion: travel,
                 horizon: lighting.sky.horizon(),
-                clouds: CloudLight {
-                    sun_direction: lighting.sun_direction,
-                    sun_colour: lighting.sun_colour,
-                    sky: lighting.ambient,
-                },
+                clouds: cloud_light(lighting),
                 scene_exposure: lighting.exposure,
             },
             &conditions,
@@ -212,30 +243,8 @@ impl<'a> PathFrames<'a> {
         let mut drawn = conditions.to_json(developed.exposure);
         drawn["sun"] = sun_json(&sun);
         drawn["sun_shaded"] = json!((f64::from(shade) * 1e3).round() / 1e3);
-        if camera.path == CameraPath::Roads {
-            drawn["headlights"] = json!(headlit);
-        }
-        let frame_input = FrameInput {
-            file_name: format!("rgb/{i:06}.png"),
-            instance: &frame.instance,
-            intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
-            pose: *pose,
-            full: footprints
-                .iter()
-                .map(|f| (f.id, (f.bbox().map(|v| v as f64), f.pixels)))
-                .collect(),
-            quads: input
-                .corners
-                .iter()
-                .filter_map(|(id, words)| {
-                    let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
-                    let quads = words
-                        .iter()
-                        .map(|c| annotate::project_quad(pose, k, intrinsics.near, c));
-                    Some((*id, quads.collect::<Option<Vec<_>>>()?))
-                })
-                .collect(),
-        };
+        (camera.path == CameraPath::Roads).then(|| drawn["headlights"] = json!(headlit));
+        let frame_input = self.annotation_input(i, &frame.instance, &footprints);
         let (pngs, mut summary) = rayon::join(
             || frame.encode(&developed.rgb, depth_format),
             || annotate::summarize(input.labels, &frame_input, input.thresholds),
@@ -249,13 +258,8 @@ impl<'a> PathFrames<'a> {
             format: depth_format.name(),
             scale: depth_format.scale(),
         });
-        if let Some(classes) = input.yolo {
-            let text = annotate::yolo(classes, &summary);
-            emit(format!("{dir}/yolo/{i:06}.txt"), text.into_bytes())?;
-        }
-        if self.has_text {
-            let text = annotate::icdar(&summary);
-            emit(format!("{dir}/icdar/gt_{i:06}.txt"), text.into_bytes())?;
+        for (name, text) in self.label_files(i, &summary) {
+            emit(name, text.into_bytes())?;
         }
         let sheet = ContactSheet::boxes(&summary, input.categories)
             .into_iter()
@@ -266,6 +270,41 @@ impl<'a> PathFrames<'a> {
             conditions: drawn,
             sheet,
         })
+    }
+}
+
+/// A frame's lighting under its drawn `conditions` (clouds, weather) and with `extra`
+/// lights, when that differs from the path's `lighting`, and how much a cloud shades the
+/// sun (0–1) at the camera's ground.
+fn weathered(
+    lighting: &Lighting,
+    conditions: &sensor::Conditions,
+    pose: &CameraPose,
+    extra: Vec<Light>,
+) -> (Option<Lighting>, f32) {
+    // A cloud between the camera's ground and the sun dims the sun for the whole frame.
+    let shade = sensor::sun_shade(
+        conditions.clouds as f32,
+        conditions.cloud_offset,
+        [pose.eye[0], 0.0, pose.eye[2]],
+        lighting.sun_direction,
+    );
+    let weather = sensor::weather_light(conditions).under_cloud(shade);
+    let adjusted = lighting.under_weather(
+        weather.sun_scale,
+        weather.sky_scale,
+        weather.shadow_strength,
+        extra,
+    );
+    (adjusted, shade)
+}
+
+/// The light the sensor's clouds are lit by.
+fn cloud_light(lighting: &Lighting) -> CloudLight {
+    CloudLight {
+        sun_direction: lighting.sun_direction,
+        sun_colour: lighting.sun_colour,
+        sky: lighting.ambient,
     }
 }
 

@@ -400,6 +400,23 @@ pub struct DatasetInputs {
     pub seed: u64,
 }
 
+impl PathInputs {
+    /// What `camera`'s path of `spec` reads, in a city keyed by `export`.
+    fn of(spec: &Spec, camera: &CameraSpec, export: &Arc<ExportInputs>) -> PathInputs {
+        PathInputs {
+            versions: [cameras::VERSION, annotate::VERSION],
+            sensor_version: sensor::VERSION,
+            views_version: views::VERSION,
+            camera: camera.clone(),
+            lighting: spec.lighting.clone(),
+            weather: spec.weather.clone(),
+            annotations: spec.annotations.clone(),
+            seed: spec.seed,
+            export: Arc::clone(export),
+        }
+    }
+}
+
 /// Every stage's inputs, for one spec: all the evaluator knows of it.
 #[derive(Clone, Debug)]
 pub struct Inputs {
@@ -436,17 +453,7 @@ impl Inputs {
             .cameras
             .iter()
             .map(|camera| FramesInputs {
-                path: PathInputs {
-                    versions: [cameras::VERSION, annotate::VERSION],
-                    sensor_version: sensor::VERSION,
-                    views_version: views::VERSION,
-                    camera: camera.clone(),
-                    lighting: spec.lighting.clone(),
-                    weather: spec.weather.clone(),
-                    annotations: spec.annotations.clone(),
-                    seed: spec.seed,
-                    export: Arc::clone(&export),
-                },
+                path: PathInputs::of(spec, camera, &export),
                 output: spec.output.clone(),
             })
             .collect();

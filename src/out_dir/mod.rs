@@ -140,6 +140,46 @@ impl OutDir {
             }
         }
         let old = walk(&self.dir).map_err(io_err(&self.dir))?;
+        // Old files are read and hashed on every core; the answers come back in artifact order.
+        let shas: Vec<String> = artifacts.par_iter().map(|a| a.blob.sha256()).collect();
+        let (synced, keep, manifest_same) = self.compare(&old, artifacts, &shas, manifest, record);
+        let wanted: BTreeSet<&str> = artifacts
+            .iter()
+            .map(|a| a.path.as_str())
+            .chain(["manifest.json"])
+            .collect();
+        let dirs_match = old.dirs == folders_of(wanted.iter().copied());
+        if synced.written.is_empty() && synced.removed.is_empty() && dirs_match {
+            return Ok(synced);
+        }
+
+        // Build the new folder beside the old one, then swap.
+        let stage = self.reserved("stage");
+        fs::create_dir(&stage).map_err(io_err(&stage))?;
+        self.faults.step();
+        self.write_staged(&stage, artifacts, &shas, &keep, cache)?;
+        let target = stage.join("manifest.json");
+        let linked =
+            manifest_same && fs::hard_link(self.dir.join("manifest.json"), &target).is_ok();
+        if !linked {
+            write_new(&target, manifest).map_err(io_err(&self.dir.join("manifest.json")))?;
+        }
+        self.faults.step();
+        self.swap(&stage, old.exists()).map_err(io_err(&self.dir))?;
+        Ok(synced)
+    }
+
+    /// What syncing `artifacts` and `manifest` over the folder's `old` files does: which
+    /// files are written, kept (their old file holds their bytes: `keep`, hard-linked when
+    /// the folder is replaced) and removed, and whether the manifest is unchanged.
+    fn compare<'a>(
+        &self,
+        old: &OldTree,
+        artifacts: &'a [ArtifactOut],
+        shas: &[String],
+        manifest: &[u8],
+        record: Option<&FreshRecord>,
+    ) -> (Synced, BTreeSet<&'a str>, bool) {
         // An artifact whose old file holds its bytes is kept (hard-linked when the folder
         // is replaced); the recorded hash of a file whose size and mtime are unchanged is
         // trusted, as by the no-op fast path.
@@ -159,11 +199,9 @@ impl OutDir {
         };
         let mut synced = Synced::default();
         let mut keep = BTreeSet::new();
-        // Old files are read and hashed on every core; the answers come back in artifact order.
-        let shas: Vec<String> = artifacts.par_iter().map(|a| a.blob.sha256()).collect();
         let unchanged: Vec<bool> = artifacts
             .par_iter()
-            .zip(&shas)
+            .zip(shas)
             .map(|(a, sha)| same(&a.path, sha, a.blob.size()))
             .collect();
         for (artifact, unchanged) in artifacts.iter().zip(unchanged) {
@@ -197,15 +235,24 @@ impl OutDir {
             .chain(&old.others)
             .cloned()
             .collect();
-        let dirs_match = old.dirs == folders_of(wanted.iter().copied());
-        if synced.written.is_empty() && synced.removed.is_empty() && dirs_match {
-            return Ok(synced);
-        }
+        (synced, keep, manifest_same)
+    }
 
-        // Build the new folder beside the old one, then swap.
-        let stage = self.reserved("stage");
-        fs::create_dir(&stage).map_err(io_err(&stage))?;
-        self.faults.step();
+    /// Writes every artifact into the staged folder `stage`: kept files hard-linked from
+    /// the old folder, the rest from their bytes or cache objects, artifacts with the same
+    /// bytes written once and linked.
+    fn write_staged(
+        &self,
+        stage: &Path,
+        artifacts: &[ArtifactOut],
+        shas: &[String],
+        keep: &BTreeSet<&str>,
+        cache: &Cache,
+    ) -> Result<(), BuildError> {
+        let io_err = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| BuildError::Output { path, source }
+        };
         // The folders first, then the files on every core: a path's frames come back
         // from the cache (read and checked against their hash), which took one core
         // 0.3 s in a 100-frame build. Largest first, one file a task, so the export's
@@ -219,7 +266,7 @@ impl OutDir {
         // written once: the first in name order, the others hard-linked to it below.
         let mut first_of: BTreeMap<&str, &str> = BTreeMap::new();
         let mut twins: Vec<(&str, &str)> = Vec::new();
-        for (artifact, sha) in artifacts.iter().zip(&shas) {
+        for (artifact, sha) in artifacts.iter().zip(shas) {
             match first_of.get(sha.as_str()) {
                 Some(first) => twins.push((artifact.path.as_str(), first)),
                 None => {
@@ -264,15 +311,7 @@ impl OutDir {
             self.faults.step();
             Ok::<(), BuildError>(())
         })?;
-        let target = stage.join("manifest.json");
-        let linked =
-            manifest_same && fs::hard_link(self.dir.join("manifest.json"), &target).is_ok();
-        if !linked {
-            write_new(&target, manifest).map_err(io_err(&self.dir.join("manifest.json")))?;
-        }
-        self.faults.step();
-        self.swap(&stage, old.exists()).map_err(io_err(&self.dir))?;
-        Ok(synced)
+        Ok(())
     }
 
     /// Puts the staged folder in place of the old one, atomically where the OS can.
