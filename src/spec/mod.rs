@@ -227,15 +227,35 @@ pub fn resolve(spec_path: &Path, relative: &str) -> PathBuf {
     }
 }
 
-/// The 1-based line and column of the key `key` (a dotted path such as
-/// `objects[2].count`) in the spec text, or of its nearest written ancestor; `None` when the
-/// text does not parse. The CLI places a build's diagnostics with it.
-pub fn key_position(text: &str, key: &str) -> Option<(usize, usize)> {
-    let table = DeTable::parse(text).ok()?;
-    let locator = Locator::new(table.into_inner());
-    let span = locator.key_span(&key_path::KeyPath::parse(key));
-    let at = Diagnostic::new(text, span, key, "");
-    Some((at.line, at.column))
+/// Where each of `keys` (dotted paths such as `objects[2].count`) was written, or its
+/// nearest written ancestor: `(file, line, column)`, 1-based, in the spec at `path` or in
+/// a base it extends (read through `world`); `None` when the spec does not load that far.
+/// The CLI places a build's warnings with it.
+pub fn key_places(
+    path: &Path,
+    keys: &[&str],
+    world: &dyn SpecWorld,
+) -> Option<Vec<(PathBuf, usize, usize)>> {
+    let source = SpecSource {
+        path: path.to_path_buf(),
+        text: world.spec_text(path).ok()?,
+    };
+    let sources = Sources::read(&source, &[], world).ok()?;
+    let (table, _) = sources.tree();
+    let locator = Locator::new(table);
+    let places = keys
+        .iter()
+        .map(|key| {
+            let span = locator.key_span(&KeyPath::parse(key));
+            let at = sources.localize(Diagnostic::new(&sources.combined, span, key, ""));
+            (
+                at.file.unwrap_or_else(|| path.to_path_buf()),
+                at.line,
+                at.column,
+            )
+        })
+        .collect();
+    Some(places)
 }
 
 /// The schema generated from the types (pretty JSON text, trailing newline) — what

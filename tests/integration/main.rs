@@ -15,6 +15,7 @@ mod cache_gc;
 mod cache_safety;
 mod cli;
 mod explain;
+mod extends;
 mod input_files;
 mod instances;
 mod lock;
