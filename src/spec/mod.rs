@@ -495,6 +495,65 @@ mod tests {
         );
     }
 
+    fn load_set(sets: &[&str]) -> Result<Spec, String> {
+        let world = FakeWorld::empty().with_spec("specs/base.toml", BASE);
+        let source = SpecSource {
+            path: PathBuf::from("specs/child.toml"),
+            text: "extends = 'base.toml'\n".to_string(),
+        };
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        load_with(&source, &sets, &world).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn sets_apply_after_extends_by_key_path_and_entry_name() {
+        let spec = load_set(&[
+            "cameras.b.frames=7",
+            "seed = 11",
+            "name=plain_words",
+            "layout.generate.road_width=40",
+        ])
+        .unwrap();
+        assert_eq!(spec.cameras[1].name, "b");
+        assert_eq!(spec.cameras[1].frames, Some(7));
+        assert_eq!(spec.cameras[0].frames, Some(2));
+        assert_eq!(spec.seed, 11);
+        assert_eq!(spec.name, "plain_words");
+        assert_eq!(spec.layout.generate.unwrap().road_width, 40);
+        // A later --set wins over an earlier one.
+        assert_eq!(load_set(&["seed=1", "seed=2"]).unwrap().seed, 2);
+    }
+
+    #[test]
+    fn bad_sets_are_errors_at_the_set_line() {
+        let cases: [(&[&str], &str); 4] = [
+            (
+                &["seed=1", "cameras.b.framez=4"],
+                "--set:2:1: error: cameras[1].framez: expected one of `name`, `path`, `frames`",
+            ),
+            (
+                &["cameras.c.frames=4"],
+                "--set:1:1: error: cameras: expected the name of an entry of `cameras` \
+                 (`--set cameras.NAME.key=value`), found \"c\", which no entry is named",
+            ),
+            (
+                &["seed"],
+                "--set:1:1: error: : expected `--set key.path=value`, found \"seed\"",
+            ),
+            (
+                &["seed.x=1"],
+                "--set:1:1: error: seed: expected a table at `seed` to set a key in, found an \
+                 integer 3",
+            ),
+        ];
+        for (sets, want) in cases {
+            let got = load_set(sets).unwrap_err();
+            assert!(got.starts_with(want), "{sets:?}: {got}");
+        }
+        let unknown = load_set(&["cameras.b.framez=4"]).unwrap_err();
+        assert!(unknown.ends_with("(did you mean `frames`?)"), "{unknown}");
+    }
+
     #[test]
     fn diagnostics_come_in_source_order() {
         let got = report(

@@ -118,12 +118,6 @@ impl Sources {
             let mut text = sets.join("\n");
             text.push('\n');
             sources.push(PathBuf::from(SET_FILE), text);
-            let last = sources.files.len() - 1;
-            if let Err(error) = DeTable::parse(&sources.files[last].text) {
-                let d = super::syntax_diagnostic(&sources.files[last].text, &error);
-                let d = sources.shifted(last, d);
-                return Err((sources, vec![d]));
-            }
         }
         Ok(sources)
     }
@@ -169,6 +163,15 @@ impl Sources {
         let order = (0..specs).rev().chain(sets.map(|_| self.files.len() - 1));
         for index in order {
             let file = &self.files[index];
+            if file.path == Path::new(SET_FILE) {
+                let tree = merged.get_or_insert_with(DeTable::new);
+                let mut at = file.start;
+                for line in file.text.lines() {
+                    set(tree, line, at, &mut problems);
+                    at += line.len() + 1;
+                }
+                continue;
+            }
             // Every file parsed when it was read.
             let Ok(table) = DeTable::parse(&file.text) else {
                 continue;
@@ -211,6 +214,108 @@ impl Sources {
             .map(|f| (f.path.clone(), f.text.clone()))
             .collect()
     }
+}
+
+/// Applies one `--set` line, `key.path=value`, written at combined offset `at`, to `tree`:
+/// the value parsed as a TOML value (a string when it is not one), merged at the key path
+/// by the usual rules; a key path step into an array of named tables picks the entry of
+/// that name (`cameras.street.frames=4`).
+fn set<'i>(tree: &mut DeTable<'i>, line: &'i str, at: usize, problems: &mut Vec<MergeProblem>) {
+    let line_span = at..at + line.len();
+    let Some((keys, raw)) = line.split_once('=') else {
+        problems.push((
+            line_span,
+            KeyPath::root(),
+            format!("expected `--set key.path=value`, found \"{line}\" (no `=`)"),
+        ));
+        return;
+    };
+    let value_at = at + keys.len() + 1;
+    let trimmed = raw.trim_start();
+    let value_at = value_at + raw.len() - trimmed.len();
+    let trimmed = trimmed.trim_end();
+    let value_span = value_at..value_at + trimmed.len();
+    let value = match DeValue::parse(trimmed) {
+        Ok(value) => shift(value, value_at),
+        Err(_) => Spanned::new(value_span.clone(), DeValue::String(trimmed.into())),
+    };
+    let names: Vec<&str> = keys.trim().split('.').map(str::trim).collect();
+    if names.iter().any(|n| n.is_empty()) {
+        problems.push((
+            at..at + keys.len(),
+            KeyPath::root(),
+            format!("expected `--set key.path=value` with a dotted key path, found \"{keys}\""),
+        ));
+        return;
+    }
+    // The tree to merge into, and the path shown in messages.
+    let mut path = KeyPath::root();
+    let mut table = tree;
+    let (last, steps) = names.split_last().unwrap_or((&"", &[]));
+    let mut steps = steps.iter().peekable();
+    while let Some(&name) = steps.next() {
+        let span = at..at + keys.len();
+        path = path.key(name);
+        let slot = table
+            .entry(Spanned::new(span.clone(), name.into()))
+            .or_insert_with(|| Spanned::new(span.clone(), DeValue::Table(DeTable::new())));
+        match slot.get_mut() {
+            DeValue::Table(next) => table = next,
+            DeValue::Array(items) => {
+                // The step after an array names one of its entries.
+                let Some(&entry) = steps.next() else {
+                    problems.push((
+                        span,
+                        path.clone(),
+                        format!(
+                            "expected `--set {path}.NAME.key=value` (an entry's keys are set \
+                             one by one), or `--set {path}=[…]` to replace the whole array"
+                        ),
+                    ));
+                    return;
+                };
+                let found = items.iter().position(|item| {
+                    item.get_ref()
+                        .as_table()
+                        .and_then(|t| t.get("name"))
+                        .and_then(|n| n.get_ref().as_str())
+                        == Some(entry)
+                });
+                let Some(index) = found else {
+                    problems.push((
+                        span,
+                        path.clone(),
+                        format!(
+                            "expected the name of an entry of `{path}` \
+                             (`--set {path}.NAME.key=value`), found \"{entry}\", which no \
+                             entry is named"
+                        ),
+                    ));
+                    return;
+                };
+                path = path.index(index);
+                // An entry with a name is a table.
+                let Some(DeValue::Table(next)) = items.get_mut(index).map(Spanned::get_mut) else {
+                    return;
+                };
+                table = next;
+            }
+            other => {
+                problems.push((
+                    span,
+                    path.clone(),
+                    format!(
+                        "expected a table at `{path}` to set a key in, found {}",
+                        super::toml_json::describe(other)
+                    ),
+                ));
+                return;
+            }
+        }
+    }
+    let mut child = DeTable::new();
+    child.insert(Spanned::new(at..at + keys.len(), (*last).into()), value);
+    merge_tables(table, child, &path, problems);
 }
 
 /// `path` with `.` dropped and `a/..` folded, so two spellings of one file compare equal.

@@ -47,6 +47,7 @@ pub fn quiet_options(out_root: PathBuf, cache_dir: PathBuf) -> cityspec::driver:
         waiting: None,
         strict: false,
         locked: false,
+        sets: Vec::new(),
     }
 }
 

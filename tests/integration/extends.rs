@@ -113,3 +113,79 @@ fn an_error_points_at_the_base_or_the_child_whichever_wrote_the_value() {
     // The child's road width replaced the base's bad one.
     assert!(!text.contains("road_width"), "{text}");
 }
+
+#[test]
+fn set_overrides_a_value_after_extends_in_validate_and_explain() {
+    let ws = Workspace::with_spec("night");
+    let out = cityspec(
+        &ws,
+        &[
+            "validate",
+            "specs/night.toml",
+            "--set",
+            "cameras.street.frames=3",
+            "--set",
+            "name=night_short",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("ok (night_short)"),
+        "{}",
+        stderr(&out)
+    );
+    // The street path's key changes with its frames; the city's does not.
+    let explain = |extra: &[&str]| {
+        let mut args = vec!["explain", "--json", "specs/night.toml"];
+        args.extend_from_slice(extra);
+        let out = cityspec(&ws, &args);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let keys: Vec<(String, String)> = json[0]["stages"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| {
+                (
+                    format!("{} {}", s["stage"], s["camera"]),
+                    s["key"].to_string(),
+                )
+            })
+            .collect();
+        keys
+    };
+    let plain = explain(&[]);
+    let set = explain(&["--set", "cameras.street.frames=3"]);
+    assert_eq!(plain.len(), set.len());
+    let changed: Vec<&String> = plain
+        .iter()
+        .zip(&set)
+        .filter(|(a, b)| a != b)
+        .map(|((stage, _), _)| stage)
+        .collect();
+    assert!(!changed.is_empty());
+    assert!(changed.iter().all(|s| s.contains("street")), "{changed:?}");
+}
+
+#[test]
+fn an_unknown_set_key_is_an_invalid_spec_naming_set() {
+    let ws = Workspace::with_spec("day");
+    let out = cityspec(
+        &ws,
+        &[
+            "build",
+            "specs/day.toml",
+            "--set",
+            "cameras.street.framez=3",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let text = stderr(&out);
+    assert!(
+        text.contains("--set:1:1")
+            && text.contains("cameras[0].framez")
+            && text.contains("did you mean `frames`?"),
+        "{text}"
+    );
+    assert!(!ws.path().join("out/day").exists());
+}
