@@ -209,7 +209,16 @@ pub fn load_with(
     if let Some(extent) = extent {
         cost_checks::check_costs(&spec, extent, &mut findings);
     }
-    lighting_spec::check_lighting(&spec.lighting, &mut findings);
+    lighting_spec::check_lighting(&spec.lighting, "lighting", &mut findings);
+    for (i, camera) in spec.cameras.iter().enumerate() {
+        if let Some(lighting) = &camera.lighting {
+            lighting_spec::check_lighting(
+                lighting,
+                &format!("cameras[{i}].lighting"),
+                &mut findings,
+            );
+        }
+    }
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)
@@ -522,6 +531,21 @@ mod tests {
         assert_eq!(spec.layout.generate.unwrap().road_width, 40);
         // A later --set wins over an earlier one.
         assert_eq!(load_set(&["seed=1", "seed=2"]).unwrap().seed, 2);
+    }
+
+    #[test]
+    fn a_cameras_own_lighting_is_checked_at_its_own_key() {
+        let got = load_set(&["cameras.b.lighting={ sun_elevation = 10 }"]).unwrap_err();
+        assert!(
+            got.starts_with("--set:1:") && got.contains(": cameras[1].lighting.sun_elevation: "),
+            "{got}"
+        );
+        let spec = load_set(&["cameras.b.weather.kind=\"fog\""]).unwrap();
+        assert!(spec.cameras[0].weather.is_none());
+        assert_eq!(
+            spec.cameras[1].weather.as_ref().map(|w| w.kind.clone()),
+            Some(load_set(&["weather.kind=\"fog\""]).unwrap().weather.kind)
+        );
     }
 
     #[test]

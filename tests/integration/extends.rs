@@ -189,3 +189,46 @@ fn an_unknown_set_key_is_an_invalid_spec_naming_set() {
     );
     assert!(!ws.path().join("out/day").exists());
 }
+
+#[test]
+fn a_cameras_own_weather_changes_only_its_own_frames_rgb() {
+    let ws = Workspace::with_spec("day");
+    ws.shrink_day();
+    fs::write(
+        ws.spec("fogged_street"),
+        "extends = \"day.toml\"\nname = \"fogged_street\"\n\n[[cameras]]\nname = \"street\"\n\n\
+         [cameras.weather]\nkind = \"fog\"\nstrength = 1.0\nfog_density = 0.05\n",
+    )
+    .unwrap();
+    let fogged = cityspec::driver::load_spec(&ws.spec("fogged_street")).unwrap();
+    assert!(fogged.cameras[0].weather.is_some());
+    assert!(fogged.cameras[1].weather.is_none());
+    let options = ws.options();
+    cityspec::driver::build(&ws.spec("day"), &options).unwrap();
+    cityspec::driver::build(&ws.spec("fogged_street"), &options).unwrap();
+    let frames =
+        |spec: &str, camera: &str| common::tree(&ws.out().join(spec).join("frames").join(camera));
+    // The other camera's frames: every byte the same.
+    let (plain, other) = (frames("day", "aerial"), frames("fogged_street", "aerial"));
+    assert!(!plain.is_empty());
+    assert_eq!(plain, other);
+    // The fogged camera: the same files, the RGB images changed, ids and depth not.
+    let (plain, fog) = (frames("day", "street"), frames("fogged_street", "street"));
+    assert_eq!(
+        plain.keys().collect::<Vec<_>>(),
+        fog.keys().collect::<Vec<_>>()
+    );
+    let mut rgb = 0;
+    for (name, bytes) in &fog {
+        if name.starts_with("ids/") || name.starts_with("depth/") || name.starts_with("yolo/") {
+            assert!(bytes == &plain[name], "{name} changed");
+        } else if name.starts_with("rgb/") {
+            assert!(
+                bytes != &plain[name],
+                "{name} unchanged by the camera's fog"
+            );
+            rgb += 1;
+        }
+    }
+    assert_eq!(rgb, 2);
+}
