@@ -23,6 +23,11 @@ use super::{SpecSource, SpecWorld};
 /// The key that names a spec's base.
 pub(crate) const EXTENDS: &str = "extends";
 
+/// The most files one chain of `extends` may hold: a chain through a symlinked folder
+/// (`extends = "link/a.toml"`, `link` → `.`) names a new path at every step and would
+/// never close into a cycle.
+pub(crate) const MAX_CHAIN: usize = 16;
+
 /// The name `--set` lines are reported under.
 pub const SET_FILE: &str = "--set";
 
@@ -86,6 +91,13 @@ impl Sources {
                 )
             };
             let (span, relative) = extends;
+            if sources.files.len() >= MAX_CHAIN {
+                let message = format!(
+                    "expected at most {MAX_CHAIN} specs in a chain of `extends`, found more \
+                     (a chain through a symlinked folder never closes into a cycle)"
+                );
+                return Err(sources.fail(last, span, message));
+            }
             if let Some(first) = sources
                 .files
                 .iter()
@@ -366,6 +378,29 @@ fn shift_table(table: DeTable<'_>, by: usize) -> DeTable<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(unix)]
+    #[test]
+    fn a_chain_through_a_symlinked_folder_stops_at_its_cap() {
+        let dir = tempfile::tempdir().unwrap();
+        std::os::unix::fs::symlink(dir.path(), dir.path().join("link")).unwrap();
+        let path = dir.path().join("a.toml");
+        let text = "extends = \"link/a.toml\"\n".to_string();
+        std::fs::write(&path, &text).unwrap();
+        let source = SpecSource { path, text };
+        let (sources, diagnostics) =
+            Sources::read(&source, &[], &crate::spec::FsWorld).unwrap_err();
+        assert_eq!(sources.files.len(), MAX_CHAIN);
+        assert_eq!(diagnostics.len(), 1);
+        assert!(
+            diagnostics[0]
+                .message
+                .starts_with("expected at most 16 specs"),
+            "{:?}",
+            diagnostics[0]
+        );
+        assert_eq!(diagnostics[0].key, "extends");
+    }
 
     #[test]
     fn normalize_folds_dots() {
