@@ -121,6 +121,7 @@ fn noop_case(label: &str, text: &str, runs: usize, cold_runs: usize) {
         waiting: None,
         strict: false,
         locked: false,
+        sets: Vec::new(),
     };
     // Cold builds: an empty cache and no output folder each time, every stage's time kept.
     let mut cold_times = Vec::new();

@@ -80,6 +80,7 @@ pub fn build_into(spec: &Path, cache: &Path, out: &Path) -> cityspec::driver::Bu
             waiting: None,
             strict: false,
             locked: false,
+            sets: Vec::new(),
         },
     )
     .unwrap()

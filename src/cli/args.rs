@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
-use super::shared_args::{CacheArg, JobsArg, OutArg};
+use super::shared_args::{CacheArg, JobsArg, OutArg, SetArg};
 
 /// Turn a versioned TOML spec into a synthetic city dataset: a road layout, the city plan,
 /// a textured 3D city, and rendered, labelled frames. The same spec gives the same bytes
@@ -58,6 +58,8 @@ pub enum Command {
         /// as it was. Warnings are kept with the cache, so a warm build fails as a cold one.
         #[arg(long)]
         strict: bool,
+        #[command(flatten)]
+        set: SetArg,
         /// Build only shard I of N (0-based) into the cache, no output folder: the city's
         /// stages and every I-th chunk of each camera path. `auto` reads
         /// SLURM_ARRAY_TASK_ID/_COUNT or JOB_COMPLETION_INDEX. A plain build afterwards
@@ -136,6 +138,8 @@ pub enum Command {
         /// Spec files (TOML).
         #[arg(required = true, value_name = "SPEC")]
         specs: Vec<PathBuf>,
+        #[command(flatten)]
+        set: SetArg,
     },
     /// Work with facade sets (paper 3.2).
     #[command(subcommand)]
@@ -161,6 +165,8 @@ pub enum Command {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        set: SetArg,
     },
     /// Pack a spec and every file it reads (layout image, facade folder, models, word
     /// files) into one tar, for a build on another machine.

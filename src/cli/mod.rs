@@ -17,7 +17,7 @@ use clap::Parser;
 
 use crate::driver::{self, BuildError, BuildOptions};
 use args::{Args, CacheCommand, Command, FacadesCommand};
-use shared_args::{CacheArg, JobsArg, OutArg};
+use shared_args::{CacheArg, JobsArg, OutArg, SetArg};
 
 /// Runs the command line and returns the process exit code.
 // Long on purpose: the dispatch: one arm a command, each only turning its arguments into
@@ -67,6 +67,7 @@ pub fn run() -> ExitCode {
             cache: CacheArg { cache },
             jobs: JobsArg { jobs },
             strict,
+            set: SetArg { sets },
             shard,
             shard_count,
             stage,
@@ -79,6 +80,7 @@ pub fn run() -> ExitCode {
                 waiting: Some(print::waiting_line()),
                 strict,
                 locked,
+                sets,
             };
             let shards = (shard.is_some() || stage.is_some()).then_some((shard, shard_count));
             build_command(&cx, &specs, &options, jobs, shards)
@@ -96,6 +98,7 @@ pub fn run() -> ExitCode {
                 waiting: Some(print::waiting_line()),
                 strict: false,
                 locked: false,
+                sets: Vec::new(),
             };
             lock_command(&cx, &specs, &options, jobs)
         }
@@ -116,7 +119,10 @@ pub fn run() -> ExitCode {
             };
             verify_command(&cx, &specs, &options, jobs)
         }
-        Command::Validate { specs } => validate_command(&cx, &specs),
+        Command::Validate {
+            specs,
+            set: SetArg { sets },
+        } => validate_command(&cx, &specs, &sets),
         Command::Facades(FacadesCommand::Export { dir }) => facades_export(&cx, &dir),
         Command::Cache(CacheCommand::Gc {
             specs,
@@ -145,7 +151,8 @@ pub fn run() -> ExitCode {
             specs,
             cache: CacheArg { cache },
             json,
-        } => explain_command(&cx, &specs, &cache, json),
+            set: SetArg { sets },
+        } => explain_command(&cx, &specs, &sets, &cache, json),
         Command::Schema => {
             print!("{}", crate::spec::schema_json());
             ExitCode::SUCCESS
@@ -263,10 +270,10 @@ fn verify_command(
 }
 
 /// `cityspec validate`: every spec checked as a build would, every error reported.
-fn validate_command(cx: &Context, specs: &[PathBuf]) -> ExitCode {
+fn validate_command(cx: &Context, specs: &[PathBuf], sets: &[String]) -> ExitCode {
     let mut errors = Vec::new();
     for path in specs {
-        match driver::validate(path) {
+        match driver::validate(path, sets) {
             Ok((spec, warnings)) => {
                 for line in print::diagnostic_lines(path, &warnings) {
                     eprintln!("{line}");
@@ -338,11 +345,17 @@ fn cache_gc(cx: &Context, specs: &[PathBuf], options: &driver::GcOptions) -> Exi
 }
 
 /// `cityspec explain`: each spec's stages, on standard output.
-fn explain_command(cx: &Context, specs: &[PathBuf], cache: &Path, json: bool) -> ExitCode {
+fn explain_command(
+    cx: &Context,
+    specs: &[PathBuf],
+    sets: &[String],
+    cache: &Path,
+    json: bool,
+) -> ExitCode {
     let mut explained = Vec::new();
     let mut errors = Vec::new();
     for path in specs {
-        match driver::explain(path, cache) {
+        match driver::explain(path, sets, cache) {
             Ok(one) => explained.push(one),
             Err(e) => errors.push(e),
         }

@@ -2,10 +2,9 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::driver::{BuildError, BuildReport, StageStatus, VerifyReport};
-use crate::regular_file::{self, Follow};
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub struct Printer {
     pub quiet: bool,
@@ -334,27 +333,35 @@ pub fn explained(explained: &crate::driver::Explained) -> String {
 }
 
 /// Each diagnostic as `spec.toml:LINE:COL: warning[code]: message (file)`, placed at its
-/// key in the spec when it names one that the spec file still holds (the spec is read
-/// once for all of them).
+/// key where the spec (or a base it extends) still writes it; the spec is read once for
+/// all of them.
 pub fn diagnostic_lines(spec: &Path, diagnostics: &[Diagnostic]) -> Vec<String> {
     if diagnostics.is_empty() {
         return Vec::new();
     }
-    let text = regular_file::read_to_string(spec, Follow::Yes).ok();
+    let keys: Vec<&str> = diagnostics
+        .iter()
+        .filter_map(|d| d.key.as_deref())
+        .collect();
+    let mut places = crate::spec::key_places(spec, &keys, &crate::spec::FsWorld)
+        .unwrap_or_default()
+        .into_iter();
     diagnostics
         .iter()
-        .map(|d| diagnostic_line(spec, text.as_deref(), d))
+        .map(|d| {
+            let place = d.key.as_ref().and_then(|_| places.next());
+            diagnostic_line(spec, place, d)
+        })
         .collect()
 }
 
-fn diagnostic_line(spec: &Path, text: Option<&str>, diagnostic: &Diagnostic) -> String {
-    let position = diagnostic
-        .key
-        .as_deref()
-        .zip(text)
-        .and_then(|(key, text)| crate::spec::key_position(text, key));
-    let place = match position {
-        Some((line, column)) => format!("{}:{line}:{column}", spec.display()),
+fn diagnostic_line(
+    spec: &Path,
+    place: Option<(PathBuf, usize, usize)>,
+    diagnostic: &Diagnostic,
+) -> String {
+    let place = match place {
+        Some((file, line, column)) => format!("{}:{line}:{column}", file.display()),
         None => spec.display().to_string(),
     };
     let file = match &diagnostic.file {

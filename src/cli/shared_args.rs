@@ -28,3 +28,15 @@ pub struct JobsArg {
     #[arg(short = 'j', long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=512))]
     pub jobs: Option<u16>,
 }
+
+/// `--set`: build, validate, explain.
+#[derive(Debug, clap::Args)]
+pub struct SetArg {
+    /// Override one spec value after `extends`, with the merge rules of `extends`:
+    /// KEY.PATH=VALUE, VALUE read as TOML (`4`, `[1, 2]`, `"night"`; anything else is
+    /// taken as a string). Bare dotted keys; an array of named tables is entered by an
+    /// entry's name: `--set cameras.street.frames=4`. Repeatable; applied in order to
+    /// every spec given.
+    #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+    pub sets: Vec<String>,
+}

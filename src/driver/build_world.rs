@@ -30,6 +30,10 @@ impl SpecWorld for BuildWorld {
         FsWorld.file(path)
     }
 
+    fn spec_text(&self, path: &Path) -> Result<String, String> {
+        FsWorld.spec_text(path)
+    }
+
     fn layout_pixels(&self, path: &Path) -> Option<Result<RgbImage, String>> {
         FsWorld.layout_pixels(path)
     }

@@ -12,7 +12,7 @@ use serde::Serialize;
 use super::inputs::SpecInputs;
 use super::pipeline::Pipeline;
 use super::stages::Stage;
-use super::{BuildError, load_spec};
+use super::{BuildError, load_spec_with};
 use crate::cache::{Cache, EntryState};
 
 /// One stage of a spec.
@@ -42,9 +42,10 @@ pub struct Explained {
     pub stages: Vec<StageLine>,
 }
 
-/// Explains the spec at `path` against the cache at `cache_dir` (which is not created).
-pub fn explain(path: &Path, cache_dir: &Path) -> Result<Explained, BuildError> {
-    let spec = load_spec(path)?;
+/// Explains the spec at `path` (with `--set` overrides `sets`) against the cache at
+/// `cache_dir` (which is not created).
+pub fn explain(path: &Path, sets: &[String], cache_dir: &Path) -> Result<Explained, BuildError> {
+    let spec = load_spec_with(path, sets)?;
     let inputs = SpecInputs::read(path, &spec)?;
     let cache = Cache::open(cache_dir)?;
     let progress = |_: &str, _: usize, _: usize| {};

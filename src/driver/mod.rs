@@ -86,6 +86,8 @@ pub struct BuildOptions {
     /// `--locked`: artifacts that differ from the spec's lock file (or a missing lock)
     /// fail the build with [`BuildError::Locked`] before the output folder is touched.
     pub locked: bool,
+    /// `--set key.path=value` overrides, applied to every spec after its `extends`.
+    pub sets: Vec<String>,
 }
 
 impl Default for BuildOptions {
@@ -97,12 +99,18 @@ impl Default for BuildOptions {
             waiting: None,
             strict: false,
             locked: false,
+            sets: Vec::new(),
         }
     }
 }
 
-/// Reads and validates one spec file.
+/// Reads and validates one spec file (and the bases it extends).
 pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
+    load_spec_with(path, &[])
+}
+
+/// [`load_spec`], with `--set` overrides (`key.path=value`) applied after `extends`.
+pub fn load_spec_with(path: &Path, sets: &[String]) -> Result<Spec, BuildError> {
     // Capped, and refused unless a regular file: a spec that is `/dev/zero` fails at once.
     let text = spec::read_text_capped(path, spec::MAX_SPEC_BYTES).map_err(|source| {
         BuildError::SpecFile {
@@ -114,19 +122,20 @@ pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
         path: path.to_path_buf(),
         text,
     };
-    spec::load(&source, &BuildWorld).map_err(BuildError::Spec)
+    spec::load_with(&source, sets, &BuildWorld).map_err(BuildError::Spec)
 }
 
 /// Loads and validates every spec first, reporting all their errors together; then runs
 /// `each` on each spec in order, stopping at the first failure.
 pub(crate) fn each_valid_spec<R>(
     paths: &[PathBuf],
+    sets: &[String],
     mut each: impl FnMut(&Path, &Spec) -> Result<R, BuildError>,
 ) -> Result<Vec<R>, Vec<BuildError>> {
     let mut specs = Vec::new();
     let mut errors = Vec::new();
     for path in paths {
-        match load_spec(path) {
+        match load_spec_with(path, sets) {
             Ok(spec) => specs.push((path, spec)),
             Err(e) => errors.push(e),
         }
@@ -150,7 +159,7 @@ pub fn build_all(
     let mut errors = Vec::new();
     let mut names: BTreeMap<String, PathBuf> = BTreeMap::new();
     for path in paths {
-        match load_spec(path) {
+        match load_spec_with(path, &options.sets) {
             Ok(spec) => {
                 if let Some(first) = names.insert(spec.name.clone(), path.clone()) {
                     errors.push(BuildError::DuplicateName {
@@ -175,16 +184,19 @@ pub fn build_all(
 
 /// Builds one spec file.
 pub fn build(path: &Path, options: &BuildOptions) -> Result<BuildReport, BuildError> {
-    let spec = load_spec(path)?;
+    let spec = load_spec_with(path, &options.sets)?;
     build_spec(path, &spec, options)
 }
 
 /// Checks a spec as `build` would before running any stage: the spec itself, every input
 /// file it names (read, hashed and parsed as the build reads them), and a facade folder's
 /// photos, boxes and floors, processed as the facades stage does. Returns the spec and the
-/// facade warnings a build would print.
-pub fn validate(path: &Path) -> Result<(Spec, Vec<crate::diagnostic::Diagnostic>), BuildError> {
-    let spec = load_spec(path)?;
+/// facade warnings a build would print. `sets`: `--set` overrides, as [`load_spec_with`].
+pub fn validate(
+    path: &Path,
+    sets: &[String],
+) -> Result<(Spec, Vec<crate::diagnostic::Diagnostic>), BuildError> {
+    let spec = load_spec_with(path, sets)?;
     let inputs = inputs::SpecInputs::read(path, &spec)?;
     let warnings = match &inputs.facades {
         inputs::FacadeInput::Builtin => Vec::new(),

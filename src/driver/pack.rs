@@ -1,19 +1,56 @@
 //! `cityspec pack SPEC`: the spec and every file it reads, in one tar, so that a build on
 //! another machine (a Kubernetes job, `deploy/k8s/run.sh`) reads the spec as written.
 //!
-//! The files are the ones a build reads ([`SpecInputs::files`]: the layout image, the
-//! facade folder's photos, boxes, masks and floors file, the mesh models with their MTL
-//! files and textures, the word files), so nothing a build needs can be left out. Each is
+//! The files are the ones a build reads: the spec and every spec it `extends` (as the
+//! spec loader asks for them), and [`SpecInputs::files`] (the layout image, the facade
+//! folder's photos, boxes, masks and floors file, the mesh models with their MTL files and
+//! textures, the word files), so nothing a build needs can be left out. Each is
 //! stored under its path relative to the folder all of them share, so relative paths in
 //! the spec (`../assets/models/bench.obj`) resolve the same inside the unpacked archive.
 //! One more entry, [`SPEC_ENTRY`], holds the spec's path inside the archive, so a job that
 //! unpacks it finds the spec without being told. The tar is the same bytes every time:
 //! entries sorted by name, mode 0644, owner 0, mtime 0.
 
+use std::cell::RefCell;
 use std::path::{Component, Path, PathBuf};
 
+use image::RgbImage;
+
+use super::BuildError;
+use super::build_world::BuildWorld;
 use super::inputs::SpecInputs;
-use super::{BuildError, load_spec};
+use crate::spec::{self, Palette, SpecSource, SpecWorld};
+
+/// [`BuildWorld`], noting every spec file the loader reads (the spec's `extends` chain).
+#[derive(Default)]
+struct SpecsRead(RefCell<Vec<PathBuf>>);
+
+impl SpecWorld for SpecsRead {
+    fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
+        BuildWorld.image_dimensions(path)
+    }
+
+    fn folder(&self, path: &Path) -> Result<(), String> {
+        BuildWorld.folder(path)
+    }
+
+    fn file(&self, path: &Path) -> Result<(), String> {
+        BuildWorld.file(path)
+    }
+
+    fn spec_text(&self, path: &Path) -> Result<String, String> {
+        self.0.borrow_mut().push(path.to_path_buf());
+        BuildWorld.spec_text(path)
+    }
+
+    fn layout_pixels(&self, path: &Path) -> Option<Result<RgbImage, String>> {
+        BuildWorld.layout_pixels(path)
+    }
+
+    fn parsed_layout(&self, pixels: &RgbImage, palette: &Palette) -> Option<(usize, usize)> {
+        BuildWorld.parsed_layout(pixels, palette)
+    }
+}
 
 /// The entry that names the spec inside the archive (one line, `/`-separated).
 pub const SPEC_ENTRY: &str = "CITYSPEC_SPEC";
@@ -30,14 +67,26 @@ pub struct Packed {
 
 /// Packs the spec at `spec_path` with every file a build of it reads.
 pub fn pack(spec_path: &Path) -> Result<Packed, BuildError> {
-    let spec = load_spec(spec_path)?;
+    let text = spec::read_text_capped(spec_path, spec::MAX_SPEC_BYTES).map_err(|source| {
+        BuildError::SpecFile {
+            path: spec_path.to_path_buf(),
+            source,
+        }
+    })?;
+    let source = SpecSource {
+        path: spec_path.to_path_buf(),
+        text,
+    };
+    let bases = SpecsRead::default();
+    let spec = spec::load(&source, &bases).map_err(BuildError::Spec)?;
     let inputs = SpecInputs::read(spec_path, &spec)?;
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
         move |source| BuildError::Output { path, source }
     };
     let mut files: Vec<PathBuf> = Vec::new();
-    for file in std::iter::once(spec_path.to_path_buf()).chain(inputs.files) {
+    let specs = std::iter::once(spec_path.to_path_buf()).chain(bases.0.into_inner());
+    for file in specs.chain(inputs.files) {
         let absolute = std::fs::canonicalize(&file).map_err(io_err(&file))?;
         if !files.contains(&absolute) {
             files.push(absolute);

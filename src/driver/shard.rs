@@ -138,7 +138,9 @@ pub fn build_shards(
     options: &BuildOptions,
     shard: Option<Shard>,
 ) -> Result<Vec<ShardReport>, Vec<BuildError>> {
-    each_valid_spec(paths, |path, spec| shard_spec(path, spec, options, shard))
+    each_valid_spec(paths, &options.sets, |path, spec| {
+        shard_spec(path, spec, options, shard)
+    })
 }
 
 fn shard_spec(

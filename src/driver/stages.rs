@@ -407,9 +407,21 @@ impl PathInputs {
             versions: [cameras::VERSION, annotate::VERSION],
             sensor_version: sensor::VERSION,
             views_version: views::VERSION,
-            camera: camera.clone(),
-            lighting: spec.lighting.clone(),
-            weather: spec.weather.clone(),
+            // A camera's own lighting and weather replace the spec's, in the key once (as
+            // `lighting`, `weather`): a camera without them keys as before.
+            camera: CameraSpec {
+                lighting: None,
+                weather: None,
+                ..camera.clone()
+            },
+            lighting: camera
+                .lighting
+                .clone()
+                .unwrap_or_else(|| spec.lighting.clone()),
+            weather: camera
+                .weather
+                .clone()
+                .unwrap_or_else(|| spec.weather.clone()),
             annotations: spec.annotations.clone(),
             seed: spec.seed,
             export: Arc::clone(export),

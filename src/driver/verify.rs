@@ -63,7 +63,7 @@ pub fn verify_all(
     paths: &[PathBuf],
     options: &VerifyOptions,
 ) -> Result<Vec<VerifyReport>, Vec<BuildError>> {
-    each_valid_spec(paths, |path, spec| verify(path, spec, options))
+    each_valid_spec(paths, &[], |path, spec| verify(path, spec, options))
 }
 
 /// Reruns the chosen cached stages of `spec` and compares their outputs with the cache's.

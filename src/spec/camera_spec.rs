@@ -3,8 +3,10 @@
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Serialize};
 
+use super::lighting_spec::LightingSpec;
 use super::sensor_spec::SensorSpec;
 use super::value_range::{ValueRange, range_schema};
+use super::weather_spec::WeatherSpec;
 
 /// One camera path; its frames and annotations go to `frames/<name>/`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -118,6 +120,13 @@ pub struct CameraSpec {
     /// Exposure, tone curve, noise, compression and lens effects of the RGB image.
     #[serde(default)]
     pub sensor: SensorSpec,
+    /// This path's lighting instead of the spec's `[lighting]`: it replaces that table
+    /// whole (keys it does not write take their defaults, not the spec-wide values).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lighting: Option<LightingSpec>,
+    /// This path's weather instead of the spec's `[weather]`, replacing it whole.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weather: Option<WeatherSpec>,
 }
 
 /// How a camera path's depth images are written.

@@ -1,6 +1,7 @@
 //! Diagnostic: one problem of a spec — byte span, 1-based line and column, key path, message.
 
 use std::ops::Range;
+use std::path::PathBuf;
 
 /// One problem in a spec file, pointing at the text responsible for it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -15,6 +16,9 @@ pub struct Diagnostic {
     pub key: String,
     /// What was expected and what was found.
     pub message: String,
+    /// The file that holds `span` when it is not the spec itself (a base it extends, or
+    /// `--set`); `None` before the spec stage places it.
+    pub file: Option<PathBuf>,
 }
 
 impl Diagnostic {
@@ -35,6 +39,7 @@ impl Diagnostic {
             column: before[line_start..].chars().count() + 1,
             key: key.to_string(),
             message: message.into(),
+            file: None,
         }
     }
 }

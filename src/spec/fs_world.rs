@@ -7,7 +7,8 @@ use image::ImageReader;
 
 use super::SpecWorld;
 use super::input_file::{
-    InputFileError, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, check_file, open_capped, read_capped,
+    InputFileError, MAX_IMAGE_BYTES, MAX_MODEL_BYTES, MAX_SPEC_BYTES, check_file, open_capped,
+    read_capped, read_text_capped,
 };
 
 /// The real file system: reads only the header of each image.
@@ -30,6 +31,10 @@ impl SpecWorld for FsWorld {
         check_file(path, MAX_MODEL_BYTES)
             .map(|_| ())
             .map_err(|e| e.to_string())
+    }
+
+    fn spec_text(&self, path: &Path) -> Result<String, String> {
+        read_text_capped(path, MAX_SPEC_BYTES).map_err(|e| e.to_string())
     }
 
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {

@@ -395,6 +395,9 @@ mod tests {
         fn folder(&self, _: &Path) -> Result<(), String> {
             Ok(())
         }
+        fn spec_text(&self, _: &Path) -> Result<String, String> {
+            Err("no such file".to_string())
+        }
         fn file(&self, _: &Path) -> Result<(), String> {
             Ok(())
         }

@@ -131,18 +131,19 @@ pub enum Vary {
 }
 
 /// Values within their bounds, ranges with low ≤ high, and the sun's two angles together.
-pub(crate) fn check_lighting(lighting: &LightingSpec, findings: &mut Findings<'_, '_>) {
+/// `at` is the table's key path: `lighting`, or `cameras[i].lighting` for a camera's own.
+pub(crate) fn check_lighting(lighting: &LightingSpec, at: &str, findings: &mut Findings<'_, '_>) {
     let mut span = |key: &str, span: Option<Span>, lo: f64, hi: f64| {
         let Some(span) = span else { return };
         let [a, b] = span.bounds();
         if !(a >= lo && b <= hi && a.is_finite() && b.is_finite()) {
             findings.error(
-                &format!("lighting.{key}"),
+                &format!("{at}.{key}"),
                 format!("expected values within {lo}–{hi}, found {a}–{b}"),
             );
         } else if a > b {
             findings.error(
-                &format!("lighting.{key}"),
+                &format!("{at}.{key}"),
                 format!("expected a range [low, high] with low ≤ high, found [{a}, {b}]"),
             );
         }
@@ -157,11 +158,11 @@ pub(crate) fn check_lighting(lighting: &LightingSpec, findings: &mut Findings<'_
     span("sun_azimuth", lighting.sun_azimuth, 0.0, 360.0);
     match (lighting.sun_elevation, lighting.sun_azimuth) {
         (Some(_), None) => findings.error(
-            "lighting.sun_elevation",
+            &format!("{at}.sun_elevation"),
             "expected `sun_azimuth` beside `sun_elevation`, found none",
         ),
         (None, Some(_)) => findings.error(
-            "lighting.sun_azimuth",
+            &format!("{at}.sun_azimuth"),
             "expected `sun_elevation` beside `sun_azimuth`, found none",
         ),
         _ => {}

@@ -31,6 +31,7 @@ mod layout_checks;
 mod lighting_spec;
 mod limits_spec;
 mod locator;
+mod merge;
 mod object_checks;
 mod object_spec;
 mod output_spec;
@@ -38,6 +39,7 @@ mod report;
 mod schema_check;
 mod sensor_ranges;
 mod sensor_spec;
+mod sources;
 #[allow(clippy::module_inception)]
 mod spec;
 mod spec_errors;
@@ -49,6 +51,8 @@ mod weather_spec;
 
 use std::path::{Path, PathBuf};
 
+use serde::Deserialize;
+use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
 pub use camera_spec::{
@@ -84,6 +88,8 @@ pub use weather_spec::{Weather, WeatherKinds, WeatherSpec};
 use findings::Findings;
 use key_path::KeyPath;
 use locator::Locator;
+pub use sources::SET_FILE;
+use sources::Sources;
 
 /// A spec file: its path as the user gave it, and its text.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -102,6 +108,9 @@ pub trait SpecWorld {
     fn folder(&self, path: &Path) -> Result<(), String>;
     /// Whether `path` (already resolved) is a readable file; Err(message) when it is not.
     fn file(&self, path: &Path) -> Result<(), String>;
+    /// The text of the spec file at `path` (already resolved) that a spec `extends`;
+    /// Err(message) completes "expected a spec file to extend at …, found {message}".
+    fn spec_text(&self, path: &Path) -> Result<String, String>;
     /// The layout image at `path` (already resolved) decoded, for the checks that need its
     /// pixels: a whole file, drawn in the palette, its block area and road length. None
     /// when this world does not decode images (the checks then use the header's size).
@@ -124,22 +133,48 @@ pub trait SpecWorld {
 
 /// Syntax → version → schema → serde → semantic; every error of the file at once.
 pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErrors> {
+    load_with(source, &[], world)
+}
+
+/// [`load`], with `sets` (TOML documents, one per `--set`) merged last, in order.
+/// A spec that `extends` a base is merged onto it first (see [`merge`] for the rules), so
+/// every pass sees the merged document, and each diagnostic names the file that wrote it.
+pub fn load_with(
+    source: &SpecSource,
+    sets: &[String],
+    world: &dyn SpecWorld,
+) -> Result<Spec, SpecErrors> {
+    let errors = |sources: &Sources, diagnostics: Vec<Diagnostic>| SpecErrors {
+        path: source.path.clone(),
+        text: source.text.clone(),
+        files: sources.texts(),
+        diagnostics,
+    };
+    let sources = match Sources::read(source, sets, world) {
+        Ok(sources) => sources,
+        Err((sources, diagnostics)) => return Err(errors(&sources, diagnostics)),
+    };
     let fail = |mut diagnostics: Vec<Diagnostic>| {
         diagnostics.sort_by(|a, b| {
             (a.span.start, a.span.end, &a.key).cmp(&(b.span.start, b.span.end, &b.key))
         });
         diagnostics.dedup();
-        SpecErrors {
-            path: source.path.clone(),
-            text: source.text.clone(),
-            diagnostics,
-        }
+        let diagnostics = diagnostics
+            .into_iter()
+            .map(|d| sources.localize(d))
+            .collect();
+        errors(&sources, diagnostics)
     };
-    let text = source.text.as_str();
-    let table = match DeTable::parse(text) {
-        Ok(table) => table.into_inner(),
-        Err(error) => return Err(fail(vec![syntax_diagnostic(text, &error)])),
-    };
+    let text = sources.combined.as_str();
+    let (table, merge_problems) = sources.tree();
+    if !merge_problems.is_empty() {
+        return Err(fail(
+            merge_problems
+                .into_iter()
+                .map(|(span, key, message)| Diagnostic::new(text, span, key, message))
+                .collect(),
+        ));
+    }
     let locator = Locator::new(table);
     if let Some(diagnostic) = check_version(&locator, text) {
         return Err(fail(vec![diagnostic]));
@@ -156,7 +191,8 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
         return Err(fail(diagnostics));
     }
 
-    let mut spec: Spec = match toml::from_str(text) {
+    let whole = Spanned::new(0..text.len(), locator.root().clone());
+    let mut spec: Spec = match Spec::deserialize(toml::de::Deserializer::from(whole)) {
         Ok(spec) => spec,
         Err(error) => return Err(fail(vec![serde_diagnostic(text, &locator, &error)])),
     };
@@ -175,7 +211,16 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
     if let Some(extent) = extent {
         cost_checks::check_costs(&spec, extent, &mut findings);
     }
-    lighting_spec::check_lighting(&spec.lighting, &mut findings);
+    lighting_spec::check_lighting(&spec.lighting, "lighting", &mut findings);
+    for (i, camera) in spec.cameras.iter().enumerate() {
+        if let Some(lighting) = &camera.lighting {
+            lighting_spec::check_lighting(
+                lighting,
+                &format!("cameras[{i}].lighting"),
+                &mut findings,
+            );
+        }
+    }
     splits_spec::check_splits(
         spec.splits.as_ref(),
         spec.cameras.len(),
@@ -199,15 +244,35 @@ pub fn resolve(spec_path: &Path, relative: &str) -> PathBuf {
     }
 }
 
-/// The 1-based line and column of the key `key` (a dotted path such as
-/// `objects[2].count`) in the spec text, or of its nearest written ancestor; `None` when the
-/// text does not parse. The CLI places a build's diagnostics with it.
-pub fn key_position(text: &str, key: &str) -> Option<(usize, usize)> {
-    let table = DeTable::parse(text).ok()?;
-    let locator = Locator::new(table.into_inner());
-    let span = locator.key_span(&key_path::KeyPath::parse(key));
-    let at = Diagnostic::new(text, span, key, "");
-    Some((at.line, at.column))
+/// Where each of `keys` (dotted paths such as `objects[2].count`) was written, or its
+/// nearest written ancestor: `(file, line, column)`, 1-based, in the spec at `path` or in
+/// a base it extends (read through `world`); `None` when the spec does not load that far.
+/// The CLI places a build's warnings with it.
+pub fn key_places(
+    path: &Path,
+    keys: &[&str],
+    world: &dyn SpecWorld,
+) -> Option<Vec<(PathBuf, usize, usize)>> {
+    let source = SpecSource {
+        path: path.to_path_buf(),
+        text: world.spec_text(path).ok()?,
+    };
+    let sources = Sources::read(&source, &[], world).ok()?;
+    let (table, _) = sources.tree();
+    let locator = Locator::new(table);
+    let places = keys
+        .iter()
+        .map(|key| {
+            let span = locator.key_span(&KeyPath::parse(key));
+            let at = sources.localize(Diagnostic::new(&sources.combined, span, key, ""));
+            (
+                at.file.unwrap_or_else(|| path.to_path_buf()),
+                at.line,
+                at.column,
+            )
+        })
+        .collect();
+    Some(places)
 }
 
 /// The schema generated from the types (pretty JSON text, trailing newline) — what
@@ -223,7 +288,7 @@ pub fn schema_json() -> String {
 
 /// A TOML syntax error, keyed by the innermost key written before it on its line, or by
 /// the key it repeats.
-fn syntax_diagnostic(text: &str, error: &toml::de::Error) -> Diagnostic {
+pub(crate) fn syntax_diagnostic(text: &str, error: &toml::de::Error) -> Diagnostic {
     let span = error.span().unwrap_or(0..0);
     let (partial, _) = DeTable::parse_recoverable(text);
     let partial = Locator::new(partial.into_inner());
@@ -332,6 +397,193 @@ mod tests {
         for (text, want) in cases {
             assert_eq!(report(text), want, "{text}");
         }
+    }
+
+    const BASE: &str = "version = 1\nname = 'base'\nseed = 3\n[layout.generate]\nwidth = 512\n\
+                        [[cameras]]\nname = 'a'\nframes = 2\n[[cameras]]\nname = 'b'\nframes = 3\n";
+
+    fn load_child(child: &str) -> Result<Spec, SpecErrors> {
+        let world = FakeWorld::empty().with_spec("specs/base.toml", BASE);
+        let source = SpecSource {
+            path: PathBuf::from("specs/child.toml"),
+            text: child.to_string(),
+        };
+        load(&source, &world)
+    }
+
+    #[test]
+    fn a_child_is_merged_onto_its_base_before_it_is_checked() {
+        let child = "extends = 'base.toml'\nname = 'child'\n[[cameras]]\nname = 'b'\n\
+                     frames = 5\n[[cameras]]\nname = 'a'\nremove = true\n";
+        let spec = load_child(child).unwrap();
+        let base = FakeWorld::empty()
+            .load("specs/base.toml", BASE.to_string())
+            .unwrap();
+        assert_eq!((spec.name.as_str(), spec.seed), ("child", base.seed));
+        assert_eq!(spec.layout, base.layout);
+        let cameras: Vec<(&str, u32)> = spec
+            .cameras
+            .iter()
+            .map(|c| (c.name.as_str(), c.frames.unwrap_or_default()))
+            .collect();
+        assert_eq!(cameras, [("b", 5)]);
+    }
+
+    #[test]
+    fn errors_name_the_file_and_line_that_wrote_the_value() {
+        // The bad value in the child: the child's line.
+        let got = load_child("extends = 'base.toml'\n[layout.generate]\nroad_width = 300\n")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            got,
+            "specs/child.toml:3:14: error: layout.generate.road_width: expected an integer at \
+             most 256, found 300"
+        );
+        // The bad value in the base, overriding nothing: the base's line.
+        let world = FakeWorld::empty().with_spec(
+            "specs/base.toml",
+            &BASE.replace("width = 512", "width = 512\nroad_width = 300"),
+        );
+        let source = SpecSource {
+            path: PathBuf::from("specs/child.toml"),
+            text: "extends = 'base.toml'\nseed = 4\n".to_string(),
+        };
+        let errors = load(&source, &world).unwrap_err();
+        assert_eq!(
+            errors.to_string(),
+            "specs/base.toml:6:14: error: layout.generate.road_width: expected an integer at \
+             most 256, found 300"
+        );
+        let rendered = report::report(&errors, false);
+        assert!(rendered.contains("specs/base.toml:6:14"), "{rendered}");
+        assert!(rendered.contains("road_width = 300"), "{rendered}");
+        // The child's value replaces the base's bad one: no error at all.
+        let source = SpecSource {
+            path: PathBuf::from("specs/child.toml"),
+            text: "extends = 'base.toml'\n[layout.generate]\nroad_width = 30\n".to_string(),
+        };
+        assert!(load(&source, &world).is_ok());
+    }
+
+    #[test]
+    fn bad_bases_are_refused_at_extends() {
+        let cases = [
+            (
+                "extends = 'gone.toml'\n",
+                "specs/child.toml:1:11: error: extends: expected a spec file to extend at \
+                 specs/gone.toml (\"gone.toml\" from this spec's folder), found no such file",
+            ),
+            (
+                "extends = 3\n",
+                "specs/child.toml:1:11: error: extends: expected the path of a spec file to \
+                 extend, found an integer 3",
+            ),
+            (
+                "extends = './x/../child.toml'\n",
+                "specs/child.toml:1:11: error: extends: expected a base that does not extend \
+                 this spec again, found a cycle: specs/child.toml → specs/child.toml",
+            ),
+            (
+                "extends = 'base.toml'\n[[cameras]]\nname = 'c'\nremove = true\n",
+                "specs/child.toml:4:10: error: cameras[0].remove: expected the name of an \
+                 entry of the base's `cameras` to remove, found \"c\", which the base does not \
+                 have",
+            ),
+        ];
+        for (child, want) in cases {
+            assert_eq!(load_child(child).unwrap_err().to_string(), want, "{child}");
+        }
+    }
+
+    #[test]
+    fn a_cycle_through_bases_names_every_file() {
+        let world = FakeWorld::empty()
+            .with_spec("specs/a.toml", "extends = 'b.toml'\n")
+            .with_spec("specs/b.toml", "version = 1\nextends = 'a.toml'\n");
+        let source = SpecSource {
+            path: PathBuf::from("specs/a.toml"),
+            text: "extends = 'b.toml'\n".to_string(),
+        };
+        assert_eq!(
+            load(&source, &world).unwrap_err().to_string(),
+            "specs/b.toml:2:11: error: extends: expected a base that does not extend this spec \
+             again, found a cycle: specs/a.toml → specs/b.toml → specs/a.toml"
+        );
+    }
+
+    fn load_set(sets: &[&str]) -> Result<Spec, String> {
+        let world = FakeWorld::empty().with_spec("specs/base.toml", BASE);
+        let source = SpecSource {
+            path: PathBuf::from("specs/child.toml"),
+            text: "extends = 'base.toml'\n".to_string(),
+        };
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        load_with(&source, &sets, &world).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn sets_apply_after_extends_by_key_path_and_entry_name() {
+        let spec = load_set(&[
+            "cameras.b.frames=7",
+            "seed = 11",
+            "name=plain_words",
+            "layout.generate.road_width=40",
+        ])
+        .unwrap();
+        assert_eq!(spec.cameras[1].name, "b");
+        assert_eq!(spec.cameras[1].frames, Some(7));
+        assert_eq!(spec.cameras[0].frames, Some(2));
+        assert_eq!(spec.seed, 11);
+        assert_eq!(spec.name, "plain_words");
+        assert_eq!(spec.layout.generate.unwrap().road_width, 40);
+        // A later --set wins over an earlier one.
+        assert_eq!(load_set(&["seed=1", "seed=2"]).unwrap().seed, 2);
+    }
+
+    #[test]
+    fn a_cameras_own_lighting_is_checked_at_its_own_key() {
+        let got = load_set(&["cameras.b.lighting={ sun_elevation = 10 }"]).unwrap_err();
+        assert!(
+            got.starts_with("--set:1:") && got.contains(": cameras[1].lighting.sun_elevation: "),
+            "{got}"
+        );
+        let spec = load_set(&["cameras.b.weather.kind=\"fog\""]).unwrap();
+        assert!(spec.cameras[0].weather.is_none());
+        assert_eq!(
+            spec.cameras[1].weather.as_ref().map(|w| w.kind.clone()),
+            Some(load_set(&["weather.kind=\"fog\""]).unwrap().weather.kind)
+        );
+    }
+
+    #[test]
+    fn bad_sets_are_errors_at_the_set_line() {
+        let cases: [(&[&str], &str); 4] = [
+            (
+                &["seed=1", "cameras.b.framez=4"],
+                "--set:2:1: error: cameras[1].framez: expected one of `name`, `path`, `frames`",
+            ),
+            (
+                &["cameras.c.frames=4"],
+                "--set:1:1: error: cameras: expected the name of an entry of `cameras` \
+                 (`--set cameras.NAME.key=value`), found \"c\", which no entry is named",
+            ),
+            (
+                &["seed"],
+                "--set:1:1: error: : expected `--set key.path=value`, found \"seed\"",
+            ),
+            (
+                &["seed.x=1"],
+                "--set:1:1: error: seed: expected a table at `seed` to set a key in, found an \
+                 integer 3",
+            ),
+        ];
+        for (sets, want) in cases {
+            let got = load_set(sets).unwrap_err();
+            assert!(got.starts_with(want), "{sets:?}: {got}");
+        }
+        let unknown = load_set(&["cameras.b.framez=4"]).unwrap_err();
+        assert!(unknown.ends_with("(did you mean `frames`?)"), "{unknown}");
     }
 
     #[test]

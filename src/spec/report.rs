@@ -2,27 +2,43 @@
 //! problem (codespan-reporting), the key path in the header, expected/found in the label.
 
 use codespan_reporting::diagnostic::{Diagnostic as Report, Label};
-use codespan_reporting::files::SimpleFile;
+use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, Config, termcolor::Ansi};
 
 use super::SpecErrors;
 
 /// The errors rendered for a terminal, ANSI-coloured when `color` is set.
 pub fn report(errors: &SpecErrors, color: bool) -> String {
-    let file = SimpleFile::new(errors.path.display().to_string(), errors.text.as_str());
+    let mut files = SimpleFiles::new();
+    let main = files.add(errors.path.display().to_string(), errors.text.as_str());
+    let ids: Vec<(&std::path::Path, usize)> = errors
+        .files
+        .iter()
+        .map(|(path, text)| {
+            (
+                path.as_path(),
+                files.add(path.display().to_string(), text.as_str()),
+            )
+        })
+        .collect();
     let config = Config::default();
     let mut out = Vec::new();
     for d in &errors.diagnostics {
+        let file = d
+            .file
+            .as_deref()
+            .and_then(|path| ids.iter().find(|(p, _)| *p == path))
+            .map_or(main, |(_, id)| *id);
         let report = Report::error()
             .with_message(format!("invalid `{}`", display_key(&d.key)))
             .with_labels(vec![
-                Label::primary((), d.span.clone()).with_message(&d.message),
+                Label::primary(file, d.span.clone()).with_message(&d.message),
             ]);
         let written = if color {
             let mut ansi = Ansi::new(&mut out);
-            term::emit_to_write_style(&mut ansi, &config, &file, &report)
+            term::emit_to_write_style(&mut ansi, &config, &files, &report)
         } else {
-            term::emit_to_io_write(&mut out, &config, &file, &report)
+            term::emit_to_io_write(&mut out, &config, &files, &report)
         };
         if let Err(e) = written {
             // Only a span outside the text gets here; fall back to the one-line form.
@@ -58,6 +74,7 @@ mod tests {
         SpecErrors {
             path: PathBuf::from("city.toml"),
             text: text.to_string(),
+            files: Vec::new(),
             diagnostics: vec![Diagnostic::new(
                 text,
                 43..47,

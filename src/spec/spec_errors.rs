@@ -13,6 +13,8 @@ pub struct SpecErrors {
     pub path: PathBuf,
     /// The spec's text, for rendering.
     pub text: String,
+    /// Every file read for it, `(path, text)`: the spec, the bases it extends, `--set`.
+    pub files: Vec<(PathBuf, String)>,
     /// The problems, in source order.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -26,7 +28,7 @@ impl fmt::Display for SpecErrors {
             write!(
                 f,
                 "{}:{}:{}: error: {}: {}",
-                self.path.display(),
+                d.file.as_ref().unwrap_or(&self.path).display(),
                 d.line,
                 d.column,
                 d.key,
@@ -49,6 +51,7 @@ mod tests {
         let errors = SpecErrors {
             path: PathBuf::from("specs/a.toml"),
             text: text.to_string(),
+            files: vec![(PathBuf::from("specs/a.toml"), text.to_string())],
             diagnostics: vec![
                 Diagnostic::new(text, 7..8, "name", "expected a string, found an integer 1"),
                 Diagnostic::new(

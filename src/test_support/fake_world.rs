@@ -9,6 +9,7 @@ use crate::spec::{Spec, SpecSource, SpecWorld, load};
 #[derive(Clone, Debug, Default)]
 pub struct FakeWorld {
     images: Vec<(&'static str, (u32, u32))>,
+    specs: Vec<(&'static str, String)>,
 }
 
 impl FakeWorld {
@@ -21,7 +22,14 @@ impl FakeWorld {
     pub fn with_images(images: &[(&'static str, (u32, u32))]) -> FakeWorld {
         FakeWorld {
             images: images.to_vec(),
+            specs: Vec::new(),
         }
+    }
+
+    /// This world with one more spec file a spec may extend (path as resolved).
+    pub fn with_spec(mut self, path: &'static str, text: &str) -> FakeWorld {
+        self.specs.push((path, text.to_string()));
+        self
     }
 
     /// Loads spec `text` as if read from `path` in this world: the spec, or its problems
@@ -47,6 +55,14 @@ impl SpecWorld for FakeWorld {
 
     fn file(&self, path: &Path) -> Result<(), String> {
         Err(format!("no file {} in this fake world", path.display()))
+    }
+
+    fn spec_text(&self, path: &Path) -> Result<String, String> {
+        self.specs
+            .iter()
+            .find(|(p, _)| Path::new(p) == path)
+            .map(|(_, text)| text.clone())
+            .ok_or_else(|| "no such file".to_string())
     }
 
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {

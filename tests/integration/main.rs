@@ -16,6 +16,7 @@ mod cache_safety;
 mod cli;
 mod dataset;
 mod explain;
+mod extends;
 mod function_length;
 mod input_files;
 mod instances;

@@ -42,8 +42,9 @@ fn keys(spec: &Path, cache: &Path) -> Vec<String> {
 #[test]
 fn a_packed_spec_unpacked_elsewhere_reads_the_same_files() {
     let dir = tempfile::tempdir().unwrap();
-    // A drawn layout, a facade folder with a floors file, a model with MTL and texture.
-    for name in ["drawn", "cmp", "day"] {
+    // A drawn layout, a facade folder with a floors file, a model with MTL and texture,
+    // and a variant that extends another spec.
+    for name in ["drawn", "cmp", "day", "night"] {
         let spec = Path::new(ROOT).join(format!("specs/{name}.toml"));
         let tar = dir.path().join(format!("{name}.tar"));
         let run = cityspec(&["pack", spec.to_str().unwrap(), "-o", tar.to_str().unwrap()]);

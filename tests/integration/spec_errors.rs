@@ -183,6 +183,10 @@ impl SpecWorld for FakeWorld {
         Err(format!("no file {} in this fake world", path.display()))
     }
 
+    fn spec_text(&self, path: &Path) -> Result<String, String> {
+        Err(format!("no spec {} in this fake world", path.display()))
+    }
+
     fn image_dimensions(&self, path: &Path) -> Result<(u32, u32), String> {
         self.asked.borrow_mut().push(path.to_path_buf());
         self.images
