@@ -199,40 +199,41 @@ pub fn load_with(
     object_spec::fill_default_labels(&mut spec.objects);
 
     let mut findings = Findings::new(&locator, text);
-    let extent = layout_checks::check_layout(&spec.layout, &source.path, world, &mut findings);
-    value_checks::check_palette(&spec.layout.palette, &mut findings);
-    value_checks::check_buildings(&spec.buildings, &mut findings);
-    value_checks::check_facades(&spec.facades, &source.path, world, &mut findings);
-    value_checks::check_lamps(&spec.lamps, &mut findings);
-    object_checks::check_objects(&spec.objects, &source.path, world, &mut findings);
-    camera_checks::check_cameras(&spec.cameras, &mut findings);
-    camera_path_checks::check_camera_paths(&spec.cameras, &spec.objects, &mut findings);
-    class_checks::check_classes(&spec, &mut findings);
-    if let Some(extent) = extent {
-        cost_checks::check_costs(&spec, extent, &mut findings);
-    }
-    lighting_spec::check_lighting(&spec.lighting, "lighting", &mut findings);
-    for (i, camera) in spec.cameras.iter().enumerate() {
-        if let Some(lighting) = &camera.lighting {
-            lighting_spec::check_lighting(
-                lighting,
-                &format!("cameras[{i}].lighting"),
-                &mut findings,
-            );
-        }
-    }
-    splits_spec::check_splits(
-        spec.splits.as_ref(),
-        spec.cameras.len(),
-        spec.output.layout == OutputLayout::Webdataset,
-        &mut findings,
-    );
+    check_values(&spec, &source.path, world, &mut findings);
     let diagnostics = findings.into_diagnostics();
     if diagnostics.is_empty() {
         Ok(spec)
     } else {
         Err(fail(diagnostics))
     }
+}
+
+/// The checks of a deserialized spec's values, each finding placed at its key.
+fn check_values(spec: &Spec, path: &Path, world: &dyn SpecWorld, findings: &mut Findings) {
+    let extent = layout_checks::check_layout(&spec.layout, path, world, findings);
+    value_checks::check_palette(&spec.layout.palette, findings);
+    value_checks::check_buildings(&spec.buildings, findings);
+    value_checks::check_facades(&spec.facades, path, world, findings);
+    value_checks::check_lamps(&spec.lamps, findings);
+    object_checks::check_objects(&spec.objects, path, world, findings);
+    camera_checks::check_cameras(&spec.cameras, findings);
+    camera_path_checks::check_camera_paths(&spec.cameras, &spec.objects, findings);
+    class_checks::check_classes(spec, findings);
+    if let Some(extent) = extent {
+        cost_checks::check_costs(spec, extent, findings);
+    }
+    lighting_spec::check_lighting(&spec.lighting, "lighting", findings);
+    for (i, camera) in spec.cameras.iter().enumerate() {
+        if let Some(lighting) = &camera.lighting {
+            lighting_spec::check_lighting(lighting, &format!("cameras[{i}].lighting"), findings);
+        }
+    }
+    splits_spec::check_splits(
+        spec.splits.as_ref(),
+        spec.cameras.len(),
+        spec.output.layout == OutputLayout::Webdataset,
+        findings,
+    );
 }
 
 /// `spec_path`'s folder joined with `relative` (relative paths resolve against the spec's

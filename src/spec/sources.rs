@@ -98,19 +98,9 @@ impl Sources {
                 );
                 return Err(sources.fail(last, span, message));
             }
-            if let Some(first) = sources
-                .files
-                .iter()
-                .position(|f| normalize(&f.path) == path)
-            {
-                let cycle: Vec<String> = sources.files[first..]
-                    .iter()
-                    .map(|f| f.path.display().to_string())
-                    .chain([path.display().to_string()])
-                    .collect();
+            if let Some(cycle) = sources.cycle_through(&path) {
                 let message = format!(
-                    "expected a base that does not extend this spec again, found a cycle: {}",
-                    cycle.join(" → ")
+                    "expected a base that does not extend this spec again, found a cycle: {cycle}"
                 );
                 return Err(sources.fail(last, span, message));
             }
@@ -132,6 +122,17 @@ impl Sources {
             sources.push(PathBuf::from(SET_FILE), text);
         }
         Ok(sources)
+    }
+
+    /// The chain `a → b → … → path` when extending `path` would close a cycle.
+    fn cycle_through(&self, path: &Path) -> Option<String> {
+        let first = self.files.iter().position(|f| normalize(&f.path) == path)?;
+        let cycle: Vec<String> = self.files[first..]
+            .iter()
+            .map(|f| f.path.display().to_string())
+            .chain([path.display().to_string()])
+            .collect();
+        Some(cycle.join(" → "))
     }
 
     fn push(&mut self, path: PathBuf, text: String) {
@@ -233,33 +234,10 @@ impl Sources {
 /// by the usual rules; a key path step into an array of named tables picks the entry of
 /// that name (`cameras.street.frames=4`).
 fn set<'i>(tree: &mut DeTable<'i>, line: &'i str, at: usize, problems: &mut Vec<MergeProblem>) {
-    let line_span = at..at + line.len();
-    let Some((keys, raw)) = line.split_once('=') else {
-        problems.push((
-            line_span,
-            KeyPath::root(),
-            format!("expected `--set key.path=value`, found \"{line}\" (no `=`)"),
-        ));
-        return;
+    let (keys, names, value) = match parse_set(line, at) {
+        Ok(parsed) => parsed,
+        Err(problem) => return problems.push(problem),
     };
-    let value_at = at + keys.len() + 1;
-    let trimmed = raw.trim_start();
-    let value_at = value_at + raw.len() - trimmed.len();
-    let trimmed = trimmed.trim_end();
-    let value_span = value_at..value_at + trimmed.len();
-    let value = match DeValue::parse(trimmed) {
-        Ok(value) => shift(value, value_at),
-        Err(_) => Spanned::new(value_span.clone(), DeValue::String(trimmed.into())),
-    };
-    let names: Vec<&str> = keys.trim().split('.').map(str::trim).collect();
-    if names.iter().any(|n| n.is_empty()) {
-        problems.push((
-            at..at + keys.len(),
-            KeyPath::root(),
-            format!("expected `--set key.path=value` with a dotted key path, found \"{keys}\""),
-        ));
-        return;
-    }
     // The tree to merge into, and the path shown in messages.
     let mut path = KeyPath::root();
     let mut table = tree;
@@ -328,6 +306,40 @@ fn set<'i>(tree: &mut DeTable<'i>, line: &'i str, at: usize, problems: &mut Vec<
     let mut child = DeTable::new();
     child.insert(Spanned::new(at..at + keys.len(), (*last).into()), value);
     merge_tables(table, child, &path, problems);
+}
+
+/// A `--set` line at combined offset `at`: its key path as written and split at the dots,
+/// and its value (a TOML value, or the text as a string when it is not one).
+#[allow(clippy::type_complexity)]
+fn parse_set<'i>(
+    line: &'i str,
+    at: usize,
+) -> Result<(&'i str, Vec<&'i str>, Spanned<DeValue<'i>>), MergeProblem> {
+    let Some((keys, raw)) = line.split_once('=') else {
+        return Err((
+            at..at + line.len(),
+            KeyPath::root(),
+            format!("expected `--set key.path=value`, found \"{line}\" (no `=`)"),
+        ));
+    };
+    let value_at = at + keys.len() + 1;
+    let trimmed = raw.trim_start();
+    let value_at = value_at + raw.len() - trimmed.len();
+    let trimmed = trimmed.trim_end();
+    let value_span = value_at..value_at + trimmed.len();
+    let value = match DeValue::parse(trimmed) {
+        Ok(value) => shift(value, value_at),
+        Err(_) => Spanned::new(value_span, DeValue::String(trimmed.into())),
+    };
+    let names: Vec<&str> = keys.trim().split('.').map(str::trim).collect();
+    if names.iter().any(|n| n.is_empty()) {
+        return Err((
+            at..at + keys.len(),
+            KeyPath::root(),
+            format!("expected `--set key.path=value` with a dotted key path, found \"{keys}\""),
+        ));
+    }
+    Ok((keys, names, value))
 }
 
 /// `path` with `.` dropped and `a/..` folded, so two spellings of one file compare equal.
