@@ -14,11 +14,7 @@ fn people_stand_in_the_strips_apart_from_each_other_and_from_trunks() {
         spec(ObjectKind::Person, "person", 300),
     ];
     let mpp = 0.55;
-    let inserted = insert(&ObjectsInput {
-        metres_per_pixel: mpp,
-        ..input(&city, &specs)
-    })
-    .unwrap();
+    let inserted = insert_at(&city, mpp, &specs);
     // Where an object stands: the mean of its vertices on its lowest level (a person's
     // soles, a tree trunk's foot), and that level.
     let foot = |meshes: &[crate::model::Mesh]| -> ([f64; 2], f64) {
@@ -120,11 +116,7 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
             ..spec(ObjectKind::Person, "person", 40)
         },
     ];
-    let inserted = insert(&ObjectsInput {
-        metres_per_pixel: mpp,
-        ..input(&city, &specs)
-    })
-    .unwrap();
+    let inserted = insert_at(&city, mpp, &specs);
     let zebras = zebras_of(&city, mpp);
     assert!(!zebras.is_empty());
     let people: Vec<&SceneObject> = inserted
@@ -232,11 +224,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
         waiting: 1.0,
         ..spec(ObjectKind::Person, "person", 30)
     }];
-    let inserted = insert(&ObjectsInput {
-        metres_per_pixel: mpp,
-        ..input(&city, &specs)
-    })
-    .unwrap();
+    let inserted = insert_at(&city, mpp, &specs);
     assert_eq!(inserted.placed[0], 30);
     let mut waiting = 0;
     for person in &inserted.objects {
@@ -250,11 +238,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     // Without `waiting`, the same entry's people stand along the strips: few by chance
     // at a zebra's end.
     let specs = [spec(ObjectKind::Person, "person", 30)];
-    let strips = insert(&ObjectsInput {
-        metres_per_pixel: mpp,
-        ..input(&city, &specs)
-    })
-    .unwrap();
+    let strips = insert_at(&city, mpp, &specs);
     let by_chance = strips
         .objects
         .iter()
@@ -295,4 +279,13 @@ fn zebra_spots_travel_across_their_road_and_never_overlap() {
         taken.push(spot.position);
     }
     assert!(taken.len() >= 20, "{}", taken.len());
+}
+
+/// The objects of `specs` inserted into `city` at `mpp` metres per pixel.
+fn insert_at(city: &City, mpp: f64, specs: &[ObjectSpec]) -> Inserted {
+    insert(&ObjectsInput {
+        metres_per_pixel: mpp,
+        ..input(city, specs)
+    })
+    .unwrap()
 }
