@@ -137,7 +137,7 @@ pub fn load(source: &SpecSource, world: &dyn SpecWorld) -> Result<Spec, SpecErro
 }
 
 /// [`load`], with `sets` (TOML documents, one per `--set`) merged last, in order.
-/// A spec that `extends` a base is merged onto it first (see [`merge`] for the rules), so
+/// A spec that `extends` a base is merged onto it first (see `spec/merge.rs` for the rules), so
 /// every pass sees the merged document, and each diagnostic names the file that wrote it.
 pub fn load_with(
     source: &SpecSource,
