@@ -240,10 +240,8 @@ impl<'a> PathFrames<'a> {
             },
             &conditions,
         );
-        let mut drawn = conditions.to_json(developed.exposure);
-        drawn["sun"] = sun_json(&sun);
-        drawn["sun_shaded"] = json!((f64::from(shade) * 1e3).round() / 1e3);
-        (camera.path == CameraPath::Roads).then(|| drawn["headlights"] = json!(headlit));
+        let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
+        let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
         let frame_input = self.annotation_input(i, &frame.instance, &footprints);
         let (pngs, mut summary) = rayon::join(
             || frame.encode(&developed.rgb, depth_format),
@@ -297,6 +295,24 @@ fn weathered(
         extra,
     );
     (adjusted, shade)
+}
+
+/// What frame's `conditions` record: the drawn weather and sensor values, the exposure,
+/// the sun, how much a cloud shades it, and (on roads) whether the headlights are on.
+fn drawn_json(
+    conditions: &sensor::Conditions,
+    exposure: f32,
+    sun: &Sun,
+    shade: f32,
+    headlit: Option<bool>,
+) -> Value {
+    let mut drawn = conditions.to_json(exposure);
+    drawn["sun"] = sun_json(sun);
+    drawn["sun_shaded"] = json!((f64::from(shade) * 1e3).round() / 1e3);
+    if let Some(headlit) = headlit {
+        drawn["headlights"] = json!(headlit);
+    }
+    drawn
 }
 
 /// The light the sensor's clouds are lit by.
