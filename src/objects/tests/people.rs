@@ -198,12 +198,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
         };
         found += 1;
         assert!(at_an_end(spot.position, 1e-6), "{:?}", spot.position);
-        let road = city
-            .layout
-            .roads
-            .iter()
-            .find(|r| r.id == spot.road)
-            .unwrap();
+        let road = road_of(&city, spot.road);
         let step = spot.position.map(|v| v / mpp);
         let ahead = [step[0] + spot.travel[0], step[1] + spot.travel[1]];
         let centre = |q: [f64; 2]| match road.axis {
@@ -259,12 +254,7 @@ fn zebra_spots_travel_across_their_road_and_never_overlap() {
         let Some(spot) = spots.zebra(&mut rng, 0.6, 2.4, 40) else {
             continue;
         };
-        let road = city
-            .layout
-            .roads
-            .iter()
-            .find(|r| r.id == spot.road)
-            .unwrap();
+        let road = road_of(&city, spot.road);
         let across = match road.axis {
             Axis::Horizontal => [0.0, 1.0],
             Axis::Vertical => [1.0, 0.0],
@@ -288,4 +278,9 @@ fn insert_at(city: &City, mpp: f64, specs: &[ObjectSpec]) -> Inserted {
         ..input(city, specs)
     })
     .unwrap()
+}
+
+/// The road of `city` with id `id`.
+fn road_of(city: &City, id: u32) -> &crate::model::Road {
+    city.layout.roads.iter().find(|r| r.id == id).unwrap()
 }
