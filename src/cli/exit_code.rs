@@ -34,6 +34,7 @@ pub fn exit_code(error: &BuildError) -> u8 {
         BuildError::Locked { .. } => LOCKED,
         BuildError::Render { .. }
         | BuildError::Output { .. }
+        | BuildError::Pack { .. }
         | BuildError::OutputFolder { .. }
         | BuildError::Cache { .. }
         | BuildError::Decode { .. } => BUILD,

@@ -86,6 +86,9 @@ pub enum BuildError {
         first: PathBuf,
         second: PathBuf,
     },
+    /// `cityspec pack` could not read a file it packs, or write the archive.
+    #[error("cannot pack {}: {source}", path.display())]
+    Pack { path: PathBuf, source: io::Error },
     /// Writing the output folder failed.
     #[error("cannot write {}: {source}", path.display())]
     Output { path: PathBuf, source: io::Error },

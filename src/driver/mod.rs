@@ -61,7 +61,7 @@ pub use stages::{Declaration, Produces, Stage, key_table};
 pub use verify::{Verdict, VerifyOptions, VerifyReport, verify, verify_all};
 
 use crate::out_dir::lock;
-use crate::spec::{self, Spec, SpecSource};
+use crate::spec::{self, Spec, SpecSource, SpecWorld};
 
 /// Told of rendered frames: (spec name, camera name, frames done, frames in the path).
 pub type Progress = std::sync::Arc<dyn Fn(&str, &str, usize, usize) + Send + Sync>;
@@ -111,6 +111,15 @@ pub fn load_spec(path: &Path) -> Result<Spec, BuildError> {
 
 /// [`load_spec`], with `--set` overrides (`key.path=value`) applied after `extends`.
 pub fn load_spec_with(path: &Path, sets: &[String]) -> Result<Spec, BuildError> {
+    load_spec_in(path, sets, &BuildWorld)
+}
+
+/// [`load_spec_with`] through `world` (`cityspec pack` notes the specs it reads).
+pub(crate) fn load_spec_in(
+    path: &Path,
+    sets: &[String],
+    world: &dyn SpecWorld,
+) -> Result<Spec, BuildError> {
     // Capped, and refused unless a regular file: a spec that is `/dev/zero` fails at once.
     let text = spec::read_text_capped(path, spec::MAX_SPEC_BYTES).map_err(|source| {
         BuildError::SpecFile {
@@ -122,7 +131,7 @@ pub fn load_spec_with(path: &Path, sets: &[String]) -> Result<Spec, BuildError> 
         path: path.to_path_buf(),
         text,
     };
-    spec::load_with(&source, sets, &BuildWorld).map_err(BuildError::Spec)
+    spec::load_with(&source, sets, world).map_err(BuildError::Spec)
 }
 
 /// Loads and validates every spec first, reporting all their errors together; then runs

@@ -16,10 +16,10 @@ use std::path::{Component, Path, PathBuf};
 
 use image::RgbImage;
 
-use super::BuildError;
 use super::build_world::BuildWorld;
 use super::inputs::SpecInputs;
-use crate::spec::{self, Palette, SpecSource, SpecWorld};
+use super::{BuildError, load_spec_in};
+use crate::spec::{Palette, SpecWorld};
 
 /// [`BuildWorld`], noting every spec file the loader reads (the spec's `extends` chain).
 #[derive(Default)]
@@ -67,22 +67,12 @@ pub struct Packed {
 
 /// Packs the spec at `spec_path` with every file a build of it reads.
 pub fn pack(spec_path: &Path) -> Result<Packed, BuildError> {
-    let text = spec::read_text_capped(spec_path, spec::MAX_SPEC_BYTES).map_err(|source| {
-        BuildError::SpecFile {
-            path: spec_path.to_path_buf(),
-            source,
-        }
-    })?;
-    let source = SpecSource {
-        path: spec_path.to_path_buf(),
-        text,
-    };
     let bases = SpecsRead::default();
-    let spec = spec::load(&source, &bases).map_err(BuildError::Spec)?;
+    let spec = load_spec_in(spec_path, &[], &bases)?;
     let inputs = SpecInputs::read(spec_path, &spec)?;
     let io_err = |path: &Path| {
         let path = path.to_path_buf();
-        move |source| BuildError::Output { path, source }
+        move |source| BuildError::Pack { path, source }
     };
     let mut files: Vec<PathBuf> = Vec::new();
     let specs = std::iter::once(spec_path.to_path_buf()).chain(bases.0.into_inner());
