@@ -20,6 +20,7 @@
 //! | YOLO `class cx cy w h` | [`yolo`] | frame |
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
 //! | `instances.json`: instance id → kind, class, category, words, attributes | [`instances`] | camera path |
+//! | Cityscapes `labelIds`, `instanceIds`, `color` and COCO panoptic images and segments | [`semantic`] (labels: [`SemanticClasses`]) | frame |
 //!
 //! Output is deterministic: objects in instance-id order, JSON keys in a fixed order, and
 //! floats rounded to fixed decimals before printing.
@@ -27,6 +28,7 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 6;
 
+mod cityscapes;
 mod coco;
 mod contact_sheet;
 #[cfg(test)]
@@ -39,11 +41,13 @@ mod object_label;
 mod path_labels;
 mod project_quad;
 mod rle;
+mod semantic;
 mod shown_object;
 mod visible_object;
 mod word_quad;
 mod yolo;
 
+pub use cityscapes::{CityscapesLabel, SemanticClasses, TooManyClasses};
 pub use coco::{CocoLines, CocoWriter, coco, write_coco};
 pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
@@ -54,6 +58,7 @@ pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;
 pub use rle::{Rle, RleError};
+pub use semantic::{PanopticImage, Segment, SemanticFrame, panoptic_json, semantic};
 pub use shown_object::{ShownObject, shown};
 pub use visible_object::{VisibleObject, scan};
 pub use word_quad::WordQuad;

@@ -21,6 +21,7 @@ pub fn exit_code(error: &BuildError) -> u8 {
         | BuildError::Layout { .. }
         | BuildError::Facades { .. }
         | BuildError::Objects { .. }
+        | BuildError::Classes { .. }
         | BuildError::Strict { .. }
         | BuildError::DuplicateName { .. }
         | BuildError::OutNotAFolder { .. }

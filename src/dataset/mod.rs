@@ -14,13 +14,16 @@
 //! | `coco/<split>.json` | the split's frames of every camera; image ids unique over the dataset (cameras in spec order, frames in order, from 1), annotation ids from 1 in each file; `file_name` relative to the output folder (`frames/<camera>/rgb/NNNNNN.png`); categories merged by name |
 //! | `yolo/data.yaml` | `train`/`val`/`test` folders relative to `yolo/`, `names` from the cameras' `yolo/classes.txt` |
 //! | `yolo/images/<split>/`, `yolo/labels/<split>/` | one image and one label file per frame, named `<camera>_<NNNNNN>` |
+//! | `cityscapes/` | with `[annotations] cityscapes = true`: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` ([`cityscapes_layout`]) |
 
 use std::collections::BTreeMap;
 
+mod cityscapes_layout;
 mod coco_split;
 mod split_assignment;
 mod yolo_layout;
 
+pub use cityscapes_layout::cityscapes_name;
 pub use split_assignment::{assign, counts};
 
 use crate::spec::{SPLIT_NAMES, SplitsSpec};
@@ -35,6 +38,8 @@ pub struct CameraFiles<'a> {
     pub coco: &'a [u8],
     /// `frames/<camera>/yolo/classes.txt`, when the path writes YOLO files.
     pub yolo_classes: Option<&'a str>,
+    /// `frames/<camera>/panoptic.json`, when the path writes Cityscapes-format files.
+    pub panoptic: Option<&'a [u8]>,
 }
 
 /// One file of the dataset.
@@ -51,6 +56,8 @@ pub struct DatasetInput<'a> {
     pub splits: &'a SplitsSpec,
     /// Whether the ultralytics folder is written (`[annotations] yolo = true`).
     pub yolo: bool,
+    /// Whether the Cityscapes folder is written (`[annotations] cityscapes = true`).
+    pub cityscapes: bool,
     pub seed: u64,
     pub cameras: &'a [CameraFiles<'a>],
 }
@@ -97,6 +104,9 @@ pub fn assemble(
     }
     if input.yolo {
         yolo_layout::add(input, &documents, &members, read, &mut files)?;
+    }
+    if input.cityscapes {
+        cityscapes_layout::add(input.cameras, &members, read, &mut files)?;
     }
     Ok(files)
 }

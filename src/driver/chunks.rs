@@ -52,6 +52,9 @@ pub struct PathPlan {
     pub yolo: Option<String>,
     /// `instances.json`: every instance id's kind, class and category on this path.
     pub instances: crate::model::Instances,
+    /// The scene's Cityscapes labels, when the path writes Cityscapes-format files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub semantic: Option<annotate::SemanticClasses>,
 }
 
 /// The frame ranges of a path of `frames` frames.
@@ -198,8 +201,15 @@ pub fn assemble(
         let mut drawn = Vec::with_capacity(plan.poses.len());
         let mut sheet = Vec::with_capacity(picks.len());
         let mut first_ids = Vec::with_capacity(plan.poses.len());
+        let mut panoptic = Vec::new();
         let mut annotations = 1u64;
         each_record(&mut |i, record| {
+            if plan.semantic.is_some() {
+                let segments = record.panoptic.clone().ok_or_else(|| {
+                    io::Error::other(format!("frame {i}'s record lacks its panoptic segments"))
+                })?;
+                panoptic.push(segments);
+            }
             first_ids.push(annotations);
             annotations += record.coco.annotations.len() as u64;
             if picks.contains(&i) {
@@ -218,7 +228,7 @@ pub fn assemble(
             .into_par_iter()
             .map(|(png, boxes)| Ok((codec::decode_png(&png).map_err(io::Error::other)?, boxes)))
             .collect::<io::Result<Vec<_>>>()?;
-        Ok::<_, io::Error>((drawn, sheet, first_ids))
+        Ok::<_, io::Error>((drawn, sheet, first_ids, panoptic))
     };
     // coco.json is written while the other pass over the records gathers the rest.
     let (coco, gathered) = rayon::join(
@@ -234,7 +244,7 @@ pub fn assemble(
         records,
     );
     outputs.insert(format!("{dir}/coco.json"), Blob::Stored(coco?, None));
-    let (drawn, sheet, first_ids) = gathered?;
+    let (drawn, sheet, first_ids, panoptic) = gathered?;
     if drawn.len() != plan.poses.len() {
         return Err(io::Error::other(format!(
             "the chunks hold {} frames, the path {}",
@@ -242,7 +252,10 @@ pub fn assemble(
             plan.poses.len()
         )));
     }
-    let files = path_files(&dir, camera, plan, drawn, sheet);
+    let mut files = path_files(&dir, camera, plan, drawn, sheet);
+    if let Some(semantic) = &plan.semantic {
+        files.extend(semantic_files(&dir, camera, semantic, panoptic));
+    }
     if webdataset {
         let tars = Tars {
             dir: &dir,
@@ -294,6 +307,39 @@ fn path_files(
         ));
     }
     files
+}
+
+/// With Cityscapes-format files: the path's `semantic/labels.json` (the label table) and
+/// `panoptic.json` (COCO panoptic over its frames, ids as in `coco.json`).
+fn semantic_files(
+    dir: &str,
+    camera: &CameraSpec,
+    semantic: &annotate::SemanticClasses,
+    panoptic: Vec<Vec<annotate::Segment>>,
+) -> Vec<(String, Vec<u8>)> {
+    let (width, height) = (camera.resolution[0], camera.resolution[1]);
+    let images: Vec<annotate::PanopticImage> = panoptic
+        .into_iter()
+        .enumerate()
+        .map(|(i, segments)| annotate::PanopticImage {
+            id: serde_json::json!(i + 1),
+            width,
+            height,
+            file_name: format!("rgb/{i:06}.png"),
+            segments_file: format!("semantic/{i:06}_panoptic.png"),
+            segments,
+        })
+        .collect();
+    vec![
+        (
+            format!("{dir}/semantic/labels.json"),
+            semantic.labels_json(),
+        ),
+        (
+            format!("{dir}/panoptic.json"),
+            annotate::panoptic_json(&semantic.labels, &images),
+        ),
+    ]
 }
 
 impl Tars<'_> {

@@ -65,6 +65,14 @@ pub enum BuildError {
         #[source]
         source: ObjectsError,
     },
+    /// `[annotations] cityscapes = true` with more classes than Cityscapes' instance
+    /// images can number.
+    #[error("{}: annotations.cityscapes: {source}", spec.display())]
+    Classes {
+        spec: PathBuf,
+        #[source]
+        source: crate::annotate::TooManyClasses,
+    },
     /// `--strict`: the build would have succeeded with these warnings.
     #[error("{}: --strict: {}", spec.display(), joined(warnings))]
     Strict {

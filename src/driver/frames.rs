@@ -18,8 +18,8 @@ use serde_json::{Value, json};
 
 use super::codec;
 use crate::annotate::{
-    self, Category, CocoLines, ContactSheet, DepthFile, FrameInput, ObjectLabel, Thresholds,
-    YoloClasses,
+    self, Category, CocoLines, ContactSheet, DepthFile, FrameInput, ObjectLabel, Segment,
+    SemanticClasses, Thresholds, YoloClasses,
 };
 use crate::cameras::tan_half_degrees;
 use crate::model::CameraPose;
@@ -47,6 +47,8 @@ pub struct PathInput<'a> {
     pub weather: &'a WeatherSpec,
     /// Seed of this camera's per-frame conditions (`sensor::draw`).
     pub conditions_seed: u64,
+    /// The scene's Cityscapes labels, when the path writes Cityscapes-format files.
+    pub semantic: Option<&'a SemanticClasses>,
 }
 
 /// A camera path ready to render its frames one at a time, in any order and on any
@@ -76,6 +78,9 @@ pub struct FrameRecord {
     /// The contact sheet's boxes: `[category, x_min, y_min, x_max, y_max]` of each kept
     /// annotation.
     pub sheet: Vec<[u32; 5]>,
+    /// The frame's COCO panoptic segments, when the path writes Cityscapes-format files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub panoptic: Option<Vec<Segment>>,
 }
 
 impl<'a> PathFrames<'a> {
@@ -243,14 +248,28 @@ impl<'a> PathFrames<'a> {
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
         let frame_input = self.annotation_input(i, &frame.instance, &footprints);
-        let (pngs, mut summary) = rayon::join(
-            || frame.encode(&developed.rgb, depth_format),
+        let ((pngs, semantic), mut summary) = rayon::join(
+            || {
+                rayon::join(
+                    || frame.encode(&developed.rgb, depth_format),
+                    || input.semantic.map(|c| semantic_files(c, &frame.instance)),
+                )
+            },
             || annotate::summarize(input.labels, &frame_input, input.thresholds),
         );
         let depth_name = format!("depth/{i:06}.{}", depth_format.extension());
         emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
         emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
         emit(format!("{dir}/{depth_name}"), pngs.depth)?;
+        let panoptic = match semantic {
+            Some((files, segments)) => {
+                for (suffix, png) in files {
+                    emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
+                }
+                Some(segments)
+            }
+            None => None,
+        };
         summary.depth = Some(DepthFile {
             file_name: depth_name,
             format: depth_format.name(),
@@ -267,8 +286,29 @@ impl<'a> PathFrames<'a> {
             coco: CocoLines::of(input.categories, &summary, &drawn, i as u64 + 1),
             conditions: drawn,
             sheet,
+            panoptic,
         })
     }
+}
+
+/// The Cityscapes suffixes of a frame's `semantic/` files, in the order
+/// [`semantic_files`] makes them.
+pub const SEMANTIC_SUFFIXES: [&str; 4] = ["labelIds", "instanceIds", "color", "panoptic"];
+
+/// A frame's Cityscapes-format PNGs (by [`SEMANTIC_SUFFIXES`]) and panoptic segments.
+fn semantic_files(
+    classes: &SemanticClasses,
+    instance: &image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+) -> (Vec<(&'static str, Vec<u8>)>, Vec<Segment>) {
+    use crate::model::image_file::{PngEffort, encode_png};
+    let frame = annotate::semantic(classes, instance);
+    let pngs = [
+        encode_png(&frame.label_ids, PngEffort::Fast),
+        encode_png(&frame.instance_ids, PngEffort::Fast),
+        encode_png(&frame.color, PngEffort::Fast),
+        encode_png(&frame.panoptic, PngEffort::Fast),
+    ];
+    (SEMANTIC_SUFFIXES.into_iter().zip(pngs).collect(), frame.segments)
 }
 
 /// A frame's lighting under its drawn `conditions` (clouds, weather) and with `extra`

@@ -141,24 +141,77 @@ fn is_texture(name: &str) -> bool {
 /// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml`, or a frame's
 /// image or label file of a split.
 fn is_dataset_file(name: &str) -> bool {
-    fn split(rest: &str) -> Option<&str> {
-        crate::spec::SPLIT_NAMES
-            .iter()
-            .find_map(|s| rest.strip_prefix(s)?.strip_prefix('/'))
-    }
     let in_split = |folder: &str, extension: &str| {
         name.strip_prefix(folder)
-            .and_then(split)
+            .and_then(in_split_folder)
             .and_then(|file| file.strip_suffix(extension))
             .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
     };
     name == "yolo/data.yaml"
+        || is_cityscapes_file(name)
         || name
             .strip_prefix("coco/")
             .and_then(|file| file.strip_suffix(".json"))
             .is_some_and(|s| crate::spec::SPLIT_NAMES.contains(&s))
         || in_split("yolo/images/", ".png")
         || in_split("yolo/labels/", ".txt")
+}
+
+/// `rest` after a split's folder (`train/`, `val/`, `test/`).
+fn in_split_folder(rest: &str) -> Option<&str> {
+    crate::spec::SPLIT_NAMES
+        .iter()
+        .find_map(|s| rest.strip_prefix(s)?.strip_prefix('/'))
+}
+
+/// A file of the dataset's Cityscapes folder: `cityscapes/labels.json`,
+/// `cityscapes/leftImg8bit/<split>/<city>/<name>_leftImg8bit.png`,
+/// `cityscapes/gtFine/<split>/<city>/<name>_gtFine_<labelIds|instanceIds|color>.png`,
+/// `cityscapes/gtFine/cityscapes_panoptic_<split>.json` and its folder's
+/// `<name>_gtFine_panoptic.png`.
+fn is_cityscapes_file(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix("cityscapes/") else {
+        return false;
+    };
+    // `<city>/<file>` with `file` ending in `suffix`.
+    let in_city = |rest: &str, suffixes: &[&str]| {
+        rest.split_once('/').is_some_and(|(city, file)| {
+            is_file_name(city)
+                && is_file_name(file)
+                && suffixes
+                    .iter()
+                    .any(|s| file.strip_suffix(s).is_some_and(|stem| !stem.is_empty()))
+        })
+    };
+    let panoptic = |rest: &str| {
+        crate::spec::SPLIT_NAMES.iter().any(|split| {
+            let folder = format!("cityscapes_panoptic_{split}");
+            rest == format!("{folder}.json")
+                || rest
+                    .strip_prefix(folder.as_str())
+                    .and_then(|r| r.strip_prefix('/'))
+                    .and_then(|file| file.strip_suffix("_gtFine_panoptic.png"))
+                    .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
+        })
+    };
+    rest == "labels.json"
+        || rest
+            .strip_prefix("leftImg8bit/")
+            .and_then(in_split_folder)
+            .is_some_and(|r| in_city(r, &["_leftImg8bit.png"]))
+        || rest.strip_prefix("gtFine/").is_some_and(|r| {
+            panoptic(r)
+                || in_split_folder(r).is_some_and(|r| {
+                    in_city(
+                        r,
+                        &[
+                            "_gtFine_labelIds.png",
+                            "_gtFine_instanceIds.png",
+                            "_gtFine_color.png",
+                        ],
+                    )
+                })
+        })
 }
 
 /// A file of one camera path, relative to `frames/<camera>/`.
@@ -168,7 +221,13 @@ fn is_frame_file(rest: &str) -> bool {
         .and_then(|s| s.strip_suffix(".tar"));
     matches!(
         rest,
-        "coco.json" | "instances.json" | "poses.json" | "preview.png" | "yolo/classes.txt"
+        "coco.json"
+            | "instances.json"
+            | "poses.json"
+            | "preview.png"
+            | "yolo/classes.txt"
+            | "panoptic.json"
+            | "semantic/labels.json"
     ) || is_numbered_frame_file(rest)
         || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
 }
@@ -188,6 +247,12 @@ fn is_numbered_frame_file(rest: &str) -> bool {
         )
         || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
         || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
+        || png
+            .and_then(|s| s.strip_prefix("semantic/"))
+            .and_then(|s| s.split_once('_'))
+            .is_some_and(|(n, suffix)| {
+                numbered(Some(n)) && super::frames::SEMANTIC_SUFFIXES.contains(&suffix)
+            })
 }
 
 #[cfg(test)]
@@ -273,6 +338,57 @@ mod tests {
             (Dataset, None, "yolo/images/val/.png", false),
             (Dataset, None, "yolo/images/val/a/b.png", false),
             (Dataset, None, "frames/street/coco.json", false),
+            (Dataset, None, "cityscapes/labels.json", true),
+            (
+                Dataset,
+                None,
+                "cityscapes/leftImg8bit/train/street/street_000000_000001_leftImg8bit.png",
+                true,
+            ),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/val/street/street_000000_000001_gtFine_instanceIds.png",
+                true,
+            ),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/val/street/street_000000_000001_gtFine_depth.png",
+                false,
+            ),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/dev/street/street_000000_000001_gtFine_color.png",
+                false,
+            ),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/cityscapes_panoptic_val.json",
+                true,
+            ),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/cityscapes_panoptic_val/street_000000_000001_gtFine_panoptic.png",
+                true,
+            ),
+            (Dataset, None, "cityscapes/gtFine/val/a/b/c_gtFine_color.png", false),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/semantic/000003_labelIds.png",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/semantic/000003_depth.png",
+                false,
+            ),
+            (Frames, Some("street"), "frames/street/panoptic.json", true),
         ];
         for (stage, camera, name, allowed) in cases {
             assert_eq!(

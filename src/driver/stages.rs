@@ -396,6 +396,9 @@ pub struct PathInputs {
 pub struct DatasetInputs {
     pub splits: SplitsSpec,
     pub yolo: bool,
+    /// Off, it stays out of the key (which is then as before the switch existed).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub cityscapes: bool,
     pub cameras: Vec<String>,
     pub seed: u64,
 }
@@ -516,6 +519,7 @@ impl Inputs {
             dataset: spec.splits.as_ref().map(|splits| DatasetInputs {
                 splits: splits.clone(),
                 yolo: spec.annotations.yolo,
+                cityscapes: spec.annotations.cityscapes,
                 cameras: spec.cameras.iter().map(|c| c.name.clone()).collect(),
                 seed: spec.seed,
             }),

@@ -260,6 +260,12 @@ pub struct AnnotationsSpec {
     /// instead of one per sign label. COCO always has the type as `attributes.sign_type`.
     #[serde(default)]
     pub yolo_sign_types: bool,
+    /// Also write Cityscapes-format labels per frame (`frames/<camera>/semantic/`: label
+    /// ids, instance ids, colours, COCO panoptic) and `panoptic.json`, and with `[splits]`
+    /// the Cityscapes folder `cityscapes/` (`leftImg8bit/`, `gtFine/`).
+    /// Off, it stays out of the stage keys (which are then as before the switch existed).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub cityscapes: bool,
 }
 
 impl Default for AnnotationsSpec {
@@ -270,6 +276,7 @@ impl Default for AnnotationsSpec {
             min_fraction: default_min_fraction(),
             yolo: false,
             yolo_sign_types: false,
+            cityscapes: false,
         }
     }
 }

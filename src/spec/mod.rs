@@ -228,6 +228,13 @@ fn check_values(spec: &Spec, path: &Path, world: &dyn SpecWorld, findings: &mut 
             lighting_spec::check_lighting(lighting, &format!("cameras[{i}].lighting"), findings);
         }
     }
+    if spec.annotations.cityscapes && spec.output.layout == OutputLayout::Webdataset {
+        findings.error(
+            "annotations.cityscapes",
+            "expected [output] layout = \"files\": Cityscapes' layout is folders of image \
+             files, which the \"webdataset\" layout puts into tars",
+        );
+    }
     splits_spec::check_splits(
         spec.splits.as_ref(),
         spec.cameras.len(),

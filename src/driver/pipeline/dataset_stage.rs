@@ -49,8 +49,14 @@ impl Pipeline<'_> {
         };
         let mut cocos = Vec::new();
         let mut classes = Vec::new();
+        let mut panoptic = Vec::new();
         for camera in &inputs.cameras {
             cocos.push(read(&format!("frames/{camera}/coco.json")).map_err(invalid)?);
+            let document = format!("frames/{camera}/panoptic.json");
+            panoptic.push(match blob(&document) {
+                Some(_) => Some(read(&document).map_err(invalid)?),
+                None => None,
+            });
             let names = format!("frames/{camera}/yolo/classes.txt");
             classes.push(match blob(&names) {
                 Some(_) => {
@@ -68,15 +74,18 @@ impl Pipeline<'_> {
             .iter()
             .zip(&cocos)
             .zip(&classes)
-            .map(|((name, coco), classes)| CameraFiles {
+            .zip(&panoptic)
+            .map(|(((name, coco), classes), panoptic)| CameraFiles {
                 name,
                 coco,
                 yolo_classes: classes.as_deref(),
+                panoptic: panoptic.as_deref(),
             })
             .collect();
         let input = DatasetInput {
             splits: &inputs.splits,
             yolo: inputs.yolo,
+            cityscapes: inputs.cityscapes,
             seed: inputs.seed,
             cameras: &cameras,
         };

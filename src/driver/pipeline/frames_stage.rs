@@ -207,7 +207,7 @@ impl Pipeline<'_> {
         }
         let gathered = self.gather_path()?;
         let start = Instant::now();
-        let plan = self.compute_plan(index, &gathered);
+        let plan = self.compute_plan(index, &gathered)?;
         let bytes = codec::to_json(&plan);
         if !recheck {
             self.cache
@@ -289,13 +289,14 @@ impl Pipeline<'_> {
             .sum();
         let store = !self.rechecking;
         let poses = &state.plan.poses;
+        let semantic = state.plan.semantic.as_ref();
         let done = std::sync::atomic::AtomicUsize::new(0);
         let chunk_list = std::mem::take(&mut state.chunks);
         let render = |range: std::ops::Range<usize>,
                       gathered: &Gathered|
          -> Result<Outputs, BuildError> {
             let key = chunks::chunk_key(frames_key, &range);
-            let outputs = self.with_path_input(index, gathered, |input| {
+            let outputs = self.with_path_input(index, gathered, semantic, |input| {
                 let path = frames::PathFrames::new(input, poses);
                 let keep_all = self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
                 let modes = (store, keep_all);
@@ -320,7 +321,7 @@ impl Pipeline<'_> {
             .zip(&ranges)
             .find(|(c, r)| matches!(c, Chunk::Render) && !r.is_empty());
         if let (Some((_, range)), Some(gathered)) = (first, state.gathered.as_ref()) {
-            self.with_path_input(index, gathered, |input| {
+            self.with_path_input(index, gathered, semantic, |input| {
                 frames::PathFrames::new(input, poses).warm(range.start);
             });
         }
@@ -378,7 +379,7 @@ impl Pipeline<'_> {
     }
 
     /// Poses, categories and YOLO classes of path `index`.
-    fn compute_plan(&self, index: usize, g: &Gathered) -> PathPlan {
+    fn compute_plan(&self, index: usize, g: &Gathered) -> Result<PathPlan, BuildError> {
         let (prepared, scene, parsed, _, _) = g;
         let poses = self.poses(index, prepared, scene, parsed);
         let path = &self.inputs.frames[index].path;
@@ -388,12 +389,22 @@ impl Pipeline<'_> {
             .iter()
             .map(|o| (o.kind, o.class.as_str()))
             .collect();
-        PathPlan {
+        let semantic = path
+            .annotations
+            .cityscapes
+            .then(|| annotate::SemanticClasses::of(&objects))
+            .transpose()
+            .map_err(|source| BuildError::Classes {
+                spec: self.spec_path.clone(),
+                source,
+            })?;
+        Ok(PathPlan {
             poses,
             instances: annotate::instances(&objects, &labels),
             categories: labels.categories,
             yolo: labels.yolo.map(|classes| classes.names_file()),
-        }
+            semantic,
+        })
     }
 
     fn poses(
@@ -419,6 +430,7 @@ impl Pipeline<'_> {
         &self,
         index: usize,
         g: &Gathered,
+        semantic: Option<&annotate::SemanticClasses>,
         f: impl FnOnce(&frames::PathInput) -> R,
     ) -> R {
         let (prepared, scene, _, lamps, facades) = g;
@@ -457,6 +469,7 @@ impl Pipeline<'_> {
             yolo: path_labels.yolo.as_ref(),
             weather: &path.weather,
             conditions_seed: rng::stream(path.seed, "conditions", index as u64).next_u64(),
+            semantic,
         };
         f(&input)
     }
