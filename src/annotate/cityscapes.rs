@@ -36,13 +36,26 @@ pub struct CityscapesLabel {
     pub extra: bool,
 }
 
-/// `(name, id, trainId, category, catId, hasInstances, ignoreInEval, color)`, copied from
+/// A row of `labels.py`: `(name, id, trainId, category, catId, hasInstances,
+/// ignoreInEval, color)`.
+type Row = (&'static str, u8, u8, &'static str, u8, bool, bool, [u8; 3]);
+
+/// Cityscapes' labels, copied from
 /// `cityscapesscripts/helpers/labels.py` (2.3.0); `tests/external/check_cityscapes.py`
 /// compares the `labels.json` a build writes with the installed package's table.
-const CITYSCAPES: [(&str, u8, u8, &str, u8, bool, bool, [u8; 3]); 34] = [
+const CITYSCAPES: [Row; 34] = [
     ("unlabeled", 0, 255, "void", 0, false, true, [0, 0, 0]),
     ("ego vehicle", 1, 255, "void", 0, false, true, [0, 0, 0]),
-    ("rectification border", 2, 255, "void", 0, false, true, [0, 0, 0]),
+    (
+        "rectification border",
+        2,
+        255,
+        "void",
+        0,
+        false,
+        true,
+        [0, 0, 0],
+    ),
     ("out of roi", 3, 255, "void", 0, false, true, [0, 0, 0]),
     ("static", 4, 255, "void", 0, false, true, [0, 0, 0]),
     ("dynamic", 5, 255, "void", 0, false, true, [111, 74, 0]),
@@ -50,18 +63,117 @@ const CITYSCAPES: [(&str, u8, u8, &str, u8, bool, bool, [u8; 3]); 34] = [
     ("road", 7, 0, "flat", 1, false, false, [128, 64, 128]),
     ("sidewalk", 8, 1, "flat", 1, false, false, [244, 35, 232]),
     ("parking", 9, 255, "flat", 1, false, true, [250, 170, 160]),
-    ("rail track", 10, 255, "flat", 1, false, true, [230, 150, 140]),
-    ("building", 11, 2, "construction", 2, false, false, [70, 70, 70]),
-    ("wall", 12, 3, "construction", 2, false, false, [102, 102, 156]),
-    ("fence", 13, 4, "construction", 2, false, false, [190, 153, 153]),
-    ("guard rail", 14, 255, "construction", 2, false, true, [180, 165, 180]),
-    ("bridge", 15, 255, "construction", 2, false, true, [150, 100, 100]),
-    ("tunnel", 16, 255, "construction", 2, false, true, [150, 120, 90]),
+    (
+        "rail track",
+        10,
+        255,
+        "flat",
+        1,
+        false,
+        true,
+        [230, 150, 140],
+    ),
+    (
+        "building",
+        11,
+        2,
+        "construction",
+        2,
+        false,
+        false,
+        [70, 70, 70],
+    ),
+    (
+        "wall",
+        12,
+        3,
+        "construction",
+        2,
+        false,
+        false,
+        [102, 102, 156],
+    ),
+    (
+        "fence",
+        13,
+        4,
+        "construction",
+        2,
+        false,
+        false,
+        [190, 153, 153],
+    ),
+    (
+        "guard rail",
+        14,
+        255,
+        "construction",
+        2,
+        false,
+        true,
+        [180, 165, 180],
+    ),
+    (
+        "bridge",
+        15,
+        255,
+        "construction",
+        2,
+        false,
+        true,
+        [150, 100, 100],
+    ),
+    (
+        "tunnel",
+        16,
+        255,
+        "construction",
+        2,
+        false,
+        true,
+        [150, 120, 90],
+    ),
     ("pole", 17, 5, "object", 3, false, false, [153, 153, 153]),
-    ("polegroup", 18, 255, "object", 3, false, true, [153, 153, 153]),
-    ("traffic light", 19, 6, "object", 3, false, false, [250, 170, 30]),
-    ("traffic sign", 20, 7, "object", 3, false, false, [220, 220, 0]),
-    ("vegetation", 21, 8, "nature", 4, false, false, [107, 142, 35]),
+    (
+        "polegroup",
+        18,
+        255,
+        "object",
+        3,
+        false,
+        true,
+        [153, 153, 153],
+    ),
+    (
+        "traffic light",
+        19,
+        6,
+        "object",
+        3,
+        false,
+        false,
+        [250, 170, 30],
+    ),
+    (
+        "traffic sign",
+        20,
+        7,
+        "object",
+        3,
+        false,
+        false,
+        [220, 220, 0],
+    ),
+    (
+        "vegetation",
+        21,
+        8,
+        "nature",
+        4,
+        false,
+        false,
+        [107, 142, 35],
+    ),
     ("terrain", 22, 9, "nature", 4, false, false, [152, 251, 152]),
     ("sky", 23, 10, "sky", 5, false, false, [70, 130, 180]),
     ("person", 24, 11, "human", 6, true, false, [220, 20, 60]),
@@ -218,7 +330,11 @@ impl SemanticClasses {
             let line = serde_json::to_string(label).expect("a label serializes");
             text.push_str("  ");
             text.push_str(&line);
-            text.push_str(if n + 1 < self.labels.len() { ",\n" } else { "\n" });
+            text.push_str(if n + 1 < self.labels.len() {
+                ",\n"
+            } else {
+                "\n"
+            });
         }
         text.push_str("]}\n");
         text.into_bytes()

@@ -10,8 +10,6 @@
 //! written without a number (`id` alone, Cityscapes' group of objects, `iscrowd` 1 in
 //! panoptic).
 
-use std::collections::BTreeMap;
-
 use image::{GrayImage, ImageBuffer, Luma, RgbImage};
 use serde::{Deserialize, Serialize};
 
@@ -46,34 +44,33 @@ pub fn semantic(
     instance: &ImageBuffer<Luma<u32>, Vec<u32>>,
 ) -> SemanticFrame {
     let (width, height) = instance.dimensions();
-    // Each object's instanceIds value: numbered per label in instance-id order.
-    let mut present: Vec<u32> = instance.as_raw().clone();
-    present.sort_unstable();
-    present.dedup();
-    let mut counts: BTreeMap<u8, u32> = BTreeMap::new();
-    let values: BTreeMap<u32, u16> = present
-        .iter()
-        .map(|&id| {
-            let label = classes.label_of(id);
-            let value = if label.has_instances {
-                let k = counts.entry(label.id).or_insert(0);
+    // Which instance ids the frame shows (an id past the scene's is `unlabeled`).
+    let ids = classes.of_instance.len();
+    let mut shown = vec![false; ids + 1];
+    for &id in instance.as_raw() {
+        shown[(id as usize).min(ids)] = true;
+    }
+    // Each shown object's instanceIds value: numbered per label in instance-id order.
+    let mut counts = [0u32; 256];
+    let values: Vec<u16> = (0..=ids)
+        .map(|id| {
+            let label = classes.label_of(id as u32);
+            let k = &mut counts[usize::from(label.id)];
+            let value = if shown[id] && label.has_instances && *k < 1000 {
                 *k += 1;
-                if *k <= 1000 {
-                    u32::from(label.id) * 1000 + *k - 1
-                } else {
-                    u32::from(label.id)
-                }
+                u32::from(label.id) * 1000 + *k - 1
             } else {
                 u32::from(label.id)
             };
-            (id, value as u16)
+            value as u16
         })
         .collect();
+    let value_of = |id: u32| values[(id as usize).min(ids)];
     let label_ids = GrayImage::from_fn(width, height, |x, y| {
         Luma([classes.label_of(instance.get_pixel(x, y)[0]).id])
     });
     let instance_ids = ImageBuffer::from_fn(width, height, |x, y| {
-        Luma([values[&instance.get_pixel(x, y)[0]]])
+        Luma([value_of(instance.get_pixel(x, y)[0])])
     });
     let color = RgbImage::from_fn(width, height, |x, y| {
         image::Rgb(classes.labels[usize::from(label_ids.get_pixel(x, y)[0])].color)
@@ -95,20 +92,20 @@ fn panoptic(
 ) -> (RgbImage, Vec<Segment>) {
     let (width, height) = instance_ids.dimensions();
     // Per value: pixel count and box [x0, y0, x1, y1].
-    let mut found: BTreeMap<u16, (u64, [u32; 4])> = BTreeMap::new();
+    let mut found = vec![(0u64, [u32::MAX, u32::MAX, 0, 0]); 1 << 16];
     for (x, y, value) in instance_ids.enumerate_pixels() {
-        let (area, b) = found.entry(value[0]).or_insert((0, [x, y, x, y]));
+        let (area, b) = &mut found[usize::from(value[0])];
         *area += 1;
         *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
     }
+    let found = (0..=u16::MAX).zip(found).filter(|(_, (area, _))| *area > 0);
     let label = |value: u16| {
         let id = if value < 1000 { value } else { value / 1000 };
         &classes.labels[usize::from(id).min(classes.labels.len() - 1)]
     };
     let segments: Vec<Segment> = found
-        .iter()
-        .filter(|(value, _)| !label(**value).ignore_in_eval)
-        .map(|(&value, &(area, b))| {
+        .filter(|(value, _)| !label(*value).ignore_in_eval)
+        .map(|(value, (area, b))| {
             let label = label(value);
             Segment {
                 id: u32::from(value),
@@ -155,7 +152,9 @@ pub fn panoptic_json(labels: &[CityscapesLabel], images: &[PanopticImage]) -> Ve
     };
     let image_lines = images
         .iter()
-        .map(|i| json!({"id": i.id, "width": i.width, "height": i.height, "file_name": i.file_name}))
+        .map(
+            |i| json!({"id": i.id, "width": i.width, "height": i.height, "file_name": i.file_name}),
+        )
         .collect();
     let annotation_lines = images
         .iter()
@@ -204,7 +203,9 @@ mod tests {
         );
         assert_eq!(
             frame.instance_ids.as_raw(),
-            &[23, 23, 7, 7, 26001, 26000, 26000, 24000, 26001, 26001, 7, 22]
+            &[
+                23, 23, 7, 7, 26001, 26000, 26000, 24000, 26001, 26001, 7, 22
+            ]
         );
         assert_eq!(frame.color.get_pixel(0, 0).0, [70, 130, 180]);
         assert_eq!(frame.color.get_pixel(1, 1).0, [0, 0, 142]);

@@ -54,8 +54,8 @@ pub(super) fn add(
             let bytes = c
                 .panoptic
                 .ok_or_else(|| DatasetError(format!("{name} missing")))?;
-            let document: CameraPanoptic = serde_json::from_slice(bytes)
-                .map_err(|e| DatasetError(format!("{name}: {e}")))?;
+            let document: CameraPanoptic =
+                serde_json::from_slice(bytes).map_err(|e| DatasetError(format!("{name}: {e}")))?;
             if document.images.len() != document.annotations.len() {
                 return Err(DatasetError(format!(
                     "{name}: {} images but {} annotations",
@@ -73,48 +73,8 @@ pub(super) fn add(
     let labels = labels(&read(&labels_file)?, &labels_file)?;
     let mut panoptic: Vec<Vec<PanopticImage>> = vec![Vec::new(); SPLIT_NAMES.len()];
     for m in members {
-        let camera = cameras[m.camera].name;
-        let image = documents[m.camera]
-            .images
-            .get(m.frame)
-            .ok_or_else(|| {
-                DatasetError(format!(
-                    "frames/{camera}/panoptic.json: no image {}",
-                    m.frame + 1
-                ))
-            })?;
-        let split = SPLIT_NAMES[m.split];
-        let name = cityscapes_name(camera, m.camera, m.frame);
-        let city = camera.replace('_', "-");
-        let source = |suffix: &str| format!("frames/{camera}/semantic/{:06}_{suffix}.png", m.frame);
-        let gt = format!("cityscapes/gtFine/{split}/{city}/{name}_gtFine");
-        for (file, same) in [
-            (
-                format!("cityscapes/leftImg8bit/{split}/{city}/{name}_leftImg8bit.png"),
-                format!("frames/{camera}/{}", image.file_name),
-            ),
-            (format!("{gt}_labelIds.png"), source("labelIds")),
-            (format!("{gt}_instanceIds.png"), source("instanceIds")),
-            (format!("{gt}_color.png"), source("color")),
-            (
-                format!(
-                    "cityscapes/gtFine/cityscapes_panoptic_{split}/{name}_gtFine_panoptic.png"
-                ),
-                source("panoptic"),
-            ),
-        ] {
-            if files.insert(file.clone(), DatasetFile::Same(same)).is_some() {
-                return Err(DatasetError(format!("two frames would both be {file}")));
-            }
-        }
-        panoptic[m.split].push(PanopticImage {
-            id: serde_json::Value::String(name.clone()),
-            width: image.width,
-            height: image.height,
-            file_name: format!("{name}_gtFine_leftImg8bit.png"),
-            segments_file: format!("{name}_gtFine_panoptic.png"),
-            segments: documents[m.camera].annotations[m.frame].segments_info.clone(),
-        });
+        let image = member(cameras[m.camera].name, &documents[m.camera], m, files)?;
+        panoptic[m.split].push(image);
     }
     for (split, images) in SPLIT_NAMES.iter().zip(&panoptic) {
         if !images.is_empty() {
@@ -129,6 +89,57 @@ pub(super) fn add(
         DatasetFile::Same(labels_file),
     );
     Ok(())
+}
+
+/// Adds member `m`'s files (camera `camera`, whose `panoptic.json` is `document`) and
+/// returns its image of the split's panoptic document.
+fn member(
+    camera: &str,
+    document: &CameraPanoptic,
+    m: &Member,
+    files: &mut BTreeMap<String, DatasetFile>,
+) -> Result<PanopticImage, DatasetError> {
+    let image = document.images.get(m.frame).ok_or_else(|| {
+        DatasetError(format!(
+            "frames/{camera}/panoptic.json: no image {}",
+            m.frame + 1
+        ))
+    })?;
+    let split = SPLIT_NAMES[m.split];
+    let name = cityscapes_name(camera, m.camera, m.frame);
+    let city = camera.replace('_', "-");
+    let source = |suffix: &str| format!("frames/{camera}/semantic/{:06}_{suffix}.png", m.frame);
+    let gt = format!("cityscapes/gtFine/{split}/{city}/{name}_gtFine");
+    for (file, same) in [
+        (
+            format!("cityscapes/leftImg8bit/{split}/{city}/{name}_leftImg8bit.png"),
+            format!("frames/{camera}/{}", image.file_name),
+        ),
+        (format!("{gt}_labelIds.png"), source("labelIds")),
+        (format!("{gt}_instanceIds.png"), source("instanceIds")),
+        (format!("{gt}_color.png"), source("color")),
+        (
+            format!("cityscapes/gtFine/cityscapes_panoptic_{split}/{name}_gtFine_panoptic.png"),
+            source("panoptic"),
+        ),
+    ] {
+        if files
+            .insert(file.clone(), DatasetFile::Same(same))
+            .is_some()
+        {
+            return Err(DatasetError(format!("two frames would both be {file}")));
+        }
+    }
+    Ok(PanopticImage {
+        id: serde_json::Value::String(name.clone()),
+        width: image.width,
+        height: image.height,
+        // As `createPanopticImgs` names it: the instanceIds file's name with `_instanceIds`
+        // made `_leftImg8bit`.
+        file_name: format!("{name}_gtFine_leftImg8bit.png"),
+        segments_file: format!("{name}_gtFine_panoptic.png"),
+        segments: document.annotations[m.frame].segments_info.clone(),
+    })
 }
 
 /// The label table of a camera path's `semantic/labels.json`.

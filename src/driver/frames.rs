@@ -196,6 +196,33 @@ impl<'a> PathFrames<'a> {
         files
     }
 
+    /// The RGB image the camera's sensor makes of `frame` under `conditions`.
+    fn develop(
+        &self,
+        frame: &render::Frame,
+        pose: &CameraPose,
+        travel: Option<[f64; 3]>,
+        lighting: &Lighting,
+        conditions: &sensor::Conditions,
+    ) -> sensor::Developed {
+        let (intrinsics, camera) = (&self.intrinsics, self.input.camera);
+        sensor::develop(
+            &SensorFrame {
+                width: camera.resolution[0],
+                height: camera.resolution[1],
+                linear: &frame.linear,
+                depth: frame.depth.as_raw(),
+                pose: *pose,
+                intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
+                motion: travel,
+                horizon: lighting.sky.horizon(),
+                clouds: cloud_light(lighting),
+                scene_exposure: lighting.exposure,
+            },
+            conditions,
+        )
+    }
+
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
     /// as soon as it is ready; stops at the first error `emit` returns.
     pub fn render<E>(
@@ -205,7 +232,6 @@ impl<'a> PathFrames<'a> {
     ) -> Result<FrameRecord, E> {
         let (input, intrinsics, dir) = (self.input, &self.intrinsics, &self.dir);
         let camera = input.camera;
-        let (width, height) = (camera.resolution[0], camera.resolution[1]);
         let depth_format = camera.depth;
         let pose = &self.poses[i];
         let drawn_sun = input.relight.map(|f| f(i));
@@ -230,21 +256,7 @@ impl<'a> PathFrames<'a> {
         );
         // The sensor stage replaces the RGB image only: ids, depth and labels stay as
         // rendered.
-        let developed = sensor::develop(
-            &SensorFrame {
-                width,
-                height,
-                linear: &frame.linear,
-                depth: frame.depth.as_raw(),
-                pose: *pose,
-                intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
-                motion: travel,
-                horizon: lighting.sky.horizon(),
-                clouds: cloud_light(lighting),
-                scene_exposure: lighting.exposure,
-            },
-            &conditions,
-        );
+        let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
         let frame_input = self.annotation_input(i, &frame.instance, &footprints);
@@ -261,15 +273,10 @@ impl<'a> PathFrames<'a> {
         emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
         emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
         emit(format!("{dir}/{depth_name}"), pngs.depth)?;
-        let panoptic = match semantic {
-            Some((files, segments)) => {
-                for (suffix, png) in files {
-                    emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
-                }
-                Some(segments)
-            }
-            None => None,
-        };
+        let (semantic, panoptic) = semantic.unzip();
+        for (suffix, png) in semantic.into_iter().flatten() {
+            emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
+        }
         summary.depth = Some(DepthFile {
             file_name: depth_name,
             format: depth_format.name(),
@@ -308,7 +315,10 @@ fn semantic_files(
         encode_png(&frame.color, PngEffort::Fast),
         encode_png(&frame.panoptic, PngEffort::Fast),
     ];
-    (SEMANTIC_SUFFIXES.into_iter().zip(pngs).collect(), frame.segments)
+    (
+        SEMANTIC_SUFFIXES.into_iter().zip(pngs).collect(),
+        frame.segments,
+    )
 }
 
 /// A frame's lighting under its drawn `conditions` (clouds, weather) and with `extra`

@@ -375,7 +375,12 @@ mod tests {
                 "cityscapes/gtFine/cityscapes_panoptic_val/street_000000_000001_gtFine_panoptic.png",
                 true,
             ),
-            (Dataset, None, "cityscapes/gtFine/val/a/b/c_gtFine_color.png", false),
+            (
+                Dataset,
+                None,
+                "cityscapes/gtFine/val/a/b/c_gtFine_color.png",
+                false,
+            ),
             (
                 Frames,
                 Some("street"),

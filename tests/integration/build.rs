@@ -22,6 +22,14 @@ fn statuses(report: &driver::BuildReport) -> Vec<(&'static str, StageStatus)> {
     s
 }
 
+/// A frame's file in the dataset-level folders (an image or label of `yolo/` or
+/// `cityscapes/`), relative to the spec's output folder.
+fn dataset_frame_file(path: &str) -> bool {
+    path.starts_with("yolo/images/")
+        || path.starts_with("yolo/labels/")
+        || (path.starts_with("cityscapes/") && path.ends_with(".png"))
+}
+
 #[test]
 fn cold_warm_one_and_eight_threads_give_identical_bytes() {
     let ws = Workspace::with_spec("day");
@@ -35,7 +43,7 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
         .iter()
         .copied()
         .filter(|n| !n.starts_with("day/textures/") && !n.starts_with("day/frames/"))
-        .filter(|n| !n.starts_with("day/yolo/images/") && !n.starts_with("day/yolo/labels/"))
+        .filter(|n| !dataset_frame_file(n.strip_prefix("day/").unwrap_or(n)))
         .collect();
     assert_eq!(
         named,
@@ -43,6 +51,9 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
             "day/city.glb",
             "day/city.mtl",
             "day/city.obj",
+            "day/cityscapes/gtFine/cityscapes_panoptic_train.json",
+            "day/cityscapes/gtFine/cityscapes_panoptic_val.json",
+            "day/cityscapes/labels.json",
             "day/coco/train.json",
             "day/coco/val.json",
             "day/layout.png",
@@ -276,7 +287,7 @@ fn manifest_lists_every_artifact_with_its_hash() {
         .artifacts
         .iter()
         .filter(|a| !a.path.starts_with("textures/") && !a.path.starts_with("frames/"))
-        .filter(|a| !a.path.starts_with("yolo/images/") && !a.path.starts_with("yolo/labels/"))
+        .filter(|a| !dataset_frame_file(&a.path))
         .map(|a| (a.path.as_str(), a.stage.as_str()))
         .collect();
     assert_eq!(
@@ -285,6 +296,12 @@ fn manifest_lists_every_artifact_with_its_hash() {
             ("city.glb", "export"),
             ("city.mtl", "export"),
             ("city.obj", "export"),
+            (
+                "cityscapes/gtFine/cityscapes_panoptic_train.json",
+                "dataset"
+            ),
+            ("cityscapes/gtFine/cityscapes_panoptic_val.json", "dataset"),
+            ("cityscapes/labels.json", "dataset"),
             ("coco/train.json", "dataset"),
             ("coco/val.json", "dataset"),
             ("layout.png", "mirror"),

@@ -47,25 +47,22 @@ impl Pipeline<'_> {
                     .map_err(|why| DatasetError(format!("{name}: cache object {why}"))),
             }
         };
+        // A file the camera path writes only with some switch on.
+        let optional = |name: &str| -> Result<Option<Vec<u8>>, BuildError> {
+            blob(name).map(|_| read(name).map_err(invalid)).transpose()
+        };
         let mut cocos = Vec::new();
         let mut classes = Vec::new();
         let mut panoptic = Vec::new();
         for camera in &inputs.cameras {
             cocos.push(read(&format!("frames/{camera}/coco.json")).map_err(invalid)?);
-            let document = format!("frames/{camera}/panoptic.json");
-            panoptic.push(match blob(&document) {
-                Some(_) => Some(read(&document).map_err(invalid)?),
-                None => None,
-            });
+            panoptic.push(optional(&format!("frames/{camera}/panoptic.json"))?);
             let names = format!("frames/{camera}/yolo/classes.txt");
-            classes.push(match blob(&names) {
-                Some(_) => {
-                    let bytes = read(&names).map_err(invalid)?;
-                    Some(
-                        String::from_utf8(bytes)
-                            .map_err(|_| invalid(DatasetError(format!("{names}: not UTF-8"))))?,
-                    )
-                }
+            classes.push(match optional(&names)? {
+                Some(bytes) => Some(
+                    String::from_utf8(bytes)
+                        .map_err(|_| invalid(DatasetError(format!("{names}: not UTF-8"))))?,
+                ),
                 None => None,
             });
         }
