@@ -26,7 +26,7 @@ pub use split_assignment::{assign, counts};
 use crate::spec::{SPLIT_NAMES, SplitsSpec};
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// What the stage reads of one camera path's outputs.
 pub struct CameraFiles<'a> {

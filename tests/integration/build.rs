@@ -50,7 +50,8 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
             "day/overview.png",
             "day/plan.json",
             "day/plan.png",
-            "day/yolo/data.yaml"
+            "day/yolo/data.yaml",
+            "day/yolo/dataset.yaml"
         ]
     );
     assert!(
@@ -291,7 +292,8 @@ fn manifest_lists_every_artifact_with_its_hash() {
             ("overview.png", "overview"),
             ("plan.json", "plan"),
             ("plan.png", "preview"),
-            ("yolo/data.yaml", "dataset")
+            ("yolo/data.yaml", "dataset"),
+            ("yolo/dataset.yaml", "dataset")
         ]
     );
     assert!(
