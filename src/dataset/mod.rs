@@ -12,7 +12,7 @@
 //! | file | what |
 //! |---|---|
 //! | `coco/<split>.json` | the split's frames of every camera; image ids unique over the dataset (cameras in spec order, frames in order, from 1), annotation ids from 1 in each file; `file_name` relative to the output folder (`frames/<camera>/rgb/NNNNNN.png`); categories merged by name |
-//! | `yolo/data.yaml` | `train`/`val`/`test` folders relative to `yolo/`, `names` from the cameras' `yolo/classes.txt` |
+//! | `yolo/data.yaml` (and `yolo/dataset.yaml`, the same bytes, the name FiftyOne's YOLOv5 importer reads) | `train`/`val`/`test` folders relative to `yolo/`, `names` from the cameras' `yolo/classes.txt` |
 //! | `yolo/images/<split>/`, `yolo/labels/<split>/` | one image and one label file per frame, named `<camera>_<NNNNNN>` |
 //! | `cityscapes/` | with `[annotations] cityscapes = true`: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` ([`cityscapes_layout`]) |
 
@@ -29,7 +29,7 @@ pub use split_assignment::{assign, counts};
 use crate::spec::{SPLIT_NAMES, SplitsSpec};
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// What the stage reads of one camera path's outputs.
 pub struct CameraFiles<'a> {

@@ -1,5 +1,6 @@
-//! The ultralytics folder `yolo/`: `data.yaml`, and each frame's image and label file
-//! under `images/<split>/` and `labels/<split>/` (ultralytics finds a label by replacing
+//! The ultralytics folder `yolo/`: `data.yaml` (and `dataset.yaml`, the same bytes, the
+//! name FiftyOne's `YOLOv5Dataset` reads), and each frame's image and label file under
+//! `images/<split>/` and `labels/<split>/` (ultralytics finds a label by replacing
 //! `/images/` with `/labels/` in the image's path).
 
 use std::collections::BTreeMap;
@@ -74,10 +75,13 @@ pub(super) fn add(
             }
         }
     }
+    // The same bytes under FiftyOne's default name: the output folder hard-links them.
+    let yaml = data_yaml(input, &names).into_bytes();
     files.insert(
-        "yolo/data.yaml".to_owned(),
-        DatasetFile::Bytes(data_yaml(input, &names).into_bytes()),
+        "yolo/dataset.yaml".to_owned(),
+        DatasetFile::Bytes(yaml.clone()),
     );
+    files.insert("yolo/data.yaml".to_owned(), DatasetFile::Bytes(yaml));
     Ok(())
 }
 
@@ -100,7 +104,8 @@ fn renumbered(bytes: &[u8], ids: &[usize], name: &str) -> Result<Vec<u8>, Datase
 fn data_yaml(input: &DatasetInput, names: &[&str]) -> String {
     let shares = input.splits.shares();
     let mut out = String::from(
-        "# The ultralytics dataset of this build (cityspec): `yolo train data=yolo/data.yaml`.\n\
+        "# The YOLO dataset of this build (cityspec): `yolo train data=yolo/data.yaml`;\n\
+         # dataset.yaml is the same file, for FiftyOne's YOLOv5Dataset.\n\
          # Paths are relative to this file's folder; images/<split>/X.png has labels/<split>/X.txt.\n",
     );
     for (k, split) in SPLIT_NAMES.iter().enumerate() {

@@ -22,8 +22,8 @@ pub enum OutputNames {
     Frames(String),
     /// A chunk of a camera path: its frames' files and `summary.jsonl`.
     Chunk(String),
-    /// `coco/<split>.json`, `yolo/data.yaml`, `yolo/images/<split>/<file>.png` and
-    /// `yolo/labels/<split>/<file>.txt`.
+    /// `coco/<split>.json`, `yolo/data.yaml`, `yolo/dataset.yaml`,
+    /// `yolo/images/<split>/<file>.png` and `yolo/labels/<split>/<file>.txt`.
     Dataset,
 }
 
@@ -138,8 +138,8 @@ fn is_texture(name: &str) -> bool {
         .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
 }
 
-/// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml`, or a frame's
-/// image or label file of a split.
+/// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml` (and its twin
+/// `yolo/dataset.yaml`), or a frame's image or label file of a split.
 fn is_dataset_file(name: &str) -> bool {
     let in_split = |folder: &str, extension: &str| {
         name.strip_prefix(folder)
@@ -147,7 +147,7 @@ fn is_dataset_file(name: &str) -> bool {
             .and_then(|file| file.strip_suffix(extension))
             .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
     };
-    name == "yolo/data.yaml"
+    matches!(name, "yolo/data.yaml" | "yolo/dataset.yaml")
         || is_cityscapes_file(name)
         || name
             .strip_prefix("coco/")
@@ -331,6 +331,8 @@ mod tests {
             (Dataset, None, "coco/train.json", true),
             (Dataset, None, "coco/other.json", false),
             (Dataset, None, "yolo/data.yaml", true),
+            (Dataset, None, "yolo/dataset.yaml", true),
+            (Dataset, None, "yolo/other.yaml", false),
             (Dataset, None, "yolo/images/val/street_000001.png", true),
             (Dataset, None, "yolo/labels/test/street_000001.txt", true),
             (Dataset, None, "yolo/labels/test/street_000001.png", false),

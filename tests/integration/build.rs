@@ -61,7 +61,8 @@ fn cold_warm_one_and_eight_threads_give_identical_bytes() {
             "day/overview.png",
             "day/plan.json",
             "day/plan.png",
-            "day/yolo/data.yaml"
+            "day/yolo/data.yaml",
+            "day/yolo/dataset.yaml"
         ]
     );
     assert!(
@@ -308,7 +309,8 @@ fn manifest_lists_every_artifact_with_its_hash() {
             ("overview.png", "overview"),
             ("plan.json", "plan"),
             ("plan.png", "preview"),
-            ("yolo/data.yaml", "dataset")
+            ("yolo/data.yaml", "dataset"),
+            ("yolo/dataset.yaml", "dataset")
         ]
     );
     assert!(

@@ -128,6 +128,18 @@ fn the_ultralytics_folder_names_every_frame_of_every_camera_once_with_its_labels
         })
         .collect();
     assert_eq!(names, classes.lines().collect::<Vec<_>>());
+    // dataset.yaml, the name FiftyOne's YOLOv5Dataset reads: the same file.
+    assert_eq!(fs::read_to_string(yolo.join("dataset.yaml")).unwrap(), yaml);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let ino = |name: &str| fs::metadata(yolo.join(name)).unwrap().ino();
+        assert_eq!(
+            ino("dataset.yaml"),
+            ino("data.yaml"),
+            "dataset.yaml is a copy"
+        );
+    }
     common::assert_matches_manifest(&out);
 }
 
