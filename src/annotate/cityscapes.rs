@@ -9,9 +9,9 @@
 //! Which label an object is: its class, when that names an evaluated Cityscapes label
 //! (`car`, `truck`, `bus`, `person`, `traffic_sign` as `traffic sign`, …), else its kind's
 //! ([`kind_label`]): the grass around the city is `terrain`, blocks and sidewalks
-//! `sidewalk`, roads and their markings `road`, lamps and the poles of signals and street
-//! signs `pole` (Cityscapes' rule: a street light on a pole is pole), trees `vegetation`,
-//! and the sky (instance 0) `sky`.
+//! `sidewalk`, roads and their markings `road`, lamps and the poles of signs, signals and
+//! street-name signs `pole` (Cityscapes' rule: a street light on a pole is pole), trees
+//! `vegetation`, and the sky (instance 0) `sky`.
 
 use serde::{Deserialize, Serialize};
 
@@ -228,7 +228,10 @@ fn kind_label(kind: ObjectKind) -> Option<u8> {
         ObjectKind::Block | ObjectKind::Sidewalk => 8,
         ObjectKind::Road | ObjectKind::Marking => 7,
         ObjectKind::Building => 11,
-        ObjectKind::Lamp | ObjectKind::SignalPole | ObjectKind::StreetPole => 17,
+        ObjectKind::Lamp
+        | ObjectKind::SignPole
+        | ObjectKind::SignalPole
+        | ObjectKind::StreetPole => 17,
         ObjectKind::Sign => 20,
         ObjectKind::TrafficLight => 19,
         ObjectKind::Car => 26,

@@ -1,6 +1,6 @@
 //! What a scene object is, set by the stage that makes it: the scene's ground, blocks,
-//! roads, markings, sidewalks, buildings and lamps; the objects stage's text plates, signs,
-//! poles, traffic lights, cars, bicycles and riders, people, trees and user meshes.
+//! roads, markings, sidewalks, buildings and lamps; the objects stage's text plates, signs
+//! (plates), poles, traffic lights, cars, bicycles and riders, people, trees and user meshes.
 //!
 //! Stages and tools ask an object's kind, never its name: names (`car_0042`) are stable
 //! labels for people and files, and a user mesh is named after its label.
@@ -20,7 +20,9 @@ pub enum ObjectKind {
     Lamp,
     /// A text plate on a wall, or a street-name sign's plate.
     Text,
+    /// A traffic sign's plate (face and back); its pole is a [`ObjectKind::SignPole`].
     Sign,
+    SignPole,
     SignalPole,
     TrafficLight,
     StreetPole,
@@ -35,7 +37,7 @@ pub enum ObjectKind {
 
 impl ObjectKind {
     /// Every kind, in declaration order.
-    pub const ALL: [ObjectKind; 18] = [
+    pub const ALL: [ObjectKind; 19] = [
         ObjectKind::Ground,
         ObjectKind::Block,
         ObjectKind::Road,
@@ -45,6 +47,7 @@ impl ObjectKind {
         ObjectKind::Lamp,
         ObjectKind::Text,
         ObjectKind::Sign,
+        ObjectKind::SignPole,
         ObjectKind::SignalPole,
         ObjectKind::TrafficLight,
         ObjectKind::StreetPole,
@@ -68,6 +71,7 @@ impl ObjectKind {
             ObjectKind::Lamp => "lamp",
             ObjectKind::Text => "text",
             ObjectKind::Sign => "sign",
+            ObjectKind::SignPole => "sign_pole",
             ObjectKind::SignalPole => "signal_pole",
             ObjectKind::TrafficLight => "traffic_light",
             ObjectKind::StreetPole => "street_pole",

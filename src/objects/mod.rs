@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 12;
+pub const VERSION: u32 = 13;
 
 mod atlas_layout;
 mod bicycle;
@@ -348,7 +348,12 @@ fn place_entries<'a>(
                 .get_or_insert_with(|| wall_text::Walls::new(input))
                 .place(spec, &mut rng, &mut placing),
             ObjectKind::Sign => {
-                traffic_signs::place(spec, &mut rng, &mut spots, &mut placing);
+                counted = Some(traffic_signs::place(
+                    spec,
+                    &mut rng,
+                    &mut spots,
+                    &mut placing,
+                ));
                 Ok(())
             }
             ObjectKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
@@ -382,8 +387,8 @@ fn place_entries<'a>(
         };
         placed.map_err(|e| (i, e))?;
         // Street-name and traffic-light entries count poles (each carries four text faces
-        // or two signal heads), bicycle entries bicycles (a ridden one has a rider); the
-        // others count objects.
+        // or two signal heads), sign entries signs (a plate on a pole), bicycle entries
+        // bicycles (a ridden one has a rider); the others count objects.
         shares[i] = Some(before.end(&placing, counted));
     }
     Ok(PlacedEntries { placing, shares })

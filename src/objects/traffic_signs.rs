@@ -1,5 +1,7 @@
-//! Sign specs + strip spots → `sign_NNNN` objects: a grey pole and a plate shaped like the
-//! sign, its face turned towards the traffic coming along the nearest lane.
+//! Sign specs + strip spots → `sign_NNNN` objects, each a plate shaped like the sign (face
+//! and back), its face turned towards the traffic coming along the nearest lane, on a grey
+//! `sign_pole_NNNN` of class `pole`: the public datasets (GTSDB, Mapillary, TT100K,
+//! Cityscapes) box and mask a sign's plate, and call its pole a pole.
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
@@ -25,7 +27,14 @@ pub const SPEEDS: [u32; 8] = [20, 30, 40, 50, 60, 70, 80, 100];
 const POLE_GREY: [f32; 3] = [0.45, 0.46, 0.48];
 const BACK_GREY: [f32; 3] = [0.6, 0.6, 0.62];
 
-pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+/// Places the entry's signs; returns how many (each is two objects, plate and pole).
+pub fn place(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    spots: &mut GroundSpots,
+    placing: &mut Placing,
+) -> u32 {
+    let mut placed = 0;
     let kinds: &[SignKind] = if spec.signs.is_empty() {
         &SignKind::ALL
     } else {
@@ -49,9 +58,17 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         });
         let pole = placing.material("sign_pole", || (POLE_GREY, None));
         let back = placing.material("sign_back", || (BACK_GREY, None));
-        let meshes = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+        let [pole, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+        let name = placing.name("sign_pole");
+        placing.push_plain(crate::model::ObjectKind::SignPole, name, "pole", vec![pole]);
         let name = placing.name("sign");
-        placing.push_plain(crate::model::ObjectKind::Sign, name, &spec.label, meshes);
+        placing.push_plain(
+            crate::model::ObjectKind::Sign,
+            name,
+            &spec.label,
+            vec![face, back],
+        );
+        placed += 1;
         let index = placing.out.objects.len() - 1;
         let centre = [
             spot.position[0] + facing[0] * FACE_OFFSET,
@@ -68,6 +85,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             },
         );
     }
+    placed
 }
 
 /// Where a sign's face is and which way it looks, so annotations can tell its front from
@@ -87,7 +105,7 @@ pub fn sign_meshes(
     foot: [f64; 2],
     facing: [f64; 2],
     materials: [u32; 3],
-) -> Vec<Mesh> {
+) -> [Mesh; 3] {
     let [pole_m, face_m, back_m] = materials;
     let mut pole = MeshBuilder::new(pole_m);
     pole.oriented_box(
@@ -117,7 +135,7 @@ pub fn sign_meshes(
         back_normal,
         false,
     );
-    vec![pole.finish(), face, back]
+    [pole.finish(), face, back]
 }
 
 /// A convex polygon as a triangle fan around its centre, wound towards `normal`; uv from
