@@ -46,6 +46,7 @@ pub fn coco(
 ///   it passes the thresholds, else 1 (an ignore region), `segmentation` = compressed RLE
 ///   `{"size": [h, w], "counts": …}` exactly as pycocotools' `maskUtils.encode` gives it;
 ///   then the extra keys `cityspec_instance` (the value in the instance image), `name`,
+///   `cityspec_ignored` on an ignore region (why: `pixels`, `fraction` or `contrast`),
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
 ///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
@@ -137,6 +138,9 @@ impl CocoLines {
                 "visible_fraction": object.fraction.and_then(|f| round(f, 1e6)),
             });
             if let Value::Object(map) = &mut annotation {
+                if let Some(why) = object.ignored {
+                    map.insert("cityspec_ignored".into(), Value::from(why.name()));
+                }
                 if let Some(text) = &object.label.text {
                     map.insert("text".into(), Value::String(text.clone()));
                 }
@@ -289,6 +293,7 @@ mod tests {
         FrameInput {
             file_name: name.into(),
             instance: img,
+            rgb: None,
             intrinsics: [400.0, 400.0, 4.0, 2.5],
             pose: CameraPose::level([1.0, 1.6, -0.0], [11.0, 0.6, 0.1234567]),
             full: BTreeMap::from([

@@ -112,6 +112,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
         .map(|(i, (image, full))| FrameInput {
             file_name: format!("frames/{i:06}.png"),
             instance: image,
+            rgb: None,
             intrinsics: [32.0, 32.0, 32.0, 24.0],
             pose: CameraPose::level([i as f64, 1.6, 0.0], [i as f64 + 10.0, 0.6, 0.0]),
             full: full.clone(),

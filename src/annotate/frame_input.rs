@@ -15,6 +15,9 @@ pub struct FrameInput<'a> {
     pub file_name: String,
     /// Instance ids per pixel: 0 = background, k = object index + 1.
     pub instance: &'a ImageBuffer<Luma<u32>, Vec<u32>>,
+    /// The frame's final RGB image (after the sensor), when known: a labelled object
+    /// that does not stand out in it is an ignore region ([`super::MIN_CONTRAST`]).
+    pub rgb: Option<&'a image::RgbImage>,
     /// Pinhole intrinsics in pixels: `[fx, fy, cx, cy]`.
     pub intrinsics: [f64; 4],
     pub pose: CameraPose,

@@ -135,6 +135,7 @@ mod tests {
         let frame = FrameInput {
             file_name: "f.png".into(),
             instance: &img,
+            rgb: None,
             intrinsics: [1.0, 1.0, 10.0, 3.0],
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::new(),

@@ -26,11 +26,12 @@
 //! floats rounded to fixed decimals before printing.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 mod cityscapes;
 mod coco;
 mod contact_sheet;
+mod contrast;
 #[cfg(test)]
 mod fixture_tests;
 mod frame_annotations;
@@ -50,6 +51,7 @@ mod yolo;
 pub use cityscapes::{CityscapesLabel, SemanticClasses, TooManyClasses};
 pub use coco::{CocoLines, CocoWriter, coco, write_coco};
 pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
+pub use contrast::{MIN_CONTRAST, contrast};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
@@ -59,7 +61,7 @@ pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;
 pub use rle::{Rle, RleError};
 pub use semantic::{PanopticImage, Segment, SemanticFrame, panoptic_json, semantic};
-pub use shown_object::{ShownObject, shown};
+pub use shown_object::{Ignored, ShownObject, shown};
 pub use visible_object::{VisibleObject, scan};
 pub use word_quad::WordQuad;
 pub use yolo::{YoloClasses, yolo};

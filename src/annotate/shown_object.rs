@@ -1,5 +1,6 @@
 //! Visible objects of a frame joined with their labels, and whether they pass the thresholds.
 
+use super::contrast::{MIN_CONTRAST, contrast};
 use super::frame_input::{FrameInput, Thresholds};
 use super::object_label::ObjectLabel;
 use super::visible_object::{VisibleObject, scan};
@@ -19,9 +20,35 @@ pub struct ShownObject<'a> {
     /// Visible ÷ projected pixels (at most 1), when the projected count is known and
     /// positive.
     pub fraction: Option<f64>,
-    /// Whether it shows at least `min_pixels` and, where known, `min_fraction`. Objects
-    /// that do not are written as COCO ignore regions (`iscrowd` 1).
+    /// Whether it shows at least `min_pixels`, where known `min_fraction`, and, when the
+    /// frame's RGB image is known, [`MIN_CONTRAST`]. Objects that do not are written as COCO
+    /// ignore regions (`iscrowd` 1), with [`ShownObject::ignored`] saying why.
     pub passes: bool,
+    /// Why it does not pass, if it does not.
+    pub ignored: Option<Ignored>,
+}
+
+/// Why a labelled object in view is an ignore region rather than a positive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Ignored {
+    /// Fewer visible pixels than `min_pixels`.
+    Pixels,
+    /// Less of itself in view than `min_fraction` (hidden or cut off by the image edge).
+    Fraction,
+    /// Its pixels barely differ from their surroundings or from each other in the final
+    /// image (darkness, fog, rain): under [`MIN_CONTRAST`].
+    Contrast,
+}
+
+impl Ignored {
+    /// Its name in COCO's `cityspec_ignored` and `cityspec stats`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Ignored::Pixels => "pixels",
+            Ignored::Fraction => "fraction",
+            Ignored::Contrast => "contrast",
+        }
+    }
 }
 
 /// The labelled objects visible in `frame`, in instance-id order. Ids without a label
@@ -39,14 +66,25 @@ pub fn shown<'a>(
             let fraction = full
                 .filter(|(_, projected)| *projected > 0)
                 .map(|(_, projected)| (visible.pixels as f64 / *projected as f64).min(1.0));
-            let passes = visible.pixels >= thresholds.min_pixels
-                && fraction.is_none_or(|f| f >= thresholds.min_fraction);
             let (category, subclass) = match &label.sign {
                 Some(sign) if sign.front_seen_from(frame.pose.eye) => {
                     (label.category, Some(sign.kind.as_str()))
                 }
                 Some(sign) => (sign.back_category, None),
                 None => (label.category, None),
+            };
+            let ignored = if visible.pixels < thresholds.min_pixels {
+                Some(Ignored::Pixels)
+            } else if fraction.is_some_and(|f| f < thresholds.min_fraction) {
+                Some(Ignored::Fraction)
+            } else {
+                // Measured only where it decides something: on a labelled object.
+                let faint = |rgb| contrast(rgb, frame.instance, visible.id, visible.bounds);
+                frame
+                    .rgb
+                    .filter(|_| category.is_some())
+                    .is_some_and(|rgb| faint(rgb) < MIN_CONTRAST)
+                    .then_some(Ignored::Contrast)
             };
             Some(ShownObject {
                 full_box: full.map(|(b, _)| *b),
@@ -55,7 +93,8 @@ pub fn shown<'a>(
                 category,
                 subclass,
                 fraction,
-                passes,
+                passes: ignored.is_none(),
+                ignored,
             })
         })
         .collect()

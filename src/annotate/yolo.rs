@@ -128,6 +128,7 @@ mod tests {
         let frame = FrameInput {
             file_name: "f.png".into(),
             instance: &img,
+            rgb: None,
             intrinsics: [4.0, 4.0, 4.0, 2.0],
             pose: CameraPose::level([0.0; 3], [1.0, 0.0, 0.0]),
             full: BTreeMap::new(),

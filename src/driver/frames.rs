@@ -150,6 +150,7 @@ impl<'a> PathFrames<'a> {
         &self,
         i: usize,
         instance: &'f image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+        rgb: &'f RgbImage,
         footprints: &[render::Footprint],
     ) -> FrameInput<'f> {
         let (intrinsics, pose) = (&self.intrinsics, &self.poses[i]);
@@ -157,6 +158,7 @@ impl<'a> PathFrames<'a> {
         FrameInput {
             file_name: format!("rgb/{i:06}.png"),
             instance,
+            rgb: Some(rgb),
             intrinsics: k,
             pose: *pose,
             full: footprints
@@ -254,12 +256,12 @@ impl<'a> PathFrames<'a> {
             camera.supersample,
             &self.measured,
         );
-        // The sensor stage replaces the RGB image only: ids, depth and labels stay as
-        // rendered.
+        // The sensor stage replaces the RGB image only: ids and depth stay as rendered; the
+        // labels read the final image only to drop what it does not show.
         let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
-        let frame_input = self.annotation_input(i, &frame.instance, &footprints);
+        let frame_input = self.annotation_input(i, &frame.instance, &developed.rgb, &footprints);
         let ((pngs, semantic), mut summary) = rayon::join(
             || {
                 rayon::join(

@@ -29,3 +29,4 @@ mod shards;
 mod spec_edit;
 mod spec_errors;
 mod stage_imports;
+mod visibility;
