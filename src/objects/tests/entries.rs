@@ -24,6 +24,7 @@ fn objects_carry_their_entrys_label_a_unique_name_and_in_range_indices() {
         let prefix = match info.label.as_str() {
             "text" => "text_",
             "traffic_sign" => "sign_",
+            "pole" => "sign_pole_",
             "bench" => "bench_",
             _ => "car_",
         };

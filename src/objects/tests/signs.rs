@@ -12,12 +12,21 @@ use crate::spec::{Palette, SignKind};
 fn signs_stand_on_the_strip_facing_oncoming_traffic() {
     let city = city();
     let inserted = run(&city, &[spec(ObjectKind::Sign, "traffic_sign", 40)]).unwrap();
-    assert_eq!(inserted.objects.len(), 40);
+    // Each sign is its pole (class `pole`) and then its plate: face and back.
+    assert_eq!(inserted.objects.len(), 80);
     let strip = Palette::default().strip.0;
     let mut kinds = BTreeSet::new();
-    for object in &inserted.objects {
-        let [pole, face, back] = &object.meshes[..] else {
-            panic!("{} has not 3 meshes", object.name)
+    for pair in inserted.objects.chunks_exact(2) {
+        let [pole_object, object] = pair else {
+            unreachable!("chunks of two")
+        };
+        assert_eq!(
+            (pole_object.kind, pole_object.class.as_str()),
+            (crate::model::ObjectKind::SignPole, "pole")
+        );
+        assert_eq!(object.kind, crate::model::ObjectKind::Sign);
+        let ([pole], [face, back]) = (&pole_object.meshes[..], &object.meshes[..]) else {
+            panic!("{}: not one pole mesh and a face and a back", object.name)
         };
         kinds.insert(inserted.materials[face.material as usize].name.clone());
         assert!(inserted.materials[face.material as usize].texture.is_some());
@@ -86,8 +95,9 @@ fn signs_only_of_the_listed_kinds() {
     let faces: BTreeSet<&str> = inserted
         .objects
         .iter()
+        .filter(|o| o.kind == crate::model::ObjectKind::Sign)
         .map(|o| {
-            inserted.materials[o.meshes[1].material as usize]
+            inserted.materials[o.meshes[0].material as usize]
                 .name
                 .as_str()
         })
