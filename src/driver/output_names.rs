@@ -23,7 +23,7 @@ pub enum OutputNames {
     /// A chunk of a camera path: its frames' files and `summary.jsonl`.
     Chunk(String),
     /// `coco/<split>.json`, `yolo/data.yaml`, `yolo/images/<split>/<file>.png` and
-    /// `yolo/labels/<split>/<file>.txt`.
+    /// `yolo/labels/<split>/<file>.txt`, or `wds/<split>/NNNNNN.tar`.
     Dataset,
 }
 
@@ -138,8 +138,8 @@ fn is_texture(name: &str) -> bool {
         .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
 }
 
-/// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml`, or a frame's
-/// image or label file of a split.
+/// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml`, a frame's image or
+/// label file of a split, or a split's WebDataset shard.
 fn is_dataset_file(name: &str) -> bool {
     fn split(rest: &str) -> Option<&str> {
         crate::spec::SPLIT_NAMES
@@ -152,7 +152,12 @@ fn is_dataset_file(name: &str) -> bool {
             .and_then(|file| file.strip_suffix(extension))
             .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
     };
+    let tar = name
+        .strip_prefix("wds/")
+        .and_then(split)
+        .and_then(|file| file.strip_suffix(".tar"));
     name == "yolo/data.yaml"
+        || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
         || name
             .strip_prefix("coco/")
             .and_then(|file| file.strip_suffix(".json"))
@@ -272,6 +277,11 @@ mod tests {
             (Dataset, None, "yolo/images/dev/street_000001.png", false),
             (Dataset, None, "yolo/images/val/.png", false),
             (Dataset, None, "yolo/images/val/a/b.png", false),
+            (Dataset, None, "wds/train/000000.tar", true),
+            (Dataset, None, "wds/test/000012.tar", true),
+            (Dataset, None, "wds/dev/000000.tar", false),
+            (Dataset, None, "wds/train/00.tar", false),
+            (Dataset, None, "wds/train/a.tar", false),
             (Dataset, None, "frames/street/coco.json", false),
         ];
         for (stage, camera, name, allowed) in cases {

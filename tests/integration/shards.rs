@@ -316,3 +316,85 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     assert!(tree(&fresh.out_dir) == out, "the tars are not reproducible");
 }
 
+#[test]
+fn webdataset_splits_hold_the_cameras_samples_in_coco_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let spec = dir.join("splits.toml");
+    // Both tables are new (the fixture has neither): the coco/ and wds/ files below show
+    // they took effect.
+    fs::write(
+        &spec,
+        format!(
+            "{SPEC}\n[splits]\ntrain = 0.75\nval = 0.25\n\n[output]\nlayout = \"webdataset\"\n\
+             samples_per_shard = 20\n"
+        ),
+    )
+    .unwrap();
+    let report = driver::build(&spec, &options(dir, "out", "cache")).unwrap();
+    let out = tree(&report.out_dir);
+    assert!(
+        !out.keys().any(|p| p.starts_with("yolo/")),
+        "no ultralytics folder: its images would be files the tars hold"
+    );
+    // Every camera's samples by key, as their members' (name, bytes).
+    let mut samples: BTreeMap<String, Vec<(String, Vec<u8>)>> = BTreeMap::new();
+    for (name, bytes) in out.iter().filter(|(p, _)| p.starts_with("frames/")) {
+        if name.ends_with(".tar") {
+            for member in tar_members(bytes) {
+                let key = member.0.split_once('.').unwrap().0.to_owned();
+                samples.entry(key).or_default().push(member);
+            }
+        }
+    }
+    assert_eq!(samples.len(), 43 + 12);
+    let mut seen = BTreeSet::new();
+    for split in ["train", "val"] {
+        let coco: serde_json::Value =
+            serde_json::from_slice(&out[&format!("coco/{split}.json")]).unwrap();
+        let images = coco["images"].as_array().unwrap();
+        let tars: Vec<&String> = out
+            .keys()
+            .filter(|p| p.starts_with(&format!("wds/{split}/")))
+            .collect();
+        assert_eq!(
+            tars.len(),
+            images.len().div_ceil(20),
+            "{split}: 20 samples a shard"
+        );
+        let mut members = Vec::new();
+        for (n, tar) in tars.iter().enumerate() {
+            assert_eq!(**tar, format!("wds/{split}/{n:06}.tar"));
+            members.extend(tar_members(&out[*tar]));
+        }
+        let mut keys: Vec<String> = Vec::new();
+        for member in &members {
+            let key = member.0.split_once('.').unwrap().0;
+            if keys.last().map(String::as_str) != Some(key) {
+                keys.push(key.to_owned());
+            }
+        }
+        let names: Vec<&str> = images
+            .iter()
+            .map(|i| i["file_name"].as_str().unwrap())
+            .collect();
+        let expected: Vec<String> = names.iter().map(|n| n.replace(".png", "")).collect();
+        assert_eq!(
+            keys, expected,
+            "{split}: samples in coco/{split}.json's order"
+        );
+        for image in images {
+            let key = image["file_name"].as_str().unwrap().replace(".png", "");
+            assert_eq!(image["depth"]["file_name"], format!("{key}.depth.npy"));
+            assert_eq!(image["depth"]["scale"], 1.0);
+            let copied: Vec<&(String, Vec<u8>)> = members
+                .iter()
+                .filter(|m| m.0.starts_with(&format!("{key}.")))
+                .collect();
+            let own: Vec<&(String, Vec<u8>)> = samples[&key].iter().collect();
+            assert!(copied == own, "{split}: {key} is its camera's sample");
+            assert!(seen.insert(key), "a frame in two splits");
+        }
+    }
+    assert_eq!(seen.len(), samples.len(), "every frame in a split");
+}

@@ -79,6 +79,7 @@ impl Pipeline<'_> {
             yolo: inputs.yolo,
             seed: inputs.seed,
             cameras: &cameras,
+            webdataset: inputs.webdataset.map(|n| n as usize),
         };
         let files = dataset::assemble(&input, &read).map_err(invalid)?;
         files
