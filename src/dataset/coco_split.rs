@@ -115,10 +115,14 @@ fn merged_categories(documents: &[CameraCoco]) -> (Vec<Category>, Vec<BTreeMap<u
     (merged, maps)
 }
 
-/// The COCO document of `members` (one split's frames, in dataset order).
+/// The COCO document of `members` (one split's frames, in dataset order). With
+/// `webdataset` (samples per shard) an image's `file_name` is its sample's RGB member
+/// (`<camera>_<NNNNNN>.png`) in the split's shards, and its depth the float32 metres of
+/// `<camera>_<NNNNNN>.depth.npy`.
 pub(super) fn document(
     documents: &[CameraCoco],
     members: &[Member],
+    webdataset: Option<usize>,
 ) -> Result<Vec<u8>, DatasetError> {
     let (categories, maps) = merged_categories(documents);
     // Image ids over the whole dataset: cameras in order, frames in order, from 1.
@@ -135,10 +139,21 @@ pub(super) fn document(
             let id = first_id[m.camera] + m.frame as u64;
             let mut image = d.images[m.frame].clone();
             image.insert("id".into(), Value::from(id));
-            let dir = format!("frames/{}/", d.camera);
-            prefix(&mut image, &dir);
-            if let Some(Value::Object(depth)) = image.get_mut("depth") {
-                prefix(depth, &dir);
+            if webdataset.is_some() {
+                let key = super::stem(d.camera, m.frame);
+                image.insert("file_name".into(), Value::from(format!("{key}.png")));
+                let depth = serde_json::json!({
+                    "file_name": format!("{key}.depth.npy"),
+                    "format": "f32",
+                    "scale": 1.0,
+                });
+                image.insert("depth".into(), depth);
+            } else {
+                let dir = format!("frames/{}/", d.camera);
+                prefix(&mut image, &dir);
+                if let Some(Value::Object(depth)) = image.get_mut("depth") {
+                    prefix(depth, &dir);
+                }
             }
             let annotations = d.annotations[m.frame]
                 .iter()

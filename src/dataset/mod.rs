@@ -14,13 +14,15 @@
 //! | `coco/<split>.json` | the split's frames of every camera; image ids unique over the dataset (cameras in spec order, frames in order, from 1), annotation ids from 1 in each file; `file_name` relative to the output folder (`frames/<camera>/rgb/NNNNNN.png`); categories merged by name |
 //! | `yolo/data.yaml` (and `yolo/dataset.yaml`, the same bytes, the name FiftyOne's YOLOv5 importer reads) | `train`/`val`/`test` folders relative to `yolo/`, `names` from the cameras' `yolo/classes.txt` |
 //! | `yolo/images/<split>/`, `yolo/labels/<split>/` | one image and one label file per frame, named `<camera>_<NNNNNN>` |
-//! | `cityscapes/` | with `[annotations] cityscapes = true`: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` ([`cityscapes_layout`]) |
+//! | `wds/<split>/NNNNNN.tar` | with the WebDataset layout, instead of `yolo/`: the split's samples, the cameras' own (keys `<camera>_<NNNNNN>`), in the order of its COCO images, whose `file_name` is then the sample's `<key>.png` |
+//! | `cityscapes/` | with `[annotations] cityscapes = true` and the files layout: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` ([`cityscapes_layout`]) |
 
 use std::collections::BTreeMap;
 
 mod cityscapes_layout;
 mod coco_split;
 mod split_assignment;
+mod wds_split;
 mod yolo_layout;
 
 pub use cityscapes_layout::cityscapes_name;
@@ -60,6 +62,9 @@ pub struct DatasetInput<'a> {
     pub cityscapes: bool,
     pub seed: u64,
     pub cameras: &'a [CameraFiles<'a>],
+    /// With `[output] layout = "webdataset"`, samples per shard: each split's shards
+    /// `wds/<split>/NNNNNN.tar` (`wds_split.rs`) instead of the ultralytics folder.
+    pub webdataset: Option<usize>,
 }
 
 /// A camera path's outputs that do not read as the frames stage writes them.
@@ -98,14 +103,21 @@ pub fn assemble(
                 .collect();
             files.insert(
                 format!("coco/{name}.json"),
-                DatasetFile::Bytes(coco_split::document(&documents, &in_split)?),
+                DatasetFile::Bytes(coco_split::document(
+                    &documents,
+                    &in_split,
+                    input.webdataset,
+                )?),
             );
         }
     }
-    if input.yolo {
+    if let Some(per_shard) = input.webdataset {
+        wds_split::add(&documents, &members, per_shard, read, &mut files)?;
+    } else if input.yolo {
         yolo_layout::add(input, &documents, &members, read, &mut files)?;
     }
-    if input.cityscapes {
+    // With WebDataset the Cityscapes images are members of the samples instead.
+    if input.cityscapes && input.webdataset.is_none() {
         cityscapes_layout::add(input.cameras, &members, read, &mut files)?;
     }
     Ok(files)

@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 use super::codec;
 use super::frames::{self, FrameRecord, PathFrames};
 use super::stage_key::StageKey;
-use super::webdataset;
+use super::webdataset::{self, Member};
 use crate::annotate::{self, Category};
 use crate::cache::{Blob, Cache, Hashing, ObjectRef, Outputs};
 use crate::model::CameraPose;
@@ -259,6 +259,7 @@ pub fn assemble(
     if webdataset {
         let tars = Tars {
             dir: &dir,
+            camera,
             chunks,
             first_ids: &first_ids,
             per_tar: output.samples_per_shard.max(1) as usize,
@@ -372,6 +373,7 @@ impl Tars<'_> {
 struct Tars<'a> {
     /// `frames/<camera>`.
     dir: &'a str,
+    camera: &'a CameraSpec,
     chunks: &'a [Outputs],
     /// Per frame, the id of its first annotation in `coco.json`.
     first_ids: &'a [u64],
@@ -396,6 +398,7 @@ impl Tars<'_> {
                     continue;
                 }
                 let record: FrameRecord = serde_json::from_slice(line)?;
+                let key = webdataset::key(&self.camera.name, i);
                 let mut members = Vec::new();
                 for (name, blob) in chunk {
                     let Some(rest) = name
@@ -404,15 +407,30 @@ impl Tars<'_> {
                     else {
                         continue;
                     };
-                    if let Some(member) = webdataset::member_name(rest)
-                        && webdataset::member_frame(&member) == Some(i)
-                    {
-                        members.push((member, (self.read)(blob)?));
+                    let Some((frame, member)) = webdataset::frame_file(rest) else {
+                        continue;
+                    };
+                    if frame != i {
+                        continue;
                     }
+                    let bytes = (self.read)(blob)?;
+                    let bytes = match member {
+                        Member::Depth => {
+                            Arc::new(webdataset::depth_npy(&bytes, self.camera.depth)?)
+                        }
+                        _ => bytes,
+                    };
+                    members.push((webdataset::member_name(&key, member), bytes));
+                }
+                // Every sample of every camera has the same members: a path that labels
+                // no text has an empty ICDAR member, as a frame without words does.
+                let icdar = webdataset::member_name(&key, Member::Icdar);
+                if !members.iter().any(|(name, _)| *name == icdar) {
+                    members.push((icdar, Arc::new(Vec::new())));
                 }
                 let json =
                     webdataset::sample_json(&record.coco, self.first_ids[i], &record.conditions);
-                members.push((format!("{i:06}.json"), Arc::new(json)));
+                members.push((format!("{key}.json"), Arc::new(json)));
                 members.sort_by(|a, b| a.0.cmp(&b.0));
                 for (member, bytes) in &members {
                     webdataset::append(&mut tar, member, bytes)?;

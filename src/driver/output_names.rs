@@ -23,7 +23,8 @@ pub enum OutputNames {
     /// A chunk of a camera path: its frames' files and `summary.jsonl`.
     Chunk(String),
     /// `coco/<split>.json`, `yolo/data.yaml`, `yolo/dataset.yaml`,
-    /// `yolo/images/<split>/<file>.png` and `yolo/labels/<split>/<file>.txt`.
+    /// `yolo/images/<split>/<file>.png` and `yolo/labels/<split>/<file>.txt`,
+    /// `wds/<split>/NNNNNN.tar`, and the Cityscapes folder `cityscapes/`.
     Dataset,
 }
 
@@ -139,7 +140,8 @@ fn is_texture(name: &str) -> bool {
 }
 
 /// A file of the dataset stage: `coco/<split>.json`, `yolo/data.yaml` (and its twin
-/// `yolo/dataset.yaml`), or a frame's image or label file of a split.
+/// `yolo/dataset.yaml`), a frame's image or label file of a split, a split's WebDataset
+/// shard, or a file of the Cityscapes folder.
 fn is_dataset_file(name: &str) -> bool {
     let in_split = |folder: &str, extension: &str| {
         name.strip_prefix(folder)
@@ -147,8 +149,13 @@ fn is_dataset_file(name: &str) -> bool {
             .and_then(|file| file.strip_suffix(extension))
             .is_some_and(|stem| !stem.is_empty() && is_file_name(stem))
     };
+    let tar = name
+        .strip_prefix("wds/")
+        .and_then(in_split_folder)
+        .and_then(|file| file.strip_suffix(".tar"));
     matches!(name, "yolo/data.yaml" | "yolo/dataset.yaml")
         || is_cityscapes_file(name)
+        || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
         || name
             .strip_prefix("coco/")
             .and_then(|file| file.strip_suffix(".json"))
@@ -339,6 +346,11 @@ mod tests {
             (Dataset, None, "yolo/images/dev/street_000001.png", false),
             (Dataset, None, "yolo/images/val/.png", false),
             (Dataset, None, "yolo/images/val/a/b.png", false),
+            (Dataset, None, "wds/train/000000.tar", true),
+            (Dataset, None, "wds/test/000012.tar", true),
+            (Dataset, None, "wds/dev/000000.tar", false),
+            (Dataset, None, "wds/train/00.tar", false),
+            (Dataset, None, "wds/train/a.tar", false),
             (Dataset, None, "frames/street/coco.json", false),
             (Dataset, None, "cityscapes/labels.json", true),
             (

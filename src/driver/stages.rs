@@ -401,6 +401,10 @@ pub struct DatasetInputs {
     pub cityscapes: bool,
     pub cameras: Vec<String>,
     pub seed: u64,
+    /// With `[output] layout = "webdataset"`, its `samples_per_shard` (the split shards');
+    /// absent from the key with the files layout.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub webdataset: Option<u32>,
 }
 
 impl PathInputs {
@@ -522,6 +526,8 @@ impl Inputs {
                 cityscapes: spec.annotations.cityscapes,
                 cameras: spec.cameras.iter().map(|c| c.name.clone()).collect(),
                 seed: spec.seed,
+                webdataset: (spec.output.layout == OutputLayout::Webdataset)
+                    .then_some(spec.output.samples_per_shard),
             }),
         }
     }

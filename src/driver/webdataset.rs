@@ -1,46 +1,133 @@
 //! WebDataset output (`[output] layout = "webdataset"`): a camera path's frames as tar
 //! shards of `samples_per_shard` samples, `frames/<camera>/wds/000000.tar`, …
 //!
-//! A sample is one frame: `000000.rgb.png`, `000000.ids.png`, `000000.depth.png` (or
-//! `.depth.npy`), `000000.json` (its COCO image entry and annotations, with the ids of
-//! the path's `coco.json`, its sun and drawn conditions) and, when written,
-//! `000000.yolo.txt` and `000000.icdar.txt`, members in name order. The tars are
-//! byte-reproducible: the `tar` crate writes ustar headers with everything fixed here
-//! (mode 0644, uid and gid 0, no user or group name, mtime 0), so the same frames give the
-//! same bytes on every machine, whoever rendered them. A member name over 100 bytes that
-//! ustar's prefix field cannot hold goes in a GNU long-name entry before its header.
+//! A sample is one frame, keyed `<camera>_<NNNNNN>` (the ultralytics folder's stem,
+//! [`crate::dataset::stem`]), so the shards of every camera of a build can be read
+//! together; a camera name holds no `.` (the spec's schema), where WebDataset splits key
+//! from member. Its members, in name order, are the same in every sample of every camera,
+//! so every loader sees the same columns:
+//!
+//! | member | what |
+//! |---|---|
+//! | `<key>.depth.npy` | depth in float32 metres (0 = sky), whatever the camera's `depth` format: a 16-bit PNG's values × its scale |
+//! | `<key>.icdar.txt` | the ICDAR word lines; empty where the camera labels no text |
+//! | `<key>.ids.png` | instance ids, 8-bit RGB, `id = R + 256·G + 65536·B` |
+//! | `<key>.json` | its COCO image entry and annotations (the ids of the path's `coco.json`), sun and drawn conditions |
+//! | `<key>.png` | the RGB image |
+//! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
+//! | `<key>.labelIds.png`, `.instanceIds.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
+//!
+//! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
+//! fixed here (mode 0644, uid and gid 0, no user or group name, mtime 0), so the same frames
+//! give the same bytes on every machine, whoever rendered them. A member name over 100 bytes
+//! that ustar's prefix field cannot hold goes in a GNU long-name entry before its header.
 
 use std::io::{self, Write};
 
 use serde_json::Value;
 
 use crate::annotate::CocoLines;
+use crate::model::image_file::npy_f32;
+use crate::spec::DepthFormat;
 
 /// Version of the tar and sample layout (in the path's key with this layout). 2: headers
 /// written by the `tar` crate, whose checksum field is seven digits and a NUL (ours was six
-/// digits, a NUL and a space).
-pub const VERSION: u32 = 2;
+/// digits, a NUL and a space). 3: keys `<camera>_<NNNNNN>`, RGB as `<key>.png`, depth always
+/// float32 metres in `.depth.npy`, an ICDAR member in every sample. 4: the Cityscapes-format
+/// images as members.
+pub const VERSION: u32 = 4;
 
-/// The sample member name of frame file `rest` (relative to `frames/<camera>/`), or
-/// `None` when it is not one frame's file: `rgb/000007.png` → `000007.rgb.png`.
-pub fn member_name(rest: &str) -> Option<String> {
+/// A frame file's member of its sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Member {
+    Rgb,
+    Ids,
+    Depth,
+    Yolo,
+    Icdar,
+    /// With `[annotations] cityscapes = true`: a frame's Cityscapes image, by its index in
+    /// [`super::frames::SEMANTIC_SUFFIXES`].
+    Semantic(usize),
+}
+
+/// The extensions of the [`Member::Semantic`] members, in `SEMANTIC_SUFFIXES`' order.
+const SEMANTIC_EXTENSIONS: [&str; 4] = [
+    "labelIds.png",
+    "instanceIds.png",
+    "color.png",
+    "panoptic.png",
+];
+
+impl Member {
+    /// What follows the key and its dot in the member's name.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Member::Rgb => "png",
+            Member::Ids => "ids.png",
+            Member::Depth => "depth.npy",
+            Member::Yolo => "yolo.txt",
+            Member::Icdar => "icdar.txt",
+            Member::Semantic(k) => SEMANTIC_EXTENSIONS[k.min(SEMANTIC_EXTENSIONS.len() - 1)],
+        }
+    }
+}
+
+/// Frame file `rest` (relative to `frames/<camera>/`) as its frame index and member, or
+/// `None` when it is not one frame's file: `rgb/000007.png` → (7, [`Member::Rgb`]).
+pub fn frame_file(rest: &str) -> Option<(usize, Member)> {
     let (dir, file) = rest.split_once('/')?;
-    let (stem, extension) = file.split_once('.')?;
-    let (kind, stem) = match dir {
-        "rgb" | "ids" | "depth" | "yolo" => (dir, stem),
-        "icdar" => ("icdar", stem.strip_prefix("gt_")?),
+    let (stem, _) = file.split_once('.')?;
+    let (member, stem) = match dir {
+        "rgb" => (Member::Rgb, stem),
+        "ids" => (Member::Ids, stem),
+        "depth" => (Member::Depth, stem),
+        "yolo" => (Member::Yolo, stem),
+        "icdar" => (Member::Icdar, stem.strip_prefix("gt_")?),
+        "semantic" => {
+            let (stem, suffix) = stem.split_once('_')?;
+            let k = super::frames::SEMANTIC_SUFFIXES
+                .iter()
+                .position(|s| *s == suffix)?;
+            (Member::Semantic(k), stem)
+        }
         _ => return None,
     };
     let numbered = stem.len() >= 6 && stem.bytes().all(|b| b.is_ascii_digit());
-    numbered.then(|| format!("{stem}.{kind}.{extension}"))
+    Some((stem.parse().ok().filter(|_| numbered)?, member))
 }
 
-/// The frame index of a member name (`000007.rgb.png` → 7).
-pub fn member_frame(member: &str) -> Option<usize> {
-    member.split_once('.')?.0.parse().ok()
+/// Frame `frame` of camera `camera`'s sample key, unique over the build's cameras.
+pub fn key(camera: &str, frame: usize) -> String {
+    crate::dataset::stem(camera, frame)
 }
 
-/// `NNNNNN.json`: the frame's COCO image entry, its annotations (numbered from
+/// The name of a sample's member: `<key>.<extension>`.
+pub fn member_name(key: &str, member: Member) -> String {
+    format!("{key}.{}", member.extension())
+}
+
+/// The depth member: a depth file of `format` as float32 metres in a `.npy`. An `f32`
+/// file is that already; a 16-bit PNG's values are multiplied by the format's scale (in
+/// f64, then rounded to f32), so 0 (the sky) stays 0.
+pub fn depth_npy(bytes: &[u8], format: DepthFormat) -> io::Result<Vec<u8>> {
+    if format == DepthFormat::F32 {
+        return Ok(bytes.to_vec());
+    }
+    let image = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+        .map_err(io::Error::other)?;
+    let image::DynamicImage::ImageLuma16(units) = image else {
+        return Err(io::Error::other("a depth PNG that is not 16-bit grey"));
+    };
+    let scale = format.scale();
+    let metres: Vec<f32> = units
+        .as_raw()
+        .iter()
+        .map(|&v| (f64::from(v) * scale) as f32)
+        .collect();
+    Ok(npy_f32(units.width(), units.height(), &metres))
+}
+
+/// `<key>.json`: the frame's COCO image entry, its annotations (numbered from
 /// `first_id`, as in `coco.json`), sun and conditions.
 pub fn sample_json(coco: &CocoLines, first_id: u64, conditions: &Value) -> Vec<u8> {
     let mut text = String::from("{\"image\":");
@@ -87,17 +174,106 @@ mod tests {
     use super::*;
 
     #[test]
-    fn member_names_follow_the_webdataset_convention() {
-        assert_eq!(member_name("rgb/000007.png").unwrap(), "000007.rgb.png");
-        assert_eq!(member_name("depth/000007.npy").unwrap(), "000007.depth.npy");
-        assert_eq!(
-            member_name("icdar/gt_000007.txt").unwrap(),
-            "000007.icdar.txt"
-        );
-        assert_eq!(member_name("yolo/000007.txt").unwrap(), "000007.yolo.txt");
-        assert_eq!(member_name("yolo/classes.txt"), None);
-        assert_eq!(member_name("coco.json"), None);
-        assert_eq!(member_frame("000007.rgb.png"), Some(7));
+    fn frame_files_become_members_of_the_camera_s_sample() {
+        let cases = [
+            (
+                "rgb/000007.png",
+                Some((7, Member::Rgb)),
+                "street_000007.png",
+            ),
+            (
+                "ids/000007.png",
+                Some((7, Member::Ids)),
+                "street_000007.ids.png",
+            ),
+            (
+                "depth/000007.png",
+                Some((7, Member::Depth)),
+                "street_000007.depth.npy",
+            ),
+            (
+                "depth/000007.npy",
+                Some((7, Member::Depth)),
+                "street_000007.depth.npy",
+            ),
+            (
+                "icdar/gt_000007.txt",
+                Some((7, Member::Icdar)),
+                "street_000007.icdar.txt",
+            ),
+            (
+                "yolo/000007.txt",
+                Some((7, Member::Yolo)),
+                "street_000007.yolo.txt",
+            ),
+            (
+                "semantic/000007_instanceIds.png",
+                Some((7, Member::Semantic(1))),
+                "street_000007.instanceIds.png",
+            ),
+            ("semantic/000007_depth.png", None, ""),
+            ("semantic/labels.json", None, ""),
+            ("yolo/classes.txt", None, ""),
+            ("icdar/000007.txt", None, ""),
+            ("rgb/07.png", None, ""),
+            ("coco.json", None, ""),
+        ];
+        for (rest, parsed, name) in cases {
+            assert_eq!(frame_file(rest), parsed, "{rest}");
+            if let Some((frame, member)) = parsed {
+                assert_eq!(member_name(&key("street", frame), member), name);
+            }
+        }
+    }
+
+    #[test]
+    fn keys_of_two_cameras_differ_and_hold_no_dot() {
+        assert_ne!(key("street", 0), key("aerial", 0));
+        assert_eq!(key("a-b_c", 12), "a-b_c_000012");
+        // WebDataset splits a member's name at the first dot of its base name.
+        assert!(!key("street", 3).contains('.'));
+    }
+
+    /// The values of a `.npy` of float32 (`npy_f32`'s header), and its shape.
+    fn npy_values(npy: &[u8]) -> (String, Vec<f32>) {
+        assert_eq!(&npy[..8], b"\x93NUMPY\x01\x00");
+        let len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
+        let header = std::str::from_utf8(&npy[10..10 + len]).unwrap().to_owned();
+        let values = npy[10 + len..]
+            .chunks(4)
+            .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        (header, values)
+    }
+
+    #[test]
+    fn depth_members_are_float_metres_in_every_format() {
+        let units = [0u16, 1, 250, 65_535];
+        let png = |values: &[u16]| {
+            let image = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(2, 2, values.to_vec());
+            let mut out = io::Cursor::new(Vec::new());
+            image
+                .unwrap()
+                .write_to(&mut out, image::ImageFormat::Png)
+                .unwrap();
+            out.into_inner()
+        };
+        for (format, metres) in [
+            (DepthFormat::Cm16, [0.0, 0.01, 2.5, 655.35]),
+            (DepthFormat::Mm16, [0.0, 0.001, 0.25, 65.535]),
+        ] {
+            let (header, values) = npy_values(&depth_npy(&png(&units), format).unwrap());
+            assert!(header.contains("'descr': '<f4'") && header.contains("(2, 2)"));
+            assert_eq!(values, metres.map(|m: f64| m as f32), "{format:?}");
+        }
+        // An f32 file is already the member; 8-bit or broken PNGs are refused.
+        let npy = npy_f32(1, 1, &[12.5]);
+        assert_eq!(depth_npy(&npy, DepthFormat::F32).unwrap(), npy);
+        assert!(depth_npy(b"not a png", DepthFormat::Cm16).is_err());
+        let grey8 = image::GrayImage::from_raw(1, 1, vec![7]).unwrap();
+        let mut out = io::Cursor::new(Vec::new());
+        grey8.write_to(&mut out, image::ImageFormat::Png).unwrap();
+        assert!(depth_npy(&out.into_inner(), DepthFormat::Mm16).is_err());
     }
 
     fn members(tar: &[u8]) -> Vec<(String, Vec<u8>)> {

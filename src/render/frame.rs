@@ -3,7 +3,7 @@
 
 use image::{ImageBuffer, Luma, RgbImage};
 
-use crate::model::image_file::{PngEffort, encode_png};
+use crate::model::image_file::{PngEffort, encode_png, npy_f32};
 use crate::model::pack_ids;
 
 pub use crate::spec::DepthFormat;
@@ -54,7 +54,10 @@ impl Frame {
                 rayon::join(
                     || encode_png(&pack_ids(&self.instance), PngEffort::Fast),
                     || match depth {
-                        DepthFormat::F32 => npy_f32(&self.depth),
+                        DepthFormat::F32 => {
+                            let (w, h) = self.depth.dimensions();
+                            npy_f32(w, h, self.depth.as_raw())
+                        }
                         format => encode_png(&self.depth_u16(format), PngEffort::Fast),
                     },
                 )
@@ -92,26 +95,6 @@ impl Frame {
     pub fn depth_mm(&self) -> ImageBuffer<Luma<u16>, Vec<u16>> {
         self.depth_u16(DepthFormat::Mm16)
     }
-}
-
-/// A NumPy `.npy` (format 1.0) of little-endian float32, shape `(height, width)`, C order:
-/// `numpy.load` reads it.
-fn npy_f32(image: &ImageBuffer<Luma<f32>, Vec<f32>>) -> Vec<u8> {
-    let (w, h) = image.dimensions();
-    let mut header = format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({h}, {w}), }}");
-    // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut out = Vec::with_capacity(10 + header.len() + image.as_raw().len() * 4);
-    out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    out.extend_from_slice(header.as_bytes());
-    for v in image.as_raw() {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
-    out
 }
 
 #[cfg(test)]

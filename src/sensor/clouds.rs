@@ -51,41 +51,52 @@ struct Field {
 
 fn field() -> &'static Field {
     static FIELD_CELLS: OnceLock<Field> = OnceLock::new();
-    FIELD_CELLS.get_or_init(|| {
-        let n = FIELD;
-        // Value noise: a hashed lattice per octave, smoothly interpolated, tiling (each
-        // octave's lattice divides the field).
-        let lattice = |octave: u32, x: usize, y: usize| -> f32 {
-            let h = splitmix((u64::from(octave) << 48) ^ ((x as u64) << 24) ^ (y as u64) ^ 0xC10D);
-            (h >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let mut values = vec![0f32; n * n];
-        values.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
-            for (x, v) in row.iter_mut().enumerate() {
-                let (mut sum, mut weight, mut amplitude) = (0f32, 0f32, 1f32);
-                for octave in 0..OCTAVES {
-                    let cell = n >> (3 + octave);
-                    let cells = n / cell;
-                    let (fx, fy) = (x as f32 / cell as f32, y as f32 / cell as f32);
-                    let (x0, y0) = (x / cell, y / cell);
-                    let (tx, ty) = (smooth(fx - x0 as f32), smooth(fy - y0 as f32));
-                    let (x1, y1) = ((x0 + 1) % cells, (y0 + 1) % cells);
-                    let at = |a: usize, b: usize| lattice(octave, a, b);
-                    let top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * tx;
-                    let bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * tx;
-                    sum += (top + (bottom - top) * ty) * amplitude;
-                    weight += amplitude;
-                    amplitude *= 0.5;
-                }
-                *v = sum / weight;
+    if let Some(field) = FIELD_CELLS.get() {
+        return field;
+    }
+    // Built outside the lock: a rayon worker waiting inside `get_or_init`'s closure for
+    // this parallel work steals other jobs, and one that calls `field()` (another build's
+    // warm-up, in the same process) would wait on the lock it holds, forever. Two threads
+    // may build the field at once; the first stored is kept (both are the same values).
+    let built = build_field();
+    FIELD_CELLS.get_or_init(|| built)
+}
+
+/// The noise field, on every core.
+fn build_field() -> Field {
+    let n = FIELD;
+    // Value noise: a hashed lattice per octave, smoothly interpolated, tiling (each
+    // octave's lattice divides the field).
+    let lattice = |octave: u32, x: usize, y: usize| -> f32 {
+        let h = splitmix((u64::from(octave) << 48) ^ ((x as u64) << 24) ^ (y as u64) ^ 0xC10D);
+        (h >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut values = vec![0f32; n * n];
+    values.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
+        for (x, v) in row.iter_mut().enumerate() {
+            let (mut sum, mut weight, mut amplitude) = (0f32, 0f32, 1f32);
+            for octave in 0..OCTAVES {
+                let cell = n >> (3 + octave);
+                let cells = n / cell;
+                let (fx, fy) = (x as f32 / cell as f32, y as f32 / cell as f32);
+                let (x0, y0) = (x / cell, y / cell);
+                let (tx, ty) = (smooth(fx - x0 as f32), smooth(fy - y0 as f32));
+                let (x1, y1) = ((x0 + 1) % cells, (y0 + 1) % cells);
+                let at = |a: usize, b: usize| lattice(octave, a, b);
+                let top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * tx;
+                let bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * tx;
+                sum += (top + (bottom - top) * ty) * amplitude;
+                weight += amplitude;
+                amplitude *= 0.5;
             }
-        });
-        // `total_cmp` orders every bit pattern, so the parallel sort's order is the one
-        // order there is.
-        let mut sorted = values.clone();
-        sorted.par_sort_unstable_by(f32::total_cmp);
-        Field { values, sorted }
-    })
+            *v = sum / weight;
+        }
+    });
+    // `total_cmp` orders every bit pattern, so the parallel sort's order is the one
+    // order there is.
+    let mut sorted = values.clone();
+    sorted.par_sort_unstable_by(f32::total_cmp);
+    Field { values, sorted }
 }
 
 /// Builds the cloud layer's noise field now when a path may draw clouds (`most_cover`, its

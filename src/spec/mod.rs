@@ -228,19 +228,7 @@ fn check_values(spec: &Spec, path: &Path, world: &dyn SpecWorld, findings: &mut 
             lighting_spec::check_lighting(lighting, &format!("cameras[{i}].lighting"), findings);
         }
     }
-    if spec.annotations.cityscapes && spec.output.layout == OutputLayout::Webdataset {
-        findings.error(
-            "annotations.cityscapes",
-            "expected [output] layout = \"files\": Cityscapes' layout is folders of image \
-             files, which the \"webdataset\" layout puts into tars",
-        );
-    }
-    splits_spec::check_splits(
-        spec.splits.as_ref(),
-        spec.cameras.len(),
-        spec.output.layout == OutputLayout::Webdataset,
-        findings,
-    );
+    splits_spec::check_splits(spec.splits.as_ref(), spec.cameras.len(), findings);
 }
 
 /// `spec_path`'s folder joined with `relative` (relative paths resolve against the spec's

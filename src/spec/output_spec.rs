@@ -9,9 +9,10 @@ use serde::{Deserialize, Serialize};
 pub struct OutputSpec {
     /// `"files"`: one file per image (`frames/<camera>/rgb/000000.png`, …). `"webdataset"`:
     /// tar shards of `samples_per_shard` frames each (`frames/<camera>/wds/000000.tar`),
-    /// each frame a sample `000000.rgb.png`, `.ids.png`, `.depth.png` (or `.depth.npy`),
-    /// `.json` (its COCO image and annotations, pose, sun and conditions) and its YOLO and
-    /// ICDAR text when written. `coco.json`, `poses.json` and `preview.png` stay files.
+    /// each frame a sample keyed `<camera>_000000`: `.png` (RGB), `.ids.png`, `.depth.npy`
+    /// (float32 metres), `.json` (its COCO image and annotations, pose, sun and
+    /// conditions), `.icdar.txt` and, with YOLO, `.yolo.txt`; with `[splits]` also each
+    /// split's shards `wds/<split>/`. `coco.json`, `poses.json` and `preview.png` stay files.
     #[serde(default)]
     pub layout: OutputLayout,
     /// Frames per tar shard with `layout = "webdataset"`.

@@ -306,6 +306,10 @@ fn pattern_noun(pattern: &str) -> String {
             "a name of letters, digits, '_', '.' and '-' (at most 64, starting with a letter or digit)"
                 .to_string()
         }
+        "^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$" => "a camera name of letters, digits, '_' and '-' \
+                                                (at most 64, starting with a letter or digit; \
+                                                no '.', where a WebDataset sample's key ends)"
+            .to_string(),
         p => format!("a string matching `{p}`"),
     }
 }

@@ -55,7 +55,6 @@ impl SplitsSpec {
 pub(crate) fn check_splits(
     splits: Option<&SplitsSpec>,
     cameras: usize,
-    webdataset: bool,
     findings: &mut Findings<'_, '_>,
 ) {
     let Some(splits) = splits else {
@@ -93,13 +92,6 @@ pub(crate) fn check_splits(
                  a share), found {cameras}: split by \"frame\", or add cameras",
                 used
             ),
-        );
-    }
-    if webdataset {
-        findings.error(
-            "splits",
-            "expected [output] layout = \"files\": the dataset-level files name the frames' \
-             image files, which the \"webdataset\" layout puts into tars",
         );
     }
 }

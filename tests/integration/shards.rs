@@ -3,12 +3,13 @@
 
 use crate::common;
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use cityspec::driver::{self, BuildOptions, Shard};
-use common::tree;
+use common::{SpecEdit, tree};
 
 /// A small city with two camera paths: 43 road frames (5 chunks, the last one short) and
 /// a 12-frame orbit (2 chunks) with float depth; text, signs and cars so COCO, ICDAR and
@@ -157,16 +158,41 @@ fn tar_members(tar: &[u8]) -> Vec<(String, Vec<u8>)> {
     members
 }
 
+/// A `.npy` of float32 as (shape, values), checking its header.
+fn npy_f32(npy: &[u8]) -> ((usize, usize), Vec<f32>) {
+    assert_eq!(&npy[..8], b"\x93NUMPY\x01\x00", "npy magic, version 1.0");
+    let len = usize::from(u16::from_le_bytes([npy[8], npy[9]]));
+    let header = std::str::from_utf8(&npy[10..10 + len]).unwrap();
+    assert!(header.contains("'descr': '<f4'"), "{header}");
+    let shape = header.split_once("'shape': (").unwrap().1;
+    let (h, w) = shape.split_once(')').unwrap().0.split_once(", ").unwrap();
+    let values: Vec<f32> = npy[10 + len..]
+        .chunks(4)
+        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    ((h.parse().unwrap(), w.parse().unwrap()), values)
+}
+
+// Long on purpose: one build of each layout, then every member of every sample of both
+// cameras checked against the files layout's file it comes from.
 #[test]
 fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
-    let files_spec = spec(dir);
+    // The orbit labels cars only: no ICDAR files, and its samples still get the member.
+    let base = SpecEdit::parse("shards.toml", SPEC)
+        .insert("cameras[1].label_classes", ["car"])
+        .text();
+    let files_spec = dir.join("small.toml");
+    fs::write(&files_spec, &base).unwrap();
     let files = driver::build(&files_spec, &options(dir, "files", "cache")).unwrap();
+    let files = tree(&files.out_dir);
+    assert!(!files.keys().any(|p| p.starts_with("frames/aerial/icdar/")));
+    assert!(files.contains_key("frames/street/icdar/gt_000000.txt"));
     let wds_spec = dir.join("wds.toml");
     fs::write(
         &wds_spec,
-        format!("{SPEC}\n[output]\nlayout = \"webdataset\"\nsamples_per_shard = 20\n"),
+        format!("{base}\n[output]\nlayout = \"webdataset\"\nsamples_per_shard = 20\n"),
     )
     .unwrap();
     // The frames' content keys ignore the layout: only the paths are assembled again.
@@ -188,29 +214,67 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
         !out.keys().any(|p| p.contains("/rgb/")),
         "frames are in the tars"
     );
-    let coco: serde_json::Value = serde_json::from_slice(&out["frames/street/coco.json"]).unwrap();
-    let files = tree(&files.out_dir);
-    let mut frame = 0;
-    for n in 0..3 {
-        let members = tar_members(&out[&format!("frames/street/wds/{n:06}.tar")]);
+    // Every sample's key over both cameras, and every sample's members.
+    let mut keys = BTreeSet::new();
+    let mut columns = BTreeSet::new();
+    for tar in tars {
+        let (camera, n) = tar["frames/".len()..].split_once("/wds/").unwrap();
+        let n: usize = n.trim_end_matches(".tar").parse().unwrap();
+        let coco: serde_json::Value =
+            serde_json::from_slice(&out[&format!("frames/{camera}/coco.json")]).unwrap();
+        let file = |name: String| files.get(&format!("frames/{camera}/{name}"));
+        let members = tar_members(&out[tar]);
         let names: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
         let mut sorted = names.clone();
         sorted.sort();
         assert_eq!(names, sorted, "members in name order");
+        let mut samples: BTreeMap<String, Vec<String>> = BTreeMap::new();
         for (name, bytes) in &members {
-            let (stem, kind) = name.split_once('.').unwrap();
+            let (key, kind) = name.split_once('.').unwrap();
+            samples
+                .entry(key.to_owned())
+                .or_default()
+                .push(kind.to_owned());
+            let stem = key
+                .strip_prefix(&format!("{camera}_"))
+                .unwrap_or_else(|| panic!("{name}: not keyed by its camera {camera}"));
             let i: usize = stem.parse().unwrap();
             assert!(i / 20 == n, "{name} in tar {n}");
-            frame = frame.max(i + 1);
-            let file = match kind {
-                "rgb.png" => format!("rgb/{stem}.png"),
-                "ids.png" => format!("ids/{stem}.png"),
-                "depth.png" => format!("depth/{stem}.png"),
-                "yolo.txt" => format!("yolo/{stem}.txt"),
-                "icdar.txt" => format!("icdar/gt_{stem}.txt"),
+            let image = &coco["images"][i];
+            let same = |source: Option<&Vec<u8>>| assert!(source == Some(bytes), "{tar}: {name}");
+            match kind {
+                "png" => same(file(format!("rgb/{stem}.png"))),
+                "ids.png" => same(file(format!("ids/{stem}.png"))),
+                "yolo.txt" => same(file(format!("yolo/{stem}.txt"))),
+                "icdar.txt" => match file(format!("icdar/gt_{stem}.txt")) {
+                    Some(source) => assert!(source == bytes, "{name}"),
+                    None => assert!(bytes.is_empty(), "{name}: a path without text"),
+                },
+                "depth.npy" => {
+                    let depth = &image["depth"];
+                    let source = file(depth["file_name"].as_str().unwrap().to_owned()).unwrap();
+                    let scale = depth["scale"].as_f64().unwrap();
+                    let expected = if depth["format"] == "f32" {
+                        assert!(source == bytes, "{name}: the f32 file itself");
+                        npy_f32(source).1
+                    } else {
+                        let units = image::load_from_memory(source).unwrap().into_luma16();
+                        let units = units.into_raw();
+                        assert!(units.contains(&0) && units.iter().any(|&u| u > 100));
+                        units
+                            .iter()
+                            .map(|&u| (f64::from(u) * scale) as f32)
+                            .collect()
+                    };
+                    let shape = (
+                        image["height"].as_u64().unwrap() as usize,
+                        image["width"].as_u64().unwrap() as usize,
+                    );
+                    assert_eq!(npy_f32(bytes), (shape, expected), "{name}: metres");
+                }
                 "json" => {
                     let sample: serde_json::Value = serde_json::from_slice(bytes).unwrap();
-                    assert_eq!(sample["image"], coco["images"][i]);
+                    assert_eq!(sample["image"], *image);
                     let expected: Vec<&serde_json::Value> = coco["annotations"]
                         .as_array()
                         .unwrap()
@@ -221,18 +285,116 @@ fn webdataset_layout_packs_the_same_frames_into_reproducible_tars() {
                         sample["annotations"].as_array().unwrap().iter().collect();
                     assert_eq!(got, expected, "{name}");
                     assert!(sample["conditions"]["sun"].is_object());
-                    continue;
                 }
                 other => panic!("unexpected member {other}"),
-            };
-            assert!(
-                files[&format!("frames/street/{file}")] == *bytes,
-                "{name} differs from {file}"
-            );
+            }
+        }
+        for (key, kinds) in samples {
+            assert!(keys.insert(key.clone()), "{key} twice");
+            columns.insert(kinds);
         }
     }
-    assert_eq!(frame, 43);
+    assert_eq!(
+        keys.len(),
+        43 + 12,
+        "every frame of both cameras, keys distinct"
+    );
+    assert_eq!(
+        columns.into_iter().collect::<Vec<_>>(),
+        [[
+            "depth.npy",
+            "icdar.txt",
+            "ids.png",
+            "json",
+            "png",
+            "yolo.txt"
+        ]],
+        "every sample of every camera has the same members"
+    );
     // Rendered from scratch into another cache: the same tar bytes.
     let fresh = driver::build(&wds_spec, &options(dir, "wds2", "cache2")).unwrap();
     assert!(tree(&fresh.out_dir) == out, "the tars are not reproducible");
+}
+
+#[test]
+fn webdataset_splits_hold_the_cameras_samples_in_coco_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let spec = dir.join("splits.toml");
+    // Both tables are new (the fixture has neither): the coco/ and wds/ files below show
+    // they took effect.
+    fs::write(
+        &spec,
+        format!(
+            "{SPEC}\n[splits]\ntrain = 0.75\nval = 0.25\n\n[output]\nlayout = \"webdataset\"\n\
+             samples_per_shard = 20\n"
+        ),
+    )
+    .unwrap();
+    let report = driver::build(&spec, &options(dir, "out", "cache")).unwrap();
+    let out = tree(&report.out_dir);
+    assert!(
+        !out.keys().any(|p| p.starts_with("yolo/")),
+        "no ultralytics folder: its images would be files the tars hold"
+    );
+    // Every camera's samples by key, as their members' (name, bytes).
+    let mut samples: BTreeMap<String, Vec<(String, Vec<u8>)>> = BTreeMap::new();
+    for (name, bytes) in out.iter().filter(|(p, _)| p.starts_with("frames/")) {
+        if name.ends_with(".tar") {
+            for member in tar_members(bytes) {
+                let key = member.0.split_once('.').unwrap().0.to_owned();
+                samples.entry(key).or_default().push(member);
+            }
+        }
+    }
+    assert_eq!(samples.len(), 43 + 12);
+    let mut seen = BTreeSet::new();
+    for split in ["train", "val"] {
+        let coco: serde_json::Value =
+            serde_json::from_slice(&out[&format!("coco/{split}.json")]).unwrap();
+        let images = coco["images"].as_array().unwrap();
+        let tars: Vec<&String> = out
+            .keys()
+            .filter(|p| p.starts_with(&format!("wds/{split}/")))
+            .collect();
+        assert_eq!(
+            tars.len(),
+            images.len().div_ceil(20),
+            "{split}: 20 samples a shard"
+        );
+        let mut members = Vec::new();
+        for (n, tar) in tars.iter().enumerate() {
+            assert_eq!(**tar, format!("wds/{split}/{n:06}.tar"));
+            members.extend(tar_members(&out[*tar]));
+        }
+        let mut keys: Vec<String> = Vec::new();
+        for member in &members {
+            let key = member.0.split_once('.').unwrap().0;
+            if keys.last().map(String::as_str) != Some(key) {
+                keys.push(key.to_owned());
+            }
+        }
+        let names: Vec<&str> = images
+            .iter()
+            .map(|i| i["file_name"].as_str().unwrap())
+            .collect();
+        let expected: Vec<String> = names.iter().map(|n| n.replace(".png", "")).collect();
+        assert_eq!(
+            keys, expected,
+            "{split}: samples in coco/{split}.json's order"
+        );
+        for image in images {
+            let key = image["file_name"].as_str().unwrap().replace(".png", "");
+            assert_eq!(image["depth"]["file_name"], format!("{key}.depth.npy"));
+            assert_eq!(image["depth"]["scale"], 1.0);
+            let copied: Vec<&(String, Vec<u8>)> = members
+                .iter()
+                .filter(|m| m.0.starts_with(&format!("{key}.")))
+                .collect();
+            let own: Vec<&(String, Vec<u8>)> = samples[&key].iter().collect();
+            assert!(copied == own, "{split}: {key} is its camera's sample");
+            assert!(seen.insert(key), "a frame in two splits");
+        }
+    }
+    assert_eq!(seen.len(), samples.len(), "every frame in a split");
 }

@@ -85,6 +85,7 @@ impl Pipeline<'_> {
             cityscapes: inputs.cityscapes,
             seed: inputs.seed,
             cameras: &cameras,
+            webdataset: inputs.webdataset.map(|n| n as usize),
         };
         let files = dataset::assemble(&input, &read).map_err(invalid)?;
         files
