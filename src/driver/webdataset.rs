@@ -15,7 +15,7 @@
 //! | `<key>.json` | its COCO image entry and annotations (the ids of the path's `coco.json`), sun and drawn conditions |
 //! | `<key>.png` | the RGB image |
 //! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
-//! | `<key>.labelIds.png`, `.instanceIds.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
+//! | `<key>.labelids.png`, `.instanceids.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
 //!
 //! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
 //! fixed here (mode 0644, uid and gid 0, no user or group name, mtime 0), so the same frames
@@ -50,10 +50,11 @@ pub enum Member {
     Semantic(usize),
 }
 
-/// The extensions of the [`Member::Semantic`] members, in `SEMANTIC_SUFFIXES`' order.
+/// The extensions of the [`Member::Semantic`] members, in `SEMANTIC_SUFFIXES`' order: in
+/// lower case, as the `webdataset` package hands every extension to its users.
 const SEMANTIC_EXTENSIONS: [&str; 4] = [
-    "labelIds.png",
-    "instanceIds.png",
+    "labelids.png",
+    "instanceids.png",
     "color.png",
     "panoptic.png",
 ];
@@ -209,7 +210,7 @@ mod tests {
             (
                 "semantic/000007_instanceIds.png",
                 Some((7, Member::Semantic(1))),
-                "street_000007.instanceIds.png",
+                "street_000007.instanceids.png",
             ),
             ("semantic/000007_depth.png", None, ""),
             ("semantic/labels.json", None, ""),

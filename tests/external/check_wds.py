@@ -7,7 +7,8 @@ the same frames built with the files layout (same cache, so the same frames):
   members are the same in every sample of every camera;
 - with the default decoders (`.decode("rgb")`) the depth is float32 metres equal to the
   camera's own depth file × its scale, and the RGB image equals its `rgb/` file; the ids
-  image read raw equals its `ids/` file;
+  image read raw equals its `ids/` file, and so do the Cityscapes images (with
+  `[annotations] cityscapes = true`) their `semantic/` files;
 - `to_tuple("png;jpg", "json")` finds every sample of every camera;
 - with `[splits]`: each split's shards `wds/<split>/` hold its frames in the order of
   `coco/<split>.json`'s images, whose `file_name` is the sample's `<key>.png`, each sample
@@ -27,6 +28,9 @@ import webdataset as wds
 from PIL import Image
 
 MEMBERS = {"depth.npy", "icdar.txt", "ids.png", "json", "png"}
+# With `[annotations] cityscapes = true`: member -> the files layout's `semantic/` suffix.
+SEMANTIC = {"labelids.png": "labelIds", "instanceids.png": "instanceIds",
+            "color.png": "color", "panoptic.png": "panoptic"}
 
 
 def depth_metres(camera_files, image):
@@ -77,6 +81,10 @@ def check_camera(camera_dir, files_dir, keys, columns):
         stem = f"{seen:06d}"
         files = files_dir / "frames" / camera
         assert sample["ids.png"] == (files / "ids" / f"{stem}.png").read_bytes(), f"{key}: ids"
+        for member, suffix in SEMANTIC.items():
+            if member in sample:
+                semantic = files / "semantic" / f"{stem}_{suffix}.png"
+                assert sample[member] == semantic.read_bytes(), f"{key}: {member}"
         ids = Image.open(io.BytesIO(sample["ids.png"]))
         assert (ids.mode, ids.size) == ("RGB", (image["width"], image["height"])), f"{key}: ids"
         # The default decoders: RGB as float in [0, 1], depth (.npy) as it is stored.
@@ -138,7 +146,10 @@ def main(out_dir, files_dir):
     assert len(keys) == total, f"{len(keys)} distinct keys for {total} samples"
     assert len(columns) == 1, f"samples differ in their members: {columns}"
     members = set(next(iter(columns)))
-    assert MEMBERS <= members and members <= MEMBERS | {"yolo.txt"}, f"members {members}"
+    optional = {"yolo.txt"} | set(SEMANTIC)
+    assert MEMBERS <= members and members <= MEMBERS | optional, f"members {members}"
+    semantic = members & set(SEMANTIC)
+    assert not semantic or semantic == set(SEMANTIC), f"some Cityscapes members: {semantic}"
     print(f"{out_dir}: {total} samples, keys distinct over every camera, members {sorted(members)}")
     if (out_dir / "coco").exists():
         check_splits(out_dir, keys)
