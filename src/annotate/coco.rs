@@ -83,39 +83,7 @@ impl CocoLines {
         conditions: &Value,
         image_id: u64,
     ) -> CocoLines {
-        let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
-        let mut pose = json!({
-            "eye": frame.pose.eye.map(|v| round(v, 1e3)),
-            "target": frame.pose.target.map(|v| round(v, 1e3)),
-            "up": frame.pose.up.map(|v| round(v, 1e6)),
-        });
-        if let Some(a) = frame.pose.angles {
-            for (key, value) in [
-                ("heading", a.heading),
-                ("pitch", a.pitch),
-                ("roll", a.roll),
-                ("height", a.height),
-            ] {
-                pose[key] = json!(round(value, 1e3));
-            }
-        }
-        let mut image = json!({
-            "id": image_id,
-            "file_name": frame.file_name,
-            "width": frame.width,
-            "height": frame.height,
-            "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
-            "pose": pose,
-        });
-        if let (Some(depth), Value::Object(map)) = (&frame.depth, &mut image) {
-            map.insert(
-                "depth".into(),
-                json!({"file_name": depth.file_name, "format": depth.format, "scale": depth.scale}),
-            );
-        }
-        if let (false, Value::Object(map)) = (conditions.is_null(), &mut image) {
-            map.insert("conditions".into(), conditions.clone());
-        }
+        let image = image_entry(frame, conditions, image_id);
         let mut annotations = Vec::new();
         for object in &frame.objects {
             let Some(category) = object.category else {
@@ -159,6 +127,45 @@ impl CocoLines {
             annotations,
         }
     }
+}
+
+/// Frame `frame`'s COCO image entry: file, size, intrinsics, pose, depth file and drawn
+/// `conditions` (unless null).
+fn image_entry(frame: &FrameAnnotations, conditions: &Value, image_id: u64) -> Value {
+    let [fx, fy, cx, cy] = frame.intrinsics.map(|v| round(v, 1e6));
+    let mut pose = json!({
+        "eye": frame.pose.eye.map(|v| round(v, 1e3)),
+        "target": frame.pose.target.map(|v| round(v, 1e3)),
+        "up": frame.pose.up.map(|v| round(v, 1e6)),
+    });
+    if let Some(a) = frame.pose.angles {
+        for (key, value) in [
+            ("heading", a.heading),
+            ("pitch", a.pitch),
+            ("roll", a.roll),
+            ("height", a.height),
+        ] {
+            pose[key] = json!(round(value, 1e3));
+        }
+    }
+    let mut image = json!({
+        "id": image_id,
+        "file_name": frame.file_name,
+        "width": frame.width,
+        "height": frame.height,
+        "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
+        "pose": pose,
+    });
+    if let (Some(depth), Value::Object(map)) = (&frame.depth, &mut image) {
+        map.insert(
+            "depth".into(),
+            json!({"file_name": depth.file_name, "format": depth.format, "scale": depth.scale}),
+        );
+    }
+    if let (false, Value::Object(map)) = (conditions.is_null(), &mut image) {
+        map.insert("conditions".into(), conditions.clone());
+    }
+    image
 }
 
 impl CocoWriter {

@@ -2,6 +2,7 @@
 
 #![allow(dead_code)]
 
+use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -221,6 +222,41 @@ pub fn assert_matches_manifest(out: &Path) {
     for (path, bytes) in &files {
         if let Some(sha) = listed.get(path.as_str()) {
             assert_eq!(&cityspec::hash::sha256_hex(bytes), sha, "{path}");
+        }
+    }
+}
+
+/// Asserts that two `coco.json` of the same frames under other weather or sensor settings
+/// label the same objects with the same boxes and masks, and differ at most in which are
+/// positives, an object being an ignore region in one only for its contrast (the final
+/// image decides what shows: fog hides a dark car, or brings out a dark tree).
+pub fn same_objects_but_for_contrast(a: &[u8], b: &[u8]) {
+    let parse = |bytes: &[u8]| -> serde_json::Value { serde_json::from_slice(bytes).unwrap() };
+    let (a, b) = (parse(a), parse(b));
+    let by_object = |coco: &serde_json::Value| -> BTreeMap<(u64, u64), serde_json::Value> {
+        coco["annotations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| {
+                let key = (
+                    x["image_id"].as_u64().unwrap(),
+                    x["cityspec_instance"].as_u64().unwrap(),
+                );
+                (key, x.clone())
+            })
+            .collect()
+    };
+    let (a, b) = (by_object(&a), by_object(&b));
+    assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
+    for (key, x) in &a {
+        let y = &b[key];
+        for field in ["bbox", "segmentation", "category_id", "area"] {
+            assert_eq!(x[field], y[field], "{key:?} {field}");
+        }
+        if x["iscrowd"] != y["iscrowd"] {
+            let ignored = if x["iscrowd"] == 1 { x } else { y };
+            assert_eq!(ignored["cityspec_ignored"], "contrast", "{key:?}");
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The dataset stage: every camera path's frames (evaluated first), read back from the
 //! cache where the stage needs their bytes, handed to [`dataset::assemble`].
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::super::BuildError;
@@ -58,13 +59,13 @@ impl Pipeline<'_> {
             cocos.push(read(&format!("frames/{camera}/coco.json")).map_err(invalid)?);
             panoptic.push(optional(&format!("frames/{camera}/panoptic.json"))?);
             let names = format!("frames/{camera}/yolo/classes.txt");
-            classes.push(match optional(&names)? {
-                Some(bytes) => Some(
-                    String::from_utf8(bytes)
-                        .map_err(|_| invalid(DatasetError(format!("{names}: not UTF-8"))))?,
-                ),
-                None => None,
-            });
+            let utf8 = |bytes| String::from_utf8(bytes).map_err(|_| format!("{names}: not UTF-8"));
+            classes.push(
+                optional(&names)?
+                    .map(utf8)
+                    .transpose()
+                    .map_err(|e| invalid(DatasetError(e)))?,
+            );
         }
         let cameras: Vec<CameraFiles> = inputs
             .cameras
@@ -88,20 +89,28 @@ impl Pipeline<'_> {
             webdataset: inputs.webdataset.map(|n| n as usize),
         };
         let files = dataset::assemble(&input, &read).map_err(invalid)?;
-        files
-            .into_iter()
-            .map(|(name, file)| {
-                let blob = match file {
-                    // The same cache object as the camera path's file: no bytes copied.
-                    DatasetFile::Same(source) => match blob(&source) {
-                        Some(Blob::Stored(object, _)) => Blob::Stored(object.clone(), None),
-                        Some(blob) => blob.clone(),
-                        None => return Err(invalid(DatasetError(format!("{source} missing")))),
-                    },
-                    DatasetFile::Bytes(bytes) => Blob::Bytes(Arc::new(bytes)),
-                };
-                Ok((name, blob))
-            })
-            .collect()
+        blobs(files, &blob).map_err(invalid)
     }
+}
+
+/// The stage's files as outputs: a [`DatasetFile::Same`] is the camera path's blob of that
+/// name (`blob`), the same cache object, so no bytes are copied.
+fn blobs<'b>(
+    files: BTreeMap<String, DatasetFile>,
+    blob: &dyn Fn(&str) -> Option<&'b Blob>,
+) -> Result<Outputs, DatasetError> {
+    files
+        .into_iter()
+        .map(|(name, file)| {
+            let blob = match file {
+                DatasetFile::Same(source) => match blob(&source) {
+                    Some(Blob::Stored(object, _)) => Blob::Stored(object.clone(), None),
+                    Some(blob) => blob.clone(),
+                    None => return Err(DatasetError(format!("{source} missing"))),
+                },
+                DatasetFile::Bytes(bytes) => Blob::Bytes(Arc::new(bytes)),
+            };
+            Ok((name, blob))
+        })
+        .collect()
 }
