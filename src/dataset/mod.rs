@@ -15,7 +15,7 @@
 //! | `yolo/data.yaml` (and `yolo/dataset.yaml`, the same bytes, the name FiftyOne's YOLOv5 importer reads) | `train`/`val`/`test` folders relative to `yolo/`, `names` from the cameras' `yolo/classes.txt` |
 //! | `yolo/images/<split>/`, `yolo/labels/<split>/` | one image and one label file per frame, named `<camera>_<NNNNNN>` |
 //! | `wds/<split>/NNNNNN.tar` | with the WebDataset layout, instead of `yolo/`: the split's samples, the cameras' own (keys `<camera>_<NNNNNN>`), in the order of its COCO images, whose `file_name` is then the sample's `<key>.png` |
-//! | `cityscapes/` | with `[annotations] cityscapes = true` and the files layout: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` ([`cityscapes_layout`]) |
+//! | `cityscapes/` | with `[annotations] cityscapes = true` and the files layout: `leftImg8bit/` and `gtFine/` as Cityscapes lays them out, COCO panoptic per split, `labels.json` (`cityscapes_layout.rs`) |
 
 use std::collections::BTreeMap;
 
