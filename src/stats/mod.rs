@@ -7,7 +7,7 @@
 //! are counted over every `ids/` image of a path (RGB-packed, `id = R + 256·G + 256²·B`).
 //! Labelled objects and box heights
 //! come from the path's `coco.json`: annotations with `iscrowd` 0, by category; ignore
-//! regions are counted apart.
+//! regions are counted apart, and of them the faint ones (`cityspec_ignored: contrast`).
 
 mod path_stats;
 mod stats_error;

@@ -48,6 +48,9 @@ pub struct ClassStats {
     pub labelled: u64,
     /// Ignore regions (`iscrowd` 1: shown but under the thresholds) over all frames.
     pub ignored: u64,
+    /// Of those, the ones the final image hides (`cityspec_ignored: contrast`: darkness,
+    /// fog, rain) rather than their size or the share of them in view.
+    pub faint: u64,
     /// Median over frames of its labelled objects per frame.
     pub per_frame: f64,
     /// p25, p50, p75 of its labelled boxes' heights in pixels.
@@ -73,6 +76,7 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
             name: name.clone(),
             labelled: tally.per_frame[c].iter().sum(),
             ignored: tally.ignored[c],
+            faint: tally.faint[c],
             per_frame: median_count(&tally.per_frame[c]),
             box_height: quartiles(&mut tally.heights[c]),
         })
@@ -121,6 +125,7 @@ struct Tally {
     all_per_frame: Vec<u64>,
     heights: Vec<Vec<f64>>,
     ignored: Vec<u64>,
+    faint: Vec<u64>,
 }
 
 impl Coco {
@@ -183,6 +188,7 @@ impl Coco {
             all_per_frame: vec![0u64; images.len()],
             heights: vec![Vec::new(); categories.len()],
             ignored: vec![0u64; categories.len()],
+            faint: vec![0u64; categories.len()],
         };
         for ann in self.list("annotations")? {
             let category = ann["category_id"].as_u64();
@@ -191,6 +197,7 @@ impl Coco {
             };
             if ann["iscrowd"].as_u64() == Some(1) {
                 tally.ignored[c] += 1;
+                tally.faint[c] += u64::from(ann["cityspec_ignored"] == "contrast");
                 continue;
             }
             let frame = ann["image_id"]
@@ -326,7 +333,10 @@ mod tests {
             "annotations":[
               {"image_id":1,"category_id":1,"bbox":[2,0,2,1],"iscrowd":0},
               {"image_id":2,"category_id":1,"bbox":[1,0,3,1],"iscrowd":0},
-              {"image_id":2,"category_id":2,"bbox":[0,1,3,1],"iscrowd":1}]}"#;
+              {"image_id":2,"category_id":2,"bbox":[0,1,3,1],"iscrowd":1,
+               "cityspec_ignored":"contrast"},
+              {"image_id":1,"category_id":2,"bbox":[0,1,1,1],"iscrowd":1,
+               "cityspec_ignored":"pixels"}]}"#;
         std::fs::write(dir.join("coco.json"), coco).unwrap();
         let kinds = ["road".to_owned(), "building".to_owned()];
         let stats = measure_path(&dir, &kinds).unwrap();
@@ -353,7 +363,8 @@ mod tests {
         let road = &stats.classes[1];
         assert_eq!(
             (road.labelled, road.ignored, road.per_frame, road.box_height),
-            (0, 1, 0.0, None)
+            (0, 2, 0.0, None)
         );
+        assert_eq!((building.faint, road.faint), (0, 1));
     }
 }

@@ -5,7 +5,8 @@ use std::fmt::Write;
 use super::Stats;
 
 /// The stats as text: per path, the pixel share of each kind, then per class the labelled
-/// objects per frame (median), totals, ignore regions and box-height quartiles.
+/// objects per frame (median), totals, ignore regions (and of those the faint ones, hidden
+/// by darkness, fog or rain) and box-height quartiles.
 pub fn table(stats: &Stats) -> String {
     let mut out = String::new();
     for path in &stats.paths {
@@ -20,8 +21,8 @@ pub fn table(stats: &Stats) -> String {
         }
         let _ = writeln!(
             out,
-            "  {:<20} {:>9} {:>9} {:>7}   {:>5} {:>5} {:>5}",
-            "class", "per frame", "labelled", "ignored", "h p25", "p50", "p75"
+            "  {:<20} {:>9} {:>9} {:>7} {:>6}   {:>5} {:>5} {:>5}",
+            "class", "per frame", "labelled", "ignored", "faint", "h p25", "p50", "p75"
         );
         let rows = path.classes.iter().map(|c| {
             (
@@ -29,6 +30,7 @@ pub fn table(stats: &Stats) -> String {
                 c.per_frame,
                 c.labelled,
                 c.ignored,
+                c.faint,
                 c.box_height,
             )
         });
@@ -37,16 +39,17 @@ pub fn table(stats: &Stats) -> String {
             path.labelled_per_frame,
             path.classes.iter().map(|c| c.labelled).sum(),
             path.classes.iter().map(|c| c.ignored).sum(),
+            path.classes.iter().map(|c| c.faint).sum(),
             path.box_height,
         );
-        for (name, per_frame, labelled, ignored, height) in rows.chain([all]) {
+        for (name, per_frame, labelled, ignored, faint, height) in rows.chain([all]) {
             let h = height.map_or_else(
                 || format!("{:>5} {:>5} {:>5}", "-", "-", "-"),
                 |[a, b, c]| format!("{a:>5.1} {b:>5.1} {c:>5.1}"),
             );
             let _ = writeln!(
                 out,
-                "  {name:<20} {per_frame:>9.1} {labelled:>9} {ignored:>7}   {h}"
+                "  {name:<20} {per_frame:>9.1} {labelled:>9} {ignored:>7} {faint:>6}   {h}"
             );
         }
         out.push('\n');
