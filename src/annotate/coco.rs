@@ -98,7 +98,7 @@ impl CocoLines {
                 "category_id": category,
                 "bbox": v.bounds.bbox(),
                 "area": v.pixels,
-                "iscrowd": u8::from(!object.passes),
+                "iscrowd": u8::from(!object.passes()),
                 "segmentation": {"size": v.rle.size, "counts": v.rle.to_compressed()},
                 "cityspec_instance": v.id,
                 "name": object.label.name,

@@ -85,7 +85,7 @@ impl ContactSheet {
         summary
             .objects
             .iter()
-            .filter(|o| o.passes)
+            .filter(|o| o.passes())
             .filter_map(|o| Some((o.category.filter(|&c| listed(c))?, o.visible.bounds)))
             .collect()
     }

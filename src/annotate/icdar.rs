@@ -63,7 +63,7 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
                         continue;
                     }
                     let wide = w.length() >= MIN_PX_PER_CHAR * word.chars().count() as f64;
-                    let readable = object.passes && w.visible >= MOSTLY_HIDDEN && wide;
+                    let readable = object.passes() && w.visible >= MOSTLY_HIDDEN && wide;
                     line(w.quad.map(clamp), word, readable);
                 }
             }
@@ -79,7 +79,7 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
                 let wide = f64::from(b.x_max - b.x_min + 1)
                     >= MIN_PX_PER_CHAR * text.chars().count() as f64;
                 let readable = words.len() == 1
-                    && object.passes
+                    && object.passes()
                     && object.fraction.is_none_or(|f| f >= MOSTLY_HIDDEN)
                     && wide;
                 line(quad, text, readable);

@@ -20,12 +20,17 @@ pub struct ShownObject<'a> {
     /// Visible ÷ projected pixels (at most 1), when the projected count is known and
     /// positive.
     pub fraction: Option<f64>,
+    /// Why it does not pass ([`ShownObject::passes`]), if it does not.
+    pub ignored: Option<Ignored>,
+}
+
+impl ShownObject<'_> {
     /// Whether it shows at least `min_pixels`, where known `min_fraction`, and, when the
     /// frame's RGB image is known, [`MIN_CONTRAST`]. Objects that do not are written as COCO
     /// ignore regions (`iscrowd` 1), with [`ShownObject::ignored`] saying why.
-    pub passes: bool,
-    /// Why it does not pass, if it does not.
-    pub ignored: Option<Ignored>,
+    pub fn passes(&self) -> bool {
+        self.ignored.is_none()
+    }
 }
 
 /// Why a labelled object in view is an ignore region rather than a positive.
@@ -93,7 +98,6 @@ pub fn shown<'a>(
                 category,
                 subclass,
                 fraction,
-                passes: ignored.is_none(),
                 ignored,
             })
         })

@@ -61,7 +61,7 @@ pub fn yolo(classes: &YoloClasses, frame: &FrameAnnotations) -> String {
     let (width, height) = (f64::from(frame.width), f64::from(frame.height));
     let mut out = String::new();
     for object in &frame.objects {
-        if !object.passes {
+        if !object.passes() {
             continue;
         }
         let Some(class) = object
