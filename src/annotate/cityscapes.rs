@@ -346,9 +346,9 @@ impl SemanticClasses {
 
 /// An extra label's colour: from its name's SHA-256, the same in every build.
 fn extra_color(name: &str) -> [u8; 3] {
-    let digest = crate::hash::sha256_hex(name.as_bytes());
-    let byte = |i: usize| u8::from_str_radix(&digest[2 * i..2 * i + 2], 16).unwrap_or(0);
-    [byte(0), byte(1), byte(2)]
+    use sha2::Digest;
+    let digest = sha2::Sha256::digest(name.as_bytes());
+    [digest[0], digest[1], digest[2]]
 }
 
 #[cfg(test)]

@@ -65,16 +65,31 @@ pub fn semantic(
             value as u16
         })
         .collect();
-    let value_of = |id: u32| values[(id as usize).min(ids)];
-    let label_ids = GrayImage::from_fn(width, height, |x, y| {
-        Luma([classes.label_of(instance.get_pixel(x, y)[0]).id])
-    });
-    let instance_ids = ImageBuffer::from_fn(width, height, |x, y| {
-        Luma([value_of(instance.get_pixel(x, y)[0])])
-    });
-    let color = RgbImage::from_fn(width, height, |x, y| {
-        image::Rgb(classes.labels[usize::from(label_ids.get_pixel(x, y)[0])].color)
-    });
+    let raw = instance.as_raw();
+    let label_ids = GrayImage::from_raw(
+        width,
+        height,
+        raw.iter().map(|&id| classes.label_of(id).id).collect(),
+    )
+    .expect("one label a pixel");
+    let instance_ids = ImageBuffer::from_raw(
+        width,
+        height,
+        raw.iter()
+            .map(|&id| values[(id as usize).min(ids)])
+            .collect(),
+    )
+    .expect("one value a pixel");
+    let color = RgbImage::from_raw(
+        width,
+        height,
+        label_ids
+            .as_raw()
+            .iter()
+            .flat_map(|&id| classes.labels[usize::from(id)].color)
+            .collect(),
+    )
+    .expect("one colour a pixel");
     let (panoptic, segments) = panoptic(classes, &instance_ids);
     SemanticFrame {
         label_ids,
@@ -99,9 +114,14 @@ fn panoptic(
         *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
     }
     let found = (0..=u16::MAX).zip(found).filter(|(_, (area, _))| *area > 0);
+    // The label of an instanceIds value (`unlabeled` for one past the table, which
+    // `semantic` never writes).
     let label = |value: u16| {
         let id = if value < 1000 { value } else { value / 1000 };
-        &classes.labels[usize::from(id).min(classes.labels.len() - 1)]
+        classes
+            .labels
+            .get(usize::from(id))
+            .unwrap_or(&classes.labels[0])
     };
     let segments: Vec<Segment> = found
         .filter(|(value, _)| !label(*value).ignore_in_eval)

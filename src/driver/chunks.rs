@@ -205,7 +205,7 @@ pub fn assemble(
         let mut annotations = 1u64;
         each_record(&mut |i, record| {
             if plan.semantic.is_some() {
-                let segments = record.panoptic.clone().ok_or_else(|| {
+                let segments = record.panoptic.ok_or_else(|| {
                     io::Error::other(format!("frame {i}'s record lacks its panoptic segments"))
                 })?;
                 panoptic.push(segments);
@@ -254,7 +254,7 @@ pub fn assemble(
     }
     let mut files = path_files(&dir, camera, plan, drawn, sheet);
     if let Some(semantic) = &plan.semantic {
-        files.extend(semantic_files(&dir, camera, semantic, panoptic));
+        files.extend(panoptic_files(&dir, camera, semantic, panoptic));
     }
     if webdataset {
         let tars = Tars {
@@ -312,7 +312,7 @@ fn path_files(
 
 /// With Cityscapes-format files: the path's `semantic/labels.json` (the label table) and
 /// `panoptic.json` (COCO panoptic over its frames, ids as in `coco.json`).
-fn semantic_files(
+fn panoptic_files(
     dir: &str,
     camera: &CameraSpec,
     semantic: &annotate::SemanticClasses,
