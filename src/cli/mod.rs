@@ -153,10 +153,7 @@ pub fn run() -> ExitCode {
             json,
             set: SetArg { sets },
         } => explain_command(&cx, &specs, &sets, &cache, json),
-        Command::Schema => {
-            print!("{}", crate::spec::schema_json());
-            ExitCode::SUCCESS
-        }
+        Command::Schema => print::stdout(&crate::spec::schema_json()),
         Command::Stats { dir, json } => stats_command(&dir, json),
         Command::Pack { spec, out } => pack_command(&cx, &spec, &out),
     }
@@ -365,13 +362,10 @@ fn explain_command(
     }
     if json {
         let text = serde_json::to_string_pretty(&explained).expect("explanations serialize");
-        println!("{text}");
+        print::stdout(&format!("{text}\n"))
     } else {
-        explained
-            .iter()
-            .for_each(|e| print!("{}", print::explained(e)));
+        print::stdout(&explained.iter().map(print::explained).collect::<String>())
     }
-    ExitCode::SUCCESS
 }
 
 /// `cityspec pack SPEC -o FILE`: the spec and its files in one tar.
@@ -399,17 +393,11 @@ fn pack_command(cx: &Context, spec: &Path, out: &Path) -> ExitCode {
 /// `cityspec stats DIR`: a table, or JSON.
 fn stats_command(dir: &Path, json: bool) -> ExitCode {
     match crate::stats::measure(dir) {
-        Ok(stats) if json => {
-            println!(
-                "{}",
-                serde_json::to_string_pretty(&stats).expect("stats serialize")
-            );
-            ExitCode::SUCCESS
-        }
-        Ok(stats) => {
-            print!("{}", crate::stats::table(&stats));
-            ExitCode::SUCCESS
-        }
+        Ok(stats) if json => print::stdout(&format!(
+            "{}\n",
+            serde_json::to_string_pretty(&stats).expect("stats serialize")
+        )),
+        Ok(stats) => print::stdout(&crate::stats::table(&stats)),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)

@@ -4,7 +4,24 @@ use crate::diagnostic::Diagnostic;
 use crate::driver::{BuildError, BuildReport, StageStatus, VerifyReport};
 
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Writes a command's result to stdout. A reader that stops early (`| head`) is not an
+/// error: the rest is dropped and the command still succeeds; any other write error is
+/// reported and exits 1.
+pub fn stdout(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: cannot write to stdout: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
 
 pub struct Printer {
     pub quiet: bool,

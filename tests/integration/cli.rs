@@ -160,6 +160,30 @@ fn validate_accepts_the_examples_and_schema_prints_the_committed_schema() {
     assert_eq!(String::from_utf8(schema.stdout).unwrap(), committed);
 }
 
+/// A reader that has gone (`cityspec schema | head -1`) is not a crash: the command
+/// exits 0 without a panic message, for every command that prints to stdout.
+#[test]
+fn a_closed_stdout_is_not_a_panic() {
+    let ws = Workspace::with_spec("day");
+    for args in [
+        &["schema"][..],
+        &["explain", "--json", "specs/day.toml"],
+        &["explain", "specs/day.toml"],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+            .current_dir(ws.path())
+            .args(args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(out.status.success(), "{args:?}: {:?}: {err}", out.status);
+    }
+}
+
 #[test]
 fn help_explains_with_examples() {
     let ws = Workspace::with_spec("day");
