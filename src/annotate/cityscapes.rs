@@ -238,7 +238,7 @@ fn kind_label(kind: ObjectKind) -> Option<u8> {
         ObjectKind::Bicycle => 33,
         ObjectKind::Rider => 25,
         ObjectKind::Person => 24,
-        ObjectKind::Tree => 21,
+        ObjectKind::Tree | ObjectKind::Hills => 21,
         ObjectKind::Text | ObjectKind::Mesh => return None,
     })
 }

@@ -33,11 +33,13 @@ pub enum ObjectKind {
     Tree,
     /// A user's OBJ model.
     Mesh,
+    /// The wooded hills round the city, beyond its ground.
+    Hills,
 }
 
 impl ObjectKind {
     /// Every kind, in declaration order.
-    pub const ALL: [ObjectKind; 19] = [
+    pub const ALL: [ObjectKind; 20] = [
         ObjectKind::Ground,
         ObjectKind::Block,
         ObjectKind::Road,
@@ -57,6 +59,7 @@ impl ObjectKind {
         ObjectKind::Person,
         ObjectKind::Tree,
         ObjectKind::Mesh,
+        ObjectKind::Hills,
     ];
 
     /// Its name in `instances.json` and `cityspec stats` (snake case).
@@ -81,6 +84,7 @@ impl ObjectKind {
             ObjectKind::Person => "person",
             ObjectKind::Tree => "tree",
             ObjectKind::Mesh => "mesh",
+            ObjectKind::Hills => "hills",
         }
     }
 }

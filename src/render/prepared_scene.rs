@@ -10,7 +10,7 @@ use super::mip_texture::MipTexture;
 use super::occlusion;
 use super::shadow_map::ShadowMap;
 use crate::model::geometry::{cross, dot, normalize};
-use crate::model::{Mesh, Scene, SceneObject, Texture};
+use crate::model::{Mesh, ObjectKind, Scene, SceneObject, Texture};
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
 /// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.
@@ -46,6 +46,10 @@ pub(crate) struct ObjectBounds {
     pub end: usize,
     /// Whether its triangles are big enough to hide others ([`super::occlusion`]).
     pub occluder: bool,
+    /// Whether the shadow map holds it: not the ground and fields (the floor shades
+    /// nothing) nor the hills (they stand beyond everything they could shade, and would
+    /// spread the map's texels over the countryside).
+    pub casts_shadow: bool,
 }
 
 /// One triangle, wound counter-clockwise around `normal` (its front).
@@ -174,7 +178,8 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
             }
             flatten_mesh(object, mesh, instance, &mut triangles)?;
         }
-        objects.push(ObjectBounds::of(&triangles, first));
+        let casts_shadow = !matches!(object.kind, ObjectKind::Ground | ObjectKind::Hills);
+        objects.push(ObjectBounds::of(&triangles, first, casts_shadow));
     }
     Ok(PreparedScene {
         textures,
@@ -280,7 +285,7 @@ fn flatten_mesh(
 
 impl ObjectBounds {
     /// The bounds of the object whose triangles are `triangles[first..]`.
-    fn of(triangles: &[Triangle], first: usize) -> ObjectBounds {
+    fn of(triangles: &[Triangle], first: usize, casts_shadow: bool) -> ObjectBounds {
         let mut min = [f64::INFINITY; 3];
         let mut max = [f64::NEG_INFINITY; 3];
         for t in &triangles[first..] {
@@ -297,6 +302,7 @@ impl ObjectBounds {
             first,
             end: triangles.len(),
             occluder: occlusion::is_occluder(&triangles[first..]),
+            casts_shadow,
         }
     }
 }

@@ -1,8 +1,9 @@
 //! Prepared scene + direction to the sun → [`ShadowMap`]: an orthographic depth map of
 //! the whole scene seen from the sun, and the soft shadow test against it.
 //!
-//! - **Extent and resolution** come from the scene's bounds only: the map covers the
-//!   scene's box as seen from the sun, with square texels of `max extent / side` (at
+//! - **Extent and resolution** come from the scene's bounds only: the map covers the box
+//!   of the objects that cast shadows (all but the ground, fields and hills: see
+//!   `ObjectBounds::casts_shadow`) as seen from the sun, with square texels of `max extent / side` (at
 //!   least [`MIN_TEXEL`]). Every frame under the same sun reads the same map, so shadows
 //!   cannot crawl as the camera moves.
 //! - **Content**: per texel, the largest `p · sun` (the surface nearest the sun) over every
@@ -282,7 +283,7 @@ fn light_space_bounds(
     up: [f64; 3],
 ) -> Option<([f64; 2], [f64; 2])> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for o in &scene.objects {
+    for o in scene.objects.iter().filter(|o| o.casts_shadow) {
         if o.min[0].is_nan() || o.min[0] > o.max[0] {
             continue;
         }
@@ -318,7 +319,9 @@ fn band_bins(scene: &PreparedScene, tris: &[[[f64; 3]; 3]], bands: usize) -> Vec
     };
     let mut bins = vec![Vec::new(); bands];
     for (i, t) in tris.iter().enumerate() {
-        if is_floor(&scene.triangles[i]) {
+        let triangle = &scene.triangles[i];
+        let object = &scene.objects[triangle.instance as usize - 1];
+        if !object.casts_shadow || is_floor(triangle) {
             continue;
         }
         let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);

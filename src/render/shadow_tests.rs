@@ -181,6 +181,48 @@ fn shadows_do_not_change_with_the_camera() {
     assert_eq!(full.texel, map.texel);
 }
 
+/// The ground and the hills stay out of the shadow map: a ring of hills kilometres away and
+/// a wider ground leave the map's texel (and so every shadow) as the box alone makes it.
+#[test]
+fn the_ground_and_far_hills_leave_the_shadow_map_as_it_was() {
+    let lighting = Lighting::day();
+    let map_of = |scene: &Scene| {
+        prepare(scene)
+            .unwrap()
+            .shadow_map(lighting.sun_direction, lighting.shadow_map_side)
+            .unwrap()
+            .texel
+    };
+    let mut scene = box_on_plane();
+    scene.objects[0].kind = crate::model::ObjectKind::Ground;
+    let alone = map_of(&scene);
+    let mut hills = object(
+        "hills",
+        cuboid(0, [1500.0, 0.0, 0.0], [1600.0, 80.0, 2000.0]),
+    );
+    hills.kind = crate::model::ObjectKind::Hills;
+    scene.objects.push(hills);
+    scene.objects[0].meshes = vec![quad(
+        0,
+        [
+            [-3000.0, 0.0, -3000.0],
+            [3000.0, 0.0, -3000.0],
+            [3000.0, 0.0, 3000.0],
+            [-3000.0, 0.0, 3000.0],
+        ],
+        UNIT_UV,
+        [0.0, 1.0, 0.0],
+    )];
+    assert_eq!(map_of(&scene), alone);
+    // As a mesh, the same far box widens the map's texels fiftyfold.
+    scene.objects[2].kind = crate::model::ObjectKind::Mesh;
+    assert!(
+        map_of(&scene) > 50.0 * alone,
+        "{} vs {alone}",
+        map_of(&scene)
+    );
+}
+
 /// A small shadowed street-like frame under the day preset (sky, sun, shadows, tone
 /// curve), pinned by digest. When this fails because lighting output changed on purpose,
 /// bump `render::VERSION` (src/render/mod.rs) and put the new digest here.
@@ -194,7 +236,7 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            15,
+            16,
             "4f688945913751bbc5324db443080fc3ca0d0dea380991d57a5073c29c8915c9"
         ),
         "lighting output changed: bump render::VERSION and update this digest"

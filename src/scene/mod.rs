@@ -3,11 +3,13 @@
 //! World coordinates are metres: x east (= layout x), y up, z south (= layout y); a layout
 //! pixel `(i, j)` covers `[i, i + 1) × [j, j + 1)` times `metres_per_pixel`. Objects come
 //! in the order [`Scene::objects`] documents, each named `<class>_<id:04>` after the plan
-//! item it stands for (`ground` alone has no number):
+//! item it stands for (`ground`, `fields` and `hills` have no number):
 //!
 //! | object | class | geometry | material |
 //! |---|---|---|---|
 //! | `ground` | ground | one quad under the layout, [`GROUND_MARGIN`] beyond it | `grass` |
+//! | `fields` | ground | flat land from the ground's edge out past the hills (see `horizon`) | `grass` |
+//! | `hills` | hills | a ring of wooded hills round the city, clear of the ground (see `horizon`) | `woods` |
 //! | `block_0007` | block | one quad per band span of the block's pixels | `paving` |
 //! | `road_0003` | road | the road's rectangle minus earlier roads' (crossings belong to the lower id) | `asphalt` |
 //! | `marking_0003` | marking | centre and lane lines, parking-lane edges, a zebra crossing on each approach to a crossing, clear of other roads | `marking` |
@@ -32,10 +34,11 @@
 //! bit for bit on every platform.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 
 mod blocks;
 mod buildings;
+mod horizon;
 mod markings;
 mod procedural;
 mod roads;
@@ -97,6 +100,13 @@ pub fn build(input: &SceneInput) -> Scene {
 
     let mut objects: Vec<SceneObject> = Vec::new();
     objects.push(ground(layout, mpp, surfaces.grass));
+    objects.extend(horizon::horizon_objects(
+        layout,
+        mpp,
+        input.seed,
+        surfaces.grass,
+        surfaces.woods,
+    ));
     objects.extend(blocks::block_objects(layout, mpp, surfaces.paving));
     objects.extend(roads::road_objects(layout, mpp, surfaces.asphalt));
     objects.extend(markings::marking_objects(layout, mpp, surfaces.marking));

@@ -1,5 +1,5 @@
 //! Seeded texture recipes → the small repeating surface images: grass, asphalt, paving,
-//! concrete.
+//! concrete, and the distant woods on the hills around the city.
 //!
 //! Each image draws from `crate::rng::stream(0, "textures", i)` with integer arithmetic only,
 //! so it is the same on every platform and independent of the spec's seed. Every recipe
@@ -18,6 +18,7 @@ pub const GRASS_TILE: f64 = 4.0;
 pub const ASPHALT_TILE: f64 = 4.0;
 pub const PAVING_TILE: f64 = 2.0;
 pub const CONCRETE_TILE: f64 = 2.0;
+pub const WOODS_TILE: f64 = 40.0;
 
 /// Muted grass and earth: a coarse green/brown mottle with fine speckle.
 pub fn grass() -> RgbImage {
@@ -29,6 +30,23 @@ pub fn grass() -> RgbImage {
         // c in 0..=255 blends grass (86, 110, 58) towards earth (112, 98, 70).
         let mix = |g: i32, e: i32| (g * (255 - c) + e * c) / 255 + (f - 128) / 10;
         rgb([mix(86, 112), mix(110, 98), mix(58, 70)])
+    })
+}
+
+/// Woods seen from afar: clumps of tree crowns, lit tops and dark gaps, muted towards the
+/// blue-grey of distance (the hills stand hundreds of metres out).
+pub fn woods() -> RgbImage {
+    let clumps = lattice(8, 16);
+    let crowns = lattice(10, 32);
+    let fine = lattice(11, SIZE);
+    RgbImage::from_fn(SIZE, SIZE, |x, y| {
+        let c = smooth(&clumps, 16, x, y);
+        let k = smooth(&crowns, 32, x, y);
+        // Crowns where the finer noise peaks; gaps between them darker.
+        let lit = ((k - 96) * 2).clamp(0, 255) * (128 + c / 2) / 255;
+        let f = (fine[idx(x, y, SIZE)] - 128) / 14;
+        let mix = |gap: i32, top: i32| (gap * (255 - lit) + top * lit) / 255 + f;
+        rgb([mix(58, 104), mix(72, 122), mix(72, 108)])
     })
 }
 
@@ -109,7 +127,7 @@ mod tests {
 
     #[test]
     fn textures_are_reproducible_distinct_and_not_flat() {
-        let all = [grass(), asphalt(), paving(), concrete()];
+        let all = [grass(), asphalt(), paving(), concrete(), woods()];
         for (i, image) in all.iter().enumerate() {
             assert_eq!(image.dimensions(), (SIZE, SIZE));
             let first = image.get_pixel(0, 0);

@@ -1,5 +1,5 @@
 //! The fixed materials every scene has → their indices: ground, paving, asphalt, marking,
-//! concrete, lamp metal and the emissive lamp head.
+//! concrete, lamp metal, the emissive lamp head and the woods on the hills.
 
 use super::procedural;
 use crate::model::Texture;
@@ -14,6 +14,7 @@ pub struct Surfaces {
     pub concrete: u32,
     pub lamp_metal: u32,
     pub lamp_head: u32,
+    pub woods: u32,
 }
 
 /// Warm white light of a lamp head (linear RGB).
@@ -34,6 +35,7 @@ impl Surfaces {
             concrete: textured(book, "concrete", procedural::concrete()),
             lamp_metal: book.add("lamp_metal", [0.05, 0.055, 0.06], None, none),
             lamp_head: book.add("lamp_head", [1.0, 0.95, 0.85], None, LAMP_EMISSIVE),
+            woods: textured(book, "woods", procedural::woods()),
         }
     }
 }
