@@ -318,8 +318,27 @@ impl WindowLookup {
     /// `instance` lies in a lit window.
     #[inline]
     pub(crate) fn is_lit(&self, texture: u32, instance: u32, u: f64, v: f64) -> bool {
+        self.lit_window(texture, instance, u, v).is_some()
+    }
+
+    /// The light a lit window shows at `(u, v)` (None when the point is in no lit window):
+    /// the glow colour as the window's room tints it and as what hangs in it shapes it
+    /// ([`Room`]), chosen from the hash that lit the window, so every pixel of a window
+    /// agrees and neighbours differ.
+    #[inline]
+    pub(crate) fn glow(&self, texture: u32, instance: u32, u: f64, v: f64) -> Option<[f32; 3]> {
+        let (x, y, h) = self.lit_window(texture, instance, u, v)?;
+        let room = Room::of(h);
+        let k = room.strength * room.pattern.factor(x, y);
+        Some([0, 1, 2].map(|c| self.colour[c] * room.tint[c] * k))
+    }
+
+    /// The lit window under `(u, v)`: the point's place across its box (0–1 left to right,
+    /// top to bottom) and the hash that lit it.
+    #[inline]
+    fn lit_window(&self, texture: u32, instance: u32, u: f64, v: f64) -> Option<(f32, f32, u64)> {
         let Some(Some(grid)) = self.per_texture.get(texture as usize) else {
-            return false;
+            return None;
         };
         let (ru, rv) = (u.floor(), v.floor());
         let (fu, fv) = ((u - ru) as f32, (v - rv) as f32);
@@ -334,10 +353,82 @@ impl WindowLookup {
                     ),
                     rv as i64 as u64,
                 );
-                return ((h >> 11) as f64) * (1.0 / (1u64 << 53) as f64) < self.threshold;
+                let lit = ((h >> 11) as f64) * (1.0 / (1u64 << 53) as f64) < self.threshold;
+                let across = ((fu - b[0]) / (b[2] - b[0]), (fv - b[1]) / (b[3] - b[1]));
+                return lit.then_some((across.0, across.1, h));
             }
         }
-        false
+        None
+    }
+}
+
+/// What a lit window shows: the room's light (its tint on the glow colour and strength)
+/// and what hangs in the window or stands in the room.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Room {
+    tint: [f32; 3],
+    strength: f32,
+    pattern: Pattern,
+}
+
+/// Rooms' lights: warm bulbs, neutral, cool LEDs, a television's blue, a dim lamp.
+const TINTS: [([f32; 3], f32); 5] = [
+    ([1.0, 1.0, 1.0], 1.0),
+    ([1.0, 1.06, 1.25], 0.9),
+    ([0.82, 1.0, 1.6], 0.85),
+    ([0.45, 0.7, 1.9], 0.55),
+    ([1.0, 0.78, 0.6], 0.45),
+];
+
+/// How the light falls across a window, from its box coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pattern {
+    /// Bare: brightest under the ceiling light, a little dimmer towards the sill.
+    Open,
+    /// Curtains drawn to both sides.
+    Curtains,
+    /// Blinds: bright slats between dark ones.
+    Blinds,
+    /// A lamp's glow over a dark sofa, shelf or table in the lower part.
+    Furniture,
+}
+
+const PATTERNS: [Pattern; 4] = [
+    Pattern::Open,
+    Pattern::Curtains,
+    Pattern::Blinds,
+    Pattern::Furniture,
+];
+
+impl Room {
+    /// The room of the window the hash `h` lit (bits apart from those that decided it).
+    fn of(h: u64) -> Room {
+        let r = mix(h, 0x726f_6f6d);
+        let (tint, strength) = TINTS[(r % TINTS.len() as u64) as usize];
+        let pattern = PATTERNS[((r >> 8) % PATTERNS.len() as u64) as usize];
+        // ±15 % from one room to the next.
+        let jitter = 0.85 + 0.3 * ((r >> 16) & 0xff) as f32 / 255.0;
+        Room {
+            tint,
+            strength: strength * jitter,
+            pattern,
+        }
+    }
+}
+
+impl Pattern {
+    /// The share of the room's light at `(x, y)` across the window (0–1 each, y down).
+    fn factor(self, x: f32, y: f32) -> f32 {
+        let ceiling = 1.15 - 0.35 * y;
+        match self {
+            Pattern::Open => ceiling,
+            Pattern::Curtains if !(0.22..0.78).contains(&x) => 0.3 * ceiling,
+            Pattern::Curtains => ceiling,
+            Pattern::Blinds if (y * 7.0).fract() < 0.35 => 0.35,
+            Pattern::Blinds => 0.9,
+            Pattern::Furniture if y > 0.62 && (0.12..0.7).contains(&x) => 0.18,
+            Pattern::Furniture => 1.2 - 0.5 * y,
+        }
     }
 }
 
@@ -443,5 +534,40 @@ mod tests {
             lit += usize::from(a);
         }
         assert!((400..600).contains(&lit), "{lit} of 1000 lit");
+    }
+
+    /// Lit windows vary: among many, every room tint and pattern shows, the light inside
+    /// one window is shaped (curtains, blinds, furniture darker than the rest), and an unlit
+    /// point has no glow.
+    #[test]
+    fn lit_windows_show_varied_rooms() {
+        let all = WindowLookup::new(&windows(1.0), 3);
+        let mut rooms = BTreeSet::new();
+        let mut shaped = 0;
+        for instance in 1..=400u32 {
+            let a = all.glow(1, instance, 0.11, 0.12).unwrap();
+            let b = all.glow(1, instance, 0.25, 0.29).unwrap();
+            rooms.insert(a.map(f32::to_bits));
+            if a != b {
+                shaped += 1;
+            }
+            assert!(
+                a.iter().chain(&b).all(|c| (0.0..2.5).contains(c)),
+                "{a:?} {b:?}"
+            );
+        }
+        assert!(rooms.len() > 100, "{} distinct window lights", rooms.len());
+        assert!(shaped > 200, "{shaped} of 400 windows shaped inside");
+        assert!(all.glow(1, 5, 0.5, 0.2).is_none());
+        let seen: BTreeSet<_> = (0..2000u64)
+            .map(|h| {
+                let room = Room::of(h);
+                (room.pattern as u8, room.tint.map(f32::to_bits))
+            })
+            .collect();
+        assert_eq!(seen.len(), TINTS.len() * PATTERNS.len());
+        assert!(Pattern::Curtains.factor(0.05, 0.5) < 0.5 * Pattern::Curtains.factor(0.5, 0.5));
+        assert!(Pattern::Furniture.factor(0.4, 0.9) < 0.3 * Pattern::Furniture.factor(0.4, 0.3));
+        assert!(Pattern::Blinds.factor(0.5, 0.01) < 0.5 * Pattern::Blinds.factor(0.5, 0.1));
     }
 }

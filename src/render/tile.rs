@@ -435,10 +435,11 @@ fn shade(
         };
         let t = mips.sample_at(u, v, &footprint);
         albedo = [albedo[0] * t[0], albedo[1] * t[1], albedo[2] * t[2]];
-        if let Some(w) = ctx.windows
-            && w.is_lit(texture, source.instance, u, v)
+        if let Some(glow) = ctx
+            .windows
+            .and_then(|w| w.glow(texture, source.instance, u, v))
         {
-            window = Some((w.colour, t));
+            window = Some((glow, t));
         }
     }
     let l = ctx.lighting;
