@@ -150,6 +150,13 @@ fn validate_accepts_the_examples_and_schema_prints_the_committed_schema() {
     let ws = Workspace::with_spec("day");
     let out = cityspec(&ws, &["validate", "specs/day.toml", "specs/mirrored.toml"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // The Table 3 benchmark's specs (benches/downstream/) stay valid as the spec grows.
+    let downstream = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/downstream");
+    for name in ["day", "night", "day_test", "night_test"] {
+        let spec = format!("{downstream}/{name}.toml");
+        let out = cityspec(&ws, &["validate", &spec]);
+        assert_eq!(out.status.code(), Some(0), "{spec}: {}", stderr(&out));
+    }
     let schema = cityspec(&ws, &["schema"]);
     assert!(schema.status.success());
     let committed = fs::read_to_string(concat!(
