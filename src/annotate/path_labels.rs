@@ -62,14 +62,7 @@ pub fn path_labels(
             classes
         }
     };
-    let mut classes = classes;
-    let object_classes = classes.len();
-    let texts = objects
-        .iter()
-        .any(|o| o.label.text.is_some() && classes.contains(&o.class));
-    if texts && !classes.iter().any(|c| c == WORD_CATEGORY) {
-        classes.push(WORD_CATEGORY.to_owned());
-    }
+    let classes = with_words(classes, &objects);
     let categories: Vec<Category> = classes
         .iter()
         .enumerate()
@@ -111,7 +104,7 @@ pub fn path_labels(
             }
         }
         // Words are COCO's (and ICDAR's) alone: YOLO boxes the plates.
-        let plates: Vec<Category> = categories[..object_classes]
+        let plates: Vec<Category> = categories
             .iter()
             .filter(|c| c.name != WORD_CATEGORY)
             .cloned()
@@ -123,6 +116,17 @@ pub fn path_labels(
         labels,
         yolo,
     }
+}
+
+/// `classes` and, when one of them carries text and `word` is not among them, `word`.
+fn with_words(mut classes: Vec<String>, objects: &[ClassedObject]) -> Vec<String> {
+    let texts = objects
+        .iter()
+        .any(|o| o.label.text.is_some() && classes.contains(&o.class));
+    if texts && !classes.iter().any(|c| c == WORD_CATEGORY) {
+        classes.push(WORD_CATEGORY.to_owned());
+    }
+    classes
 }
 
 #[cfg(test)]

@@ -59,7 +59,7 @@ pub struct ClassStats {
 
 /// The COCO category of the words of text objects (`annotate`'s `word`): counted in its
 /// own row, not in the all-classes figures, which count each plate once.
-const WORD_CATEGORY: &str = "word";
+pub(super) const WORD_CATEGORY: &str = "word";
 
 /// Measures the path folder `dir`; `kinds[k]` is the kind of instance id `k + 1`.
 pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsError> {
