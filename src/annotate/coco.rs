@@ -5,8 +5,10 @@ use std::io::{self, Write};
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
+use super::coco_words::{WORD_CATEGORY, word_annotation};
 use super::frame_annotations::{FrameAnnotations, summarize};
 use super::frame_input::{FrameInput, Thresholds};
+use super::icdar::word_lines;
 use super::object_label::{Category, ObjectLabel};
 use super::round;
 
@@ -50,11 +52,24 @@ pub fn coco(
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
 ///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
-///   it; or `null`) and, for text objects, `text` (the plate's whole text: COCO stays one
-///   annotation per plate, whose mask is the plate; ICDAR has the words) and `attributes`
-///   `{text_font, text_style}` (style `shop`, `banner`, `painted` or `street`); for a sign
+///   it; or `null`) and, for text objects, `text` (the plate's whole text; its words are
+///   `word` annotations, below) and `attributes` `{text_font, text_style, text_light}`
+///   (style `shop`, `banner`, `painted` or `street`; light `backlit`, `lamp_lit` or
+///   `unlit`: how it is lit after dusk); for a sign
 ///   seen from the front `attributes` `{"sign_type": "stop"}`. A sign seen from behind is not its
 ///   category: it takes the category `<label>_back` when that is listed, else it is left out.
+/// - `word` annotations (when the categories hold [`WORD_CATEGORY`]): right after each
+///   annotated text object's, one per ICDAR line it has in the frame ([`super::icdar`]),
+///   in reading order: `category_id` the `word` category, `segmentation` one polygon, the
+///   word's projected quad cut to the plate's visible box (so at the image edge too;
+///   occluders are not cut out: `visible_fraction` says how much of the quad shows),
+///   `bbox` that polygon's box and `area` its area (both to 2 decimals, inside the
+///   plate's box), `iscrowd` 1 exactly where ICDAR writes `###`, with the reason in
+///   `cityspec_ignored` (the plate's, or `hidden`, `small`, `empty`, `unsplit`), then
+///   `cityspec_instance` and `name` of the plate (so `(image_id, cityspec_instance)` finds
+///   the plate's annotation), `word_index` (the word's place in the plate's text, split at
+///   spaces; `null` for a plate without quads, whose one line is its box and whole text),
+///   `text` (the word, also when `iscrowd` is 1) and `visible_fraction`.
 ///
 /// Keys are written in that order, one image, category or annotation per line. Intrinsics
 /// and the visible fraction are rounded to 6 decimals, poses and full boxes to 3; a
@@ -84,6 +99,10 @@ impl CocoLines {
         image_id: u64,
     ) -> CocoLines {
         let image = image_entry(frame, conditions, image_id);
+        let word_category = categories
+            .iter()
+            .find(|c| c.name == WORD_CATEGORY)
+            .map(|c| c.id);
         let mut annotations = Vec::new();
         for object in &frame.objects {
             let Some(category) = object.category else {
@@ -121,6 +140,11 @@ impl CocoLines {
                 }
             }
             annotations.push(annotation.to_string());
+            if let Some(word) = word_category {
+                for line in word_lines(frame, object) {
+                    annotations.extend(word_annotation(&line, object, word, image_id));
+                }
+            }
         }
         CocoLines {
             image: image.to_string(),

@@ -3,6 +3,7 @@
 use std::fmt::Write;
 
 use super::frame_annotations::FrameAnnotations;
+use super::shown_object::ShownObject;
 
 /// Visible fraction below which a word is "mostly hidden" and transcribed `###`.
 pub const MOSTLY_HIDDEN: f64 = 0.5;
@@ -39,54 +40,108 @@ pub fn icdar(frame: &FrameAnnotations) -> String {
         ]
     };
     for object in &frame.objects {
-        let Some(text) = &object.label.text else {
-            continue;
-        };
-        let v = &object.visible;
-        let words: Vec<&str> = text.split(' ').collect();
-        let mut line = |quad: [[i64; 2]; 4], word: &str, readable: bool| {
+        for line in word_lines(frame, object) {
+            let quad = match line.quad {
+                Some(quad) => quad.map(clamp),
+                None => {
+                    let b = object.visible.bounds;
+                    [
+                        [b.x_min, b.y_min],
+                        [b.x_max, b.y_min],
+                        [b.x_max, b.y_max],
+                        [b.x_min, b.y_max],
+                    ]
+                    .map(|p| p.map(i64::from))
+                }
+            };
             for [x, y] in quad {
                 let _ = write!(out, "{x},{y},");
             }
-            if readable && !word.is_empty() {
-                out.extend(word.chars().map(|c| if c.is_control() { ' ' } else { c }));
+            if line.unreadable.is_none() {
+                out.extend(
+                    line.word
+                        .chars()
+                        .map(|c| if c.is_control() { ' ' } else { c }),
+                );
             } else {
                 out.push_str("###");
             }
             out.push('\n');
-        };
-        let quads = frame.quads.get(&v.id).filter(|q| q.len() == words.len());
-        match quads {
-            Some(quads) => {
-                for (word, w) in words.iter().zip(quads) {
-                    if w.visible <= 0.0 {
-                        continue;
-                    }
-                    let wide = w.length() >= MIN_PX_PER_CHAR * word.chars().count() as f64;
-                    let readable = object.passes() && w.visible >= MOSTLY_HIDDEN && wide;
-                    line(w.quad.map(clamp), word, readable);
-                }
-            }
-            None => {
-                let b = v.bounds;
-                let quad = [
-                    [b.x_min, b.y_min],
-                    [b.x_max, b.y_min],
-                    [b.x_max, b.y_max],
-                    [b.x_min, b.y_max],
-                ]
-                .map(|p| p.map(i64::from));
-                let wide = f64::from(b.x_max - b.x_min + 1)
-                    >= MIN_PX_PER_CHAR * text.chars().count() as f64;
-                let readable = words.len() == 1
-                    && object.passes()
-                    && object.fraction.is_none_or(|f| f >= MOSTLY_HIDDEN)
-                    && wide;
-                line(quad, text, readable);
-            }
         }
     }
     out
+}
+
+/// One ICDAR line of a text object, before it is written: COCO's `word` annotations are
+/// made from the same lines, so the two agree word for word.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct WordLine<'a> {
+    /// The word's projected quad (it may reach past the image), or `None` for the one line
+    /// of a text object without word quads: its visible box.
+    pub quad: Option<[[f64; 2]; 4]>,
+    /// The word (the whole text for a line without quads).
+    pub word: &'a str,
+    /// Its place among the text's words (split at spaces); `None` without quads.
+    pub index: Option<usize>,
+    /// How much of its quad shows the object (`None` without quads).
+    pub visible: Option<f64>,
+    /// Why it is written `###`: the object's [`super::Ignored`] name, `hidden` (under
+    /// [`MOSTLY_HIDDEN`] in view), `small` (under [`MIN_PX_PER_CHAR`]), `empty` (an empty
+    /// word) or `unsplit` (several words without quads); `None` when it is transcribed.
+    pub unreadable: Option<&'static str>,
+}
+
+/// The ICDAR lines of `object` in `frame` (none for an object without text), in reading
+/// order, by the rules of [`icdar`].
+pub(crate) fn word_lines<'a>(
+    frame: &FrameAnnotations,
+    object: &ShownObject<'a>,
+) -> Vec<WordLine<'a>> {
+    let Some(text) = &object.label.text else {
+        return Vec::new();
+    };
+    let v = &object.visible;
+    let words: Vec<&'a str> = text.split(' ').collect();
+    let ignored = object.ignored.map(|i| i.name());
+    let quads = frame.quads.get(&v.id).filter(|q| q.len() == words.len());
+    let Some(quads) = quads else {
+        let b = v.bounds;
+        let wide =
+            f64::from(b.x_max - b.x_min + 1) >= MIN_PX_PER_CHAR * text.chars().count() as f64;
+        let hidden = object.fraction.is_some_and(|f| f < MOSTLY_HIDDEN);
+        let unreadable = ignored
+            .or((words.len() != 1).then_some("unsplit"))
+            .or(hidden.then_some("hidden"))
+            .or((!wide).then_some("small"))
+            .or(text.is_empty().then_some("empty"));
+        return vec![WordLine {
+            quad: None,
+            word: text,
+            index: None,
+            visible: None,
+            unreadable,
+        }];
+    };
+    words
+        .iter()
+        .zip(quads)
+        .enumerate()
+        .filter(|(_, (_, w))| w.visible > 0.0)
+        .map(|(index, (&word, w))| {
+            let wide = w.length() >= MIN_PX_PER_CHAR * word.chars().count() as f64;
+            let unreadable = ignored
+                .or((w.visible < MOSTLY_HIDDEN).then_some("hidden"))
+                .or((!wide).then_some("small"))
+                .or(word.is_empty().then_some("empty"));
+            WordLine {
+                quad: Some(w.quad),
+                word,
+                index: Some(index),
+                visible: Some(w.visible),
+                unreadable,
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 
 use std::collections::BTreeMap;
 
+use super::coco_words::WORD_CATEGORY;
 use super::{Category, ObjectLabel, YoloClasses};
 use crate::spec::{AnnotationsSpec, CameraSpec, ObjectKind, ObjectSpec, SignKind};
 
@@ -30,7 +31,9 @@ pub struct PathLabels {
 
 /// The classes a path annotates: the camera's own `classes`, else `[annotations]
 /// classes`, else every `[[objects]]` label (and `rider` after a bicycle entry's) and
-/// `lamp`; COCO ids from 1 in that order.
+/// `lamp`; COCO ids from 1 in that order, then `word` when a listed class carries text
+/// and `word` is not listed already (a class list may name it to choose its place). Words
+/// are COCO annotations only: YOLO's classes leave `word` out.
 ///
 /// A traffic sign is its label's category only seen from the front; seen from behind it
 /// is `<label>_back` when that class is listed, else nothing.
@@ -59,6 +62,7 @@ pub fn path_labels(
             classes
         }
     };
+    let classes = with_words(classes, &objects);
     let categories: Vec<Category> = classes
         .iter()
         .enumerate()
@@ -99,13 +103,30 @@ pub fn path_labels(
                 kinds.sort_by_key(|k| SignKind::ALL.iter().position(|s| s.name() == k));
             }
         }
-        YoloClasses::new(&categories, &split)
+        // Words are COCO's (and ICDAR's) alone: YOLO boxes the plates.
+        let plates: Vec<Category> = categories
+            .iter()
+            .filter(|c| c.name != WORD_CATEGORY)
+            .cloned()
+            .collect();
+        YoloClasses::new(&plates, &split)
     });
     PathLabels {
         categories,
         labels,
         yolo,
     }
+}
+
+/// `classes` and, when one of them carries text and `word` is not among them, `word`.
+fn with_words(mut classes: Vec<String>, objects: &[ClassedObject]) -> Vec<String> {
+    let texts = objects
+        .iter()
+        .any(|o| o.label.text.is_some() && classes.contains(&o.class));
+    if texts && !classes.iter().any(|c| c == WORD_CATEGORY) {
+        classes.push(WORD_CATEGORY.to_owned());
+    }
+    classes
 }
 
 #[cfg(test)]
@@ -131,5 +152,40 @@ mod tests {
         assert_eq!(names, ["car", "bicycle", "rider", "person", "lamp"]);
         let ids: Vec<u32> = labels.categories.iter().map(|c| c.id).collect();
         assert_eq!(ids, [1, 2, 3, 4, 5]);
+    }
+
+    #[test]
+    fn words_come_after_the_classes_when_text_is_listed_and_stay_out_of_yolo() {
+        let text = "version = 1\nname = 'a'\n[layout.generate]\n[buildings]\nwidths = [5, 5]\n\
+                    [annotations]\nyolo = true\n\
+                    [[objects]]\nkind = 'text'\nlabel = 'text'\n\
+                    [[objects]]\nkind = 'car'\nlabel = 'car'\n\
+                    [[cameras]]\nname = 'c'\npath = 'roads'\nframes = 1\n";
+        let spec: Spec = toml::from_str(text).unwrap();
+        let object = |class: &str, text: Option<&str>| ClassedObject {
+            class: class.into(),
+            label: ObjectLabel {
+                name: format!("{class}_0000"),
+                category: None,
+                text: text.map(String::from),
+                attributes: Default::default(),
+                sign: None,
+            },
+        };
+        let labels =
+            |objects| path_labels(&spec.annotations, &spec.objects, &spec.cameras[0], objects);
+        let with_text = labels(vec![object("text", Some("Open Late")), object("car", None)]);
+        let names: Vec<&str> = with_text
+            .categories
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect();
+        assert_eq!(names, ["text", "car", "lamp", "word"]);
+        assert_eq!(with_text.categories[3].id, 4);
+        let yolo = with_text.yolo.unwrap().names_file();
+        assert_eq!(yolo, "text\ncar\nlamp\n");
+        // No text object in the scene: no word category.
+        let without = labels(vec![object("car", None)]);
+        assert_eq!(without.categories.len(), 3);
     }
 }

@@ -425,17 +425,20 @@ fn push_materials(doc: &mut GltfDocument, scene: &Scene, textures: &TextureFiles
     for material in &scene.materials {
         let [r, g, b] = material.colour.map(super::unit_interval);
         let emissive = material.emissive.map(super::unit_interval);
+        let texture = textures
+            .file_index(material.texture)
+            .map(|i| TextureInfo { index: i as u32 });
+        let glows = emissive.iter().any(|&e| e > 0.0);
         doc.materials.push(GltfMaterial {
             name: material.name.clone(),
             pbr_metallic_roughness: PbrMetallicRoughness {
                 base_color_factor: [r, g, b, 1.0],
-                base_color_texture: textures
-                    .file_index(material.texture)
-                    .map(|i| TextureInfo { index: i as u32 }),
+                base_color_texture: texture.clone(),
                 metallic_factor: 0.0,
                 roughness_factor: ROUGHNESS,
             },
-            emissive_factor: emissive.iter().any(|&e| e > 0.0).then_some(emissive),
+            emissive_factor: glows.then_some(emissive),
+            emissive_texture: texture.filter(|_| glows && material.emissive_textured),
         });
     }
     if !doc.images.is_empty() {

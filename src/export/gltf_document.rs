@@ -89,6 +89,9 @@ pub struct GltfMaterial {
     pub pbr_metallic_roughness: PbrMetallicRoughness,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub emissive_factor: Option<[f32; 3]>,
+    /// The base colour's texture again, for a material whose emission follows it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub emissive_texture: Option<TextureInfo>,
 }
 
 #[derive(Debug, Serialize)]
@@ -101,7 +104,7 @@ pub struct PbrMetallicRoughness {
     pub roughness_factor: f32,
 }
 
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct TextureInfo {
     pub index: u32,
 }

@@ -33,7 +33,7 @@ use crate::model::Scene;
 pub use texture_files::{TextureFile, TextureFiles};
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 /// The export stage: scene → files, as (path relative to the output folder, bytes), sorted
 /// by path: `city.glb`, `city.mtl`, `city.obj`, `textures/<first 16 hex of sha256>.png`…

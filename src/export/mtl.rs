@@ -3,7 +3,9 @@
 //!
 //! `Ka` repeats the base colour (so viewers that add ambient light keep the hue), `Ks` is
 //! zero and `illum 1` (colour and ambient, no highlights) to match the glTF's rough,
-//! non-metallic surfaces. `Ke` carries emission; `map_Kd` names the shared texture file.
+//! non-metallic surfaces. `Ke` carries emission; `map_Kd` names the shared texture file,
+//! and `map_Ke` names it again for a material whose emission follows the texture (a
+//! backlit sign).
 //! Colours are clamped to 0–1, as in the GLB.
 
 use super::fixed::{push_fixed, push_u64};
@@ -37,6 +39,11 @@ pub fn write_mtl(scene: &Scene, textures: &TextureFiles) -> Vec<u8> {
             out.extend_from_slice(b"map_Kd ");
             out.extend_from_slice(file.path.as_bytes());
             out.push(b'\n');
+            if material.emissive_textured {
+                out.extend_from_slice(b"map_Ke ");
+                out.extend_from_slice(file.path.as_bytes());
+                out.push(b'\n');
+            }
         }
     }
     out

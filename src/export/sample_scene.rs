@@ -19,6 +19,7 @@ fn material(name: &str, colour: [f32; 3], texture: Option<u32>, emissive: [f32; 
         colour,
         texture,
         emissive,
+        emissive_textured: false,
     }
 }
 

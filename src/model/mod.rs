@@ -42,5 +42,5 @@ pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;
 pub use pixel_class::PixelClass;
 pub use road::{Axis, Road};
-pub use scene::{Material, Mesh, Scene, SceneObject};
+pub use scene::{LAMP_LIT_SUFFIX, Material, Mesh, Scene, SceneObject};
 pub use texture::{Texture, encode_png};

@@ -28,7 +28,16 @@ pub struct Material {
     pub texture: Option<u32>,
     /// Emitted light (linear RGB, 0–1); zero for ordinary surfaces.
     pub emissive: [f32; 3],
+    /// Whether the emission is multiplied by the texture, as glTF's `emissiveTexture` (and
+    /// MTL's `map_Ke`) naming the base colour's texture: a backlit sign, whose printed face
+    /// glows where light passes through it (pale paper bright, dark letters dark).
+    #[serde(default)]
+    pub emissive_textured: bool,
 }
+
+/// The end of the name of a material whose surface a small lamp lights after dusk (a
+/// lamp-lit sign): the renderer puts a light over every mesh of such a material.
+pub const LAMP_LIT_SUFFIX: &str = "_lamplit";
 
 /// One named, labelled object.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -50,6 +50,9 @@ pub(super) fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
             let index = known.unwrap_or_else(|| {
                 let texture = material.texture.map(|t| &group.textures[t as usize]);
                 let index = book.add(&request.name, material.colour, texture, material.emissive);
+                if material.emissive_textured {
+                    book.texture_emission(index);
+                }
                 if request.once {
                     once.insert(request.name.clone(), index);
                 }

@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 13;
+pub const VERSION: u32 = 14;
 
 mod atlas_layout;
 mod bicycle;
@@ -35,6 +35,7 @@ mod ground_spots;
 pub mod obj_lines;
 mod objects_error;
 mod person;
+mod plate_light;
 mod plate_style;
 mod sign_face;
 mod street_names;
@@ -238,6 +239,11 @@ impl<'a> Placing<'a> {
             once: false,
         });
         self.book.add(name, colour, texture, emissive)
+    }
+
+    /// Makes material `m`'s emission follow its texture (a backlit face).
+    pub fn texture_emission(&mut self, m: u32) {
+        self.book.texture_emission(m);
     }
 
     /// A material registered once under `name`, made by `make` the first time.

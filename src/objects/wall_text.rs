@@ -9,8 +9,9 @@
 //! Each plate draws a style ([`PlateStyle::WALL_MIX`]), a font ([`TextFont::ALL`]) and a
 //! colour pair ([`text_colours`]); painted text is drawn straight onto the wall's own
 //! pixels, primed where the raw wall fails the contrast floor ([`text_colours::primed`]).
-//! An entry's plate images share a few atlas pages ([`AtlasLayout`]), one material per
-//! page, each plate's uvs covering its own rectangle.
+//! An entry's plate images share a few atlas pages (`atlas_layout`), one material per
+//! page and per way the plates are lit after dusk ([`PlateLight`]), each plate's uvs
+//! covering its own rectangle.
 
 use std::collections::BTreeMap;
 
@@ -19,9 +20,9 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
 
-use super::atlas_layout::{self, AtlasLayout};
 use super::footprint_grid::FootprintGrid;
 use super::ground_spots::Footprint;
+use super::plate_light::{self, PlateLight};
 use super::plate_style::{PlateStyle, SHOP_BAND};
 use super::text_colours::{self, luminance};
 use super::text_font::TextFont;
@@ -29,9 +30,9 @@ use super::text_plate::{self, Background, TextPlate};
 use super::{
     ATTEMPTS, GIVE_UP, ObjectInfo, ObjectsError, ObjectsInput, Placing, WORDS, parse_words,
 };
+use crate::model::SceneObject;
 use crate::model::geometry::rounding::{floor, round};
 use crate::model::geometry::{KERB_Y, MeshBuilder, RoadRect, strip_width_px};
-use crate::model::{SceneObject, Texture};
 use crate::spec::{ObjectSpec, TextCase};
 
 /// Lowest plate edge above the block surface, in metres.
@@ -294,8 +295,9 @@ fn wall_patch(image: &RgbImage, wall: &Wall, rect: [f64; 4], plate: &TextPlate) 
     })
 }
 
-/// Draws the `placed` plates (their `wall` indexing `walls`), packs them onto atlas pages
-/// named `<page_name>_<i>`, one material per page, and pushes one text object per plate.
+/// Draws the `placed` plates (their `wall` indexing `walls`), draws how each is lit after
+/// dusk ([`PlateLight`]), packs them onto atlas pages named `<page_name>_<i>` (one set per
+/// light, one material per page) and pushes one text object per plate.
 pub(crate) fn finish_plates(
     spec: &ObjectSpec,
     walls: &[Wall],
@@ -309,43 +311,33 @@ pub(crate) fn finish_plates(
         .par_iter()
         .map(|p| p.plate.draw(&p.text, &p.background, p.ink))
         .collect();
-    let sizes: Vec<[u32; 2]> = placed
+    let seed = placing.input.seed;
+    // Keyed by where the plate is, not by its name: names are numbered again when the
+    // entries placed as two groups are replayed into one (`entry_groups`).
+    let lights: Vec<PlateLight> = placed
         .iter()
-        .map(|p| [p.plate.width, p.plate.height])
-        .collect();
-    let atlas = AtlasLayout::pack(&sizes, atlas_layout::PAGE);
-    let pages: Vec<Texture> = (0..atlas.pages.len())
-        .into_par_iter()
-        .map(|page| Texture::from_rgb(String::new(), atlas.paint(page, &images)))
-        .collect();
-    let materials: Vec<u32> = pages
-        .iter()
-        .enumerate()
-        .map(|(i, page)| {
-            let name = format!("{page_name}_{i}");
-            placing.add(&name, [1.0; 3], Some(page), [0.0; 3])
+        .map(|p| {
+            let at = format!("{}/{:?}", p.wall, p.rect.map(f64::to_bits));
+            PlateLight::draw(p.plate.style, seed, &at)
         })
         .collect();
-    for (i, p) in placed.into_iter().enumerate() {
-        let material = materials[atlas.slots[i].page];
+    let slots = plate_light::pack_pages(images, &lights, page_name, placing);
+    for ((p, slot), light) in placed.into_iter().zip(slots).zip(lights) {
         let object = SceneObject {
             name: p.name,
             kind: crate::model::ObjectKind::Text,
             class: spec.label.clone(),
-            meshes: vec![plate_mesh(
-                &walls[p.wall],
-                p.rect,
-                material,
-                atlas.uv_spans(i),
-            )],
+            meshes: vec![plate_mesh(&walls[p.wall], p.rect, slot.material, slot.uv)],
         };
+        let mut attributes = text_attributes(&p.plate);
+        attributes.insert("text_light".to_owned(), light.name().to_owned());
         placing.push(
             object,
             ObjectInfo {
                 label: spec.label.clone(),
                 text: Some(p.text),
                 corners: p.corners,
-                attributes: text_attributes(&p.plate),
+                attributes,
             },
         );
     }

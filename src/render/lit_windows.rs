@@ -481,6 +481,7 @@ mod tests {
                 colour: [1.0; 3],
                 texture: Some(1),
                 emissive: [0.0; 3],
+                emissive_textured: false,
             }],
             objects: vec![SceneObject {
                 name: "building_0000".into(),

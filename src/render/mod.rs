@@ -18,7 +18,8 @@
 //!   `id = R + 256·G + 256²·B`.
 //! - **Colour**: `albedo · (ambient · ao + sun_colour · max(0, n·sun) · lit + Σ lights
 //!   colour · (1 − (d/r)²)² · near² / (near² + d²) · beam · max(0, n·l)) + emissive ·
-//!   emission`, plus a glow on lit windows, in linear light; `ao` is the ambient
+//!   emission` (the emissive colour times the texture for a material whose emission
+//!   follows it: a backlit sign), plus a glow on lit windows, in linear light; `ao` is the ambient
 //!   occlusion, `lit = 1 − shadow_strength · (1 − the shadow map's share of the sun)`;
 //!   `albedo = base colour · texture`; the lights (lamps, car lights, the light lit
 //!   windows spill) and their `beam` are `point_lights`'; each tile shades with at most
@@ -54,7 +55,7 @@
 //! the same on every machine and for any number of threads.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 17;
+pub const VERSION: u32 = 18;
 
 mod ambient_occlusion;
 mod centre_samples;

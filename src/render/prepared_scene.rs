@@ -36,6 +36,8 @@ pub(crate) struct ShadeMaterial {
     pub colour: [f32; 3],
     pub texture: Option<u32>,
     pub emissive: [f32; 3],
+    /// Emission times the texture (a backlit face).
+    pub emissive_textured: bool,
 }
 
 /// An object's box and its run of triangles.
@@ -208,6 +210,7 @@ fn shade_materials(scene: &Scene) -> Result<Vec<ShadeMaterial>, RenderError> {
             colour: m.colour,
             texture: m.texture,
             emissive: m.emissive,
+            emissive_textured: m.emissive_textured,
         });
     }
     Ok(materials)

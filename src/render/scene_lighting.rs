@@ -2,12 +2,14 @@
 //! path (or frame): the spec's sun, sky and shadows, a point light at every lamp head and
 //! a seeded share of lit windows once the sun is low with the light they spill onto the
 //! pavement, and the headlight beam and tail-light glow of every car in a driving lane
-//! (a parked car's lights are off: its lenses are other materials). A driving camera's
-//! own car adds its headlights per frame ([`ego_headlights`]).
+//! (a parked car's lights are off: its lenses are other materials), and a small lamp over
+//! every lamp-lit sign (a mesh whose material's name holds
+//! [`crate::model::LAMP_LIT_SUFFIX`]). A driving camera's own car adds its headlights per
+//! frame ([`ego_headlights`]).
 
 use super::lighting::{LAMP_COLOUR, WINDOW_COLOUR};
 use super::{Light, Lighting, LitWindows, Sun};
-use crate::model::{FacadeSet, Scene};
+use crate::model::{FacadeSet, LAMP_LIT_SUFFIX, Mesh, Scene};
 use crate::spec::LightingSpec;
 
 /// The lighting of `spec` under `sun`. `lamp_heads` are the world positions of the street
@@ -26,12 +28,103 @@ pub fn lighting_for(
         .map(|p| Light::street_lamp(p.map(|v| v as f32), LAMP_COLOUR, range))
         .collect();
     lights.extend(vehicle_lights(scene));
+    lights.extend(sign_lamps(scene));
     let windows =
         LitWindows::from_facades(scene, facades, spec.lit_windows as f32, seed, WINDOW_COLOUR);
     lights.extend(windows.spill_lights(scene));
     let mut lighting = Lighting::from_sun(sun, spec.turbidity, lights, Some(windows));
     lighting.shadows = spec.shadows;
     lighting
+}
+
+/// A sign lamp: a warm light [`SIGN_LAMP_OUT`] in front of the sign's face and
+/// [`SIGN_LAMP_UP`] above its top edge, aimed at the face's middle, one per
+/// [`SIGN_LAMP_SPACING`] of the sign's width. About 1.2 (the noon sun's strength) on the
+/// middle of a sign 0.6 m tall, fading towards its ends and gone [`SIGN_LAMP_RANGE`] away.
+const SIGN_LAMP: [f32; 3] = [4.0, 3.5, 2.8];
+const SIGN_LAMP_OUT: f64 = 0.5;
+const SIGN_LAMP_UP: f64 = 0.2;
+const SIGN_LAMP_SPACING: f64 = 1.5;
+const SIGN_LAMP_NEAR: f32 = 0.6;
+const SIGN_LAMP_RANGE: f32 = 3.0;
+const SIGN_LAMP_EDGE: f32 = 0.0;
+
+/// The lamps over every mesh of a lamp-lit material, in scene order.
+pub(crate) fn sign_lamps(scene: &Scene) -> Vec<Light> {
+    let lamp_lit: Vec<bool> = scene
+        .materials
+        .iter()
+        .map(|m| m.name.contains(LAMP_LIT_SUFFIX))
+        .collect();
+    let mut out = Vec::new();
+    for object in &scene.objects {
+        for mesh in &object.meshes {
+            if lamp_lit
+                .get(mesh.material as usize)
+                .copied()
+                .unwrap_or(false)
+            {
+                out.extend(lamps_over(mesh));
+            }
+        }
+    }
+    out
+}
+
+/// The lamps over one sign face: a flat, upright mesh facing along its first normal.
+fn lamps_over(mesh: &Mesh) -> Vec<Light> {
+    let (Some(normal), false) = (mesh.normals.first(), mesh.positions.is_empty()) else {
+        return Vec::new();
+    };
+    let n = [f64::from(normal[0]), 0.0, f64::from(normal[2])];
+    let len = (n[0] * n[0] + n[2] * n[2]).sqrt();
+    if len.is_nan() || len <= 1e-6 {
+        return Vec::new();
+    }
+    let n = n.map(|v| v / len);
+    // Along the face, to its right seen from the front.
+    let along = [n[2], 0.0, -n[0]];
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    let mut centre = [0.0f64; 3];
+    for p in &mesh.positions {
+        let p = p.map(f64::from);
+        let s = p[0] * along[0] + p[2] * along[2];
+        lo = [lo[0].min(s), lo[1].min(p[1])];
+        hi = [hi[0].max(s), hi[1].max(p[1])];
+        for k in 0..3 {
+            centre[k] += p[k];
+        }
+    }
+    let centre = centre.map(|v| v / mesh.positions.len() as f64);
+    let width = hi[0] - lo[0];
+    let middle_y = (lo[1] + hi[1]) / 2.0;
+    let count = (width / SIGN_LAMP_SPACING).ceil().max(1.0) as usize;
+    let centre_s = centre[0] * along[0] + centre[2] * along[2];
+    (0..count)
+        .map(|i| {
+            let offset = lo[0] + width * (i as f64 + 0.5) / count as f64 - centre_s;
+            let at = [
+                centre[0] + along[0] * offset + n[0] * SIGN_LAMP_OUT,
+                hi[1] + SIGN_LAMP_UP,
+                centre[2] + along[2] * offset + n[2] * SIGN_LAMP_OUT,
+            ];
+            let aim = [
+                -n[0] * SIGN_LAMP_OUT,
+                middle_y - at[1],
+                -n[2] * SIGN_LAMP_OUT,
+            ];
+            let aim_len = (aim[0] * aim[0] + aim[1] * aim[1] + aim[2] * aim[2]).sqrt();
+            Light {
+                position: at.map(|v| v as f32),
+                colour: SIGN_LAMP,
+                range: SIGN_LAMP_RANGE,
+                near: SIGN_LAMP_NEAR,
+                aim: aim.map(|v| (v / aim_len) as f32),
+                edge: SIGN_LAMP_EDGE,
+                cutoff: None,
+            }
+        })
+        .collect()
 }
 
 /// Headlights: a warm white beam about 37° wide (half angle), aimed along the car and a
@@ -198,6 +291,7 @@ mod tests {
             colour: [1.0; 3],
             texture: None,
             emissive: [1.0; 3],
+            emissive_textured: false,
         };
         // A car facing +x: headlights at its front (x = 2), tail lights at its back.
         let scene = Scene {
@@ -222,6 +316,61 @@ mod tests {
             "red: {:?}",
             tail.colour
         );
+    }
+
+    #[test]
+    fn a_lamp_lit_sign_gets_lamps_over_its_face_and_an_unlit_one_none() {
+        // A sign 3 m wide and 0.6 m tall on a wall facing +z, 2.5 m up.
+        let face = |material| Mesh {
+            material,
+            positions: vec![
+                [0.0, 2.5, 0.0],
+                [3.0, 2.5, 0.0],
+                [3.0, 3.1, 0.0],
+                [0.0, 3.1, 0.0],
+            ],
+            normals: vec![[0.0, 0.0, 1.0]; 4],
+            uvs: Vec::new(),
+            indices: vec![0, 1, 2, 0, 2, 3],
+        };
+        let material = |name: &str| Material {
+            name: name.into(),
+            colour: [1.0; 3],
+            texture: None,
+            emissive: [0.0; 3],
+            emissive_textured: false,
+        };
+        let scene = Scene {
+            textures: Vec::new(),
+            materials: vec![
+                material("text_atlas_0"),
+                material(&format!("text_atlas_0{LAMP_LIT_SUFFIX}")),
+            ],
+            objects: vec![SceneObject {
+                name: "text_0000".into(),
+                kind: crate::model::ObjectKind::Text,
+                class: "text".into(),
+                meshes: vec![face(0), face(1)],
+            }],
+        };
+        let lamps = sign_lamps(&scene);
+        assert_eq!(
+            lamps.len(),
+            2,
+            "one lamp per 1.5 m of the lamp-lit face only"
+        );
+        for (lamp, x) in lamps.iter().zip([0.75, 2.25]) {
+            assert!((lamp.position[0] - x).abs() < 1e-5, "{:?}", lamp.position);
+            assert!((lamp.position[1] - 3.3).abs() < 1e-5);
+            assert!(
+                (lamp.position[2] - 0.5).abs() < 1e-6,
+                "in front of the face"
+            );
+            assert!(
+                lamp.aim[2] < 0.0 && lamp.aim[1] < 0.0,
+                "aimed back and down"
+            );
+        }
     }
 
     #[test]

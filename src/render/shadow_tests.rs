@@ -236,7 +236,7 @@ fn a_shadowed_frame_is_pinned() {
     assert_eq!(
         (VERSION, digest.as_str()),
         (
-            17,
+            18,
             "4f688945913751bbc5324db443080fc3ca0d0dea380991d57a5073c29c8915c9"
         ),
         "lighting output changed: bump render::VERSION and update this digest"

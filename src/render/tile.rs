@@ -401,6 +401,7 @@ fn shade(
     // derivatives and the point.
     let w = 1.0 / q;
     let mut albedo = material.colour;
+    let mut emitted = material.emissive;
     let mut window = None;
     if let Some(texture) = material.texture {
         let u = at(&tri.uq, tri.origin, px, py) * w;
@@ -435,6 +436,9 @@ fn shade(
         };
         let t = mips.sample_at(u, v, &footprint);
         albedo = [albedo[0] * t[0], albedo[1] * t[1], albedo[2] * t[2]];
+        if material.emissive_textured {
+            emitted = [emitted[0] * t[0], emitted[1] * t[1], emitted[2] * t[2]];
+        }
         if let Some(glow) = ctx
             .windows
             .and_then(|w| w.glow(texture, source.instance, u, v))
@@ -471,9 +475,9 @@ fn shade(
     point_lights::add_lights(&mut light, lights, p, n);
     let e = l.emission;
     let mut out = [
-        albedo[0] * light[0] + material.emissive[0] * e,
-        albedo[1] * light[1] + material.emissive[1] * e,
-        albedo[2] * light[2] + material.emissive[2] * e,
+        albedo[0] * light[0] + emitted[0] * e,
+        albedo[1] * light[1] + emitted[1] * e,
+        albedo[2] * light[2] + emitted[2] * e,
     ];
     if let Some((glow, t)) = window {
         for c in 0..3 {

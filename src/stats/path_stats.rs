@@ -57,6 +57,10 @@ pub struct ClassStats {
     pub box_height: Option<[f64; 3]>,
 }
 
+/// The COCO category of the words of text objects (`annotate`'s `word`): counted in its
+/// own row, not in the all-classes figures, which count each plate once.
+pub(super) const WORD_CATEGORY: &str = "word";
+
 /// Measures the path folder `dir`; `kinds[k]` is the kind of instance id `k + 1`.
 pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsError> {
     let name = dir
@@ -68,7 +72,14 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
     let images = coco.image_ids()?;
     let categories = coco.categories()?;
     let mut tally = coco.tally(&images, &categories)?;
-    let mut all_heights: Vec<f64> = tally.heights.iter().flatten().copied().collect();
+    // A word is part of its plate: the all-classes figures count the plates.
+    let mut all_heights: Vec<f64> = tally
+        .heights
+        .iter()
+        .zip(&categories)
+        .filter(|(_, (_, name))| name != WORD_CATEGORY)
+        .flat_map(|(h, _)| h.iter().copied())
+        .collect();
     let classes = categories
         .iter()
         .enumerate()
@@ -205,7 +216,7 @@ impl Coco {
                 .and_then(|id| frame_of.get(&id))
                 .ok_or_else(|| self.bad("an annotation of an unlisted image"))?;
             tally.per_frame[c][*frame] += 1;
-            tally.all_per_frame[*frame] += 1;
+            tally.all_per_frame[*frame] += u64::from(categories[c].1 != WORD_CATEGORY);
             tally.heights[c].push(
                 ann["bbox"][3]
                     .as_f64()

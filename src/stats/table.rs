@@ -34,12 +34,18 @@ pub fn table(stats: &Stats) -> String {
                 c.box_height,
             )
         });
+        // A word is part of its plate: the all-classes row counts the plates.
+        let plates = || {
+            path.classes
+                .iter()
+                .filter(|c| c.name != super::path_stats::WORD_CATEGORY)
+        };
         let all = (
             "(all labelled)",
             path.labelled_per_frame,
-            path.classes.iter().map(|c| c.labelled).sum(),
-            path.classes.iter().map(|c| c.ignored).sum(),
-            path.classes.iter().map(|c| c.faint).sum(),
+            plates().map(|c| c.labelled).sum(),
+            plates().map(|c| c.ignored).sum(),
+            plates().map(|c| c.faint).sum(),
             path.box_height,
         );
         for (name, per_frame, labelled, ignored, faint, height) in rows.chain([all]) {

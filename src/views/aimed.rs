@@ -163,6 +163,7 @@ mod tests {
             colour: [1.0; 3],
             texture,
             emissive: [0.0; 3],
+            emissive_textured: false,
         };
         let object = |name: &str, class: &str, meshes| SceneObject {
             name: name.to_owned(),

@@ -303,6 +303,7 @@ mod tests {
                 colour: [0.5; 3],
                 texture: None,
                 emissive: [0.0; 3],
+                emissive_textured: false,
             }],
             objects: vec![SceneObject {
                 name: "building_0000".into(),

@@ -451,12 +451,13 @@ fn street_annotations(ws: &Workspace, spec: &str) -> Vec<([f64; 4], [f64; 4], f6
     let four = |v: &serde_json::Value| -> [f64; 4] {
         std::array::from_fn(|i| v[i].as_f64().expect("a number"))
     };
-    // Ignore regions (objects under the thresholds, iscrowd 1) are not annotations.
+    // Ignore regions (objects under the thresholds, iscrowd 1) are not annotations; words
+    // (no full box: a plate's) are not objects.
     doc["annotations"]
         .as_array()
         .unwrap()
         .iter()
-        .filter(|a| a["iscrowd"] == 0)
+        .filter(|a| a["iscrowd"] == 0 && a.get("full_bbox").is_some())
         .map(|a| {
             (
                 four(&a["bbox"]),

@@ -38,8 +38,16 @@ impl MaterialBook {
             colour,
             texture,
             emissive,
+            emissive_textured: false,
         });
         (self.materials.len() - 1) as u32
+    }
+
+    /// Makes material `m`'s emission follow its texture (a backlit face).
+    pub fn texture_emission(&mut self, m: u32) {
+        if let Some(material) = self.materials.get_mut(m as usize) {
+            material.emissive_textured = true;
+        }
     }
 
     fn unique(&mut self, base: &str) -> String {

@@ -21,6 +21,7 @@ pub(super) fn material(colour: [f32; 3], texture: Option<u32>, emissive: [f32; 3
         colour,
         texture,
         emissive,
+        emissive_textured: false,
     }
 }
 

@@ -205,3 +205,97 @@ fn quad_material(mut mesh: Mesh, material: u32) -> Mesh {
     mesh.material = material;
     mesh
 }
+
+/// Three signs side by side on a dark wall, facing the camera: a backlit one (material 1),
+/// a lamp-lit one (material 2, [`crate::model::LAMP_LIT_SUFFIX`]) and an unlit one
+/// (material 3), all printed with the same page: pale paper, a dark stripe of letters.
+fn three_signs(lit: bool) -> Scene {
+    let page = RgbImage::from_fn(16, 16, |_, y| {
+        if (6..10).contains(&y) {
+            Rgb([20, 20, 20])
+        } else {
+            Rgb([230, 225, 210])
+        }
+    });
+    let page = Texture::from_rgb("page", page);
+    // Unlit, the first two are plain pages too.
+    let mut backlit = material([1.0; 3], Some(0), [0.0; 3]);
+    let mut lamp_lit = material([1.0; 3], Some(0), [0.0; 3]);
+    if lit {
+        backlit.emissive = [0.6; 3];
+        backlit.emissive_textured = true;
+        lamp_lit.name = format!("page_0{}", crate::model::LAMP_LIT_SUFFIX);
+    }
+    let sign = |m: u32, x: f32| {
+        let c = [
+            [x - 1.0, -1.0, -9.9],
+            [x + 1.0, -1.0, -9.9],
+            [x + 1.0, 1.0, -9.9],
+            [x - 1.0, 1.0, -9.9],
+        ];
+        object("sign", vec![quad(m, c, UNIT_UV, [0.0, 0.0, 1.0])])
+    };
+    Scene {
+        textures: vec![page],
+        materials: vec![
+            material([0.3; 3], None, [0.0; 3]),
+            backlit,
+            lamp_lit,
+            material([1.0; 3], Some(0), [0.0; 3]),
+        ],
+        objects: vec![
+            object("wall", vec![wall(-10.0, 20.0)]),
+            sign(1, -3.0),
+            sign(2, 0.0),
+            sign(3, 3.0),
+        ],
+    }
+}
+
+/// Mean luma of the pixels of instance `id` in rows `rows`.
+fn mean_luma(frame: &Frame, id: u32, rows: std::ops::Range<u32>) -> f64 {
+    let (mut sum, mut n) = (0.0, 0.0);
+    for (x, y, p) in frame.rgb().enumerate_pixels() {
+        if rows.contains(&y) && frame.instance.get_pixel(x, y).0[0] == id {
+            let [r, g, b] = p.0.map(f64::from);
+            sum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
+            n += 1.0;
+        }
+    }
+    assert!(n > 0.0, "instance {id} shows in rows {rows:?}");
+    sum / n
+}
+
+#[test]
+fn lit_signs_show_their_letters_at_night_and_nothing_changes_by_day() {
+    use crate::render::scene_lighting::sign_lamps;
+    let scene = three_signs(true);
+    let prepared = prepare(&scene).unwrap();
+    let k = Intrinsics::from_fov(192, 128, 1.2);
+    let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
+    let night = Lighting::night(sign_lamps(&scene), None);
+    let frame = render(&prepared, &eye, &k, &night, 1);
+    // Signs are instances 2, 3 and 4; the rows they cover.
+    let rows: Vec<u32> = (0..128)
+        .filter(|&y| (0..192).any(|x| frame.instance.get_pixel(x, y).0[0] == 2))
+        .collect();
+    let (top, bottom) = (rows[0], rows[rows.len() - 1] + 1);
+    assert!(bottom - top >= 8, "{top}..{bottom}");
+    let [backlit, lamp_lit, unlit] = [2, 3, 4].map(|id| mean_luma(&frame, id, top..bottom));
+    assert!(backlit > unlit + 40.0, "backlit {backlit} vs unlit {unlit}");
+    assert!(
+        lamp_lit > unlit + 20.0,
+        "lamp-lit {lamp_lit} vs unlit {unlit}"
+    );
+    // The paper glows, the letters (the middle quarter of the page) stay dark.
+    let middle = (top + bottom) / 2;
+    let paper = mean_luma(&frame, 2, top + 1..top + 3);
+    let letters = mean_luma(&frame, 2, middle - 1..middle + 1);
+    assert!(paper > letters + 60.0, "paper {paper} vs letters {letters}");
+    // By day the backlit face and the sign lamp are off: the same bytes as plain pages.
+    let day = |scene: &Scene| {
+        let day = Lighting::from_sun(&crate::render::sun::DAY, 3.0, sign_lamps(scene), None);
+        render(&prepare(scene).unwrap(), &eye, &k, &day, 1)
+    };
+    assert_eq!(day(&scene).rgb(), day(&three_signs(false)).rgb());
+}

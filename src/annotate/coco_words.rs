@@ -1,0 +1,250 @@
+//! One ICDAR line of a text object in a frame → its COCO `word` annotation: the word's
+//! quad cut to the plate's visible box as the segmentation polygon, its box and area, its
+//! transcription, `iscrowd` 1 exactly where ICDAR writes `###`, and the plate it belongs
+//! to (fields in [`super::CocoWriter`]).
+
+use serde_json::{Value, json};
+
+use super::icdar::WordLine;
+use super::round;
+use super::shown_object::ShownObject;
+
+/// The category of the words of text objects: appended after the others by
+/// [`super::path_labels`] when a listed class carries text (or placed where `classes` lists
+/// it).
+pub const WORD_CATEGORY: &str = "word";
+
+/// The `word` annotation of one ICDAR line of the text `object` (category `category`),
+/// `None` when its quad has nothing inside the object's visible box.
+pub(super) fn word_annotation(
+    line: &WordLine,
+    object: &ShownObject,
+    category: u32,
+    image_id: u64,
+) -> Option<String> {
+    let b = object.visible.bounds;
+    let bounds = [b.x_min, b.y_min, b.x_max + 1, b.y_max + 1].map(f64::from);
+    let polygon = match line.quad {
+        Some(quad) => clip_to_box(&quad, bounds),
+        None => vec![
+            [bounds[0], bounds[1]],
+            [bounds[2], bounds[1]],
+            [bounds[2], bounds[3]],
+            [bounds[0], bounds[3]],
+        ],
+    };
+    // Corners to 2 decimals first: the box and the area are those of the polygon written.
+    let polygon: Vec<[f64; 2]> = polygon
+        .iter()
+        .map(|p| Some([round(p[0], 1e2)?, round(p[1], 1e2)?]))
+        .collect::<Option<_>>()?;
+    let area = polygon_area(&polygon);
+    if polygon.len() < 3 || area.is_nan() || area <= 0.0 {
+        return None;
+    }
+    let lo = |k: usize| polygon.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+    let hi = |k: usize| {
+        polygon
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let (x0, y0, x1, y1) = (lo(0), lo(1), hi(0), hi(1));
+    let flat: Vec<f64> = polygon.iter().flatten().copied().collect();
+    let mut annotation = json!({
+        "image_id": image_id,
+        "category_id": category,
+        "bbox": [x0, y0, round(x1 - x0, 1e2), round(y1 - y0, 1e2)],
+        "area": round(area, 1e2),
+        "iscrowd": u8::from(line.unreadable.is_some()),
+        "segmentation": [flat],
+        "cityspec_instance": object.visible.id,
+        "name": object.label.name,
+        "word_index": line.index,
+        "text": line.word,
+        "visible_fraction": line.visible.and_then(|f| round(f, 1e6)),
+    });
+    if let (Some(why), Value::Object(map)) = (line.unreadable, &mut annotation) {
+        map.insert("cityspec_ignored".into(), Value::from(why));
+    }
+    Some(annotation.to_string())
+}
+
+/// The part of the convex polygon `quad` inside the box `[x0, y0, x1, y1]`
+/// (Sutherland–Hodgman, one box edge at a time).
+fn clip_to_box(quad: &[[f64; 2]; 4], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]> {
+    // Each edge: the coordinate it bounds, its value, and whether points keep below it.
+    let edges = [(0, x0, false), (0, x1, true), (1, y0, false), (1, y1, true)];
+    let mut points = quad.to_vec();
+    for (k, limit, below) in edges {
+        let keep = |p: &[f64; 2]| if below { p[k] <= limit } else { p[k] >= limit };
+        let mut out = Vec::with_capacity(points.len() + 1);
+        for (i, p) in points.iter().enumerate() {
+            let q = points[(i + 1) % points.len()];
+            if keep(p) {
+                out.push(*p);
+            }
+            if keep(p) != keep(&q) {
+                let t = (limit - p[k]) / (q[k] - p[k]);
+                let mut cut = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+                cut[k] = limit;
+                out.push(cut);
+            }
+        }
+        points = out;
+        if points.is_empty() {
+            break;
+        }
+    }
+    points
+}
+
+/// Area of a simple polygon (shoelace), whatever its winding.
+fn polygon_area(points: &[[f64; 2]]) -> f64 {
+    let n = points.len();
+    let twice: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum();
+    twice.abs() / 2.0
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::annotate::{
+        Category, FrameInput, ObjectLabel, Thresholds, coco, icdar, summarize, test_image,
+    };
+    use crate::model::CameraPose;
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> [[f64; 2]; 4] {
+        [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
+    }
+
+    #[test]
+    fn a_quad_is_cut_to_the_box_and_keeps_its_area_inside() {
+        let half = clip_to_box(&rect(-2.0, 0.0, 2.0, 2.0), [0.0, 0.0, 10.0, 10.0]);
+        assert_eq!(polygon_area(&half), 4.0);
+        assert!(half.iter().all(|p| p[0] >= 0.0));
+        // A slanted quad wholly inside is unchanged; one wholly outside is gone.
+        let slanted = [[1.0, 1.0], [5.0, 2.0], [5.0, 4.0], [1.0, 3.0]];
+        assert_eq!(
+            clip_to_box(&slanted, [0.0, 0.0, 10.0, 10.0]),
+            slanted.to_vec()
+        );
+        assert!(clip_to_box(&rect(20.0, 0.0, 30.0, 2.0), [0.0, 0.0, 10.0, 10.0]).is_empty());
+    }
+
+    /// 20 × 6: 1 "Write Group" (x 0..12, rows 0..3), 2 "Edge" running past the right edge,
+    /// 3 "Hidden" mostly behind 5, 4 "Gone word" whose second word is off the image, 5
+    /// "Ok" with no quads, 6 a building; categories text 1, word 2.
+    #[test]
+    fn one_word_annotation_per_icdar_line_inside_its_plate_crowd_where_icdar_does_not_care() {
+        let img = test_image(&[
+            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+            &[0; 20],
+            &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
+            &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
+        ]);
+        let label = |text: Option<&str>| ObjectLabel {
+            name: text.unwrap_or("building").into(),
+            category: text.map(|_| 1),
+            text: text.map(String::from),
+            attributes: Default::default(),
+            sign: None,
+        };
+        let labels = [
+            label(Some("Write Group")),
+            label(Some("Edge")),
+            label(Some("Hidden")),
+            label(Some("Gone word")),
+            label(Some("Ok")),
+            label(None),
+        ];
+        let frame = FrameInput {
+            file_name: "f.png".into(),
+            instance: &img,
+            rgb: None,
+            intrinsics: [1.0, 1.0, 10.0, 3.0],
+            pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
+            full: BTreeMap::new(),
+            quads: BTreeMap::from([
+                (
+                    1,
+                    vec![rect(0.0, 0.0, 10.0, 3.0), rect(10.0, 0.0, 12.0, 3.0)],
+                ),
+                (2, vec![rect(14.0, 0.0, 24.0, 3.0)]),
+                (3, vec![rect(0.0, 4.0, 12.0, 6.0)]),
+                (
+                    4,
+                    vec![rect(14.0, 4.0, 20.0, 6.0), rect(30.0, 4.0, 40.0, 6.0)],
+                ),
+            ]),
+        };
+        let thresholds = Thresholds {
+            min_pixels: 2,
+            min_fraction: 0.0,
+        };
+        let categories = ["text", WORD_CATEGORY].map(|name| Category {
+            id: if name == "text" { 1 } else { 2 },
+            name: name.into(),
+        });
+        let doc: Value = serde_json::from_slice(&coco(
+            &categories,
+            &labels,
+            std::slice::from_ref(&frame),
+            &thresholds,
+        ))
+        .unwrap();
+        let lines = icdar(&summarize(&labels, &frame, &thresholds));
+        let annotations = doc["annotations"].as_array().unwrap();
+        let plates: Vec<&Value> = annotations
+            .iter()
+            .filter(|a| a["category_id"] == 1)
+            .collect();
+        let words: Vec<&Value> = annotations
+            .iter()
+            .filter(|a| a["category_id"] == 2)
+            .collect();
+        assert_eq!(plates.len(), 5);
+        assert_eq!(words.len(), lines.lines().count());
+        for (word, line) in words.iter().zip(lines.lines()) {
+            let transcription = line.splitn(9, ',').nth(8).unwrap();
+            if transcription == "###" {
+                assert_eq!(word["iscrowd"], 1, "{word}");
+                assert!(word["cityspec_ignored"].is_string());
+            } else {
+                assert_eq!(word["iscrowd"], 0, "{word}");
+                assert_eq!(word["text"], transcription);
+            }
+            let plate = plates
+                .iter()
+                .find(|p| p["cityspec_instance"] == word["cityspec_instance"])
+                .expect("a word's plate is annotated");
+            let [wx, wy, ww, wh] = [0, 1, 2, 3].map(|k| word["bbox"][k].as_f64().unwrap());
+            let [px, py, pw, ph] = [0, 1, 2, 3].map(|k| plate["bbox"][k].as_f64().unwrap());
+            assert!(ww > 0.0 && wh > 0.0, "{word}");
+            assert!(wx >= px && wy >= py && wx + ww <= px + pw && wy + wh <= py + ph);
+            let polygon = word["segmentation"][0].as_array().unwrap();
+            assert!(polygon.len() >= 6 && polygon.len() % 2 == 0);
+            assert_eq!(word["area"].as_f64().unwrap(), ww * wh, "rectangles here");
+        }
+        let texts: Vec<&str> = words.iter().map(|w| w["text"].as_str().unwrap()).collect();
+        assert_eq!(texts, ["Write", "Group", "Edge", "Hidden", "Gone", "Ok"]);
+        // Words follow their plate; "Edge" is cut to the plate at the image's edge, "Hidden"
+        // to the 3 columns its plate shows.
+        assert_eq!(words[2]["bbox"], json!([14.0, 0.0, 6.0, 3.0]));
+        assert_eq!(words[3]["bbox"], json!([0.0, 4.0, 3.0, 2.0]));
+        assert_eq!(words[3]["cityspec_ignored"], "hidden");
+        assert_eq!(words[1]["cityspec_ignored"], "small");
+        assert_eq!(words[5]["word_index"], Value::Null);
+        assert_eq!(words[0]["word_index"], 0);
+        assert_eq!(words[1]["word_index"], 1);
+    }
+}
