@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 13;
+pub const VERSION: u32 = 14;
 
 mod atlas_layout;
 mod bicycle;
@@ -106,6 +106,7 @@ impl ObjectsInput<'_> {
         FacadeChoice {
             facades: self.facades,
             widths: self.widths,
+            metres_per_pixel: self.metres_per_pixel,
             seed: self.seed,
         }
     }

@@ -4,9 +4,14 @@
 //!
 //! Facade `i` is designed from `crate::rng::stream(0, "builtin-facades", i)` (see
 //! `design`) and painted with noise from `stream(0, "builtin-facades-paint", i)` (see
-//! `painter`); it never depends on a spec's seed. Styles cycle:
-//! brick grids, plaster with shutters, shopfronts with awnings, balconies, townhouses with
-//! pilasters and a front door, and plain modern blocks over shops.
+//! `painter`); it never depends on a spec's seed. Twelve styles cycle: brick grids,
+//! plaster with shutters (some arched: Mediterranean), shopfronts with striped or plain
+//! awnings or a signage band, balconies, townhouses with pilasters and a front door, plain
+//! modern blocks over shops, glass curtain-wall offices, stone classical blocks with arched
+//! windows over a rusticated ground floor (some an arcade), brick industrial lofts with
+//! steel-grid windows over garage doors, half-timbered houses, painted clapboard houses
+//! and tiled modernist blocks. Facades 0–11, 24–35 and 48–59 are narrow (2.7–3.1 floors
+//! wide), so the narrowest footprint of paper Algorithm 1 fits many of them.
 
 mod canvas;
 mod design;
@@ -23,7 +28,7 @@ use crate::model::image_file::{PngEffort, encode_png};
 pub use design::Design;
 
 /// How many facades the builtin set has.
-pub const COUNT: usize = 30;
+pub const COUNT: usize = 60;
 
 /// cityspec's own facade set, as CMP-layout files. The same bytes on every call.
 pub fn builtin() -> FacadeSource {
