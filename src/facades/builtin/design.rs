@@ -55,7 +55,13 @@ const STYLES: [Style; 12] = [
 ];
 
 /// Curtain-wall glass tints: blue, green, bronze, grey.
-const GLASSES: [Colour; 4] = [[70, 96, 120], [74, 108, 100], [104, 90, 74], [88, 94, 102]];
+const GLASSES: [Colour; 5] = [
+    [70, 96, 120],
+    [74, 108, 100],
+    [104, 90, 74],
+    [88, 94, 102],
+    [40, 56, 72],
+];
 /// Ashlar: limestone, sandstone, grey granite, red sandstone.
 const STONES: [Colour; 4] = [
     [206, 198, 178],
@@ -218,16 +224,17 @@ impl Design {
     /// The design of builtin facade `i`.
     pub fn new(i: usize) -> Design {
         let mut rng = crate::rng::stream(0, "builtin-facades", i as u64);
-        let mut d = Design::draw(style_of(i), &mut rng);
+        let mut d = Design::draw(style_of(i), i / STYLES.len(), &mut rng);
         if narrow(i) {
             d.narrow(&mut rng);
         }
         d
     }
 
-    /// Draws a design of `style` from `rng`.
-    fn draw(style: Style, rng: &mut Pcg64) -> Design {
-        let (floors, bays, wall) = shape(style, rng);
+    /// Draws a design of `style` from `rng`; `cycle` (how many times the styles have gone
+    /// round before it) picks its wall colour, so no two of a style share one.
+    fn draw(style: Style, cycle: usize, rng: &mut Pcg64) -> Design {
+        let (floors, bays, wall) = shape(style, cycle, rng);
         let floor_px = rng.random_range(90..=110);
         let bay_px = rng.random_range(88..=112);
         // Narrow townhouses get wider margins: no facade is under 250 px.
@@ -304,13 +311,16 @@ fn pick(rng: &mut Pcg64, list: &[Colour]) -> Colour {
     list[rng.random_range(0..list.len())]
 }
 
-/// Floors, bays and wall of a `style` design.
-fn shape(style: Style, rng: &mut Pcg64) -> (u32, u32, Wall) {
+/// Floors, bays and wall of a `style` design; the wall colour is the `cycle`-th of its list
+/// (offset by the style), every list at least as long as the cycles (5).
+fn shape(style: Style, cycle: usize, rng: &mut Pcg64) -> (u32, u32, Wall) {
+    let k = cycle + STYLES.iter().position(|&s| s == style).unwrap_or(0);
+    let nth = |list: &[Colour]| list[k % list.len()];
     let brick = |rng: &mut Pcg64| Wall::Brick {
-        brick: pick(rng, &BRICKS),
+        brick: nth(&BRICKS),
         mortar: pick(rng, &[[200, 196, 186], [170, 166, 158], [120, 116, 110]]),
     };
-    let plaster = |rng: &mut Pcg64| Wall::Plaster(pick(rng, &PLASTERS));
+    let plaster = |_: &mut Pcg64| Wall::Plaster(nth(&PLASTERS));
     let floors = |rng: &mut Pcg64, low: u32, high: u32| rng.random_range(low..=high);
     match style {
         Style::BrickGrid => (floors(rng, 4, 7), floors(rng, 3, 5), brick(rng)),
@@ -329,12 +339,12 @@ fn shape(style: Style, rng: &mut Pcg64) -> (u32, u32, Wall) {
         Style::GlassOffice => (
             floors(rng, 5, 8),
             floors(rng, 3, 5),
-            Wall::Glass(pick(rng, &GLASSES)),
+            Wall::Glass(nth(&GLASSES)),
         ),
         Style::StoneClassical => (
             floors(rng, 4, 6),
             floors(rng, 3, 5),
-            Wall::Stone(pick(rng, &STONES)),
+            Wall::Stone(nth(&STONES)),
         ),
         Style::IndustrialLoft => (floors(rng, 3, 6), floors(rng, 2, 4), brick(rng)),
         Style::HalfTimbered => {
@@ -352,10 +362,10 @@ fn shape(style: Style, rng: &mut Pcg64) -> (u32, u32, Wall) {
         Style::Clapboard => (
             floors(rng, 3, 4),
             floors(rng, 2, 4),
-            Wall::Siding(pick(rng, &SIDINGS)),
+            Wall::Siding(nth(&SIDINGS)),
         ),
         Style::TiledModern => {
-            let tile = pick(rng, &TILES);
+            let tile = nth(&TILES);
             let grout = if tile[0] > 150 {
                 [170, 168, 160]
             } else {

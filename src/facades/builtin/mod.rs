@@ -74,3 +74,60 @@ pub(super) fn facade_file(i: usize) -> FacadeFile {
         labels: Some(labels),
     }
 }
+
+#[cfg(test)]
+mod distinct_tests {
+    use super::*;
+
+    /// The photo as a `8 × 12` grid of mean colours (any size, so facades of different
+    /// sizes compare by their look, not their pixels).
+    fn thumbnail(i: usize) -> Vec<f64> {
+        let Photo::Painted(photo) = facade_file(i).photo else {
+            panic!("builtin photos are painted");
+        };
+        let (w, h) = photo.dimensions();
+        let (gw, gh) = (8u32, 12u32);
+        let mut cells = vec![0.0; (gw * gh * 3) as usize];
+        let mut counts = vec![0.0; (gw * gh) as usize];
+        for (x, y, p) in photo.enumerate_pixels() {
+            let cell = ((y * gh / h) * gw + x * gw / w) as usize;
+            counts[cell] += 1.0;
+            for c in 0..3 {
+                cells[cell * 3 + c] += f64::from(p[c]);
+            }
+        }
+        cells
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v / counts[k / 3])
+            .collect()
+    }
+
+    #[test]
+    fn every_builtin_facade_looks_different_from_every_other() {
+        assert!(COUNT >= 60);
+        let thumbs: Vec<Vec<f64>> = (0..COUNT).into_par_iter().map(thumbnail).collect();
+        let mut closest = (f64::INFINITY, 0, 0);
+        for a in 0..COUNT {
+            for b in a + 1..COUNT {
+                let d = thumbs[a]
+                    .iter()
+                    .zip(&thumbs[b])
+                    .map(|(x, y)| (x - y).abs())
+                    .sum::<f64>()
+                    / thumbs[a].len() as f64;
+                if d < closest.0 {
+                    closest = (d, a, b);
+                }
+            }
+        }
+        // Mean absolute difference of the grids' colours, in 0–255 levels.
+        assert!(
+            closest.0 > 8.0,
+            "facades {} and {} differ by {:.1}",
+            closest.1,
+            closest.2,
+            closest.0
+        );
+    }
+}

@@ -187,7 +187,8 @@ fn ground_floor(c: &mut Canvas, d: &Design, y0: u32, rng: &mut Pcg64) {
             parts::door(c, door, d.accent, d.trim, rng);
         }
         Ground::Arcade => {
-            for bay in 0..d.bays {
+            parts::door(c, door, d.accent, d.trim, rng);
+            for bay in (0..d.bays).filter(|&b| b != d.door_bay) {
                 let w = px(f64::from(d.bay_px) * 0.78);
                 let r = bay_rect(d, bay, w, y0 + STRING_COURSE + px(fp * 0.08), bottom - 2);
                 parts::arcade(c, r, scale(d.accent, 0.55), d.accent, rng);

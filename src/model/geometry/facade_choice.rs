@@ -140,3 +140,94 @@ pub fn facade_height(facade: Option<&Facade>) -> f64 {
 pub fn usable(v: f64) -> bool {
     v.is_finite() && v > 0.0
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{PxRect, Texture};
+
+    fn facade(name: &str, width: f64) -> Facade {
+        Facade {
+            name: name.to_owned(),
+            floors: 4,
+            height: 12.0,
+            width,
+            molding: [0; 3],
+            roof: 0,
+            windows: Vec::new(),
+            texture: Texture::from_rgb(name, image::RgbImage::new(1, 1)),
+        }
+    }
+
+    fn set(widths: &[f64]) -> FacadeSet {
+        FacadeSet {
+            facades: widths
+                .iter()
+                .enumerate()
+                .map(|(i, &w)| facade(&format!("f{i}"), w))
+                .collect(),
+            roofs: Vec::new(),
+        }
+    }
+
+    fn building(id: u32, side: u32, kind: u32) -> Building {
+        Building {
+            id,
+            block: 0,
+            footprint: PxRect {
+                x0: 0,
+                y0: 0,
+                x1: side,
+                y1: side,
+            },
+            kind,
+        }
+    }
+
+    #[test]
+    fn the_least_used_facade_that_fits_is_chosen_and_the_same_every_time() {
+        // Walls of 10 m fit facades 9, 10 and 11 m wide (k = 1) and 5 m (k = 2), not 20 m.
+        let facades = set(&[10.0, 9.0, 11.0, 5.0, 20.0]);
+        let choose = |seed| FacadeChoice {
+            facades: &facades,
+            widths: None,
+            metres_per_pixel: 1.0,
+            seed,
+        };
+        let buildings: Vec<Building> = (0..40).map(|i| building(i, 10, 0)).collect();
+        let chosen = choose(3).all(&buildings);
+        assert_eq!(chosen, choose(3).all(&buildings));
+        assert_ne!(chosen, choose(4).all(&buildings), "ties follow the seed");
+        let mut used = [0; 5];
+        for c in chosen.iter().flatten() {
+            used[*c] += 1;
+        }
+        assert_eq!(used, [10, 10, 10, 10, 0]);
+        // Two copies of the 5 m facade on a 10 m wall: u runs 0..2.
+        assert_eq!(choose(3).repeat(Some(&facades.facades[3]), 10.0), 5.0);
+        // A wall nothing fits takes its kind's facade (the paper's rule).
+        let odd = [building(0, 3, 7)];
+        assert_eq!(choose(3).all(&odd), [Some(7 % 5)]);
+    }
+
+    #[test]
+    fn with_spec_widths_every_facade_fits_and_tiles_at_its_width() {
+        let facades = set(&[10.0, 30.0]);
+        let choice = FacadeChoice {
+            facades: &facades,
+            widths: Some(&[4.0]),
+            metres_per_pixel: 1.0,
+            seed: 1,
+        };
+        let chosen = choice.all(&[building(0, 4, 0), building(1, 4, 0)]);
+        assert_eq!(chosen.iter().flatten().count(), 2);
+        assert_ne!(chosen[0], chosen[1]);
+        assert_eq!(choice.repeat(Some(&facades.facades[1]), 4.0), 30.0);
+        let none = set(&[]);
+        let empty = FacadeChoice {
+            facades: &none,
+            ..choice
+        };
+        assert_eq!(empty.all(&[building(0, 4, 0)]), [None]);
+    }
+}
