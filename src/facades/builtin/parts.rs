@@ -329,7 +329,7 @@ pub fn garage(c: &mut Canvas, r: PxRect, paint: Colour, trim: Colour, rng: &mut 
         let line = if sectional {
             ly % 24 < 2 || (x - r.x0) % 40 < 1
         } else {
-            ly % 6 == 0
+            ly.is_multiple_of(6)
         };
         let base = mix(paint, p, 0.1).map(|v| super::canvas::add(v, noise.next(3)));
         if line { scale(base, 0.72) } else { base }
