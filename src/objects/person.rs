@@ -163,24 +163,25 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             hair: pick("person_hair", &HAIR).1,
             shoes: pick("person_shoes", &SHOES).1,
         };
-        // The variant as drawn: sleeves, shirt and trousers colours.
-        let sleeves = if figure.sleeve < 0.5 { "short" } else { "long" };
-        let appearance = format!("{sleeves}_shirt{:02}_trousers{:02}", shirt.0, trousers.0);
+        let appearance = Some(("appearance", appearance(&figure, shirt.0, trousers.0)));
         let ground = if crossing { MARKING_Y } else { KERB_Y };
         let frame = Frame {
             origin: [spot.position[0], ground, spot.position[1]],
             forward,
         };
         let name = placing.name("person");
-        placing.push_variant(
-            crate::model::ObjectKind::Person,
-            name,
-            &spec.label,
-            person_meshes(&frame, &figure, materials),
-            Some(("appearance", appearance)),
-        );
+        let meshes = person_meshes(&frame, &figure, materials);
+        let person = crate::model::ObjectKind::Person;
+        placing.push_variant(person, name, &spec.label, meshes, appearance);
         misses = 0;
     }
+}
+
+/// The variant a person was drawn as (its `appearance` attribute): sleeves, and the
+/// palette indices of shirt and trousers, e.g. `short_shirt03_trousers01`.
+fn appearance(figure: &Figure, shirt: usize, trousers: usize) -> String {
+    let sleeves = if figure.sleeve < 0.5 { "short" } else { "long" };
+    format!("{sleeves}_shirt{shirt:02}_trousers{trousers:02}")
 }
 
 /// Materials of one person's parts.
