@@ -240,11 +240,11 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
                 }
             };
             if let Some(spot) = spots.road(rng, ATTEMPTS, slot) {
-                fitted = Some((spot, shape, half, paint, cargo, parked));
+                fitted = Some((spot, shape, half, paint, cargo, parked, body));
                 break;
             }
         }
-        let Some((spot, shape, half, paint, cargo, parked)) = fitted else {
+        let Some((spot, shape, half, paint, cargo, parked, body)) = fitted else {
             misses += 1;
             continue;
         };
@@ -275,7 +275,14 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         };
         let meshes = car_meshes(&shape, &frame, &paints);
         let name = placing.name("car");
-        placing.push_plain(crate::model::ObjectKind::Car, name, &spec.label, meshes);
+        let variant = Some(("body", body.name().to_owned()));
+        placing.push_variant(
+            crate::model::ObjectKind::Car,
+            name,
+            &spec.label,
+            meshes,
+            variant,
+        );
     }
 }
 

@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 14;
+pub const VERSION: u32 = 15;
 
 mod atlas_layout;
 mod bicycle;
@@ -107,6 +107,7 @@ impl ObjectsInput<'_> {
         FacadeChoice {
             facades: self.facades,
             widths: self.widths,
+            metres_per_pixel: self.metres_per_pixel,
             seed: self.seed,
         }
     }
@@ -263,9 +264,22 @@ impl<'a> Placing<'a> {
     /// A plain material of a colour drawn from `palette` (uniform, one draw of `rng`),
     /// registered once as `<prefix>_<index, two digits>`.
     pub fn palette_material(&mut self, rng: &mut Pcg64, prefix: &str, palette: &[[f32; 3]]) -> u32 {
+        self.palette_pick(rng, prefix, palette).1
+    }
+
+    /// As [`Placing::palette_material`], with the palette index drawn.
+    pub fn palette_pick(
+        &mut self,
+        rng: &mut Pcg64,
+        prefix: &str,
+        palette: &[[f32; 3]],
+    ) -> (usize, u32) {
         let k = rng.random_range(0..palette.len());
         let colour = palette[k];
-        self.material(&format!("{prefix}_{k:02}"), || (colour, None))
+        (
+            k,
+            self.material(&format!("{prefix}_{k:02}"), || (colour, None)),
+        )
     }
 
     /// A plain, emissive material registered once under `name`: it glows at night.
@@ -297,6 +311,19 @@ impl<'a> Placing<'a> {
         label: &str,
         meshes: Vec<Mesh>,
     ) {
+        self.push_variant(kind, name, label, meshes, None);
+    }
+
+    /// Pushes an object of `kind` and class `label` that carries no text, with the COCO
+    /// attribute `(key, value)` naming the variant it was drawn as, if any.
+    pub fn push_variant(
+        &mut self,
+        kind: crate::model::ObjectKind,
+        name: String,
+        label: &str,
+        meshes: Vec<Mesh>,
+        variant: Option<(&str, String)>,
+    ) {
         let object = SceneObject {
             name,
             kind,
@@ -307,7 +334,9 @@ impl<'a> Placing<'a> {
             label: label.to_owned(),
             text: None,
             corners: Vec::new(),
-            attributes: BTreeMap::new(),
+            attributes: variant
+                .map(|(k, v)| BTreeMap::from([(k.to_owned(), v)]))
+                .unwrap_or_default(),
         };
         self.push(object, info);
     }

@@ -151,29 +151,37 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             },
             sleeve: if rng.random::<bool>() { 0.35 } else { 0.9 },
         };
-        let mut pick =
-            |name: &str, palette: &[[f32; 3]]| placing.palette_material(rng, name, palette);
+        let mut pick = |name: &str, palette: &[[f32; 3]]| placing.palette_pick(rng, name, palette);
+        let (shirt, trousers) = (
+            pick("person_shirt", &SHIRTS),
+            pick("person_trousers", &TROUSERS),
+        );
         let materials = Clothes {
-            shirt: pick("person_shirt", &SHIRTS),
-            trousers: pick("person_trousers", &TROUSERS),
-            skin: pick("person_skin", &SKIN),
-            hair: pick("person_hair", &HAIR),
-            shoes: pick("person_shoes", &SHOES),
+            shirt: shirt.1,
+            trousers: trousers.1,
+            skin: pick("person_skin", &SKIN).1,
+            hair: pick("person_hair", &HAIR).1,
+            shoes: pick("person_shoes", &SHOES).1,
         };
+        let appearance = Some(("appearance", appearance(&figure, shirt.0, trousers.0)));
         let ground = if crossing { MARKING_Y } else { KERB_Y };
         let frame = Frame {
             origin: [spot.position[0], ground, spot.position[1]],
             forward,
         };
         let name = placing.name("person");
-        placing.push_plain(
-            crate::model::ObjectKind::Person,
-            name,
-            &spec.label,
-            person_meshes(&frame, &figure, materials),
-        );
+        let meshes = person_meshes(&frame, &figure, materials);
+        let person = crate::model::ObjectKind::Person;
+        placing.push_variant(person, name, &spec.label, meshes, appearance);
         misses = 0;
     }
+}
+
+/// The variant a person was drawn as (its `appearance` attribute): sleeves, and the
+/// palette indices of shirt and trousers, e.g. `short_shirt03_trousers01`.
+fn appearance(figure: &Figure, shirt: usize, trousers: usize) -> String {
+    let sleeves = if figure.sleeve < 0.5 { "short" } else { "long" };
+    format!("{sleeves}_shirt{shirt:02}_trousers{trousers:02}")
 }
 
 /// Materials of one person's parts.

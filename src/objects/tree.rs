@@ -160,7 +160,9 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let bark = placing.material("tree_bark", || (BARK, None));
             let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
             let name = placing.name("tree");
-            placing.push_plain(crate::model::ObjectKind::Tree, name, &spec.label, meshes);
+            let species = Some(("species", kind.name().to_owned()));
+            let tree = crate::model::ObjectKind::Tree;
+            placing.push_variant(tree, name, &spec.label, meshes, species);
             misses = 0;
             break;
         }

@@ -434,7 +434,8 @@ type GapToRoad<'a> = dyn Fn(&RoadRect) -> Option<f64> + 'a;
 /// order.
 pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
     let choice = input.facade_choice();
-    let heights = choice.heights(input.buildings);
+    let chosen = choice.all(input.buildings);
+    let heights = choice.heights(&chosen);
     let rects: Vec<RoadRect> = input.layout.roads.iter().map(RoadRect::of).collect();
     let reach = ROAD_REACH * f64::from(strip_width_px(input.layout)) + 1.0;
     let mpp = input.metres_per_pixel;
@@ -486,7 +487,7 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
         if band[1] <= band[0] {
             continue;
         }
-        let facade = choice.of(building);
+        let facade = chosen[b];
         for (normal, corner, gap, ahead) in sides {
             // The nearest road in front must be within reach, and nearer than any other
             // building in front. A building in front nearer than the road lies in the
@@ -510,11 +511,7 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
             }
             let length = if normal[0] == 0.0 { x1 - x0 } else { y1 - y0 } * mpp;
             let f = facade.map(|f| &input.facades.facades[f]);
-            let usable = |v: f64| v.is_finite() && v > 0.0;
-            let repeat = match f {
-                Some(f) if input.widths.is_some() && usable(f.width) => f.width,
-                _ => length,
-            };
+            let repeat = choice.repeat(f, length);
             let windows = f.map_or_else(Vec::new, |f| {
                 window_rects(&f.windows, length, repeat, height)
             });

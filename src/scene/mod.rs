@@ -34,7 +34,7 @@
 //! bit for bit on every platform.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 mod blocks;
 mod buildings;
@@ -55,6 +55,7 @@ use surfaces::Surfaces;
 
 // The build driver measures the strip for its street cameras as the scene does.
 pub use crate::model::geometry::strip_width_px;
+pub use buildings::{TINTS, building_name};
 pub use street_lamps::light_position;
 
 /// How far the ground reaches beyond the layout on every side, in metres.
@@ -67,9 +68,8 @@ pub struct SceneInput<'a> {
     pub buildings: &'a [Building],
     pub facades: &'a FacadeSet,
     /// The spec's explicit building widths (metres), if any. None: `building.kind` is the
-    /// facade index and the footprint width equals that facade's width (paper). Some: kind
-    /// indexes these widths and each building takes a facade from
-    /// `crate::rng::stream(seed, "facade", building.id)`, tiled along the wall.
+    /// index of the facade whose width the footprint has (paper); Some: kind indexes these
+    /// widths. Either way the facade is chosen by [`FacadeChoice::all`].
     pub widths: Option<&'a [f64]>,
     pub metres_per_pixel: f64,
     pub seed: u64,
@@ -81,6 +81,7 @@ impl SceneInput<'_> {
         FacadeChoice {
             facades: self.facades,
             widths: self.widths,
+            metres_per_pixel: self.metres_per_pixel,
             seed: self.seed,
         }
     }

@@ -264,6 +264,18 @@ impl CarBody {
         CarBody::Bus,
         CarBody::Truck,
     ];
+
+    /// The snake_case name the spec uses (the `body` attribute of a car).
+    pub fn name(self) -> &'static str {
+        match self {
+            CarBody::Sedan => "sedan",
+            CarBody::Hatchback => "hatchback",
+            CarBody::Suv => "suv",
+            CarBody::Van => "van",
+            CarBody::Bus => "bus",
+            CarBody::Truck => "truck",
+        }
+    }
 }
 
 /// A tree crown shape cityspec builds.
@@ -290,6 +302,16 @@ impl TreeSpecies {
         TreeSpecies::Conifer,
         TreeSpecies::Spreading,
     ];
+
+    /// The snake_case name the spec uses (the `species` attribute of a tree).
+    pub fn name(self) -> &'static str {
+        match self {
+            TreeSpecies::Round => "round",
+            TreeSpecies::Columnar => "columnar",
+            TreeSpecies::Conifer => "conifer",
+            TreeSpecies::Spreading => "spreading",
+        }
+    }
 }
 
 /// Which kind of object a class inserts.

@@ -8,12 +8,21 @@
 //! Labelled objects and box heights
 //! come from the path's `coco.json`: annotations with `iscrowd` 0, by category; ignore
 //! regions are counted apart, and of them the faint ones (`cityspec_ignored: contrast`).
+//!
+//! Diversity: per variant attribute of `instances.json` (`facade` of buildings, `species`
+//! of trees, `body` of cars, `appearance` of people), over the instances the path's `ids/`
+//! images show at all: how many distinct variants, and the most used one with its share.
+//! Visibility: the path's positives (`iscrowd` 0) and its ignore regions by
+//! `cityspec_ignored` reason (`pixels`, `fraction`, `contrast`).
 
 mod path_stats;
 mod stats_error;
 mod table;
 
-pub use path_stats::{ClassStats, KindShare, PathStats, measure_path, percentile};
+pub use path_stats::{
+    ClassStats, Diversity, KindShare, PathStats, VARIANT_ATTRIBUTES, Visibility, measure_path,
+    percentile,
+};
 pub use stats_error::StatsError;
 pub use table::table;
 
@@ -48,13 +57,26 @@ pub fn measure(dir: &Path) -> Result<Stats, StatsError> {
     }
     let paths = paths
         .iter()
-        .map(|p| measure_path(p, &instance_kinds(&p.join("instances.json"))?))
+        .map(|p| {
+            let listed = read_instances(&p.join("instances.json"))?;
+            let kinds: Vec<String> = listed.iter().map(|i| i.kind.name().to_owned()).collect();
+            let attributes: Vec<_> = listed.into_iter().map(|i| i.attributes).collect();
+            measure_path(p, &kinds, &attributes)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Stats { paths })
 }
 
 /// The kind of every instance id of a path's `instances.json`, by id − 1.
 pub fn instance_kinds(path: &Path) -> Result<Vec<String>, StatsError> {
+    Ok(read_instances(path)?
+        .iter()
+        .map(|i| i.kind.name().to_owned())
+        .collect())
+}
+
+/// Every instance of a path's `instances.json`, by id − 1 (ids checked to run 1, 2, 3, …).
+fn read_instances(path: &Path) -> Result<Vec<crate::model::Instance>, StatsError> {
     let bytes =
         crate::regular_file::read(path, crate::regular_file::Follow::Yes).map_err(|source| {
             StatsError::Io {
@@ -68,7 +90,6 @@ pub fn instance_kinds(path: &Path) -> Result<Vec<String>, StatsError> {
     };
     let listed: Instances = serde_json::from_slice(&bytes)
         .map_err(|e| bad(format!("not an instances.json ({e}): rebuild the folder")))?;
-    let mut kinds = Vec::with_capacity(listed.instances.len());
     for (instance, want) in listed.instances.iter().zip(1u32..) {
         if instance.id != want {
             return Err(bad(format!(
@@ -76,7 +97,6 @@ pub fn instance_kinds(path: &Path) -> Result<Vec<String>, StatsError> {
                 instance.id
             )));
         }
-        kinds.push(instance.kind.name().to_owned());
     }
-    Ok(kinds)
+    Ok(listed.instances)
 }

@@ -29,6 +29,38 @@ pub struct PathStats {
     pub box_height: Option<[f64; 3]>,
     /// Per COCO category, in the file's order.
     pub classes: Vec<ClassStats>,
+    /// Per variant attribute (`facade`, `species`, `body`, `appearance`), over the
+    /// instances seen in the path (at least one pixel in its `ids/` images).
+    pub diversity: Vec<Diversity>,
+    /// Labelled objects and ignore regions by reason, all categories.
+    pub visibility: Visibility,
+}
+
+/// The attributes that name the variant an object was drawn as.
+pub const VARIANT_ATTRIBUTES: [&str; 4] = ["facade", "species", "body", "appearance"];
+
+/// How varied one attribute is over the instances a path shows.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Diversity {
+    pub attribute: String,
+    /// Instances seen that carry the attribute.
+    pub instances: u64,
+    /// Distinct values among them.
+    pub variants: usize,
+    /// The most used value (the first by name among equals) and its share of `instances`;
+    /// None when no instance carries the attribute.
+    pub most_used: Option<String>,
+    pub most_used_share: f64,
+}
+
+/// A path's positives and ignore regions.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Visibility {
+    /// Annotations with `iscrowd` 0.
+    pub positives: u64,
+    /// Ignore regions (`iscrowd` 1) per `cityspec_ignored` reason (`pixels`, `fraction`,
+    /// `contrast`; `unknown` when absent), by name.
+    pub ignored: BTreeMap<String, u64>,
 }
 
 /// One object kind's pixels.
@@ -62,12 +94,17 @@ pub struct ClassStats {
 pub(super) const WORD_CATEGORY: &str = "word";
 
 /// Measures the path folder `dir`; `kinds[k]` is the kind of instance id `k + 1`.
-pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsError> {
+/// `attributes[k]` those of id `k + 1` (missing entries: none).
+pub fn measure_path(
+    dir: &Path,
+    kinds: &[String],
+    attributes: &[BTreeMap<String, String>],
+) -> Result<PathStats, StatsError> {
     let name = dir
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let (pixels, shares) = kind_shares(dir, kinds)?;
+    let (pixels, shares, seen) = kind_shares(dir, kinds)?;
     let coco = Coco::read(dir.join("coco.json"))?;
     let images = coco.image_ids()?;
     let categories = coco.categories()?;
@@ -100,13 +137,50 @@ pub fn measure_path(dir: &Path, kinds: &[String]) -> Result<PathStats, StatsErro
         labelled_per_frame: median_count(&tally.all_per_frame),
         box_height: quartiles(&mut all_heights),
         classes,
+        diversity: diversity(attributes, &seen),
+        visibility: Visibility {
+            positives: tally.all_per_frame.iter().sum(),
+            ignored: tally.reasons,
+        },
     })
 }
 
-/// All pixels of the path's instance images, and each kind's share of them, largest
-/// first.
-fn kind_shares(dir: &Path, kinds: &[String]) -> Result<(u64, Vec<KindShare>), StatsError> {
-    let (pixels, kind_pixels) = count_kinds(&dir.join("ids"), kinds)?;
+/// Per [`VARIANT_ATTRIBUTES`] entry, its variants over the instances `seen` (by id − 1).
+fn diversity(attributes: &[BTreeMap<String, String>], seen: &[bool]) -> Vec<Diversity> {
+    VARIANT_ATTRIBUTES
+        .iter()
+        .map(|&attribute| {
+            let mut counts: BTreeMap<&str, u64> = BTreeMap::new();
+            for (attrs, _) in attributes.iter().zip(seen).filter(|(_, s)| **s) {
+                if let Some(v) = attrs.get(attribute) {
+                    *counts.entry(v.as_str()).or_default() += 1;
+                }
+            }
+            let instances: u64 = counts.values().sum();
+            let top = counts
+                .iter()
+                .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+                .map(|(v, n)| ((*v).to_owned(), *n));
+            Diversity {
+                attribute: attribute.to_owned(),
+                instances,
+                variants: counts.len(),
+                most_used_share: top
+                    .as_ref()
+                    .map_or(0.0, |(_, n)| *n as f64 / instances as f64),
+                most_used: top.map(|(v, _)| v),
+            }
+        })
+        .collect()
+}
+
+/// All pixels of the path's instance images, each kind's share of them, largest first,
+/// and per instance id − 1 whether any pixel shows it.
+fn kind_shares(
+    dir: &Path,
+    kinds: &[String],
+) -> Result<(u64, Vec<KindShare>, Vec<bool>), StatsError> {
+    let (pixels, kind_pixels, seen) = count_kinds(&dir.join("ids"), kinds)?;
     let mut shares: Vec<KindShare> = kind_pixels
         .into_iter()
         .map(|(kind, n)| KindShare {
@@ -120,7 +194,7 @@ fn kind_shares(dir: &Path, kinds: &[String]) -> Result<(u64, Vec<KindShare>), St
         })
         .collect();
     shares.sort_by(|a, b| b.pixels.cmp(&a.pixels).then(a.kind.cmp(&b.kind)));
-    Ok((pixels, shares))
+    Ok((pixels, shares, seen))
 }
 
 /// A path's `coco.json`, parsed.
@@ -137,6 +211,8 @@ struct Tally {
     heights: Vec<Vec<f64>>,
     ignored: Vec<u64>,
     faint: Vec<u64>,
+    /// Ignore regions per `cityspec_ignored` reason, all categories.
+    reasons: BTreeMap<String, u64>,
 }
 
 impl Coco {
@@ -200,6 +276,7 @@ impl Coco {
             heights: vec![Vec::new(); categories.len()],
             ignored: vec![0u64; categories.len()],
             faint: vec![0u64; categories.len()],
+            reasons: BTreeMap::new(),
         };
         for ann in self.list("annotations")? {
             let category = ann["category_id"].as_u64();
@@ -209,6 +286,8 @@ impl Coco {
             if ann["iscrowd"].as_u64() == Some(1) {
                 tally.ignored[c] += 1;
                 tally.faint[c] += u64::from(ann["cityspec_ignored"] == "contrast");
+                let reason = ann["cityspec_ignored"].as_str().unwrap_or("unknown");
+                *tally.reasons.entry(reason.to_owned()).or_default() += 1;
                 continue;
             }
             let frame = ann["image_id"]
@@ -227,8 +306,12 @@ impl Coco {
     }
 }
 
-/// All pixels of the `ids/*.png` images in `dir`, and the pixels of each kind.
-fn count_kinds(dir: &Path, kinds: &[String]) -> Result<(u64, BTreeMap<String, u64>), StatsError> {
+/// All pixels, the pixels per kind, and per instance id − 1 whether any pixel shows it.
+type KindCounts = (u64, BTreeMap<String, u64>, Vec<bool>);
+
+/// All pixels of the `ids/*.png` images in `dir`, the pixels of each kind, and per instance
+/// id − 1 whether any pixel shows it.
+fn count_kinds(dir: &Path, kinds: &[String]) -> Result<KindCounts, StatsError> {
     let io = |source| StatsError::Io {
         path: dir.to_path_buf(),
         source,
@@ -259,20 +342,28 @@ fn count_kinds(dir: &Path, kinds: &[String]) -> Result<(u64, BTreeMap<String, u6
             })?;
             let ids = crate::model::unpack_ids(&image.into_rgb8());
             let mut counts = vec![0u64; names.len()];
+            let mut seen = vec![false; kinds.len()];
             for &id in ids.as_raw() {
                 let k = match id {
                     0 => 0,
                     id => index.get(id as usize - 1).copied().unwrap_or(1),
                 };
                 counts[k] += 1;
+                if let Some(s) = (id as usize).checked_sub(1).and_then(|i| seen.get_mut(i)) {
+                    *s = true;
+                }
             }
-            Ok(counts)
+            Ok((counts, seen))
         })
         .collect::<Result<Vec<_>, StatsError>>()?;
     let mut total = vec![0u64; names.len()];
-    for c in &counts {
+    let mut seen = vec![false; kinds.len()];
+    for (c, s) in &counts {
         for (t, n) in total.iter_mut().zip(c) {
             *t += n;
+        }
+        for (a, b) in seen.iter_mut().zip(s) {
+            *a |= b;
         }
     }
     let pixels = total.iter().sum();
@@ -281,7 +372,7 @@ fn count_kinds(dir: &Path, kinds: &[String]) -> Result<(u64, BTreeMap<String, u6
         .zip(total)
         .filter(|(_, n)| *n > 0)
         .collect();
-    Ok((pixels, by_kind))
+    Ok((pixels, by_kind, seen))
 }
 
 /// The median of counts (mean of the middle two for an even number); 0 for none.
@@ -350,7 +441,7 @@ mod tests {
                "cityspec_ignored":"pixels"}]}"#;
         std::fs::write(dir.join("coco.json"), coco).unwrap();
         let kinds = ["road".to_owned(), "building".to_owned()];
-        let stats = measure_path(&dir, &kinds).unwrap();
+        let stats = measure_path(&dir, &kinds, &[]).unwrap();
         assert_eq!(
             (stats.name.as_str(), stats.frames, stats.pixels),
             ("street", 2, 16)

@@ -6,7 +6,9 @@ use super::Stats;
 
 /// The stats as text: per path, the pixel share of each kind, then per class the labelled
 /// objects per frame (median), totals, ignore regions (and of those the faint ones, hidden
-/// by darkness, fog or rain) and box-height quartiles.
+/// by darkness, fog or rain) and box-height quartiles; then the diversity of the variants
+/// seen (facade, tree species, car body, person appearance) and the positives and ignore
+/// regions by reason.
 pub fn table(stats: &Stats) -> String {
     let mut out = String::new();
     for path in &stats.paths {
@@ -58,7 +60,41 @@ pub fn table(stats: &Stats) -> String {
                 "  {name:<20} {per_frame:>9.1} {labelled:>9} {ignored:>7} {faint:>6}   {h}"
             );
         }
+        diversity_rows(&mut out, path);
         out.push('\n');
     }
     out
+}
+
+/// The diversity table (variants of each attribute seen) and the visibility line.
+fn diversity_rows(out: &mut String, path: &super::PathStats) {
+    let _ = writeln!(
+        out,
+        "  {:<20} {:>9} {:>8}   most used",
+        "variant of", "instances", "variants"
+    );
+    for d in &path.diversity {
+        let top = d.most_used.as_ref().map_or_else(
+            || "-".to_owned(),
+            |v| format!("{v} ({:.1} %)", d.most_used_share * 100.0),
+        );
+        let _ = writeln!(
+            out,
+            "  {:<20} {:>9} {:>8}   {top}",
+            d.attribute, d.instances, d.variants
+        );
+    }
+    let v = &path.visibility;
+    let ignored: u64 = v.ignored.values().sum();
+    let reasons: Vec<String> = v.ignored.iter().map(|(r, n)| format!("{r} {n}")).collect();
+    let _ = writeln!(
+        out,
+        "  visibility: {} positives, {ignored} ignored ({})",
+        v.positives,
+        if reasons.is_empty() {
+            "none".to_owned()
+        } else {
+            reasons.join(", ")
+        }
+    );
 }

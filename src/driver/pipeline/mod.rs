@@ -20,6 +20,8 @@ use image::RgbImage;
 
 mod dataset_stage;
 mod evaluate;
+#[cfg(test)]
+mod facade_shares;
 mod frames_stage;
 mod graph;
 mod scene_values;

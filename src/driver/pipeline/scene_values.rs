@@ -7,7 +7,11 @@ use std::time::Instant;
 use super::super::BuildError;
 use super::super::report::{StageRun, StageStatus};
 use super::Pipeline;
-use crate::model::Scene;
+use std::collections::BTreeMap;
+
+use super::super::stages::ExportInputs;
+use crate::model::geometry::FacadeChoice;
+use crate::model::{Building, FacadeSet, Scene};
 use crate::{objects, render, scene};
 
 impl Pipeline<'_> {
@@ -67,7 +71,7 @@ impl Pipeline<'_> {
         let info = std::mem::take(&mut inserted.info);
         let first = objects::merge(&mut built, inserted);
         self.sign_faces = sign_faces.iter().map(|(i, f)| (first + i, *f)).collect();
-        self.object_info = vec![None; first];
+        self.object_info = city_info(&built, first, &buildings, &facades, &inputs);
         self.object_info.extend(info.into_iter().map(Some));
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {
@@ -99,4 +103,44 @@ impl Pipeline<'_> {
         let _ = self.prepared.set(Arc::clone(&prepared));
         Ok(prepared)
     }
+}
+
+/// What the annotations know of the city's own first `first` objects: a building's
+/// `facade` attribute (its facade's name); nothing of the others.
+fn city_info(
+    scene: &Scene,
+    first: usize,
+    buildings: &[Building],
+    facades: &FacadeSet,
+    inputs: &ExportInputs,
+) -> Vec<Option<objects::ObjectInfo>> {
+    let choice = FacadeChoice {
+        facades,
+        widths: inputs.widths.as_deref(),
+        metres_per_pixel: inputs.metres_per_pixel,
+        seed: inputs.seed,
+    }
+    .all(buildings);
+    let facade_of: BTreeMap<String, &str> = buildings
+        .iter()
+        .zip(&choice)
+        .filter_map(|(b, c)| {
+            Some((
+                scene::building_name(b.id),
+                facades.facades[(*c)?].name.as_str(),
+            ))
+        })
+        .collect();
+    scene.objects[..first]
+        .iter()
+        .map(|object| {
+            let facade = facade_of.get(&object.name)?;
+            Some(objects::ObjectInfo {
+                label: object.class.clone(),
+                text: None,
+                corners: Vec::new(),
+                attributes: BTreeMap::from([("facade".to_owned(), (*facade).to_owned())]),
+            })
+        })
+        .collect()
 }

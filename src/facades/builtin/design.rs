@@ -24,15 +24,67 @@ pub enum Style {
     Townhouse,
     /// Plain modern block: wide windows, dark frames, shops below.
     Modern,
+    /// Office block in a glass curtain wall: a grid of mullions, a lobby and shops below.
+    GlassOffice,
+    /// Stone classical block: ashlar, arched windows, a rusticated ground floor (arcade or
+    /// windows and a door).
+    StoneClassical,
+    /// Brick industrial loft: large steel-grid windows, garage doors below.
+    IndustrialLoft,
+    /// Half-timbered house: pale infill between dark timber beams, small windows.
+    HalfTimbered,
+    /// Painted clapboard (horizontal siding) house, some with shutters.
+    Clapboard,
+    /// Modernist block clad in small square tiles, shops or garages below.
+    TiledModern,
 }
 
-const STYLES: [Style; 6] = [
+const STYLES: [Style; 12] = [
     Style::BrickGrid,
     Style::PlasterShutters,
     Style::Shopfront,
     Style::Balconies,
     Style::Townhouse,
     Style::Modern,
+    Style::GlassOffice,
+    Style::StoneClassical,
+    Style::IndustrialLoft,
+    Style::HalfTimbered,
+    Style::Clapboard,
+    Style::TiledModern,
+];
+
+/// Curtain-wall glass tints: blue, green, bronze, grey.
+const GLASSES: [Colour; 5] = [
+    [70, 96, 120],
+    [74, 108, 100],
+    [104, 90, 74],
+    [88, 94, 102],
+    [40, 56, 72],
+];
+/// Ashlar: limestone, sandstone, grey granite, red sandstone.
+const STONES: [Colour; 4] = [
+    [206, 198, 178],
+    [198, 170, 128],
+    [164, 164, 160],
+    [164, 104, 84],
+];
+/// Clapboard paint: white, pale blue, sage, butter, barn red, grey.
+const SIDINGS: [Colour; 6] = [
+    [232, 230, 222],
+    [168, 192, 210],
+    [160, 178, 150],
+    [230, 210, 150],
+    [150, 60, 52],
+    [150, 154, 156],
+];
+/// Tiles: white, cream, terracotta, teal, charcoal.
+const TILES: [Colour; 5] = [
+    [226, 226, 220],
+    [220, 206, 176],
+    [182, 104, 72],
+    [76, 130, 132],
+    [70, 72, 76],
 ];
 
 const BRICKS: [Colour; 5] = [
@@ -82,11 +134,55 @@ fn style_of(i: usize) -> Style {
     STYLES[i % STYLES.len()]
 }
 
+/// Whether builtin facade `i` is narrow: 2.7–3.1 floor heights wide, so the narrowest
+/// footprint (which fills every leftover in paper Algorithm 1) fits many facades, not one.
+fn narrow(i: usize) -> bool {
+    (i / STYLES.len()).is_multiple_of(2)
+}
+
 /// The wall's material.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Wall {
-    Brick { brick: Colour, mortar: Colour },
+    Brick {
+        brick: Colour,
+        mortar: Colour,
+    },
     Plaster(Colour),
+    /// A glass curtain wall of this tint.
+    Glass(Colour),
+    /// Ashlar stone courses.
+    Stone(Colour),
+    /// Painted horizontal boards.
+    Siding(Colour),
+    /// Small square tiles in grout.
+    Tiles {
+        tile: Colour,
+        grout: Colour,
+    },
+}
+
+/// What the ground floor holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ground {
+    /// Windows and a front door.
+    Residential,
+    /// Shopfronts (and the house door when there are three bays or more).
+    Shops(Awning),
+    /// Garage doors and a front door.
+    Garages,
+    /// An arcade: arched openings with shops set back in the shade.
+    Arcade,
+}
+
+/// What tops a shopfront.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Awning {
+    /// A striped canvas awning with a scalloped hem.
+    Striped,
+    /// A plain canvas awning.
+    Plain,
+    /// No awning: a flat signage band (fascia).
+    Fascia,
 }
 
 /// Everything the painter needs to draw one facade.
@@ -108,72 +204,62 @@ pub struct Design {
     /// Window width and height as fractions of the bay and of the floor.
     pub window_w: f64,
     pub window_h: f64,
-    /// Ground floor: shops, or windows and a door in `door_bay`.
-    pub shops: bool,
+    /// Ground floor: shops, garages, an arcade, or windows; the door in `door_bay`.
+    pub ground: Ground,
     pub door_bay: u32,
     pub pilasters: bool,
     pub shutters: bool,
     pub lintels: bool,
+    /// Round-arched window heads.
+    pub arched: bool,
+    /// Steel-grid windows: extra glazing bars.
+    pub grid: bool,
+    /// Dark timber beams on the wall (half-timbering).
+    pub timber: bool,
+    /// The ground floor's wall cut in deep horizontal joints.
+    pub rusticated: bool,
 }
 
 impl Design {
     /// The design of builtin facade `i`.
     pub fn new(i: usize) -> Design {
         let mut rng = crate::rng::stream(0, "builtin-facades", i as u64);
-        Design::draw(style_of(i), &mut rng)
+        let mut d = Design::draw(style_of(i), i / STYLES.len(), &mut rng);
+        if narrow(i) {
+            d.narrow(&mut rng);
+        }
+        d
     }
 
-    /// Draws a design of `style` from `rng`.
-    fn draw(style: Style, rng: &mut Pcg64) -> Design {
-        let pick = |rng: &mut Pcg64, list: &[Colour]| list[rng.random_range(0..list.len())];
-        let brick = |rng: &mut Pcg64| Wall::Brick {
-            brick: pick(rng, &BRICKS),
-            mortar: pick(rng, &[[200, 196, 186], [170, 166, 158], [120, 116, 110]]),
-        };
-        let plaster = |rng: &mut Pcg64| Wall::Plaster(pick(rng, &PLASTERS));
-        let (floors, bays, wall) = match style {
-            Style::BrickGrid => (rng.random_range(4..=7), rng.random_range(3..=5), brick(rng)),
-            Style::PlasterShutters => (
-                rng.random_range(3..=6),
-                rng.random_range(3..=5),
-                plaster(rng),
-            ),
-            Style::Shopfront => {
-                let wall = if rng.random_bool(0.5) {
-                    brick(rng)
-                } else {
-                    plaster(rng)
-                };
-                (rng.random_range(3..=6), rng.random_range(3..=5), wall)
-            }
-            Style::Balconies => (
-                rng.random_range(4..=8),
-                rng.random_range(3..=5),
-                plaster(rng),
-            ),
-            Style::Townhouse => (rng.random_range(3..=5), rng.random_range(2..=3), brick(rng)),
-            Style::Modern => (
-                rng.random_range(5..=8),
-                rng.random_range(3..=5),
-                plaster(rng),
-            ),
-        };
+    /// Draws a design of `style` from `rng`; `cycle` (how many times the styles have gone
+    /// round before it) picks its wall colour, so no two of a style share one.
+    fn draw(style: Style, cycle: usize, rng: &mut Pcg64) -> Design {
+        let (floors, bays, wall) = shape(style, cycle, rng);
         let floor_px = rng.random_range(90..=110);
         let bay_px = rng.random_range(88..=112);
         // Narrow townhouses get wider margins: no facade is under 250 px.
         let margin_px = rng
             .random_range(18..=34)
             .max((250u32.saturating_sub(bays * bay_px)).div_ceil(2));
-        let shops = match style {
-            Style::Shopfront | Style::Modern => true,
-            Style::BrickGrid | Style::Balconies => rng.random_bool(0.3),
-            Style::PlasterShutters | Style::Townhouse => false,
-        };
+        let ground = ground_of(style, rng);
         let (window_w, window_h) = match style {
             Style::Modern => (rng.random_range(0.62..0.72), rng.random_range(0.52..0.58)),
             Style::Balconies => (rng.random_range(0.46..0.52), rng.random_range(0.50..0.56)),
+            Style::GlassOffice => (rng.random_range(0.86..0.92), rng.random_range(0.74..0.8)),
+            Style::IndustrialLoft => (rng.random_range(0.7..0.8), rng.random_range(0.6..0.66)),
+            Style::HalfTimbered => (rng.random_range(0.34..0.4), rng.random_range(0.44..0.5)),
+            Style::TiledModern => (rng.random_range(0.55..0.65), rng.random_range(0.5..0.56)),
             _ => (rng.random_range(0.40..0.50), rng.random_range(0.50..0.58)),
         };
+        let metal = [[52, 54, 60], [90, 92, 96], [30, 30, 32]];
+        let frame = match style {
+            Style::Modern | Style::GlassOffice | Style::IndustrialLoft | Style::TiledModern => {
+                pick(rng, &metal)
+            }
+            _ => pick(rng, &FRAMES),
+        };
+        let arched = style == Style::StoneClassical
+            || (style == Style::PlasterShutters && rng.random_bool(0.4));
         Design {
             style,
             floors,
@@ -183,27 +269,131 @@ impl Design {
             margin_px,
             wall,
             trim: pick(rng, &TRIMS),
-            frame: if style == Style::Modern {
-                pick(rng, &[[52, 54, 60], [90, 92, 96], [30, 30, 32]])
-            } else {
-                pick(rng, &FRAMES)
-            },
+            frame,
             accent: pick(rng, &ACCENTS),
             window_w,
             window_h,
-            shops,
+            ground,
             door_bay: rng.random_range(0..bays),
-            pilasters: matches!(style, Style::Townhouse | Style::BrickGrid) && rng.random_bool(0.6),
-            shutters: style == Style::PlasterShutters,
+            pilasters: matches!(
+                style,
+                Style::Townhouse | Style::BrickGrid | Style::StoneClassical
+            ) && rng.random_bool(0.6),
+            shutters: style == Style::PlasterShutters
+                || (style == Style::Clapboard && rng.random_bool(0.5)),
             lintels: matches!(
                 style,
-                Style::BrickGrid | Style::Townhouse | Style::PlasterShutters
-            ),
+                Style::BrickGrid | Style::Townhouse | Style::IndustrialLoft
+            ) || (style == Style::PlasterShutters && !arched),
+            arched,
+            grid: style == Style::IndustrialLoft,
+            timber: style == Style::HalfTimbered,
+            rusticated: style == Style::StoneClassical,
         }
+    }
+
+    /// Makes the design 2.7–3.1 floors wide (at least 250 px): fewer or narrower bays.
+    fn narrow(&mut self, rng: &mut Pcg64) {
+        let target =
+            ((rng.random_range(2.7..3.1) * f64::from(self.floor_px)).round() as u32).max(250);
+        self.bays = ((target - 36) / self.bay_px).clamp(2, 3);
+        self.bay_px = self.bay_px.min((target - 36) / self.bays);
+        self.margin_px = (target - self.bays * self.bay_px) / 2;
+        self.door_bay = self.door_bay.min(self.bays - 1);
     }
 
     pub fn width(&self) -> u32 {
         self.bays * self.bay_px + 2 * self.margin_px
+    }
+}
+
+fn pick(rng: &mut Pcg64, list: &[Colour]) -> Colour {
+    list[rng.random_range(0..list.len())]
+}
+
+/// Floors, bays and wall of a `style` design; the wall colour is the `cycle`-th of its list
+/// (offset by the style), every list at least as long as the cycles (5).
+fn shape(style: Style, cycle: usize, rng: &mut Pcg64) -> (u32, u32, Wall) {
+    let k = cycle + STYLES.iter().position(|&s| s == style).unwrap_or(0);
+    let nth = |list: &[Colour]| list[k % list.len()];
+    let brick = |rng: &mut Pcg64| Wall::Brick {
+        brick: nth(&BRICKS),
+        mortar: pick(rng, &[[200, 196, 186], [170, 166, 158], [120, 116, 110]]),
+    };
+    let plaster = |_: &mut Pcg64| Wall::Plaster(nth(&PLASTERS));
+    let floors = |rng: &mut Pcg64, low: u32, high: u32| rng.random_range(low..=high);
+    match style {
+        Style::BrickGrid => (floors(rng, 4, 7), floors(rng, 3, 5), brick(rng)),
+        Style::PlasterShutters => (floors(rng, 3, 6), floors(rng, 3, 5), plaster(rng)),
+        Style::Shopfront => {
+            let wall = if rng.random_bool(0.5) {
+                brick(rng)
+            } else {
+                plaster(rng)
+            };
+            (floors(rng, 3, 6), floors(rng, 3, 5), wall)
+        }
+        Style::Balconies => (floors(rng, 4, 8), floors(rng, 3, 5), plaster(rng)),
+        Style::Townhouse => (floors(rng, 3, 5), floors(rng, 2, 3), brick(rng)),
+        Style::Modern => (floors(rng, 5, 8), floors(rng, 3, 5), plaster(rng)),
+        Style::GlassOffice => (
+            floors(rng, 5, 8),
+            floors(rng, 3, 5),
+            Wall::Glass(nth(&GLASSES)),
+        ),
+        Style::StoneClassical => (
+            floors(rng, 4, 6),
+            floors(rng, 3, 5),
+            Wall::Stone(nth(&STONES)),
+        ),
+        Style::IndustrialLoft => (floors(rng, 3, 6), floors(rng, 2, 4), brick(rng)),
+        Style::HalfTimbered => {
+            let infill = pick(
+                rng,
+                &[
+                    [232, 224, 206],
+                    [226, 214, 188],
+                    [236, 230, 214],
+                    [214, 196, 160],
+                ],
+            );
+            (floors(rng, 3, 4), floors(rng, 2, 4), Wall::Plaster(infill))
+        }
+        Style::Clapboard => (
+            floors(rng, 3, 4),
+            floors(rng, 2, 4),
+            Wall::Siding(nth(&SIDINGS)),
+        ),
+        Style::TiledModern => {
+            let tile = nth(&TILES);
+            let grout = if tile[0] > 150 {
+                [170, 168, 160]
+            } else {
+                [200, 198, 190]
+            };
+            (
+                floors(rng, 4, 8),
+                floors(rng, 3, 5),
+                Wall::Tiles { tile, grout },
+            )
+        }
+    }
+}
+
+/// The ground floor of a `style` design.
+fn ground_of(style: Style, rng: &mut Pcg64) -> Ground {
+    let awning =
+        |rng: &mut Pcg64| [Awning::Striped, Awning::Plain, Awning::Fascia][rng.random_range(0..3)];
+    match style {
+        Style::Shopfront => Ground::Shops(awning(rng)),
+        Style::Modern | Style::GlassOffice => Ground::Shops(Awning::Fascia),
+        Style::BrickGrid | Style::Balconies if rng.random_bool(0.3) => Ground::Shops(awning(rng)),
+        Style::StoneClassical if rng.random_bool(0.5) => Ground::Arcade,
+        Style::IndustrialLoft => Ground::Garages,
+        Style::TiledModern if rng.random_bool(0.5) => Ground::Garages,
+        Style::TiledModern => Ground::Shops(Awning::Plain),
+        Style::HalfTimbered if rng.random_bool(0.4) => Ground::Shops(Awning::Plain),
+        _ => Ground::Residential,
     }
 }
 
@@ -213,7 +403,7 @@ mod tests {
 
     #[test]
     fn designs_have_plausible_proportions() {
-        for i in 0..60 {
+        for i in 0..120 {
             let d = Design::new(i);
             assert_eq!(d, Design::new(i));
             assert!((3..=8).contains(&d.floors), "{i}: {d:?}");

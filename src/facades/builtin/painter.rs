@@ -11,7 +11,7 @@ use crate::model::PxRect;
 
 use super::super::cmp_label::CmpLabel;
 use super::canvas::{Canvas, rect, scale};
-use super::design::{Design, Style};
+use super::design::{Awning, Design, Ground, Style, Wall};
 use super::{parts, wall};
 
 const SKY: u32 = 16;
@@ -44,6 +44,32 @@ pub fn paint(d: &Design, rng: &mut Pcg64) -> Canvas {
     wall::cornice(&mut c, cornice, d.trim, rng);
 
     let ground_top = height - d.floor_px;
+    if d.rusticated {
+        let stone = match d.wall {
+            Wall::Stone(stone) => scale(stone, 0.94),
+            _ => d.trim,
+        };
+        let r = rect(0, ground_top, width, height);
+        wall::courses(&mut c, r, stone, [64, 18, 3], 0.55, rng);
+    }
+    if d.timber {
+        let posts: Vec<u32> = (0..=d.bays)
+            .map(|b| (d.margin_px + b * d.bay_px).saturating_sub(4))
+            .chain([0, width - 7])
+            .collect();
+        let mut posts = posts;
+        posts.sort_unstable();
+        posts.dedup();
+        let rails: Vec<u32> = (0..d.floors).map(|f| floors_top + f * d.floor_px).collect();
+        let wood = [[62, 44, 32], [48, 36, 30], [84, 56, 36]][d.door_bay as usize % 3];
+        wall::timber(
+            &mut c,
+            rect(0, floors_top, width, ground_top),
+            &posts,
+            &rails,
+            wood,
+        );
+    }
     if d.pilasters {
         let w = d.margin_px * 2 / 3;
         for x0 in [
@@ -87,6 +113,15 @@ fn upper_bay(c: &mut Canvas, d: &Design, y0: u32, bay: u32, rng: &mut Pcg64) {
     if d.lintels {
         parts::lintel(c, win, d.trim);
     }
+    if d.arched {
+        parts::arch(
+            c,
+            win,
+            (win.width() / 2).min(px(fp * 0.16)),
+            d.frame,
+            d.trim,
+        );
+    }
     if d.shutters {
         let slack = (d.bay_px - win.width()) / 2;
         parts::shutters(
@@ -97,6 +132,9 @@ fn upper_bay(c: &mut Canvas, d: &Design, y0: u32, bay: u32, rng: &mut Pcg64) {
         );
     }
     parts::window(c, win, d.frame, rng);
+    if d.grid {
+        parts::grid_bars(c, win, 4, 3, d.frame);
+    }
     if balcony {
         let metal = if d.frame[0] > 150 {
             [40, 42, 46]
@@ -104,7 +142,10 @@ fn upper_bay(c: &mut Canvas, d: &Design, y0: u32, bay: u32, rng: &mut Pcg64) {
             d.frame
         };
         parts::balcony(c, win, px(fp * 0.3), d.trim, metal);
-    } else if d.style == Style::Modern {
+    } else if matches!(
+        d.style,
+        Style::Modern | Style::GlassOffice | Style::TiledModern
+    ) {
         parts::sill(c, win, scale(d.frame, 1.3));
     } else {
         parts::sill(c, win, d.trim);
@@ -122,19 +163,46 @@ fn ground_floor(c: &mut Canvas, d: &Design, y0: u32, rng: &mut Pcg64) {
     let fp = f64::from(d.floor_px);
     let door_w = px(f64::from(d.bay_px) * 0.5).max(44);
     let door = bay_rect(d, d.door_bay, door_w, y0 + px(fp * 0.24), bottom);
-    if !d.shops {
-        for bay in (0..d.bays).filter(|&b| b != d.door_bay) {
-            let w = px(f64::from(d.bay_px) * d.window_w);
-            let top = y0 + px(fp * 0.26);
-            let win = bay_rect(d, bay, w, top, top + px(fp * d.window_h));
-            parts::window(c, win, d.frame, rng);
-            parts::sill(c, win, d.trim);
+    match d.ground {
+        Ground::Residential => {
+            for bay in (0..d.bays).filter(|&b| b != d.door_bay) {
+                let w = px(f64::from(d.bay_px) * d.window_w);
+                let top = y0 + px(fp * 0.26);
+                let win = bay_rect(d, bay, w, top, top + px(fp * d.window_h));
+                parts::window(c, win, d.frame, rng);
+                if d.grid {
+                    parts::grid_bars(c, win, 4, 3, d.frame);
+                }
+                parts::sill(c, win, d.trim);
+            }
+            parts::door(c, door, d.accent, d.trim, rng);
         }
-        parts::door(c, door, d.accent, d.trim, rng);
-        return;
+        Ground::Garages => {
+            for bay in (0..d.bays).filter(|&b| b != d.door_bay) {
+                let w = px(f64::from(d.bay_px) * 0.84);
+                let r = bay_rect(d, bay, w, y0 + STRING_COURSE + px(fp * 0.22), bottom - 2);
+                let paint = [[150, 152, 150], [96, 100, 104], d.accent][bay as usize % 3];
+                parts::garage(c, r, paint, d.trim, rng);
+            }
+            parts::door(c, door, d.accent, d.trim, rng);
+        }
+        Ground::Arcade => {
+            parts::door(c, door, d.accent, d.trim, rng);
+            for bay in (0..d.bays).filter(|&b| b != d.door_bay) {
+                let w = px(f64::from(d.bay_px) * 0.78);
+                let r = bay_rect(d, bay, w, y0 + STRING_COURSE + px(fp * 0.08), bottom - 2);
+                parts::arcade(c, r, scale(d.accent, 0.55), d.accent, rng);
+            }
+        }
+        Ground::Shops(awning) => shops(c, d, (door, awning), y0, rng),
     }
-    // Shops in runs of at most two bays, the house door in its own bay when there are
-    // three bays or more.
+}
+
+/// Shops in runs of at most two bays, the house door in its own bay when there are three
+/// bays or more.
+fn shops(c: &mut Canvas, d: &Design, (door, awning): (PxRect, Awning), y0: u32, rng: &mut Pcg64) {
+    let fp = f64::from(d.floor_px);
+    let bottom = y0 + d.floor_px;
     let house_door = d.bays >= 3;
     let glass_top = y0 + STRING_COURSE + px(fp * 0.2);
     let mut bay = 0;
@@ -150,7 +218,7 @@ fn ground_floor(c: &mut Canvas, d: &Design, y0: u32, rng: &mut Pcg64) {
         }
         let x0 = d.margin_px + bay * d.bay_px + 6;
         let x1 = d.margin_px + end * d.bay_px - 6;
-        let frame = if d.style == Style::Modern {
+        let frame = if matches!(d.style, Style::Modern | Style::GlassOffice) {
             d.frame
         } else {
             scale(d.accent, 0.55)
@@ -159,7 +227,7 @@ fn ground_floor(c: &mut Canvas, d: &Design, y0: u32, rng: &mut Pcg64) {
             c,
             rect(x0, glass_top, x1, bottom - 2),
             frame,
-            d.accent,
+            (d.accent, awning),
             px(fp * 0.16),
             rng,
         );

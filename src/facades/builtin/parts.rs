@@ -10,6 +10,7 @@ use crate::model::PxRect;
 
 use super::super::cmp_label::CmpLabel;
 use super::canvas::{Canvas, Colour, mix, rect, scale};
+use super::design::Awning;
 use super::wall::shadow_below;
 
 /// Glass: sky reflected at the top, a dark room below.
@@ -205,7 +206,7 @@ pub fn shop(
     c: &mut Canvas,
     r: PxRect,
     frame: Colour,
-    awning: Colour,
+    (awning, kind): (Colour, Awning),
     awning_h: u32,
     rng: &mut Pcg64,
 ) {
@@ -242,18 +243,117 @@ pub fn shop(
         r.x1 + 4,
         r.y0 + awning_h,
     );
+    if kind == Awning::Fascia {
+        // A flat signage band over the glass, lit along its top edge.
+        let band = rect(a.x0, a.y0, a.x1, a.y0 + (awning_h * 3 / 5).max(10));
+        c.part(CmpLabel::Deco, band);
+        c.fill(band, scale(awning, 0.8));
+        c.shade(rect(band.x0, band.y0, band.x1, band.y0 + 2), 1.3);
+        shadow_below(c, band, 3);
+        return;
+    }
     c.part(CmpLabel::Deco, a);
     let stripe_light = mix(awning, [240, 236, 226], 0.85);
+    let striped = kind == Awning::Striped;
     c.each(a, |x, y, _| {
-        let base = if ((x - a.x0) / 12).is_multiple_of(2) {
+        let base = if !striped || ((x - a.x0) / 12).is_multiple_of(2) {
             awning
         } else {
             stripe_light
         };
         // Slope shading: the canvas darkens towards its lower edge, with a scalloped hem.
         let t = f64::from(y - a.y0) / f64::from(a.height());
-        let hem = y + 5 >= a.y1 && ((x - a.x0) % 12) as i32 - 6 > 0;
+        let hem = y + 5 >= a.y1 && (!striped || ((x - a.x0) % 12) as i32 - 6 > 0);
         scale(base, if hem { 0.7 } else { 1.05 - 0.25 * t })
     });
     shadow_below(c, a, 8);
+}
+
+/// A round-arched head over window `r`: an arch `rise` pixels high of frame around glass,
+/// with a stone voussoir band outside it.
+pub fn arch(c: &mut Canvas, r: PxRect, rise: u32, frame: Colour, trim: Colour) {
+    let (cx, half) = (f64::from(r.x0 + r.x1) / 2.0, f64::from(r.width()) / 2.0);
+    let (base, rise_f) = (f64::from(r.y0), f64::from(rise.max(1)));
+    let around = rect(
+        r.x0.saturating_sub(6),
+        r.y0.saturating_sub(rise + 6),
+        r.x1 + 6,
+        r.y0,
+    );
+    c.each(around, |x, y, p| {
+        let dx = (f64::from(x) + 0.5 - cx) / half;
+        let dy = (base - f64::from(y) - 0.5) / rise_f;
+        let d = (dx * dx + dy * dy).sqrt();
+        let ring = 6.0 / half;
+        if d < 1.0 - 4.0 / half {
+            mix(GLASS_TOP, GLASS_BOTTOM, (1.0 - dy).clamp(0.0, 1.0) * 0.4)
+        } else if d < 1.0 {
+            frame
+        } else if d < 1.0 + ring {
+            scale(trim, if dx.abs() < 0.15 { 1.1 } else { 0.97 })
+        } else {
+            p
+        }
+    });
+}
+
+/// Extra glazing bars over window `r`: a steel grid of `cols × rows` panes.
+pub fn grid_bars(c: &mut Canvas, r: PxRect, cols: u32, rows: u32, frame: Colour) {
+    for i in 1..cols {
+        let x = r.x0 + r.width() * i / cols;
+        c.fill(rect(x - 1, r.y0, x + 1, r.y1), frame);
+    }
+    for j in 1..rows {
+        let y = r.y0 + r.height() * j / rows;
+        c.fill(rect(r.x0, y - 1, r.x1, y + 1), frame);
+    }
+}
+
+/// A roller or sectional garage door filling `r` (it reaches the ground), with a lintel.
+pub fn garage(c: &mut Canvas, r: PxRect, paint: Colour, trim: Colour, rng: &mut Pcg64) {
+    c.fill(
+        rect(
+            r.x0.saturating_sub(5),
+            r.y0.saturating_sub(7),
+            r.x1 + 5,
+            r.y0,
+        ),
+        trim,
+    );
+    shadow_below(c, rect(r.x0, r.y0.saturating_sub(7), r.x1, r.y0), 5);
+    c.part(CmpLabel::Door, r);
+    let mut noise = super::canvas::Grain::new(rng);
+    let sectional = rng.random_bool(0.5);
+    c.each(r, |x, y, p| {
+        let ly = y - r.y0;
+        let line = if sectional {
+            ly % 24 < 2 || (x - r.x0) % 40 < 1
+        } else {
+            ly.is_multiple_of(6)
+        };
+        let base = mix(paint, p, 0.1).map(|v| super::canvas::add(v, noise.next(3)));
+        if line { scale(base, 0.72) } else { base }
+    });
+    c.shade(rect(r.x0, r.y0, r.x1, r.y0 + 5), 0.7);
+}
+
+/// An arcade opening filling `r` (reaching the ground): a round arch on piers, deep shade
+/// inside and a shopfront set back in it.
+pub fn arcade(c: &mut Canvas, r: PxRect, frame: Colour, awning: Colour, rng: &mut Pcg64) {
+    let rise = (r.width() / 2).min(r.height() / 3);
+    let glass = rect(r.x0 + 8, r.y0 + rise, r.x1 - 8, r.y1);
+    shop(c, glass, frame, (awning, Awning::Fascia), 10, rng);
+    let (cx, half) = (f64::from(r.x0 + r.x1) / 2.0, f64::from(r.width()) / 2.0);
+    let spring = f64::from(r.y0 + rise);
+    c.each(r, |x, y, p| {
+        let dx = (f64::from(x) + 0.5 - cx) / half;
+        let dy = (spring - f64::from(y) - 0.5) / f64::from(rise.max(1));
+        let inside = dy <= 0.0 || dx * dx + dy * dy < 1.0;
+        let shade = if f64::from(y) < spring + 14.0 {
+            0.45
+        } else {
+            0.7
+        };
+        if inside { scale(p, shade) } else { p }
+    });
 }

@@ -20,6 +20,118 @@ pub fn wall(c: &mut Canvas, r: PxRect, wall: Wall, rng: &mut Pcg64) {
     match wall {
         Wall::Brick { brick, mortar } => bricks(c, r, brick, mortar, rng),
         Wall::Plaster(colour) => plaster(c, r, colour, rng),
+        Wall::Glass(tint) => glass(c, r, tint, rng),
+        Wall::Stone(stone) => courses(c, r, stone, [48, 24, 2], 0.8, rng),
+        Wall::Siding(paint) => siding(c, r, paint, rng),
+        Wall::Tiles { tile, grout } => tiles(c, r, tile, grout, rng),
+    }
+}
+
+/// A glass curtain wall: the sky reflected in bands, darker towards the street, with
+/// slim mullions and transoms (the windows drawn over it are the vision panels).
+fn glass(c: &mut Canvas, r: PxRect, tint: Colour, rng: &mut Pcg64) {
+    let sky = mix(tint, [200, 214, 226], 0.45);
+    c.gradient(r, sky, scale(tint, 0.7));
+    let phase: u32 = rng.random_range(0..90);
+    let mut noise = Grain::new(rng);
+    c.each(r, |x, y, p| {
+        let (lx, ly) = (x - r.x0, y - r.y0);
+        if lx % 36 < 3 || ly % 26 < 3 {
+            [96, 100, 106].map(|v| add(v, noise.next(4)))
+        } else if (lx + ly / 2 + phase) % 140 < 30 {
+            scale(p, 1.15)
+        } else {
+            p
+        }
+    });
+}
+
+/// Stone (or any block) courses: `[block length, course height, joint]` pixels, every
+/// block a little lighter or darker, joints shaded by `joint_shade`.
+pub fn courses(
+    c: &mut Canvas,
+    r: PxRect,
+    stone: Colour,
+    size: [u32; 3],
+    joint_shade: f64,
+    rng: &mut Pcg64,
+) {
+    let [block, course, joint] = size;
+    let cols = r.width() / block + 2;
+    let rows = r.height() / course + 1;
+    let offsets: Vec<i32> = (0..cols * rows).map(|_| rng.random_range(-9..=9)).collect();
+    let mut noise = Grain::new(rng);
+    c.each(r, |x, y, _| {
+        let (lx, ly) = (x - r.x0, y - r.y0);
+        let row = ly / course;
+        let shift = if row.is_multiple_of(2) { 0 } else { block / 2 };
+        let col = (lx + shift) / block;
+        let grain = noise.next(4);
+        let base = stone.map(|v| add(v, offsets[(row * cols + col) as usize] + grain));
+        if ly % course >= course - joint || (lx + shift) % block >= block - joint {
+            scale(base, joint_shade)
+        } else {
+            base
+        }
+    });
+}
+
+/// Painted boards 12 px high, each with a shadow line under its lap.
+fn siding(c: &mut Canvas, r: PxRect, paint: Colour, rng: &mut Pcg64) {
+    let mut noise = Grain::new(rng);
+    c.each(r, |_, y, _| {
+        let k = (y - r.y0) % 12;
+        let light = match k {
+            0 => 0.7,
+            1 => 0.86,
+            _ => 1.04 - 0.012 * f64::from(k),
+        };
+        scale(paint.map(|v| add(v, noise.next(3))), light)
+    });
+}
+
+/// Square 12 px tiles in 2 px of grout, each tile a little different.
+fn tiles(c: &mut Canvas, r: PxRect, tile: Colour, grout: Colour, rng: &mut Pcg64) {
+    let cols = r.width() / 12 + 1;
+    let rows = r.height() / 12 + 1;
+    let offsets: Vec<i32> = (0..cols * rows)
+        .map(|_| rng.random_range(-10..=10))
+        .collect();
+    c.each(r, |x, y, _| {
+        let (lx, ly) = (x - r.x0, y - r.y0);
+        if lx % 12 >= 10 || ly % 12 >= 10 {
+            grout
+        } else {
+            tile.map(|v| add(v, offsets[((ly / 12) * cols + lx / 12) as usize]))
+        }
+    });
+}
+
+/// Half-timbering over `r`: dark posts at `posts` (x), rails at `rails` (y) and a brace
+/// across each panel between two posts below a rail.
+pub fn timber(c: &mut Canvas, r: PxRect, posts: &[u32], rails: &[u32], wood: Colour) {
+    const BEAM: u32 = 7;
+    for &y in rails {
+        c.fill(rect(r.x0, y, r.x1, y + BEAM), wood);
+    }
+    for &x in posts {
+        c.fill(rect(x, r.y0, x + BEAM, r.y1), wood);
+    }
+    for pair in rails.windows(2) {
+        let (y0, y1) = (pair[0] + BEAM, pair[1]);
+        for (i, post) in posts.windows(2).enumerate() {
+            let (x0, x1) = (post[0] + BEAM, post[1]);
+            if x1 <= x0 + 2 * BEAM || y1 <= y0 {
+                continue;
+            }
+            let (w, h) = (f64::from(x1 - x0), f64::from(y1 - y0));
+            c.each(rect(x0, y0, x1, y1), |x, y, p| {
+                let t = f64::from(x - x0) / w;
+                let t = if i % 2 == 0 { t } else { 1.0 - t };
+                let on = (f64::from(y - y0) - t * h).abs() < f64::from(BEAM) * 0.7;
+                if on { wood } else { p }
+            });
+        }
     }
 }
 

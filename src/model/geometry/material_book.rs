@@ -50,6 +50,23 @@ impl MaterialBook {
         }
     }
 
+    /// Registers a material of `colour` that shares material `like`'s texture (none if
+    /// `like` has none or is not registered): a tinted copy costs no texture memory.
+    pub fn add_sharing(&mut self, name: &str, colour: [f32; 3], like: u32) -> u32 {
+        let name = self.unique(&sanitise(name));
+        let like = self.materials.get(like as usize);
+        let (texture, emissive) = like.map_or((None, [0.0; 3]), |m| (m.texture, m.emissive));
+        let emissive_textured = like.is_some_and(|m| m.emissive_textured);
+        self.materials.push(Material {
+            name,
+            colour,
+            texture,
+            emissive,
+            emissive_textured,
+        });
+        (self.materials.len() - 1) as u32
+    }
+
     fn unique(&mut self, base: &str) -> String {
         let mut name = base.to_owned();
         let mut n = 2u32;

@@ -2,7 +2,7 @@
 //! facade sizes) with text, sign and mesh entries: the city and entry helpers they share,
 //! one file per kind of object.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use image::RgbImage;
 
@@ -143,4 +143,32 @@ fn all_kinds() -> Vec<ObjectSpec> {
             ..bench(6, Ground::Lane)
         },
     ]
+}
+
+#[test]
+fn trees_cars_and_people_name_the_variant_they_were_drawn_as() {
+    let city = city();
+    let specs = [
+        spec(ObjectKind::Tree, "tree", 12),
+        spec(ObjectKind::Car, "car", 12),
+        spec(ObjectKind::Person, "person", 12),
+    ];
+    let inserted = run(&city, &specs).unwrap();
+    let mut seen = BTreeMap::new();
+    for info in &inserted.info {
+        let key = match info.label.as_str() {
+            "tree" => "species",
+            "car" => "body",
+            "person" => "appearance",
+            _ => continue,
+        };
+        let value = info.attributes.get(key);
+        assert!(value.is_some_and(|v| !v.is_empty()), "{info:?}");
+        seen.entry(key)
+            .or_insert_with(BTreeSet::new)
+            .insert(value.unwrap().clone());
+    }
+    assert_eq!(seen.len(), 3, "{seen:?}");
+    // Drawn at random: twelve of each show more than one variant.
+    assert!(seen.values().all(|v| v.len() > 1), "{seen:?}");
 }

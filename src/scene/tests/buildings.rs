@@ -25,35 +25,47 @@ fn buildings_stand_on_their_footprints_as_tall_as_their_facades() {
             "{}",
             object.name
         );
-        let facade = &city.facades.facades[building.kind as usize];
         assert_eq!(
             f64::from(fp.width()),
-            facade.width,
-            "paper: footprint = facade width"
+            city.facades.facades[building.kind as usize].width,
+            "paper: footprint = its kind's facade width"
         );
+        let walls = &scene.materials[object.meshes[0].material as usize];
+        let facade = &city.facades.facades[facade_of(&walls.name, &city)];
         assert!((lo[1] - KERB_Y).abs() < 1e-6);
         assert!(
             (hi[1] - lo[1] - facade.height).abs() < 1e-4,
             "{}",
             object.name
         );
-        let walls = &scene.materials[object.meshes[0].material as usize];
-        assert_eq!(walls.name, format!("facade_{}", facade.name));
         let roof = &scene.materials[object.meshes[1].material as usize];
         let roof_name = &city.facades.roofs[facade.roof as usize].name;
-        assert_eq!(roof.name, format!("roof_{roof_name}"));
+        assert_eq!(untinted(&roof.name), format!("roof_{roof_name}"));
     }
-    // One material per facade texture and per roof texture, shared by their buildings.
-    let facade_materials = scene
-        .materials
+    // One texture per facade and per roof, shared by their tinted materials.
+    for (prefix, want) in [("facade_", 3), ("roof_", 2)] {
+        let textures: BTreeSet<u32> = scene
+            .materials
+            .iter()
+            .filter(|m| m.name.starts_with(prefix))
+            .filter_map(|m| m.texture)
+            .collect();
+        assert_eq!(textures.len(), want, "{prefix}");
+    }
+}
+
+/// A material name without its `_tint<k>` suffix.
+fn untinted(name: &str) -> &str {
+    name.rsplit_once("_tint").map_or(name, |(base, _)| base)
+}
+
+/// The facade index a wall material `name` clads with.
+fn facade_of(name: &str, city: &City) -> usize {
+    city.facades
+        .facades
         .iter()
-        .filter(|m| m.name.starts_with("facade_"));
-    assert_eq!(facade_materials.count(), 3);
-    let roof_materials = scene
-        .materials
-        .iter()
-        .filter(|m| m.name.starts_with("roof_"));
-    assert_eq!(roof_materials.count(), 2);
+        .position(|f| format!("facade_{}", f.name) == untinted(name))
+        .unwrap()
 }
 
 /// u range of the walls of each building (min, max), and the building's wall width.
@@ -72,13 +84,7 @@ fn wall_u(scene: &Scene, city: &City) -> Vec<(f32, f32, f64, usize)> {
                 .iter()
                 .map(|uv| uv[0])
                 .fold(f32::NEG_INFINITY, f32::max);
-            let name = &scene.materials[walls.material as usize].name;
-            let facade = city
-                .facades
-                .facades
-                .iter()
-                .position(|f| format!("facade_{}", f.name) == *name)
-                .unwrap();
+            let facade = facade_of(&scene.materials[walls.material as usize].name, city);
             (lo, hi, f64::from(building.footprint.width()), facade)
         })
         .collect()
@@ -86,9 +92,13 @@ fn wall_u(scene: &Scene, city: &City) -> Vec<(f32, f32, f64, usize)> {
 
 #[test]
 fn wall_u_spans_one_facade_or_tiles_it_by_width() {
+    // Without widths: a whole number of copies, each stretched by at most ±20 %.
     let city_a = city(None);
-    for (lo, hi, _, _) in wall_u(&scene_of(&city_a, None), &city_a) {
-        assert_eq!((lo, hi), (0.0, 1.0));
+    for (lo, hi, width, facade) in wall_u(&scene_of(&city_a, None), &city_a) {
+        assert_eq!(lo, 0.0);
+        assert!(hi >= 1.0 && hi.fract() == 0.0, "{hi}");
+        let stretch = width / (f64::from(hi) * city_a.facades.facades[facade].width);
+        assert!((0.8 - 1e-6..=1.2 + 1e-6).contains(&stretch), "{stretch}");
     }
     let widths = [12.0, 25.0];
     let city_b = city(Some(&widths));
@@ -99,7 +109,7 @@ fn wall_u_spans_one_facade_or_tiles_it_by_width() {
         assert_eq!((lo, hi), (0.0, want), "width {width}, facade {facade}");
         used.insert(facade);
     }
-    // The seeded choice uses every facade across a thousand buildings.
+    // The balanced choice uses every facade across a thousand buildings.
     assert_eq!(used.len(), 3);
     for object in of_class(&scene, "building") {
         let v: BTreeSet<u32> = object.meshes[0]
