@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 13;
+pub const VERSION: u32 = 14;
 
 mod atlas_layout;
 mod bicycle;
@@ -37,6 +37,7 @@ mod objects_error;
 mod person;
 mod plate_style;
 mod sign_face;
+mod sign_rules;
 mod street_names;
 #[cfg(test)]
 mod tests;
