@@ -59,19 +59,43 @@ pub fn path_labels(
             classes
         }
     };
-    let categories: Vec<Category> = classes
-        .iter()
+    // With `sign_categories`, a sign entry's label is one category per sign type.
+    let split: Vec<&str> = if annotations.sign_categories {
+        specs
+            .iter()
+            .filter(|o| o.kind == ObjectKind::Sign)
+            .map(|o| o.label.as_str())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let names = classes.iter().flat_map(|name| {
+        if split.contains(&name.as_str()) {
+            SignKind::ALL
+                .iter()
+                .map(|k| format!("{name}/{}", k.name()))
+                .collect()
+        } else {
+            vec![name.clone()]
+        }
+    });
+    let categories: Vec<Category> = names
         .enumerate()
         .map(|(i, name)| Category {
             id: i as u32 + 1,
-            name: name.clone(),
+            name,
         })
         .collect();
     let id_of = |name: &str| categories.iter().find(|c| c.name == name).map(|c| c.id);
     let labels = objects
         .into_iter()
         .map(|ClassedObject { class, mut label }| {
-            label.category = id_of(&class);
+            label.category = match &label.sign {
+                Some(sign) if split.contains(&class.as_str()) => {
+                    id_of(&format!("{class}/{}", sign.kind))
+                }
+                _ => id_of(&class),
+            };
             if let Some(sign) = &mut label.sign {
                 sign.back_category = id_of(&format!("{class}_back"));
             }
@@ -131,5 +155,58 @@ mod tests {
         assert_eq!(names, ["car", "bicycle", "rider", "person", "lamp"]);
         let ids: Vec<u32> = labels.categories.iter().map(|c| c.id).collect();
         assert_eq!(ids, [1, 2, 3, 4, 5]);
+    }
+
+    /// With `sign_categories`, COCO has a category per sign type in catalogue order, a
+    /// stop sign's label is `traffic_sign/stop`'s, and YOLO's classes are the same names
+    /// in the same order (class k is category k + 1); off, one `traffic_sign`.
+    #[test]
+    fn sign_categories_split_coco_and_yolo_alike() {
+        let sign = |kind: &str| ClassedObject {
+            class: "traffic_sign".to_owned(),
+            label: ObjectLabel {
+                name: format!("sign_{kind}"),
+                category: None,
+                text: None,
+                attributes: BTreeMap::new(),
+                sign: Some(crate::annotate::object_label::SignLabel {
+                    kind: kind.to_owned(),
+                    centre: [0.0; 3],
+                    normal: [1.0, 0.0, 0.0],
+                    back_category: None,
+                }),
+            },
+        };
+        for on in [false, true] {
+            let text = format!(
+                "version = 1\nname = 'a'\n[layout.generate]\n[buildings]\nwidths = [5, 5]\n\
+                 [[objects]]\nkind = 'car'\nlabel = 'car'\n[[objects]]\nkind = 'sign'\nlabel = 'traffic_sign'\nsigns = ['yield']\n\
+                 [annotations]\nyolo = true\nsign_categories = {on}\n\
+                 [[cameras]]\nname = 'c'\npath = 'roads'\nframes = 1\n"
+            );
+            let spec: Spec = toml::from_str(&text).unwrap();
+            let objects = vec![sign("stop"), sign("bus_stop")];
+            let labels = path_labels(&spec.annotations, &spec.objects, &spec.cameras[0], objects);
+            let names: Vec<&str> = labels.categories.iter().map(|c| c.name.as_str()).collect();
+            let yolo = labels.yolo.unwrap().names_file();
+            assert_eq!(yolo.lines().collect::<Vec<_>>(), names);
+            let id = |name: &str| {
+                labels
+                    .categories
+                    .iter()
+                    .find(|c| c.name == name)
+                    .map(|c| c.id)
+            };
+            if on {
+                assert_eq!(names.len(), 2 + SignKind::ALL.len());
+                assert_eq!(names[1], "traffic_sign/stop");
+                assert_eq!(names[SignKind::ALL.len()], "traffic_sign/bus_stop");
+                assert_eq!(labels.labels[0].category, id("traffic_sign/stop"));
+                assert_eq!(labels.labels[1].category, id("traffic_sign/bus_stop"));
+            } else {
+                assert_eq!(names, ["car", "traffic_sign", "lamp"]);
+                assert_eq!(labels.labels[0].category, id("traffic_sign"));
+            }
+        }
     }
 }
