@@ -428,7 +428,7 @@ fn poly(image: &mut RgbImage, points: &[[f64; 2]], c: Rgb<u8>) {
 /// A straight stroke from `a` to `b`, `width` wide (texture units).
 fn bar(image: &mut RgbImage, a: [f64; 2], b: [f64; 2], width: f64, c: Rgb<u8>) {
     let d = [b[0] - a[0], b[1] - a[1]];
-    let len = d[0].hypot(d[1]);
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
     if len <= 0.0 {
         return;
     }

@@ -112,7 +112,11 @@ fn spot_for(
         Rule::Free => spots.strip(rng, RADIUS, ATTEMPTS)?,
     };
     let close = faces.values().any(|f| {
-        let d = (f.centre[0] - spot.position[0]).hypot(f.centre[2] - spot.position[1]);
+        let (dx, dz) = (
+            f.centre[0] - spot.position[0],
+            f.centre[2] - spot.position[1],
+        );
+        let d = (dx * dx + dz * dz).sqrt();
         f.kind == kind && f.road == spot.road && faces_travel(f, spot.travel) && d < SPACING
     });
     if close {

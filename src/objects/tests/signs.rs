@@ -316,7 +316,8 @@ fn signs_stand_by_the_rules() {
                 .iter()
                 .filter(|g| g.kind == f.kind && g.road == f.road && !std::ptr::eq(**g, *f))
             {
-                let d = (f.centre[0] - g.centre[0]).hypot(f.centre[2] - g.centre[2]);
+                let (dx, dz) = (f.centre[0] - g.centre[0], f.centre[2] - g.centre[2]);
+                let d = (dx * dx + dz * dz).sqrt();
                 let same_way = f.normal[0] * g.normal[0] + f.normal[2] * g.normal[2] > 0.99;
                 assert!(
                     !same_way || d >= SPACING,
