@@ -59,33 +59,8 @@ pub fn path_labels(
             classes
         }
     };
-    // With `sign_categories`, a sign entry's label is one category per sign type.
-    let split: Vec<&str> = if annotations.sign_categories {
-        specs
-            .iter()
-            .filter(|o| o.kind == ObjectKind::Sign)
-            .map(|o| o.label.as_str())
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let names = classes.iter().flat_map(|name| {
-        if split.contains(&name.as_str()) {
-            SignKind::ALL
-                .iter()
-                .map(|k| format!("{name}/{}", k.name()))
-                .collect()
-        } else {
-            vec![name.clone()]
-        }
-    });
-    let categories: Vec<Category> = names
-        .enumerate()
-        .map(|(i, name)| Category {
-            id: i as u32 + 1,
-            name,
-        })
-        .collect();
+    let split = split_labels(annotations, specs);
+    let categories = categories(&classes, &split);
     let id_of = |name: &str| categories.iter().find(|c| c.name == name).map(|c| c.id);
     let labels = objects
         .into_iter()
@@ -130,6 +105,42 @@ pub fn path_labels(
         labels,
         yolo,
     }
+}
+
+/// The sign entries' labels that become one category per sign type: with
+/// `sign_categories`, every sign entry's; else none.
+fn split_labels<'a>(annotations: &AnnotationsSpec, specs: &'a [ObjectSpec]) -> Vec<&'a str> {
+    if !annotations.sign_categories {
+        return Vec::new();
+    }
+    specs
+        .iter()
+        .filter(|o| o.kind == ObjectKind::Sign)
+        .map(|o| o.label.as_str())
+        .collect()
+}
+
+/// COCO categories from 1 in `classes` order, a class in `split` replaced by
+/// `<class>/<type>` for every sign type in catalogue order.
+fn categories(classes: &[String], split: &[&str]) -> Vec<Category> {
+    classes
+        .iter()
+        .flat_map(|name| {
+            if split.contains(&name.as_str()) {
+                SignKind::ALL
+                    .iter()
+                    .map(|k| format!("{name}/{}", k.name()))
+                    .collect()
+            } else {
+                vec![name.clone()]
+            }
+        })
+        .enumerate()
+        .map(|(i, name)| Category {
+            id: i as u32 + 1,
+            name,
+        })
+        .collect()
 }
 
 #[cfg(test)]
