@@ -63,19 +63,18 @@ pub fn path_labels(
         }
     };
     let classes = with_words(classes, &objects);
-    let categories: Vec<Category> = classes
-        .iter()
-        .enumerate()
-        .map(|(i, name)| Category {
-            id: i as u32 + 1,
-            name: name.clone(),
-        })
-        .collect();
+    let split = split_labels(annotations, specs);
+    let categories = categories(&classes, &split);
     let id_of = |name: &str| categories.iter().find(|c| c.name == name).map(|c| c.id);
     let labels = objects
         .into_iter()
         .map(|ClassedObject { class, mut label }| {
-            label.category = id_of(&class);
+            label.category = match &label.sign {
+                Some(sign) if split.contains(&class.as_str()) => {
+                    id_of(&format!("{class}/{}", sign.kind))
+                }
+                _ => id_of(&class),
+            };
             if let Some(sign) = &mut label.sign {
                 sign.back_category = id_of(&format!("{class}_back"));
             }
@@ -127,6 +126,42 @@ fn with_words(mut classes: Vec<String>, objects: &[ClassedObject]) -> Vec<String
         classes.push(WORD_CATEGORY.to_owned());
     }
     classes
+}
+
+/// The sign entries' labels that become one category per sign type: with
+/// `sign_categories`, every sign entry's; else none.
+fn split_labels<'a>(annotations: &AnnotationsSpec, specs: &'a [ObjectSpec]) -> Vec<&'a str> {
+    if !annotations.sign_categories {
+        return Vec::new();
+    }
+    specs
+        .iter()
+        .filter(|o| o.kind == ObjectKind::Sign)
+        .map(|o| o.label.as_str())
+        .collect()
+}
+
+/// COCO categories from 1 in `classes` order, a class in `split` replaced by
+/// `<class>/<type>` for every sign type in catalogue order.
+fn categories(classes: &[String], split: &[&str]) -> Vec<Category> {
+    classes
+        .iter()
+        .flat_map(|name| {
+            if split.contains(&name.as_str()) {
+                SignKind::ALL
+                    .iter()
+                    .map(|k| format!("{name}/{}", k.name()))
+                    .collect()
+            } else {
+                vec![name.clone()]
+            }
+        })
+        .enumerate()
+        .map(|(i, name)| Category {
+            id: i as u32 + 1,
+            name,
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -187,5 +222,58 @@ mod tests {
         // No text object in the scene: no word category.
         let without = labels(vec![object("car", None)]);
         assert_eq!(without.categories.len(), 3);
+    }
+
+    /// With `sign_categories`, COCO has a category per sign type in catalogue order, a
+    /// stop sign's label is `traffic_sign/stop`'s, and YOLO's classes are the same names
+    /// in the same order (class k is category k + 1); off, one `traffic_sign`.
+    #[test]
+    fn sign_categories_split_coco_and_yolo_alike() {
+        let sign = |kind: &str| ClassedObject {
+            class: "traffic_sign".to_owned(),
+            label: ObjectLabel {
+                name: format!("sign_{kind}"),
+                category: None,
+                text: None,
+                attributes: BTreeMap::new(),
+                sign: Some(crate::annotate::object_label::SignLabel {
+                    kind: kind.to_owned(),
+                    centre: [0.0; 3],
+                    normal: [1.0, 0.0, 0.0],
+                    back_category: None,
+                }),
+            },
+        };
+        for on in [false, true] {
+            let text = format!(
+                "version = 1\nname = 'a'\n[layout.generate]\n[buildings]\nwidths = [5, 5]\n\
+                 [[objects]]\nkind = 'car'\nlabel = 'car'\n[[objects]]\nkind = 'sign'\nlabel = 'traffic_sign'\nsigns = ['yield']\n\
+                 [annotations]\nyolo = true\nsign_categories = {on}\n\
+                 [[cameras]]\nname = 'c'\npath = 'roads'\nframes = 1\n"
+            );
+            let spec: Spec = toml::from_str(&text).unwrap();
+            let objects = vec![sign("stop"), sign("bus_stop")];
+            let labels = path_labels(&spec.annotations, &spec.objects, &spec.cameras[0], objects);
+            let names: Vec<&str> = labels.categories.iter().map(|c| c.name.as_str()).collect();
+            let yolo = labels.yolo.unwrap().names_file();
+            assert_eq!(yolo.lines().collect::<Vec<_>>(), names);
+            let id = |name: &str| {
+                labels
+                    .categories
+                    .iter()
+                    .find(|c| c.name == name)
+                    .map(|c| c.id)
+            };
+            if on {
+                assert_eq!(names.len(), 2 + SignKind::ALL.len());
+                assert_eq!(names[1], "traffic_sign/stop");
+                assert_eq!(names[SignKind::ALL.len()], "traffic_sign/bus_stop");
+                assert_eq!(labels.labels[0].category, id("traffic_sign/stop"));
+                assert_eq!(labels.labels[1].category, id("traffic_sign/bus_stop"));
+            } else {
+                assert_eq!(names, ["car", "traffic_sign", "lamp"]);
+                assert_eq!(labels.labels[0].category, id("traffic_sign"));
+            }
+        }
     }
 }

@@ -245,6 +245,33 @@ impl<'a> GroundSpots<'a> {
         })
     }
 
+    /// The free mid-strip spot beside road `road` at `along` metres along its axis, on
+    /// its `high` side, for an object of `radius` metres; None where that is no strip
+    /// (on a road, past the image, a road just behind: no strip that wide) or the ground
+    /// is taken. At a corner the strip runs on into the crossing road's: that counts.
+    pub fn strip_beside(&mut self, road: u32, high: bool, along: f64, radius: f64) -> Option<Spot> {
+        let road = self.layout.roads.iter().find(|r| r.id == road)?;
+        let offset = self.strip_px / 2.0;
+        let across = if high {
+            road.edges[1] + offset
+        } else {
+            road.edges[0] - offset
+        };
+        let along = along / self.mpp;
+        let px = image_point(road, along, across);
+        let beyond = self.strip_px - offset + 1.0;
+        let behind = image_point(road, along, across + if high { beyond } else { -beyond });
+        if !along.is_finite()
+            || !self.inside_image(px)
+            || !self.inside_image(behind)
+            || self.on_road(px, 0.0)
+            || self.on_road(behind, 0.0)
+        {
+            return None;
+        }
+        self.take(road, high, px, radius)
+    }
+
     /// A free spot in the middle of a right-hand lane, or None after `attempts`.
     pub fn lane(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
         (0..attempts).find_map(|_| {

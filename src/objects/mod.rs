@@ -5,7 +5,7 @@
 //! | kind | object name | where | geometry |
 //! |---|---|---|---|
 //! | text | `text_0003` | free wall (no window, no other plate) facing a road, 2.5 m up to 1 m below the roof; shop signs low | a plate quad 2.5 cm in front of the wall (shop sign, banner, or painted on the wall's own pixels), one of eight fonts, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
-//! | sign | `sign_0012` | mid-strip beside a road, ≥ 2 m from lamps, not in a crossing | pole + plate shaped like the sign, facing oncoming traffic |
+//! | sign | `sign_0012` | by its type's rule (`sign_rules`): stop, yield, priority road at the crossings' mouths, warnings 30–50 m before a zebra, speed limits past a crossing, else mid-strip 40 m from its type; ≥ 2 m from lamps, never in a crossing | pole + plate shaped like the sign (33 StVO types), facing the traffic it signs |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
 //! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
 //! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of four species (`tree` module) |
@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 15;
+pub const VERSION: u32 = 16;
 
 mod atlas_layout;
 mod bicycle;
@@ -38,6 +38,7 @@ mod person;
 mod plate_light;
 mod plate_style;
 mod sign_face;
+mod sign_rules;
 mod street_names;
 #[cfg(test)]
 mod tests;

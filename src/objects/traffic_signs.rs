@@ -1,4 +1,4 @@
-//! Sign specs + strip spots → `sign_NNNN` objects, each a plate shaped like the sign (face
+//! Sign specs + strip spots + the crossings' mouths → `sign_NNNN` objects, each a plate shaped like the sign (face
 //! and back), its face turned towards the traffic coming along the nearest lane, on a grey
 //! `sign_pole_NNNN` of class `pole`: the public datasets (GTSDB, Mapillary, TT100K,
 //! Cityscapes) box and mask a sign's plate, and call its pole a pole.
@@ -6,7 +6,10 @@
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
-use super::ground_spots::GroundSpots;
+use std::collections::BTreeMap;
+
+use super::ground_spots::{GroundSpots, Spot};
+use super::sign_rules::{self, Mouth, Rule};
 use super::{ATTEMPTS, Placing, sign_face};
 use crate::model::geometry::{KERB_Y, MeshBuilder, cross, dot, sub};
 use crate::model::{Mesh, Texture};
@@ -28,6 +31,12 @@ const POLE_GREY: [f32; 3] = [0.45, 0.46, 0.48];
 const BACK_GREY: [f32; 3] = [0.6, 0.6, 0.62];
 
 /// Places the entry's signs; returns how many (each is two objects, plate and pole).
+///
+/// Each sign draws its type from the entry's list and stands where the type's
+/// [`Rule`] puts it (stop and yield at the mouths of the roads giving way, speed limits
+/// past a crossing, warnings before a zebra crossing, …); a type whose rule finds no room
+/// is drawn again, up to [`ATTEMPTS`] times. Signs of one type placed off the mouths keep
+/// [`SPACING`] from each other along a road's side.
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
@@ -40,52 +49,168 @@ pub fn place(
     } else {
         &spec.signs
     };
+    let input = placing.input;
+    let mouths = sign_rules::mouths(input.layout, input.metres_per_pixel, input.seed);
     for _ in 0..spec.count {
-        let kind = kinds[rng.random_range(0..kinds.len())];
         let speed = SPEEDS[rng.random_range(0..SPEEDS.len())];
-        let Some(spot) = spots.strip(rng, RADIUS, ATTEMPTS) else {
+        let found = (0..ATTEMPTS).find_map(|_| {
+            let kind = kinds[rng.random_range(0..kinds.len())];
+            let spot = spot_for(kind, rng, spots, &mouths, &placing.out.sign_faces)?;
+            Some((kind, spot))
+        });
+        let Some((kind, spot)) = found else {
             continue;
         };
-        // The face looks against the traffic: at the drivers coming towards it.
-        let facing = [-spot.travel[0], -spot.travel[1]];
-        let face_name = match kind {
-            SignKind::SpeedLimit => format!("sign_speed_limit_{speed}"),
-            other => format!("sign_{}", other.name()),
-        };
-        let face = placing.material(&face_name, || {
-            let image = sign_face::draw(kind, speed);
-            ([1.0; 3], Some(Texture::from_rgb(face_name.clone(), image)))
-        });
-        let pole = placing.material("sign_pole", || (POLE_GREY, None));
-        let back = placing.material("sign_back", || (BACK_GREY, None));
-        let [pole, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
-        let name = placing.name("sign_pole");
-        placing.push_plain(crate::model::ObjectKind::SignPole, name, "pole", vec![pole]);
-        let name = placing.name("sign");
-        placing.push_plain(
-            crate::model::ObjectKind::Sign,
-            name,
-            &spec.label,
-            vec![face, back],
-        );
+        push_sign(placing, spec, kind, speed, spot);
         placed += 1;
-        let index = placing.out.objects.len() - 1;
-        let centre = [
-            spot.position[0] + facing[0] * FACE_OFFSET,
-            KERB_Y + POLE_HEIGHT - PLATE / 2.0,
-            spot.position[1] + facing[1] * FACE_OFFSET,
-        ];
-        let normal = [facing[0], 0.0, facing[1]];
-        placing.out.sign_faces.insert(
-            index,
-            SignFace {
-                kind,
-                centre,
-                normal,
-            },
-        );
     }
     placed
+}
+
+/// Metres a sign placed off the mouths keeps from one of its type on the same side of
+/// the same road.
+pub const SPACING: f64 = 40.0;
+
+/// A spot for a sign of `kind` by its rule, taken from `spots`; None when its rule finds
+/// no room (every mouth of its kind signed, the strip taken, another of its type within
+/// [`SPACING`]).
+fn spot_for(
+    kind: SignKind,
+    rng: &mut Pcg64,
+    spots: &mut GroundSpots,
+    mouths: &[Mouth],
+    faces: &BTreeMap<usize, SignFace>,
+) -> Option<Spot> {
+    let spot = match sign_rules::rule(kind) {
+        Rule::Mouth(priority) => {
+            let fits = |m: &Mouth| m.priority == priority && !signed(faces, m, MOUTH_KINDS);
+            return mouth_spots(rng, mouths, fits, spots, |m| {
+                [0.5, 1.5, 2.5, 3.5, 4.5, 5.5].map(|back| m.before(back))
+            });
+        }
+        Rule::Zebra => {
+            let fits = |m: &Mouth| !signed(faces, m, &[kind]);
+            return mouth_spots(rng, mouths, fits, spots, |m| {
+                [0.5, 0.3, 0.7, 0.1].map(|t| m.zebra[0] + t * (m.zebra[1] - m.zebra[0]))
+            });
+        }
+        Rule::Before([lo, hi], priority) => {
+            let candidates: Vec<&Mouth> = mouths
+                .iter()
+                .filter(|m| priority.is_none_or(|p| m.priority == p))
+                .collect();
+            let m = candidates.get(rng.random_range(0..candidates.len().max(1)))?;
+            let along = m.before(lo + rng.random::<f64>() * (hi - lo));
+            spots.strip_beside(m.road, m.in_high(), along, RADIUS)?
+        }
+        Rule::After([lo, hi]) => {
+            let m = mouths.get(rng.random_range(0..mouths.len().max(1)))?;
+            // Past the zebra, on the side of the traffic leaving the crossing.
+            let along = m.before(lo + rng.random::<f64>() * (hi - lo));
+            spots.strip_beside(m.road, !m.in_high(), along, RADIUS)?
+        }
+        Rule::Free => spots.strip(rng, RADIUS, ATTEMPTS)?,
+    };
+    let close = faces.values().any(|f| {
+        let (dx, dz) = (
+            f.centre[0] - spot.position[0],
+            f.centre[2] - spot.position[1],
+        );
+        let d = (dx * dx + dz * dz).sqrt();
+        f.kind == kind && f.road == spot.road && faces_travel(f, spot.travel) && d < SPACING
+    });
+    if close {
+        spots.release(spot);
+        return None;
+    }
+    Some(spot)
+}
+
+/// The types that sign a mouth's priority: at most one of them a mouth.
+const MOUTH_KINDS: &[SignKind] = &[SignKind::Stop, SignKind::Yield, SignKind::PriorityRoad];
+
+/// Whether a sign of one of `kinds` already stands at mouth `m` (beside its zebra or stop
+/// line, facing its traffic).
+fn signed(faces: &BTreeMap<usize, SignFace>, m: &Mouth, kinds: &[SignKind]) -> bool {
+    let travel = super::ground_spots::travel(m.axis, m.in_high());
+    faces.values().any(|f| {
+        let along = match m.axis {
+            crate::model::Axis::Horizontal => f.centre[0],
+            crate::model::Axis::Vertical => f.centre[2],
+        };
+        kinds.contains(&f.kind)
+            && f.road == m.road
+            && faces_travel(f, travel)
+            && (along - m.stop).abs() < 8.0
+    })
+}
+
+/// Whether face `f` looks at traffic running along `travel`.
+fn faces_travel(f: &SignFace, travel: [f64; 2]) -> bool {
+    f.normal[0] * -travel[0] + f.normal[2] * -travel[1] > 0.99
+}
+
+/// The first mouth (from a random one on, in order) for which `fits` holds and one of the
+/// along-axis places `at` gives is a free strip spot on its traffic's side.
+fn mouth_spots<const N: usize>(
+    rng: &mut Pcg64,
+    mouths: &[Mouth],
+    fits: impl Fn(&Mouth) -> bool,
+    spots: &mut GroundSpots,
+    at: impl Fn(&Mouth) -> [f64; N],
+) -> Option<Spot> {
+    let start = rng.random_range(0..mouths.len().max(1));
+    (0..mouths.len())
+        .map(|k| &mouths[(start + k) % mouths.len()])
+        .filter(|m| fits(m))
+        .find_map(|m| {
+            at(m)
+                .into_iter()
+                .find_map(|along| spots.strip_beside(m.road, m.in_high(), along, RADIUS))
+        })
+}
+
+/// Pushes a sign of `kind` standing at `spot` (pole, then plate), its face looking at the
+/// traffic coming towards it, and records its face.
+fn push_sign(placing: &mut Placing, spec: &ObjectSpec, kind: SignKind, speed: u32, spot: Spot) {
+    // The face looks against the traffic: at the drivers coming towards it.
+    let facing = [-spot.travel[0], -spot.travel[1]];
+    let face_name = match kind {
+        SignKind::SpeedLimit => format!("sign_speed_limit_{speed}"),
+        other => format!("sign_{}", other.name()),
+    };
+    let face = placing.material(&face_name, || {
+        let image = sign_face::draw(kind, speed);
+        ([1.0; 3], Some(Texture::from_rgb(face_name.clone(), image)))
+    });
+    let pole = placing.material("sign_pole", || (POLE_GREY, None));
+    let back = placing.material("sign_back", || (BACK_GREY, None));
+    let [pole, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+    let name = placing.name("sign_pole");
+    placing.push_plain(crate::model::ObjectKind::SignPole, name, "pole", vec![pole]);
+    let name = placing.name("sign");
+    placing.push_plain(
+        crate::model::ObjectKind::Sign,
+        name,
+        &spec.label,
+        vec![face, back],
+    );
+    let index = placing.out.objects.len() - 1;
+    let centre = [
+        spot.position[0] + facing[0] * FACE_OFFSET,
+        KERB_Y + POLE_HEIGHT - PLATE / 2.0,
+        spot.position[1] + facing[1] * FACE_OFFSET,
+    ];
+    let normal = [facing[0], 0.0, facing[1]];
+    placing.out.sign_faces.insert(
+        index,
+        SignFace {
+            kind,
+            centre,
+            normal,
+            road: spot.road,
+        },
+    );
 }
 
 /// Where a sign's face is and which way it looks, so annotations can tell its front from
@@ -97,6 +222,8 @@ pub struct SignFace {
     pub centre: [f64; 3],
     /// Unit normal out of the face (horizontal).
     pub normal: [f64; 3],
+    /// The road whose traffic it faces.
+    pub road: u32,
 }
 
 /// Pole, face and back of a sign standing at `foot` (x, z), its face towards `facing`.

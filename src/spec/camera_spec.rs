@@ -260,6 +260,13 @@ pub struct AnnotationsSpec {
     /// instead of one per sign label. COCO always has the type as `attributes.sign_type`.
     #[serde(default)]
     pub yolo_sign_types: bool,
+    /// COCO and YOLO: one category per sign type, named `<label>/<type>`
+    /// (`traffic_sign/stop`, …), in place of each sign label's one category. Every type
+    /// of the catalogue gets its category, drawn or not, in catalogue order, so a type's
+    /// id stays the same whatever the entries' `signs` lists; YOLO's classes are then the
+    /// COCO categories one to one. Off, it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub sign_categories: bool,
     /// Also write Cityscapes-format labels per frame (`frames/<camera>/semantic/`: label
     /// ids, instance ids, colours, COCO panoptic) and `panoptic.json`, and with `[splits]`
     /// the Cityscapes folder `cityscapes/` (`leftImg8bit/`, `gtFine/`).
@@ -276,6 +283,7 @@ impl Default for AnnotationsSpec {
             min_fraction: default_min_fraction(),
             yolo: false,
             yolo_sign_types: false,
+            sign_categories: false,
             cityscapes: false,
         }
     }

@@ -375,25 +375,95 @@ pub enum TextCase {
     Mixed,
 }
 
-/// A traffic sign cityspec draws.
+/// A traffic sign cityspec draws: Germany's catalogue (StVO, Vienna convention), its
+/// official number (VZ, Verkehrszeichen) beside each. New types are appended, so a type's
+/// place in [`SignKind::ALL`] (and its per-type category id) never moves.
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
 )]
 #[serde(rename_all = "snake_case")]
 pub enum SignKind {
+    // Plain comments: the schema stays a simple enum.
+    // VZ 206, regulatory: stop (octagon).
     Stop,
+    // VZ 205, regulatory: give way (inverted triangle).
     Yield,
+    // VZ 274, regulatory: maximum speed (round).
     SpeedLimit,
+    // VZ 267, regulatory: no entry (round).
     NoEntry,
+    // VZ 350, information: pedestrian crossing (zebra) (square).
     PedestrianCrossing,
+    // VZ 220, information: one-way street (rectangle).
     OneWay,
+    // VZ 286, regulatory: restricted stopping (no parking) (round).
     NoParking,
+    // VZ 314, information: parking (square).
     Parking,
+    // VZ 283, regulatory: no stopping (round).
+    NoStopping,
+    // VZ 276, regulatory: no overtaking (round).
+    NoOvertaking,
+    // VZ 250, regulatory: no vehicles (round).
+    NoVehicles,
+    // VZ 251, regulatory: no motor vehicles (round).
+    NoMotorVehicles,
+    // VZ 254, regulatory: no bicycles (round).
+    NoBicycles,
+    // VZ 209, regulatory: turn right ahead (round).
+    TurnRight,
+    // VZ 214, regulatory: straight on or right (round).
+    StraightOrRight,
+    // VZ 237, regulatory: cycle path (round).
+    CyclePath,
+    // VZ 239, regulatory: footpath (round).
+    Footpath,
+    // VZ 240, regulatory: shared foot and cycle path (round).
+    SharedPath,
+    // VZ 306, priority: priority road (diamond).
+    PriorityRoad,
+    // VZ 301, priority: priority at the next junction (triangle).
+    PriorityJunction,
+    // VZ 101, warning: danger (triangle).
+    Danger,
+    // VZ 102, warning: crossroads, priority from the right (triangle).
+    Crossroads,
+    // VZ 103-10, warning: bend to the left (triangle).
+    BendLeft,
+    // VZ 103-20, warning: bend to the right (triangle).
+    BendRight,
+    // VZ 114, warning: slippery road (triangle).
+    Slippery,
+    // VZ 120, warning: road narrows (triangle).
+    RoadNarrows,
+    // VZ 123, warning: road works (triangle).
+    RoadWorks,
+    // VZ 131, warning: traffic signals ahead (triangle).
+    TrafficSignals,
+    // VZ 133, warning: pedestrians (triangle).
+    Pedestrians,
+    // VZ 136, warning: children (triangle).
+    Children,
+    // VZ 138, warning: cyclists (triangle).
+    Cyclists,
+    // VZ 357, information: dead end (square).
+    DeadEnd,
+    // VZ 224, information: bus stop (round).
+    BusStop,
+}
+
+/// What a sign is for, as the StVO groups them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SignGroup {
+    Regulatory,
+    Warning,
+    Priority,
+    Information,
 }
 
 impl SignKind {
-    /// Every sign, in declaration order.
-    pub const ALL: [SignKind; 8] = [
+    /// Every sign, in declaration order (the order of per-type categories).
+    pub const ALL: [SignKind; 33] = [
         SignKind::Stop,
         SignKind::Yield,
         SignKind::SpeedLimit,
@@ -402,6 +472,31 @@ impl SignKind {
         SignKind::OneWay,
         SignKind::NoParking,
         SignKind::Parking,
+        SignKind::NoStopping,
+        SignKind::NoOvertaking,
+        SignKind::NoVehicles,
+        SignKind::NoMotorVehicles,
+        SignKind::NoBicycles,
+        SignKind::TurnRight,
+        SignKind::StraightOrRight,
+        SignKind::CyclePath,
+        SignKind::Footpath,
+        SignKind::SharedPath,
+        SignKind::PriorityRoad,
+        SignKind::PriorityJunction,
+        SignKind::Danger,
+        SignKind::Crossroads,
+        SignKind::BendLeft,
+        SignKind::BendRight,
+        SignKind::Slippery,
+        SignKind::RoadNarrows,
+        SignKind::RoadWorks,
+        SignKind::TrafficSignals,
+        SignKind::Pedestrians,
+        SignKind::Children,
+        SignKind::Cyclists,
+        SignKind::DeadEnd,
+        SignKind::BusStop,
     ];
 
     /// The snake_case name the spec uses.
@@ -415,6 +510,108 @@ impl SignKind {
             SignKind::OneWay => "one_way",
             SignKind::NoParking => "no_parking",
             SignKind::Parking => "parking",
+            SignKind::NoStopping => "no_stopping",
+            SignKind::NoOvertaking => "no_overtaking",
+            SignKind::NoVehicles => "no_vehicles",
+            SignKind::NoMotorVehicles => "no_motor_vehicles",
+            SignKind::NoBicycles => "no_bicycles",
+            SignKind::TurnRight => "turn_right",
+            SignKind::StraightOrRight => "straight_or_right",
+            SignKind::CyclePath => "cycle_path",
+            SignKind::Footpath => "footpath",
+            SignKind::SharedPath => "shared_path",
+            SignKind::PriorityRoad => "priority_road",
+            SignKind::PriorityJunction => "priority_junction",
+            SignKind::Danger => "danger",
+            SignKind::Crossroads => "crossroads",
+            SignKind::BendLeft => "bend_left",
+            SignKind::BendRight => "bend_right",
+            SignKind::Slippery => "slippery",
+            SignKind::RoadNarrows => "road_narrows",
+            SignKind::RoadWorks => "road_works",
+            SignKind::TrafficSignals => "traffic_signals",
+            SignKind::Pedestrians => "pedestrians",
+            SignKind::Children => "children",
+            SignKind::Cyclists => "cyclists",
+            SignKind::DeadEnd => "dead_end",
+            SignKind::BusStop => "bus_stop",
+        }
+    }
+
+    /// Its number in the StVO catalogue (`"206"` for stop).
+    pub fn number(self) -> &'static str {
+        match self {
+            SignKind::Stop => "206",
+            SignKind::Yield => "205",
+            SignKind::SpeedLimit => "274",
+            SignKind::NoEntry => "267",
+            SignKind::PedestrianCrossing => "350",
+            SignKind::OneWay => "220",
+            SignKind::NoParking => "286",
+            SignKind::Parking => "314",
+            SignKind::NoStopping => "283",
+            SignKind::NoOvertaking => "276",
+            SignKind::NoVehicles => "250",
+            SignKind::NoMotorVehicles => "251",
+            SignKind::NoBicycles => "254",
+            SignKind::TurnRight => "209",
+            SignKind::StraightOrRight => "214",
+            SignKind::CyclePath => "237",
+            SignKind::Footpath => "239",
+            SignKind::SharedPath => "240",
+            SignKind::PriorityRoad => "306",
+            SignKind::PriorityJunction => "301",
+            SignKind::Danger => "101",
+            SignKind::Crossroads => "102",
+            SignKind::BendLeft => "103-10",
+            SignKind::BendRight => "103-20",
+            SignKind::Slippery => "114",
+            SignKind::RoadNarrows => "120",
+            SignKind::RoadWorks => "123",
+            SignKind::TrafficSignals => "131",
+            SignKind::Pedestrians => "133",
+            SignKind::Children => "136",
+            SignKind::Cyclists => "138",
+            SignKind::DeadEnd => "357",
+            SignKind::BusStop => "224",
+        }
+    }
+
+    /// Its group in the catalogue.
+    pub fn group(self) -> SignGroup {
+        match self {
+            SignKind::Stop
+            | SignKind::Yield
+            | SignKind::SpeedLimit
+            | SignKind::NoEntry
+            | SignKind::NoParking
+            | SignKind::NoStopping
+            | SignKind::NoOvertaking
+            | SignKind::NoVehicles
+            | SignKind::NoMotorVehicles
+            | SignKind::NoBicycles
+            | SignKind::TurnRight
+            | SignKind::StraightOrRight
+            | SignKind::CyclePath
+            | SignKind::Footpath
+            | SignKind::SharedPath => SignGroup::Regulatory,
+            SignKind::Danger
+            | SignKind::Crossroads
+            | SignKind::BendLeft
+            | SignKind::BendRight
+            | SignKind::Slippery
+            | SignKind::RoadNarrows
+            | SignKind::RoadWorks
+            | SignKind::TrafficSignals
+            | SignKind::Pedestrians
+            | SignKind::Children
+            | SignKind::Cyclists => SignGroup::Warning,
+            SignKind::PriorityRoad | SignKind::PriorityJunction => SignGroup::Priority,
+            SignKind::PedestrianCrossing
+            | SignKind::OneWay
+            | SignKind::Parking
+            | SignKind::DeadEnd
+            | SignKind::BusStop => SignGroup::Information,
         }
     }
 }

@@ -16,7 +16,7 @@ fn signs_stand_on_the_strip_facing_oncoming_traffic() {
     assert_eq!(inserted.objects.len(), 80);
     let strip = Palette::default().strip.0;
     let mut kinds = BTreeSet::new();
-    for pair in inserted.objects.chunks_exact(2) {
+    for (k, pair) in inserted.objects.chunks_exact(2).enumerate() {
         let [pole_object, object] = pair else {
             unreachable!("chunks of two")
         };
@@ -50,19 +50,17 @@ fn signs_stand_on_the_strip_facing_oncoming_traffic() {
             let d = (dx * dx + dz * dz).sqrt();
             assert!(d >= 2.0, "{} {d} m from a lamp", object.name);
         }
-        // The nearest road, the side the sign stands on, its lane's traffic.
-        let (road, gap) = city
-            .layout
-            .roads
-            .iter()
-            .map(|r| {
-                let rect = RoadRect::of(r);
-                let dx = (rect.x[0] - foot[0]).max(foot[0] - rect.x[1]).max(0.0);
-                let dy = (rect.y[0] - foot[1]).max(foot[1] - rect.y[1]).max(0.0);
-                (r, dx.max(dy))
-            })
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .unwrap();
+        // The road it signs (at a corner another is as near), the side the sign stands
+        // on, its lane's traffic.
+        let signed = inserted.sign_faces[&(2 * k + 1)].road;
+        let road = &city.layout.roads[signed as usize];
+        let rect = RoadRect::of(road);
+        let dx = (rect.x[0] - foot[0]).max(foot[0] - rect.x[1]).max(0.0);
+        let dy = (rect.y[0] - foot[1]).max(foot[1] - rect.y[1]).max(0.0);
+        let gap = match road.axis {
+            Axis::Horizontal => dy,
+            Axis::Vertical => dx,
+        };
         assert!(gap <= 8.0);
         let high = match road.axis {
             Axis::Horizontal => foot[1] > road.line,
@@ -237,4 +235,100 @@ fn traffic_lights_stand_at_corners_with_one_head_along_each_road() {
     let many = [spec(ObjectKind::TrafficLight, "traffic_light", 10_000)];
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] >= 10 && all.placed[0] < 10_000);
+}
+
+/// The rules on the test city, every type drawn: stop and yield at the mouths of the roads
+/// giving way and priority-road signs at the others' (one a mouth, at the stop line, facing
+/// the traffic driving in), crossing signs beside the zebra, warnings 30–50 m before a
+/// stop line, speed limits 5–15 m past a zebra facing the traffic leaving, and signs off
+/// the mouths never within the spacing of one of their type on the same road side.
+#[test]
+fn signs_stand_by_the_rules() {
+    use crate::objects::sign_rules::{LIMIT_AFTER, Mouth, WARNING_BEFORE, mouths};
+    use crate::objects::traffic_signs::SPACING;
+    let city = city();
+    let inserted = run(&city, &[spec(ObjectKind::Sign, "traffic_sign", 150)]).unwrap();
+    let mouths = mouths(&city.layout, 1.0, SEED);
+    let faces: Vec<_> = inserted.sign_faces.values().collect();
+    assert!(faces.len() >= 120, "{}", faces.len());
+    // Where a face stands along mouth m's road, and whether it faces m's traffic coming
+    // in (1), leaving (-1) or neither.
+    let along = |m: &Mouth, c: [f64; 3]| match m.axis {
+        Axis::Horizontal => c[0],
+        Axis::Vertical => c[2],
+    };
+    let facing = |m: &Mouth, n: [f64; 3]| {
+        let t = travel(m.axis, m.in_high());
+        let d = -(n[0] * t[0] + n[2] * t[1]);
+        if d > 0.99 {
+            1
+        } else if d < -0.99 {
+            -1
+        } else {
+            0
+        }
+    };
+    let mut at_mouth = vec![0; mouths.len()];
+    let mut counts: BTreeMap<&str, u32> = BTreeMap::new();
+    for f in &faces {
+        let on_road = mouths.iter().enumerate().filter(|(_, m)| m.road == f.road);
+        let (rule, ok) = match f.kind {
+            SignKind::Stop | SignKind::Yield | SignKind::PriorityRoad => {
+                let priority = f.kind == SignKind::PriorityRoad;
+                let hit = on_road.clone().find(|(_, m)| {
+                    let back = (along(m, f.centre) - m.stop) * -m.dir;
+                    m.priority == priority && facing(m, f.normal) == 1 && (0.0..7.0).contains(&back)
+                });
+                if let Some((k, _)) = hit {
+                    at_mouth[k] += 1;
+                }
+                ("mouth", hit.is_some())
+            }
+            SignKind::PedestrianCrossing => (
+                "zebra",
+                on_road.clone().any(|(_, m)| {
+                    let a = along(m, f.centre);
+                    facing(m, f.normal) == 1 && (m.zebra[0]..=m.zebra[1]).contains(&a)
+                }),
+            ),
+            SignKind::Pedestrians | SignKind::Children => (
+                "before",
+                on_road.clone().any(|(_, m)| {
+                    let back = (along(m, f.centre) - m.stop) * -m.dir;
+                    facing(m, f.normal) == 1
+                        && (WARNING_BEFORE[0] - 0.1..=WARNING_BEFORE[1] + 0.1).contains(&back)
+                }),
+            ),
+            SignKind::SpeedLimit => (
+                "after",
+                on_road.clone().any(|(_, m)| {
+                    let past = (along(m, f.centre) - m.stop) * -m.dir;
+                    facing(m, f.normal) == -1
+                        && (LIMIT_AFTER[0] - 0.1..=LIMIT_AFTER[1] + 0.1).contains(&past)
+                }),
+            ),
+            _ => ("free", true),
+        };
+        assert!(ok, "{:?} at {:?} breaks its rule", f.kind, f.centre);
+        *counts.entry(rule).or_default() += 1;
+        if rule != "mouth" && rule != "zebra" {
+            for g in faces
+                .iter()
+                .filter(|g| g.kind == f.kind && g.road == f.road && !std::ptr::eq(**g, *f))
+            {
+                let (dx, dz) = (f.centre[0] - g.centre[0], f.centre[2] - g.centre[2]);
+                let d = (dx * dx + dz * dz).sqrt();
+                let same_way = f.normal[0] * g.normal[0] + f.normal[2] * g.normal[2] > 0.99;
+                assert!(
+                    !same_way || d >= SPACING,
+                    "{:?}: two {d:.1} m apart",
+                    f.kind
+                );
+            }
+        }
+    }
+    assert!(at_mouth.iter().all(|&n| n <= 1), "{at_mouth:?}");
+    for rule in ["mouth", "zebra", "before", "after", "free"] {
+        assert!(counts.get(rule).is_some_and(|&n| n >= 2), "{counts:?}");
+    }
 }
