@@ -6,6 +6,7 @@
 use serde_json::{Value, json};
 
 use super::icdar::WordLine;
+use super::rle::Rle;
 use super::round;
 use super::shown_object::ShownObject;
 
@@ -33,31 +34,24 @@ pub(super) fn word_annotation(
             [bounds[0], bounds[3]],
         ],
     };
-    // Corners to 2 decimals first: the box and the area are those of the polygon written.
+    // Corners to 2 decimals, as ICDAR writes them.
     let polygon: Vec<[f64; 2]> = polygon
         .iter()
         .map(|p| Some([round(p[0], 1e2)?, round(p[1], 1e2)?]))
         .collect::<Option<_>>()?;
-    let area = polygon_area(&polygon);
-    if polygon.len() < 3 || area.is_nan() || area <= 0.0 {
+    if polygon.len() < 3 || polygon_area(&polygon).is_nan() || polygon_area(&polygon) <= 0.0 {
         return None;
     }
-    let lo = |k: usize| polygon.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
-    let hi = |k: usize| {
-        polygon
-            .iter()
-            .map(|p| p[k])
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
-    let (x0, y0, x1, y1) = (lo(0), lo(1), hi(0), hi(1));
-    let flat: Vec<f64> = polygon.iter().flatten().copied().collect();
+    // An RLE mask like every other annotation's (a column of one type for readers such as
+    // Hugging Face datasets): the pixels of the polygon its plate shows.
+    let (rle, [x0, y0, x1, y1], pixels) = word_mask(&polygon, &object.visible.rle)?;
     let mut annotation = json!({
         "image_id": image_id,
         "category_id": category,
-        "bbox": [x0, y0, round(x1 - x0, 1e2), round(y1 - y0, 1e2)],
-        "area": round(area, 1e2),
+        "bbox": [x0, y0, x1 - x0, y1 - y0],
+        "area": pixels,
         "iscrowd": u8::from(line.unreadable.is_some()),
-        "segmentation": [flat],
+        "segmentation": {"size": rle.size, "counts": rle.to_compressed()},
         "cityspec_instance": object.visible.id,
         "name": object.label.name,
         "word_index": line.index,
@@ -97,6 +91,71 @@ fn clip_to_box(quad: &[[f64; 2]; 4], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]
         }
     }
     points
+}
+
+/// The pixels (centres inside) of the convex `polygon` that `plate` shows, or all of them
+/// when the plate shows none (a hidden word stays a region, marked crowd by ICDAR's rules),
+/// or the one pixel under its first corner when it covers no pixel centre (a sliver): the
+/// mask, its tight box `[x0, y0, x1, y1]` (end-exclusive) and its pixel count. `None` for
+/// an empty frame.
+fn word_mask(polygon: &[[f64; 2]], plate: &Rle) -> Option<(Rle, [u32; 4], u64)> {
+    let [h, w] = plate.size;
+    let lo = |k: usize, max: u32| {
+        let v = polygon.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+        (v.floor().max(0.0) as u32).min(max)
+    };
+    let hi = |k: usize, max: u32| {
+        let v = polygon
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        (v.ceil().max(0.0) as u32).min(max)
+    };
+    let (bx0, by0, bx1, by1) = (lo(0, w), lo(1, h), hi(0, w), hi(1, h));
+    let inside = |x: u32, y: u32| {
+        let c = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+        let side = |i: usize| {
+            let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
+            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        };
+        let sides: Vec<f64> = (0..polygon.len()).map(side).collect();
+        sides.iter().all(|&s| s >= 0.0) || sides.iter().all(|&s| s <= 0.0)
+    };
+    let shown = plate.to_row_major();
+    let mut quad = vec![false; (w as usize) * (h as usize)];
+    let mut mask = quad.clone();
+    let (mut any_quad, mut any_shown) = (false, false);
+    for y in by0..by1 {
+        for x in bx0..bx1 {
+            if inside(x, y) {
+                let i = (y * w + x) as usize;
+                quad[i] = true;
+                any_quad = true;
+                if shown[i] {
+                    mask[i] = true;
+                    any_shown = true;
+                }
+            }
+        }
+    }
+    if !any_quad {
+        let x = (polygon[0][0].max(0.0) as u32).min(w.checked_sub(1)?);
+        let y = (polygon[0][1].max(0.0) as u32).min(h.checked_sub(1)?);
+        quad[(y * w + x) as usize] = true;
+        let b = [x, y, x + 1, y + 1];
+        return Some((Rle::from_row_major(&quad, h, w), b, 1));
+    }
+    let mask = if any_shown { mask } else { quad };
+    let (mut b, mut pixels) = ([u32::MAX, u32::MAX, 0, 0], 0u64);
+    for y in by0..by1 {
+        for x in bx0..bx1 {
+            if mask[(y * w + x) as usize] {
+                b = [b[0].min(x), b[1].min(y), b[2].max(x + 1), b[3].max(y + 1)];
+                pixels += 1;
+            }
+        }
+    }
+    Some((Rle::from_row_major(&mask, h, w), b, pixels))
 }
 
 /// Area of a simple polygon (shoelace), whatever its winding.
@@ -231,16 +290,20 @@ mod tests {
             let [px, py, pw, ph] = [0, 1, 2, 3].map(|k| plate["bbox"][k].as_f64().unwrap());
             assert!(ww > 0.0 && wh > 0.0, "{word}");
             assert!(wx >= px && wy >= py && wx + ww <= px + pw && wy + wh <= py + ph);
-            let polygon = word["segmentation"][0].as_array().unwrap();
-            assert!(polygon.len() >= 6 && polygon.len() % 2 == 0);
+            // An RLE like the plates' (one type per field for columnar readers), its area the
+            // mask's pixels: the whole box here, where the quads are rectangles on pixels.
+            let rle = &word["segmentation"];
+            assert_eq!(rle["size"], json!([6, 20]), "{word}");
+            let mask = Rle::from_compressed(rle["counts"].as_str().unwrap(), 6, 20).unwrap();
+            assert_eq!(mask.area(), word["area"].as_u64().unwrap());
             assert_eq!(word["area"].as_f64().unwrap(), ww * wh, "rectangles here");
         }
         let texts: Vec<&str> = words.iter().map(|w| w["text"].as_str().unwrap()).collect();
         assert_eq!(texts, ["Write", "Group", "Edge", "Hidden", "Gone", "Ok"]);
         // Words follow their plate; "Edge" is cut to the plate at the image's edge, "Hidden"
         // to the 3 columns its plate shows.
-        assert_eq!(words[2]["bbox"], json!([14.0, 0.0, 6.0, 3.0]));
-        assert_eq!(words[3]["bbox"], json!([0.0, 4.0, 3.0, 2.0]));
+        assert_eq!(words[2]["bbox"], json!([14, 0, 6, 3]));
+        assert_eq!(words[3]["bbox"], json!([0, 4, 3, 2]));
         assert_eq!(words[3]["cityspec_ignored"], "hidden");
         assert_eq!(words[1]["cityspec_ignored"], "small");
         assert_eq!(words[5]["word_index"], Value::Null);

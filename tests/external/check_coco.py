@@ -20,10 +20,11 @@ order:
 4. an image entry's `depth`, when given, names a file beside the COCO file that reads as
    height x width (a 16-bit PNG, or a .npy of float32 metres), with a positive `scale`;
 5. the `word` annotations (category `word`: a text object's words, beside its plate) are
-   checked apart from 2-3, being polygons: one polygon of at least 3 points, bbox its box
-   and area its area (to 0.01), inside the bbox of their plate (the annotation of the same
-   image and `cityspec_instance`), pycocotools decodes the polygon to a mask of the image's
-   size, `text` is a string, and `iscrowd` is 1 exactly where `cityspec_ignored` says why;
+   checked apart from 2-3: an RLE of the image's size whose pixels lie on their plate's
+   (a positive word; a hidden one, a crowd region, may cover what hides it), bbox its mask's
+   tight box and area its pixel count, inside the bbox of their plate (the annotation of
+   the same image and `cityspec_instance`), `text` is a string, and `iscrowd` is 1
+   exactly where `cityspec_ignored` says why;
 6. when there are annotations, COCOeval of the ground truth against itself (every
    annotation as a detection with score 1) gives AP 1.0 for bbox and for segm, the
    ignore regions matched and ignored as pycocotools does with iscrowd.
@@ -92,20 +93,24 @@ def check_depth(img, base):
         raise CheckFailed(f"{where}: {path} is {arr.shape}, not {img['height']}x{img['width']}")
 
 
-def polygon_area(xs, ys):
-    return abs(sum(xs[i] * ys[(i + 1) % len(xs)] - xs[(i + 1) % len(xs)] * ys[i] for i in range(len(xs)))) / 2
-
-
-def check_word(gt, ann, img, where, words):
+def check_word(gt, ann, img, where, words, ids):
     seg = ann["segmentation"]
-    if not (isinstance(seg, list) and len(seg) == 1 and len(seg[0]) >= 6 and len(seg[0]) % 2 == 0):
-        raise CheckFailed(f"{where}: a word's segmentation is not one polygon of 3 or more points: {seg}")
-    xs, ys = seg[0][0::2], seg[0][1::2]
-    box = [min(xs), min(ys), max(xs) - min(xs), max(ys) - min(ys)]
-    if any(abs(a - b) > 0.011 for a, b in zip(ann["bbox"], box)):
-        raise CheckFailed(f"{where}: word bbox {ann['bbox']} is not its polygon's box {box}")
-    if abs(ann["area"] - polygon_area(xs, ys)) > 0.011:
-        raise CheckFailed(f"{where}: word area {ann['area']} is not its polygon's {polygon_area(xs, ys)}")
+    if not (isinstance(seg, dict) and seg.get("size") == [img["height"], img["width"]]):
+        raise CheckFailed(f"{where}: a word's segmentation is not an RLE of the image's size: {seg}")
+    mask = gt.annToMask(ann).astype(bool)
+    ys, xs = np.nonzero(mask)
+    if len(xs) == 0:
+        raise CheckFailed(f"{where}: a word's mask is empty")
+    x0, y0 = int(xs.min()), int(ys.min())
+    tight = [x0, y0, int(xs.max()) - x0 + 1, int(ys.max()) - y0 + 1]
+    if [float(v) for v in ann["bbox"]] != [float(v) for v in tight]:
+        raise CheckFailed(f"{where}: word bbox {ann['bbox']} is not its mask's tight box {tight}")
+    if ann["area"] != int(mask.sum()):
+        raise CheckFailed(f"{where}: word area {ann['area']} but {int(mask.sum())} pixels")
+    # A word shows where its plate shows (or, hidden, is a crowd region of its quad).
+    on_plate = ids[mask] == ann["cityspec_instance"]
+    if ann["iscrowd"] == 0 and not on_plate.all():
+        raise CheckFailed(f"{where}: a positive word covers {int((~on_plate).sum())} pixels off its plate")
     plates = [
         a
         for a in gt.imgToAnns[img["id"]]
@@ -117,8 +122,6 @@ def check_word(gt, ann, img, where, words):
     bx, by, bw, bh = ann["bbox"]
     if not (px <= bx and py <= by and bx + bw <= px + pw and by + bh <= py + ph):
         raise CheckFailed(f"{where}: word bbox {ann['bbox']} is not inside its plate's {plates[0]['bbox']}")
-    if gt.annToMask(ann).shape != (img["height"], img["width"]):
-        raise CheckFailed(f"{where}: the word's polygon does not decode to the image's size")
     if not isinstance(ann.get("text"), str):
         raise CheckFailed(f"{where}: a word without its text")
     if ann["iscrowd"] not in (0, 1) or (ann["iscrowd"] == 1) != ("cityspec_ignored" in ann):
@@ -142,7 +145,7 @@ def check_pixels(gt, folder, base):
         for ann in gt.imgToAnns[img["id"]]:
             where = f"annotation {ann['id']} (image {img['id']}, instance {ann['cityspec_instance']})"
             if ann["category_id"] in words:
-                check_word(gt, ann, img, where, words)
+                check_word(gt, ann, img, where, words, ids)
                 continue
             mask = ids == ann["cityspec_instance"]
             ys, xs = np.nonzero(mask)
