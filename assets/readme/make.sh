@@ -7,6 +7,8 @@
 # Builds into $WORK (default /dev/shm/readme-pictures, cached between runs):
 #   day-layout.png, day-plan.png, day-overview.jpg, day-street.jpg   specs/day.toml
 #   night-street.jpg                                                   specs/night.toml
+#   closeups.jpg        day and night street frames 75, 32 / 75, 50 in a 2 × 2 grid
+#   sign-faces.jpg      the sign-face contact sheet of `cargo test --lib contact_sheet`
 #   text-street.jpg                                                    specs/text.toml (words camera)
 #   street-{noon,overcast,fog,rain,dusk,night}.png                     frame $FRAME of
 #       specs/fog.toml's street path with only `[weather] kind` and `[lighting] time`
@@ -31,6 +33,12 @@ convert "$work/out/day/overview.png" -resize 800x -strip -quality 85 "$here/day-
 convert "$work/out/day/frames/street/preview.png" -resize 800x -strip -quality 85 "$here/day-street.jpg"
 convert "$work/out/night/frames/street/preview.png" -resize 800x -strip -quality 85 "$here/night-street.jpg"
 convert "$work/out/text/frames/words/preview.png" -resize 800x -strip -quality 85 "$here/text-street.jpg"
+rgb() { echo "$work/out/$1/frames/street/rgb/$2.png"; }
+convert \( "$(rgb day 000075)" "$(rgb day 000032)" +append \) \
+    \( "$(rgb night 000075)" "$(rgb night 000050)" +append \) -append \
+    -resize 800x -strip -quality 85 "$here/closeups.jpg"
+(cd "$repo" && CITYSPEC_SIGN_SHEET="$work/sign-faces.png" cargo test -q --lib contact_sheet >/dev/null)
+convert "$work/sign-faces.png" -resize 800x -strip -quality 85 "$here/sign-faces.jpg"
 
 # The condition row: fog.toml with its weather kind and lighting time swapped.
 for cond in noon:clear:day overcast:overcast:day fog:fog:day rain:rain:day dusk:clear:dusk night:clear:night; do
