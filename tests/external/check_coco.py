@@ -93,20 +93,25 @@ def check_depth(img, base):
         raise CheckFailed(f"{where}: {path} is {arr.shape}, not {img['height']}x{img['width']}")
 
 
+def check_box_and_area(ann, mask, where):
+    """The annotation's bbox is the tight box of `mask` and its area the mask's pixel count."""
+    ys, xs = np.nonzero(mask)
+    if len(xs) == 0:
+        raise CheckFailed(f"{where}: an empty mask")
+    x0, y0 = int(xs.min()), int(ys.min())
+    tight = [x0, y0, int(xs.max()) - x0 + 1, int(ys.max()) - y0 + 1]
+    if [float(v) for v in ann["bbox"]] != [float(v) for v in tight]:
+        raise CheckFailed(f"{where}: bbox {ann['bbox']} is not the tight box {tight}")
+    if ann["area"] != int(mask.sum()):
+        raise CheckFailed(f"{where}: area {ann['area']} but {int(mask.sum())} pixels")
+
+
 def check_word(gt, ann, img, where, words, ids):
     seg = ann["segmentation"]
     if not (isinstance(seg, dict) and seg.get("size") == [img["height"], img["width"]]):
         raise CheckFailed(f"{where}: a word's segmentation is not an RLE of the image's size: {seg}")
     mask = gt.annToMask(ann).astype(bool)
-    ys, xs = np.nonzero(mask)
-    if len(xs) == 0:
-        raise CheckFailed(f"{where}: a word's mask is empty")
-    x0, y0 = int(xs.min()), int(ys.min())
-    tight = [x0, y0, int(xs.max()) - x0 + 1, int(ys.max()) - y0 + 1]
-    if [float(v) for v in ann["bbox"]] != [float(v) for v in tight]:
-        raise CheckFailed(f"{where}: word bbox {ann['bbox']} is not its mask's tight box {tight}")
-    if ann["area"] != int(mask.sum()):
-        raise CheckFailed(f"{where}: word area {ann['area']} but {int(mask.sum())} pixels")
+    check_box_and_area(ann, mask, f"{where}: word")
     # A word shows where its plate shows (or, hidden, is a crowd region of its quad).
     on_plate = ids[mask] == ann["cityspec_instance"]
     if ann["iscrowd"] == 0 and not on_plate.all():
@@ -148,15 +153,9 @@ def check_pixels(gt, folder, base):
                 check_word(gt, ann, img, where, words, ids)
                 continue
             mask = ids == ann["cityspec_instance"]
-            ys, xs = np.nonzero(mask)
-            if len(xs) == 0:
+            if not mask.any():
                 raise CheckFailed(f"{where}: no pixel of that instance in {path}")
-            x0, y0 = int(xs.min()), int(ys.min())
-            tight = [x0, y0, int(xs.max()) - x0 + 1, int(ys.max()) - y0 + 1]
-            if [float(v) for v in ann["bbox"]] != [float(v) for v in tight]:
-                raise CheckFailed(f"{where}: bbox {ann['bbox']} is not the tight box {tight}")
-            if ann["area"] != int(mask.sum()):
-                raise CheckFailed(f"{where}: area {ann['area']} but {int(mask.sum())} pixels")
+            check_box_and_area(ann, mask, where)
             crowd = ann.get("iscrowd")
             if crowd not in (0, 1):
                 raise CheckFailed(f"{where}: iscrowd is {crowd!r}, not 0 or 1")
