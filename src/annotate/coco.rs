@@ -141,8 +141,15 @@ impl CocoLines {
             }
             annotations.push(annotation.to_string());
             if let Some(word) = word_category {
-                for line in word_lines(frame, object) {
-                    annotations.extend(word_annotation(&line, object, word, image_id));
+                let lines = word_lines(frame, object);
+                // The plate's pixels, decoded once for all its words.
+                let shown = if lines.is_empty() {
+                    Vec::new()
+                } else {
+                    object.visible.rle.to_row_major()
+                };
+                for line in lines {
+                    annotations.extend(word_annotation(&line, object, &shown, word, image_id));
                 }
             }
         }

@@ -15,11 +15,13 @@ use super::shown_object::ShownObject;
 /// it).
 pub const WORD_CATEGORY: &str = "word";
 
-/// The `word` annotation of one ICDAR line of the text `object` (category `category`),
-/// `None` when its quad has nothing inside the object's visible box.
+/// The `word` annotation of one ICDAR line of the text `object` (category `category`;
+/// `shown`: the object's visible mask, row-major), `None` when its quad has nothing inside
+/// the object's visible box.
 pub(super) fn word_annotation(
     line: &WordLine,
     object: &ShownObject,
+    shown: &[bool],
     category: u32,
     image_id: u64,
 ) -> Option<String> {
@@ -39,12 +41,13 @@ pub(super) fn word_annotation(
         .iter()
         .map(|p| Some([round(p[0], 1e2)?, round(p[1], 1e2)?]))
         .collect::<Option<_>>()?;
-    if polygon.len() < 3 || polygon_area(&polygon).is_nan() || polygon_area(&polygon) <= 0.0 {
+    let area = polygon_area(&polygon);
+    if polygon.len() < 3 || area.is_nan() || area <= 0.0 {
         return None;
     }
     // An RLE mask like every other annotation's (a column of one type for readers such as
     // Hugging Face datasets): the pixels of the polygon its plate shows.
-    let (rle, [x0, y0, x1, y1], pixels) = word_mask(&polygon, &object.visible.rle)?;
+    let (rle, [x0, y0, x1, y1], pixels) = word_mask(&polygon, shown, object.visible.rle.size)?;
     let mut annotation = json!({
         "image_id": image_id,
         "category_id": category,
@@ -93,13 +96,14 @@ fn clip_to_box(quad: &[[f64; 2]; 4], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]
     points
 }
 
-/// The pixels (centres inside) of the convex `polygon` that `plate` shows, or all of them
+/// The pixels (centres inside) of the convex `polygon` that `shown` (its plate's mask,
+/// row-major, `[height, width]` = `size`) holds, or all of them
 /// when the plate shows none (a hidden word stays a region, marked crowd by ICDAR's rules),
 /// or the one pixel under its first corner when it covers no pixel centre (a sliver): the
 /// mask, its tight box `[x0, y0, x1, y1]` (end-exclusive) and its pixel count. `None` for
 /// an empty frame.
-fn word_mask(polygon: &[[f64; 2]], plate: &Rle) -> Option<(Rle, [u32; 4], u64)> {
-    let [h, w] = plate.size;
+fn word_mask(polygon: &[[f64; 2]], shown: &[bool], size: [u32; 2]) -> Option<(Rle, [u32; 4], u64)> {
+    let [h, w] = size;
     let lo = |k: usize, max: u32| {
         let v = polygon.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
         (v.floor().max(0.0) as u32).min(max)
@@ -121,7 +125,6 @@ fn word_mask(polygon: &[[f64; 2]], plate: &Rle) -> Option<(Rle, [u32; 4], u64)> 
         let sides: Vec<f64> = (0..polygon.len()).map(side).collect();
         sides.iter().all(|&s| s >= 0.0) || sides.iter().all(|&s| s <= 0.0)
     };
-    let shown = plate.to_row_major();
     let mut quad = vec![false; (w as usize) * (h as usize)];
     let mut mask = quad.clone();
     let (mut any_quad, mut any_shown) = (false, false);
@@ -175,9 +178,7 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::{
-        Category, FrameInput, ObjectLabel, Thresholds, coco, icdar, summarize, test_image,
-    };
+    use crate::annotate::{Category, FrameInput, Thresholds, coco, icdar, summarize, word_fixture};
     use crate::model::CameraPose;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> [[f64; 2]; 4] {
@@ -198,34 +199,10 @@ mod tests {
         assert!(clip_to_box(&rect(20.0, 0.0, 30.0, 2.0), [0.0, 0.0, 10.0, 10.0]).is_empty());
     }
 
-    /// 20 × 6: 1 "Write Group" (x 0..12, rows 0..3), 2 "Edge" running past the right edge,
-    /// 3 "Hidden" mostly behind 5, 4 "Gone word" whose second word is off the image, 5
-    /// "Ok" with no quads, 6 a building; categories text 1, word 2.
+    /// `word_fixture`'s plates; categories text 1, word 2.
     #[test]
     fn one_word_annotation_per_icdar_line_inside_its_plate_crowd_where_icdar_does_not_care() {
-        let img = test_image(&[
-            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
-            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
-            &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
-            &[0; 20],
-            &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
-            &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
-        ]);
-        let label = |text: Option<&str>| ObjectLabel {
-            name: text.unwrap_or("building").into(),
-            category: text.map(|_| 1),
-            text: text.map(String::from),
-            attributes: Default::default(),
-            sign: None,
-        };
-        let labels = [
-            label(Some("Write Group")),
-            label(Some("Edge")),
-            label(Some("Hidden")),
-            label(Some("Gone word")),
-            label(Some("Ok")),
-            label(None),
-        ];
+        let (img, labels, quads) = word_fixture();
         let frame = FrameInput {
             file_name: "f.png".into(),
             instance: &img,
@@ -233,18 +210,7 @@ mod tests {
             intrinsics: [1.0, 1.0, 10.0, 3.0],
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::new(),
-            quads: BTreeMap::from([
-                (
-                    1,
-                    vec![rect(0.0, 0.0, 10.0, 3.0), rect(10.0, 0.0, 12.0, 3.0)],
-                ),
-                (2, vec![rect(14.0, 0.0, 24.0, 3.0)]),
-                (3, vec![rect(0.0, 4.0, 12.0, 6.0)]),
-                (
-                    4,
-                    vec![rect(14.0, 4.0, 20.0, 6.0), rect(30.0, 4.0, 40.0, 6.0)],
-                ),
-            ]),
+            quads,
         };
         let thresholds = Thresholds {
             min_pixels: 2,

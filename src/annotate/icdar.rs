@@ -149,44 +149,13 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::annotate::{FrameInput, ObjectLabel, Thresholds, summarize};
+    use crate::annotate::{FrameInput, Thresholds, summarize, word_fixture};
     use crate::model::CameraPose;
-
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> [[f64; 2]; 4] {
-        [[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
-    }
 
     #[test]
     fn one_line_per_word_with_do_not_care_for_small_hidden_or_cut_words() {
-        // 20 × 6: 1 "Write Group" (x 0..12, rows 0..3), 2 "Edge" running past the right
-        // edge, 3 "Hidden" mostly behind 5, 4 "Gone word" whose second word is off the
-        // image, 5 "Ok" with no quads, 6 a building.
-        let img = image::ImageBuffer::from_fn(20, 6, |x, y| {
-            image::Luma([match (x, y) {
-                (0..=11, 0..=2) => 1u32,
-                (14..=19, 0..=2) => 2,
-                (0..=2, 4..=5) => 3,
-                (3..=11, 4..=5) => 5,
-                (14..=19, 4..=5) => 4,
-                (12..=13, 4..=5) => 6,
-                _ => 0,
-            }])
-        });
-        let label = |text: Option<&str>| ObjectLabel {
-            name: "x".into(),
-            category: Some(1),
-            text: text.map(String::from),
-            attributes: Default::default(),
-            sign: None,
-        };
-        let labels = [
-            label(Some("Write Group")),
-            label(Some("Edge")),
-            label(Some("Hidden")),
-            label(Some("Gone word")),
-            label(Some("Ok")),
-            label(None),
-        ];
+        // See `word_fixture`.
+        let (img, labels, quads) = word_fixture();
         let frame = FrameInput {
             file_name: "f.png".into(),
             instance: &img,
@@ -194,18 +163,7 @@ mod tests {
             intrinsics: [1.0, 1.0, 10.0, 3.0],
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::new(),
-            quads: BTreeMap::from([
-                (
-                    1,
-                    vec![rect(0.0, 0.0, 10.0, 3.0), rect(10.0, 0.0, 12.0, 3.0)],
-                ),
-                (2, vec![rect(14.0, 0.0, 24.0, 3.0)]),
-                (3, vec![rect(0.0, 4.0, 12.0, 6.0)]),
-                (
-                    4,
-                    vec![rect(14.0, 4.0, 20.0, 6.0), rect(30.0, 4.0, 40.0, 6.0)],
-                ),
-            ]),
+            quads,
         };
         let thresholds = Thresholds {
             min_pixels: 2,

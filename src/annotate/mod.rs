@@ -74,6 +74,58 @@ fn round(v: f64, scale: f64) -> Option<f64> {
     r.is_finite().then_some(r)
 }
 
+/// The word-quad fixture of the ICDAR and COCO word tests, 20 × 6: 1 "Write Group" (x 0..12,
+/// rows 0..3), 2 "Edge" running past the right edge, 3 "Hidden" mostly behind 5, 4 "Gone
+/// word" whose second word is off the image, 5 "Ok" with no quads, 6 a building (no
+/// category); texts are category 1. Its instance image, labels, and word quads by id.
+#[cfg(test)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn word_fixture() -> (
+    image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+    Vec<ObjectLabel>,
+    std::collections::BTreeMap<u32, Vec<[[f64; 2]; 4]>>,
+) {
+    let img = test_image(&[
+        &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+        &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+        &[1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 2, 2, 2, 2, 2, 2],
+        &[0; 20],
+        &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
+        &[3, 3, 3, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 4, 4, 4, 4, 4, 4],
+    ]);
+    let label = |text: Option<&str>| ObjectLabel {
+        name: text.unwrap_or("building").into(),
+        category: text.map(|_| 1),
+        text: text.map(String::from),
+        attributes: Default::default(),
+        sign: None,
+    };
+    let labels = [
+        Some("Write Group"),
+        Some("Edge"),
+        Some("Hidden"),
+        Some("Gone word"),
+        Some("Ok"),
+        None,
+    ]
+    .map(label)
+    .to_vec();
+    let rect = |x0: f64, y0: f64, x1: f64, y1: f64| [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+    let quads = std::collections::BTreeMap::from([
+        (
+            1,
+            vec![rect(0.0, 0.0, 10.0, 3.0), rect(10.0, 0.0, 12.0, 3.0)],
+        ),
+        (2, vec![rect(14.0, 0.0, 24.0, 3.0)]),
+        (3, vec![rect(0.0, 4.0, 12.0, 6.0)]),
+        (
+            4,
+            vec![rect(14.0, 4.0, 20.0, 6.0), rect(30.0, 4.0, 40.0, 6.0)],
+        ),
+    ]);
+    (img, labels, quads)
+}
+
 /// An instance image from rows of ids.
 #[cfg(test)]
 pub(crate) fn test_image(rows: &[&[u32]]) -> image::ImageBuffer<image::Luma<u32>, Vec<u32>> {
