@@ -58,13 +58,12 @@ pub fn coco(
 ///   `unlit`: how it is lit after dusk); for a sign
 ///   seen from the front `attributes` `{"sign_type": "stop"}`. A sign seen from behind is not its
 ///   category: it takes the category `<label>_back` when that is listed, else it is left out.
-/// - `word` annotations (when the categories hold [`WORD_CATEGORY`]): right after each
+/// - `word` annotations (when the categories hold `word`): right after each
 ///   annotated text object's, one per ICDAR line it has in the frame ([`super::icdar`]),
-///   in reading order: `category_id` the `word` category, `segmentation` one polygon, the
-///   word's projected quad cut to the plate's visible box (so at the image edge too;
-///   occluders are not cut out: `visible_fraction` says how much of the quad shows),
-///   `bbox` that polygon's box and `area` its area (both to 2 decimals, inside the
-///   plate's box), `iscrowd` 1 exactly where ICDAR writes `###`, with the reason in
+///   in reading order: `category_id` the `word` category, `segmentation` an RLE mask of
+///   the pixels of the word's projected quad (cut to the plate's visible box) that the
+///   plate shows, occluders cut out (all the quad's pixels when the plate shows none of
+///   them), `bbox` that mask's tight box and `area` its pixel count, `iscrowd` 1 exactly where ICDAR writes `###`, with the reason in
 ///   `cityspec_ignored` (the plate's, or `hidden`, `small`, `empty`, `unsplit`), then
 ///   `cityspec_instance` and `name` of the plate (so `(image_id, cityspec_instance)` finds
 ///   the plate's annotation), `word_index` (the word's place in the plate's text, split at

@@ -1,5 +1,6 @@
-//! One ICDAR line of a text object in a frame → its COCO `word` annotation: the word's
-//! quad cut to the plate's visible box as the segmentation polygon, its box and area, its
+//! One ICDAR line of a text object in a frame → its COCO `word` annotation: the pixels of
+//! the word's quad (cut to the plate's visible box) that the plate shows as an RLE
+//! segmentation, its box and area, its
 //! transcription, `iscrowd` 1 exactly where ICDAR writes `###`, and the plate it belongs
 //! to (fields in [`super::CocoWriter`]).
 
