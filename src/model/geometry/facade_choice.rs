@@ -22,7 +22,7 @@
 //! - with spec widths, facades tile along the wall at their own width (u runs
 //!   `0..W / w`), so every facade fits and the choice is balanced over the whole set.
 //!
-//! A set of n facades cannot go under 1/n: a user's CMP folder of 6 facades clads about a
+//! A set of n facades cannot go under 1/n: a user's CMP folder of 6 facades would clad about a
 //! sixth of the buildings with each. A building is its facade's height, or
 //! [`PLAIN_HEIGHT`] when the facade's height is not a positive number or there are no
 //! facades at all.
