@@ -5,7 +5,7 @@ use std::io::{self, Write};
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
-use super::coco_words::{WORD_CATEGORY, word_annotation};
+use super::coco_words::{WORD_CATEGORY, plate_window, word_annotation};
 use super::frame_annotations::{FrameAnnotations, summarize};
 use super::frame_input::{FrameInput, Thresholds};
 use super::icdar::word_lines;
@@ -141,12 +141,11 @@ impl CocoLines {
             annotations.push(annotation.to_string());
             if let Some(word) = word_category {
                 let lines = word_lines(frame, object);
+                if lines.is_empty() {
+                    continue;
+                }
                 // The plate's pixels, decoded once for all its words.
-                let shown = if lines.is_empty() {
-                    Vec::new()
-                } else {
-                    object.visible.rle.to_row_major()
-                };
+                let shown = plate_window(object);
                 for line in lines {
                     annotations.extend(word_annotation(&line, object, &shown, word, image_id));
                 }

@@ -7,7 +7,7 @@
 use serde_json::{Value, json};
 
 use super::icdar::WordLine;
-use super::rle::Rle;
+use super::rle::{MaskWindow, Rle};
 use super::round;
 use super::shown_object::ShownObject;
 
@@ -17,12 +17,13 @@ use super::shown_object::ShownObject;
 pub const WORD_CATEGORY: &str = "word";
 
 /// The `word` annotation of one ICDAR line of the text `object` (category `category`;
-/// `shown`: the object's visible mask, row-major), `None` when its quad has nothing inside
+/// `shown`: the object's visible mask over its box and one pixel beyond, from
+/// [`plate_window`]), `None` when its quad has nothing inside
 /// the object's visible box.
 pub(super) fn word_annotation(
     line: &WordLine,
     object: &ShownObject,
-    shown: &[bool],
+    shown: &MaskWindow,
     category: u32,
     image_id: u64,
 ) -> Option<String> {
@@ -68,6 +69,15 @@ pub(super) fn word_annotation(
     Some(annotation.to_string())
 }
 
+/// The text object's visible mask, decoded over its box and one pixel beyond on the right
+/// and below (where a sliver word's first corner may fall): all its words need.
+pub(super) fn plate_window(object: &ShownObject) -> MaskWindow {
+    let b = object.visible.bounds;
+    let [h, w] = object.visible.rle.size;
+    let bounds = [b.x_min, b.y_min, (b.x_max + 2).min(w), (b.y_max + 2).min(h)];
+    object.visible.rle.window(bounds)
+}
+
 /// The part of the convex polygon `quad` inside the box `[x0, y0, x1, y1]`
 /// (Sutherland–Hodgman, one box edge at a time).
 fn clip_to_box(quad: &[[f64; 2]; 4], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]> {
@@ -98,68 +108,84 @@ fn clip_to_box(quad: &[[f64; 2]; 4], [x0, y0, x1, y1]: [f64; 4]) -> Vec<[f64; 2]
 }
 
 /// The pixels (centres inside) of the convex `polygon` that `shown` (its plate's mask,
-/// row-major, `[height, width]` = `size`) holds, or all of them
+/// decoded over the plate's box and one pixel beyond) holds, or all of them
 /// when the plate shows none (a hidden word stays a region, marked crowd by ICDAR's rules),
 /// or the one pixel under its first corner when it covers no pixel centre (a sliver): the
-/// mask, its tight box `[x0, y0, x1, y1]` (end-exclusive) and its pixel count. `None` for
-/// an empty frame.
-fn word_mask(polygon: &[[f64; 2]], shown: &[bool], size: [u32; 2]) -> Option<(Rle, [u32; 4], u64)> {
+/// mask in a frame of `size` = `[height, width]`, its tight box `[x0, y0, x1, y1]`
+/// (end-exclusive) and its pixel count. `None` for an empty window.
+fn word_mask(
+    polygon: &[[f64; 2]],
+    shown: &MaskWindow,
+    size: [u32; 2],
+) -> Option<(Rle, [u32; 4], u64)> {
     let [h, w] = size;
-    let lo = |k: usize, max: u32| {
+    let [wx0, wy0, wx1, wy1] = shown.bounds;
+    let lo = |k: usize, min: u32, max: u32| {
         let v = polygon.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
-        (v.floor().max(0.0) as u32).min(max)
+        (v.floor().max(0.0) as u32).clamp(min, max)
     };
-    let hi = |k: usize, max: u32| {
+    let hi = |k: usize, min: u32, max: u32| {
         let v = polygon
             .iter()
             .map(|p| p[k])
             .fold(f64::NEG_INFINITY, f64::max);
-        (v.ceil().max(0.0) as u32).min(max)
+        (v.ceil().max(0.0) as u32).clamp(min, max)
     };
-    let (bx0, by0, bx1, by1) = (lo(0, w), lo(1, h), hi(0, w), hi(1, h));
-    let inside = |x: u32, y: u32| {
-        let c = [f64::from(x) + 0.5, f64::from(y) + 0.5];
-        let side = |i: usize| {
-            let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
-            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-        };
-        let sides: Vec<f64> = (0..polygon.len()).map(side).collect();
-        sides.iter().all(|&s| s >= 0.0) || sides.iter().all(|&s| s <= 0.0)
+    let (bx0, by0) = (lo(0, wx0, wx1), lo(1, wy0, wy1));
+    let (bx1, by1) = (hi(0, wx0, wx1), hi(1, wy0, wy1));
+    let mut quad = MaskWindow {
+        bounds: shown.bounds,
+        pixels: vec![false; shown.pixels.len()],
     };
-    let mut quad = vec![false; (w as usize) * (h as usize)];
     let mut mask = quad.clone();
     let (mut any_quad, mut any_shown) = (false, false);
+    let row = (wx1 - wx0) as usize;
     for y in by0..by1 {
         for x in bx0..bx1 {
-            if inside(x, y) {
-                let i = (y * w + x) as usize;
-                quad[i] = true;
+            if inside(polygon, [f64::from(x) + 0.5, f64::from(y) + 0.5]) {
+                let i = (y - wy0) as usize * row + (x - wx0) as usize;
+                quad.pixels[i] = true;
                 any_quad = true;
-                if shown[i] {
-                    mask[i] = true;
+                if shown.pixels[i] {
+                    mask.pixels[i] = true;
                     any_shown = true;
                 }
             }
         }
     }
     if !any_quad {
-        let x = (polygon[0][0].max(0.0) as u32).min(w.checked_sub(1)?);
-        let y = (polygon[0][1].max(0.0) as u32).min(h.checked_sub(1)?);
-        quad[(y * w + x) as usize] = true;
-        let b = [x, y, x + 1, y + 1];
-        return Some((Rle::from_row_major(&quad, h, w), b, 1));
+        let x = (polygon[0][0].max(0.0) as u32).clamp(wx0, wx1.checked_sub(1)?);
+        let y = (polygon[0][1].max(0.0) as u32).clamp(wy0, wy1.checked_sub(1)?);
+        let one = MaskWindow {
+            bounds: [x, y, x + 1, y + 1],
+            pixels: vec![true],
+        };
+        return Some((Rle::from_window(&one, h, w), one.bounds, 1));
     }
     let mask = if any_shown { mask } else { quad };
     let (mut b, mut pixels) = ([u32::MAX, u32::MAX, 0, 0], 0u64);
     for y in by0..by1 {
         for x in bx0..bx1 {
-            if mask[(y * w + x) as usize] {
+            if mask.get(x, y) {
                 b = [b[0].min(x), b[1].min(y), b[2].max(x + 1), b[3].max(y + 1)];
                 pixels += 1;
             }
         }
     }
-    Some((Rle::from_row_major(&mask, h, w), b, pixels))
+    Some((Rle::from_window(&mask, h, w), b, pixels))
+}
+
+/// Whether the point `c` lies inside the convex `polygon` or on its edge, whatever its
+/// winding.
+fn inside(polygon: &[[f64; 2]], c: [f64; 2]) -> bool {
+    let (mut any_neg, mut any_pos) = (false, false);
+    for (i, a) in polygon.iter().enumerate() {
+        let b = polygon[(i + 1) % polygon.len()];
+        let side = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        any_neg |= side < 0.0;
+        any_pos |= side > 0.0;
+    }
+    !(any_neg && any_pos)
 }
 
 /// Area of a simple polygon (shoelace), whatever its winding.

@@ -19,6 +19,46 @@ pub struct Rle {
     pub counts: Vec<u64>,
 }
 
+/// A rectangle of a mask, decoded: the pixels of `bounds` = `[x0, y0, x1, y1]`
+/// (end-exclusive), row-major (`pixels[(y - y0) * (x1 - x0) + (x - x0)]`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MaskWindow {
+    pub bounds: [u32; 4],
+    pub pixels: Vec<bool>,
+}
+
+impl MaskWindow {
+    /// Whether the pixel `(x, y)` is set; false outside the window.
+    pub fn get(&self, x: u32, y: u32) -> bool {
+        let [x0, y0, x1, y1] = self.bounds;
+        (x0..x1).contains(&x)
+            && (y0..y1).contains(&y)
+            && self.pixels[(y - y0) as usize * (x1 - x0) as usize + (x - x0) as usize]
+    }
+}
+
+/// Alternating runs being counted, 0s first, as [`Rle::from_row_major`] counts them.
+#[derive(Default)]
+struct Runs {
+    counts: Vec<u64>,
+    current: bool,
+    run: u64,
+}
+
+impl Runs {
+    /// `len` more pixels of `value`.
+    fn push(&mut self, value: bool, len: u64) {
+        if len == 0 {
+            return;
+        }
+        if value != self.current {
+            self.counts.push(self.run);
+            (self.current, self.run) = (value, 0);
+        }
+        self.run += len;
+    }
+}
+
 /// Why a compressed RLE string could not be read.
 #[derive(Debug, Error, PartialEq, Eq)]
 pub enum RleError {
@@ -60,21 +100,61 @@ impl Rle {
 
     /// The mask, row-major (`[y * width + x]`).
     pub fn to_row_major(&self) -> Vec<bool> {
-        let [h, w] = self.size.map(|v| v as usize);
-        let mut mask = vec![false; h * w];
-        let (mut t, mut value) = (0usize, false);
-        for &count in &self.counts {
-            for _ in 0..count {
-                if t >= h * w {
-                    return mask;
+        let [h, w] = self.size;
+        self.window([0, 0, w, h]).pixels
+    }
+
+    /// The pixels of the rectangle `bounds` = `[x0, y0, x1, y1]` (end-exclusive, inside
+    /// the mask), decoded without touching the rest: the runs of 0s are skipped whole, so
+    /// it costs the pixels set, not the mask's size.
+    pub fn window(&self, bounds: [u32; 4]) -> MaskWindow {
+        let [x0, y0, x1, y1] = bounds;
+        let h = u64::from(self.size[0]);
+        let total = h * u64::from(self.size[1]);
+        let width = x1.saturating_sub(x0) as usize;
+        let mut pixels = vec![false; width * y1.saturating_sub(y0) as usize];
+        let mut t = 0u64;
+        for (i, &count) in self.counts.iter().enumerate() {
+            let end = t.saturating_add(count).min(total);
+            if i % 2 == 1 {
+                for p in t..end {
+                    let (x, y) = ((p / h) as u32, (p % h) as u32);
+                    if x >= x1 {
+                        break;
+                    }
+                    if x >= x0 && (y0..y1).contains(&y) {
+                        pixels[(y - y0) as usize * width + (x - x0) as usize] = true;
+                    }
                 }
-                let (x, y) = (t / h, t % h);
-                mask[y * w + x] = value;
-                t += 1;
             }
-            value = !value;
+            t = end;
+            if t >= total {
+                break;
+            }
         }
-        mask
+        MaskWindow { bounds, pixels }
+    }
+
+    /// The RLE of a `height × width` mask whose pixels are 0 outside `window`: what
+    /// [`Rle::from_row_major`] gives for the whole mask, at the cost of the window's size.
+    pub fn from_window(window: &MaskWindow, height: u32, width: u32) -> Rle {
+        let [x0, y0, x1, y1] = window.bounds;
+        let (h, cols) = (u64::from(height), (x1 - x0) as usize);
+        let mut runs = Runs::default();
+        runs.push(false, u64::from(x0) * h);
+        for x in 0..cols {
+            runs.push(false, u64::from(y0));
+            for y in 0..(y1 - y0) as usize {
+                runs.push(window.pixels[y * cols + x], 1);
+            }
+            runs.push(false, h - u64::from(y1));
+        }
+        runs.push(false, u64::from(width - x1) * h);
+        runs.counts.push(runs.run);
+        Rle {
+            size: [height, width],
+            counts: runs.counts,
+        }
     }
 
     /// Pixels set.
@@ -160,6 +240,40 @@ impl Rle {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::RngExt;
+
+    /// A window decoded from an RLE is that part of the whole mask, and the RLE of a mask
+    /// that is 0 outside a window is the whole mask's RLE: random masks and windows, the
+    /// frame's edges included.
+    #[test]
+    fn windows_agree_with_the_whole_mask() {
+        let mut rng = crate::rng::stream(5, "rle-window-test", 0);
+        for case in 0..300 {
+            let (h, w) = (rng.random_range(1..9u32), rng.random_range(1..9u32));
+            let x0 = rng.random_range(0..=w);
+            let y0 = rng.random_range(0..=h);
+            let x1 = rng.random_range(x0..=w);
+            let y1 = rng.random_range(y0..=h);
+            let density = rng.random_range(0.0..1.0f64);
+            let whole: Vec<bool> = (0..h * w).map(|_| rng.random_bool(density)).collect();
+            let rle = Rle::from_row_major(&whole, h, w);
+            let window = rle.window([x0, y0, x1, y1]);
+            for y in 0..h {
+                for x in 0..w {
+                    let inside = (x0..x1).contains(&x) && (y0..y1).contains(&y);
+                    let expected = inside && whole[(y * w + x) as usize];
+                    assert_eq!(window.get(x, y), expected, "case {case} at {x},{y}");
+                }
+            }
+            let cut: Vec<bool> = (0..h * w).map(|i| window.get(i % w, i / w)).collect();
+            assert_eq!(
+                Rle::from_window(&window, h, w),
+                Rle::from_row_major(&cut, h, w),
+                "case {case}"
+            );
+            assert_eq!(rle.to_row_major(), whole, "case {case}");
+        }
+    }
 
     /// Counts and strings worked out by hand from `rleToString`.
     #[test]
