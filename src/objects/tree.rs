@@ -8,7 +8,7 @@
 //! | conifer (spruce) | four or five ragged tiers with drooping rims, narrowing up, and a tip | 172–204 |
 //! | spreading (plane) | a flat middle lobe and four or five wide ones round it | 172–204 |
 //! | birch | a thin white trunk under a loose top lobe and four or five small ones | 172–204 |
-//! | weeping (willow) | a dome and four or five tall lobes hanging round it to 0.28 h | 172–204 |
+//! | weeping (willow) | a dome and four or five tall lobes hanging round it (to 0.27 h when wide) | 172–204 |
 //! | pine | a tall bare rust trunk under a flat tip and three or four flat clumps | 140–172 |
 //!
 //! Lobes are subdivided octahedra (32 faces) whose corners are pulled in at random, so no
@@ -22,7 +22,7 @@
 //!   [`MAX_STREET_CROWN`]) reaches over the parking lane, high above cars, vans and buses,
 //!   never past the strip's far side; it takes a [`TRUNK_ROOM`] circle of ground, and its
 //!   crown keeps clear of the lamps' arms and of other crowns;
-//! - any other (conifers, columnar and weeping crowns, small or young trees) stands mid-strip, its crown inside the
+//! - any other (conifers, columnar crowns, small or young trees) stands mid-strip, its crown inside the
 //!   strip, taking a circle as wide as the crown.
 //!
 //! So trees never overlap lamps, signs, cars, benches or each other.
@@ -230,8 +230,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
 }
 
 /// The largest crown radius a tree of `kind` and `height` may have with its crown's lowest
-/// point at least [`CLEAR_HEIGHT`] up ([`crown_bottom`]); 0 when none does (conifers,
-/// columnar and weeping crowns reach far down).
+/// point at least [`CLEAR_HEIGHT`] up ([`crown_bottom`]); 0 when none does (conifers and
+/// columnar crowns reach far down).
 fn clear_crown(kind: TreeSpecies, height: f64) -> f64 {
     let clear = |r: f64| crown_bottom(kind, height, r) >= CLEAR_HEIGHT;
     let (mut low, mut high) = (0.0, crown_radius(kind, height));
@@ -264,9 +264,17 @@ fn crown_bottom(kind: TreeSpecies, height: f64, r: f64) -> f64 {
         // The lowest tier hangs a quarter of a tier below 0.12 h; tiers are 0.78 h / 4 at most.
         TreeSpecies::Conifer => 0.12 * h - 0.25 * 0.78 * h / 4.0,
         TreeSpecies::Birch => 0.35 * h,
-        TreeSpecies::Weeping => 0.28 * h,
+        TreeSpecies::Weeping => {
+            let (ry, curtain) = weeping_sizes(h, r);
+            h - 0.6 * ry - 2.0 * curtain
+        }
         TreeSpecies::Pine => 0.58 * h,
     }
+}
+
+/// A weeping crown's dome half-height and its hanging lobes' half-height, metres.
+fn weeping_sizes(h: f64, r: f64) -> (f64, f64) {
+    ((0.22 * h).min(0.6 * r), (0.3 * h).min(0.95 * r))
 }
 
 /// The crown radius a tree of `height` metres has, before any limit.
@@ -450,13 +458,15 @@ fn crown(kind: TreeSpecies, h: f64, r: f64, turn: f64, rng: &mut Pcg64) -> Crown
             (0.2, 0.0, 0.8 * h, 0.04 + 0.006 * h)
         }
         TreeSpecies::Weeping => {
-            let ry = 0.22 * h;
+            // Dome and curtain sized by the crown as much as the height: a narrow willow
+            // is a small weeping crown high on its trunk, not a column.
+            let (ry, curtain) = weeping_sizes(h, r);
             lobes.push(main(h - ry, [0.62 * r, ry]));
             let n = rng.random_range(4..6usize);
-            let y = [0.58 * h, 0.58 * h];
-            let ring = Ring::new([0.58, 0.62], y, [0.38 * r, 0.3 * h]);
+            let y = h - 0.6 * ry - curtain;
+            let ring = Ring::new([0.58, 0.62], [y, y], [0.38 * r, curtain]);
             ring_lobes(&mut lobes, n, ring, at, rng);
-            (0.15, 0.0, 0.6 * h, trunk)
+            (0.15, 0.0, h - ry, trunk)
         }
         TreeSpecies::Pine => {
             lobes.push(main(0.9 * h, [0.35 * r, 0.1 * h]));
