@@ -17,7 +17,7 @@
 //! the ground's kinds side by side, replayed in order: `entry_groups`) and later entries
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
 //! finds no free spot in [`ATTEMPTS`] tries is drawn again (text: new words, size, style;
-//! cars: a new body; trees: a new species and size) a few times, then left out: `count` is
+//! cars: a new body; trees: a new size and spot, the species kept) a few times, then left out: `count` is
 //! met until the walls, curbs or strips are nearly full, and is an upper bound.
 //!
 //! No `sin`/`cos` from std: angles go through `trig` (`libm`, pure Rust), so the output is

@@ -149,11 +149,13 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         if misses >= GIVE_UP {
             break;
         }
-        // A tree that finds no room is drawn again (species, height, strip or plaza) up to
-        // REDRAWS times: the strips' room bounds `count`, not the first draw's luck.
+        // A tree that finds no room is drawn again (height, strip or plaza) up to REDRAWS
+        // times: the strips' room bounds `count`, not the first draw's luck. Its species
+        // stays: redrawn, the species that fit more easily (mid-strip conifers) would
+        // crowd out the rest.
         misses += 1;
+        let kind = species[rng.random_range(0..species.len())];
         for _ in 0..REDRAWS {
-            let kind = species[rng.random_range(0..species.len())];
             let t: f64 = rng.random();
             let [low, high] = spec.height_range();
             let height = low + t * (high - low);

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 /// editors flag such a key too.
 ///
 /// `count` objects are attempted; one that does not fit is drawn again a few times (other
-/// words and size, another body, another species); when the city still has no room for
+/// words and size, another body, a tree's size); when the city still has no room for
 /// them all (walls, curbs or strips nearly full), fewer are placed and the build reports
 /// the shortfall.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
