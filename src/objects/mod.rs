@@ -8,7 +8,7 @@
 //! | sign | `sign_0012` | by its type's rule (`sign_rules`): stop, yield, priority road at the crossings' mouths, warnings 30–50 m before a zebra, speed limits past a crossing, else mid-strip 40 m from its type; ≥ 2 m from lamps, never in a crossing | pole + plate shaped like the sign (33 StVO types), facing the traffic it signs |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
 //! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
-//! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of four species (`tree` module) |
+//! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of seven species (`tree` module) |
 //! | street_name | `street_pole_0002` (class `pole`) + four `text_0140`… | at a street corner, half a strip from both curbs | a pole and two stacked double-sided plates naming the two streets (`street_names` module) |
 //! | traffic_light | `signal_pole_0001` (class `pole`) + two `traffic_light_0002`… | at a street corner, half a strip from both curbs | a pole and two signal heads looking along the two roads, one lamp lit (`traffic_lights` module) |
 //!
@@ -17,14 +17,14 @@
 //! the ground's kinds side by side, replayed in order: `entry_groups`) and later entries
 //! avoid earlier ones, so changing entry 1 never moves entry 0's objects. An object that
 //! finds no free spot in [`ATTEMPTS`] tries is drawn again (text: new words, size, style;
-//! cars: a new body; trees: a new species and size) a few times, then left out: `count` is
+//! cars: a new body; trees: a new size and spot, the species kept) a few times, then left out: `count` is
 //! met until the walls, curbs or strips are nearly full, and is an upper bound.
 //!
 //! No `sin`/`cos` from std: angles go through `trig` (`libm`, pure Rust), so the output is
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 16;
+pub const VERSION: u32 = 17;
 
 mod atlas_layout;
 mod bicycle;
@@ -35,6 +35,7 @@ mod ground_spots;
 pub mod obj_lines;
 mod objects_error;
 mod person;
+mod person_pose;
 mod plate_light;
 mod plate_style;
 mod sign_face;
@@ -325,6 +326,22 @@ impl<'a> Placing<'a> {
         meshes: Vec<Mesh>,
         variant: Option<(&str, String)>,
     ) {
+        let attributes = variant
+            .map(|(k, v)| BTreeMap::from([(k.to_owned(), v)]))
+            .unwrap_or_default();
+        self.push_attributed(kind, name, label, meshes, attributes);
+    }
+
+    /// Pushes an object of `kind` and class `label` that carries no text, with the COCO
+    /// `attributes` naming what it was drawn as (a person's `appearance` and `pose`).
+    pub fn push_attributed(
+        &mut self,
+        kind: crate::model::ObjectKind,
+        name: String,
+        label: &str,
+        meshes: Vec<Mesh>,
+        attributes: BTreeMap<String, String>,
+    ) {
         let object = SceneObject {
             name,
             kind,
@@ -335,9 +352,7 @@ impl<'a> Placing<'a> {
             label: label.to_owned(),
             text: None,
             corners: Vec::new(),
-            attributes: variant
-                .map(|(k, v)| BTreeMap::from([(k.to_owned(), v)]))
-                .unwrap_or_default(),
+            attributes,
         };
         self.push(object, info);
     }

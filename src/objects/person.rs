@@ -1,12 +1,20 @@
 //! Person specs + sidewalk strip spots → `person_NNNN` objects: low-poly pedestrians,
 //! walking along the street or standing, seeded in height, build, pose and clothes.
 //!
-//! A person is twelve flat-shaded parts in five materials (164 triangles): two legs ending
-//! in shoes, a torso, two arms (sleeves and bare forearms, or long sleeves), a neck, a
-//! rounded head and a hair cap. Proportions follow the figure's height `h`: hips at 0.5 h, shoulders at
-//! 0.82 h, the head the top 0.13 h; width and depth scale with `h / 1.75` and a seeded build.
-//! A walker faces along the street (either way) mid-stride, legs and arms swung opposite;
-//! a standing figure faces any way, limbs nearly straight.
+//! A person is flat-shaded boxes on a [`Skeleton`] (`person_pose`, whose joints include
+//! the 17 COCO keypoints) in five materials (236 triangles), and a sixth for a prop (248):
+//! two legs of thigh and shin, shoes, a torso, two arms of upper arm, forearm and hand
+//! (sleeves and bare forearms, or long sleeves), a neck, a rounded head and a hair cap.
+//! Proportions follow the figure's height `h`: hips at 0.5 h, shoulders at 0.8 h, the head
+//! the top 0.13 h; width and depth scale with `h / 1.75` and a seeded build.
+//!
+//! A walker faces along the street (either way) mid-stride, legs swung opposite and arms
+//! against them; a standing figure faces any way, legs nearly straight. Each draws a
+//! [`Pose`] for its arms (the `pose` attribute): walkers swing them (half of them), look at
+//! a phone held before the chest, hold one to the ear, carry a bag or keep their hands in
+//! their pockets; standing people let them hang (three in ten), hold a phone either way or
+//! a bag, cross their arms or keep their hands in their pockets. A phone or bag is in the
+//! right hand, one time in eight the left.
 //!
 //! People stand in the sidewalk strips between the curb and the line a `sidewalks` camera
 //! walks ([`WALKER_ROOM`] clear of it; it runs [`WALK_SHARE`] of the strip from the shop
@@ -20,12 +28,17 @@
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
+use std::collections::BTreeMap;
+
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
 use super::ground_spots::GroundSpots;
+use super::person_pose::{
+    self, ANKLE, ELBOW, HIP, KNEE, Pose, Prop, SHOULDER, Skeleton, WRIST, along,
+};
 use super::vehicle_parts::{Frame, Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing};
 use crate::model::Mesh;
-use crate::model::geometry::{KERB_Y, MARKING_Y, WALK_SHARE, trig};
+use crate::model::geometry::{KERB_Y, MARKING_Y, WALK_SHARE, cross, dot, normalize, sub, trig};
 use crate::spec::ObjectSpec;
 
 /// Ground a person takes: the radius of its circle in metres (a tall walker's stride and
@@ -82,6 +95,17 @@ pub(super) const HAIR: [[f32; 3]; 5] = [
     [0.35, 0.34, 0.33],
 ];
 pub(super) const SHOES: [[f32; 3]; 3] = [[0.02, 0.02, 0.02], [0.6, 0.6, 0.58], [0.12, 0.06, 0.025]];
+/// Bags: black, brown leather, tan, navy, red, a white shopping bag.
+const BAGS: [[f32; 3]; 6] = [
+    [0.02, 0.02, 0.02],
+    [0.12, 0.05, 0.02],
+    [0.4, 0.25, 0.12],
+    [0.02, 0.03, 0.1],
+    [0.4, 0.03, 0.03],
+    [0.7, 0.7, 0.68],
+];
+/// A phone's dark case.
+const PHONE: [f32; 3] = [0.015, 0.015, 0.02];
 
 /// How one person looks, drawn from the spec's stream.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,8 +117,26 @@ pub struct Figure {
     /// Leg swing from the vertical, degrees: the left leg forward, the right back (a
     /// standing figure's is small).
     pub stride: f64,
-    /// Share of the arm in sleeve, from the shoulder (0.35 short, 0.9 long).
+    /// Share of the arm (to the wrist) in sleeve, from the shoulder (0.35 short, 0.9 long).
     pub sleeve: f64,
+    /// What the figure is doing.
+    pub pose: Pose,
+    /// The side of the hand holding a prop (a phone, a bag): −1 left, 1 right.
+    pub holding: f64,
+}
+
+impl Figure {
+    /// Its width and depth factor `s`: `h / 1.75` times the build.
+    fn width(&self) -> f64 {
+        self.height / 1.75 * self.build
+    }
+
+    /// Its joints in its own frame (`u` forward, `y` up from the soles, `v` to its right),
+    /// the 17 COCO keypoints among them; `Frame::at` places them in the world.
+    pub fn skeleton(&self) -> Skeleton {
+        let s = self.width();
+        person_pose::skeleton(self.pose, self.height, s, self.stride, self.holding)
+    }
 }
 
 pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
@@ -141,29 +183,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let (c, s) = trig::cos_sin_deg(rng.random::<f64>() * 360.0);
             [c, s]
         };
-        let figure = Figure {
-            height: low + rng.random::<f64>() * (high - low),
-            build: 0.88 + 0.24 * rng.random::<f64>(),
-            stride: if walking {
-                10.0 + 8.0 * rng.random::<f64>()
-            } else {
-                3.0 * rng.random::<f64>()
-            },
-            sleeve: if rng.random::<bool>() { 0.35 } else { 0.9 },
-        };
-        let mut pick = |name: &str, palette: &[[f32; 3]]| placing.palette_pick(rng, name, palette);
-        let (shirt, trousers) = (
-            pick("person_shirt", &SHIRTS),
-            pick("person_trousers", &TROUSERS),
-        );
-        let materials = Clothes {
-            shirt: shirt.1,
-            trousers: trousers.1,
-            skin: pick("person_skin", &SKIN).1,
-            hair: pick("person_hair", &HAIR).1,
-            shoes: pick("person_shoes", &SHOES).1,
-        };
-        let appearance = Some(("appearance", appearance(&figure, shirt.0, trousers.0)));
+        let figure = draw_figure(rng, walking, [low, high]);
+        let (materials, attributes) = dress(rng, placing, &figure);
         let ground = if crossing { MARKING_Y } else { KERB_Y };
         let frame = Frame {
             origin: [spot.position[0], ground, spot.position[1]],
@@ -172,9 +193,69 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         let name = placing.name("person");
         let meshes = person_meshes(&frame, &figure, materials);
         let person = crate::model::ObjectKind::Person;
-        placing.push_variant(person, name, &spec.label, meshes, appearance);
+        placing.push_attributed(person, name, &spec.label, meshes, attributes);
         misses = 0;
     }
+}
+
+/// A figure of height in `[low, high]`, walking or standing, in a pose drawn by weight.
+fn draw_figure(rng: &mut Pcg64, walking: bool, [low, high]: [f64; 2]) -> Figure {
+    let poses: &[(Pose, f64)] = if walking {
+        &Pose::WALKING
+    } else {
+        &Pose::STANDING
+    };
+    Figure {
+        height: low + rng.random::<f64>() * (high - low),
+        build: 0.88 + 0.24 * rng.random::<f64>(),
+        stride: if walking {
+            10.0 + 8.0 * rng.random::<f64>()
+        } else {
+            3.0 * rng.random::<f64>()
+        },
+        sleeve: if rng.random::<bool>() { 0.35 } else { 0.9 },
+        pose: Pose::pick(poses, rng.random::<f64>()),
+        // One in eight holds it in the left hand.
+        holding: if rng.random::<f64>() < 0.125 {
+            -1.0
+        } else {
+            1.0
+        },
+    }
+}
+
+/// The materials of `figure`'s clothes, skin, hair and prop, drawn from the palettes, and
+/// its attributes: `appearance` and `pose`.
+fn dress(
+    rng: &mut Pcg64,
+    placing: &mut Placing,
+    figure: &Figure,
+) -> (Clothes, BTreeMap<String, String>) {
+    let mut pick = |name: &str, palette: &[[f32; 3]]| placing.palette_pick(rng, name, palette);
+    let (shirt, trousers) = (
+        pick("person_shirt", &SHIRTS),
+        pick("person_trousers", &TROUSERS),
+    );
+    let materials = Clothes {
+        shirt: shirt.1,
+        trousers: trousers.1,
+        skin: pick("person_skin", &SKIN).1,
+        hair: pick("person_hair", &HAIR).1,
+        shoes: pick("person_shoes", &SHOES).1,
+        prop: match figure.pose.prop() {
+            Some(Prop::Bag) => Some(pick("person_bag", &BAGS).1),
+            Some(Prop::Phone) => Some(placing.material("person_phone", || (PHONE, None))),
+            None => None,
+        },
+    };
+    let attributes = BTreeMap::from([
+        (
+            "appearance".to_owned(),
+            appearance(figure, shirt.0, trousers.0),
+        ),
+        ("pose".to_owned(), figure.pose.name().to_owned()),
+    ]);
+    (materials, attributes)
 }
 
 /// The variant a person was drawn as (its `appearance` attribute): sleeves, and the
@@ -192,17 +273,18 @@ pub struct Clothes {
     pub skin: u32,
     pub hair: u32,
     pub shoes: u32,
+    /// The held prop's, when the pose holds one.
+    pub prop: Option<u32>,
 }
 
-/// The solids of `figure` standing at `frame`'s origin, facing its forward: one mesh per
-/// material used.
-// Long on purpose: builds one figure part by part from a dozen shared dimensions, in the
-// order its meshes are listed; split, each part would take them all as arguments.
+/// The solids of `figure` standing at `frame`'s origin, facing its forward, built on its
+/// [`Skeleton`]: one mesh per material used (trousers, shoes, shirt, skin, hair, then the
+/// prop's).
 pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
     let h = figure.height;
-    let s = h / 1.75 * figure.build;
-    let hip = 0.5 * h;
-    let shoulder = 0.82 * h;
+    let s = figure.width();
+    let bones = figure.skeleton();
+    let k = &bones.keypoints;
     let (mut shirt, mut trousers, mut skin, mut hair, mut shoes) = (
         Solid::new(m.shirt),
         Solid::new(m.trousers),
@@ -210,77 +292,45 @@ pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
         Solid::new(m.hair),
         Solid::new(m.shoes),
     );
-    // Legs: parallelograms in the (forward, up) plane from the hip to the ground, the left
-    // (−v) swung forward, the right back; the lowest 0.06 h is the shoe, its toe ahead.
-    let leg = 0.14 * s;
-    let shoe_top = 0.06 * h;
-    for (side, swing) in [(-1.0, figure.stride), (1.0, -figure.stride)] {
-        let (cos, sin) = trig::cos_sin_deg(swing);
-        let foot = hip * sin / cos;
-        let u_at = |y: f64| foot * (1.0 - y / hip);
-        let v = [side * 0.09 * s - 0.065 * s, side * 0.09 * s + 0.065 * s];
-        let top = hip + 0.03 * h;
-        let (ut, us) = (u_at(top), u_at(shoe_top));
-        trousers.prism(
+    // Legs: thigh and shin from just above the hip joint to the ankle, and a shoe from
+    // the heel to the toe ahead of the ankle, 0.065 h high.
+    let leg = [0.13 * s, 0.14 * s];
+    for i in 0..2 {
+        let (hip, knee, ankle) = (k[HIP + i], k[KNEE + i], k[ANKLE + i]);
+        let top = [hip[0], hip[1] + 0.03 * h, hip[2]];
+        limb(&mut trousers, frame, top, knee, leg);
+        limb(&mut trousers, frame, knee, ankle, leg);
+        shoes.cuboid(
             frame,
-            &[
-                [ut - leg / 2.0, top],
-                [us - leg / 2.0, shoe_top],
-                [us + leg / 2.0, shoe_top],
-                [ut + leg / 2.0, top],
-            ],
-            v,
-            &[],
-        );
-        shoes.prism(
-            frame,
-            &[
-                [us - leg / 2.0, shoe_top],
-                [foot - leg / 2.0 - 0.02 * s, 0.0],
-                [foot + leg / 2.0 + 0.05 * s, 0.0],
-                [us + leg / 2.0, shoe_top],
-            ],
-            [v[0] - 0.005 * s, v[1] + 0.005 * s],
-            &[],
+            [ankle[0] - 0.05 * s, ankle[0] + 0.12 * s],
+            [0.0, 0.065 * h],
+            [ankle[2] - 0.07 * s, ankle[2] + 0.07 * s],
         );
     }
     // Torso, hips to shoulders; the neck above it.
     shirt.cuboid(
         frame,
         [-0.11 * s, 0.11 * s],
-        [hip - 0.02 * h, shoulder],
+        [0.48 * h, 0.82 * h],
         [-0.19 * s, 0.19 * s],
     );
     skin.cuboid(
         frame,
         [-0.045 * s, 0.045 * s],
-        [shoulder - 0.01 * h, 0.88 * h],
+        [0.81 * h, 0.88 * h],
         [-0.045 * s, 0.045 * s],
     );
-    // Arms from the shoulders, swung against the legs, the sleeve's share in the shirt.
-    let arm = 0.085 * s;
-    let pivot = shoulder - 0.02 * h;
-    let length = 0.36 * h;
-    for (side, swing) in [(-1.0, -figure.stride), (1.0, figure.stride)] {
-        let (cos, sin) = trig::cos_sin_deg(swing);
-        let at = |t: f64| [length * sin * t, pivot - length * cos * t];
-        let limb = |a: [f64; 2], b: [f64; 2]| {
-            [
-                [a[0] - arm / 2.0, a[1]],
-                [b[0] - arm / 2.0, b[1]],
-                [b[0] + arm / 2.0, b[1]],
-                [a[0] + arm / 2.0, a[1]],
-            ]
-        };
-        let inner = side * (0.19 * s + 0.005 * s);
-        let v = if side < 0.0 {
-            [inner - 0.08 * s, inner]
-        } else {
-            [inner, inner + 0.08 * s]
-        };
-        let top = [0.0, pivot + 0.02 * h];
-        shirt.prism(frame, &limb(top, at(figure.sleeve)), v, &[]);
-        skin.prism(frame, &limb(at(figure.sleeve), at(1.0)), v, &[]);
+    // Arms: from the top of the shoulder through elbow and wrist to the fingertips, in
+    // sleeve for the `sleeve` share of the way to the wrist, bare below.
+    for i in 0..2 {
+        let shoulder = k[SHOULDER + i];
+        let top = [shoulder[0], shoulder[1] + 0.02 * h, shoulder[2]];
+        let chain = [top, k[ELBOW + i], k[WRIST + i], bones.hand_tips[i]];
+        let arm = [0.085 * s, 0.085 * s];
+        for (a, b, sleeved) in sleeve_split(&chain, figure.sleeve) {
+            let solid = if sleeved { &mut shirt } else { &mut skin };
+            limb(solid, frame, a, b, arm);
+        }
     }
     // Head: over the neck; hair a cap over its top and back.
     let cap = Cap {
@@ -296,7 +346,106 @@ pub fn person_meshes(frame: &Frame, figure: &Figure, m: Clothes) -> Vec<Mesh> {
         (&mut skin, &mut hair),
         cap,
     );
-    finish_all(vec![trousers, shoes, shirt, skin, hair])
+    let mut solids = vec![trousers, shoes, shirt, skin, hair];
+    if let (Some(material), Some(prop)) = (m.prop, figure.pose.prop()) {
+        solids.push(held(frame, figure, &bones, prop, material));
+    }
+    finish_all(solids)
+}
+
+/// The `prop` `figure` holds (its `bones`), in `material`.
+fn held(frame: &Frame, figure: &Figure, bones: &Skeleton, prop: Prop, material: u32) -> Solid {
+    let mut held = Solid::new(material);
+    let size = figure.height / 1.75;
+    let side = usize::from(figure.holding > 0.0);
+    let tip = bones.hand_tips[side];
+    let d = bones.prop_direction;
+    match prop {
+        // A phone in the hand, from the wrist past the fingertips.
+        Prop::Phone => {
+            let wrist = bones.keypoints[WRIST + side];
+            let end = along(wrist, d, 0.14 * size);
+            limb(&mut held, frame, wrist, end, [0.075 * size, 0.012 * size]);
+        }
+        // A bag hanging from the fingers by its handles, its side to the leg.
+        Prop::Bag => {
+            let top = along(tip, d, -0.03 * size);
+            let bottom = along(tip, d, 0.3 * size);
+            limb(&mut held, frame, top, bottom, [0.1 * size, 0.32 * size]);
+        }
+    }
+    held
+}
+
+/// The segments of an arm's `chain` (shoulder top, elbow, wrist, fingertips) with whether
+/// each is in the sleeve: the first `share` of the way to the wrist is.
+fn sleeve_split(chain: &[[f64; 3]; 4], share: f64) -> Vec<([f64; 3], [f64; 3], bool)> {
+    let length = |a: [f64; 3], b: [f64; 3]| dot(sub(b, a), sub(b, a)).sqrt();
+    let to_wrist = length(chain[0], chain[1]) + length(chain[1], chain[2]);
+    let mut left = share * to_wrist;
+    let mut parts = Vec::new();
+    for w in chain.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = length(a, b);
+        if left > 0.0 && left < len {
+            let cut = along(a, normalize(sub(b, a)).unwrap_or([0.0; 3]), left);
+            parts.push((a, cut, true));
+            parts.push((cut, b, false));
+        } else {
+            parts.push((a, b, left >= len));
+        }
+        left -= len;
+    }
+    parts
+}
+
+/// A box from `a` to `b` (local `(u, y, v)` of `frame`), `size` across: the first
+/// across the forward plane (`v`, for an upright limb), the second in it (`u`). Nothing
+/// for a limb of no length.
+fn limb(solid: &mut Solid, frame: &Frame, a: [f64; 3], b: [f64; 3], size: [f64; 2]) {
+    let Some(dir) = normalize(sub(b, a)) else {
+        return;
+    };
+    // Across: square to the limb and to forward (or up, for a limb along forward).
+    let reference = if dir[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let Some(across) = normalize(cross(dir, reference)) else {
+        return;
+    };
+    let depth = cross(across, dir);
+    let corner = |p: [f64; 3], x: f64, y: f64| {
+        let q = along(
+            along(p, across, x * size[0] / 2.0),
+            depth,
+            y * size[1] / 2.0,
+        );
+        frame.at(q[0], q[1], q[2])
+    };
+    let world = |d: [f64; 3]| frame.dir(d[0], d[1], d[2]);
+    let ring = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    for (end, sign) in [(a, -1.0), (b, 1.0)] {
+        let cap: Vec<[f64; 3]> = ring.iter().map(|&(x, y)| corner(end, x, y)).collect();
+        solid.polygon(&cap, world(dir.map(|c| c * sign)));
+    }
+    for k in 0..4 {
+        let (p, q) = (ring[k], ring[(k + 1) % 4]);
+        let mid = [(p.0 + q.0) / 2.0, (p.1 + q.1) / 2.0];
+        let out = [
+            across[0] * mid[0] + depth[0] * mid[1],
+            across[1] * mid[0] + depth[1] * mid[1],
+            across[2] * mid[0] + depth[2] * mid[1],
+        ];
+        let face = [
+            corner(a, p.0, p.1),
+            corner(a, q.0, q.1),
+            corner(b, q.0, q.1),
+            corner(b, p.0, p.1),
+        ];
+        solid.polygon(&face, world(out));
+    }
 }
 
 /// The cap over a head: hair or a helmet.
@@ -356,6 +505,8 @@ mod tests {
             build: 1.12,
             stride,
             sleeve: 0.35,
+            pose: Pose::Walking,
+            holding: 1.0,
         }
     }
 
@@ -365,7 +516,30 @@ mod tests {
         skin: 2,
         hair: 3,
         shoes: 4,
+        prop: Some(5),
     };
+
+    const POSES: [Pose; 11] = [
+        Pose::Walking,
+        Pose::WalkingPhone,
+        Pose::WalkingCall,
+        Pose::WalkingBag,
+        Pose::WalkingPockets,
+        Pose::Standing,
+        Pose::StandingPhone,
+        Pose::StandingCall,
+        Pose::StandingBag,
+        Pose::ArmsCrossed,
+        Pose::HandsInPockets,
+    ];
+
+    fn points(meshes: &[Mesh]) -> Vec<[f64; 3]> {
+        meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.map(f64::from))
+            .collect()
+    }
 
     #[test]
     fn a_figure_stands_on_the_ground_inside_its_room_and_is_as_tall_as_drawn() {
@@ -373,35 +547,170 @@ mod tests {
             origin: [10.0, 0.2, -4.0],
             forward: [0.6, 0.8],
         };
-        for (height, stride) in [(1.5, 0.0), (1.95, 18.0), (2.3, 18.0), (1.7, 3.0)] {
-            let meshes = person_meshes(&frame, &figure(height, stride), CLOTHES);
-            // One mesh per material, in a fixed order.
-            let materials: Vec<u32> = meshes.iter().map(|m| m.material).collect();
-            assert_eq!(materials, [1, 4, 0, 2, 3]);
-            let points: Vec<[f64; 3]> = meshes
-                .iter()
-                .flat_map(|m| &m.positions)
-                .map(|p| p.map(f64::from))
-                .collect();
-            let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
-            let top = points.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
-            assert!((low - 0.2).abs() < 1e-5, "{low}");
-            // The hair cap rises a little over the head's 0.13 h.
-            assert!(
-                top > 0.2 + 0.99 * height && top < 0.2 + 1.01 * height,
-                "{top}"
-            );
-            for p in &points {
-                let (dx, dz) = (p[0] - 10.0, p[2] + 4.0);
-                assert!(dx * dx + dz * dz < ROOM * ROOM, "{p:?} at {height} m");
+        let mut seen = BTreeMap::new();
+        for pose in POSES {
+            for (height, stride, sleeve) in [
+                (0.8, 3.0, 0.9),
+                (1.5, 0.0, 0.35),
+                (1.95, 18.0, 0.9),
+                (2.3, 18.0, 0.35),
+            ] {
+                let figure = Figure {
+                    pose,
+                    sleeve,
+                    holding: if height < 1.6 { -1.0 } else { 1.0 },
+                    ..figure(height, stride)
+                };
+                let meshes = person_meshes(&frame, &figure, CLOTHES);
+                // One mesh per material, in a fixed order; the prop's last, if held.
+                let materials: Vec<u32> = meshes.iter().map(|m| m.material).collect();
+                let held = pose.prop().is_some();
+                assert_eq!(materials[..5], [1, 4, 0, 2, 3]);
+                assert_eq!(materials.len(), 5 + usize::from(held), "{pose:?}");
+                let points = points(&meshes);
+                let low = points.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+                let top = points.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+                assert!((low - 0.2).abs() < 1e-5, "{pose:?} {low}");
+                // The hair cap rises a little over the head's 0.13 h; no hand or phone
+                // reaches over it.
+                assert!(
+                    top > 0.2 + 0.99 * height && top < 0.2 + 1.01 * height,
+                    "{pose:?} {top}"
+                );
+                for p in &points {
+                    let (dx, dz) = (p[0] - 10.0, p[2] + 4.0);
+                    assert!(
+                        dx * dx + dz * dz < ROOM * ROOM,
+                        "{pose:?} {p:?} at {height} m"
+                    );
+                }
+                for m in &meshes {
+                    assert_eq!(m.positions.len(), m.normals.len());
+                    assert!(m.indices.len() % 3 == 0 && !m.indices.is_empty());
+                }
+                // Twelve boxes of 12 triangles (legs, shoes, torso, neck, eight arm
+                // pieces), the head's octagon (28) and the hair cap (16); a prop is a box.
+                let triangles: usize = meshes.iter().map(|m| m.indices.len() / 3).sum();
+                assert_eq!(triangles, 236 + 12 * usize::from(held), "{pose:?}");
+                seen.insert(pose.name(), triangles);
             }
-            for m in &meshes {
-                assert_eq!(m.positions.len(), m.normals.len());
-                assert!(m.indices.len() % 3 == 0 && !m.indices.is_empty());
-            }
-            let triangles: usize = meshes.iter().map(|m| m.indices.len() / 3).sum();
-            assert_eq!(triangles, 164);
         }
+        assert_eq!(seen.len(), POSES.len());
+    }
+
+    #[test]
+    fn the_keypoints_lie_on_the_figure_left_and_right_where_they_belong() {
+        let frame = Frame {
+            origin: [3.0, 0.2, 5.0],
+            forward: [-0.8, 0.6],
+        };
+        for pose in POSES {
+            for holding in [-1.0, 1.0] {
+                let figure = Figure {
+                    pose,
+                    holding,
+                    ..figure(
+                        1.75,
+                        if pose.name().starts_with("walking") {
+                            15.0
+                        } else {
+                            2.0
+                        },
+                    )
+                };
+                let meshes = person_meshes(&frame, &figure, CLOTHES);
+                let points = points(&meshes);
+                let lo = [0, 1, 2].map(|a| points.iter().map(|p| p[a]).fold(f64::MAX, f64::min));
+                let hi = [0, 1, 2].map(|a| points.iter().map(|p| p[a]).fold(f64::MIN, f64::max));
+                let bones = figure.skeleton();
+                let k = bones.keypoints;
+                for (i, local) in k.iter().enumerate() {
+                    let p = frame.at(local[0], local[1], local[2]);
+                    for a in 0..3 {
+                        assert!(lo[a] - 1e-9 <= p[a] && p[a] <= hi[a] + 1e-9, "{pose:?} {i}");
+                    }
+                    // On a part's surface or inside it, less than half a limb deep.
+                    let near = surface_distance(&meshes, p);
+                    assert!(near < 0.05, "{pose:?} keypoint {i}: {near}");
+                }
+                // Left (−v) and right: eyes, ears, shoulders, elbows, hips, knees, ankles.
+                for left in [1, 3, SHOULDER, ELBOW, HIP, KNEE, ANKLE] {
+                    assert!(k[left][2] < 0.0 && k[left + 1][2] > 0.0, "{pose:?} {left}");
+                }
+                // Wrists too, but for crossed arms, each before the other side's chest.
+                let crossed = pose == Pose::ArmsCrossed;
+                assert_eq!(k[WRIST][2] > 0.0, crossed, "{pose:?}");
+                assert_eq!(k[WRIST + 1][2] < 0.0, crossed, "{pose:?}");
+                // The nose ahead of the ears, above the shoulders.
+                assert!(k[0][0] > k[3][0] && k[0][1] > k[SHOULDER][1], "{pose:?}");
+                let hand = usize::from(holding > 0.0);
+                let tip = bones.hand_tips[hand];
+                let apart = |a: [f64; 3], b: [f64; 3]| dot(sub(a, b), sub(a, b)).sqrt();
+                match pose {
+                    Pose::WalkingCall | Pose::StandingCall => {
+                        assert!(apart(tip, k[3 + hand]) < 0.15, "{pose:?} {tip:?}");
+                    }
+                    Pose::WalkingPhone | Pose::StandingPhone => {
+                        let wrist = k[WRIST + hand];
+                        assert!(wrist[0] > 0.15 && wrist[1] > k[ELBOW + hand][1], "{pose:?}");
+                    }
+                    Pose::WalkingPockets | Pose::HandsInPockets => {
+                        for i in 0..2 {
+                            assert!(apart(bones.hand_tips[i], k[HIP + i]) < 0.2, "{pose:?}");
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    /// The distance from `p` to the nearest triangle of `meshes`.
+    fn surface_distance(meshes: &[Mesh], p: [f64; 3]) -> f64 {
+        let mut best = f64::MAX;
+        for m in meshes {
+            for t in m.indices.chunks(3) {
+                let [a, b, c] = [0, 1, 2].map(|i| m.positions[t[i] as usize].map(f64::from));
+                let q = closest_on_triangle(p, a, b, c);
+                best = best.min(dot(sub(q, p), sub(q, p)).sqrt());
+            }
+        }
+        best
+    }
+
+    /// The point of triangle `abc` nearest `p` (Ericson, Real-Time Collision Detection 5.1.5).
+    fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+        let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+        let at = |u: f64, v: f64| along(along(a, ab, u), ac, v);
+        let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+        if d1 <= 0.0 && d2 <= 0.0 {
+            return a;
+        }
+        let bp = sub(p, b);
+        let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+        if d3 >= 0.0 && d4 <= d3 {
+            return b;
+        }
+        let vc = d1 * d4 - d3 * d2;
+        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+            return at(d1 / (d1 - d3), 0.0);
+        }
+        let cp = sub(p, c);
+        let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+        if d6 >= 0.0 && d5 <= d6 {
+            return c;
+        }
+        let vb = d5 * d2 - d1 * d6;
+        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+            return at(0.0, d2 / (d2 - d6));
+        }
+        let va = d3 * d6 - d5 * d4;
+        if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+            let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+            return along(b, sub(c, b), w);
+        }
+        let denom = 1.0 / (va + vb + vc);
+        at(vb * denom, vc * denom)
     }
 
     #[test]
@@ -424,7 +733,13 @@ mod tests {
         }
         // The hands (skin below the hips) swing the other way: the right one forward.
         let skin = &meshes[3];
-        for p in skin.positions.iter().filter(|p| f64::from(p[1]) < 0.8) {
+        let hands: Vec<_> = skin
+            .positions
+            .iter()
+            .filter(|p| f64::from(p[1]) < 0.8)
+            .collect();
+        assert!(!hands.is_empty());
+        for p in hands {
             if p[0] > 0.1 {
                 assert!(p[2] > 0.0, "{p:?}");
             }

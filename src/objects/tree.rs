@@ -1,15 +1,19 @@
 //! Tree specs + strip spots and open block paving → `tree_NNNN` objects: a hexagonal trunk
-//! and a solid low-poly crown of one of four species, seeded in size, shape and shade.
+//! and a solid low-poly crown of one of seven species, seeded in size, shape and shades.
 //!
 //! | species | crown | triangles |
 //! |---|---|---|
-//! | round | a ball and two smaller lobes | ~108 |
-//! | columnar | two tall lobes stacked | ~76 |
-//! | conifer | three stacked octagonal cones | ~60 |
-//! | spreading | three wide, flat lobes | ~108 |
+//! | round (lime) | a ball and two to four smaller lobes round it | 108–172 |
+//! | columnar (poplar) | three tall lobes stacked, a little off the trunk | 108 |
+//! | conifer (spruce) | four or five ragged tiers with drooping rims, narrowing up, and a tip | 172–204 |
+//! | spreading (plane) | a flat middle lobe and four or five wide ones round it | 172–204 |
+//! | birch | a thin white trunk under a loose top lobe and four or five small ones | 172–204 |
+//! | weeping (willow) | a dome and four or five tall lobes hanging round it (to 0.27 h when wide) | 172–204 |
+//! | pine | a tall bare rust trunk under a flat tip and three or four flat clumps | 140–172 |
 //!
-//! Lobes are subdivided octahedra (32 faces) whose corners are pushed in or out at random,
-//! so no two crowns are alike. A `plazas` share of the trees stands on the blocks' open
+//! Lobes are subdivided octahedra (32 faces) whose corners are pulled in at random, so no
+//! two crowns are alike; each tree takes two of its species' four leaf shades, one for its
+//! main lobes and one for some of the others. A `plazas` share of the trees stands on the blocks' open
 //! paving, clear of every building by its crown, taking a circle as wide as the crown
 //! ([`super::ground_spots::Footprint::Circle`]). The rest line the streets:
 //!
@@ -18,7 +22,7 @@
 //!   [`MAX_STREET_CROWN`]) reaches over the parking lane, high above cars, vans and buses,
 //!   never past the strip's far side; it takes a [`TRUNK_ROOM`] circle of ground, and its
 //!   crown keeps clear of the lamps' arms and of other crowns;
-//! - any other (conifers, small or young trees) stands mid-strip, its crown inside the
+//! - any other (conifers, columnar crowns, small or young trees) stands mid-strip, its crown inside the
 //!   strip, taking a circle as wide as the crown.
 //!
 //! So trees never overlap lamps, signs, cars, benches or each other.
@@ -51,17 +55,69 @@ pub const TRUNK_ROOM: f64 = 0.6;
 /// Room a curbside crown keeps from a lamp's pole (its arm runs over the road), metres.
 pub const LAMP_ROOM: f64 = 0.6;
 
-const BARK: [f32; 3] = [0.08, 0.055, 0.035];
-/// Three leaf shades per species (linear RGB), in [`TreeSpecies::ALL`] order.
-const LEAVES: [[[f32; 3]; 3]; 4] = [
-    [[0.05, 0.12, 0.025], [0.07, 0.15, 0.03], [0.04, 0.09, 0.02]],
-    [[0.08, 0.15, 0.03], [0.06, 0.13, 0.035], [0.1, 0.17, 0.04]],
+/// Bark per species (linear RGB), in [`TreeSpecies::ALL`] order: brown, a plane's grey,
+/// a birch's white, a pine's rust.
+const BARK: [[f32; 3]; 7] = [
+    [0.08, 0.055, 0.035],
+    [0.07, 0.05, 0.035],
+    [0.06, 0.045, 0.03],
+    [0.16, 0.14, 0.1],
+    [0.55, 0.55, 0.5],
+    [0.07, 0.055, 0.04],
+    [0.22, 0.09, 0.04],
+];
+/// Four leaf shades per species (linear RGB), in [`TreeSpecies::ALL`] order; a tree takes
+/// two of its species' shades, one for its main lobes and one for the others.
+const LEAVES: [[[f32; 3]; 4]; 7] = [
+    // Round (lime): mid greens, one yellowish.
+    [
+        [0.05, 0.12, 0.025],
+        [0.07, 0.15, 0.03],
+        [0.04, 0.09, 0.02],
+        [0.1, 0.15, 0.03],
+    ],
+    // Columnar (poplar).
+    [
+        [0.08, 0.15, 0.03],
+        [0.06, 0.13, 0.035],
+        [0.1, 0.17, 0.04],
+        [0.07, 0.11, 0.03],
+    ],
+    // Conifer (spruce): dark, one bluish.
     [
         [0.015, 0.05, 0.025],
         [0.02, 0.065, 0.03],
         [0.012, 0.04, 0.02],
+        [0.02, 0.055, 0.045],
     ],
-    [[0.1, 0.14, 0.03], [0.13, 0.15, 0.035], [0.08, 0.12, 0.03]],
+    // Spreading (plane).
+    [
+        [0.1, 0.14, 0.03],
+        [0.13, 0.15, 0.035],
+        [0.08, 0.12, 0.03],
+        [0.11, 0.16, 0.05],
+    ],
+    // Birch: light yellow-green.
+    [
+        [0.14, 0.2, 0.04],
+        [0.11, 0.18, 0.035],
+        [0.17, 0.21, 0.05],
+        [0.12, 0.16, 0.03],
+    ],
+    // Weeping (willow): silvery yellow-green.
+    [
+        [0.12, 0.17, 0.06],
+        [0.1, 0.15, 0.05],
+        [0.14, 0.18, 0.07],
+        [0.09, 0.13, 0.04],
+    ],
+    // Pine: dark, greyish.
+    [
+        [0.03, 0.06, 0.025],
+        [0.04, 0.075, 0.03],
+        [0.025, 0.05, 0.02],
+        [0.035, 0.065, 0.035],
+    ],
 ];
 
 // Long on purpose: one placement loop, whose random draws must stay in this order (each
@@ -93,15 +149,18 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         if misses >= GIVE_UP {
             break;
         }
-        // A tree that finds no room is drawn again (species, height, strip or plaza) up to
-        // REDRAWS times: the strips' room bounds `count`, not the first draw's luck.
+        // A tree that finds no room is drawn again (height, strip or plaza) up to REDRAWS
+        // times: the strips' room bounds `count`, not the first draw's luck. Its species
+        // stays: redrawn, the species that fit more easily (mid-strip conifers) would
+        // crowd out the rest.
         misses += 1;
+        let kind = species[rng.random_range(0..species.len())];
         for _ in 0..REDRAWS {
-            let kind = species[rng.random_range(0..species.len())];
             let t: f64 = rng.random();
             let [low, high] = spec.height_range();
             let height = low + t * (high - low);
-            let shade = rng.random_range(0..3usize);
+            let shade = rng.random_range(0..4usize);
+            let other = (shade + rng.random_range(1..4usize)) % 4;
             let in_plaza = rng.random::<f64>() < spec.plazas;
             let kerbside = crown_radius(kind, height)
                 .min(street_crown)
@@ -154,11 +213,14 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
                 .iter()
                 .position(|&s| s == kind)
                 .unwrap_or(0);
-            let leaves = placing.material(&format!("tree_leaves_{k}_{shade}"), || {
-                (LEAVES[k][shade], None)
-            });
-            let bark = placing.material("tree_bark", || (BARK, None));
-            let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, [bark, leaves]);
+            let mut leaves = |shade: usize| {
+                placing.material(&format!("tree_leaves_{k}_{shade}"), || {
+                    (LEAVES[k][shade], None)
+                })
+            };
+            let leaves = [leaves(shade), leaves(other)];
+            let bark = placing.material(&format!("tree_bark_{k}"), || (BARK[k], None));
+            let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, bark, leaves);
             let name = placing.name("tree");
             let species = Some(("species", kind.name().to_owned()));
             let tree = crate::model::ObjectKind::Tree;
@@ -170,20 +232,51 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
 }
 
 /// The largest crown radius a tree of `kind` and `height` may have with its crown's lowest
-/// point at least [`CLEAR_HEIGHT`] up (from the lobe layout in [`tree_meshes`]); 0 when
-/// none does (conifers reach down to a fifth of their height, columnar crowns to 0.28).
+/// point at least [`CLEAR_HEIGHT`] up ([`crown_bottom`]); 0 when none does (conifers and
+/// columnar crowns reach far down).
 fn clear_crown(kind: TreeSpecies, height: f64) -> f64 {
-    let h = height;
-    let room = h - CLEAR_HEIGHT;
-    match kind {
-        // Lowest point h − 1.85·ry with ry = min(0.95 r, 0.45 h).
-        TreeSpecies::Round if h - 1.85 * 0.45 * h < CLEAR_HEIGHT => (room / (1.85 * 0.95)).max(0.0),
-        TreeSpecies::Round => f64::INFINITY,
-        // Lowest point h − 2·ry with ry = min(0.45 r, 0.3 h).
-        TreeSpecies::Spreading if h - 2.0 * 0.3 * h < CLEAR_HEIGHT => (room / 0.9).max(0.0),
-        TreeSpecies::Spreading => f64::INFINITY,
-        TreeSpecies::Columnar | TreeSpecies::Conifer => 0.0,
+    let clear = |r: f64| crown_bottom(kind, height, r) >= CLEAR_HEIGHT;
+    let (mut low, mut high) = (0.0, crown_radius(kind, height));
+    if clear(high) {
+        return high;
     }
+    if !clear(low) {
+        return 0.0;
+    }
+    // The bottom only falls as the crown widens: halve the interval down to a millimetre.
+    while high - low > 1e-3 {
+        let mid = (low + high) / 2.0;
+        if clear(mid) {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    low
+}
+
+/// The lowest any leaf of a tree of `kind`, `height` and crown radius `r` can hang, metres
+/// above its foot (the bound the lobe layouts in [`crown`] keep, whatever they draw).
+fn crown_bottom(kind: TreeSpecies, height: f64, r: f64) -> f64 {
+    let h = height;
+    match kind {
+        TreeSpecies::Round => h - 1.85 * (0.95 * r).min(0.45 * h),
+        TreeSpecies::Spreading => h - 2.2 * (0.45 * r).min(0.3 * h),
+        TreeSpecies::Columnar => 0.25 * h,
+        // The lowest tier hangs a quarter of a tier below 0.12 h; tiers are 0.78 h / 4 at most.
+        TreeSpecies::Conifer => 0.12 * h - 0.25 * 0.78 * h / 4.0,
+        TreeSpecies::Birch => 0.35 * h,
+        TreeSpecies::Weeping => {
+            let (ry, curtain) = weeping_sizes(h, r);
+            h - 0.6 * ry - 2.0 * curtain
+        }
+        TreeSpecies::Pine => 0.58 * h,
+    }
+}
+
+/// A weeping crown's dome half-height and its hanging lobes' half-height, metres.
+fn weeping_sizes(h: f64, r: f64) -> (f64, f64) {
+    ((0.22 * h).min(0.6 * r), (0.3 * h).min(0.95 * r))
 }
 
 /// The crown radius a tree of `height` metres has, before any limit.
@@ -194,6 +287,9 @@ fn crown_radius(kind: TreeSpecies, height: f64) -> f64 {
             TreeSpecies::Columnar => 0.15,
             TreeSpecies::Conifer => 0.22,
             TreeSpecies::Spreading => 0.42,
+            TreeSpecies::Birch => 0.25,
+            TreeSpecies::Weeping => 0.32,
+            TreeSpecies::Pine => 0.26,
         }
 }
 
@@ -254,101 +350,239 @@ fn building_grid(placing: &Placing) -> FootprintGrid {
     grid
 }
 
-/// Trunk and crown of a tree standing at `foot` (x, z) on the kerb-high paving.
+/// One lobe of a crown: a jittered [`blob`].
+#[derive(Clone, Copy, Debug)]
+struct Lobe {
+    /// Centre (x, y, z) from the tree's foot, metres.
+    offset: [f64; 3],
+    /// Radii (across, up).
+    radii: [f64; 2],
+    /// Whether it takes the tree's second leaf shade.
+    second: bool,
+}
+
+/// A crown's lobes, how ragged they are and where the trunk ends.
+struct Crown {
+    lobes: Vec<Lobe>,
+    /// Each corner of a lobe is pulled in by up to this share of its radius.
+    jitter: f64,
+    /// A lobe's rim hangs this share of its height below its centre (spruce tiers).
+    droop: f64,
+    /// Trunk height above the foot, metres.
+    trunk_top: f64,
+    /// Trunk radius, metres.
+    trunk_radius: f64,
+}
+
+/// Trunk and crown of a tree standing at `foot` (x, z) on the kerb-high paving: the
+/// trunk in `bark`, the crown's lobes in the two `leaves` shades.
 fn tree_meshes(
     kind: TreeSpecies,
     height: f64,
-    crown: f64,
+    crown_r: f64,
     foot: [f64; 2],
     rng: &mut Pcg64,
-    [bark, leaves]: [u32; 2],
+    bark: u32,
+    leaves: [u32; 2],
 ) -> Vec<Mesh> {
     let mut trunk = Solid::new(bark);
-    let mut crowns = Solid::new(leaves);
+    let mut first = Solid::new(leaves[0]);
+    let mut second = Solid::new(leaves[1]);
     let base = [foot[0], KERB_Y, foot[1]];
-    let h = height;
-    let r = crown;
-    // Lobes: (centre offset (x, y, z) from the foot, radii (across, up)).
-    let mut lobes: Vec<([f64; 3], [f64; 2])> = Vec::new();
     let turn: f64 = rng.random::<f64>() * 360.0;
-    let (c, s) = trig::cos_sin_deg(turn);
-    let trunk_top = match kind {
+    let layout = crown(kind, height, crown_r, turn, rng);
+    for lobe in &layout.lobes {
+        let centre = [
+            base[0] + lobe.offset[0],
+            base[1] + lobe.offset[1],
+            base[2] + lobe.offset[2],
+        ];
+        let solid = if lobe.second { &mut second } else { &mut first };
+        let shape = [layout.jitter, layout.droop];
+        blob(solid, centre, lobe.radii, shape, rng);
+    }
+    hexagonal_trunk(
+        &mut trunk,
+        base,
+        layout.trunk_radius,
+        layout.trunk_top,
+        turn,
+    );
+    finish_all(vec![trunk, first, second])
+}
+
+/// The crown of a tree of `kind`, `h` tall with crown radius `r`, turned by `turn`
+/// degrees: every lobe inside the radius `r` about the trunk, under `h` and over
+/// [`crown_bottom`].
+fn crown(kind: TreeSpecies, h: f64, r: f64, turn: f64, rng: &mut Pcg64) -> Crown {
+    let mut lobes = Vec::new();
+    let main = |y: f64, radii: [f64; 2]| Lobe {
+        offset: [0.0, y, 0.0],
+        radii,
+        second: false,
+    };
+    let at = [turn, r];
+    let trunk = 0.08 + 0.012 * h;
+    // Per species: how ragged and drooping its lobes are, trunk height and radius.
+    let (jitter, droop, trunk_top, trunk_radius) = match kind {
         TreeSpecies::Round => {
             let ry = (0.95 * r).min(0.45 * h);
-            lobes.push(([0.0, h - ry, 0.0], [r * 0.85, ry * 0.85]));
-            lobes.push((
-                [0.35 * r * c, h - 1.2 * ry, 0.35 * r * s],
-                [r * 0.62, ry * 0.6],
-            ));
-            lobes.push((
-                [-0.35 * r * c, h - 1.1 * ry, -0.35 * r * s],
-                [r * 0.62, ry * 0.6],
-            ));
-            h - ry
-        }
-        TreeSpecies::Columnar => {
-            let ry = 0.24 * h;
-            lobes.push(([0.0, h - ry, 0.0], [r * 0.9, ry]));
-            lobes.push(([0.0, h - 2.1 * ry, 0.0], [r, ry * 0.9]));
-            h - ry
-        }
-        TreeSpecies::Conifer => {
-            for (k, (b, a, w)) in [(0.18, 0.6, 1.0), (0.4, 0.82, 0.75), (0.62, 1.0, 0.5)]
-                .into_iter()
-                .enumerate()
-            {
-                cone(
-                    &mut crowns,
-                    [base[0], base[1] + b * h, base[2]],
-                    a * h - b * h,
-                    w * r,
-                    turn + 15.0 * k as f64,
-                );
-            }
-            0.5 * h
+            lobes.push(main(h - ry, [0.85 * r, 0.85 * ry]));
+            let n = rng.random_range(2..5usize);
+            let y = [h - 1.25 * ry, h - 1.05 * ry];
+            let ring = Ring::new([0.3, 0.38], y, [0.6 * r, 0.6 * ry]);
+            ring_lobes(&mut lobes, n, ring, at, rng);
+            (0.15, 0.0, h - ry, trunk)
         }
         TreeSpecies::Spreading => {
             let ry = (0.45 * r).min(0.3 * h);
-            lobes.push(([0.0, h - ry, 0.0], [r * 0.7, ry]));
-            lobes.push((
-                [0.4 * r * c, h - 1.2 * ry, 0.4 * r * s],
-                [r * 0.6, ry * 0.8],
-            ));
-            lobes.push((
-                [-0.4 * r * c, h - 1.2 * ry, -0.4 * r * s],
-                [r * 0.6, ry * 0.8],
-            ));
-            h - ry
+            lobes.push(main(h - ry, [0.5 * r, ry]));
+            let n = rng.random_range(4..6usize);
+            let y = [h - 1.4 * ry, h - ry];
+            let ring = Ring::new([0.45, 0.55], y, [0.45 * r, 0.8 * ry]);
+            ring_lobes(&mut lobes, n, ring, at, rng);
+            (0.2, 0.0, h - ry, trunk)
+        }
+        TreeSpecies::Columnar => {
+            columnar_lobes(&mut lobes, h, r, rng);
+            (0.15, 0.0, 0.6 * h, trunk)
+        }
+        TreeSpecies::Conifer => {
+            conifer_tiers(&mut lobes, h, r, rng);
+            (0.3, 0.3, 0.6 * h, trunk)
+        }
+        TreeSpecies::Birch => {
+            lobes.push(main(0.85 * h, [0.35 * r, 0.15 * h]));
+            let n = rng.random_range(4..6usize);
+            let y = [0.5 * h, 0.8 * h];
+            let ring = Ring::new([0.2, 0.6], y, [0.38 * r, 0.15 * h]);
+            ring_lobes(&mut lobes, n, ring, at, rng);
+            (0.2, 0.0, 0.8 * h, 0.04 + 0.006 * h)
+        }
+        TreeSpecies::Weeping => {
+            // Dome and curtain sized by the crown as much as the height: a narrow willow
+            // is a small weeping crown high on its trunk, not a column.
+            let (ry, curtain) = weeping_sizes(h, r);
+            lobes.push(main(h - ry, [0.62 * r, ry]));
+            let n = rng.random_range(4..6usize);
+            let y = h - 0.6 * ry - curtain;
+            let ring = Ring::new([0.58, 0.62], [y, y], [0.38 * r, curtain]);
+            ring_lobes(&mut lobes, n, ring, at, rng);
+            (0.15, 0.0, h - ry, trunk)
+        }
+        TreeSpecies::Pine => {
+            lobes.push(main(0.9 * h, [0.35 * r, 0.1 * h]));
+            let n = rng.random_range(3..5usize);
+            let y = [0.68 * h, 0.86 * h];
+            let ring = Ring::new([0.15, 0.5], y, [0.5 * r, 0.1 * h]);
+            ring_lobes(&mut lobes, n, ring, at, rng);
+            (0.3, 0.0, 0.88 * h, trunk)
         }
     };
-    for (offset, radii) in lobes {
-        let centre = [
-            base[0] + offset[0],
-            base[1] + offset[1],
-            base[2] + offset[2],
-        ];
-        blob(&mut crowns, centre, radii, rng);
+    Crown {
+        lobes,
+        jitter,
+        droop,
+        trunk_top,
+        trunk_radius,
     }
-    let trunk_radius = 0.08 + 0.012 * h;
-    hexagonal_trunk(&mut trunk, base, trunk_radius, trunk_top, turn);
-    finish_all(vec![trunk, crowns])
+}
+
+/// Lobes in a ring about the trunk: `spread` (the least and most distance out, as shares
+/// of the crown radius), centre heights between `y[0]` and `y[1]`, and `radii`
+/// (across, up) before a seeded scale of 0.85–1.
+#[derive(Clone, Copy, Debug)]
+struct Ring {
+    spread: [f64; 2],
+    y: [f64; 2],
+    radii: [f64; 2],
+}
+
+impl Ring {
+    fn new(spread: [f64; 2], y: [f64; 2], radii: [f64; 2]) -> Ring {
+        Ring { spread, y, radii }
+    }
+}
+
+/// `n` lobes of `ring` at even angles from `turn` (give or take 20°), out by shares of the
+/// crown radius `r`; each takes the second leaf shade one time in two.
+fn ring_lobes(lobes: &mut Vec<Lobe>, n: usize, ring: Ring, [turn, r]: [f64; 2], rng: &mut Pcg64) {
+    let Ring { spread, y, radii } = ring;
+    for k in 0..n {
+        let a = turn + 360.0 * k as f64 / n as f64 + 40.0 * (rng.random::<f64>() - 0.5);
+        let (c, s) = trig::cos_sin_deg(a);
+        let d = r * (spread[0] + (spread[1] - spread[0]) * rng.random::<f64>());
+        let size = 0.85 + 0.15 * rng.random::<f64>();
+        let up = y[0] + (y[1] - y[0]) * rng.random::<f64>();
+        lobes.push(Lobe {
+            offset: [d * c, up, d * s],
+            radii: radii.map(|v| v * size),
+            second: rng.random::<bool>(),
+        });
+    }
+}
+
+/// A poplar's crown: three tall lobes stacked from 0.25 h to the top, each a little off
+/// the trunk, the lower two in either shade.
+fn columnar_lobes(lobes: &mut Vec<Lobe>, h: f64, r: f64, rng: &mut Pcg64) {
+    let ry = 0.2 * h;
+    for (y, across, up) in [(1.0, 0.8, 1.0), (2.0, 0.95, 1.0), (2.9, 0.85, 0.85)] {
+        let (c, s) = trig::cos_sin_deg(rng.random::<f64>() * 360.0);
+        let d = 0.05 * r * rng.random::<f64>();
+        lobes.push(Lobe {
+            offset: [d * c, h - y * ry, d * s],
+            radii: [across * r, up * ry],
+            second: y > 1.5 && rng.random::<bool>(),
+        });
+    }
+}
+
+/// A spruce's crown: four or five ragged tiers from 0.12 h up, each narrower than the one
+/// below and pushed a little off the trunk, and a narrow tip.
+fn conifer_tiers(lobes: &mut Vec<Lobe>, h: f64, r: f64, rng: &mut Pcg64) {
+    let tiers = rng.random_range(4..6usize);
+    let band = 0.78 * h / tiers as f64;
+    for k in 0..tiers {
+        let share = 1.0 - 0.7 * k as f64 / tiers as f64;
+        let across = 0.94 * r * share * (0.85 + 0.15 * rng.random::<f64>());
+        let (c, s) = trig::cos_sin_deg(rng.random::<f64>() * 360.0);
+        let d = 0.06 * r * rng.random::<f64>();
+        lobes.push(Lobe {
+            offset: [d * c, 0.12 * h + band * (k as f64 + 0.5), d * s],
+            radii: [across, 0.75 * band],
+            second: k % 2 == 1,
+        });
+    }
+    lobes.push(Lobe {
+        offset: [0.0, 0.9 * h, 0.0],
+        radii: [0.15 * r, 0.1 * h],
+        second: false,
+    });
 }
 
 /// A subdivided octahedron (32 faces) of radii `[across, up]` around `centre`, each corner
-/// pushed out or in by up to 15 %; every face looks away from the centre. Lobe radii are
-/// chosen so the jittered crown stays within the tree's crown radius.
-fn blob(solid: &mut Solid, centre: [f64; 3], radii: [f64; 2], rng: &mut Pcg64) {
+/// pulled in by up to `jitter` of its radius, its rim lowered by `droop` of its height
+/// (the poles stay: the lobe never reaches past its radii); every face looks away from
+/// the centre.
+fn blob(
+    solid: &mut Solid,
+    centre: [f64; 3],
+    radii: [f64; 2],
+    [jitter, droop]: [f64; 2],
+    rng: &mut Pcg64,
+) {
     let (points, faces) = geosphere();
     let scale: Vec<f64> = points
         .iter()
-        .map(|_| 0.85 + 0.15 * rng.random::<f64>())
+        .map(|_| 1.0 - jitter * rng.random::<f64>())
         .collect();
     let at = |i: usize| {
         let p = points[i];
         let k = scale[i];
+        let sag = droop * (1.0 - p[1] * p[1]);
         [
             centre[0] + p[0] * radii[0] * k,
-            centre[1] + p[1] * radii[1] * k,
+            centre[1] + (p[1] * k - sag) * radii[1],
             centre[2] + p[2] * radii[0] * k,
         ]
     };
@@ -402,22 +636,6 @@ fn geosphere() -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
     (points, faces)
 }
 
-/// An octagonal cone: base circle of `radius` at `base`, apex `height` above, and its base.
-fn cone(solid: &mut Solid, base: [f64; 3], height: f64, radius: f64, turn: f64) {
-    let ring: Vec<[f64; 3]> = (0..8)
-        .map(|k| {
-            let (c, s) = trig::cos_sin_deg(turn + 45.0 * f64::from(k));
-            [base[0] + radius * c, base[1], base[2] + radius * s]
-        })
-        .collect();
-    let apex = [base[0], base[1] + height, base[2]];
-    let inside = [base[0], base[1] + height / 3.0, base[2]];
-    for k in 0..8 {
-        solid.triangle_out([ring[k], ring[(k + 1) % 8], apex], inside);
-    }
-    solid.polygon(&ring, [0.0, -1.0, 0.0]);
-}
-
 /// A six-sided trunk from `base` up to `top` (absolute height above the paving), no caps.
 fn hexagonal_trunk(solid: &mut Solid, base: [f64; 3], radius: f64, top: f64, turn: f64) {
     let ring: Vec<[f64; 2]> = (0..6)
@@ -466,21 +684,56 @@ mod tests {
     fn trees_are_low_poly_and_stay_within_their_crown() {
         let mut rng = stream(3, "tree-test", 0);
         for kind in TreeSpecies::ALL {
-            for height in [5.0, 10.0] {
+            for height in [5.0, 10.0, 14.0] {
                 let crown = crown_radius(kind, height).min(2.25);
-                let meshes = tree_meshes(kind, height, crown, [10.0, 20.0], &mut rng, [0, 1]);
+                let bottom = crown_bottom(kind, height, crown);
+                let meshes = tree_meshes(kind, height, crown, [10.0, 20.0], &mut rng, 0, [1, 2]);
                 let triangles: usize = meshes.iter().map(|m| m.indices.len() / 3).sum();
-                assert!((50..=150).contains(&triangles), "{kind:?}: {triangles}");
-                for p in meshes.iter().flat_map(|m| &m.positions) {
-                    let p = p.map(f64::from);
-                    let (dx, dz) = (p[0] - 10.0, p[2] - 20.0);
-                    assert!((dx * dx + dz * dz).sqrt() <= crown + 1e-6, "{kind:?} {p:?}");
-                    assert!(
-                        p[1] >= KERB_Y && p[1] <= KERB_Y + height + 1e-6,
-                        "{kind:?} {p:?}"
-                    );
+                assert!((90..=204).contains(&triangles), "{kind:?}: {triangles}");
+                // The trunk first, then one or two leaf shades.
+                assert!(meshes.len() >= 2 && meshes[0].material == 0, "{kind:?}");
+                for m in &meshes {
+                    for p in &m.positions {
+                        let p = p.map(f64::from);
+                        let (dx, dz) = (p[0] - 10.0, p[2] - 20.0);
+                        assert!((dx * dx + dz * dz).sqrt() <= crown + 1e-6, "{kind:?} {p:?}");
+                        assert!(p[1] <= KERB_Y + height + 1e-6, "{kind:?} {p:?}");
+                        let floor = if m.material == 0 { 0.0 } else { bottom };
+                        assert!(p[1] >= KERB_Y + floor - 1e-6, "{kind:?} {p:?}");
+                    }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_crown_kept_clear_of_buses_hangs_high_enough() {
+        let mut wide = 0;
+        for kind in TreeSpecies::ALL {
+            for height in [6.0, 8.0, 11.0, 14.0, 20.0] {
+                let r = clear_crown(kind, height);
+                assert!(r <= crown_radius(kind, height), "{kind:?} {height}");
+                if r > 0.0 {
+                    assert!(crown_bottom(kind, height, r) >= CLEAR_HEIGHT, "{kind:?}");
+                    wide += 1;
+                } else {
+                    // None would: even a crown of no width hangs too low.
+                    assert!(crown_bottom(kind, height, 1e-3) < CLEAR_HEIGHT, "{kind:?}");
+                }
+            }
+        }
+        // Most species can reach over the road when tall enough.
+        assert!(wide >= 15, "{wide}");
+    }
+
+    #[test]
+    fn crowns_of_one_species_differ_from_tree_to_tree() {
+        let mut rng = stream(3, "tree-test", 1);
+        for kind in TreeSpecies::ALL {
+            let shapes: Vec<Vec<Mesh>> = (0..3)
+                .map(|_| tree_meshes(kind, 10.0, 2.5, [0.0, 0.0], &mut rng, 0, [1, 2]))
+                .collect();
+            assert!(shapes[0] != shapes[1] && shapes[1] != shapes[2], "{kind:?}");
         }
     }
 }

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 /// editors flag such a key too.
 ///
 /// `count` objects are attempted; one that does not fit is drawn again a few times (other
-/// words and size, another body, another species); when the city still has no room for
+/// words and size, another body, a tree's size); when the city still has no room for
 /// them all (walls, curbs or strips nearly full), fewer are placed and the build reports
 /// the shortfall.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -284,23 +284,32 @@ impl CarBody {
 )]
 #[serde(rename_all = "snake_case")]
 pub enum TreeSpecies {
-    // A round broadleaf crown (lime, maple).
+    // A round broadleaf crown of a ball and a few lobes (lime, maple).
     Round,
     // A tall narrow crown (poplar, hornbeam).
     Columnar,
-    // Stacked cones (spruce, fir).
+    // Stacked, ragged tiers of foliage, widest at the bottom (spruce, fir).
     Conifer,
-    // A wide, flat crown of a few lobes (plane, acacia).
+    // A wide, irregular crown of several blobs (plane, acacia).
     Spreading,
+    // A thin white trunk under a loose crown of small blobs.
+    Birch,
+    // A dome with a curtain of foliage hanging round it (willow).
+    Weeping,
+    // A tall bare trunk under a few flat clumps (Scots pine, stone pine).
+    Pine,
 }
 
 impl TreeSpecies {
     /// Every species, in declaration order.
-    pub const ALL: [TreeSpecies; 4] = [
+    pub const ALL: [TreeSpecies; 7] = [
         TreeSpecies::Round,
         TreeSpecies::Columnar,
         TreeSpecies::Conifer,
         TreeSpecies::Spreading,
+        TreeSpecies::Birch,
+        TreeSpecies::Weeping,
+        TreeSpecies::Pine,
     ];
 
     /// The snake_case name the spec uses (the `species` attribute of a tree).
@@ -310,6 +319,9 @@ impl TreeSpecies {
             TreeSpecies::Columnar => "columnar",
             TreeSpecies::Conifer => "conifer",
             TreeSpecies::Spreading => "spreading",
+            TreeSpecies::Birch => "birch",
+            TreeSpecies::Weeping => "weeping",
+            TreeSpecies::Pine => "pine",
         }
     }
 }

@@ -10,7 +10,7 @@
 //! regions are counted apart, and of them the faint ones (`cityspec_ignored: contrast`).
 //!
 //! Diversity: per variant attribute of `instances.json` (`facade` of buildings, `species`
-//! of trees, `body` of cars, `appearance` of people), over the instances the path's `ids/`
+//! of trees, `body` of cars, `appearance` and `pose` of people), over the instances the path's `ids/`
 //! images show at all: how many distinct variants, and the most used one with its share.
 //! Visibility: the path's positives (`iscrowd` 0) and its ignore regions by
 //! `cityspec_ignored` reason (`pixels`, `fraction`, `contrast`).

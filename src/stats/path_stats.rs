@@ -29,7 +29,7 @@ pub struct PathStats {
     pub box_height: Option<[f64; 3]>,
     /// Per COCO category, in the file's order.
     pub classes: Vec<ClassStats>,
-    /// Per variant attribute (`facade`, `species`, `body`, `appearance`), over the
+    /// Per variant attribute (`facade`, `species`, `body`, `appearance`, `pose`), over the
     /// instances seen in the path (at least one pixel in its `ids/` images).
     pub diversity: Vec<Diversity>,
     /// Labelled objects and ignore regions by reason, all categories.
@@ -37,7 +37,7 @@ pub struct PathStats {
 }
 
 /// The attributes that name the variant an object was drawn as.
-pub const VARIANT_ATTRIBUTES: [&str; 4] = ["facade", "species", "body", "appearance"];
+pub const VARIANT_ATTRIBUTES: [&str; 5] = ["facade", "species", "body", "appearance", "pose"];
 
 /// How varied one attribute is over the instances a path shows.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use super::Stats;
 /// The stats as text: per path, the pixel share of each kind, then per class the labelled
 /// objects per frame (median), totals, ignore regions (and of those the faint ones, hidden
 /// by darkness, fog or rain) and box-height quartiles; then the diversity of the variants
-/// seen (facade, tree species, car body, person appearance) and the positives and ignore
+/// seen (facade, tree species, car body, person appearance and pose) and the positives and ignore
 /// regions by reason.
 pub fn table(stats: &Stats) -> String {
     let mut out = String::new();

@@ -172,3 +172,28 @@ fn trees_cars_and_people_name_the_variant_they_were_drawn_as() {
     // Drawn at random: twelve of each show more than one variant.
     assert!(seen.values().all(|v| v.len() > 1), "{seen:?}");
 }
+
+#[test]
+fn the_default_tree_mix_spreads_over_every_species() {
+    let city = city();
+    let trees = ObjectSpec {
+        plazas: 0.0,
+        ..spec(ObjectKind::Tree, "tree", 140)
+    };
+    let inserted = run(&city, &[trees]).unwrap();
+    let mut counts: BTreeMap<String, usize> = BTreeMap::new();
+    for info in &inserted.info {
+        *counts
+            .entry(info.attributes["species"].clone())
+            .or_default() += 1;
+    }
+    let placed: usize = counts.values().sum();
+    assert!(placed >= 100, "{counts:?}");
+    // All seven, none taking over.
+    assert_eq!(
+        counts.len(),
+        crate::spec::TreeSpecies::ALL.len(),
+        "{counts:?}"
+    );
+    assert!(counts.values().all(|&n| n * 4 <= placed), "{counts:?}");
+}
