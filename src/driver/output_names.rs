@@ -245,7 +245,7 @@ fn is_numbered_frame_file(rest: &str) -> bool {
         |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
     let png = rest.strip_suffix(".png");
     let txt = rest.strip_suffix(".txt");
-    ["rgb/", "ids/", "depth/"]
+    ["rgb/", "ids/", "depth/", "normals/"]
         .iter()
         .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
         || numbered(
@@ -324,6 +324,18 @@ mod tests {
                 Some("street"),
                 "frames/street/depth/000003.npy",
                 true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/normals/000003.png",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/normals/000003.npy",
+                false,
             ),
             (Frames, Some("street"), "frames/street/coco.json", true),
             (Frames, Some("street"), "frames/aerial/coco.json", false),

@@ -4,8 +4,8 @@
 //! A sample is one frame, keyed `<camera>_<NNNNNN>` (the ultralytics folder's stem,
 //! [`crate::dataset::stem`]), so the shards of every camera of a build can be read
 //! together; a camera name holds no `.` (the spec's schema), where WebDataset splits key
-//! from member. Its members, in name order, are the same in every sample of every camera,
-//! so every loader sees the same columns:
+//! from member. Its members, in name order, are the same in every sample of every camera
+//! (but for the normals, a camera's own choice), so every loader sees the same columns:
 //!
 //! | member | what |
 //! |---|---|
@@ -15,6 +15,7 @@
 //! | `<key>.json` | its COCO image entry and annotations (the ids of the path's `coco.json`), sun and drawn conditions |
 //! | `<key>.png` | the RGB image |
 //! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
+//! | `<key>.normals.png` | the surface normals (16-bit RGB, as `normals/`), in the samples of a camera with `normals = true` only |
 //! | `<key>.labelids.png`, `.instanceids.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
 //!
 //! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
@@ -45,6 +46,8 @@ pub enum Member {
     Depth,
     Yolo,
     Icdar,
+    /// With the camera's `normals = true`: the surface normals' PNG.
+    Normals,
     /// With `[annotations] cityscapes = true`: a frame's Cityscapes image, by its index in
     /// [`super::frames::SEMANTIC_SUFFIXES`].
     Semantic(usize),
@@ -68,6 +71,7 @@ impl Member {
             Member::Depth => "depth.npy",
             Member::Yolo => "yolo.txt",
             Member::Icdar => "icdar.txt",
+            Member::Normals => "normals.png",
             Member::Semantic(k) => SEMANTIC_EXTENSIONS[k.min(SEMANTIC_EXTENSIONS.len() - 1)],
         }
     }
@@ -82,6 +86,7 @@ pub fn frame_file(rest: &str) -> Option<(usize, Member)> {
         "rgb" => (Member::Rgb, stem),
         "ids" => (Member::Ids, stem),
         "depth" => (Member::Depth, stem),
+        "normals" => (Member::Normals, stem),
         "yolo" => (Member::Yolo, stem),
         "icdar" => (Member::Icdar, stem.strip_prefix("gt_")?),
         "semantic" => {
@@ -196,6 +201,11 @@ mod tests {
                 "depth/000007.npy",
                 Some((7, Member::Depth)),
                 "street_000007.depth.npy",
+            ),
+            (
+                "normals/000007.png",
+                Some((7, Member::Normals)),
+                "street_000007.normals.png",
             ),
             (
                 "icdar/gt_000007.txt",
