@@ -179,7 +179,7 @@ impl<'a> PathFrames<'a> {
         }
     }
 
-    /// Frame `i`'s YOLO and ICDAR files, when the path writes them.
+    /// Frame `i`'s YOLO, ICDAR and KITTI files, when the path writes them.
     fn label_files(&self, i: usize, summary: &annotate::FrameAnnotations) -> Vec<(String, String)> {
         let dir = &self.dir;
         let mut files = Vec::new();
@@ -194,6 +194,11 @@ impl<'a> PathFrames<'a> {
                 format!("{dir}/icdar/gt_{i:06}.txt"),
                 annotate::icdar(summary),
             ));
+        }
+        if self.input.camera.kitti {
+            let kitti = annotate::kitti(summary, self.input.categories);
+            files.push((format!("{dir}/label_2/{i:06}.txt"), kitti.label));
+            files.push((format!("{dir}/calib/{i:06}.txt"), kitti.calib));
         }
         files
     }

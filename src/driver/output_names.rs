@@ -253,6 +253,8 @@ fn is_numbered_frame_file(rest: &str) -> bool {
                 .and_then(|s| s.strip_prefix("depth/")),
         )
         || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
+        || numbered(txt.and_then(|s| s.strip_prefix("label_2/")))
+        || numbered(txt.and_then(|s| s.strip_prefix("calib/")))
         || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
         || png
             .and_then(|s| s.strip_prefix("semantic/"))
@@ -337,6 +339,19 @@ mod tests {
                 "frames/street/normals/000003.npy",
                 false,
             ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/label_2/000003.txt",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/calib/000003.txt",
+                true,
+            ),
+            (Frames, Some("street"), "frames/street/calib/x.txt", false),
             (Frames, Some("street"), "frames/street/coco.json", true),
             (Frames, Some("street"), "frames/aerial/coco.json", false),
             (Frames, Some("street"), "frames/street/rgb/3.png", false),

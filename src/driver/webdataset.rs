@@ -5,7 +5,7 @@
 //! [`crate::dataset::stem`]), so the shards of every camera of a build can be read
 //! together; a camera name holds no `.` (the spec's schema), where WebDataset splits key
 //! from member. Its members, in name order, are the same in every sample of every camera
-//! (but for the normals, a camera's own choice), so every loader sees the same columns:
+//! (but for the normals and KITTI files, a camera's own choice), so every loader sees the same columns:
 //!
 //! | member | what |
 //! |---|---|
@@ -16,6 +16,7 @@
 //! | `<key>.png` | the RGB image |
 //! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
 //! | `<key>.normals.png` | the surface normals (16-bit RGB, as `normals/`), in the samples of a camera with `normals = true` only |
+//! | `<key>.label_2.txt`, `<key>.calib.txt` | the KITTI object files, in the samples of a camera with `kitti = true` only |
 //! | `<key>.labelids.png`, `.instanceids.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
 //!
 //! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
@@ -48,6 +49,10 @@ pub enum Member {
     Icdar,
     /// With the camera's `normals = true`: the surface normals' PNG.
     Normals,
+    /// With the camera's `kitti = true`: the KITTI `label_2` lines.
+    KittiLabel,
+    /// With the camera's `kitti = true`: the KITTI `calib` file.
+    KittiCalib,
     /// With `[annotations] cityscapes = true`: a frame's Cityscapes image, by its index in
     /// [`super::frames::SEMANTIC_SUFFIXES`].
     Semantic(usize),
@@ -72,6 +77,8 @@ impl Member {
             Member::Yolo => "yolo.txt",
             Member::Icdar => "icdar.txt",
             Member::Normals => "normals.png",
+            Member::KittiLabel => "label_2.txt",
+            Member::KittiCalib => "calib.txt",
             Member::Semantic(k) => SEMANTIC_EXTENSIONS[k.min(SEMANTIC_EXTENSIONS.len() - 1)],
         }
     }
@@ -87,6 +94,8 @@ pub fn frame_file(rest: &str) -> Option<(usize, Member)> {
         "ids" => (Member::Ids, stem),
         "depth" => (Member::Depth, stem),
         "normals" => (Member::Normals, stem),
+        "label_2" => (Member::KittiLabel, stem),
+        "calib" => (Member::KittiCalib, stem),
         "yolo" => (Member::Yolo, stem),
         "icdar" => (Member::Icdar, stem.strip_prefix("gt_")?),
         "semantic" => {
@@ -206,6 +215,16 @@ mod tests {
                 "normals/000007.png",
                 Some((7, Member::Normals)),
                 "street_000007.normals.png",
+            ),
+            (
+                "label_2/000007.txt",
+                Some((7, Member::KittiLabel)),
+                "street_000007.label_2.txt",
+            ),
+            (
+                "calib/000007.txt",
+                Some((7, Member::KittiCalib)),
+                "street_000007.calib.txt",
             ),
             (
                 "icdar/gt_000007.txt",

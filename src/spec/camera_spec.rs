@@ -119,6 +119,11 @@ pub struct CameraSpec {
     /// sky. Off, nothing is worked out and it stays out of the stage keys.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub normals: bool,
+    /// Also write 3D boxes of the annotated objects in the KITTI object format,
+    /// `label_2/NNNNNN.txt` and `calib/NNNNNN.txt`, and each box as COCO
+    /// `attributes.box3d`. Off, no box is worked out and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub kitti: bool,
     /// Classes this path annotates, instead of `[annotations] classes` (for example
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]
