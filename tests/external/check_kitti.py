@@ -4,8 +4,9 @@
 usage: check_kitti.py <frames/<camera> folder>
 
 Reads `label_2/NNNNNN.txt` and `calib/NNNNNN.txt` as the KITTI object devkit's readme
-describes them (no third-party reader: the PyPI KITTI packages read the raw and odometry
-sets, not the object format), with numpy only, and checks for every frame:
+describes them, with numpy only (no third-party reader: pykitti reads the raw and
+odometry sets, not object labels, and the readers that do, lingvo's kitti_data or d3d,
+come with TensorFlow or a 3D framework), and checks for every frame:
 
 1. the calib file has P0-P3 and Tr_velo_to_cam, Tr_imu_to_velo (12 numbers each) and
    R0_rect (9), R0_rect a rotation, and P2 = K @ [R0_rect.T | 0] with K the COCO image's
