@@ -22,8 +22,8 @@
 //! | export | [`export`] | scene | `city.obj`, `city.mtl`, `textures/`, `city.glb` |
 //! | cameras | [`cameras`] | parsed layout, path settings, seed | [`cameras::CameraPose`]s drawn from the layout alone |
 //! | views | [`views`] | a camera path, the scene, the layout | one [`cameras::CameraPose`] per frame, each a view worth rendering |
-//! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR |
-//! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth |
+//! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR, KITTI |
+//! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth (normals) |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
 //! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |

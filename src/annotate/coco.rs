@@ -5,6 +5,7 @@ use std::io::{self, Write};
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
+use super::box3d::{Box3d, LevelCamera};
 use super::coco_words::{WORD_CATEGORY, plate_window, word_annotation};
 use super::frame_annotations::{FrameAnnotations, summarize};
 use super::frame_input::{FrameInput, Thresholds};
@@ -134,8 +135,13 @@ impl CocoLines {
                 if let Some(kind) = object.subclass {
                     attributes.insert("sign_type".into(), kind.to_string());
                 }
-                if !attributes.is_empty() {
-                    map.insert("attributes".into(), json!(attributes));
+                let box3d = object.label.box3d.as_ref();
+                if !attributes.is_empty() || box3d.is_some() {
+                    let mut attributes = json!(attributes);
+                    if let Some(b) = box3d {
+                        attributes["box3d"] = box3d_json(frame, b);
+                    }
+                    map.insert("attributes".into(), attributes);
                 }
             }
             annotations.push(annotation.to_string());
@@ -274,6 +280,24 @@ fn item<W: Write>(out: &mut W, first: &mut bool, text: &str) -> io::Result<()> {
     out.write_all(text.as_bytes())
 }
 
+/// A 3D box as COCO `attributes.box3d`: in world metres (`center_world`, `yaw_world`,
+/// radians about +y) and in the frame's KITTI camera (`center_cam`, the volume's centre,
+/// and `rotation_y`; see [`super::kitti`]), with `size` `[length, width, height]`.
+fn box3d_json(frame: &FrameAnnotations, b: &Box3d) -> Value {
+    let r = |v: f64| round(v, 1e4);
+    let mut out = json!({
+        "center_world": b.centre.map(r),
+        "size": b.size.map(r),
+        "yaw_world": r(b.yaw),
+    });
+    if let Some(camera) = LevelCamera::of(&frame.pose) {
+        let (_, rotation_y) = camera.kitti_pose(b);
+        out["center_cam"] = json!(camera.point(b.centre).map(r));
+        out["rotation_y"] = json!(r(rotation_y));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use std::collections::BTreeMap;
@@ -296,6 +320,7 @@ mod tests {
     fn labels() -> Vec<ObjectLabel> {
         let label = |name: &str, category, text: Option<&str>| ObjectLabel {
             name: name.into(),
+            box3d: None,
             category,
             text: text.map(String::from),
             attributes: Default::default(),
@@ -450,6 +475,7 @@ mod tests {
         let img = test_image(&[&[1, 1], &[1, 1]]);
         let sign = |back_category| ObjectLabel {
             name: "sign_0".into(),
+            box3d: None,
             category: Some(2),
             text: None,
             attributes: Default::default(),

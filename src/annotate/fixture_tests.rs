@@ -40,6 +40,7 @@ fn labels() -> Vec<ObjectLabel> {
             };
             ObjectLabel {
                 name: format!("object_{id:04}"),
+                box3d: None,
                 category,
                 text,
                 attributes: Default::default(),

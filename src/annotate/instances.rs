@@ -54,6 +54,7 @@ mod tests {
             class: class.to_owned(),
             label: ObjectLabel {
                 name: name.to_owned(),
+                box3d: None,
                 category: None,
                 text: None,
                 attributes: BTreeMap::new(),

@@ -20,6 +20,7 @@
 //! | YOLO `class cx cy w h` | [`yolo`] | frame |
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
 //! | `instances.json`: instance id → kind, class, category, words, attributes | [`instances`] | camera path |
+//! | KITTI object `label_2` lines and `calib` (3D boxes: [`Box3d`]) | [`kitti`] | frame |
 //! | Cityscapes `labelIds`, `instanceIds`, `color` and COCO panoptic images and segments | [`semantic`] (labels: [`SemanticClasses`]) | frame |
 //!
 //! Output is deterministic: objects in instance-id order, JSON keys in a fixed order, and
@@ -28,6 +29,7 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 10;
 
+mod box3d;
 mod cityscapes;
 mod coco;
 mod coco_words;
@@ -39,6 +41,7 @@ mod frame_annotations;
 mod frame_input;
 mod icdar;
 mod instances;
+mod kitti;
 mod object_label;
 mod path_labels;
 mod project_quad;
@@ -49,6 +52,7 @@ mod visible_object;
 mod word_quad;
 mod yolo;
 
+pub use box3d::{Box3d, LevelCamera};
 pub use cityscapes::{CityscapesLabel, SemanticClasses, TooManyClasses};
 pub use coco::{CocoLines, CocoWriter, coco, write_coco};
 pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
@@ -57,6 +61,7 @@ pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
 pub use instances::instances;
+pub use kitti::{KittiFiles, kitti};
 pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;
@@ -95,6 +100,7 @@ pub(crate) fn word_fixture() -> (
     ]);
     let label = |text: Option<&str>| ObjectLabel {
         name: text.unwrap_or("building").into(),
+        box3d: None,
         category: text.map(|_| 1),
         text: text.map(String::from),
         attributes: Default::default(),

@@ -4,6 +4,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::box3d::Box3d;
+
 /// A COCO category.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Category {
@@ -25,6 +27,10 @@ pub struct ObjectLabel {
     /// `text_style`, `text_font`); none written when empty.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub attributes: BTreeMap<String, String>,
+    /// Its upright oriented 3D box, when the path writes 3D boxes (KITTI files and COCO
+    /// `attributes.box3d`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub box3d: Option<Box3d>,
     /// A sign: which way its face looks, so it is labelled by the side a frame shows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sign: Option<SignLabel>,

@@ -201,6 +201,7 @@ mod tests {
             class: class.into(),
             label: ObjectLabel {
                 name: format!("{class}_0000"),
+                box3d: None,
                 category: None,
                 text: text.map(String::from),
                 attributes: Default::default(),
@@ -233,6 +234,7 @@ mod tests {
             class: "traffic_sign".to_owned(),
             label: ObjectLabel {
                 name: format!("sign_{kind}"),
+                box3d: None,
                 category: None,
                 text: None,
                 attributes: BTreeMap::new(),

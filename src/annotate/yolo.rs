@@ -113,6 +113,7 @@ mod tests {
         ];
         let label = |name: &str, category| ObjectLabel {
             name: name.into(),
+            box3d: None,
             category,
             text: None,
             attributes: Default::default(),

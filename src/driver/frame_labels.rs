@@ -1,5 +1,6 @@
 //! The scene's objects, with what the objects stage knows of them (words, text
-//! attributes, sign faces) → the annotate stage's [`annotate::ClassedObject`]s.
+//! attributes, sign faces) → the annotate stage's [`annotate::ClassedObject`]s; with the
+//! camera's `kitti`, each annotated object's 3D box from its meshes ([`annotate::Box3d`]).
 //!
 //! Glue only: which classes a path annotates, and how, is the annotate stage's
 //! ([`annotate::path_labels`]).
@@ -28,6 +29,7 @@ pub fn labels(
                 class: object.class.clone(),
                 label: ObjectLabel {
                     name: object.name.clone(),
+                    box3d: None,
                     category: None,
                     text: info.and_then(|info| info.text.clone()),
                     attributes: info.map(|info| info.attributes.clone()).unwrap_or_default(),
@@ -41,10 +43,20 @@ pub fn labels(
             }
         })
         .collect();
-    annotate::path_labels(
+    let mut labels = annotate::path_labels(
         &path.annotations,
         &path.export.objects,
         &path.camera,
         objects,
-    )
+    );
+    if path.camera.kitti {
+        // Only the objects the path may annotate: the rest are never written.
+        for (label, object) in labels.labels.iter_mut().zip(&scene.objects) {
+            if label.category.is_some() {
+                let points = object.meshes.iter().flat_map(|m| &m.positions);
+                label.box3d = annotate::Box3d::around(points.map(|p| p.map(f64::from)));
+            }
+        }
+    }
+    labels
 }

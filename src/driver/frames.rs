@@ -1,5 +1,5 @@
 //! One camera path's dataset: scene + poses + lighting → frames (RGB, RGB-packed instance
-//! ids, depth in the camera's format), COCO, optional YOLO (with `yolo/classes.txt`), ICDAR
+//! ids, depth in the camera's format, optional surface normals), COCO, optional YOLO (with `yolo/classes.txt`), ICDAR
 //! for text, poses, and a `preview.png` contact sheet.
 //!
 //! Glue between the cameras, render and annotate stages. Frames are rendered one at a time
@@ -179,7 +179,7 @@ impl<'a> PathFrames<'a> {
         }
     }
 
-    /// Frame `i`'s YOLO and ICDAR files, when the path writes them.
+    /// Frame `i`'s YOLO, ICDAR and KITTI files, when the path writes them.
     fn label_files(&self, i: usize, summary: &annotate::FrameAnnotations) -> Vec<(String, String)> {
         let dir = &self.dir;
         let mut files = Vec::new();
@@ -194,6 +194,11 @@ impl<'a> PathFrames<'a> {
                 format!("{dir}/icdar/gt_{i:06}.txt"),
                 annotate::icdar(summary),
             ));
+        }
+        if self.input.camera.kitti {
+            let kitti = annotate::kitti(summary, self.input.categories);
+            files.push((format!("{dir}/label_2/{i:06}.txt"), kitti.label));
+            files.push((format!("{dir}/calib/{i:06}.txt"), kitti.calib));
         }
         files
     }
@@ -248,13 +253,14 @@ impl<'a> PathFrames<'a> {
         let headlit = !headlights.is_empty();
         let (adjusted, shade) = weathered(lighting, &conditions, pose, headlights);
         let lighting = adjusted.as_ref().unwrap_or(lighting);
-        let (frame, footprints) = render::render_measuring(
+        let (frame, footprints) = render::render_with(
             input.scene,
             pose,
             intrinsics,
             lighting,
             camera.supersample,
             &self.measured,
+            camera.normals,
         );
         // The sensor stage replaces the RGB image only: ids and depth stay as rendered; the
         // labels read the final image only to drop what it does not show.
@@ -275,6 +281,9 @@ impl<'a> PathFrames<'a> {
         emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
         emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
         emit(format!("{dir}/{depth_name}"), pngs.depth)?;
+        if let Some(normals) = pngs.normals {
+            emit(format!("{dir}/normals/{i:06}.png"), normals)?;
+        }
         let (semantic, panoptic) = semantic.unzip();
         for (suffix, png) in semantic.into_iter().flatten() {
             emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
@@ -387,8 +396,9 @@ pub(super) fn camera_intrinsics(camera: &CameraSpec) -> Intrinsics {
     Intrinsics::from_fov(width, height, tan_half_degrees(camera.fov))
 }
 
-/// `poses.json`: the intrinsics, the depth format and every frame's pose and drawn
-/// conditions, the sun among them (`conditions` in frame order).
+/// `poses.json`: the intrinsics, the depth format (and with normals, their encoding) and
+/// every frame's pose and drawn conditions, the sun among them (`conditions` in frame
+/// order).
 pub fn poses_json(
     camera: &CameraSpec,
     poses: &[CameraPose],
@@ -397,7 +407,7 @@ pub fn poses_json(
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
     let intrinsics = camera_intrinsics(camera);
     let depth_format = camera.depth;
-    let poses_json = json!({
+    let mut poses_json = json!({
         "intrinsics": {"width": width, "height": height, "fx": intrinsics.fx, "fy": intrinsics.fy,
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
@@ -407,6 +417,12 @@ pub fn poses_json(
             "up": p.up, "angles": p.angles, "conditions": c
         })).collect::<Vec<_>>(),
     });
+    if camera.normals {
+        poses_json["normals"] = json!({
+            "folder": "normals", "extension": "png", "axes": "x right, y down, z forward",
+            "decode": "n = value / 65535 * 2 - 1", "sky": [0, 0, 0]
+        });
+    }
     codec::to_pretty_json(&poses_json)
 }
 

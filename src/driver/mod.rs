@@ -18,6 +18,8 @@ mod frame_labels;
 mod frames;
 mod input_problem;
 mod inputs;
+#[cfg(test)]
+mod kitti_tests;
 mod model_files;
 mod output_names;
 mod pack;

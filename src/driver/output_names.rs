@@ -245,7 +245,7 @@ fn is_numbered_frame_file(rest: &str) -> bool {
         |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
     let png = rest.strip_suffix(".png");
     let txt = rest.strip_suffix(".txt");
-    ["rgb/", "ids/", "depth/"]
+    ["rgb/", "ids/", "depth/", "normals/"]
         .iter()
         .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
         || numbered(
@@ -253,6 +253,8 @@ fn is_numbered_frame_file(rest: &str) -> bool {
                 .and_then(|s| s.strip_prefix("depth/")),
         )
         || numbered(txt.and_then(|s| s.strip_prefix("yolo/")))
+        || numbered(txt.and_then(|s| s.strip_prefix("label_2/")))
+        || numbered(txt.and_then(|s| s.strip_prefix("calib/")))
         || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
         || png
             .and_then(|s| s.strip_prefix("semantic/"))
@@ -325,6 +327,31 @@ mod tests {
                 "frames/street/depth/000003.npy",
                 true,
             ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/normals/000003.png",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/normals/000003.npy",
+                false,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/label_2/000003.txt",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/calib/000003.txt",
+                true,
+            ),
+            (Frames, Some("street"), "frames/street/calib/x.txt", false),
             (Frames, Some("street"), "frames/street/coco.json", true),
             (Frames, Some("street"), "frames/aerial/coco.json", false),
             (Frames, Some("street"), "frames/street/rgb/3.png", false),

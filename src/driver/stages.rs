@@ -804,4 +804,24 @@ mod tests {
             assert_eq!(base.of_stage(stage, None), after.of_stage(stage, None));
         }
     }
+
+    /// A camera's extra outputs are in its frames' key when on, and off leave the key as
+    /// it was before they existed (no field in it).
+    #[test]
+    fn extra_frame_outputs_key_only_when_on() {
+        let spec = test_spec();
+        let files = SpecInputs::generated();
+        let inputs = Inputs::of(&spec, &LayoutSource::Generate);
+        let part = inputs.key_part(Frames, 0).to_string();
+        assert!(!part.contains("normals"), "{part}");
+        let base = Keys::of(&inputs, &files);
+        let mut changed = spec.clone();
+        changed.cameras[0].normals = true;
+        let after = Keys::of(&Inputs::of(&changed, &LayoutSource::Generate), &files);
+        assert_ne!(
+            base.of_stage(Frames, Some(0)),
+            after.of_stage(Frames, Some(0))
+        );
+        assert_eq!(base.of_stage(Export, None), after.of_stage(Export, None));
+    }
 }

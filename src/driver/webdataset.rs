@@ -4,8 +4,8 @@
 //! A sample is one frame, keyed `<camera>_<NNNNNN>` (the ultralytics folder's stem,
 //! [`crate::dataset::stem`]), so the shards of every camera of a build can be read
 //! together; a camera name holds no `.` (the spec's schema), where WebDataset splits key
-//! from member. Its members, in name order, are the same in every sample of every camera,
-//! so every loader sees the same columns:
+//! from member. Its members, in name order, are the same in every sample of every camera
+//! (but for the normals and KITTI files, a camera's own choice), so every loader sees the same columns:
 //!
 //! | member | what |
 //! |---|---|
@@ -15,6 +15,8 @@
 //! | `<key>.json` | its COCO image entry and annotations (the ids of the path's `coco.json`), sun and drawn conditions |
 //! | `<key>.png` | the RGB image |
 //! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
+//! | `<key>.normals.png` | the surface normals (16-bit RGB, as `normals/`), in the samples of a camera with `normals = true` only |
+//! | `<key>.label_2.txt`, `<key>.calib.txt` | the KITTI object files, in the samples of a camera with `kitti = true` only |
 //! | `<key>.labelids.png`, `.instanceids.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
 //!
 //! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
@@ -45,6 +47,12 @@ pub enum Member {
     Depth,
     Yolo,
     Icdar,
+    /// With the camera's `normals = true`: the surface normals' PNG.
+    Normals,
+    /// With the camera's `kitti = true`: the KITTI `label_2` lines.
+    KittiLabel,
+    /// With the camera's `kitti = true`: the KITTI `calib` file.
+    KittiCalib,
     /// With `[annotations] cityscapes = true`: a frame's Cityscapes image, by its index in
     /// [`super::frames::SEMANTIC_SUFFIXES`].
     Semantic(usize),
@@ -68,6 +76,9 @@ impl Member {
             Member::Depth => "depth.npy",
             Member::Yolo => "yolo.txt",
             Member::Icdar => "icdar.txt",
+            Member::Normals => "normals.png",
+            Member::KittiLabel => "label_2.txt",
+            Member::KittiCalib => "calib.txt",
             Member::Semantic(k) => SEMANTIC_EXTENSIONS[k.min(SEMANTIC_EXTENSIONS.len() - 1)],
         }
     }
@@ -82,6 +93,9 @@ pub fn frame_file(rest: &str) -> Option<(usize, Member)> {
         "rgb" => (Member::Rgb, stem),
         "ids" => (Member::Ids, stem),
         "depth" => (Member::Depth, stem),
+        "normals" => (Member::Normals, stem),
+        "label_2" => (Member::KittiLabel, stem),
+        "calib" => (Member::KittiCalib, stem),
         "yolo" => (Member::Yolo, stem),
         "icdar" => (Member::Icdar, stem.strip_prefix("gt_")?),
         "semantic" => {
@@ -196,6 +210,21 @@ mod tests {
                 "depth/000007.npy",
                 Some((7, Member::Depth)),
                 "street_000007.depth.npy",
+            ),
+            (
+                "normals/000007.png",
+                Some((7, Member::Normals)),
+                "street_000007.normals.png",
+            ),
+            (
+                "label_2/000007.txt",
+                Some((7, Member::KittiLabel)),
+                "street_000007.label_2.txt",
+            ),
+            (
+                "calib/000007.txt",
+                Some((7, Member::KittiCalib)),
+                "street_000007.calib.txt",
             ),
             (
                 "icdar/gt_000007.txt",

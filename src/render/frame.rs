@@ -1,7 +1,7 @@
-//! One rendered frame → its three images, and their encodings (PNG, and `.npy` for
-//! float depth).
+//! One rendered frame → its three images (four with normals), and their encodings (PNG,
+//! and `.npy` for float depth).
 
-use image::{ImageBuffer, Luma, RgbImage};
+use image::{ImageBuffer, Luma, Rgb, RgbImage};
 
 use crate::model::image_file::{PngEffort, encode_png, npy_f32};
 use crate::model::pack_ids;
@@ -18,6 +18,10 @@ pub struct Frame {
     pub linear: Vec<[f32; 3]>,
     pub instance: ImageBuffer<Luma<u32>, Vec<u32>>,
     pub depth: ImageBuffer<Luma<f32>, Vec<f32>>,
+    /// Camera-space unit normals per pixel, row-major (x right, y down, z forward, facing
+    /// the camera; `[0, 0, 0]` for the sky), when the frame was asked for them
+    /// ([`super::render_with`]).
+    pub normals: Option<Vec<[f32; 3]>>,
     /// The lighting's exposure, for [`Frame::rgb`].
     pub exposure: f32,
 }
@@ -29,6 +33,8 @@ pub struct FramePngs {
     pub rgb: Vec<u8>,
     pub instance: Vec<u8>,
     pub depth: Vec<u8>,
+    /// The normals' 16-bit RGB PNG, when the frame has normals.
+    pub normals: Option<Vec<u8>>,
 }
 
 impl Frame {
@@ -46,10 +52,18 @@ impl Frame {
     /// Instance ids are packed into an 8-bit RGB PNG as COCO panoptic does:
     /// `id = R + 256·G + 256²·B`. Depth follows `depth`: millimetres or centimetres
     /// rounded and clamped to 1–65535 in a 16-bit grey PNG (0 stays the sky), or float32
-    /// metres in a `.npy`.
+    /// metres in a `.npy`. Normals, when the frame has them: [`Frame::normals_rgb16`].
     pub fn encode(&self, rgb: &RgbImage, depth: DepthFormat) -> FramePngs {
-        let (rgb, (instance, depth)) = rayon::join(
-            || encode_png(rgb, PngEffort::Fast),
+        let ((rgb, normals), (instance, depth)) = rayon::join(
+            || {
+                rayon::join(
+                    || encode_png(rgb, PngEffort::Fast),
+                    || {
+                        self.normals_rgb16()
+                            .map(|image| encode_png(&image, PngEffort::Fast))
+                    },
+                )
+            },
             || {
                 rayon::join(
                     || encode_png(&pack_ids(&self.instance), PngEffort::Fast),
@@ -67,7 +81,23 @@ impl Frame {
             rgb,
             instance,
             depth,
+            normals,
         }
+    }
+
+    /// The normals as a 16-bit RGB image, when the frame has them: each component `n` of a
+    /// unit normal as `round((n + 1) / 2 · 65535)` (so `n = value / 65535 · 2 − 1`), the
+    /// sky `(0, 0, 0)`, which no unit normal gives.
+    pub fn normals_rgb16(&self) -> Option<ImageBuffer<Rgb<u16>, Vec<u16>>> {
+        let normals = self.normals.as_ref()?;
+        let (w, h) = self.instance.dimensions();
+        let value =
+            |c: f32| ((f64::from(c) + 1.0) * 0.5 * 65535.0 + 0.5).clamp(0.0, 65535.0) as u16;
+        let raw = normals
+            .iter()
+            .flat_map(|&n| if n == [0.0; 3] { [0; 3] } else { n.map(value) })
+            .collect();
+        ImageBuffer::from_raw(w, h, raw)
     }
 
     /// The depth as 16-bit units of `format`'s scale (1 mm or 1 cm), rounded and clamped to
@@ -113,6 +143,7 @@ mod tests {
                 Luma([[0.0, 0.0004, 1.0, 65.5354, 65.536, 655.36, 2500.25]
                     [((x + 2 * y) % 7) as usize]])
             }),
+            normals: None,
             exposure: 1.0,
         }
     }

@@ -1,5 +1,5 @@
 //! Render stage: prepared scene + camera pose + intrinsics + lighting → [`Frame`] (RGB,
-//! instance ids, depth), on the CPU, deterministically.
+//! instance ids, depth, optionally surface normals), on the CPU, deterministically.
 //!
 //! # Conventions
 //!
@@ -13,6 +13,12 @@
 //! - **Depth** is `forward·d` in metres (not the distance to the eye), kept as `f32`; 0
 //!   means sky. [`DepthFormat`] says how it is written (millimetres or centimetres in a
 //!   16-bit PNG, or 32-bit float metres in a `.npy`).
+//! - **Normals** (only when asked, [`render_with`]): per pixel, the unit face normal of the
+//!   triangle whose sample gives the pixel its id and depth, in OpenCV camera axes
+//!   (`x = right·n`, `y = −up·n`, `z = forward·n`: x right, y down, z forward), turned
+//!   to face the camera (its dot product with the ray through that sample is ≤ 0); `[0, 0,
+//!   0]` for the sky. [`Frame::encode`] writes them as a 16-bit RGB PNG,
+//!   `value = round((n + 1) / 2 · 65535)`, the sky `(0, 0, 0)`.
 //! - **Instance ids**: object index in [`crate::model::Scene::objects`] + 1, up to 24 bits
 //!   ([`MAX_OBJECTS`]); 0 = sky. The ids PNG packs them into RGB as COCO panoptic does:
 //!   `id = R + 256·G + 256²·B`.
@@ -144,12 +150,34 @@ pub fn render_measuring(
     supersample: u32,
     measure: &[u32],
 ) -> (Frame, Vec<Footprint>) {
+    render_with(
+        scene,
+        pose,
+        intrinsics,
+        lighting,
+        supersample,
+        measure,
+        false,
+    )
+}
+
+/// [`render_measuring`], and with `normals` the frame's surface normals
+/// ([`Frame::normals`]); without, none are worked out.
+pub fn render_with(
+    scene: &PreparedScene,
+    pose: &CameraPose,
+    intrinsics: &Intrinsics,
+    lighting: &Lighting,
+    supersample: u32,
+    measure: &[u32],
+    normals: bool,
+) -> (Frame, Vec<Footprint>) {
     let samples = supersample.clamp(1, MAX_SUPERSAMPLE);
     let antialias_edges = supersample == 1;
     let (width, height) = (intrinsics.width, intrinsics.height);
     let Some(view) = View::new(pose, intrinsics, samples).filter(|_| width > 0 && height > 0)
     else {
-        return (sky_frame(width, height, lighting), Vec::new());
+        return (sky_frame(width, height, lighting, normals), Vec::new());
     };
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
@@ -184,13 +212,20 @@ pub fn render_measuring(
     let mut linear = filled([0f32; 3], n);
     let mut instance = filled(0u32, n);
     let mut depth = filled(0f32, n);
-    let targets = TileTarget::all(width as usize, &mut linear, &mut instance, &mut depth);
+    let mut normal = normals.then(|| filled([0f32; 3], n));
+    let targets = TileTarget::all(
+        width as usize,
+        &mut linear,
+        &mut instance,
+        &mut depth,
+        normal.as_deref_mut(),
+    );
     let centres = match rasters {
         None => {
             let bins = bin(&tris, 0, tiles_x, tiles_y, TILE * samples);
             targets.into_par_iter().enumerate().for_each(|(t, out)| {
                 let raster = tile::raster_tile(&ctx.raster, t, &bins[t]);
-                tile::shade_tile(&ctx, &raster, None, out);
+                tile::finish_tile(&ctx, &raster, None, out);
             });
             None
         }
@@ -202,7 +237,7 @@ pub fn render_measuring(
             targets
                 .into_par_iter()
                 .zip(&rasters)
-                .for_each(|(out, r)| tile::shade_tile(&ctx, r, ao.as_deref(), out));
+                .for_each(|(out, r)| tile::finish_tile(&ctx, r, ao.as_deref(), out));
             Some(centres)
         }
     };
@@ -216,7 +251,8 @@ pub fn render_measuring(
         measure,
         &instance,
     );
-    let frame = finish(&ctx, centres.as_ref(), linear, instance, depth);
+    let mut frame = finish(&ctx, centres.as_ref(), linear, instance, depth);
+    frame.normals = normal;
     (frame, footprints)
 }
 
@@ -532,18 +568,22 @@ fn finish(
         linear,
         instance,
         depth,
+        normals: None,
         exposure: ctx.lighting.exposure,
     }
 }
 
-fn sky_frame(width: u32, height: u32, lighting: &Lighting) -> Frame {
+/// A frame of sky: `normals` asks for its (all-sky) normals too.
+fn sky_frame(width: u32, height: u32, lighting: &Lighting, normals: bool) -> Frame {
     // No usable view: the sky at the horizon, everywhere.
     let sky = lighting.sky.radiance([0.0, 0.0, -1.0]);
-    let linear = vec![sky; width as usize * height as usize];
+    let n = width as usize * height as usize;
+    let linear = vec![sky; n];
     Frame {
         linear,
         instance: ImageBuffer::new(width, height),
         depth: ImageBuffer::new(width, height),
+        normals: normals.then(|| vec![[0.0; 3]; n]),
         exposure: lighting.exposure,
     }
 }

@@ -15,6 +15,7 @@ use super::prepared_scene::{PreparedScene, ShadeMaterial, Triangle};
 use super::screen_triangle::{ScreenTri, at};
 use super::shadow_map::{Receiver, ShadowMap};
 use super::view::View;
+use crate::model::geometry::dot;
 
 /// Most anisotropic texture taps on level surfaces (roads, sidewalks, plazas, roofs),
 /// against [`MAX_ANISOTROPY`] on walls, signs and plates, where text is: one, plain
@@ -84,6 +85,8 @@ pub(crate) struct TileTarget<'f> {
     pub linear: Vec<&'f mut [[f32; 3]]>,
     pub instance: Vec<&'f mut [u32]>,
     pub depth: Vec<&'f mut [f32]>,
+    /// Camera-space surface normals, when the frame writes them.
+    pub normal: Option<Vec<&'f mut [[f32; 3]]>>,
 }
 
 impl<'f> TileTarget<'f> {
@@ -94,6 +97,7 @@ impl<'f> TileTarget<'f> {
         linear: &'f mut [[f32; 3]],
         instance: &'f mut [u32],
         depth: &'f mut [f32],
+        normal: Option<&'f mut [[f32; 3]]>,
     ) -> Vec<TileTarget<'f>> {
         if width == 0 {
             return Vec::new();
@@ -105,8 +109,17 @@ impl<'f> TileTarget<'f> {
                 linear: Vec::with_capacity(tile),
                 instance: Vec::with_capacity(tile),
                 depth: Vec::with_capacity(tile),
+                normal: normal.is_some().then(|| Vec::with_capacity(tile)),
             })
             .collect();
+        if let Some(normal) = normal {
+            for (y, row) in normal.chunks_mut(width).enumerate() {
+                let band = &mut targets[y / tile * tiles_x..][..tiles_x];
+                for (target, piece) in band.iter_mut().zip(row.chunks_mut(tile)) {
+                    target.normal.as_mut().expect("made above").push(piece);
+                }
+            }
+        }
         let rows = linear
             .chunks_mut(width)
             .zip(instance.chunks_mut(width))
@@ -201,15 +214,24 @@ pub(crate) fn raster_more(ctx: &RasterContext, raster: &mut TileRaster, bin: &[u
     }
 }
 
-/// Shades and resolves a rasterized tile into `out`, its stretch of the frame. `ao` is the
-/// frame's ambient visibility per output pixel (row-major, 1 = open sky), when ambient
-/// occlusion is on.
-pub(crate) fn shade_tile(
+/// Writes a rasterized tile's normals into `out` when the frame has them
+/// ([`write_normals`]), then shades it ([`shade_tile`]).
+pub(crate) fn finish_tile(
     ctx: &FrameContext,
     raster: &TileRaster,
     ao: Option<&[f32]>,
-    out: TileTarget,
+    mut out: TileTarget,
 ) {
+    if let Some(normal) = out.normal.take() {
+        write_normals(&ctx.raster, raster, normal);
+    }
+    shade_tile(ctx, raster, ao, out);
+}
+
+/// Shades and resolves a rasterized tile into `out`, its stretch of the frame. `ao` is the
+/// frame's ambient visibility per output pixel (row-major, 1 = open sky), when ambient
+/// occlusion is on.
+fn shade_tile(ctx: &FrameContext, raster: &TileRaster, ao: Option<&[f32]>, out: TileTarget) {
     let s = ctx.raster.samples;
     let (rect, inner) = (raster.rect, raster.inner);
     let iw = raster.inner_width();
@@ -229,6 +251,7 @@ pub(crate) fn shade_tile(
         mut linear,
         mut instance,
         mut depth,
+        ..
     } = out;
     debug_assert!(linear.len() == oh && linear.iter().all(|row| row.len() == ow));
     let scale = f64::from(s);
@@ -296,6 +319,37 @@ pub(crate) fn instance_and_depth(ctx: &RasterContext, t: u32, q: f64) -> (u32, f
                 ctx.scene.triangles[tri.source as usize].instance,
                 depth_metres(q),
             )
+        }
+    }
+}
+
+/// Writes the camera-space normal of each output pixel of `raster` into `out` (its rows):
+/// the face normal of the triangle at the pixel's centre sample (the one its id and depth
+/// come from) in OpenCV camera axes (x right, y down, z forward), turned to face the
+/// camera along the ray through that sample; `[0, 0, 0]` for the sky.
+fn write_normals(ctx: &RasterContext, raster: &TileRaster, mut out: Vec<&mut [[f32; 3]]>) {
+    let su = ctx.samples as usize;
+    let view = ctx.view;
+    let (right, up, forward) = (view.basis.right, view.basis.up, view.basis.forward);
+    for (oy, row) in out.iter_mut().enumerate() {
+        for (ox, n) in row.iter_mut().enumerate() {
+            let centre = raster.centre(ox, oy, su);
+            let t = raster.id[centre];
+            if t == NOTHING {
+                *n = [0.0; 3];
+                continue;
+            }
+            let world = ctx.scene.triangles[ctx.tris[t as usize].source as usize]
+                .normal
+                .map(f64::from);
+            let c = [dot(right, world), -dot(up, world), dot(forward, world)];
+            // The ray through the centre sample, in the same axes.
+            let x = f64::from(raster.inner[0]) + (centre % raster.inner_width()) as f64 + 0.5;
+            let y = f64::from(raster.inner[1]) + (centre / raster.inner_width()) as f64 + 0.5;
+            let ray = [(x - view.cx) / view.fx, (y - view.cy) / view.fy, 1.0];
+            let sign = if dot(c, ray) > 0.0 { -1.0 } else { 1.0 };
+            let len = dot(c, c).sqrt();
+            *n = c.map(|v| (sign * v / len) as f32);
         }
     }
 }

@@ -113,6 +113,17 @@ pub struct CameraSpec {
     /// in a `.npy`, any distance). 0 is the sky in all three.
     #[serde(default)]
     pub depth: DepthFormat,
+    /// Also write surface normals, `normals/NNNNNN.png`: per pixel the face normal of the
+    /// rendered triangle there, in camera axes (x right, y down, z forward), turned towards
+    /// the camera, as a 16-bit RGB PNG with `n = value / 65535 · 2 − 1`; `(0, 0, 0)` is the
+    /// sky. Off, nothing is worked out and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub normals: bool,
+    /// Also write 3D boxes of the annotated objects in the KITTI object format,
+    /// `label_2/NNNNNN.txt` and `calib/NNNNNN.txt`, and each box as COCO
+    /// `attributes.box3d`. Off, no box is worked out and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub kitti: bool,
     /// Classes this path annotates, instead of `[annotations] classes` (for example
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -11,6 +11,7 @@ mod coverage;
 mod depth;
 mod footprints;
 mod night;
+mod normals;
 mod perspective;
 mod preparing;
 mod sampling;
