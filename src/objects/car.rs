@@ -1,11 +1,21 @@
-//! Car specs + road slots → `car_NNNN` objects: low-poly sedans, hatchbacks, SUVs, vans,
-//! buses and trucks with seeded paint, dark glass, wheels, and head and tail lights. A car
-//! in a driving lane has its lights on: they glow at night (emissive, like the lamp heads)
-//! and the renderer lights the road from them. A parked car's lights are off.
+//! Car specs + road slots → `car_NNNN` objects: low-poly sedans, hatchbacks, estates,
+//! coupes, SUVs, minivans, pickups, vans, buses and trucks with seeded paint, dark glass,
+//! wheels, head and tail lights and a number plate at each end. A car in a driving lane
+//! has its lights on: they glow at night (emissive, like the lamp heads) and the renderer
+//! lights the road from them, and a lamp lights its rear plate. A parked car's lights are
+//! off.
 //!
 //! A car is a side profile extruded across its width (the lower body), a narrower cabin on
 //! it whose windscreen and rear window are glass, inset side windows, octagonal wheels and
 //! four light quads; a truck adds a cargo box. About 150–190 triangles each.
+//!
+//! Plates ([`number_plate`]: EU, 520 × 110 mm, a seeded German registration, the same at
+//! both ends) hang 2.5 cm in front of the body's front and rear faces, below the
+//! headlights and between the tail lights. When some entry of the spec makes objects of
+//! class [`PLATE_CLASS`] (`text`), each plate is a text object of that class of its own
+//! (`text_style` `plate`, the registration its transcription, a word a group), pushed
+//! after its car: its pixels are its own, not the car's. Otherwise it is a textured quad
+//! of the car.
 //!
 //! Where: `parked` of them along the curbs (in the parking lane of the road's
 //! [`StreetProfile`], or against the curb when there is none), the others standing in a
@@ -20,7 +30,11 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::ground_spots::{GroundSpots, RoadSlot};
+use super::number_plate::{self, registration};
+use super::plate_light::PlateLight;
+use super::text_plate::Background;
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
+use super::wall_text::{self, Placed};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
 use crate::model::geometry::{ROAD_Y, STOP_LINE_END, StreetProfile};
@@ -36,7 +50,7 @@ pub const REDRAWS: u32 = 12;
 pub const CURB_GAP: f64 = 0.25;
 
 /// The body mix when the spec lists none: mostly cars, a few vans, buses and trucks.
-const DEFAULT_MIX: [CarBody; 12] = [
+const DEFAULT_MIX: [CarBody; 18] = [
     CarBody::Sedan,
     CarBody::Sedan,
     CarBody::Sedan,
@@ -44,12 +58,25 @@ const DEFAULT_MIX: [CarBody; 12] = [
     CarBody::Hatchback,
     CarBody::Hatchback,
     CarBody::Hatchback,
+    CarBody::Estate,
+    CarBody::Estate,
+    CarBody::Coupe,
     CarBody::Suv,
     CarBody::Suv,
+    CarBody::Minivan,
+    CarBody::Pickup,
+    CarBody::Van,
     CarBody::Van,
     CarBody::Bus,
     CarBody::Truck,
 ];
+
+/// The class a car's number plates take as text objects, when some entry of the spec
+/// makes objects of it; else a plate is part of its car.
+pub const PLATE_CLASS: &str = "text";
+/// Height of the front and the rear plate's bottom edge above the body's underside,
+/// metres: below the headlights, between the tail lights.
+const PLATE_UP: [f64; 2] = [0.17, 0.2];
 
 /// Paint colours (linear RGB), common ones listed more than once so they come up more.
 const PAINTS: [[f32; 3]; 16] = [
@@ -128,7 +155,15 @@ impl Shape {
         let shape = match body {
             CarBody::Sedan => car(4.6, 1.8, 0.3, 0.95, 0.85, 1.45, [1.0, 1.5, 2.95, 3.55], 0.32, [0.95, 3.65], 2),
             CarBody::Hatchback => car(4.0, 1.75, 0.3, 0.95, 0.85, 1.5, [0.12, 0.4, 2.35, 3.0], 0.31, [0.75, 3.25], 2),
+            // The roof runs to a near-upright tailgate over a long load floor.
+            CarBody::Estate => car(4.8, 1.82, 0.3, 0.95, 0.85, 1.48, [0.1, 0.3, 3.0, 3.65], 0.32, [0.95, 3.8], 3),
+            // Low, a short cabin far back, one long door window a side.
+            CarBody::Coupe => car(4.5, 1.85, 0.28, 0.9, 0.78, 1.32, [0.9, 1.75, 2.85, 3.5], 0.33, [0.95, 3.6], 1),
             CarBody::Suv => car(4.7, 1.9, 0.4, 1.1, 1.0, 1.78, [0.1, 0.28, 3.05, 3.65], 0.38, [0.95, 3.75], 3),
+            // Tall, a long sloping windscreen reaching far forward, a short bonnet.
+            CarBody::Minivan => car(4.9, 1.9, 0.32, 1.0, 0.92, 1.75, [0.1, 0.2, 3.2, 4.1], 0.33, [0.9, 3.95], 3),
+            // A cab up front, the covered load bed behind it at rail height.
+            CarBody::Pickup => car(5.3, 1.9, 0.45, 1.15, 1.1, 1.85, [2.2, 2.35, 3.85, 4.35], 0.4, [1.0, 4.2], 2),
             CarBody::Van => car(5.0, 1.95, 0.35, 1.05, 0.95, 2.1, [0.05, 0.1, 3.85, 4.5], 0.34, [0.9, 4.1], 3),
             CarBody::Bus => Shape {
                 inset: 0.03,
@@ -185,7 +220,17 @@ struct Paints {
 
 // Long on purpose: one placement loop, whose random draws must stay in this order (each
 // changes every later object's); split, the order would be spread over functions.
-pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+pub fn place(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    spots: &mut GroundSpots,
+    placing: &mut Placing,
+) -> u32 {
+    // Plates are text objects when the spec makes objects of their class.
+    let texts = placing.input.specs.iter().any(|s| s.label == PLATE_CLASS);
+    let mut faces = Vec::new();
+    let mut plates = Vec::new();
+    let mut cars = Vec::new();
     let bodies: &[CarBody] = if spec.bodies.is_empty() {
         &DEFAULT_MIX
     } else {
@@ -275,6 +320,47 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         };
         let meshes = car_meshes(&shape, &frame, &paints);
         let name = placing.name("car");
+        let text = registration(placing.input.seed, spot.position);
+        let plate = number_plate::measure(&text);
+        let metres_per_px = number_plate::SIZE[0] / f64::from(number_plate::PIXELS[0]);
+        // Front, then rear; a car in a lane has its rear plate lamp on.
+        let ends = [(shape.length, 1.0, PLATE_UP[0]), (0.0, -1.0, PLATE_UP[1])];
+        for (k, (u, facing, up)) in ends.into_iter().enumerate() {
+            let (face, rect) = number_plate::face(&frame, u, facing, shape.sill + up);
+            let corners = wall_text::word_corners(&face, rect, &plate, metres_per_px);
+            let lit = k == 1 && !parked;
+            faces.push(face);
+            plates.push(Placed {
+                name: if texts {
+                    placing.name("text")
+                } else {
+                    String::new()
+                },
+                wall: faces.len() - 1,
+                rect,
+                plate: plate.clone(),
+                background: Background::Paper(number_plate::PAPER),
+                ink: number_plate::INK,
+                text: text.clone(),
+                corners,
+                light: Some(if lit {
+                    PlateLight::LampLit
+                } else {
+                    PlateLight::Unlit
+                }),
+            });
+        }
+        cars.push((name, meshes, body));
+    }
+    let page_name = format!("{}_plate_atlas", spec.label);
+    let mut plates =
+        wall_text::plate_objects(PLATE_CLASS, &faces, plates, &page_name, placing).into_iter();
+    let placed = cars.len() as u32;
+    for (name, mut meshes, body) in cars {
+        let two: Vec<_> = plates.by_ref().take(2).collect();
+        if !texts {
+            meshes.extend(two.iter().flat_map(|(object, _)| object.meshes.clone()));
+        }
         let variant = Some(("body", body.name().to_owned()));
         placing.push_variant(
             crate::model::ObjectKind::Car,
@@ -283,7 +369,13 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             meshes,
             variant,
         );
+        if texts {
+            for (object, info) in two {
+                placing.push(object, info);
+            }
+        }
     }
+    placed
 }
 
 fn paint_material(placing: &mut Placing, k: usize) -> u32 {

@@ -7,7 +7,7 @@
 //! | text | `text_0003` | free wall (no window, no other plate) facing a road, 2.5 m up to 1 m below the roof; shop signs low | a plate quad 2.5 cm in front of the wall (shop sign, banner, or painted on the wall's own pixels), one of eight fonts, its image on an atlas page shared by its entry (`<label>_atlas_N`) |
 //! | sign | `sign_0012` | by its type's rule (`sign_rules`): stop, yield, priority road at the crossings' mouths, warnings 30–50 m before a zebra, speed limits past a crossing, else mid-strip 40 m from its type; ≥ 2 m from lamps, never in a crossing | pole + plate shaped like the sign (33 StVO types), facing the traffic it signs |
 //! | mesh | `<label>_0004` | mid-strip (`sidewalk`) or mid right-hand lane (`lane`) | the user's OBJ, scaled and turned about y |
-//! | car | `car_0007` | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, SUV, van, bus or truck (`car` module) |
+//! | car | `car_0007` + two `text_0150`… | parked in a curb's parking lane, or standing in a driving lane with the traffic | a low-poly sedan, hatchback, estate, coupe, SUV, minivan, pickup, van, bus or truck (`car` module) with an EU number plate at front and rear (`number_plate`): text objects of class `text` when an entry makes that class, else part of the car |
 //! | tree | `tree_0011` | mid-strip beside a road, or on a block's open paving clear of buildings | trunk + a low-poly crown of one of seven species (`tree` module) |
 //! | street_name | `street_pole_0002` (class `pole`) + four `text_0140`… | at a street corner, half a strip from both curbs | a pole and two stacked double-sided plates naming the two streets (`street_names` module) |
 //! | traffic_light | `signal_pole_0001` (class `pole`) + two `traffic_light_0002`… | at a street corner, half a strip from both curbs | a pole and two signal heads looking along the two roads, one lamp lit (`traffic_lights` module) |
@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 17;
+pub const VERSION: u32 = 18;
 
 mod atlas_layout;
 mod bicycle;
@@ -32,6 +32,7 @@ mod car;
 mod entry_groups;
 mod footprint_grid;
 mod ground_spots;
+mod number_plate;
 pub mod obj_lines;
 mod objects_error;
 mod person;
@@ -409,7 +410,7 @@ fn place_entries<'a>(
             }
             ObjectKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
             ObjectKind::Car => {
-                car::place(spec, &mut rng, &mut spots, &mut placing);
+                counted = Some(car::place(spec, &mut rng, &mut spots, &mut placing));
                 Ok(())
             }
             ObjectKind::Tree => {
@@ -439,7 +440,8 @@ fn place_entries<'a>(
         placed.map_err(|e| (i, e))?;
         // Street-name and traffic-light entries count poles (each carries four text faces
         // or two signal heads), sign entries signs (a plate on a pole), bicycle entries
-        // bicycles (a ridden one has a rider); the others count objects.
+        // bicycles (a ridden one has a rider), car entries cars (with their number
+        // plates); the others count objects.
         shares[i] = Some(before.end(&placing, counted));
     }
     Ok(PlacedEntries { placing, shares })

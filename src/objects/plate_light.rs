@@ -4,7 +4,7 @@
 //! | light | plates | material | after dusk |
 //! |---|---|---|---|
 //! | [`PlateLight::Backlit`] | every street-name plate, [`BACKLIT_SHOP_SHARE`] of shop signs | the page's texture, emission [`BACKLIT_EMISSION`] times the texture (`emissive_textured`) | the face glows as a lit panel does: pale paper bright, dark letters dark |
-//! | [`PlateLight::LampLit`] | the other shop signs, [`LAMP_LIT_BANNER_SHARE`] of banners, [`LAMP_LIT_PAINTED_SHARE`] of painted text | the page's texture, named with [`crate::model::LAMP_LIT_SUFFIX`] | the renderer puts a small lamp over it (`render::scene_lighting`) |
+//! | [`PlateLight::LampLit`] | the other shop signs, [`LAMP_LIT_BANNER_SHARE`] of banners, [`LAMP_LIT_PAINTED_SHARE`] of painted text, the rear number plate of a car in a driving lane (its plate lamp; the car chooses, not the draw) | the page's texture, named with [`crate::model::LAMP_LIT_SUFFIX`] | the renderer puts a small lamp over it (`render::scene_lighting`) |
 //! | [`PlateLight::Unlit`] | the rest | the page's texture | dark but for street lamps, windows and cars |
 //!
 //! By day none of it shows: emission and the lamps' lights scale with the lighting's
@@ -55,7 +55,8 @@ impl PlateLight {
             PlateStyle::Shop => PlateLight::LampLit,
             PlateStyle::Banner if u < LAMP_LIT_BANNER_SHARE => PlateLight::LampLit,
             PlateStyle::Painted if u < LAMP_LIT_PAINTED_SHARE => PlateLight::LampLit,
-            PlateStyle::Banner | PlateStyle::Painted => PlateLight::Unlit,
+            // A number plate's light is its car's: see `number_plate`.
+            PlateStyle::Banner | PlateStyle::Painted | PlateStyle::Number => PlateLight::Unlit,
         }
     }
 

@@ -6,11 +6,15 @@
 //! | `banner` | a cloth strip with coloured hems top and bottom | anywhere on the free wall |
 //! | `painted` | letters painted straight on the wall, no plate | anywhere on the free wall |
 //! | `street` | a street-name plate with a thin border near its edge | on a pole at a street corner (`street_name` entries) |
+//! | `plate` | an EU number plate: white, a thin black rim, a blue band at the left | front and rear of every car (`car` entries, [`super::number_plate`]) |
 
 use image::{Rgb, RgbImage};
 
 /// How far above the lowest plate edge a shop sign's bottom edge may be, in metres.
 pub const SHOP_BAND: f64 = 1.2;
+
+/// The blue of an EU number plate's band (sRGB).
+pub const EU_BLUE: [u8; 3] = [0, 51, 153];
 
 /// One plate style; recorded per text object (`text_style` in COCO).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -19,6 +23,8 @@ pub enum PlateStyle {
     Banner,
     Painted,
     Street,
+    /// A car's number plate (`plate`).
+    Number,
 }
 
 impl PlateStyle {
@@ -35,6 +41,7 @@ impl PlateStyle {
             PlateStyle::Banner => "banner",
             PlateStyle::Painted => "painted",
             PlateStyle::Street => "street",
+            PlateStyle::Number => "plate",
         }
     }
 
@@ -45,6 +52,9 @@ impl PlateStyle {
             PlateStyle::Banner => [0.4, 0.5],
             PlateStyle::Painted => [0.15, 0.1],
             PlateStyle::Street => [0.4, 0.3],
+            // Room for the blue band at the left; `number_plate` centres the text again
+            // on the plate's fixed size.
+            PlateStyle::Number => [0.6, 0.05],
         }
     }
 
@@ -88,6 +98,15 @@ impl PlateStyle {
                 fill(x0, y0, x0 + t, y1, ink);
                 fill(x1 - t, y0, x1, y1, ink);
             }
+            PlateStyle::Number => {
+                // The EU band (40 of the plate's 520 mm) and a one-pixel rim in the ink.
+                let band = (w * 40).div_ceil(520);
+                fill(0, 0, band, h, EU_BLUE);
+                fill(0, 0, w, 1, ink);
+                fill(0, h - 1, w, h, ink);
+                fill(0, 0, 1, h, ink);
+                fill(w - 1, 0, w, h, ink);
+            }
             PlateStyle::Painted => {}
         }
     }
@@ -104,6 +123,7 @@ mod tests {
             PlateStyle::Banner,
             PlateStyle::Painted,
             PlateStyle::Street,
+            PlateStyle::Number,
         ] {
             let [px, py] = style.padding().map(|p| (40.0 * p) as u32);
             let text_box = [px, py, px + 200, py + 40];

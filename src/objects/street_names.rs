@@ -165,6 +165,7 @@ pub fn place(
                     ink,
                     text: (*text).to_owned(),
                     corners,
+                    light: None,
                 });
             }
             bottom += h;

@@ -85,6 +85,8 @@ pub(crate) struct Placed {
     pub ink: [u8; 3],
     pub text: String,
     pub corners: Vec<[[f64; 3]; 4]>,
+    /// How it is lit after dusk when its maker decides (a car's plates); `None`: drawn.
+    pub light: Option<PlateLight>,
 }
 
 /// The walls facing roads, and the plates placed on each so far: `[u0, y0, u1, y1]`.
@@ -190,6 +192,7 @@ impl Walls {
                 ink,
                 text,
                 corners,
+                light: None,
             });
         }
         // The ink keeps the contrast floor against the patch's mean (a seeded minority
@@ -295,9 +298,10 @@ fn wall_patch(image: &RgbImage, wall: &Wall, rect: [f64; 4], plate: &TextPlate) 
     })
 }
 
-/// Draws the `placed` plates (their `wall` indexing `walls`), draws how each is lit after
-/// dusk ([`PlateLight`]), packs them onto atlas pages named `<page_name>_<i>` (one set per
-/// light, one material per page) and pushes one text object per plate.
+/// Draws the `placed` plates (their `wall` indexing `walls`), lights each after dusk as
+/// its maker chose or else by a draw ([`PlateLight`]), packs them onto atlas pages named
+/// `<page_name>_<i>` (one set per light, one material per page) and pushes one text object
+/// per plate.
 pub(crate) fn finish_plates(
     spec: &ObjectSpec,
     walls: &[Wall],
@@ -305,6 +309,20 @@ pub(crate) fn finish_plates(
     page_name: &str,
     placing: &mut Placing,
 ) {
+    for (object, info) in plate_objects(&spec.label, walls, placed, page_name, placing) {
+        placing.push(object, info);
+    }
+}
+
+/// As [`finish_plates`], the text objects of class `label` returned in plate order
+/// instead of pushed (a car pushes each plate after its car, or keeps its mesh).
+pub(crate) fn plate_objects(
+    label: &str,
+    walls: &[Wall],
+    placed: Vec<Placed>,
+    page_name: &str,
+    placing: &mut Placing,
+) -> Vec<(SceneObject, ObjectInfo)> {
     // Drawing the plates and painting and PNG-encoding the pages are the costly parts:
     // all in parallel, each result in its own slot.
     let images: Vec<RgbImage> = placed
@@ -317,30 +335,35 @@ pub(crate) fn finish_plates(
     let lights: Vec<PlateLight> = placed
         .iter()
         .map(|p| {
-            let at = format!("{}/{:?}", p.wall, p.rect.map(f64::to_bits));
-            PlateLight::draw(p.plate.style, seed, &at)
+            p.light.unwrap_or_else(|| {
+                let at = format!("{}/{:?}", p.wall, p.rect.map(f64::to_bits));
+                PlateLight::draw(p.plate.style, seed, &at)
+            })
         })
         .collect();
     let slots = plate_light::pack_pages(images, &lights, page_name, placing);
-    for ((p, slot), light) in placed.into_iter().zip(slots).zip(lights) {
-        let object = SceneObject {
-            name: p.name,
-            kind: crate::model::ObjectKind::Text,
-            class: spec.label.clone(),
-            meshes: vec![plate_mesh(&walls[p.wall], p.rect, slot.material, slot.uv)],
-        };
-        let mut attributes = text_attributes(&p.plate);
-        attributes.insert("text_light".to_owned(), light.name().to_owned());
-        placing.push(
-            object,
-            ObjectInfo {
-                label: spec.label.clone(),
+    placed
+        .into_iter()
+        .zip(slots)
+        .zip(lights)
+        .map(|((p, slot), light)| {
+            let object = SceneObject {
+                name: p.name,
+                kind: crate::model::ObjectKind::Text,
+                class: label.to_owned(),
+                meshes: vec![plate_mesh(&walls[p.wall], p.rect, slot.material, slot.uv)],
+            };
+            let mut attributes = text_attributes(&p.plate);
+            attributes.insert("text_light".to_owned(), light.name().to_owned());
+            let info = ObjectInfo {
+                label: label.to_owned(),
                 text: Some(p.text),
                 corners: p.corners,
                 attributes,
-            },
-        );
-    }
+            };
+            (object, info)
+        })
+        .collect()
 }
 
 /// The words an entry draws from: its `words_file`'s, else the built-in list. Errors when

@@ -248,7 +248,11 @@ pub(crate) fn fill_default_labels(objects: &mut [ObjectSpec]) {
 pub enum CarBody {
     Sedan,
     Hatchback,
+    Estate,
+    Coupe,
     Suv,
+    Minivan,
+    Pickup,
     Van,
     Bus,
     Truck,
@@ -256,10 +260,14 @@ pub enum CarBody {
 
 impl CarBody {
     /// Every body, in declaration order.
-    pub const ALL: [CarBody; 6] = [
+    pub const ALL: [CarBody; 10] = [
         CarBody::Sedan,
         CarBody::Hatchback,
+        CarBody::Estate,
+        CarBody::Coupe,
         CarBody::Suv,
+        CarBody::Minivan,
+        CarBody::Pickup,
         CarBody::Van,
         CarBody::Bus,
         CarBody::Truck,
@@ -270,7 +278,11 @@ impl CarBody {
         match self {
             CarBody::Sedan => "sedan",
             CarBody::Hatchback => "hatchback",
+            CarBody::Estate => "estate",
+            CarBody::Coupe => "coupe",
             CarBody::Suv => "suv",
+            CarBody::Minivan => "minivan",
+            CarBody::Pickup => "pickup",
             CarBody::Van => "van",
             CarBody::Bus => "bus",
             CarBody::Truck => "truck",

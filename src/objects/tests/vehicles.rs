@@ -146,6 +146,108 @@ fn only_cars_in_the_driving_lanes_have_their_lights_on() {
 }
 
 #[test]
+fn every_car_carries_a_front_and_a_rear_plate_a_text_object_when_the_spec_makes_text() {
+    use crate::model::LAMP_LIT_SUFFIX;
+    let city = city();
+    let cars = ObjectSpec {
+        parked: 0.5,
+        ..spec(ObjectKind::Car, "car", 30)
+    };
+    // With a `text` entry: each car is followed by its two plates, text objects.
+    let specs = [spec(ObjectKind::Text, "text", 4), cars.clone()];
+    let inserted = run(&city, &specs).unwrap();
+    let first_car = inserted
+        .objects
+        .iter()
+        .position(|o| o.class == "car")
+        .unwrap();
+    let objects = &inserted.objects[first_car..];
+    let info = &inserted.info[first_car..];
+    assert_eq!(objects.len() % 3, 0);
+    assert_eq!(inserted.placed[1] as usize, objects.len() / 3);
+    assert!(objects.len() / 3 > 20, "{} cars", objects.len() / 3);
+    let material = |m: u32| &inserted.materials[m as usize];
+    let (mut lit, mut unlit) = (0, 0);
+    for ((cars, infos), k) in objects.chunks(3).zip(info.chunks(3)).zip(0..) {
+        let (car, plates) = (&cars[0], &cars[1..]);
+        assert_eq!(car.class, "car", "object {k}");
+        let (lo, hi) = mesh_bounds(&car.meshes);
+        let text = infos[1].text.clone().unwrap();
+        let lane_car = car
+            .meshes
+            .iter()
+            .any(|m| material(m.material).name == "car_headlight");
+        for (end, (plate, i)) in plates.iter().zip(&infos[1..]).enumerate() {
+            assert_eq!(plate.class, "text");
+            assert_eq!(plate.kind, crate::model::ObjectKind::Text);
+            assert!(plate.name.starts_with("text_"), "{}", plate.name);
+            // The same registration at both ends; a word a group, each with its quad.
+            assert_eq!(i.text.as_deref(), Some(text.as_str()));
+            assert_eq!(i.corners.len(), 3, "{text}");
+            assert_eq!(i.attributes["text_style"], "plate");
+            // The rear plate of a car in a lane is lit by its lamp after dusk.
+            let light = &i.attributes["text_light"];
+            let want = if end == 1 && lane_car {
+                "lamp_lit"
+            } else {
+                "unlit"
+            };
+            assert_eq!(light, want, "{}", car.name);
+            let page = &material(plate.meshes[0].material).name;
+            assert_eq!(
+                page.contains(LAMP_LIT_SUFFIX),
+                light == "lamp_lit",
+                "{page}"
+            );
+            (lit, unlit) = if light == "lamp_lit" {
+                (lit + 1, unlit)
+            } else {
+                (lit, unlit + 1)
+            };
+            // 520 × 110 mm, upright, at the car's end, within its width and below its
+            // headlights' top.
+            let (plo, phi) = mesh_bounds(&plate.meshes);
+            let across = (phi[0] - plo[0]).max(phi[2] - plo[2]);
+            assert!((across - 0.52).abs() < 1e-3, "{across}");
+            assert!((phi[1] - plo[1] - 0.11).abs() < 1e-4);
+            assert!(
+                plo[1] > lo[1] + 0.3 && phi[1] < hi[1] - 0.4,
+                "{plo:?} {phi:?}"
+            );
+            let outside = (0..3)
+                .step_by(2)
+                .any(|a| plo[a] < lo[a] - 0.03 || phi[a] > hi[a] + 0.03);
+            assert!(!outside, "{} plate {end} off its car", car.name);
+            for quad in &i.corners {
+                for p in quad {
+                    assert!((0..3).all(|a| plo[a] - 1e-4 <= p[a] && p[a] <= phi[a] + 1e-4));
+                }
+            }
+        }
+    }
+    assert!(lit > 0 && unlit > lit, "{lit} lit, {unlit} unlit");
+    // Without one (wall text of another class instead, so the cars draw from the same
+    // entry's stream): the same cars, each plate a textured quad of its car.
+    let alone = run(&city, &[spec(ObjectKind::Text, "shop_sign", 4), cars]).unwrap();
+    let alone: Vec<&SceneObject> = alone
+        .objects
+        .iter()
+        .filter(|o| o.class != "shop_sign")
+        .collect();
+    assert_eq!(alone.len(), objects.len() / 3);
+    for (car, with) in alone.into_iter().zip(objects.chunks(3)) {
+        assert_eq!(car.class, "car");
+        let textured: Vec<&Mesh> = car.meshes.iter().filter(|m| !m.uvs.is_empty()).collect();
+        assert_eq!(textured.len(), 2, "{}", car.name);
+        let plates: Vec<Mesh> = with[1..].iter().flat_map(|o| o.meshes.clone()).collect();
+        assert_eq!(
+            mesh_bounds(&car.meshes),
+            mesh_bounds(&[&with[0].meshes[..], &plates[..]].concat())
+        );
+    }
+}
+
+#[test]
 fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() {
     use crate::objects::bicycle::RIDDEN_HALF;
     use crate::spec::RIDER_CLASS;
