@@ -536,8 +536,12 @@ fn word_files_feed_the_text_and_bad_ones_exit_2() {
         .as_array()
         .unwrap()
         .iter()
-        // Plates (words carry `word_index`), but for the street-name ones.
-        .filter(|a| a.get("word_index").is_none() && a["attributes"]["text_style"] != "street")
+        // Plates (words carry `word_index`), but for the street names and number plates,
+        // which keep their own words.
+        .filter(|a| {
+            let style = &a["attributes"]["text_style"];
+            a.get("word_index").is_none() && style != "street" && style != "plate"
+        })
         .map(|a| a["text"].as_str().unwrap())
         .collect();
     assert!(!texts.is_empty());
