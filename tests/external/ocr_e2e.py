@@ -39,18 +39,16 @@ import cv2
 import numpy as np
 from rapidocr_onnxruntime import RapidOCR
 
+from ocr_words import quads as icdar_lines
+
 TEXT_KINDS = {"text", "street_name"}
 EDGES = (0, 12, 16, 24, 32, 48)  # height buckets, px: [0, 12), [12, 16), ..., 48+
 
 
 def quads(gt_path):
-    with open(gt_path, encoding="utf-8-sig") as f:
-        for line in f:
-            parts = line.rstrip("\n").split(",", 8)
-            if len(parts) < 9:
-                continue
-            pts = [(float(parts[i]), float(parts[i + 1])) for i in range(0, 8, 2)]
-            yield pts, parts[8]
+    """The ICDAR lines of `gt_path` as ([(x, y)] * 4, word), read by the crop measure's parser."""
+    for xs, ys, word in icdar_lines(gt_path):
+        yield list(zip(xs, ys)), word
 
 
 def quad_height(pts):
