@@ -145,12 +145,14 @@ impl<'a> PathFrames<'a> {
     }
 
     /// What annotating frame `i` reads besides the labels: its instance image, the
-    /// objects' unoccluded footprints and the text objects' word quads projected.
+    /// objects' unoccluded footprints, the text objects' word quads projected and, when
+    /// the path writes keypoints, its depth.
     fn annotation_input<'f>(
         &self,
         i: usize,
         instance: &'f image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
         rgb: &'f RgbImage,
+        depth: &'f image::ImageBuffer<image::Luma<f32>, Vec<f32>>,
         footprints: &[render::Footprint],
     ) -> FrameInput<'f> {
         let (intrinsics, pose) = (&self.intrinsics, &self.poses[i]);
@@ -176,6 +178,7 @@ impl<'a> PathFrames<'a> {
                     Some((*id, quads.collect::<Option<Vec<_>>>()?))
                 })
                 .collect(),
+            depth: self.input.camera.keypoints.then_some(depth),
         }
     }
 
@@ -267,7 +270,13 @@ impl<'a> PathFrames<'a> {
         let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
-        let frame_input = self.annotation_input(i, &frame.instance, &developed.rgb, &footprints);
+        let frame_input = self.annotation_input(
+            i,
+            &frame.instance,
+            &developed.rgb,
+            &frame.depth,
+            &footprints,
+        );
         let ((pngs, semantic), mut summary) = rayon::join(
             || {
                 rayon::join(

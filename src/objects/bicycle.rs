@@ -479,7 +479,9 @@ pub fn rider_keypoints(frame: &Frame, bike: &Bike, rider: &Rider) -> [[f64; 3]; 
     let s = rig.s;
     let [hu, hy] = rig.head;
     let forearm = [rig.grip[0] - rig.elbow[0], rig.grip[1] - rig.elbow[1]];
-    let length = forearm[0].hypot(forearm[1]).max(1e-9);
+    let length = (forearm[0] * forearm[0] + forearm[1] * forearm[1])
+        .sqrt()
+        .max(1e-9);
     let back = (0.065 * h).min(length) / length;
     let wrist = [
         rig.grip[0] - forearm[0] * back,
