@@ -192,3 +192,28 @@ fn prefix(object: &mut Map<String, Value>, dir: &str) {
         *name = format!("{dir}{name}");
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_merged_category_has_keypoints_when_any_cameras_has_them() {
+        let doc = |categories: &str| {
+            format!(r#"{{"images":[],"categories":[{categories}],"annotations":[]}}"#)
+        };
+        let plain = doc(r#"{"id":1,"name":"car"},{"id":2,"name":"person"}"#);
+        let keyed = doc(r#"{"id":1,"name":"person","keypoints":["nose"],"skeleton":[]}"#);
+        let documents = [
+            CameraCoco::parse("a", plain.as_bytes()).unwrap(),
+            CameraCoco::parse("b", keyed.as_bytes()).unwrap(),
+        ];
+        let (merged, maps) = merged_categories(&documents);
+        let seen: Vec<_> = merged
+            .iter()
+            .map(|c| (c.name.as_str(), c.id, c.keypoints))
+            .collect();
+        assert_eq!(seen, [("car", 1, false), ("person", 2, true)]);
+        assert_eq!(maps[1][&1], 2);
+    }
+}
