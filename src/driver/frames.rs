@@ -150,16 +150,15 @@ impl<'a> PathFrames<'a> {
     fn annotation_input<'f>(
         &self,
         i: usize,
-        instance: &'f image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+        frame: &'f render::Frame,
         rgb: &'f RgbImage,
-        depth: &'f image::ImageBuffer<image::Luma<f32>, Vec<f32>>,
         footprints: &[render::Footprint],
     ) -> FrameInput<'f> {
         let (intrinsics, pose) = (&self.intrinsics, &self.poses[i]);
         let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
         FrameInput {
             file_name: format!("rgb/{i:06}.png"),
-            instance,
+            instance: &frame.instance,
             rgb: Some(rgb),
             intrinsics: k,
             pose: *pose,
@@ -178,7 +177,7 @@ impl<'a> PathFrames<'a> {
                     Some((*id, quads.collect::<Option<Vec<_>>>()?))
                 })
                 .collect(),
-            depth: self.input.camera.keypoints.then_some(depth),
+            depth: self.input.camera.keypoints.then_some(&frame.depth),
         }
     }
 
@@ -270,13 +269,7 @@ impl<'a> PathFrames<'a> {
         let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
-        let frame_input = self.annotation_input(
-            i,
-            &frame.instance,
-            &developed.rgb,
-            &frame.depth,
-            &footprints,
-        );
+        let frame_input = self.annotation_input(i, &frame, &developed.rgb, &footprints);
         let ((pngs, semantic), mut summary) = rayon::join(
             || {
                 rayon::join(
