@@ -10,6 +10,7 @@ use super::coco_words::{WORD_CATEGORY, plate_window, word_annotation};
 use super::frame_annotations::{FrameAnnotations, summarize};
 use super::frame_input::{FrameInput, Thresholds};
 use super::icdar::word_lines;
+use super::keypoints::{KEYPOINT_NAMES, Keypoint, SKELETON, labelled};
 use super::object_label::{Category, ObjectLabel};
 use super::round;
 
@@ -41,7 +42,8 @@ pub fn coco(
 /// - ignore regions: a listed object that shows pixels but misses the thresholds is
 ///   written with `iscrowd` 1 and its RLE mask, so pycocotools' COCOeval (and loaders
 ///   that follow it) neither rewards nor punishes a detection of it.
-/// - `categories`: `id`, `name`, in the order given.
+/// - `categories`: `id`, `name`, in the order given; a category whose annotations carry
+///   keypoints also `keypoints` (COCO's 17 names) and `skeleton` (its 19 limbs, 1-based).
 /// - `annotations`, numbered from 1 over all frames in frame then instance-id order, for
 ///   every labelled object whose category is listed: `id`,
 ///   `image_id`, `category_id`, `bbox` `[x, y, w, h]` = tight box of the visible pixels
@@ -53,7 +55,10 @@ pub fn coco(
 ///   `full_bbox` (the box of the pixels the object would cover with nothing in front of
 ///   it and no image edge to cut it: it may reach past the image; `null` when unknown),
 ///   `visible_fraction` (visible ÷ those pixels, so occlusion and truncation both lower
-///   it; or `null`) and, for text objects, `text` (the plate's whole text; its words are
+///   it; or `null`), for a person or rider when the frame has its keypoints
+///   (`keypoints = true`) `num_keypoints` and `keypoints` `[x, y, v] × 17` (see
+///   [`super::project_keypoints`]; all 0 on an ignore region) and, for text objects,
+///   `text` (the plate's whole text; its words are
 ///   `word` annotations, below) and `attributes` `{text_font, text_style, text_light}`
 ///   (style `shop`, `banner`, `painted` or `street`; light `backlit`, `lamp_lit` or
 ///   `unlit`: how it is lit after dusk); for a sign
@@ -127,6 +132,11 @@ impl CocoLines {
             if let Value::Object(map) = &mut annotation {
                 if let Some(why) = object.ignored {
                     map.insert("cityspec_ignored".into(), Value::from(why.name()));
+                }
+                if let Some(keypoints) = frame.keypoints.get(&v.id) {
+                    let (count, keypoints) = keypoints_json(keypoints, object.passes());
+                    map.insert("num_keypoints".into(), count);
+                    map.insert("keypoints".into(), keypoints);
                 }
                 if let Some(text) = &object.label.text {
                     map.insert("text".into(), Value::String(text.clone()));
@@ -255,8 +265,12 @@ pub fn write_coco<W: Write>(
     out.write_all(b"],\n\"categories\":[")?;
     let mut first = true;
     for c in categories {
-        let text = json!({"id": c.id, "name": c.name}).to_string();
-        item(out, &mut first, &text)?;
+        let mut category = json!({"id": c.id, "name": c.name});
+        if c.keypoints {
+            category["keypoints"] = json!(KEYPOINT_NAMES);
+            category["skeleton"] = json!(SKELETON);
+        }
+        item(out, &mut first, &category.to_string())?;
     }
     out.write_all(b"],\n\"annotations\":[")?;
     let mut first = true;
@@ -278,6 +292,24 @@ fn item<W: Write>(out: &mut W, first: &mut bool, text: &str) -> io::Result<()> {
     let sep: &[u8] = if std::mem::take(first) { b"\n" } else { b",\n" };
     out.write_all(sep)?;
     out.write_all(text.as_bytes())
+}
+
+/// COCO `num_keypoints` and `keypoints` (`x, y` to 2 decimals, `v` an integer, `[0, 0, 0]`
+/// where `v` is 0) of an object that `passes`; an ignore region is no person to find, so
+/// none of its keypoints is labelled.
+fn keypoints_json(keypoints: &[Keypoint; 17], passes: bool) -> (Value, Value) {
+    let keypoints = if passes { keypoints } else { &[[0.0; 3]; 17] };
+    let flat: Vec<Value> = keypoints
+        .iter()
+        .flat_map(|&[x, y, v]| {
+            if v > 0.0 {
+                [json!(round(x, 1e2)), json!(round(y, 1e2)), json!(v as u8)]
+            } else {
+                [json!(0), json!(0), json!(0)]
+            }
+        })
+        .collect();
+    (json!(labelled(keypoints)), Value::Array(flat))
 }
 
 /// A 3D box as COCO `attributes.box3d`: in world metres (`center_world`, `yaw_world`,
@@ -313,6 +345,7 @@ mod tests {
             .map(|(name, id)| Category {
                 id,
                 name: name.to_string(),
+                keypoints: false,
             })
             .collect()
     }
@@ -321,6 +354,7 @@ mod tests {
         let label = |name: &str, category, text: Option<&str>| ObjectLabel {
             name: name.into(),
             box3d: None,
+            keypoints: None,
             category,
             text: text.map(String::from),
             attributes: Default::default(),
@@ -363,6 +397,7 @@ mod tests {
                 (3, ([6.0, -3.5, 8.0, 5.0], 40)),
             ]),
             quads: BTreeMap::new(),
+            depth: None,
         }
     }
 
@@ -370,6 +405,79 @@ mod tests {
         min_pixels: 3,
         min_fraction: 0.25,
     };
+
+    #[test]
+    fn people_carry_their_keypoints_and_an_ignore_region_carries_none() {
+        // Person 1 fills the left of a 6 × 4 image, person 2 shows 2 px (an ignore
+        // region), a building 3 the rest; everything 5 m away.
+        let img = test_image(&[
+            &[1, 1, 1, 3, 3, 3],
+            &[1, 1, 1, 3, 3, 3],
+            &[1, 1, 1, 3, 2, 2],
+            &[1, 1, 1, 3, 3, 3],
+        ]);
+        let depth = image::ImageBuffer::from_pixel(6, 4, image::Luma([5.0f32]));
+        let person = |name: &str, keypoints| ObjectLabel {
+            name: name.into(),
+            box3d: None,
+            keypoints: Some(keypoints),
+            category: Some(1),
+            text: None,
+            attributes: Default::default(),
+            sign: None,
+        };
+        // Looking down −z from the origin, fx = fy = 10, centre (3, 2): 5 cm behind the
+        // surface at (2, 1.5), visible; 1 m behind it, hidden; far right, outside.
+        let mut world = [[-0.505, 0.2525, -5.05]; 17];
+        world[3] = [-0.505, 0.2525, -6.0];
+        world[16] = [10.0, 0.0, -5.0];
+        let labels = vec![
+            person("person_0", world),
+            person("person_1", [[1.5, 0.0, -5.0]; 17]),
+            ObjectLabel {
+                keypoints: None,
+                category: Some(2),
+                name: "building_0".into(),
+                ..person("", world)
+            },
+        ];
+        let mut frame = frame("f.png", &img);
+        frame.pose = CameraPose::level([0.0; 3], [0.0, 0.0, -10.0]);
+        frame.intrinsics = [10.0, 10.0, 3.0, 2.0];
+        frame.full.clear();
+        frame.depth = Some(&depth);
+        let categories = ["person", "building"].map(|name| Category {
+            id: if name == "person" { 1 } else { 2 },
+            name: name.into(),
+            keypoints: name == "person",
+        });
+        let doc: Value =
+            serde_json::from_slice(&coco(&categories, &labels, &[frame], &THRESHOLDS)).unwrap();
+        let person = &doc["categories"][0];
+        assert_eq!(person["keypoints"][0], "nose");
+        assert_eq!(person["keypoints"][16], "right_ankle");
+        assert_eq!(person["skeleton"].as_array().unwrap().len(), 19);
+        assert_eq!(person["skeleton"][0], json!([16, 14]));
+        assert_eq!(doc["categories"][1], json!({"id": 2, "name": "building"}));
+        let annotations = doc["annotations"].as_array().unwrap();
+        let [seen, small, building] = [0, 1, 2].map(|i| &annotations[i]);
+        let k = seen["keypoints"].as_array().unwrap();
+        assert_eq!(k.len(), 51);
+        assert_eq!(k[..3], [json!(2.0), json!(1.5), json!(2)]);
+        assert_eq!(k[9..12], [json!(2.16), json!(1.58), json!(1)]);
+        assert_eq!(k[48..], [json!(0), json!(0), json!(0)]);
+        assert_eq!(seen["num_keypoints"], 16);
+        assert_eq!(small["iscrowd"], 1);
+        assert_eq!(small["num_keypoints"], 0);
+        assert!(
+            small["keypoints"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .all(|v| v == 0)
+        );
+        assert!(building.get("keypoints").is_none() && building.get("num_keypoints").is_none());
+    }
 
     #[test]
     fn annotates_visible_pixels_and_drops_small_or_hidden_objects() {
@@ -476,6 +584,7 @@ mod tests {
         let sign = |back_category| ObjectLabel {
             name: "sign_0".into(),
             box3d: None,
+            keypoints: None,
             category: Some(2),
             text: None,
             attributes: Default::default(),
@@ -496,6 +605,7 @@ mod tests {
         with_back.push(Category {
             id: 4,
             name: "sign_back".into(),
+            keypoints: false,
         });
         let annotate = |label: ObjectLabel, x: f64| {
             let bytes = coco(&with_back, &[label], &[seen_from(x)], &THRESHOLDS);
@@ -532,6 +642,7 @@ mod tests {
         let only_signs = [Category {
             id: 2,
             name: "sign".into(),
+            keypoints: false,
         }];
         let doc: Value =
             serde_json::from_slice(&coco(&only_signs, &labels(), &frames, &THRESHOLDS)).unwrap();

@@ -238,6 +238,7 @@ mod tests {
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::new(),
             quads,
+            depth: None,
         };
         let thresholds = Thresholds {
             min_pixels: 2,
@@ -246,6 +247,7 @@ mod tests {
         let categories = ["text", WORD_CATEGORY].map(|name| Category {
             id: if name == "text" { 1 } else { 2 },
             name: name.into(),
+            keypoints: false,
         });
         let doc: Value = serde_json::from_slice(&coco(
             &categories,

@@ -41,6 +41,7 @@ fn labels() -> Vec<ObjectLabel> {
             ObjectLabel {
                 name: format!("object_{id:04}"),
                 box3d: None,
+                keypoints: None,
                 category,
                 text,
                 attributes: Default::default(),
@@ -118,6 +119,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
             pose: CameraPose::level([i as f64, 1.6, 0.0], [i as f64 + 10.0, 0.6, 0.0]),
             full: full.clone(),
             quads: BTreeMap::new(),
+            depth: None,
         })
         .collect();
     let categories: Vec<Category> = ["building", "sign", "text"]
@@ -126,6 +128,7 @@ fn write_fixture(dir: &Path) -> (Vec<u8>, Vec<Instance>) {
         .map(|(n, id)| Category {
             id,
             name: n.to_string(),
+            keypoints: false,
         })
         .collect();
     let thresholds = Thresholds {

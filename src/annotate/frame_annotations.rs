@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::frame_input::{FrameInput, Thresholds};
+use super::keypoints::{Keypoint, project_keypoints};
 use super::object_label::ObjectLabel;
 use super::shown_object::{ShownObject, shown};
 use super::word_quad::WordQuad;
@@ -30,6 +31,9 @@ pub struct FrameAnnotations<'a> {
     pub quads: BTreeMap<u32, Vec<WordQuad>>,
     /// The frame's depth image, when the dataset has one (the caller sets it).
     pub depth: Option<DepthFile>,
+    /// Per shown object whose label has keypoints, by instance id: them projected, when
+    /// the frame came with its depth.
+    pub keypoints: BTreeMap<u32, [Keypoint; 17]>,
 }
 
 /// Where a frame's depth image is and how to read it.
@@ -63,6 +67,17 @@ pub fn summarize<'a>(
             Some((id, words.collect()))
         })
         .collect();
+    let keypoints = match frame.depth {
+        Some(depth) => objects
+            .iter()
+            .filter_map(|o| {
+                let world = o.label.keypoints.as_ref()?;
+                let projected = project_keypoints(world, &frame.pose, frame.intrinsics, depth);
+                Some((o.visible.id, projected))
+            })
+            .collect(),
+        None => BTreeMap::new(),
+    };
     FrameAnnotations {
         file_name: frame.file_name.clone(),
         width,
@@ -72,5 +87,6 @@ pub fn summarize<'a>(
         objects,
         quads,
         depth: None,
+        keypoints,
     }
 }

@@ -29,6 +29,9 @@ pub struct FrameInput<'a> {
     /// projected corners of the word's quad, clockwise from the top-left of the writing,
     /// when the renderer knows them (for ICDAR lines).
     pub quads: BTreeMap<u32, Vec<[[f64; 2]; 4]>>,
+    /// The frame's depth, metres along the view axis (0 the sky), when the path writes
+    /// keypoints: their visibility is read from it ([`super::project_keypoints`]).
+    pub depth: Option<&'a ImageBuffer<Luma<f32>, Vec<f32>>>,
 }
 
 /// Which visible objects are annotated.

@@ -164,6 +164,7 @@ mod tests {
             pose: CameraPose::level([0.0; 3], [0.0, 0.0, 1.0]),
             full: BTreeMap::new(),
             quads,
+            depth: None,
         };
         let thresholds = Thresholds {
             min_pixels: 2,

@@ -55,6 +55,7 @@ mod tests {
             label: ObjectLabel {
                 name: name.to_owned(),
                 box3d: None,
+                keypoints: None,
                 category: None,
                 text: None,
                 attributes: BTreeMap::new(),

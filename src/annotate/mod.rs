@@ -21,6 +21,7 @@
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
 //! | `instances.json`: instance id → kind, class, category, words, attributes | [`instances`] | camera path |
 //! | KITTI object `label_2` lines and `calib` (3D boxes: [`Box3d`]) | [`kitti`] | frame |
+//! | COCO `keypoints` of people and riders, visibility from the depth image | [`project_keypoints`] (in [`summarize`], written by [`CocoWriter`]) | frame |
 //! | Cityscapes `labelIds`, `instanceIds`, `color` and COCO panoptic images and segments | [`semantic`] (labels: [`SemanticClasses`]) | frame |
 //!
 //! Output is deterministic: objects in instance-id order, JSON keys in a fixed order, and
@@ -41,6 +42,7 @@ mod frame_annotations;
 mod frame_input;
 mod icdar;
 mod instances;
+mod keypoints;
 mod kitti;
 mod object_label;
 mod path_labels;
@@ -61,6 +63,7 @@ pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
 pub use frame_input::{FrameInput, Thresholds};
 pub use icdar::icdar;
 pub use instances::instances;
+pub use keypoints::{KEYPOINT_NAMES, Keypoint, SKELETON, SURFACE_DEPTH, project_keypoints};
 pub use kitti::{KittiFiles, kitti};
 pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
@@ -101,6 +104,7 @@ pub(crate) fn word_fixture() -> (
     let label = |text: Option<&str>| ObjectLabel {
         name: text.unwrap_or("building").into(),
         box3d: None,
+        keypoints: None,
         category: text.map(|_| 1),
         text: text.map(String::from),
         attributes: Default::default(),

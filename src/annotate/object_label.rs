@@ -12,6 +12,10 @@ pub struct Category {
     /// COCO category id (use 1 and up: some tools treat 0 as "none").
     pub id: u32,
     pub name: String,
+    /// Whether its annotations carry keypoints: then COCO lists its `keypoints` names
+    /// and `skeleton`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub keypoints: bool,
 }
 
 /// One object of the scene, at index `instance id − 1`.
@@ -31,6 +35,10 @@ pub struct ObjectLabel {
     /// `attributes.box3d`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub box3d: Option<Box3d>,
+    /// A person's or rider's 17 COCO keypoints in world metres, when the path writes
+    /// keypoints.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub keypoints: Option<[[f64; 3]; 17]>,
     /// A sign: which way its face looks, so it is labelled by the side a frame shows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sign: Option<SignLabel>,

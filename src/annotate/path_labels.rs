@@ -160,6 +160,7 @@ fn categories(classes: &[String], split: &[&str]) -> Vec<Category> {
         .map(|(i, name)| Category {
             id: i as u32 + 1,
             name,
+            keypoints: false,
         })
         .collect()
 }
@@ -202,6 +203,7 @@ mod tests {
             label: ObjectLabel {
                 name: format!("{class}_0000"),
                 box3d: None,
+                keypoints: None,
                 category: None,
                 text: text.map(String::from),
                 attributes: Default::default(),
@@ -235,6 +237,7 @@ mod tests {
             label: ObjectLabel {
                 name: format!("sign_{kind}"),
                 box3d: None,
+                keypoints: None,
                 category: None,
                 text: None,
                 attributes: BTreeMap::new(),

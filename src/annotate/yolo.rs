@@ -105,15 +105,18 @@ mod tests {
             Category {
                 id: 10,
                 name: "sign".into(),
+                keypoints: false,
             },
             Category {
                 id: 20,
                 name: "car".into(),
+                keypoints: false,
             },
         ];
         let label = |name: &str, category| ObjectLabel {
             name: name.into(),
             box3d: None,
+            keypoints: None,
             category,
             text: None,
             attributes: Default::default(),
@@ -134,6 +137,7 @@ mod tests {
             pose: CameraPose::level([0.0; 3], [1.0, 0.0, 0.0]),
             full: BTreeMap::new(),
             quads: BTreeMap::new(),
+            depth: None,
         };
         let all = Thresholds {
             min_pixels: 1,

@@ -55,6 +55,7 @@ impl<'a> CameraCoco<'a> {
                         .and_then(Value::as_str)
                         .ok_or_else(|| bad("a category without name".into()))?
                         .to_owned(),
+                    keypoints: c.get("keypoints").is_some(),
                 })
             })
             .collect::<Result<Vec<_>, DatasetError>>()?;
@@ -87,7 +88,7 @@ impl<'a> CameraCoco<'a> {
 }
 
 /// The categories of every camera merged by name, in order of first appearance, numbered
-/// from 1; and per camera, its category ids → the merged ones.
+/// from 1 (with keypoints when any camera's has them); and per camera, its category ids → the merged ones.
 fn merged_categories(documents: &[CameraCoco]) -> (Vec<Category>, Vec<BTreeMap<u64, u32>>) {
     let mut merged: Vec<Category> = Vec::new();
     let maps = documents
@@ -96,14 +97,14 @@ fn merged_categories(documents: &[CameraCoco]) -> (Vec<Category>, Vec<BTreeMap<u
             d.categories
                 .iter()
                 .map(|c| {
-                    let id = match merged.iter().find(|m| m.name == c.name) {
-                        Some(m) => m.id,
+                    let id = match merged.iter_mut().find(|m| m.name == c.name) {
+                        Some(m) => {
+                            m.keypoints |= c.keypoints;
+                            m.id
+                        }
                         None => {
                             let id = merged.len() as u32 + 1;
-                            merged.push(Category {
-                                id,
-                                name: c.name.clone(),
-                            });
+                            merged.push(Category { id, ..c.clone() });
                             id
                         }
                     };
@@ -189,5 +190,30 @@ pub(super) fn document(
 fn prefix(object: &mut Map<String, Value>, dir: &str) {
     if let Some(Value::String(name)) = object.get_mut("file_name") {
         *name = format!("{dir}{name}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_merged_category_has_keypoints_when_any_cameras_has_them() {
+        let doc = |categories: &str| {
+            format!(r#"{{"images":[],"categories":[{categories}],"annotations":[]}}"#)
+        };
+        let plain = doc(r#"{"id":1,"name":"car"},{"id":2,"name":"person"}"#);
+        let keyed = doc(r#"{"id":1,"name":"person","keypoints":["nose"],"skeleton":[]}"#);
+        let documents = [
+            CameraCoco::parse("a", plain.as_bytes()).unwrap(),
+            CameraCoco::parse("b", keyed.as_bytes()).unwrap(),
+        ];
+        let (merged, maps) = merged_categories(&documents);
+        let seen: Vec<_> = merged
+            .iter()
+            .map(|c| (c.name.as_str(), c.id, c.keypoints))
+            .collect();
+        assert_eq!(seen, [("car", 1, false), ("person", 2, true)]);
+        assert_eq!(maps[1][&1], 2);
     }
 }

@@ -1,6 +1,8 @@
 //! The scene's objects, with what the objects stage knows of them (words, text
 //! attributes, sign faces) → the annotate stage's [`annotate::ClassedObject`]s; with the
-//! camera's `kitti`, each annotated object's 3D box from its meshes ([`annotate::Box3d`]).
+//! camera's `kitti`, each annotated object's 3D box from its meshes ([`annotate::Box3d`]);
+//! with its `keypoints`, each annotated person's and rider's keypoints (and their
+//! categories marked as having them).
 //!
 //! Glue only: which classes a path annotates, and how, is the annotate stage's
 //! ([`annotate::path_labels`]).
@@ -30,6 +32,7 @@ pub fn labels(
                 label: ObjectLabel {
                     name: object.name.clone(),
                     box3d: None,
+                    keypoints: None,
                     category: None,
                     text: info.and_then(|info| info.text.clone()),
                     attributes: info.map(|info| info.attributes.clone()).unwrap_or_default(),
@@ -55,6 +58,17 @@ pub fn labels(
             if label.category.is_some() {
                 let points = object.meshes.iter().flat_map(|m| &m.positions);
                 label.box3d = annotate::Box3d::around(points.map(|p| p.map(f64::from)));
+            }
+        }
+    }
+    if path.camera.keypoints {
+        for (label, info) in labels.labels.iter_mut().zip(info) {
+            let keypoints = info.as_ref().and_then(|info| info.keypoints);
+            if let (Some(category), Some(_)) = (label.category, keypoints) {
+                label.keypoints = keypoints;
+                for c in labels.categories.iter_mut().filter(|c| c.id == category) {
+                    c.keypoints = true;
+                }
             }
         }
     }

@@ -145,11 +145,12 @@ impl<'a> PathFrames<'a> {
     }
 
     /// What annotating frame `i` reads besides the labels: its instance image, the
-    /// objects' unoccluded footprints and the text objects' word quads projected.
+    /// objects' unoccluded footprints, the text objects' word quads projected and, when
+    /// the path writes keypoints, its depth.
     fn annotation_input<'f>(
         &self,
         i: usize,
-        instance: &'f image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
+        frame: &'f render::Frame,
         rgb: &'f RgbImage,
         footprints: &[render::Footprint],
     ) -> FrameInput<'f> {
@@ -157,7 +158,7 @@ impl<'a> PathFrames<'a> {
         let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
         FrameInput {
             file_name: format!("rgb/{i:06}.png"),
-            instance,
+            instance: &frame.instance,
             rgb: Some(rgb),
             intrinsics: k,
             pose: *pose,
@@ -176,6 +177,7 @@ impl<'a> PathFrames<'a> {
                     Some((*id, quads.collect::<Option<Vec<_>>>()?))
                 })
                 .collect(),
+            depth: self.input.camera.keypoints.then_some(&frame.depth),
         }
     }
 
@@ -267,7 +269,7 @@ impl<'a> PathFrames<'a> {
         let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
-        let frame_input = self.annotation_input(i, &frame.instance, &developed.rgb, &footprints);
+        let frame_input = self.annotation_input(i, &frame, &developed.rgb, &footprints);
         let ((pngs, semantic), mut summary) = rayon::join(
             || {
                 rayon::join(

@@ -130,6 +130,7 @@ fn projected_kitti_corners_contain_every_full_box() {
     let categories = [Category {
         id: 1,
         name: "car".into(),
+        keypoints: false,
     }];
     let labels: Vec<ObjectLabel> = scene
         .objects
@@ -137,6 +138,7 @@ fn projected_kitti_corners_contain_every_full_box() {
         .map(|o| ObjectLabel {
             name: o.name.clone(),
             box3d: Box3d::around(o.meshes[0].positions.iter().map(|p| p.map(f64::from))),
+            keypoints: None,
             category: (o.name != "ground").then_some(1),
             text: None,
             attributes: BTreeMap::new(),
@@ -168,6 +170,7 @@ fn projected_kitti_corners_contain_every_full_box() {
                 .map(|f| (f.id, (f.bbox().map(|v| v as f64), f.pixels)))
                 .collect(),
             quads: BTreeMap::new(),
+            depth: None,
         };
         let thresholds = Thresholds {
             min_pixels: 1,

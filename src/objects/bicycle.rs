@@ -26,6 +26,7 @@ use rand_pcg::Pcg64;
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
 use super::ground_spots::{GroundSpots, RoadSlot};
 use super::person::{self, Cap, HAIR, SHIRTS, SHOES, SKIN, TROUSERS, WALKER_ROOM};
+use super::person_pose::{ANKLE, ELBOW, HIP, KNEE, SHOULDER, WRIST};
 use super::vehicle_parts::{Frame, Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
 use crate::model::Mesh;
@@ -218,11 +219,13 @@ pub fn place(
                 },
             };
             let name = placing.name("rider");
-            placing.push_plain(
+            placing.push_figure(
                 crate::model::ObjectKind::Rider,
                 name,
                 RIDER_CLASS,
                 rider_meshes(&frame, &bike, &rider, clothes),
+                std::collections::BTreeMap::new(),
+                Some(rider_keypoints(&frame, &bike, &rider)),
             );
         }
     }
@@ -356,11 +359,69 @@ fn knee(hip: [f64; 2], foot: [f64; 2], thigh: f64, shin: f64) -> [f64; 2] {
     ]
 }
 
+/// Where a rider's joints are on its bike, in the bike's `(u, y)` plane: hips on the
+/// saddle, the back leaning forward, feet on the pedals, hands on the grips.
+struct RiderRig {
+    /// Its width and depth factor `s`: `h / 1.75` times the build.
+    s: f64,
+    hip: [f64; 2],
+    shoulder: [f64; 2],
+    /// Left (on the pedal at `side` −1), then right: knee and ankle.
+    knees: [[f64; 2]; 2],
+    ankles: [[f64; 2]; 2],
+    elbow: [f64; 2],
+    grip: [f64; 2],
+    /// The head's centre.
+    head: [f64; 2],
+}
+
+impl RiderRig {
+    fn of(bike: &Bike, rider: &Rider) -> RiderRig {
+        let h = rider.height;
+        let s = h / 1.75 * rider.build;
+        let saddle = saddle_point(bike);
+        let hip = [saddle[0] - 0.02, saddle[1] + 0.06];
+        let (lc, ls) = trig::cos_sin_deg(rider.lean);
+        let back = 0.32 * h;
+        let shoulder = [hip[0] + ls * back, hip[1] + lc * back];
+        let (thigh, shin) = (0.25 * h, 0.25 * h);
+        let ankles = [-1.0, 1.0].map(|side| {
+            let foot = pedal(bike, side);
+            [foot[0] - 0.03, foot[1] + 0.05]
+        });
+        let grip = grips(bike);
+        RiderRig {
+            s,
+            hip,
+            shoulder,
+            knees: ankles.map(|ankle| knee(hip, ankle, thigh, shin)),
+            ankles,
+            elbow: [
+                shoulder[0] + (grip[0] - shoulder[0]) * 0.5,
+                shoulder[1] + (grip[1] - shoulder[1]) * 0.5,
+            ],
+            grip,
+            head: [shoulder[0] + 0.07 * s, shoulder[1] + 0.1 * h],
+        }
+    }
+
+    /// The middle across (`v`) of a leg on `side` (−1 left, 1 right).
+    fn leg_v(&self, side: f64) -> f64 {
+        side * (0.05 + 0.06 * self.s)
+    }
+
+    /// The middle across (`v`) of an arm on `side`.
+    fn arm_v(&self, side: f64) -> f64 {
+        side * 0.21 * self.s
+    }
+}
+
 /// The solids of `rider` on `bike` at `frame`: trousers, shoes, shirt, skin, and the
 /// helmet or hair.
 pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials) -> Vec<Mesh> {
     let h = rider.height;
-    let s = h / 1.75 * rider.build;
+    let rig = RiderRig::of(bike, rider);
+    let s = rig.s;
     let (mut shirt, mut trousers, mut skin, mut head, mut shoes) = (
         Solid::new(m.shirt),
         Solid::new(m.trousers),
@@ -368,18 +429,12 @@ pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials
         Solid::new(m.head),
         Solid::new(m.shoes),
     );
-    let saddle = saddle_point(bike);
-    let hip = [saddle[0] - 0.02, saddle[1] + 0.06];
-    let (lc, ls) = trig::cos_sin_deg(rider.lean);
-    let back = 0.32 * h;
-    let shoulder = [hip[0] + ls * back, hip[1] + lc * back];
+    let (hip, shoulder) = (rig.hip, rig.shoulder);
     // Legs: thigh and shin to each pedal, the shoe along the pedal.
-    let (thigh, shin) = (0.25 * h, 0.25 * h);
     let leg = 0.13 * s;
-    for side in [-1.0, 1.0] {
+    for (i, side) in [(0, -1.0), (1, 1.0)] {
         let foot = pedal(bike, side);
-        let ankle = [foot[0] - 0.03, foot[1] + 0.05];
-        let k = knee(hip, ankle, thigh, shin);
+        let (k, ankle) = (rig.knees[i], rig.ankles[i]);
         let inner = side * 0.05;
         let outer = side * (0.05 + 0.12 * s);
         let v = [inner.min(outer), inner.max(outer)];
@@ -396,11 +451,7 @@ pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials
     // Torso from the hips to the shoulders, leaning forward.
     shirt.bar(frame, hip, shoulder, 0.22 * s, [-0.18 * s, 0.18 * s]);
     // Arms straight from the shoulders to the grips: sleeve, then forearm.
-    let grip = grips(bike);
-    let elbow = [
-        shoulder[0] + (grip[0] - shoulder[0]) * 0.5,
-        shoulder[1] + (grip[1] - shoulder[1]) * 0.5,
-    ];
+    let (elbow, grip) = (rig.elbow, rig.grip);
     for side in [-1.0, 1.0] {
         let inner = side * 0.17 * s;
         let outer = side * (0.17 * s + 0.08 * s);
@@ -409,7 +460,7 @@ pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials
         skin.bar(frame, elbow, grip, 0.075 * s, v);
     }
     // Neck and head, the face looking ahead; a helmet or hair over its top and back.
-    let centre = [shoulder[0] + 0.07 * s, shoulder[1] + 0.1 * h];
+    let centre = rig.head;
     skin.bar(frame, shoulder, centre, 0.09 * s, [-0.045 * s, 0.045 * s]);
     let cap = Cap {
         scale: 1.15,
@@ -418,6 +469,38 @@ pub fn rider_meshes(frame: &Frame, bike: &Bike, rider: &Rider, m: RiderMaterials
     };
     person::head(frame, centre, s, h, (&mut skin, &mut head), cap);
     finish_all(vec![trousers, shoes, shirt, skin, head])
+}
+
+/// The 17 COCO keypoints of `rider` on `bike` at `frame`, in world metres: the face's as
+/// on a pedestrian's head ([`super::person_pose`]), the joints of its limbs in the middle
+/// of each limb across; the wrist a hand's length (0.065 h) short of the grip.
+pub fn rider_keypoints(frame: &Frame, bike: &Bike, rider: &Rider) -> [[f64; 3]; 17] {
+    let (h, rig) = (rider.height, RiderRig::of(bike, rider));
+    let s = rig.s;
+    let [hu, hy] = rig.head;
+    let forearm = [rig.grip[0] - rig.elbow[0], rig.grip[1] - rig.elbow[1]];
+    let length = (forearm[0] * forearm[0] + forearm[1] * forearm[1])
+        .sqrt()
+        .max(1e-9);
+    let back = (0.065 * h).min(length) / length;
+    let wrist = [
+        rig.grip[0] - forearm[0] * back,
+        rig.grip[1] - forearm[1] * back,
+    ];
+    let mut k = [[0.0; 3]; 17];
+    k[0] = [hu + 0.09 * s, hy - 0.01 * h, 0.0];
+    for (i, side) in [(0, -1.0), (1, 1.0)] {
+        k[1 + i] = [hu + 0.075 * s, hy + 0.01 * h, side * 0.035 * s];
+        k[3 + i] = [hu, hy, side * 0.075 * s];
+        let (arm, leg) = (rig.arm_v(side), rig.leg_v(side));
+        k[SHOULDER + i] = [rig.shoulder[0], rig.shoulder[1], arm];
+        k[ELBOW + i] = [rig.elbow[0], rig.elbow[1], arm];
+        k[WRIST + i] = [wrist[0], wrist[1], arm];
+        k[HIP + i] = [rig.hip[0], rig.hip[1], leg];
+        k[KNEE + i] = [rig.knees[i][0], rig.knees[i][1], leg];
+        k[ANKLE + i] = [rig.ankles[i][0], rig.ankles[i][1], leg];
+    }
+    k.map(|[u, y, v]| frame.at(u, y, v))
 }
 
 #[cfg(test)]
@@ -538,6 +621,53 @@ mod tests {
             // The top of the head: below standing height, above the handlebar.
             let top = all.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
             assert!(top > grips(&bike)[1] + 0.4, "{top}");
+        }
+    }
+
+    #[test]
+    fn a_riders_keypoints_lie_on_its_body_left_and_right_where_they_belong() {
+        let frame = Frame {
+            origin: [2.0, 0.1, -3.0],
+            forward: [0.6, -0.8],
+        };
+        let right = frame.dir(0.0, 0.0, 1.0);
+        let across = |p: [f64; 3]| (p[0] - 2.0) * right[0] + (p[2] + 3.0) * right[2];
+        let apart = |a: [f64; 3], b: [f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        for (height, crank, lean) in [(1.5, 0.0, 25.0), (1.95, 130.0, 45.0), (1.75, 300.0, 35.0)] {
+            let bike = Bike {
+                crank,
+                saddle: saddle_for(height),
+            };
+            let rider = Rider {
+                height,
+                build: 0.95,
+                lean,
+            };
+            let meshes = rider_meshes(&frame, &bike, &rider, CLOTHES);
+            let k = rider_keypoints(&frame, &bike, &rider);
+            for (i, &p) in k.iter().enumerate() {
+                let near = person::tests::surface_distance(&meshes, p);
+                assert!(near < 0.05, "{height} keypoint {i}: {near}");
+            }
+            for left in [1, 3, SHOULDER, ELBOW, WRIST, HIP, KNEE, ANKLE] {
+                assert!(across(k[left]) < 0.0 && across(k[left + 1]) > 0.0, "{left}");
+            }
+            // Hands on the grips, feet on the pedals (left on the pedal at side −1).
+            let grip = grips(&bike);
+            for (i, side) in [(0, -1.0), (1, 1.0)] {
+                let at_grip = frame.at(grip[0], grip[1], across(k[WRIST + i]));
+                assert!(apart(k[WRIST + i], at_grip) < 0.07 * height, "wrist {i}");
+                let foot = pedal(&bike, side);
+                let on_pedal = frame.at(foot[0], foot[1], across(k[ANKLE + i]));
+                assert!(apart(k[ANKLE + i], on_pedal) < 0.07, "ankle {i}");
+            }
+            // The nose ahead of the ears and above the shoulders, which are above the hips
+            // (the back, 0.32 h, leans up to 45°).
+            let ahead = |p: [f64; 3]| (p[0] - 2.0) * 0.6 - (p[2] + 3.0) * 0.8;
+            assert!(ahead(k[0]) > ahead(k[3]) && k[0][1] > k[SHOULDER][1]);
+            assert!(k[SHOULDER][1] > k[HIP][1] + 0.2 * height);
         }
     }
 }

@@ -184,6 +184,9 @@ pub struct ObjectInfo {
     pub corners: Vec<[[f64; 3]; 4]>,
     /// Extra annotation attributes (text objects: `text_style`, `text_font`).
     pub attributes: BTreeMap<String, String>,
+    /// People and riders: the 17 COCO keypoints in COCO's order, world metres, from the
+    /// rig their mesh is built on (each inside its body part). None for other objects.
+    pub keypoints: Option<[[f64; 3]; 17]>,
 }
 
 /// State shared by the entries of one group (see [`entry_groups`]) while they are placed
@@ -343,6 +346,20 @@ impl<'a> Placing<'a> {
         meshes: Vec<Mesh>,
         attributes: BTreeMap<String, String>,
     ) {
+        self.push_figure(kind, name, label, meshes, attributes, None);
+    }
+
+    /// [`Placing::push_attributed`] for a figure with a rig: a person or a rider, with its
+    /// 17 COCO `keypoints` in world metres.
+    pub fn push_figure(
+        &mut self,
+        kind: crate::model::ObjectKind,
+        name: String,
+        label: &str,
+        meshes: Vec<Mesh>,
+        attributes: BTreeMap<String, String>,
+        keypoints: Option<[[f64; 3]; 17]>,
+    ) {
         let object = SceneObject {
             name,
             kind,
@@ -354,6 +371,7 @@ impl<'a> Placing<'a> {
             text: None,
             corners: Vec::new(),
             attributes,
+            keypoints,
         };
         self.push(object, info);
     }

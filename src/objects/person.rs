@@ -137,6 +137,12 @@ impl Figure {
         let s = self.width();
         person_pose::skeleton(self.pose, self.height, s, self.stride, self.holding)
     }
+
+    /// Its 17 COCO keypoints standing at `frame`'s origin, facing its forward, in world
+    /// metres.
+    pub fn keypoints(&self, frame: &Frame) -> [[f64; 3]; 17] {
+        self.skeleton().keypoints.map(|[u, y, v]| frame.at(u, y, v))
+    }
 }
 
 pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
@@ -192,8 +198,16 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         };
         let name = placing.name("person");
         let meshes = person_meshes(&frame, &figure, materials);
+        let keypoints = figure.keypoints(&frame);
         let person = crate::model::ObjectKind::Person;
-        placing.push_attributed(person, name, &spec.label, meshes, attributes);
+        placing.push_figure(
+            person,
+            name,
+            &spec.label,
+            meshes,
+            attributes,
+            Some(keypoints),
+        );
         misses = 0;
     }
 }
@@ -496,7 +510,7 @@ pub(super) fn head(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn figure(height: f64, stride: f64) -> Figure {
@@ -624,8 +638,7 @@ mod tests {
                 let hi = [0, 1, 2].map(|a| points.iter().map(|p| p[a]).fold(f64::MIN, f64::max));
                 let bones = figure.skeleton();
                 let k = bones.keypoints;
-                for (i, local) in k.iter().enumerate() {
-                    let p = frame.at(local[0], local[1], local[2]);
+                for (i, &p) in figure.keypoints(&frame).iter().enumerate() {
                     for a in 0..3 {
                         assert!(lo[a] - 1e-9 <= p[a] && p[a] <= hi[a] + 1e-9, "{pose:?} {i}");
                     }
@@ -666,7 +679,7 @@ mod tests {
     }
 
     /// The distance from `p` to the nearest triangle of `meshes`.
-    fn surface_distance(meshes: &[Mesh], p: [f64; 3]) -> f64 {
+    pub(in crate::objects) fn surface_distance(meshes: &[Mesh], p: [f64; 3]) -> f64 {
         let mut best = f64::MAX;
         for m in meshes {
             for t in m.indices.chunks(3) {

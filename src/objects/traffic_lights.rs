@@ -135,6 +135,7 @@ pub fn place(
                 text: None,
                 corners: Vec::new(),
                 attributes: BTreeMap::from([("state".to_owned(), signal.name().to_owned())]),
+                keypoints: None,
             };
             placing.push(object, info);
         }

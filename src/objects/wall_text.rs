@@ -360,6 +360,7 @@ pub(crate) fn plate_objects(
                 text: Some(p.text),
                 corners: p.corners,
                 attributes,
+                keypoints: None,
             };
             (object, info)
         })

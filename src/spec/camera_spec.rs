@@ -124,6 +124,12 @@ pub struct CameraSpec {
     /// `attributes.box3d`. Off, no box is worked out and it stays out of the stage keys.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub kitti: bool,
+    /// Also write the 17 COCO keypoints of every person and rider annotated, in COCO's
+    /// `person_keypoints` form (`keypoints`, `num_keypoints`; the category's `keypoints`
+    /// and `skeleton`), each flagged visible or hidden by the depth image. Off, none is
+    /// worked out and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub keypoints: bool,
     /// Classes this path annotates, instead of `[annotations] classes` (for example
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]

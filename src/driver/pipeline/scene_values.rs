@@ -140,6 +140,7 @@ fn city_info(
                 text: None,
                 corners: Vec::new(),
                 attributes: BTreeMap::from([("facade".to_owned(), (*facade).to_owned())]),
+                keypoints: None,
             })
         })
         .collect()
