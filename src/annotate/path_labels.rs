@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 
 use super::coco_words::WORD_CATEGORY;
 use super::{Category, ObjectLabel, YoloClasses};
-use crate::spec::{AnnotationsSpec, CameraSpec, ObjectKind, ObjectSpec, SignKind};
+use crate::spec::{AnnotationsSpec, CameraSpec, EntryKind, ObjectSpec, SignKind};
 
 /// The class every lamp head is labelled with.
 const LAMP_CLASS: &str = "lamp";
@@ -84,7 +84,7 @@ pub fn path_labels(
     let yolo = annotations.yolo.then(|| {
         let mut split: BTreeMap<u32, Vec<String>> = BTreeMap::new();
         if annotations.yolo_sign_types {
-            for entry in specs.iter().filter(|o| o.kind == ObjectKind::Sign) {
+            for entry in specs.iter().filter(|o| o.kind == EntryKind::Sign) {
                 let Some(id) = id_of(&entry.label) else {
                     continue;
                 };
@@ -136,7 +136,7 @@ fn split_labels<'a>(annotations: &AnnotationsSpec, specs: &'a [ObjectSpec]) -> V
     }
     specs
         .iter()
-        .filter(|o| o.kind == ObjectKind::Sign)
+        .filter(|o| o.kind == EntryKind::Sign)
         .map(|o| o.label.as_str())
         .collect()
 }

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use crate::facades::{FacadeFile, FacadeSource, Photo};
 use crate::hash::hex;
 use crate::objects::MeshFiles;
-use crate::spec::ObjectKind;
+use crate::spec::EntryKind;
 use crate::spec::{self, BUILTIN_FACADES, InputFileError, Spec};
 
 /// Every input file a spec names, read and hashed: what the stage keys and the stages need
@@ -248,7 +248,7 @@ pub fn mesh_files(
     let mut meshes = BTreeMap::new();
     let mut digest = Sha256::new();
     for (index, object) in spec.objects.iter().enumerate() {
-        if let (ObjectKind::Text | ObjectKind::StreetName, Some(words)) =
+        if let (EntryKind::Text | EntryKind::StreetName, Some(words)) =
             (object.kind, &object.words_file)
         {
             if !meshes.contains_key(words) {
@@ -266,7 +266,7 @@ pub fn mesh_files(
             }
             continue;
         }
-        let (ObjectKind::Mesh, Some(model)) = (object.kind, &object.model) else {
+        let (EntryKind::Mesh, Some(model)) = (object.kind, &object.model) else {
             continue;
         };
         if meshes.contains_key(model) {

@@ -15,11 +15,11 @@ use super::{
     EntryShare, Inserted, ObjectsError, ObjectsInput, PlacedEntries, next_name, place_entries,
 };
 use crate::model::geometry::MaterialBook;
-use crate::spec::{ObjectKind, ObjectSpec};
+use crate::spec::{EntryKind, ObjectSpec};
 
 /// See [`super::insert`].
 pub(super) fn insert(input: &ObjectsInput) -> Result<Inserted, ObjectsError> {
-    let on_walls = |spec: &ObjectSpec| spec.kind == ObjectKind::Text;
+    let on_walls = |spec: &ObjectSpec| spec.kind == EntryKind::Text;
     let (walls, ground) = rayon::join(
         || place_entries(input, on_walls),
         || place_entries(input, |spec| !on_walls(spec)),

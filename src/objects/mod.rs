@@ -64,7 +64,7 @@ use crate::model::geometry::{FacadeChoice, MaterialBook, trig};
 use crate::model::{
     Building, FacadeSet, Lamp, Material, Mesh, ParsedLayout, Scene, SceneObject, Texture,
 };
-use crate::spec::{ObjectKind, ObjectSpec};
+use crate::spec::{EntryKind, ObjectSpec};
 
 pub use objects_error::ObjectsError;
 pub use traffic_signs::SignFace;
@@ -414,10 +414,10 @@ fn place_entries<'a>(
         let before = EntryShare::start(&placing);
         let mut counted = None;
         let placed = match spec.kind {
-            ObjectKind::Text => walls
+            EntryKind::Text => walls
                 .get_or_insert_with(|| wall_text::Walls::new(input))
                 .place(spec, &mut rng, &mut placing),
-            ObjectKind::Sign => {
+            EntryKind::Sign => {
                 counted = Some(traffic_signs::place(
                     spec,
                     &mut rng,
@@ -426,26 +426,26 @@ fn place_entries<'a>(
                 ));
                 Ok(())
             }
-            ObjectKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
-            ObjectKind::Car => {
+            EntryKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
+            EntryKind::Car => {
                 counted = Some(car::place(spec, &mut rng, &mut spots, &mut placing));
                 Ok(())
             }
-            ObjectKind::Tree => {
+            EntryKind::Tree => {
                 tree::place(spec, &mut rng, &mut spots, &mut placing);
                 Ok(())
             }
-            ObjectKind::Person => {
+            EntryKind::Person => {
                 person::place(spec, &mut rng, &mut spots, &mut placing);
                 Ok(())
             }
-            ObjectKind::Bicycle => {
+            EntryKind::Bicycle => {
                 counted = Some(bicycle::place(spec, &mut rng, &mut spots, &mut placing));
                 Ok(())
             }
-            ObjectKind::StreetName => street_names::place(spec, &mut rng, &mut spots, &mut placing)
+            EntryKind::StreetName => street_names::place(spec, &mut rng, &mut spots, &mut placing)
                 .map(|n| counted = Some(n)),
-            ObjectKind::TrafficLight => {
+            EntryKind::TrafficLight => {
                 counted = Some(traffic_lights::place(
                     spec,
                     &mut rng,

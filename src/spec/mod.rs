@@ -70,7 +70,7 @@ pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{
-    CarBody, Ground, KIND_KEYS, ObjectKind, ObjectSpec, RIDER_CLASS, SignGroup, SignKind, TextCase,
+    CarBody, EntryKind, Ground, KIND_KEYS, ObjectSpec, RIDER_CLASS, SignGroup, SignKind, TextCase,
     TreeSpecies, kinds_of_key,
 };
 pub use output_spec::{OutputLayout, OutputSpec};

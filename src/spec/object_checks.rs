@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::class_checks::SCENE_CLASSES;
 use super::findings::Findings;
-use super::object_spec::{ObjectKind, ObjectSpec};
+use super::object_spec::{EntryKind, ObjectSpec};
 use super::{SpecWorld, resolve};
 
 /// Every object class's ranges run low to high; a mesh class names a readable model file.
@@ -20,7 +20,7 @@ pub(crate) fn check_objects(
     for (i, object) in objects.iter().enumerate() {
         let key = |name: &str| format!("objects[{i}].{name}");
         match object.kind {
-            ObjectKind::Text | ObjectKind::StreetName => {
+            EntryKind::Text | EntryKind::StreetName => {
                 check_range(&key("letter_height"), object.letter_height, findings);
                 check_range(&key("words"), object.words, findings);
                 if let Some(words) = &object.words_file {
@@ -36,17 +36,17 @@ pub(crate) fn check_objects(
                     }
                 }
             }
-            ObjectKind::Sign => {}
-            ObjectKind::Car | ObjectKind::TrafficLight => {}
-            ObjectKind::Tree | ObjectKind::Person | ObjectKind::Bicycle => {
+            EntryKind::Sign => {}
+            EntryKind::Car | EntryKind::TrafficLight => {}
+            EntryKind::Tree | EntryKind::Person | EntryKind::Bicycle => {
                 check_heights(object, &key("height"), findings);
             }
-            ObjectKind::Mesh if object.label.is_empty() => findings.error(
+            EntryKind::Mesh if object.label.is_empty() => findings.error(
                 &format!("objects[{i}]"),
                 "expected a `label` for an object of kind \"mesh\" (its annotation \
                  category), found none",
             ),
-            ObjectKind::Mesh => check_mesh(object, i, spec_path, world, findings),
+            EntryKind::Mesh => check_mesh(object, i, spec_path, world, findings),
         }
     }
 }
@@ -63,8 +63,8 @@ fn check_heights(object: &ObjectSpec, key: &str, findings: &mut Findings<'_, '_>
             format!(
                 "expected heights from {low} to {high} m for a {}, found {:?}",
                 match object.kind {
-                    ObjectKind::Tree => "tree",
-                    ObjectKind::Bicycle => "bicycle's rider",
+                    EntryKind::Tree => "tree",
+                    EntryKind::Bicycle => "bicycle's rider",
                     _ => "person",
                 },
                 range

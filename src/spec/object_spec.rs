@@ -28,7 +28,7 @@ pub struct ObjectSpec {
     /// roads, one lit red, amber or green; `count` counts poles) or `"bicycle"` (bicycles
     /// parked in the sidewalk strips and ridden in the driving lanes, each ridden one with
     /// a rider of class `rider`; `count` counts bicycles).
-    pub kind: ObjectKind,
+    pub kind: EntryKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
     /// `traffic_light`, `bicycle`); a mesh needs one.
@@ -116,34 +116,34 @@ pub struct ObjectSpec {
 
 impl ObjectSpec {
     /// The label an entry of `kind` gets when the spec gives none; mesh entries have none.
-    pub fn default_label(kind: ObjectKind) -> Option<&'static str> {
+    pub fn default_label(kind: EntryKind) -> Option<&'static str> {
         match kind {
-            ObjectKind::Text | ObjectKind::StreetName => Some("text"),
-            ObjectKind::Sign => Some("traffic_sign"),
-            ObjectKind::Car => Some("car"),
-            ObjectKind::Tree => Some("tree"),
-            ObjectKind::Person => Some("person"),
-            ObjectKind::TrafficLight => Some("traffic_light"),
-            ObjectKind::Bicycle => Some("bicycle"),
-            ObjectKind::Mesh => None,
+            EntryKind::Text | EntryKind::StreetName => Some("text"),
+            EntryKind::Sign => Some("traffic_sign"),
+            EntryKind::Car => Some("car"),
+            EntryKind::Tree => Some("tree"),
+            EntryKind::Person => Some("person"),
+            EntryKind::TrafficLight => Some("traffic_light"),
+            EntryKind::Bicycle => Some("bicycle"),
+            EntryKind::Mesh => None,
         }
     }
 
     /// Classes an entry of `kind` gives objects besides its `label`: the poles of
     /// street-name signs and traffic lights, the riders of bicycles.
-    pub fn companion_classes(kind: ObjectKind) -> &'static [&'static str] {
+    pub fn companion_classes(kind: EntryKind) -> &'static [&'static str] {
         match kind {
-            ObjectKind::StreetName | ObjectKind::TrafficLight => &["pole"],
-            ObjectKind::Bicycle => &[RIDER_CLASS],
+            EntryKind::StreetName | EntryKind::TrafficLight => &["pole"],
+            EntryKind::Bicycle => &[RIDER_CLASS],
             _ => &[],
         }
     }
 
     /// Of [`ObjectSpec::companion_classes`], those a camera path annotates when the spec
     /// lists no classes: the riders (people), not the poles (street furniture).
-    pub fn annotated_companions(kind: ObjectKind) -> &'static [&'static str] {
+    pub fn annotated_companions(kind: EntryKind) -> &'static [&'static str] {
         match kind {
-            ObjectKind::Bicycle => &[RIDER_CLASS],
+            EntryKind::Bicycle => &[RIDER_CLASS],
             _ => &[],
         }
     }
@@ -151,16 +151,16 @@ impl ObjectSpec {
     /// The height range of a tree or a person entry: `height`, else the kind's default.
     pub fn height_range(&self) -> [f64; 2] {
         self.height.unwrap_or(match self.kind {
-            ObjectKind::Person | ObjectKind::Bicycle => PERSON_HEIGHT,
+            EntryKind::Person | EntryKind::Bicycle => PERSON_HEIGHT,
             _ => TREE_HEIGHT,
         })
     }
 
     /// The heights an entry of `kind` may have, when it has one.
-    pub fn height_bounds(kind: ObjectKind) -> Option<[f64; 2]> {
+    pub fn height_bounds(kind: EntryKind) -> Option<[f64; 2]> {
         match kind {
-            ObjectKind::Tree => Some([2.0, 40.0]),
-            ObjectKind::Person | ObjectKind::Bicycle => Some([0.8, 2.3]),
+            EntryKind::Tree => Some([2.0, 40.0]),
+            EntryKind::Person | EntryKind::Bicycle => Some([0.8, 2.3]),
             _ => None,
         }
     }
@@ -169,8 +169,8 @@ impl ObjectSpec {
 /// The keys of an `[[objects]]` table that apply to some kinds only, with those kinds; the
 /// others (`kind`, `label`, `count`) apply to every kind. A key written for a kind it does
 /// not apply to is an error.
-pub const KIND_KEYS: &[(&str, &[ObjectKind])] = {
-    use ObjectKind::*;
+pub const KIND_KEYS: &[(&str, &[EntryKind])] = {
+    use EntryKind::*;
     &[
         ("letter_height", &[Text, StreetName]),
         ("case", &[Text, StreetName]),
@@ -193,7 +193,7 @@ pub const KIND_KEYS: &[(&str, &[ObjectKind])] = {
 
 /// The kinds `key` applies to; None when it applies to every kind (or is no key of an
 /// `[[objects]]` table).
-pub fn kinds_of_key(key: &str) -> Option<&'static [ObjectKind]> {
+pub fn kinds_of_key(key: &str) -> Option<&'static [EntryKind]> {
     KIND_KEYS
         .iter()
         .find(|(k, _)| *k == key)
@@ -205,7 +205,7 @@ pub fn kinds_of_key(key: &str) -> Option<&'static [ObjectKind]> {
 /// unknown key stays `additionalProperties`' alone, so nothing is reported twice.
 fn kind_rules(schema: &mut schemars::Schema) {
     use serde_json::{Map, Value, json};
-    let rules: Vec<Value> = ObjectKind::ALL
+    let rules: Vec<Value> = EntryKind::ALL
         .iter()
         .map(|kind| {
             let refused: Map<String, Value> = KIND_KEYS
@@ -338,12 +338,13 @@ impl TreeSpecies {
     }
 }
 
-/// Which kind of object a class inserts.
+// Not `model::ObjectKind`, the kind of a scene object the stages made.
+/// Which kind of object an `[[objects]]` entry inserts (its `kind`).
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
 )]
 #[serde(rename_all = "snake_case")]
-pub enum ObjectKind {
+pub enum EntryKind {
     // Plain comments, not doc comments: so the schema is a simple `enum` and a wrong value
     // reads "expected one of …".
     Text,
@@ -357,32 +358,32 @@ pub enum ObjectKind {
     Bicycle,
 }
 
-impl ObjectKind {
+impl EntryKind {
     /// Every kind, in declaration order.
-    pub const ALL: [ObjectKind; 9] = [
-        ObjectKind::Text,
-        ObjectKind::Sign,
-        ObjectKind::Mesh,
-        ObjectKind::Car,
-        ObjectKind::Tree,
-        ObjectKind::StreetName,
-        ObjectKind::Person,
-        ObjectKind::TrafficLight,
-        ObjectKind::Bicycle,
+    pub const ALL: [EntryKind; 9] = [
+        EntryKind::Text,
+        EntryKind::Sign,
+        EntryKind::Mesh,
+        EntryKind::Car,
+        EntryKind::Tree,
+        EntryKind::StreetName,
+        EntryKind::Person,
+        EntryKind::TrafficLight,
+        EntryKind::Bicycle,
     ];
 
     /// The snake_case name the spec uses.
     pub fn name(self) -> &'static str {
         match self {
-            ObjectKind::Text => "text",
-            ObjectKind::Sign => "sign",
-            ObjectKind::Mesh => "mesh",
-            ObjectKind::Car => "car",
-            ObjectKind::Tree => "tree",
-            ObjectKind::StreetName => "street_name",
-            ObjectKind::Person => "person",
-            ObjectKind::TrafficLight => "traffic_light",
-            ObjectKind::Bicycle => "bicycle",
+            EntryKind::Text => "text",
+            EntryKind::Sign => "sign",
+            EntryKind::Mesh => "mesh",
+            EntryKind::Car => "car",
+            EntryKind::Tree => "tree",
+            EntryKind::StreetName => "street_name",
+            EntryKind::Person => "person",
+            EntryKind::TrafficLight => "traffic_light",
+            EntryKind::Bicycle => "bicycle",
         }
     }
 }
@@ -694,7 +695,7 @@ mod tests {
 
     #[test]
     fn kind_names_are_what_the_spec_reads() {
-        for kind in ObjectKind::ALL {
+        for kind in EntryKind::ALL {
             let spec: ObjectSpec = toml::from_str(&format!("kind = {:?}\n", kind.name())).unwrap();
             assert_eq!(spec.kind, kind);
         }

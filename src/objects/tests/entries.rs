@@ -57,7 +57,7 @@ fn count_is_an_upper_bound_when_the_city_is_full() {
     // Only one building that faces a road is left.
     let first = Walls::new(&input(&city, &[])).walls()[0].building;
     city.buildings.retain(|b| b.id == first);
-    let specs = [spec(ObjectKind::Text, "text", 5000)];
+    let specs = [spec(EntryKind::Text, "text", 5000)];
     let inserted = run(&city, &specs).unwrap();
     assert!(!inserted.objects.is_empty());
     assert!(inserted.objects.len() < 5000);
@@ -79,7 +79,7 @@ fn count_is_an_upper_bound_when_the_city_is_full() {
 #[test]
 fn an_entry_that_places_all_it_asks_for_has_no_shortfall() {
     let city = city();
-    let specs = [spec(ObjectKind::Sign, "traffic_sign", 3)];
+    let specs = [spec(EntryKind::Sign, "traffic_sign", 3)];
     let inserted = run(&city, &specs).unwrap();
     assert_eq!(inserted.placed, vec![3]);
     assert!(inserted.shortfalls(&specs).is_empty());
@@ -98,7 +98,7 @@ fn same_seed_same_objects_and_entries_are_independent() {
     // Entry 1 changed (and a new entry 2): entry 0's text objects do not move.
     let mut changed = specs.clone();
     changed[1].count = 3;
-    changed[2].kind = ObjectKind::Text;
+    changed[2].kind = EntryKind::Text;
     let c = run(&city, &changed).unwrap();
     let texts = |i: &Inserted| -> Vec<SceneObject> {
         i.objects
@@ -202,7 +202,7 @@ fn groups_placed_side_by_side_give_what_placing_in_turn_gives() {
     let city = city();
     let text = |label: &str, count| ObjectSpec {
         letter_height: [0.3, 0.8],
-        ..spec(ObjectKind::Text, label, count)
+        ..spec(EntryKind::Text, label, count)
     };
     // Interleaved kinds, with what the two groups could get wrong when replayed: street
     // names make `text_` objects as wall text does, a bench labelled `text` too; the
@@ -211,19 +211,19 @@ fn groups_placed_side_by_side_give_what_placing_in_turn_gives() {
     let specs = vec![
         ObjectSpec {
             letter_height: [0.18, 0.24],
-            ..spec(ObjectKind::StreetName, "text", 4)
+            ..spec(EntryKind::StreetName, "text", 4)
         },
         text("text", 20),
         ObjectSpec {
             label: "text".to_owned(),
             ..bench(5, Ground::Sidewalk)
         },
-        spec(ObjectKind::Sign, "traffic_sign", 8),
+        spec(EntryKind::Sign, "traffic_sign", 8),
         text("text_street", 12),
-        spec(ObjectKind::Car, "car", 6),
-        spec(ObjectKind::Sign, "traffic_sign", 4),
-        spec(ObjectKind::Tree, "tree", 6),
-        spec(ObjectKind::TrafficLight, "traffic_light", 2),
+        spec(EntryKind::Car, "car", 6),
+        spec(EntryKind::Sign, "traffic_sign", 4),
+        spec(EntryKind::Tree, "tree", 6),
+        spec(EntryKind::TrafficLight, "traffic_light", 2),
     ];
     let expected = in_turn(&city, &specs);
     let got = run(&city, &specs).unwrap();

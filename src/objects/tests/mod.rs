@@ -8,7 +8,7 @@ use image::RgbImage;
 
 use super::*;
 use crate::model::{Facade, Lamp, Roof};
-use crate::spec::{Ground, ObjectKind, TextCase};
+use crate::spec::{EntryKind, Ground, TextCase};
 use crate::test_support::{TestCity, test_city};
 
 mod entries;
@@ -94,7 +94,7 @@ fn city() -> City {
     }
 }
 
-fn spec(kind: ObjectKind, label: &str, count: u32) -> ObjectSpec {
+fn spec(kind: EntryKind, label: &str, count: u32) -> ObjectSpec {
     toml::from_str(&format!(
         "kind = {:?}\nlabel = {label:?}\ncount = {count}\n",
         kind.name()
@@ -107,7 +107,7 @@ fn bench(count: u32, on: Ground) -> ObjectSpec {
         model: Some(BENCH.to_owned()),
         scale: [0.8, 1.2],
         on,
-        ..spec(ObjectKind::Mesh, "bench", count)
+        ..spec(EntryKind::Mesh, "bench", count)
     }
 }
 
@@ -134,9 +134,9 @@ fn all_kinds() -> Vec<ObjectSpec> {
         ObjectSpec {
             case: TextCase::Mixed,
             words: [1, 3],
-            ..spec(ObjectKind::Text, "text", 40)
+            ..spec(EntryKind::Text, "text", 40)
         },
-        spec(ObjectKind::Sign, "traffic_sign", 25),
+        spec(EntryKind::Sign, "traffic_sign", 25),
         bench(10, Ground::Sidewalk),
         ObjectSpec {
             label: "car".to_owned(),
@@ -149,9 +149,9 @@ fn all_kinds() -> Vec<ObjectSpec> {
 fn trees_cars_and_people_name_the_variant_they_were_drawn_as() {
     let city = city();
     let specs = [
-        spec(ObjectKind::Tree, "tree", 12),
-        spec(ObjectKind::Car, "car", 12),
-        spec(ObjectKind::Person, "person", 12),
+        spec(EntryKind::Tree, "tree", 12),
+        spec(EntryKind::Car, "car", 12),
+        spec(EntryKind::Person, "person", 12),
     ];
     let inserted = run(&city, &specs).unwrap();
     let mut seen = BTreeMap::new();
@@ -178,7 +178,7 @@ fn the_default_tree_mix_spreads_over_every_species() {
     let city = city();
     let trees = ObjectSpec {
         plazas: 0.0,
-        ..spec(ObjectKind::Tree, "tree", 140)
+        ..spec(EntryKind::Tree, "tree", 140)
     };
     let inserted = run(&city, &[trees]).unwrap();
     let mut counts: BTreeMap<String, usize> = BTreeMap::new();

@@ -8,10 +8,10 @@ use crate::model::geometry::{KERB_Y, RoadRect};
 fn people_stand_in_the_strips_apart_from_each_other_and_from_trunks() {
     let city = city();
     let specs = [
-        spec(ObjectKind::Sign, "traffic_sign", 60),
-        spec(ObjectKind::Tree, "tree", 200),
-        spec(ObjectKind::Car, "car", 300),
-        spec(ObjectKind::Person, "person", 300),
+        spec(EntryKind::Sign, "traffic_sign", 60),
+        spec(EntryKind::Tree, "tree", 200),
+        spec(EntryKind::Car, "car", 300),
+        spec(EntryKind::Person, "person", 300),
     ];
     let mpp = 0.55;
     let inserted = insert_at(&city, mpp, &specs);
@@ -110,10 +110,10 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
     let city = city();
     let mpp = 0.55;
     let specs = [
-        spec(ObjectKind::Car, "car", 200),
+        spec(EntryKind::Car, "car", 200),
         ObjectSpec {
             crossing: 1.0,
-            ..spec(ObjectKind::Person, "person", 40)
+            ..spec(EntryKind::Person, "person", 40)
         },
     ];
     let inserted = insert_at(&city, mpp, &specs);
@@ -143,7 +143,7 @@ fn crossers_walk_across_the_zebras_near_the_centre_line() {
         assert!(on_zebra, "{} at {mid:?}", person.name);
     }
     // Without crossers an entry places no one on the road.
-    let specs = [spec(ObjectKind::Person, "person", 40)];
+    let specs = [spec(EntryKind::Person, "person", 40)];
     let strips = run(&city, &specs).unwrap();
     for person in &strips.objects {
         let low = person
@@ -217,7 +217,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     // as the ends hold (the others stand in the strips).
     let specs = [ObjectSpec {
         waiting: 1.0,
-        ..spec(ObjectKind::Person, "person", 30)
+        ..spec(EntryKind::Person, "person", 30)
     }];
     let inserted = insert_at(&city, mpp, &specs);
     assert_eq!(inserted.placed[0], 30);
@@ -232,7 +232,7 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     assert!(waiting >= 15, "{waiting} of 30 at the zebras' ends");
     // Without `waiting`, the same entry's people stand along the strips: few by chance
     // at a zebra's end.
-    let specs = [spec(ObjectKind::Person, "person", 30)];
+    let specs = [spec(EntryKind::Person, "person", 30)];
     let strips = insert_at(&city, mpp, &specs);
     let by_chance = strips
         .objects

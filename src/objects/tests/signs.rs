@@ -11,7 +11,7 @@ use crate::spec::{Palette, SignKind};
 #[test]
 fn signs_stand_on_the_strip_facing_oncoming_traffic() {
     let city = city();
-    let inserted = run(&city, &[spec(ObjectKind::Sign, "traffic_sign", 40)]).unwrap();
+    let inserted = run(&city, &[spec(EntryKind::Sign, "traffic_sign", 40)]).unwrap();
     // Each sign is its pole (class `pole`) and then its plate: face and back.
     assert_eq!(inserted.objects.len(), 80);
     let strip = Palette::default().strip.0;
@@ -87,7 +87,7 @@ fn signs_only_of_the_listed_kinds() {
     let city = city();
     let specs = [ObjectSpec {
         signs: vec![SignKind::Stop],
-        ..spec(ObjectKind::Sign, "stop_sign", 5)
+        ..spec(EntryKind::Sign, "stop_sign", 5)
     }];
     let inserted = run(&city, &specs).unwrap();
     let faces: BTreeSet<&str> = inserted
@@ -110,7 +110,7 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
     let city = city();
     let specs = [ObjectSpec {
         letter_height: [0.18, 0.24],
-        ..spec(ObjectKind::StreetName, "text", 12)
+        ..spec(EntryKind::StreetName, "text", 12)
     }];
     let inserted = run(&city, &specs).unwrap();
     assert_eq!(inserted.placed, [12]);
@@ -152,7 +152,7 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
     assert!(names.len() >= 2);
     // Placing is deterministic; a larger count than corners falls short, never panics.
     assert_eq!(run(&city, &specs).unwrap(), inserted);
-    let many = [spec(ObjectKind::StreetName, "text", 10_000)];
+    let many = [spec(EntryKind::StreetName, "text", 10_000)];
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] > 12 && all.placed[0] < 10_000);
 }
@@ -161,7 +161,7 @@ fn street_name_signs_stand_at_corners_and_name_each_street_alike() {
 fn traffic_lights_stand_at_corners_with_one_head_along_each_road() {
     use crate::objects::traffic_lights::{HEAD_OFFSET, HEAD_SIZE, POLE_HEIGHT};
     let city = city();
-    let specs = [spec(ObjectKind::TrafficLight, "traffic_light", 10)];
+    let specs = [spec(EntryKind::TrafficLight, "traffic_light", 10)];
     let inserted = run(&city, &specs).unwrap();
     assert_eq!(inserted.placed, [10]);
     let objects = &inserted.objects;
@@ -232,7 +232,7 @@ fn traffic_lights_stand_at_corners_with_one_head_along_each_road() {
     );
     // Deterministic; a larger count than corners falls short, never panics.
     assert_eq!(run(&city, &specs).unwrap(), inserted);
-    let many = [spec(ObjectKind::TrafficLight, "traffic_light", 10_000)];
+    let many = [spec(EntryKind::TrafficLight, "traffic_light", 10_000)];
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] >= 10 && all.placed[0] < 10_000);
 }
@@ -247,7 +247,7 @@ fn signs_stand_by_the_rules() {
     use crate::objects::sign_rules::{LIMIT_AFTER, Mouth, WARNING_BEFORE, mouths};
     use crate::objects::traffic_signs::SPACING;
     let city = city();
-    let inserted = run(&city, &[spec(ObjectKind::Sign, "traffic_sign", 150)]).unwrap();
+    let inserted = run(&city, &[spec(EntryKind::Sign, "traffic_sign", 150)]).unwrap();
     let mouths = mouths(&city.layout, 1.0, SEED);
     let faces: Vec<_> = inserted.sign_faces.values().collect();
     assert!(faces.len() >= 120, "{}", faces.len());

@@ -11,7 +11,7 @@ fn text_quads_lie_on_their_walls_without_overlapping() {
     let city = city();
     let specs = [ObjectSpec {
         letter_height: [0.5, 1.5],
-        ..spec(ObjectKind::Text, "text", 150)
+        ..spec(EntryKind::Text, "text", 150)
     }];
     let inserted = run(&city, &specs).unwrap();
     assert!(inserted.objects.len() > 100, "{}", inserted.objects.len());
@@ -113,9 +113,9 @@ fn text_plates_share_atlas_pages_and_each_maps_to_its_own_plate() {
         ObjectSpec {
             letter_height: [0.3, 1.5],
             words: [1, 3],
-            ..spec(ObjectKind::Text, "text", 150)
+            ..spec(EntryKind::Text, "text", 150)
         },
-        spec(ObjectKind::Text, "shop_sign", 30),
+        spec(EntryKind::Text, "shop_sign", 30),
     ];
     let inserted = run(&city, &specs).unwrap();
     assert!(inserted.objects.len() > 150, "{}", inserted.objects.len());
@@ -274,7 +274,7 @@ fn plates_keep_clear_of_windows_and_record_style_and_font() {
     }
     let specs = [ObjectSpec {
         letter_height: [0.3, 0.8],
-        ..spec(ObjectKind::Text, "text", 300)
+        ..spec(EntryKind::Text, "text", 300)
     }];
     let inserted = run(&city, &specs).unwrap();
     assert!(inserted.objects.len() > 100, "{}", inserted.objects.len());
@@ -352,7 +352,7 @@ fn a_word_file_replaces_the_built_in_words() {
     let specs = [ObjectSpec {
         words_file: Some("words.txt".to_owned()),
         case: TextCase::Upper,
-        ..spec(ObjectKind::Text, "text", 40)
+        ..spec(EntryKind::Text, "text", 40)
     }];
     let inserted = run(&city, &specs).unwrap();
     assert!(!inserted.info.is_empty());
@@ -363,7 +363,7 @@ fn a_word_file_replaces_the_built_in_words() {
     }
     let missing = [ObjectSpec {
         words_file: Some("nowhere.txt".to_owned()),
-        ..spec(ObjectKind::Text, "text", 4)
+        ..spec(EntryKind::Text, "text", 4)
     }];
     let result = run(&city, &missing);
     assert!(

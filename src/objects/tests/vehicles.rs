@@ -7,9 +7,9 @@ use crate::model::geometry::{KERB_Y, ROAD_Y, RoadRect};
 fn cars_and_trees_never_overlap_anything_standing() {
     let city = city();
     let specs = [
-        spec(ObjectKind::Sign, "traffic_sign", 60),
-        spec(ObjectKind::Tree, "tree", 200),
-        spec(ObjectKind::Car, "car", 400),
+        spec(EntryKind::Sign, "traffic_sign", 60),
+        spec(EntryKind::Tree, "tree", 200),
+        spec(EntryKind::Car, "car", 400),
     ];
     // At the example specs' scale: 4.4 m strips, so big crowns stand at the curb.
     let mpp = 0.55;
@@ -122,7 +122,7 @@ fn only_cars_in_the_driving_lanes_have_their_lights_on() {
     for (parked, on) in [(1.0, false), (0.0, true)] {
         let specs = [ObjectSpec {
             parked,
-            ..spec(ObjectKind::Car, "car", 30)
+            ..spec(EntryKind::Car, "car", 30)
         }];
         let inserted = run(&city, &specs).unwrap();
         assert!(inserted.objects.len() > 5, "{}", inserted.objects.len());
@@ -151,10 +151,10 @@ fn every_car_carries_a_front_and_a_rear_plate_a_text_object_when_the_spec_makes_
     let city = city();
     let cars = ObjectSpec {
         parked: 0.5,
-        ..spec(ObjectKind::Car, "car", 30)
+        ..spec(EntryKind::Car, "car", 30)
     };
     // With a `text` entry: each car is followed by its two plates, text objects.
-    let specs = [spec(ObjectKind::Text, "text", 4), cars.clone()];
+    let specs = [spec(EntryKind::Text, "text", 4), cars.clone()];
     let inserted = run(&city, &specs).unwrap();
     let first_car = inserted
         .objects
@@ -228,7 +228,7 @@ fn every_car_carries_a_front_and_a_rear_plate_a_text_object_when_the_spec_makes_
     assert!(lit > 0 && unlit > lit, "{lit} lit, {unlit} unlit");
     // Without one (wall text of another class instead, so the cars draw from the same
     // entry's stream): the same cars, each plate a textured quad of its car.
-    let alone = run(&city, &[spec(ObjectKind::Text, "shop_sign", 4), cars]).unwrap();
+    let alone = run(&city, &[spec(EntryKind::Text, "shop_sign", 4), cars]).unwrap();
     let alone: Vec<&SceneObject> = alone
         .objects
         .iter()
@@ -253,10 +253,10 @@ fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() 
     use crate::spec::RIDER_CLASS;
     let city = city();
     let specs = [
-        spec(ObjectKind::Car, "car", 200),
+        spec(EntryKind::Car, "car", 200),
         ObjectSpec {
             parked: 0.4,
-            ..spec(ObjectKind::Bicycle, "bicycle", 80)
+            ..spec(EntryKind::Bicycle, "bicycle", 80)
         },
     ];
     let mpp = 0.55;
@@ -337,7 +337,7 @@ fn bicycles_are_parked_on_the_strips_or_ridden_in_the_lanes_with_a_rider_each() 
         .unwrap(),
         inserted
     );
-    let many = [spec(ObjectKind::Bicycle, "bicycle", 100_000)];
+    let many = [spec(EntryKind::Bicycle, "bicycle", 100_000)];
     let all = run(&city, &many).unwrap();
     assert!(all.placed[0] > 80 && all.placed[0] < 100_000);
 }
