@@ -15,7 +15,7 @@ use serde_json::Value;
 /// Every example spec with cameras (`cmp`, `drawn` and `mirrored` have none), the day city
 /// shrunk, with it the variants that extend it: night, dusk, fog and rain are where objects
 /// fade.
-const SPECS: [&str; 8] = [
+const SPECS: [&str; 9] = [
     "day",
     "night",
     "dusk",
@@ -24,6 +24,7 @@ const SPECS: [&str; 8] = [
     "randomized",
     "signs",
     "text",
+    "sensors",
 ];
 
 /// An annotation's contrast as `docs/output-formats.md` defines it: on 8-bit sRGB luma, the
