@@ -201,6 +201,9 @@ fn image_entry(frame: &FrameAnnotations, conditions: &Value, image_id: u64) -> V
         "intrinsics": {"fx": fx, "fy": fy, "cx": cx, "cy": cy},
         "pose": pose,
     });
+    if let (Some(t), Value::Object(map)) = (frame.pose.time, &mut image) {
+        map.insert("time".into(), json!(round(t, 1e6)));
+    }
     if let (Some(depth), Value::Object(map)) = (&frame.depth, &mut image) {
         map.insert(
             "depth".into(),

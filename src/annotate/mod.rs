@@ -21,6 +21,7 @@
 //! | ICDAR 2015 `x1,y1,…,x4,y4,text` | [`icdar`] | frame |
 //! | `instances.json`: instance id → kind, class, category, words, attributes | [`instances`] | camera path |
 //! | KITTI object `label_2` lines and `calib` (3D boxes: [`Box3d`]) | [`kitti`] | frame |
+//! | MOT Challenge `gt/gt.txt` and `seqinfo.ini` of a timed drive | [`mot_lines`], [`mot_seqinfo`] | frame, camera path |
 //! | COCO `keypoints` of people and riders, visibility from the depth image | [`project_keypoints`] (in [`summarize`], written by [`CocoWriter`]) | frame |
 //! | Cityscapes `labelIds`, `instanceIds`, `color` and COCO panoptic images and segments | [`semantic`] (labels: [`SemanticClasses`]) | frame |
 //!
@@ -44,6 +45,7 @@ mod icdar;
 mod instances;
 mod keypoints;
 mod kitti;
+mod mot;
 mod object_label;
 mod path_labels;
 mod project_quad;
@@ -57,6 +59,7 @@ mod yolo;
 pub use box3d::{Box3d, LevelCamera};
 pub use cityscapes::{CityscapesLabel, SemanticClasses, TooManyClasses};
 pub use coco::{CocoLines, CocoWriter, coco, write_coco};
+pub use coco_words::WORD_CATEGORY;
 pub use contact_sheet::{ContactSheet, picks as contact_sheet_picks};
 pub use contrast::{MIN_CONTRAST, contrast};
 pub use frame_annotations::{DepthFile, FrameAnnotations, summarize};
@@ -65,6 +68,7 @@ pub use icdar::icdar;
 pub use instances::instances;
 pub use keypoints::{KEYPOINT_NAMES, Keypoint, SKELETON, SURFACE_DEPTH, project_keypoints};
 pub use kitti::{KittiFiles, kitti};
+pub use mot::{mot_lines, mot_seqinfo};
 pub use object_label::{Category, ObjectLabel, SignLabel};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;

@@ -109,6 +109,7 @@ pub(super) fn aimed_pose(
         target: std::array::from_fn(|k| mm(eye[k] + look * forward[k])),
         up,
         angles: Some(angles),
+        time: None,
     }
 }
 

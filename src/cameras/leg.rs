@@ -57,10 +57,21 @@ pub(super) fn stations(legs: &[Leg], n: u32) -> Vec<([f64; 2], [f64; 2])> {
     if !(total > 0.0 && total.is_finite()) || n == 0 {
         return Vec::new();
     }
-    let mut out = Vec::with_capacity(n as usize);
+    let arcs: Vec<f64> = (0..n)
+        .map(|i| (f64::from(i) + 0.5) * total / f64::from(n))
+        .collect();
+    stations_at(legs, &arcs)
+}
+
+/// The eye and driving direction at each arc length of `arcs` (ascending, metres along the
+/// legs end to end; past the end, the last leg's end).
+pub(super) fn stations_at(legs: &[Leg], arcs: &[f64]) -> Vec<([f64; 2], [f64; 2])> {
+    if legs.is_empty() {
+        return Vec::new();
+    }
+    let mut out = Vec::with_capacity(arcs.len());
     let (mut leg, mut leg_start) = (0, 0.0);
-    for i in 0..n {
-        let s = (f64::from(i) + 0.5) * total / f64::from(n);
+    for &s in arcs {
         while leg + 1 < legs.len() && s >= leg_start + legs[leg].length {
             leg_start += legs[leg].length;
             leg += 1;

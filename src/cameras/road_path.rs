@@ -4,7 +4,7 @@ use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 use super::aim::{Aim, aimed_pose};
-use super::leg::{legs, stations};
+use super::leg::{legs, stations, stations_at};
 use super::{CameraPose, mm};
 use crate::model::ParsedLayout;
 use crate::rng;
@@ -28,6 +28,17 @@ pub struct RoadPath {
     /// Distance of the lane from the centre line, right of the driving direction, metres
     /// (clamped to the road surface).
     pub lane_offset: f64,
+    /// A timed drive instead of frames spread over the tour ([`Drive`]).
+    pub drive: Option<Drive>,
+}
+
+/// A timed drive: frame `i` at `i / fps` seconds, `speed · i / fps` metres along the tour.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Drive {
+    /// Frames a second (positive, finite).
+    pub fps: f64,
+    /// Metres a second (positive, finite).
+    pub speed: f64,
 }
 
 /// Drives along the roads: the path visits roads in id order, driving on the right-hand
@@ -86,29 +97,118 @@ pub fn road_path_draws(
     }
     let legs = legs(layout, metres_per_pixel, path.lane_offset, path.look_ahead);
     let total: f64 = legs.iter().map(|l| l.length).sum();
-    stations(&legs, path.frames.frames(total))
+    let n = path.frames.frames(total);
+    if let Some(drive) = path.drive {
+        return timed(&legs, total, n, drive, path, seed);
+    }
+    stations(&legs, n)
         .into_iter()
         .zip(0u64..)
         .map(|((eye, dir), i)| {
-            let right = [-dir[1], dir[0]];
             let mut aim = rng::stream(seed, "cameras/aim", i);
             let mut jitter = rng::stream(seed, "cameras", i);
             (0..draws.max(1))
-                .map(|_| {
-                    let angles = path.aim.draw(&mut aim);
-                    let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
-                    let yaw = signed_unit(jitter.next_u64()) * path.jitter;
-                    let pitch = signed_unit(jitter.next_u64()) * path.jitter;
-                    pose.target = [
-                        mm(pose.target[0] + right[0] * yaw),
-                        mm(pose.target[1] + pitch),
-                        mm(pose.target[2] + right[1] * yaw),
-                    ];
-                    pose
-                })
+                .map(|_| drawn_pose(eye, dir, path, &mut aim, &mut jitter))
                 .collect()
         })
         .collect()
+}
+
+/// A pose at `eye` driving along `dir`: the aim and the target's jitter drawn from the two
+/// streams.
+fn drawn_pose(
+    eye: [f64; 2],
+    dir: [f64; 2],
+    path: &RoadPath,
+    aim: &mut impl Rng,
+    jitter: &mut impl Rng,
+) -> CameraPose {
+    let right = [-dir[1], dir[0]];
+    let angles = path.aim.draw(aim);
+    let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
+    let yaw = signed_unit(jitter.next_u64()) * path.jitter;
+    let pitch = signed_unit(jitter.next_u64()) * path.jitter;
+    pose.target = [
+        mm(pose.target[0] + right[0] * yaw),
+        mm(pose.target[1] + pitch),
+        mm(pose.target[2] + right[1] * yaw),
+    ];
+    pose
+}
+
+/// The `n` frames of a timed drive, one draw each: frame `i` at arc length
+/// `start + speed · i / fps` of the tour (`total` metres). The drive stays on one road:
+/// a leg long enough for it is drawn, then `start` uniformly on it
+/// (`rng::stream(seed, "cameras/drive", 0)`); when no leg is, `start` is drawn over the
+/// tour (the drive then runs on from road to road, jumping between them as the tour does,
+/// and stops at the tour's end). The aim and the jitter are drawn once, from
+/// frame 0's streams, so the camera holds its view; each pose records its time.
+fn timed(
+    legs: &[super::leg::Leg],
+    total: f64,
+    n: u32,
+    drive: Drive,
+    path: &RoadPath,
+    seed: u64,
+) -> Vec<Vec<CameraPose>> {
+    let sound =
+        drive.fps.is_finite() && drive.fps > 0.0 && drive.speed.is_finite() && drive.speed > 0.0;
+    if !sound || n == 0 {
+        return Vec::new();
+    }
+    let step = drive.speed / drive.fps;
+    let span = step * f64::from(n - 1);
+    let mut draw = rng::stream(seed, "cameras/drive", 0);
+    // Where each leg starts on the tour, and the legs the whole drive fits on.
+    let starts: Vec<f64> = legs
+        .iter()
+        .scan(0.0, |at, l| {
+            let s = *at;
+            *at += l.length;
+            Some(s)
+        })
+        .collect();
+    let fits: Vec<usize> = (0..legs.len())
+        .filter(|&i| legs[i].length >= span)
+        .collect();
+    let start = if fits.is_empty() {
+        unit(draw.next_u64()) * (total - span).max(0.0)
+    } else {
+        let leg = fits[(unit(draw.next_u64()) * fits.len() as f64) as usize % fits.len()];
+        starts[leg] + unit(draw.next_u64()) * (legs[leg].length - span)
+    };
+    let arcs: Vec<f64> = (0..n)
+        .map(|i| (start + step * f64::from(i)).min(total))
+        .collect();
+    let (mut aim, mut jitter) = (
+        rng::stream(seed, "cameras/aim", 0),
+        rng::stream(seed, "cameras", 0),
+    );
+    let angles = path.aim.draw(&mut aim);
+    let yaw_pitch = [
+        signed_unit(jitter.next_u64()) * path.jitter,
+        signed_unit(jitter.next_u64()) * path.jitter,
+    ];
+    stations_at(legs, &arcs)
+        .into_iter()
+        .zip(0u32..)
+        .map(|((eye, dir), i)| {
+            let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
+            let right = [-dir[1], dir[0]];
+            pose.target = [
+                mm(pose.target[0] + right[0] * yaw_pitch[0]),
+                mm(pose.target[1] + yaw_pitch[1]),
+                mm(pose.target[2] + right[1] * yaw_pitch[0]),
+            ];
+            pose.time = Some(f64::from(i) / drive.fps);
+            vec![pose]
+        })
+        .collect()
+}
+
+/// A uniform number in `[0, 1)` from 53 random bits, computed the same on every platform.
+fn unit(bits: u64) -> f64 {
+    ((bits >> 11) as f64) * (1.0 / (1u64 << 53) as f64)
 }
 
 /// Length in metres of the tour [`road_path`] drives with this `look_ahead`: the sum of
@@ -187,6 +287,7 @@ mod tests {
             look_ahead: 10.0,
             jitter: 0.5,
             lane_offset: 3.0,
+            drive: None,
         }
     }
 
@@ -462,5 +563,55 @@ mod tests {
         // Another camera seed draws other angles at the same eyes.
         let other = road_path(&layout(), M, &ranged, 10);
         assert!(other.iter().zip(&poses).any(|(p, q)| p.angles != q.angles));
+    }
+
+    #[test]
+    fn a_timed_drive_steps_speed_over_fps_with_one_aim_and_its_times() {
+        let mut p = path(12);
+        p.aim.heading = ValueRange::Between([-30.0, 30.0]);
+        p.drive = Some(Drive {
+            fps: 10.0,
+            speed: 25.0 / 3.6,
+        });
+        let poses = road_path(&layout(), M, &p, 5);
+        assert_eq!(poses.len(), 12);
+        for (i, pair) in poses.windows(2).enumerate() {
+            let (a, b) = (pair[0], pair[1]);
+            let step = ((b.eye[0] - a.eye[0]).powi(2) + (b.eye[2] - a.eye[2]).powi(2)).sqrt();
+            // 0.694 m a frame, to the millimetre the poses are rounded to.
+            assert!((step - 25.0 / 36.0).abs() < 2e-3, "frame {i}: {step}");
+            assert_eq!(a.angles, b.angles, "one aim for the drive");
+            assert_eq!(b.time, Some((i + 1) as f64 / 10.0));
+        }
+        assert_eq!(poses[0].time, Some(0.0));
+        // The same seed, the same drive; another seed starts elsewhere.
+        assert_eq!(poses, road_path(&layout(), M, &p, 5));
+        assert_ne!(poses[0].eye, road_path(&layout(), M, &p, 6)[0].eye);
+        // Untimed paths carry no time.
+        assert!(
+            road_path(&layout(), M, &path(12), 5)
+                .iter()
+                .all(|q| q.time.is_none())
+        );
+    }
+
+    #[test]
+    fn a_timed_drive_longer_than_the_tour_stops_at_its_end() {
+        let mut p = path(400);
+        p.drive = Some(Drive {
+            fps: 1.0,
+            speed: 20.0,
+        });
+        let poses = road_path(&layout(), M, &p, 1);
+        assert_eq!(poses.len(), 400);
+        assert_eq!(poses[398].eye, poses[399].eye, "parked at the tour's end");
+        let bad = RoadPath {
+            drive: Some(Drive {
+                fps: 0.0,
+                speed: 1.0,
+            }),
+            ..path(3)
+        };
+        assert!(road_path(&layout(), M, &bad, 1).is_empty());
     }
 }

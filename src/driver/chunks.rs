@@ -195,6 +195,12 @@ pub fn assemble(
         out.flush()
     };
     let picks = crate::annotate::contact_sheet_picks(plan.poses.len());
+    // A plate's words share its instance id: MOT's rows are the plates.
+    let words = plan
+        .categories
+        .iter()
+        .find(|c| c.name == annotate::WORD_CATEGORY)
+        .map(|c| u64::from(c.id));
     // Each frame's drawn conditions, the preview's frames, and per frame the id of its
     // first annotation in coco.json (for the WebDataset samples).
     let records = || {
@@ -202,8 +208,12 @@ pub fn assemble(
         let mut sheet = Vec::with_capacity(picks.len());
         let mut first_ids = Vec::with_capacity(plan.poses.len());
         let mut panoptic = Vec::new();
+        let mut mot = String::new();
         let mut annotations = 1u64;
         each_record(&mut |i, record| {
+            if camera.fps.is_some() {
+                mot += &annotate::mot_lines(i, &record.coco, words).map_err(io::Error::other)?;
+            }
             if plan.semantic.is_some() {
                 let segments = record.panoptic.ok_or_else(|| {
                     io::Error::other(format!("frame {i}'s record lacks its panoptic segments"))
@@ -228,7 +238,7 @@ pub fn assemble(
             .into_par_iter()
             .map(|(png, boxes)| Ok((codec::decode_png(&png).map_err(io::Error::other)?, boxes)))
             .collect::<io::Result<Vec<_>>>()?;
-        Ok::<_, io::Error>((drawn, sheet, first_ids, panoptic))
+        Ok::<_, io::Error>((drawn, sheet, first_ids, panoptic, mot))
     };
     // coco.json is written while the other pass over the records gathers the rest.
     let (coco, gathered) = rayon::join(
@@ -244,7 +254,7 @@ pub fn assemble(
         records,
     );
     outputs.insert(format!("{dir}/coco.json"), Blob::Stored(coco?, None));
-    let (drawn, sheet, first_ids, panoptic) = gathered?;
+    let (drawn, sheet, first_ids, panoptic, mot) = gathered?;
     if drawn.len() != plan.poses.len() {
         return Err(io::Error::other(format!(
             "the chunks hold {} frames, the path {}",
@@ -255,6 +265,12 @@ pub fn assemble(
     let mut files = path_files(&dir, camera, plan, drawn, sheet);
     if let Some(semantic) = &plan.semantic {
         files.extend(panoptic_files(&dir, camera, semantic, panoptic));
+    }
+    if let Some(fps) = camera.fps {
+        let size = [camera.resolution[0], camera.resolution[1]];
+        let seqinfo = annotate::mot_seqinfo(&camera.name, fps, plan.poses.len(), size);
+        files.push((format!("{dir}/gt/gt.txt"), mot.into_bytes()));
+        files.push((format!("{dir}/seqinfo.ini"), seqinfo.into_bytes()));
     }
     if webdataset {
         let tars = Tars {

@@ -414,11 +414,20 @@ pub fn poses_json(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(conditions).enumerate().map(|(i, (p, c))| json!({
-            "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
-            "up": p.up, "angles": p.angles, "conditions": c
-        })).collect::<Vec<_>>(),
+        "frames": poses.iter().zip(conditions).enumerate().map(|(i, (p, c))| {
+            let mut frame = json!({
+                "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
+                "up": p.up, "angles": p.angles, "conditions": c
+            });
+            if let Some(t) = p.time {
+                frame["time"] = json!(t);
+            }
+            frame
+        }).collect::<Vec<_>>(),
     });
+    if let Some(fps) = camera.fps {
+        poses_json["fps"] = json!(fps);
+    }
     if camera.normals {
         poses_json["normals"] = json!({
             "folder": "normals", "extension": "png", "axes": "x right, y down, z forward",

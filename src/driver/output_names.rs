@@ -235,6 +235,8 @@ fn is_frame_file(rest: &str) -> bool {
             | "yolo/classes.txt"
             | "panoptic.json"
             | "semantic/labels.json"
+            | "gt/gt.txt"
+            | "seqinfo.ini"
     ) || is_numbered_frame_file(rest)
         || tar.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()))
 }

@@ -18,6 +18,10 @@ pub struct CameraPose {
     /// The seeded angles and height this pose was made from, when its path draws them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angles: Option<PoseAngles>,
+    /// Seconds since the path's first frame, on a timed drive (a roads camera with `fps`);
+    /// `None` elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time: Option<f64>,
 }
 
 /// The drawn aim of one frame, written beside the pose so a user can filter or stratify
@@ -48,6 +52,7 @@ impl CameraPose {
             target,
             up: [0.0, 1.0, 0.0],
             angles: None,
+            time: None,
         }
     }
 }

@@ -297,6 +297,7 @@ mod tests {
             target: [100.0, 40.0, 150.0],
             up: [0.0, 1.0, 0.0],
             angles: None,
+            time: None,
         };
         Rays::new(&pose, [320.0, 320.0, 320.0, 240.0]).unwrap()
     }
@@ -365,6 +366,7 @@ mod tests {
             target: [0.0, 100.0, -1.0],
             up: [0.0, 1.0, 0.0],
             angles: None,
+            time: None,
         };
         let rays = Rays::new(&pose, [4.0, 4.0, 2.0, 2.0]).unwrap();
         let mut day = vec![[0.2f32, 0.35, 0.8]; n];

@@ -18,6 +18,33 @@ pub(crate) fn check_camera_paths(
 ) {
     for (i, camera) in cameras.iter().enumerate() {
         let key = |name: &str| format!("cameras[{i}].{name}");
+        if camera.path != CameraPath::Roads {
+            for (name, set) in [
+                ("fps", camera.fps.is_some()),
+                ("speed_kmh", camera.speed_kmh.is_some()),
+            ] {
+                if set {
+                    findings.error(
+                        &key(name),
+                        format!(
+                            "expected `{name}` only on a camera with path = \"roads\" (a timed \
+                             drive), found it on another path"
+                        ),
+                    );
+                }
+            }
+        } else if camera.speed_kmh.is_some() && camera.fps.is_none() {
+            findings.error(
+                &key("speed_kmh"),
+                "expected `fps` beside `speed_kmh` (the speed of a timed drive), found no `fps`",
+            );
+        } else if camera.fps.is_some() && camera.spacing.is_some() {
+            findings.error(
+                &key("spacing"),
+                "expected `frames` for a timed drive (`fps`): its frames are one time step \
+                 apart, not spaced along the tour; found `spacing`",
+            );
+        }
         if camera.path != CameraPath::Objects {
             if !camera.classes.is_empty() {
                 findings.error(
@@ -75,6 +102,34 @@ mod tests {
             .load("city.toml", text)
             .err()
             .unwrap_or_default()
+    }
+
+    #[test]
+    fn a_timed_drive_is_a_roads_camera_with_fps_and_frames() {
+        let ok = problems("[[cameras]]\nname = \"d\"\nfps = 10\nspeed_kmh = 40\n");
+        assert!(ok.is_empty(), "{ok:?}");
+        let walk = problems("[[cameras]]\nname = \"w\"\npath = \"sidewalks\"\nfps = 10\n");
+        assert!(
+            walk.iter()
+                .any(|p| p.contains("cameras[0].fps") && p.contains("roads")),
+            "{walk:?}"
+        );
+        let bare = problems("[[cameras]]\nname = \"d\"\nspeed_kmh = 40\n");
+        assert!(
+            bare.iter()
+                .any(|p| p.contains("cameras[0].speed_kmh") && p.contains("fps")),
+            "{bare:?}"
+        );
+        let spaced = problems("[[cameras]]\nname = \"d\"\nfps = 10\nspacing = 5\n");
+        assert!(
+            spaced.iter().any(|p| p.contains("cameras[0].spacing")),
+            "{spaced:?}"
+        );
+        let fast = problems("[[cameras]]\nname = \"d\"\nfps = 1000\n");
+        assert!(
+            fast.iter().any(|p| p.contains("cameras[0].fps")),
+            "{fast:?}"
+        );
     }
 
     #[test]

@@ -222,6 +222,7 @@ mod tests {
             target: [10.0 * sin, 1.5, -10.0 * cos],
             up: [0.0, 1.0, 0.0],
             angles: None,
+            time: None,
         }
     }
 

@@ -29,6 +29,9 @@ use crate::spec::{CameraPath, CameraSpec};
 /// Bump when the poses a camera path gets change.
 pub const VERSION: u32 = 1;
 
+/// A timed drive's speed when the camera gives none, km/h.
+pub const DRIVE_KMH: f64 = 30.0;
+
 /// What choosing a path's views reads.
 pub struct ViewsInput<'a> {
     pub camera: &'a CameraSpec,
@@ -62,7 +65,15 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
                 look_ahead: camera.look_ahead,
                 jitter: camera.jitter,
                 lane_offset: camera.lane_offset,
+                drive: camera.fps.map(|fps| cameras::Drive {
+                    fps,
+                    speed: camera.speed_kmh.unwrap_or(DRIVE_KMH) / 3.6,
+                }),
             };
+            if path.drive.is_some() {
+                // A timed drive keeps every frame: one time step apart, none skipped.
+                return cameras::road_path(layout, mpp, &path, camera_seed);
+            }
             let draws = cameras::road_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
             // Fields of view down and across the picture.
             let down = cameras::tan_half_degrees(camera.fov);

@@ -15,7 +15,7 @@ use serde_json::Value;
 /// Every example spec with cameras (`cmp`, `drawn` and `mirrored` have none), the day city
 /// shrunk, with it the variants that extend it: night, dusk, fog and rain are where objects
 /// fade.
-const SPECS: [&str; 9] = [
+const SPECS: [&str; 10] = [
     "day",
     "night",
     "dusk",
@@ -25,6 +25,7 @@ const SPECS: [&str; 9] = [
     "signs",
     "text",
     "sensors",
+    "drive",
 ];
 
 /// An annotation's contrast as `docs/output-formats.md` defines it: on 8-bit sRGB luma, the
