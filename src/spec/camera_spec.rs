@@ -100,13 +100,13 @@ pub struct CameraSpec {
     #[schemars(range(min = 0.0, max = 50.0))]
     pub lane_offset: f64,
     /// Roads path: a timed drive at this many frames a second. Frame `i` is at `i / fps`
-    /// seconds, `speed_kmh · i / fps` along the tour from a seeded start, so consecutive
-    /// frames are one time step apart (optical flow, tracks); the aim (heading, pitch,
-    /// roll, height) and the jitter are drawn once for the whole drive, and no frame is
-    /// skipped for a vehicle in front (it may pass close to parked cars). The time is
-    /// written in `poses.json` and in COCO `images[].time`, and `mot/` holds the path's
-    /// tracks (MOT Challenge `gt.txt` and `seqinfo.ini`). Without it, frames are spread
-    /// over the whole tour.
+    /// seconds, `speed_kmh · i / fps` metres along one road from a seeded start, so
+    /// consecutive frames are one time step apart; the aim (heading, pitch, roll, height)
+    /// and the jitter are drawn once for the whole drive, and no frame is skipped for a
+    /// vehicle in front (it may pass close to parked cars). The time is written in
+    /// `poses.json` and in COCO `images[].time`, and the path's folder is a MOT Challenge
+    /// sequence (`gt/gt.txt`, `seqinfo.ini`). Without it, frames are spread over the
+    /// whole tour.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(with = "f64", range(min = 0.1, max = 120.0))]
     pub fps: Option<f64>,
