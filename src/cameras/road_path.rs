@@ -123,17 +123,23 @@ fn drawn_pose(
     aim: &mut impl Rng,
     jitter: &mut impl Rng,
 ) -> CameraPose {
-    let right = [-dir[1], dir[0]];
     let angles = path.aim.draw(aim);
     let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
     let yaw = signed_unit(jitter.next_u64()) * path.jitter;
     let pitch = signed_unit(jitter.next_u64()) * path.jitter;
+    offset_target(&mut pose, dir, [yaw, pitch]);
+    pose
+}
+
+/// Moves `pose`'s target `yaw_pitch[0]` metres right of the driving direction `dir` and
+/// `yaw_pitch[1]` up, to the millimetre.
+fn offset_target(pose: &mut CameraPose, dir: [f64; 2], [yaw, pitch]: [f64; 2]) {
+    let right = [-dir[1], dir[0]];
     pose.target = [
         mm(pose.target[0] + right[0] * yaw),
         mm(pose.target[1] + pitch),
         mm(pose.target[2] + right[1] * yaw),
     ];
-    pose
 }
 
 /// The `n` frames of a timed drive, one draw each: frame `i` at arc length
@@ -194,12 +200,7 @@ fn timed(
         .zip(0u32..)
         .map(|((eye, dir), i)| {
             let mut pose = aimed_pose(eye, dir, (1.0, 0.0), angles, path.look_ahead);
-            let right = [-dir[1], dir[0]];
-            pose.target = [
-                mm(pose.target[0] + right[0] * yaw_pitch[0]),
-                mm(pose.target[1] + yaw_pitch[1]),
-                mm(pose.target[2] + right[1] * yaw_pitch[0]),
-            ];
+            offset_target(&mut pose, dir, yaw_pitch);
             pose.time = Some(f64::from(i) / drive.fps);
             vec![pose]
         })
