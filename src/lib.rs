@@ -50,6 +50,7 @@ pub mod facades;
 pub mod hash;
 pub mod lamps;
 pub mod layout;
+pub mod lidar;
 pub mod mirror;
 pub mod model;
 pub mod objects;
