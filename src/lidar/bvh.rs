@@ -149,9 +149,9 @@ impl Bvh {
                 let b = (((centroid(t, axis) - lo) * scale) as usize).min(BINS - 1);
                 counts[b] += 1;
                 for p in t {
-                    for k in 0..3 {
-                        boxes[b].0[k] = boxes[b].0[k].min(p[k]);
-                        boxes[b].1[k] = boxes[b].1[k].max(p[k]);
+                    for (k, v) in p.iter().enumerate() {
+                        boxes[b].0[k] = boxes[b].0[k].min(*v);
+                        boxes[b].1[k] = boxes[b].1[k].max(*v);
                     }
                 }
             }

@@ -164,7 +164,7 @@ pub fn label(kind: Option<ObjectKind>, instance: u32) -> u32 {
 /// The sensor's axes in the world: forward (levelled heading), left, up.
 pub fn sensor_axes(pose: &CameraPose) -> [[f64; 3]; 3] {
     let (fx, fz) = (pose.target[0] - pose.eye[0], pose.target[2] - pose.eye[2]);
-    let n = fx.hypot(fz).max(1e-12);
+    let n = libm::hypot(fx, fz).max(1e-12);
     let f = [fx / n, 0.0, fz / n];
     [f, [f[2], 0.0, -f[0]], [0.0, 1.0, 0.0]]
 }
@@ -187,14 +187,14 @@ pub fn scan(
     let elev: Vec<(f64, f64)> = scanner
         .elevations
         .iter()
-        .map(|e| (e.to_radians().cos(), e.to_radians().sin()))
+        .map(|e| (libm::cos(e.to_radians()), libm::sin(e.to_radians())))
         .collect();
     let columns: Vec<Vec<Point>> = (0..scanner.azimuth_steps)
         .into_par_iter()
         .map(|col| {
             let mut rng = crate::rng::stream(seed, &stream, (frame << 20) + u64::from(col));
             let a = std::f64::consts::TAU * f64::from(col) / f64::from(scanner.azimuth_steps);
-            let (sa, ca) = a.sin_cos();
+            let (sa, ca) = libm::sincos(a);
             elev.iter()
                 .filter_map(|&(ce, se)| {
                     let local = [ce * ca, ce * sa, se];
@@ -210,7 +210,7 @@ pub fn scan(
                     let n = target.normals[hit.triangle as usize];
                     let cos = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]).abs() as f64;
                     let range = f64::from(hit.t);
-                    let air = (-2.0 * scanner.extinction * range).exp();
+                    let air = libm::exp(-2.0 * scanner.extinction * range);
                     let intensity = f64::from(target.albedo[hit.triangle as usize]) * cos * air;
                     if drop || intensity < scanner.min_intensity {
                         return None;
@@ -232,7 +232,7 @@ pub fn scan(
 fn gaussian(rng: &mut impl Rng) -> f64 {
     let u1: f64 = rng.random::<f64>().max(1e-300);
     let u2 = rng.random::<f64>();
-    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    (-2.0 * libm::log(u1)).sqrt() * libm::cos(std::f64::consts::TAU * u2)
 }
 
 /// The KITTI `.bin` bytes: x, y, z, intensity as little-endian float32 per point.

@@ -2,13 +2,11 @@
 
 use super::*;
 
+/// Triangles with their normals, albedos and labels.
+type Parts = (Vec<Tri>, Vec<[f32; 3]>, Vec<f32>, Vec<u32>);
+
 /// Two triangles of the quad `a b c d` (counter-clockwise about `n`), labelled `label`.
-fn quad(
-    out: &mut (Vec<Tri>, Vec<[f32; 3]>, Vec<f32>, Vec<u32>),
-    q: [[f32; 3]; 4],
-    n: [f32; 3],
-    label: u32,
-) {
+fn quad(out: &mut Parts, q: [[f32; 3]; 4], n: [f32; 3], label: u32) {
     for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
         out.0.push(t);
         out.1.push(n);
@@ -164,7 +162,7 @@ fn fog_dims_and_drops_far_returns() {
     assert!(fog.len() < clear.len());
     let far = |ps: &[Point]| {
         ps.iter()
-            .map(|p| p.xyz[0].hypot(p.xyz[1]))
+            .map(|p| libm::hypotf(p.xyz[0], p.xyz[1]))
             .fold(0.0f32, f32::max)
     };
     assert!(far(&fog) < far(&clear));
