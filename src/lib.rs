@@ -25,6 +25,7 @@
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR, KITTI |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth (normals) |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
+//! | lidar | [`lidar`] | prepared scene's triangles, object kinds, a camera pose, scanner | [`lidar::Point`]s with SemanticKITTI labels (not yet wired into the driver) |
 //! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
@@ -33,7 +34,7 @@
 //! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`], [`hash`],
 //! [`diagnostic`] (the warnings a stage reports, cached with its result) and
 //! [`regular_file`] (opening inputs without following or blocking), and on another stage
-//! only along a declared edge (`views` reads `cameras`, `render` and `scene`).
+//! only along a declared edge (`views` reads `cameras`, `render` and `scene`; `lidar` reads `render`).
 //! `tests/integration/stage_imports.rs` fails when a stage names another off those edges;
 //! tests that need another stage's output get it through `test_support`.
 
@@ -50,6 +51,7 @@ pub mod facades;
 pub mod hash;
 pub mod lamps;
 pub mod layout;
+pub mod lidar;
 pub mod mirror;
 pub mod model;
 pub mod objects;

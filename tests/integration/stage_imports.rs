@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 const STAGES: &[&str] = &[
     "layout", "parse", "mirror", "lamps", "place", "plan", "preview", "facades", "scene",
     "objects", "export", "cameras", "render", "annotate", "sensor", "stats", "views", "dataset",
+    "lidar",
 ];
 
 /// The stages a stage may read besides itself and the shared modules: the graph's
@@ -29,6 +30,7 @@ const STAGES: &[&str] = &[
 const EDGES: &[(&str, &[&str])] = &[
     ("views", &["cameras", "render", "scene"]),
     ("dataset", &["annotate"]),
+    ("lidar", &["render"]),
 ];
 
 /// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing,
