@@ -59,6 +59,7 @@ fn pose() -> CameraPose {
         target: [10.0, 1.7, 0.0],
         up: [0.0, 1.0, 0.0],
         angles: None,
+        time: None,
     }
 }
 
