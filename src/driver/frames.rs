@@ -22,6 +22,7 @@ use crate::annotate::{
     SemanticClasses, Thresholds, YoloClasses,
 };
 use crate::cameras::tan_half_degrees;
+use crate::lidar;
 use crate::model::CameraPose;
 use crate::render::{self, Intrinsics, Light, Lighting, PreparedScene, Sun};
 use crate::sensor::{self, CloudLight, SensorFrame};
@@ -49,6 +50,9 @@ pub struct PathInput<'a> {
     pub conditions_seed: u64,
     /// The scene's Cityscapes labels, when the path writes Cityscapes-format files.
     pub semantic: Option<&'a SemanticClasses>,
+    /// What the camera's LiDAR scans (the scene's triangles and their BVH), when it has
+    /// one and frames are rendered.
+    pub lidar: Option<&'a lidar::Target>,
 }
 
 /// A camera path ready to render its frames one at a time, in any order and on any
@@ -205,6 +209,52 @@ impl<'a> PathFrames<'a> {
         files
     }
 
+    /// Frame `i`'s files made from the scene's geometry besides the render: its flow to
+    /// the next frame (from its `depth`) with `flow = true`, and its LiDAR scan in the air
+    /// `conditions` drew when the camera has a LiDAR.
+    fn geometry_files(
+        &self,
+        i: usize,
+        depth: &image::ImageBuffer<image::Luma<f32>, Vec<f32>>,
+        conditions: &sensor::Conditions,
+    ) -> Vec<(String, Vec<u8>)> {
+        let (camera, dir, pose) = (self.input.camera, &self.dir, &self.poses[i]);
+        let mut files = Vec::new();
+        if let Some(next) = self.poses.get(i + 1).filter(|_| camera.flow) {
+            let flow = render::flow(self.input.scene, depth, pose, next, &self.intrinsics);
+            files.push((format!("{dir}/flow/{i:06}.png"), flow.kitti_png()));
+        }
+        files.extend(self.lidar_files(i, conditions));
+        files
+    }
+
+    /// Frame `i`'s LiDAR files, when the camera has a LiDAR: one turn from the eye, in
+    /// the air `conditions` drew.
+    fn lidar_files(&self, i: usize, conditions: &sensor::Conditions) -> Vec<(String, Vec<u8>)> {
+        let (camera, dir) = (self.input.camera, &self.dir);
+        let (Some(spec), Some(target)) = (&camera.lidar, self.input.lidar) else {
+            return Vec::new();
+        };
+        let pose = &self.poses[i];
+        let scanner = lidar::Scanner::of(spec, sensor::air_extinction(conditions, pose.eye[1]));
+        let seed = self.input.conditions_seed;
+        let points = lidar::scan(target, &scanner, pose, seed, &camera.name, i as u64);
+        let mut files = vec![
+            (
+                format!("{dir}/velodyne/{i:06}.bin"),
+                lidar::velodyne_bytes(&points),
+            ),
+            (
+                format!("{dir}/labels/{i:06}.label"),
+                lidar::label_bytes(&points),
+            ),
+        ];
+        if spec.ply {
+            files.push((format!("{dir}/lidar/{i:06}.ply"), lidar::ply_bytes(&points)));
+        }
+        files
+    }
+
     /// The RGB image the camera's sensor makes of `frame` under `conditions`.
     fn develop(
         &self,
@@ -297,6 +347,9 @@ impl<'a> PathFrames<'a> {
         });
         for (name, text) in self.label_files(i, &summary) {
             emit(name, text.into_bytes())?;
+        }
+        for (name, bytes) in self.geometry_files(i, &frame.depth, &conditions) {
+            emit(name, bytes)?;
         }
         let sheet = ContactSheet::boxes(&summary, input.categories)
             .into_iter()
@@ -422,6 +475,9 @@ pub fn poses_json(
             if let Some(t) = p.time {
                 frame["time"] = json!(t);
             }
+            if camera.lidar.is_some() {
+                frame["velodyne_to_world"] = json!(lidar::to_world(p));
+            }
             frame
         }).collect::<Vec<_>>(),
     });
@@ -434,7 +490,40 @@ pub fn poses_json(
             "decode": "n = value / 65535 * 2 - 1", "sky": [0, 0, 0]
         });
     }
+    if let Some(spec) = &camera.lidar {
+        poses_json["lidar"] = lidar_json(spec);
+    }
+    if camera.flow {
+        poses_json["flow"] = json!({
+            "folder": "flow", "extension": "png", "to": "the next frame (none for the last)",
+            "decode": "u = (R - 32768) / 64, v = (G - 32768) / 64, valid = B (KITTI flow)",
+            "pixel": "from the centre of pixel (x, y) to where its point lands, in pixels",
+        });
+    }
     codec::to_pretty_json(&poses_json)
+}
+
+/// `poses.json`'s `lidar`: the scanner, its files and frame, and its labels.
+fn lidar_json(spec: &crate::spec::LidarSpec) -> Value {
+    let scanner = lidar::Scanner::of(spec, 0.0);
+    let kinds: serde_json::Map<String, Value> = crate::model::ObjectKind::ALL
+        .iter()
+        .map(|k| (k.name().to_string(), json!(lidar::semantic_id(*k))))
+        .collect();
+    let names: serde_json::Map<String, Value> = lidar::SEMANTIC_NAMES
+        .iter()
+        .map(|(id, name)| (id.to_string(), json!(name)))
+        .collect();
+    json!({
+        "frame": "KITTI velodyne: x forward (the camera's level heading), y left, z up, metres, origin at the camera's eye",
+        "velodyne": {"folder": "velodyne", "extension": "bin", "record": "float32 x, y, z, intensity, little-endian"},
+        "labels": {"folder": "labels", "extension": "label", "record": "uint32 semantic | instance << 16, little-endian"},
+        "ply": spec.ply.then_some("lidar"),
+        "beams": spec.beams, "columns": spec.columns, "elevations": scanner.elevations,
+        "range": spec.range, "noise": spec.noise, "dropout": spec.dropout,
+        "detection_floor": lidar::DETECTION_FLOOR,
+        "semantic_names": names, "kind_semantic_ids": kinds,
+    })
 }
 
 /// `preview.png` from the picked frames' RGB images and their records' boxes.

@@ -247,7 +247,7 @@ fn is_numbered_frame_file(rest: &str) -> bool {
         |s: Option<&str>| s.is_some_and(|n| n.len() >= 6 && n.bytes().all(|b| b.is_ascii_digit()));
     let png = rest.strip_suffix(".png");
     let txt = rest.strip_suffix(".txt");
-    ["rgb/", "ids/", "depth/", "normals/"]
+    ["rgb/", "ids/", "depth/", "normals/", "flow/"]
         .iter()
         .any(|dir| numbered(png.and_then(|s| s.strip_prefix(dir))))
         || numbered(
@@ -258,6 +258,13 @@ fn is_numbered_frame_file(rest: &str) -> bool {
         || numbered(txt.and_then(|s| s.strip_prefix("label_2/")))
         || numbered(txt.and_then(|s| s.strip_prefix("calib/")))
         || numbered(txt.and_then(|s| s.strip_prefix("icdar/gt_")))
+        || [
+            ("velodyne/", ".bin"),
+            ("labels/", ".label"),
+            ("lidar/", ".ply"),
+        ]
+        .iter()
+        .any(|(dir, ext)| numbered(rest.strip_suffix(ext).and_then(|s| s.strip_prefix(dir))))
         || png
             .and_then(|s| s.strip_prefix("semantic/"))
             .and_then(|s| s.split_once('_'))
@@ -341,6 +348,37 @@ mod tests {
                 "frames/street/normals/000003.npy",
                 false,
             ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/flow/000003.png",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/velodyne/000003.bin",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/labels/000003.label",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/lidar/000003.ply",
+                true,
+            ),
+            (
+                Frames,
+                Some("street"),
+                "frames/street/velodyne/000003.label",
+                false,
+            ),
+            (Frames, Some("street"), "frames/street/lidar/3.ply", false),
             (
                 Frames,
                 Some("street"),

@@ -31,8 +31,8 @@ use crate::spec::{
     OnError, OutputLayout, OutputSpec, Palette, Spec, SplitsSpec, WeatherSpec,
 };
 use crate::{
-    annotate, cameras, dataset, export, facades, lamps, layout, mirror, objects, parse, place,
-    plan, preview, render, scene, sensor, views,
+    annotate, cameras, dataset, export, facades, lamps, layout, lidar, mirror, objects, parse,
+    place, plan, preview, render, scene, sensor, views,
 };
 
 /// A cached stage, in evaluation order.
@@ -227,6 +227,7 @@ const TABLE: [Declaration; 12] = [
             ("annotate::VERSION", annotate::VERSION),
             ("sensor::VERSION", sensor::VERSION),
             ("views::VERSION", views::VERSION),
+            ("lidar::VERSION", lidar::VERSION),
         ],
         reads: &[Export],
         files: "",
@@ -380,6 +381,10 @@ pub struct PathInputs {
     pub versions: [u32; 2],
     pub sensor_version: u32,
     pub views_version: u32,
+    /// `lidar::VERSION`, with the camera's `lidar` only: a camera without one keys as
+    /// before.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lidar_version: Option<u32>,
     pub camera: CameraSpec,
     pub lighting: LightingSpec,
     pub weather: WeatherSpec,
@@ -414,6 +419,7 @@ impl PathInputs {
             versions: [cameras::VERSION, annotate::VERSION],
             sensor_version: sensor::VERSION,
             views_version: views::VERSION,
+            lidar_version: camera.lidar.is_some().then_some(lidar::VERSION),
             // A camera's own lighting and weather replace the spec's, in the key once (as
             // `lighting`, `weather`): a camera without them keys as before.
             camera: CameraSpec {
@@ -772,7 +778,8 @@ mod tests {
                 .declaration()
                 .versions
                 .iter()
-                .filter(|(name, _)| *name != "facades::BUILTIN_VERSION")
+                // In a key only when the spec uses them (the test spec does not).
+                .filter(|(name, _)| !["facades::BUILTIN_VERSION", "lidar::VERSION"].contains(name))
                 .map(|(_, v)| *v)
                 .collect();
             let mut sorted = carried.clone();

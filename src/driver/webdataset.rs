@@ -17,6 +17,8 @@
 //! | `<key>.yolo.txt` | the YOLO lines, with `[annotations] yolo = true` (every camera then) |
 //! | `<key>.normals.png` | the surface normals (16-bit RGB, as `normals/`), in the samples of a camera with `normals = true` only |
 //! | `<key>.label_2.txt`, `<key>.calib.txt` | the KITTI object files, in the samples of a camera with `kitti = true` only |
+//! | `<key>.flow.png` | the forward optical flow (KITTI's 16-bit PNG, as `flow/`), in the samples of a camera with `flow = true` but its last |
+//! | `<key>.velodyne.bin`, `<key>.lidar.label` (and `<key>.lidar.ply`) | the LiDAR scan and its SemanticKITTI labels (and PLY), in the samples of a camera with a `lidar` only |
 //! | `<key>.labelids.png`, `.instanceids.png`, `.color.png`, `.panoptic.png` | the Cityscapes-format images, with `[annotations] cityscapes = true` (every camera then) |
 //!
 //! The tars are byte-reproducible: the `tar` crate writes ustar headers with everything
@@ -53,6 +55,14 @@ pub enum Member {
     KittiLabel,
     /// With the camera's `kitti = true`: the KITTI `calib` file.
     KittiCalib,
+    /// With the camera's `flow = true`: the flow to the next frame.
+    Flow,
+    /// With the camera's `lidar`: the scan's `velodyne` records.
+    Velodyne,
+    /// With the camera's `lidar`: the scan's SemanticKITTI labels.
+    LidarLabel,
+    /// With the camera's `lidar.ply`: the scan as a PLY.
+    LidarPly,
     /// With `[annotations] cityscapes = true`: a frame's Cityscapes image, by its index in
     /// [`super::frames::SEMANTIC_SUFFIXES`].
     Semantic(usize),
@@ -79,6 +89,10 @@ impl Member {
             Member::Normals => "normals.png",
             Member::KittiLabel => "label_2.txt",
             Member::KittiCalib => "calib.txt",
+            Member::Flow => "flow.png",
+            Member::Velodyne => "velodyne.bin",
+            Member::LidarLabel => "lidar.label",
+            Member::LidarPly => "lidar.ply",
             Member::Semantic(k) => SEMANTIC_EXTENSIONS[k.min(SEMANTIC_EXTENSIONS.len() - 1)],
         }
     }
@@ -96,6 +110,10 @@ pub fn frame_file(rest: &str) -> Option<(usize, Member)> {
         "normals" => (Member::Normals, stem),
         "label_2" => (Member::KittiLabel, stem),
         "calib" => (Member::KittiCalib, stem),
+        "flow" => (Member::Flow, stem),
+        "velodyne" => (Member::Velodyne, stem),
+        "labels" => (Member::LidarLabel, stem),
+        "lidar" => (Member::LidarPly, stem),
         "yolo" => (Member::Yolo, stem),
         "icdar" => (Member::Icdar, stem.strip_prefix("gt_")?),
         "semantic" => {

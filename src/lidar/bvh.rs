@@ -23,6 +23,8 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// The triangles in `order`, so that a leaf reads one run of memory.
+    ordered: Vec<Tri>,
 }
 
 /// The closest hit of a ray: distance along it and the triangle's index.
@@ -46,6 +48,35 @@ fn bounds(tris: &[Tri], order: &[u32]) -> ([f32; 3], [f32; 3]) {
     (min, max)
 }
 
+/// Longest edge a triangle of the hierarchy keeps, metres: longer ones (the ground, roads,
+/// walls) are halved across their longest edge until none is, so that few leaves' boxes
+/// span a street and a ray near the ground visits fewer nodes.
+const MAX_EDGE: f32 = 20.0;
+
+/// `t` (triangle `parent`) as pieces of edges at most [`MAX_EDGE`], appended to `out`.
+fn split_long(t: Tri, parent: u32, out: &mut Vec<(Tri, u32)>) {
+    let mut todo = vec![t];
+    while let Some(t) = todo.pop() {
+        let len =
+            |a: [f32; 3], b: [f32; 3]| (0..3).map(|k| (a[k] - b[k]) * (a[k] - b[k])).sum::<f32>();
+        let edges = [len(t[0], t[1]), len(t[1], t[2]), len(t[2], t[0])];
+        let mut e = 0;
+        for k in 1..3 {
+            if edges[k] > edges[e] {
+                e = k;
+            }
+        }
+        if edges[e] <= MAX_EDGE * MAX_EDGE || !edges[e].is_finite() {
+            out.push((t, parent));
+            continue;
+        }
+        let (a, b, c) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
+        let m: [f32; 3] = std::array::from_fn(|k| 0.5 * (a[k] + b[k]));
+        todo.push([m, b, c]);
+        todo.push([a, m, c]);
+    }
+}
+
 fn centroid(t: &Tri, k: usize) -> f32 {
     (t[0][k] + t[1][k] + t[2][k]) / 3.0
 }
@@ -60,10 +91,17 @@ fn area(min: [f32; 3], max: [f32; 3]) -> f32 {
 
 impl Bvh {
     /// The hierarchy of `tris` (binned surface-area heuristic, 12 bins per axis).
-    pub fn build(tris: &[Tri]) -> Bvh {
+    pub fn build(original: &[Tri]) -> Bvh {
+        let mut pieces: Vec<(Tri, u32)> = Vec::with_capacity(original.len());
+        for (i, t) in original.iter().enumerate() {
+            split_long(*t, i as u32, &mut pieces);
+        }
+        let tris: Vec<Tri> = pieces.iter().map(|p| p.0).collect();
+        let tris = &tris[..];
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * tris.len() / LEAF + 1),
             order: (0..tris.len() as u32).collect(),
+            ordered: Vec::new(),
         };
         let (min, max) = bounds(tris, &bvh.order);
         bvh.nodes.push(Node {
@@ -78,7 +116,16 @@ impl Bvh {
                 todo.extend(children);
             }
         }
+        bvh.ordered = bvh.order.iter().map(|&i| tris[i as usize]).collect();
+        for i in &mut bvh.order {
+            *i = pieces[*i as usize].1;
+        }
         bvh
+    }
+
+    /// Triangles the hierarchy holds (long ones split into pieces).
+    pub fn triangles(&self) -> usize {
+        self.ordered.len()
     }
 
     /// Splits node `n` where the binned SAH is cheapest; its children's indices, or `None`
@@ -180,53 +227,77 @@ impl Bvh {
         (cost < area(min, max) * order.len() as f32).then_some((axis, cut, lo, hi))
     }
 
-    /// The closest hit of the ray `origin + t·dir` with `t` in `(0, t_max)`.
-    pub fn closest(
-        &self,
-        tris: &[Tri],
-        origin: [f32; 3],
-        dir: [f32; 3],
-        t_max: f32,
-    ) -> Option<Hit> {
+    /// The closest hit of the ray `origin + t·dir` with `t` in `(0, t_max)`. The nearer
+    /// child is visited first and a node farther than the best hit so far is skipped, so
+    /// a ray reads few leaves beyond the one it stops in.
+    pub fn closest(&self, origin: [f32; 3], dir: [f32; 3], t_max: f32) -> Option<Hit> {
         let inv = dir.map(|d| 1.0 / d);
+        let oi: [f32; 3] = std::array::from_fn(|k| origin[k] * inv[k]);
         let mut best: Option<Hit> = None;
         let mut reach = t_max;
-        let mut stack = [0u32; 64];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let node = &self.nodes[stack[top] as usize];
-            if !slab(node, origin, inv, reach) {
-                continue;
-            }
+        // Nodes still to visit, with the distance where the ray enters their box.
+        let mut stack = [(0u32, 0.0f32); 64];
+        let mut top = 0;
+        let mut next = slab(&self.nodes[0], oi, inv, reach).map(|_| 0u32);
+        while let Some(n) = next.take() {
+            let node = &self.nodes[n as usize];
             if node.count == 0 {
-                stack[top] = node.start;
-                stack[top + 1] = node.start + 1;
-                top += 2;
-                continue;
-            }
-            for &i in &self.order[node.start as usize..(node.start + node.count) as usize] {
-                if let Some(t) = intersect(&tris[i as usize], origin, dir)
-                    && t < reach
-                {
-                    reach = t;
-                    best = Some(Hit { t, triangle: i });
+                let (l, r) = (node.start, node.start + 1);
+                let tl = slab(&self.nodes[l as usize], oi, inv, reach);
+                let tr = slab(&self.nodes[r as usize], oi, inv, reach);
+                next = match (tl, tr) {
+                    (Some(a), Some(b)) => {
+                        let ((near, _), far) = if a <= b {
+                            ((l, a), (r, b))
+                        } else {
+                            ((r, b), (l, a))
+                        };
+                        stack[top] = far;
+                        top += 1;
+                        Some(near)
+                    }
+                    (Some(_), None) => Some(l),
+                    (None, Some(_)) => Some(r),
+                    (None, None) => None,
+                };
+            } else {
+                let run = node.start as usize..(node.start + node.count) as usize;
+                for (tri, &i) in self.ordered[run.clone()].iter().zip(&self.order[run]) {
+                    if let Some(t) = intersect(tri, origin, dir)
+                        && t < reach
+                    {
+                        reach = t;
+                        best = Some(Hit { t, triangle: i });
+                    }
                 }
+            }
+            while next.is_none() && top > 0 {
+                top -= 1;
+                let (n, entry) = stack[top];
+                next = (entry <= reach).then_some(n);
             }
         }
         best
     }
 }
 
-fn slab(node: &Node, origin: [f32; 3], inv: [f32; 3], reach: f32) -> bool {
-    let (mut t0, mut t1) = (0.0f32, reach);
-    for k in 0..3 {
-        let a = (node.min[k] - origin[k]) * inv[k];
-        let b = (node.max[k] - origin[k]) * inv[k];
-        t0 = t0.max(a.min(b));
-        t1 = t1.min(a.max(b));
-    }
-    t0 <= t1
+/// Where the ray enters `node`'s box, if it does before `reach` (`oi`: the ray's origin
+/// times `inv`, its direction's reciprocal, per axis).
+#[inline]
+fn slab(node: &Node, oi: [f32; 3], inv: [f32; 3], reach: f32) -> Option<f32> {
+    let a = [0, 1, 2].map(|k| node.min[k] * inv[k] - oi[k]);
+    let b = [0, 1, 2].map(|k| node.max[k] * inv[k] - oi[k]);
+    let t0 = a[0]
+        .min(b[0])
+        .max(a[1].min(b[1]))
+        .max(a[2].min(b[2]))
+        .max(0.0);
+    let t1 = a[0]
+        .max(b[0])
+        .min(a[1].max(b[1]))
+        .min(a[2].max(b[2]))
+        .min(reach);
+    (t0 <= t1).then_some(t0)
 }
 
 /// Möller–Trumbore: the distance along `dir` to `tri`, either side facing.
@@ -291,7 +362,7 @@ mod tests {
                 .filter_map(|i| intersect(&tris[i], o, d).map(|t| (t, i as u32)))
                 .filter(|(t, _)| *t < 1e6)
                 .min_by(|a, b| a.0.total_cmp(&b.0));
-            let fast = bvh.closest(&tris, o, d, 1e6).map(|h| (h.t, h.triangle));
+            let fast = bvh.closest(o, d, 1e6).map(|h| (h.t, h.triangle));
             assert_eq!(fast, brute);
             hits += usize::from(fast.is_some());
         }

@@ -12,10 +12,15 @@ use rayon::prelude::*;
 
 use crate::model::{CameraPose, ObjectKind};
 use crate::render::PreparedScene;
+use crate::spec::LidarSpec;
 use bvh::{Bvh, Tri};
 
 /// Bump when a scan's bytes change.
 pub const VERSION: u32 = 1;
+
+/// The weakest return a spec's scanner detects: albedo × cos(incidence) × the air's
+/// attenuation below this is lost (dark, grazing or fogged-out surfaces).
+pub const DETECTION_FLOOR: f64 = 0.005;
 
 /// A scanner: beam elevations, azimuth steps per turn, range and its imperfections.
 #[derive(Clone, Debug)]
@@ -39,6 +44,20 @@ pub struct Scanner {
 }
 
 impl Scanner {
+    /// The scanner a camera's `lidar` table describes, in air of `extinction` per metre
+    /// (see [`Scanner::extinction`]); returns under [`DETECTION_FLOOR`] are lost.
+    pub fn of(spec: &LidarSpec, extinction: f64) -> Scanner {
+        Scanner {
+            elevations: uniform_elevations(spec.beams, spec.top, spec.bottom),
+            azimuth_steps: spec.columns,
+            max_range: spec.range,
+            noise: spec.noise,
+            dropout: spec.dropout,
+            extinction,
+            min_intensity: DETECTION_FLOOR,
+        }
+    }
+
     /// The default pattern: 64 beams evenly from +2° down to −24.8° (an HDL-64E's span),
     /// 2048 azimuth steps, 120 m, 2 cm noise, 1 % dropout, clear air.
     pub fn default_64() -> Scanner {
@@ -77,7 +96,6 @@ pub struct Point {
 /// What a scan hits: triangles, their BVH, and per triangle its unit normal, albedo and
 /// label.
 pub struct Target {
-    tris: Vec<Tri>,
     normals: Vec<[f32; 3]>,
     albedo: Vec<f32>,
     labels: Vec<u32>,
@@ -88,8 +106,13 @@ impl Target {
     /// The target of `scene`'s triangles; `kinds` are its objects' kinds, by instance id − 1.
     pub fn of(scene: &PreparedScene, kinds: &[ObjectKind]) -> Target {
         let t = &scene.triangles;
+        // A material's colour, times its texture's mean where it has one.
         let albedo = |m: u32| {
-            let c = scene.materials[m as usize].colour;
+            let material = &scene.materials[m as usize];
+            let mean = material
+                .texture
+                .map_or([1.0; 3], |t| scene.textures[t as usize].mean());
+            let c: [f32; 3] = std::array::from_fn(|k| material.colour[k] * mean[k]);
             0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
         };
         Target::new(
@@ -102,6 +125,11 @@ impl Target {
         )
     }
 
+    /// Triangles its hierarchy holds (long ones split into pieces).
+    pub fn triangles(&self) -> usize {
+        self.bvh.triangles()
+    }
+
     /// A target of these triangles (and their normals, albedos and labels).
     pub fn new(
         tris: Vec<Tri>,
@@ -111,7 +139,6 @@ impl Target {
     ) -> Target {
         let bvh = Bvh::build(&tris);
         Target {
-            tris,
             normals,
             albedo,
             labels,
@@ -136,9 +163,28 @@ pub fn semantic_id(kind: ObjectKind) -> u32 {
         Ground | Block | Hills => 72,
         Lamp | SignPole | SignalPole | StreetPole => 80,
         Sign | TrafficLight => 81,
-        Mesh => 0,
+        Mesh => 99,
     }
 }
+
+/// SemanticKITTI's names of the semantic ids [`semantic_id`] gives (its
+/// `semantic-kitti.yaml` `labels`).
+pub const SEMANTIC_NAMES: [(u32, &str); 14] = [
+    (0, "unlabeled"),
+    (10, "car"),
+    (11, "bicycle"),
+    (30, "person"),
+    (31, "bicyclist"),
+    (40, "road"),
+    (48, "sidewalk"),
+    (50, "building"),
+    (60, "lane-marking"),
+    (70, "vegetation"),
+    (72, "terrain"),
+    (80, "pole"),
+    (81, "traffic-sign"),
+    (99, "other-object"),
+];
 
 /// The label of a point on instance `instance` of `kind`: the semantic id, with the
 /// instance id (low 16 bits) above it for things (cars, bicycles, people, signs).
@@ -167,6 +213,14 @@ pub fn sensor_axes(pose: &CameraPose) -> [[f64; 3]; 3] {
     let n = libm::hypot(fx, fz).max(1e-12);
     let f = [fx / n, 0.0, fz / n];
     [f, [f[2], 0.0, -f[0]], [0.0, 1.0, 0.0]]
+}
+
+/// The sensor frame → the world at `pose`: a row-major 3 × 4 matrix `[R | t]`, R's
+/// columns the sensor's axes ([`sensor_axes`]) and t the eye, so a point `p` of a scan is
+/// at `R · p + t` in the world.
+pub fn to_world(pose: &CameraPose) -> [[f64; 4]; 3] {
+    let axes = sensor_axes(pose);
+    std::array::from_fn(|row| [axes[0][row], axes[1][row], axes[2][row], pose.eye[row]])
 }
 
 /// One turn of `scanner` from `pose`'s eye, column by column (azimuth step, then beam
@@ -203,10 +257,7 @@ pub fn scan(
                     let noise = gaussian(&mut rng) * scanner.noise;
                     let drop = rng.random::<f64>() < scanner.dropout;
                     let dir = world.map(|v| v as f32);
-                    let hit =
-                        target
-                            .bvh
-                            .closest(&target.tris, origin, dir, scanner.max_range as f32)?;
+                    let hit = target.bvh.closest(origin, dir, scanner.max_range as f32)?;
                     let n = target.normals[hit.triangle as usize];
                     let cos = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]).abs() as f64;
                     let range = f64::from(hit.t);
@@ -247,6 +298,27 @@ pub fn velodyne_bytes(points: &[Point]) -> Vec<u8> {
 /// The SemanticKITTI `.label` bytes: one little-endian uint32 per point.
 pub fn label_bytes(points: &[Point]) -> Vec<u8> {
     points.iter().flat_map(|p| p.label.to_le_bytes()).collect()
+}
+
+/// A binary little-endian PLY of the points: float x, y, z, intensity and uint label per
+/// vertex, in the sensor frame.
+pub fn ply_bytes(points: &[Point]) -> Vec<u8> {
+    let header = format!(
+        "ply\nformat binary_little_endian 1.0\ncomment cityspec LiDAR scan, KITTI velodyne \
+         frame (x forward, y left, z up, metres)\nelement vertex {}\nproperty float x\n\
+         property float y\nproperty float z\nproperty float intensity\n\
+         property uint label\nend_header\n",
+        points.len()
+    );
+    let mut out = Vec::with_capacity(header.len() + points.len() * 20);
+    out.extend_from_slice(header.as_bytes());
+    for p in points {
+        for v in [p.xyz[0], p.xyz[1], p.xyz[2], p.intensity] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.extend_from_slice(&p.label.to_le_bytes());
+    }
+    out
 }
 
 #[cfg(test)]

@@ -152,6 +152,12 @@ impl MipTexture {
         }
     }
 
+    /// The texture's mean linear colour (1.0 = white): its coarsest level's one texel.
+    pub(crate) fn mean(&self) -> [f32; 3] {
+        let texel = self.level(self.level_count() - 1).texels[0];
+        [0, 1, 2].map(|k| f32::from(texel[k]) / ONE)
+    }
+
     /// Number of levels.
     fn level_count(&self) -> usize {
         self.coarser.len() + 1

@@ -67,6 +67,7 @@ mod ambient_occlusion;
 mod centre_samples;
 pub mod develop;
 mod edge_aa;
+mod flow;
 mod footprint;
 mod frame;
 mod intrinsics;
@@ -91,6 +92,7 @@ mod shadow_tests;
 mod tests;
 
 pub use crate::model::CameraPose;
+pub use flow::{Flow, flow};
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};

@@ -34,7 +34,7 @@ mod weather;
 pub use clouds::{CloudLight, sun_shade, warm as warm_clouds};
 pub use conditions::{CLOUD_TILE, Conditions, draw};
 pub use tone::{auto_exposure, decode_srgb, tone_map};
-pub use weather::{WeatherLight, weather_light};
+pub use weather::{WeatherLight, air_extinction, weather_light};
 
 use image::{ImageFormat, RgbImage};
 

@@ -78,6 +78,26 @@ impl Look {
     }
 }
 
+/// The air's extinction per metre at the ground under `c`, and the scale height (metres)
+/// it thins with: fog's drawn density, rain's and haze's fixed ones, 0 in clear air.
+fn extinction_at_ground(c: &Conditions) -> (f32, f32) {
+    let s = c.strength.clamp(0.0, 1.0) as f32;
+    let (sigma0, height) = match c.weather {
+        Weather::Clear => (0.0, 100.0),
+        Weather::Fog => ((c.fog_density as f32) * s, c.fog_height as f32),
+        Weather::Rain => (0.012 * s, 60.0),
+        Weather::Overcast => (0.002 * s, 100.0),
+    };
+    (sigma0, height.max(0.1))
+}
+
+/// The extinction per metre of the air at height `eye_height` under `c`: what dims the
+/// camera's image with distance there (and a LiDAR's returns, there and back).
+pub fn air_extinction(c: &Conditions, eye_height: f64) -> f64 {
+    let (sigma0, height) = extinction_at_ground(c);
+    f64::from(sigma0 * libm::expf(-(eye_height.max(0.0) as f32) / height))
+}
+
 /// Applies the weather of `c` to `linear` (row-major, `width` wide) in place. `depth` is
 /// metres along the view axis, 0 for sky; `horizon` the sky's colour at the horizon.
 pub(crate) fn apply_weather(
@@ -95,17 +115,12 @@ pub(crate) fn apply_weather(
     let h_lum = luminance(horizon);
     let grey = |k: f32| [h_lum * k; 3];
     let mix = |a: [f32; 3], b: [f32; 3], t: f32| [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t);
-    let (sigma0, fog_height, fog_colour, grey_sky) = match c.weather {
-        Weather::Fog => (
-            (c.fog_density as f32) * s,
-            c.fog_height as f32,
-            mix(horizon, grey(1.05), 0.8),
-            h_lum,
-        ),
-        Weather::Rain => (0.012 * s, 60.0, grey(0.62), h_lum * 0.6),
-        _ => (0.002 * s, 100.0, grey(0.95), h_lum * 0.95),
+    let (sigma0, fog_height) = extinction_at_ground(c);
+    let (fog_colour, grey_sky) = match c.weather {
+        Weather::Fog => (mix(horizon, grey(1.05), 0.8), h_lum),
+        Weather::Rain => (grey(0.62), h_lum * 0.6),
+        _ => (grey(0.95), h_lum * 0.95),
     };
-    let fog_height = fog_height.max(0.1);
     let look = Look {
         weather: c.weather,
         strength: s,

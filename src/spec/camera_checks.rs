@@ -18,6 +18,19 @@ pub(crate) fn check_cameras(cameras: &[CameraSpec], findings: &mut Findings<'_, 
                 ),
             );
         }
+        if let Some(lidar) = &camera.lidar
+            && lidar.beams > 1
+            && lidar.bottom >= lidar.top
+        {
+            findings.error(
+                &format!("cameras[{i}].lidar.bottom"),
+                format!(
+                    "expected the bottom beam below the top one (`top` = {}), found \
+                     bottom = {}",
+                    lidar.top, lidar.bottom
+                ),
+            );
+        }
         if camera.frames.is_some() && camera.spacing.is_some() {
             let line = findings.line_of(&format!("cameras[{i}].frames"));
             findings.error(
@@ -88,6 +101,39 @@ mod tests {
             let expected = (*expected)
                 .map_err(|problems| problems.iter().map(|p| p.to_string()).collect::<Vec<_>>());
             assert_eq!(rule(cameras), expected, "{cameras}");
+        }
+    }
+
+    #[test]
+    fn a_lidar_has_its_bottom_beam_below_its_top_and_known_keys() {
+        let lidar = |body: &str| {
+            rule(&format!(
+                "[[cameras]]\nname = \"a\"\n[cameras.lidar]\n{body}"
+            ))
+        };
+        assert_eq!(lidar(""), Ok(FrameRule::Count(100)));
+        assert_eq!(
+            lidar("beams = 1\ntop = -5\nbottom = -5\n"),
+            Ok(FrameRule::Count(100))
+        );
+        assert_eq!(
+            lidar("top = -10\nbottom = 5\n"),
+            Err(vec![
+                "cameras[0].lidar.bottom: expected the bottom beam below the top one \
+                 (`top` = -10), found bottom = 5"
+                    .to_string()
+            ])
+        );
+        for bad in [
+            "beams = 0",
+            "columns = 100000",
+            "dropout = 1",
+            "range = 0",
+            "lasers = 3",
+        ] {
+            let problems = lidar(&format!("{bad}\n")).expect_err(bad);
+            assert_eq!(problems.len(), 1, "{bad}: {problems:?}");
+            assert!(problems[0].starts_with("cameras[0].lidar"), "{problems:?}");
         }
     }
 

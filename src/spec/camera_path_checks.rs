@@ -9,6 +9,45 @@ use super::object_spec::ObjectSpec;
 /// roads and sidewalks are everywhere, so "aiming" at them means nothing).
 const AIMABLE_SCENE_CLASSES: [&str; 2] = ["building", "lamp"];
 
+/// A timed drive's keys: `fps` and `speed_kmh` on a roads path only, `speed_kmh` with
+/// `fps`, frames counted (not spaced), and `flow` only on a timed drive.
+fn check_timed(camera: &CameraSpec, key: &dyn Fn(&str) -> String, findings: &mut Findings<'_, '_>) {
+    if camera.flow && camera.fps.is_none() {
+        findings.error(
+            &key("flow"),
+            "expected `flow` only on a timed drive (a camera with path = \"roads\" and \
+             `fps`: its frames are one time step apart), found no `fps`",
+        );
+    }
+    if camera.path != CameraPath::Roads {
+        for (name, set) in [
+            ("fps", camera.fps.is_some()),
+            ("speed_kmh", camera.speed_kmh.is_some()),
+        ] {
+            if set {
+                findings.error(
+                    &key(name),
+                    format!(
+                        "expected `{name}` only on a camera with path = \"roads\" (a timed \
+                         drive), found it on another path"
+                    ),
+                );
+            }
+        }
+    } else if camera.speed_kmh.is_some() && camera.fps.is_none() {
+        findings.error(
+            &key("speed_kmh"),
+            "expected `fps` beside `speed_kmh` (the speed of a timed drive), found no `fps`",
+        );
+    } else if camera.fps.is_some() && camera.spacing.is_some() {
+        findings.error(
+            &key("spacing"),
+            "expected `frames` for a timed drive (`fps`): its frames are one time step \
+             apart, not spaced along the tour; found `spacing`",
+        );
+    }
+}
+
 /// An objects path names at least one class, each one something in the scene, and counts
 /// its frames (it has no length for `spacing` to divide); other paths name no classes.
 pub(crate) fn check_camera_paths(
@@ -18,33 +57,7 @@ pub(crate) fn check_camera_paths(
 ) {
     for (i, camera) in cameras.iter().enumerate() {
         let key = |name: &str| format!("cameras[{i}].{name}");
-        if camera.path != CameraPath::Roads {
-            for (name, set) in [
-                ("fps", camera.fps.is_some()),
-                ("speed_kmh", camera.speed_kmh.is_some()),
-            ] {
-                if set {
-                    findings.error(
-                        &key(name),
-                        format!(
-                            "expected `{name}` only on a camera with path = \"roads\" (a timed \
-                             drive), found it on another path"
-                        ),
-                    );
-                }
-            }
-        } else if camera.speed_kmh.is_some() && camera.fps.is_none() {
-            findings.error(
-                &key("speed_kmh"),
-                "expected `fps` beside `speed_kmh` (the speed of a timed drive), found no `fps`",
-            );
-        } else if camera.fps.is_some() && camera.spacing.is_some() {
-            findings.error(
-                &key("spacing"),
-                "expected `frames` for a timed drive (`fps`): its frames are one time step \
-                 apart, not spaced along the tour; found `spacing`",
-            );
-        }
+        check_timed(camera, &key, findings);
         if camera.path != CameraPath::Objects {
             if !camera.classes.is_empty() {
                 findings.error(
@@ -113,6 +126,13 @@ mod tests {
             walk.iter()
                 .any(|p| p.contains("cameras[0].fps") && p.contains("roads")),
             "{walk:?}"
+        );
+        assert!(problems("[[cameras]]\nname = \"d\"\nfps = 10\nflow = true\n").is_empty());
+        let flow = problems("[[cameras]]\nname = \"d\"\nflow = true\n");
+        assert!(
+            flow.iter()
+                .any(|p| p.contains("cameras[0].flow") && p.contains("fps")),
+            "{flow:?}"
         );
         let bare = problems("[[cameras]]\nname = \"d\"\nspeed_kmh = 40\n");
         assert!(

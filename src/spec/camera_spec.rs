@@ -3,6 +3,7 @@
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Serialize};
 
+use super::lidar_spec::LidarSpec;
 use super::lighting_spec::LightingSpec;
 use super::sensor_spec::SensorSpec;
 use super::value_range::{ValueRange, range_schema};
@@ -145,6 +146,18 @@ pub struct CameraSpec {
     /// worked out and it stays out of the stage keys.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub keypoints: bool,
+    /// Roads path with `fps` (a timed drive): also write each frame's forward optical flow
+    /// to the next frame, `flow/NNNNNN.png` in the KITTI flow encoding (16-bit RGB,
+    /// `u = (R − 2¹⁵) / 64`, `v = (G − 2¹⁵) / 64`, B = 1 where valid), for every frame but
+    /// the last. Only the camera moves, so the flow is the camera's motion over the
+    /// frame's depth; a point the next frame does not see is not valid. Off, nothing is
+    /// worked out and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub flow: bool,
+    /// A rotating LiDAR at the camera's eye, scanning once a frame (see its table). Off,
+    /// nothing is ray-cast and it stays out of the stage keys.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lidar: Option<LidarSpec>,
     /// Classes this path annotates, instead of `[annotations] classes` (for example
     /// `["building", "road"]` for a camera looking down on the city).
     #[serde(default, skip_serializing_if = "Option::is_none")]

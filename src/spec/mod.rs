@@ -28,6 +28,7 @@ mod fs_world;
 mod input_file;
 mod key_path;
 mod layout_checks;
+mod lidar_spec;
 mod lighting_spec;
 mod limits_spec;
 mod locator;
@@ -67,6 +68,7 @@ pub use input_file::{
     MAX_SPEC_BYTES, MAX_TEXTURE_BYTES, check_file, open_capped, read_capped, read_text_capped,
 };
 pub use layout_checks::{MAX_LAYOUT_PIXELS, MAX_LAYOUT_SIDE};
+pub use lidar_spec::LidarSpec;
 pub use lighting_spec::{LightingSpec, Span, TimeOfDay, TimePreset, Vary};
 pub use limits_spec::LimitsSpec;
 pub use object_spec::{

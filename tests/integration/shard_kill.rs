@@ -72,13 +72,19 @@ fn counts(output: &Output) -> (usize, usize) {
     (number_after(": rendered "), cached)
 }
 
-/// The chunk entries in a local cache folder.
+/// The chunk entries in a local cache folder. An entry is written whole to a hidden
+/// temporary (`.<name>.cityspec-tmp-…`) and renamed into place; a kill between the two
+/// leaves no entry, so the temporaries are not counted (counting one made a kill that
+/// landed there look like a recorded chunk the rerun then rendered again, once in a
+/// clean-clone run of `.ci/run`).
 fn chunk_entries(cache: &Path) -> usize {
     let Ok(entries) = fs::read_dir(cache.join("entries")) else {
         return 0;
     };
     entries
-        .filter_map(|e| fs::read(e.unwrap().path()).ok())
+        .map(|e| e.unwrap())
+        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
+        .filter_map(|e| fs::read(e.path()).ok())
         .filter(|text| {
             serde_json::from_slice::<serde_json::Value>(text)
                 .is_ok_and(|v| v["stage"] == "frames-chunk")

@@ -23,7 +23,7 @@ use crate::driver::chunks::{self, PathPlan};
 use crate::driver::shard::{Shard, ShardStats};
 use crate::model::{CameraPose, FacadeSet, Lamp, ObjectKind, ParsedLayout, Scene};
 use crate::spec::{LightingSpec, OutputLayout, Vary};
-use crate::{annotate, render, rng, scene, views};
+use crate::{annotate, lidar, render, rng, scene, views};
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
 /// parsed layout, the lamps and the facades.
@@ -292,27 +292,30 @@ impl Pipeline<'_> {
         let semantic = state.plan.semantic.as_ref();
         let done = std::sync::atomic::AtomicUsize::new(0);
         let chunk_list = std::mem::take(&mut state.chunks);
-        let render = |range: std::ops::Range<usize>,
-                      gathered: &Gathered|
-         -> Result<Outputs, BuildError> {
-            let key = chunks::chunk_key(frames_key, &range);
-            let outputs = self.with_path_input(index, gathered, semantic, |input| {
-                let path = frames::PathFrames::new(input, poses);
-                let keep_all = self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
-                let modes = (store, keep_all);
-                chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
-                    let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    (self.progress)(&camera.name, n, total);
-                })
-            });
-            let outputs = outputs.map_err(|source| self.cache_error(source))?;
-            if store {
-                self.cache
-                    .put("frames-chunk", &key, &outputs, &[])
-                    .map_err(|source| self.cache_error(source))?;
-            }
-            Ok(outputs)
-        };
+        let lidar_target = lidar_target(camera, &chunk_list, state.gathered.as_ref());
+        let lidar_target = lidar_target.as_ref();
+        let render =
+            |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
+                let key = chunks::chunk_key(frames_key, &range);
+                let outputs =
+                    self.with_path_input(index, gathered, (semantic, lidar_target), |input| {
+                        let path = frames::PathFrames::new(input, poses);
+                        let keep_all =
+                            self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
+                        let modes = (store, keep_all);
+                        chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
+                            let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                            (self.progress)(&camera.name, n, total);
+                        })
+                    });
+                let outputs = outputs.map_err(|source| self.cache_error(source))?;
+                if store {
+                    self.cache
+                        .put("frames-chunk", &key, &outputs, &[])
+                        .map_err(|source| self.cache_error(source))?;
+                }
+                Ok(outputs)
+            };
         // What every frame reads (the shadow map, the cloud field) once, with every core,
         // before chunks start side by side and each asks for it (`render_chunk` does not:
         // two chunks starting together would each build the same map).
@@ -321,7 +324,7 @@ impl Pipeline<'_> {
             .zip(&ranges)
             .find(|(c, r)| matches!(c, Chunk::Render) && !r.is_empty());
         if let (Some((_, range)), Some(gathered)) = (first, state.gathered.as_ref()) {
-            self.with_path_input(index, gathered, semantic, |input| {
+            self.with_path_input(index, gathered, (semantic, lidar_target), |input| {
                 frames::PathFrames::new(input, poses).warm(range.start);
             });
         }
@@ -430,7 +433,7 @@ impl Pipeline<'_> {
         &self,
         index: usize,
         g: &Gathered,
-        semantic: Option<&annotate::SemanticClasses>,
+        (semantic, lidar): (Option<&annotate::SemanticClasses>, Option<&lidar::Target>),
         f: impl FnOnce(&frames::PathInput) -> R,
     ) -> R {
         let (prepared, scene, _, lamps, facades) = g;
@@ -470,9 +473,26 @@ impl Pipeline<'_> {
             weather: &path.weather,
             conditions_seed: rng::stream(path.seed, "conditions", index as u64).next_u64(),
             semantic,
+            lidar,
         };
         f(&input)
     }
+}
+
+/// The LiDAR's BVH over the scene, when the camera has a LiDAR and a chunk renders: built
+/// once for every chunk of the path.
+fn lidar_target(
+    camera: &crate::spec::CameraSpec,
+    chunks: &[Chunk],
+    gathered: Option<&Gathered>,
+) -> Option<lidar::Target> {
+    let (prepared, scene, ..) = camera
+        .lidar
+        .as_ref()
+        .filter(|_| chunks.iter().any(|c| matches!(c, Chunk::Render)))
+        .and(gathered)?;
+    let kinds: Vec<ObjectKind> = scene.objects.iter().map(|o| o.kind).collect();
+    Some(lidar::Target::of(prepared, &kinds))
 }
 
 /// A camera path's lighting under `sun`.

@@ -9,6 +9,7 @@ use crate::model::{Material, Mesh, Scene, SceneObject, Texture};
 
 mod coverage;
 mod depth;
+mod flow;
 mod footprints;
 mod night;
 mod normals;
