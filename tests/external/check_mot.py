@@ -13,7 +13,8 @@ usage: check_mot.py <frames/<camera> folder>
    speed / fps apart (within 1 mm of rounding) - so the tracks are real: several ids
    persist over at least 5 frames;
 4. the ground truth (conf 1 rows) scored against itself by motmetrics gives MOTA 1.0 and
-   IDF1 1.0.
+   IDF1 1.0, and by TrackEval (the MOT Challenge's own evaluation code, its `trackeval`
+   package; box IoUs by its dataset code) HOTA 1.0.
 """
 
 import configparser
@@ -26,6 +27,8 @@ from pathlib import Path
 
 import motmetrics as mm
 import numpy as np
+from trackeval.datasets._base_dataset import _BaseDataset
+from trackeval.metrics import HOTA
 
 
 def iou_distances(a, b, max_distance=0.5):
@@ -41,6 +44,25 @@ def iou_distances(a, b, max_distance=0.5):
     union = a[:, 2:3] * a[:, 3:4] + b[:, 2] * b[:, 3] - inter
     d = 1.0 - inter / np.where(union > 0, union, 1.0)
     return np.where(d > max_distance, np.nan, d)
+
+
+def trackeval_hota(positive):
+    """TrackEval's HOTA (averaged over its IoU thresholds) of `positive` against itself."""
+    frames = sorted(set(positive.index.get_level_values(0)))
+    ids = sorted(set(positive.index.get_level_values(1)))
+    index = {oid: k for k, oid in enumerate(ids)}
+    gt_ids, similarity = [], []
+    for frame in frames:
+        rows_of = positive.loc[frame]
+        boxes = rows_of[["X", "Y", "Width", "Height"]].to_numpy(dtype=float)
+        gt_ids.append(np.array([index[o] for o in rows_of.index], dtype=int))
+        similarity.append(_BaseDataset._calculate_box_ious(boxes, boxes, box_format="xywh"))
+    data = {
+        "num_gt_dets": len(positive), "num_tracker_dets": len(positive),
+        "num_gt_ids": len(ids), "num_tracker_ids": len(ids), "num_timesteps": len(frames),
+        "gt_ids": gt_ids, "tracker_ids": gt_ids, "similarity_scores": similarity,
+    }
+    return float(np.mean(HOTA().eval_sequence(data)["HOTA"]))
 
 
 def main():
@@ -105,11 +127,17 @@ def main():
     mota, idf1 = summary["mota"]["gt"], summary["idf1"]["gt"]
     assert mota == 1.0 and idf1 == 1.0 and summary["num_switches"]["gt"] == 0, summary
 
+    # TrackEval's HOTA of the ground truth against itself, as its MOT Challenge dataset
+    # hands a sequence to the metric: per frame the ids (0-based) and the IoU matrix.
+    hota = trackeval_hota(positive)
+    assert hota == 1.0, f"HOTA {hota}"
+
     print(
         f"{folder}: {frames} frames at {fps:g} fps, {step:.3f} m a frame; {rows} rows "
         f"({len(positive)} positive) = COCO; {len(lengths)} tracks, median length "
         f"{np.median(list(lengths.values())):.0f} frames, {long_tracks} over >= 5; "
-        f"motmetrics of gt against itself: MOTA {mota:.3f}, IDF1 {idf1:.3f}"
+        f"motmetrics of gt against itself: MOTA {mota:.3f}, IDF1 {idf1:.3f}; "
+        f"TrackEval HOTA {hota:.3f}"
     )
     return 0
 
