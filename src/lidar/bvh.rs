@@ -27,11 +27,13 @@ pub struct Bvh {
     ordered: Vec<Tri>,
 }
 
-/// The closest hit of a ray: distance along it and the triangle's index.
+/// The closest hit of a ray: distance along it, the triangle's index, and where the
+/// hierarchy keeps that triangle (or the piece of it hit), a hint for the next ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,
     pub triangle: u32,
+    pub slot: u32,
 }
 
 fn bounds(tris: &[Tri], order: &[u32]) -> ([f32; 3], [f32; 3]) {
@@ -77,6 +79,169 @@ fn split_long(t: Tri, parent: u32, out: &mut Vec<(Tri, u32)>) {
     }
 }
 
+/// Runs at least this long are split with their halves built side by side.
+const PARALLEL: usize = 1 << 15;
+
+/// The subtree over `order` (which sits at `start` in the whole order), partitioned in
+/// place: its nodes, the root first, a node's two children side by side, child indices
+/// relative to the returned nodes and leaf runs to the whole order.
+fn subtree(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
+    if order.len() < PARALLEL {
+        return sequential(tris, order, start);
+    }
+    let (min, max) = bounds(tris, order);
+    let Some(left) = partition(tris, order) else {
+        return vec![Node {
+            min,
+            max,
+            start,
+            count: order.len() as u32,
+        }];
+    };
+    let (l, r) = order.split_at_mut(left);
+    let (ln, rn) = rayon::join(
+        || subtree(tris, l, start),
+        || subtree(tris, r, start + left as u32),
+    );
+    // [root, left root, right root, the left's other nodes, the right's other nodes].
+    let nl = ln.len() as u32;
+    let moved = |node: Node, to: &dyn Fn(u32) -> u32| {
+        if node.count == 0 {
+            Node {
+                start: to(node.start),
+                ..node
+            }
+        } else {
+            node
+        }
+    };
+    let to_left = |j: u32| if j == 0 { 1 } else { j + 2 };
+    let to_right = |j: u32| if j == 0 { 2 } else { j + 1 + nl };
+    let mut nodes = Vec::with_capacity(1 + ln.len() + rn.len());
+    nodes.push(Node {
+        min,
+        max,
+        start: 1,
+        count: 0,
+    });
+    nodes.push(moved(ln[0], &to_left));
+    nodes.push(moved(rn[0], &to_right));
+    nodes.extend(ln[1..].iter().map(|n| moved(*n, &to_left)));
+    nodes.extend(rn[1..].iter().map(|n| moved(*n, &to_right)));
+    nodes
+}
+
+/// [`subtree`] on one thread.
+fn sequential(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
+    let (min, max) = bounds(tris, order);
+    let mut nodes = vec![Node {
+        min,
+        max,
+        start: 0,
+        count: order.len() as u32,
+    }];
+    let mut todo = vec![0usize];
+    while let Some(n) = todo.pop() {
+        let Node {
+            start: s, count, ..
+        } = nodes[n];
+        let run = s as usize..(s + count) as usize;
+        let Some(left) = partition(tris, &mut order[run]) else {
+            continue;
+        };
+        let first = nodes.len();
+        let left = left as u32;
+        for (s, c) in [(s, left), (s + left, count - left)] {
+            let (min, max) = bounds(tris, &order[s as usize..(s + c) as usize]);
+            nodes.push(Node {
+                min,
+                max,
+                start: s,
+                count: c,
+            });
+        }
+        nodes[n].start = first as u32;
+        nodes[n].count = 0;
+        todo.extend([first, first + 1]);
+    }
+    for node in nodes.iter_mut().filter(|n| n.count > 0) {
+        node.start += start;
+    }
+    nodes
+}
+
+/// Splits `order` where the binned SAH is cheapest, the left part first: its length, or
+/// `None` when the run stays a leaf.
+fn partition(tris: &[Tri], order: &mut [u32]) -> Option<usize> {
+    if order.len() <= LEAF {
+        return None;
+    }
+    let (axis, cut, lo, hi) = best_cut(tris, order)?;
+    let scale = BINS as f32 / (hi - lo);
+    let bin = |i: u32| (((centroid(&tris[i as usize], axis) - lo) * scale) as usize).min(BINS - 1);
+    let mut left = 0;
+    for i in 0..order.len() {
+        if bin(order[i]) < cut {
+            order.swap(i, left);
+            left += 1;
+        }
+    }
+    (left > 0 && left < order.len()).then_some(left)
+}
+
+/// The axis and bin boundary of the cheapest split of `run` (with the centroids' span
+/// on that axis), if one is cheaper than a leaf.
+fn best_cut(tris: &[Tri], order: &[u32]) -> Option<(usize, usize, f32, f32)> {
+    let mut best: Option<(f32, usize, usize, f32, f32)> = None;
+    for axis in 0..3 {
+        let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+        for &i in order {
+            let c = centroid(&tris[i as usize], axis);
+            lo = lo.min(c);
+            hi = hi.max(c);
+        }
+        if hi - lo <= 1e-6 {
+            continue;
+        }
+        let scale = BINS as f32 / (hi - lo);
+        let mut boxes = [([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]); BINS];
+        let mut counts = [0usize; BINS];
+        for &i in order {
+            let t = &tris[i as usize];
+            let b = (((centroid(t, axis) - lo) * scale) as usize).min(BINS - 1);
+            counts[b] += 1;
+            for p in t {
+                for (k, v) in p.iter().enumerate() {
+                    boxes[b].0[k] = boxes[b].0[k].min(*v);
+                    boxes[b].1[k] = boxes[b].1[k].max(*v);
+                }
+            }
+        }
+        for cut in 1..BINS {
+            let side = |range: std::ops::Range<usize>| {
+                let mut min = [f32::INFINITY; 3];
+                let mut max = [f32::NEG_INFINITY; 3];
+                let mut n = 0;
+                for b in range {
+                    n += counts[b];
+                    for k in 0..3 {
+                        min[k] = min[k].min(boxes[b].0[k]);
+                        max[k] = max[k].max(boxes[b].1[k]);
+                    }
+                }
+                area(min, max) * n as f32
+            };
+            let cost = side(0..cut) + side(cut..BINS);
+            if best.is_none_or(|b| cost < b.0) {
+                best = Some((cost, axis, cut, lo, hi));
+            }
+        }
+    }
+    let (cost, axis, cut, lo, hi) = best?;
+    let (min, max) = bounds(tris, order);
+    (cost < area(min, max) * order.len() as f32).then_some((axis, cut, lo, hi))
+}
+
 fn centroid(t: &Tri, k: usize) -> f32 {
     (t[0][k] + t[1][k] + t[2][k]) / 3.0
 }
@@ -90,37 +255,26 @@ fn area(min: [f32; 3], max: [f32; 3]) -> f32 {
 }
 
 impl Bvh {
-    /// The hierarchy of `tris` (binned surface-area heuristic, 12 bins per axis).
+    /// The hierarchy of `tris` (binned surface-area heuristic, 12 bins per axis). Runs of
+    /// at least [`PARALLEL`] triangles build their two halves side by side; the tree, and
+    /// so every hit, is the same whatever the thread count.
     pub fn build(original: &[Tri]) -> Bvh {
         let mut pieces: Vec<(Tri, u32)> = Vec::with_capacity(original.len());
         for (i, t) in original.iter().enumerate() {
             split_long(*t, i as u32, &mut pieces);
         }
         let tris: Vec<Tri> = pieces.iter().map(|p| p.0).collect();
-        let tris = &tris[..];
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * tris.len() / LEAF + 1),
-            order: (0..tris.len() as u32).collect(),
-            ordered: Vec::new(),
-        };
-        let (min, max) = bounds(tris, &bvh.order);
-        bvh.nodes.push(Node {
-            min,
-            max,
-            start: 0,
-            count: tris.len() as u32,
-        });
-        let mut todo = vec![0usize];
-        while let Some(n) = todo.pop() {
-            if let Some(children) = bvh.split(tris, n) {
-                todo.extend(children);
-            }
-        }
-        bvh.ordered = bvh.order.iter().map(|&i| tris[i as usize]).collect();
-        for i in &mut bvh.order {
+        let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+        let nodes = subtree(&tris, &mut order, 0);
+        let ordered = order.iter().map(|&i| tris[i as usize]).collect();
+        for i in &mut order {
             *i = pieces[*i as usize].1;
         }
-        bvh
+        Bvh {
+            nodes,
+            order,
+            ordered,
+        }
     }
 
     /// Triangles the hierarchy holds (long ones split into pieces).
@@ -128,117 +282,39 @@ impl Bvh {
         self.ordered.len()
     }
 
-    /// Splits node `n` where the binned SAH is cheapest; its children's indices, or `None`
-    /// when it stays a leaf.
-    fn split(&mut self, tris: &[Tri], n: usize) -> Option<[usize; 2]> {
-        let Node { start, count, .. } = self.nodes[n];
-        if (count as usize) <= LEAF {
-            return None;
-        }
-        let run = start as usize..(start + count) as usize;
-        let (axis, cut, lo, hi) = self.best_cut(tris, run.clone())?;
-        let order = &mut self.order[run.clone()];
-        let scale = BINS as f32 / (hi - lo);
-        let bin =
-            |i: u32| (((centroid(&tris[i as usize], axis) - lo) * scale) as usize).min(BINS - 1);
-        let mut left = 0;
-        for i in 0..order.len() {
-            if bin(order[i]) < cut {
-                order.swap(i, left);
-                left += 1;
-            }
-        }
-        if left == 0 || left == order.len() {
-            return None;
-        }
-        let first = self.nodes.len();
-        for (s, c) in [
-            (start, left as u32),
-            (start + left as u32, count - left as u32),
-        ] {
-            let (bmin, bmax) = bounds(tris, &self.order[s as usize..(s + c) as usize]);
-            self.nodes.push(Node {
-                min: bmin,
-                max: bmax,
-                start: s,
-                count: c,
-            });
-        }
-        self.nodes[n].start = first as u32;
-        self.nodes[n].count = 0;
-        Some([first, first + 1])
-    }
-
-    /// The axis and bin boundary of the cheapest split of `run` (with the centroids' span
-    /// on that axis), if one is cheaper than a leaf.
-    fn best_cut(
-        &self,
-        tris: &[Tri],
-        run: std::ops::Range<usize>,
-    ) -> Option<(usize, usize, f32, f32)> {
-        let order = &self.order[run];
-        let mut best: Option<(f32, usize, usize, f32, f32)> = None;
-        for axis in 0..3 {
-            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            for &i in order {
-                let c = centroid(&tris[i as usize], axis);
-                lo = lo.min(c);
-                hi = hi.max(c);
-            }
-            if hi - lo <= 1e-6 {
-                continue;
-            }
-            let scale = BINS as f32 / (hi - lo);
-            let mut boxes = [([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]); BINS];
-            let mut counts = [0usize; BINS];
-            for &i in order {
-                let t = &tris[i as usize];
-                let b = (((centroid(t, axis) - lo) * scale) as usize).min(BINS - 1);
-                counts[b] += 1;
-                for p in t {
-                    for (k, v) in p.iter().enumerate() {
-                        boxes[b].0[k] = boxes[b].0[k].min(*v);
-                        boxes[b].1[k] = boxes[b].1[k].max(*v);
-                    }
-                }
-            }
-            for cut in 1..BINS {
-                let side = |range: std::ops::Range<usize>| {
-                    let mut min = [f32::INFINITY; 3];
-                    let mut max = [f32::NEG_INFINITY; 3];
-                    let mut n = 0;
-                    for b in range {
-                        n += counts[b];
-                        for k in 0..3 {
-                            min[k] = min[k].min(boxes[b].0[k]);
-                            max[k] = max[k].max(boxes[b].1[k]);
-                        }
-                    }
-                    area(min, max) * n as f32
-                };
-                let cost = side(0..cut) + side(cut..BINS);
-                if best.is_none_or(|b| cost < b.0) {
-                    best = Some((cost, axis, cut, lo, hi));
-                }
-            }
-        }
-        let (cost, axis, cut, lo, hi) = best?;
-        let (min, max) = bounds(tris, order);
-        (cost < area(min, max) * order.len() as f32).then_some((axis, cut, lo, hi))
-    }
-
     /// The closest hit of the ray `origin + t·dir` with `t` in `(0, t_max)`. The nearer
     /// child is visited first and a node farther than the best hit so far is skipped, so
-    /// a ray reads few leaves beyond the one it stops in.
-    pub fn closest(&self, origin: [f32; 3], dir: [f32; 3], t_max: f32) -> Option<Hit> {
+    /// a ray reads few leaves beyond the one it stops in. `hint` (the slot a neighbouring
+    /// ray hit) is tried first: when the ray hits it too, only nodes nearer than that hit
+    /// are visited. Of two hits at exactly one distance the hint's is kept.
+    pub fn closest(
+        &self,
+        origin: [f32; 3],
+        dir: [f32; 3],
+        t_max: f32,
+        hint: Option<u32>,
+    ) -> Option<Hit> {
         let inv = dir.map(|d| 1.0 / d);
         let oi: [f32; 3] = std::array::from_fn(|k| origin[k] * inv[k]);
         let mut best: Option<Hit> = None;
         let mut reach = t_max;
+        if let Some(slot) = hint
+            && let Some(tri) = self.ordered.get(slot as usize)
+            && let Some(t) = intersect(tri, origin, dir)
+            && t < reach
+        {
+            reach = t;
+            best = Some(Hit {
+                t,
+                triangle: self.order[slot as usize],
+                slot,
+            });
+        }
         // Nodes still to visit, with the distance where the ray enters their box.
         let mut stack = [(0u32, 0.0f32); 64];
         let mut top = 0;
-        let mut next = slab(&self.nodes[0], oi, inv, reach).map(|_| 0u32);
+        let root = self.nodes.first().filter(|_| !self.ordered.is_empty());
+        let mut next = root.and_then(|r| slab(r, oi, inv, reach)).map(|_| 0u32);
         while let Some(n) = next.take() {
             let node = &self.nodes[n as usize];
             if node.count == 0 {
@@ -262,12 +338,21 @@ impl Bvh {
                 };
             } else {
                 let run = node.start as usize..(node.start + node.count) as usize;
-                for (tri, &i) in self.ordered[run.clone()].iter().zip(&self.order[run]) {
+                let slots = node.start..node.start + node.count;
+                for ((tri, &i), slot) in self.ordered[run.clone()]
+                    .iter()
+                    .zip(&self.order[run])
+                    .zip(slots)
+                {
                     if let Some(t) = intersect(tri, origin, dir)
                         && t < reach
                     {
                         reach = t;
-                        best = Some(Hit { t, triangle: i });
+                        best = Some(Hit {
+                            t,
+                            triangle: i,
+                            slot,
+                        });
                     }
                 }
             }
@@ -351,21 +436,53 @@ mod tests {
     /// Every ray's hit through the hierarchy is the brute-force closest hit.
     #[test]
     fn bvh_hits_equal_brute_force() {
-        let tris = soup(3000);
-        let bvh = Bvh::build(&tris);
+        hits_equal_brute_force(&soup(3000), 2000);
+    }
+
+    /// A hierarchy big enough to build its halves side by side: the same hits, and the
+    /// same nodes on one thread as on two.
+    #[test]
+    fn a_parallel_build_hits_the_same_and_is_the_same_on_any_thread_count() {
+        let tris = soup(3 * PARALLEL);
+        hits_equal_brute_force(&tris, 200);
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let a = one.install(|| Bvh::build(&tris));
+        let b = Bvh::build(&tris);
+        assert_eq!(a.order, b.order);
+        let key = |n: &Node| (n.min, n.max, n.start, n.count);
+        assert!(a.nodes.iter().map(key).eq(b.nodes.iter().map(key)));
+    }
+
+    #[test]
+    fn an_empty_hierarchy_hits_nothing() {
+        let bvh = Bvh::build(&[]);
+        assert_eq!(bvh.closest([0.0; 3], [1.0, 0.0, 0.0], 1e6, Some(0)), None);
+    }
+
+    fn hits_equal_brute_force(tris: &[Tri], rays: usize) {
+        let bvh = Bvh::build(tris);
         let mut rng = crate::rng::stream(7, "bvh-rays", 0);
         let mut hits = 0;
-        for _ in 0..2000 {
+        for _ in 0..rays {
             let o: [f32; 3] = std::array::from_fn(|_| rng.random_range(-60.0..60.0));
             let d: [f32; 3] = std::array::from_fn(|_| rng.random_range(-1.0..1.0f32));
             let brute = (0..tris.len())
                 .filter_map(|i| intersect(&tris[i], o, d).map(|t| (t, i as u32)))
                 .filter(|(t, _)| *t < 1e6)
                 .min_by(|a, b| a.0.total_cmp(&b.0));
-            let fast = bvh.closest(o, d, 1e6).map(|h| (h.t, h.triangle));
+            let fast = bvh.closest(o, d, 1e6, None).map(|h| (h.t, h.triangle));
+            // With any hint, hit or missed, the same closest hit.
+            let hint = rng.random_range(0..tris.len() as u32);
+            let hinted = bvh
+                .closest(o, d, 1e6, Some(hint))
+                .map(|h| (h.t, h.triangle));
+            assert_eq!(hinted, fast);
             assert_eq!(fast, brute);
             hits += usize::from(fast.is_some());
         }
-        assert!(hits > 200, "{hits} rays hit");
+        assert!(hits * 10 > rays, "{hits} rays hit");
     }
 }

@@ -249,6 +249,9 @@ pub fn scan(
             let mut rng = crate::rng::stream(seed, &stream, (frame << 20) + u64::from(col));
             let a = std::f64::consts::TAU * f64::from(col) / f64::from(scanner.azimuth_steps);
             let (sa, ca) = libm::sincos(a);
+            // The slot the beam above hit: the next beam often hits it (or its
+            // neighbour) too, and then searches only nearer than it.
+            let mut hint = None;
             elev.iter()
                 .filter_map(|&(ce, se)| {
                     let local = [ce * ca, ce * sa, se];
@@ -257,7 +260,10 @@ pub fn scan(
                     let noise = gaussian(&mut rng) * scanner.noise;
                     let drop = rng.random::<f64>() < scanner.dropout;
                     let dir = world.map(|v| v as f32);
-                    let hit = target.bvh.closest(origin, dir, scanner.max_range as f32)?;
+                    let hit = target
+                        .bvh
+                        .closest(origin, dir, scanner.max_range as f32, hint)?;
+                    hint = Some(hit.slot);
                     let n = target.normals[hit.triangle as usize];
                     let cos = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]).abs() as f64;
                     let range = f64::from(hit.t);
