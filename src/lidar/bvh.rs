@@ -256,7 +256,7 @@ fn area(min: [f32; 3], max: [f32; 3]) -> f32 {
 
 impl Bvh {
     /// The hierarchy of `tris` (binned surface-area heuristic, 12 bins per axis). Runs of
-    /// at least [`PARALLEL`] triangles build their two halves side by side; the tree, and
+    /// at least 32,768 triangles build their two halves side by side; the tree, and
     /// so every hit, is the same whatever the thread count.
     pub fn build(original: &[Tri]) -> Bvh {
         let mut pieces: Vec<(Tri, u32)> = Vec::with_capacity(original.len());
