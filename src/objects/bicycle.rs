@@ -569,22 +569,36 @@ mod tests {
         }
     }
 
+    /// Three riders of `build` on their bikes: short, tall and middling, at three crank
+    /// angles and leans.
+    fn test_riders(build: f64) -> Vec<(Bike, Rider)> {
+        [(1.5, 0.0, 25.0), (1.95, 130.0, 45.0), (1.75, 300.0, 35.0)]
+            .into_iter()
+            .map(|(height, crank, lean)| {
+                let bike = Bike {
+                    crank,
+                    saddle: saddle_for(height),
+                };
+                (
+                    bike,
+                    Rider {
+                        height,
+                        build,
+                        lean,
+                    },
+                )
+            })
+            .collect()
+    }
+
     #[test]
     fn a_rider_sits_on_the_saddle_with_feet_on_the_pedals_and_hands_on_the_grips() {
         let frame = Frame {
             origin: [0.0; 3],
             forward: [1.0, 0.0],
         };
-        for (height, crank, lean) in [(1.5, 0.0, 25.0), (1.95, 130.0, 45.0), (1.75, 300.0, 35.0)] {
-            let bike = Bike {
-                crank,
-                saddle: saddle_for(height),
-            };
-            let rider = Rider {
-                height,
-                build: 1.08,
-                lean,
-            };
+        for (bike, rider) in test_riders(1.08) {
+            let height = rider.height;
             let meshes = rider_meshes(&frame, &bike, &rider, CLOTHES);
             let materials: Vec<u32> = meshes.iter().map(|m| m.material).collect();
             assert_eq!(materials, [1, 4, 0, 2, 3]);
@@ -635,16 +649,8 @@ mod tests {
         let apart = |a: [f64; 3], b: [f64; 3]| {
             ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
         };
-        for (height, crank, lean) in [(1.5, 0.0, 25.0), (1.95, 130.0, 45.0), (1.75, 300.0, 35.0)] {
-            let bike = Bike {
-                crank,
-                saddle: saddle_for(height),
-            };
-            let rider = Rider {
-                height,
-                build: 0.95,
-                lean,
-            };
+        for (bike, rider) in test_riders(0.95) {
+            let height = rider.height;
             let meshes = rider_meshes(&frame, &bike, &rider, CLOTHES);
             let k = rider_keypoints(&frame, &bike, &rider);
             for (i, &p) in k.iter().enumerate() {

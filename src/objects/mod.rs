@@ -333,24 +333,13 @@ impl<'a> Placing<'a> {
         let attributes = variant
             .map(|(k, v)| BTreeMap::from([(k.to_owned(), v)]))
             .unwrap_or_default();
-        self.push_attributed(kind, name, label, meshes, attributes);
-    }
-
-    /// Pushes an object of `kind` and class `label` that carries no text, with the COCO
-    /// `attributes` naming what it was drawn as (a person's `appearance` and `pose`).
-    pub fn push_attributed(
-        &mut self,
-        kind: crate::model::ObjectKind,
-        name: String,
-        label: &str,
-        meshes: Vec<Mesh>,
-        attributes: BTreeMap<String, String>,
-    ) {
         self.push_figure(kind, name, label, meshes, attributes, None);
     }
 
-    /// [`Placing::push_attributed`] for a figure with a rig: a person or a rider, with its
-    /// 17 COCO `keypoints` in world metres.
+    /// Pushes an object of `kind` and class `label` that carries no text, with the COCO
+    /// `attributes` naming what it was drawn as (a person's `appearance` and `pose`) and,
+    /// for a figure with a rig (a person or a rider), its 17 COCO `keypoints` in world
+    /// metres.
     pub fn push_figure(
         &mut self,
         kind: crate::model::ObjectKind,
