@@ -44,6 +44,7 @@ fn main() {
         let flow = black_box(render::flow(
             &input.scene,
             &frame.depth,
+            None,
             &input.poses[i],
             &input.poses[i + 1],
             k,

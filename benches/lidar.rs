@@ -64,7 +64,9 @@ fn main() {
         let cpu_start = cpu_ms();
         for (i, pose) in poses.iter().enumerate() {
             let t = Instant::now();
-            let scan = black_box(lidar::scan(&target, &scanner, pose, 7, "bench", i as u64));
+            let scan = black_box(lidar::scan(
+                &target, None, &scanner, pose, 7, "bench", i as u64,
+            ));
             ms.push(t.elapsed().as_secs_f64() * 1e3);
             points.push(scan.len() as f64);
         }

@@ -25,6 +25,7 @@
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR, KITTI |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth (normals); [`render::Flow`] to the next pose |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
+//! | traffic | [`traffic`] | objects' lane vehicles and signal heads, roads, `spec.traffic`, seed, a timed drive's poses | [`traffic::Traffic`]; `at(t)`: the [`model::Movement`] a frame poses the scene with |
 //! | lidar | [`lidar`] | prepared scene's triangles, object kinds, a camera pose, scanner | [`lidar::Point`]s with SemanticKITTI labels: a camera's `velodyne/`, `labels/` |
 //! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
@@ -34,7 +35,8 @@
 //! encoding in [`model::image_file`]; stages depend on these, on [`spec`], [`rng`], [`hash`],
 //! [`diagnostic`] (the warnings a stage reports, cached with its result) and
 //! [`regular_file`] (opening inputs without following or blocking), and on another stage
-//! only along a declared edge (`views` reads `cameras`, `render` and `scene`; `lidar` reads `render`).
+//! only along a declared edge (`views` reads `cameras`, `render` and `scene`; `lidar` reads `render`;
+//! `traffic` reads `objects`' signal lamps).
 //! `tests/integration/stage_imports.rs` fails when a stage names another off those edges;
 //! tests that need another stage's output get it through `test_support`.
 
@@ -71,4 +73,5 @@ pub mod stats;
 pub mod test_seed;
 #[cfg(test)]
 mod test_support;
+pub mod traffic;
 pub mod views;

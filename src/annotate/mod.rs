@@ -69,7 +69,7 @@ pub use instances::instances;
 pub use keypoints::{KEYPOINT_NAMES, Keypoint, SKELETON, SURFACE_DEPTH, project_keypoints};
 pub use kitti::{KittiFiles, kitti};
 pub use mot::{mot_lines, mot_seqinfo};
-pub use object_label::{Category, ObjectLabel, SignLabel};
+pub use object_label::{Category, ObjectLabel, SignLabel, moved_labels};
 pub use path_labels::{ClassedObject, PathLabels, path_labels};
 pub use project_quad::project_quad;
 pub use rle::{Rle, RleError};

@@ -70,3 +70,37 @@ impl SignLabel {
         d[0] * self.normal[0] + d[1] * self.normal[1] + d[2] * self.normal[2] > 0.0
     }
 }
+
+/// A frame's labels with the traffic where the frame has it: each moving object's 3D box
+/// and keypoints moved by its offset, each signal head's attribute `state` the lamp it
+/// shows.
+pub fn moved_labels(labels: &[ObjectLabel], movement: &crate::model::Movement) -> Vec<ObjectLabel> {
+    let mut out = labels.to_vec();
+    let shift = |p: &mut [f64; 3], o: [f64; 3]| {
+        for k in 0..3 {
+            p[k] += o[k];
+        }
+    };
+    for &(id, offset) in &movement.moves {
+        let Some(label) = out.get_mut((id as usize).wrapping_sub(1)) else {
+            continue;
+        };
+        if offset == [0.0; 3] {
+            continue;
+        }
+        if let Some(b) = &mut label.box3d {
+            shift(&mut b.centre, offset);
+        }
+        if let Some(points) = &mut label.keypoints {
+            points.iter_mut().for_each(|p| shift(p, offset));
+        }
+    }
+    for &(id, state) in &movement.signals {
+        if let Some(label) = out.get_mut((id as usize).wrapping_sub(1)) {
+            label
+                .attributes
+                .insert("state".to_owned(), state.to_owned());
+        }
+    }
+    out
+}

@@ -230,7 +230,7 @@ pub fn assemble(
                     .ok_or_else(|| io::Error::other(format!("a chunk lacks {name}")))?;
                 sheet.push((read(blob)?, record.sheet));
             }
-            drawn.push(record.conditions);
+            drawn.push((record.conditions, record.traffic));
             Ok(())
         })?;
         // The picked frames decoded on every core, in order.
@@ -300,7 +300,7 @@ fn path_files(
     dir: &str,
     camera: &CameraSpec,
     plan: &PathPlan,
-    drawn: Vec<serde_json::Value>,
+    drawn: Vec<(serde_json::Value, Option<serde_json::Value>)>,
     sheet: Vec<(image::RgbImage, Vec<[u32; 5]>)>,
 ) -> Vec<(String, Vec<u8>)> {
     let mut files = vec![

@@ -23,10 +23,11 @@ use crate::annotate::{
 };
 use crate::cameras::tan_half_degrees;
 use crate::lidar;
-use crate::model::CameraPose;
+use crate::model::{CameraPose, Movement, ObjectKind};
 use crate::render::{self, Intrinsics, Light, Lighting, PreparedScene, Sun};
 use crate::sensor::{self, CloudLight, SensorFrame};
 use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
+use crate::traffic::Traffic;
 
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
@@ -50,9 +51,26 @@ pub struct PathInput<'a> {
     pub conditions_seed: u64,
     /// The scene's Cityscapes labels, when the path writes Cityscapes-format files.
     pub semantic: Option<&'a SemanticClasses>,
-    /// What the camera's LiDAR scans (the scene's triangles and their BVH), when it has
-    /// one and frames are rendered.
+    /// What the camera's LiDAR scans (the scene's triangles and their BVH; with moving
+    /// traffic, what stands still), when it has one and frames are rendered.
     pub lidar: Option<&'a lidar::Target>,
+    /// The traffic, with `[traffic]`: each frame poses the scene at its time.
+    pub traffic: Option<&'a Traffic>,
+    /// The scene's objects' kinds, by instance id − 1 (the LiDAR's labels of what moves).
+    pub kinds: &'a [ObjectKind],
+}
+
+/// Frame `i`'s scene: as built, or with the traffic where it stands at the frame's time.
+struct FrameScene<'s> {
+    movement: Option<Movement>,
+    posed: Option<PreparedScene>,
+    built: &'s PreparedScene,
+}
+
+impl FrameScene<'_> {
+    fn scene(&self) -> &PreparedScene {
+        self.posed.as_ref().unwrap_or(self.built)
+    }
 }
 
 /// A camera path ready to render its frames one at a time, in any order and on any
@@ -85,6 +103,9 @@ pub struct FrameRecord {
     /// The frame's COCO panoptic segments, when the path writes Cityscapes-format files.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub panoptic: Option<Vec<Segment>>,
+    /// With moving traffic, where it stands: `poses.json`'s `traffic` of the frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traffic: Option<Value>,
 }
 
 impl<'a> PathFrames<'a> {
@@ -126,10 +147,38 @@ impl<'a> PathFrames<'a> {
             || {
                 let drawn_sun = self.input.relight.map(|f| f(i));
                 let lighting = drawn_sun.as_ref().map_or(self.input.lighting, |(l, _)| l);
-                render::warm_shadow_map(self.input.scene, lighting);
+                if self.input.traffic.is_some() {
+                    // The map of what stands still, which every posed frame copies.
+                    self.posed(i, lighting);
+                } else {
+                    render::warm_shadow_map(self.input.scene, lighting);
+                }
             },
             || sensor::warm_clouds(self.input.weather.clouds.ends()[1]),
         );
+    }
+
+    /// Frame `i`'s scene: with traffic, posed at the frame's time (its shadow map made for
+    /// `lighting`'s sun, when it casts shadows).
+    fn posed(&self, i: usize, lighting: &Lighting) -> FrameScene<'a> {
+        let built = self.input.scene;
+        let Some(traffic) = self.input.traffic else {
+            return FrameScene {
+                movement: None,
+                posed: None,
+                built,
+            };
+        };
+        let movement = traffic.at(self.poses[i].time.unwrap_or(0.0));
+        let sun = lighting
+            .shadows
+            .then_some((lighting.sun_direction, lighting.shadow_map_side));
+        let posed = built.posed(&movement, sun);
+        FrameScene {
+            movement: Some(movement),
+            posed: Some(posed),
+            built,
+        }
     }
 
     /// The headlights of the car a `roads` camera rides in, aimed along frame `i`'s
@@ -154,9 +203,9 @@ impl<'a> PathFrames<'a> {
     fn annotation_input<'f>(
         &self,
         i: usize,
-        frame: &'f render::Frame,
-        rgb: &'f RgbImage,
+        (frame, rgb): (&'f render::Frame, &'f RgbImage),
         footprints: &[render::Footprint],
+        movement: Option<&Movement>,
     ) -> FrameInput<'f> {
         let (intrinsics, pose) = (&self.intrinsics, &self.poses[i]);
         let k = [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy];
@@ -175,9 +224,11 @@ impl<'a> PathFrames<'a> {
                 .corners
                 .iter()
                 .filter_map(|(id, words)| {
-                    let quads = words
-                        .iter()
-                        .map(|c| annotate::project_quad(pose, k, intrinsics.near, c));
+                    let o = movement.map_or([0.0; 3], |m| m.offset(*id));
+                    let quads = words.iter().map(|c| {
+                        let c = c.map(|p| std::array::from_fn(|j| p[j] + o[j]));
+                        annotate::project_quad(pose, k, intrinsics.near, &c)
+                    });
                     Some((*id, quads.collect::<Option<Vec<_>>>()?))
                 })
                 .collect(),
@@ -215,22 +266,41 @@ impl<'a> PathFrames<'a> {
     fn geometry_files(
         &self,
         i: usize,
-        depth: &image::ImageBuffer<image::Luma<f32>, Vec<f32>>,
+        frame: &render::Frame,
+        scene: &FrameScene,
         conditions: &sensor::Conditions,
     ) -> Vec<(String, Vec<u8>)> {
         let (camera, dir, pose) = (self.input.camera, &self.dir, &self.poses[i]);
         let mut files = Vec::new();
         if let Some(next) = self.poses.get(i + 1).filter(|_| camera.flow) {
-            let flow = render::flow(self.input.scene, depth, pose, next, &self.intrinsics);
+            let (k, depth) = (&self.intrinsics, &frame.depth);
+            let flow = match (&scene.movement, self.input.traffic) {
+                (Some(now), Some(traffic)) => {
+                    let later = traffic.at(next.time.unwrap_or(0.0));
+                    let motion = render::Motion {
+                        instance: &frame.instance,
+                        now,
+                        next: &later,
+                    };
+                    let seen = scene.built.posed(&later, None);
+                    render::flow(&seen, depth, Some(&motion), pose, next, k)
+                }
+                _ => render::flow(scene.built, depth, None, pose, next, k),
+            };
             files.push((format!("{dir}/flow/{i:06}.png"), flow.kitti_png()));
         }
-        files.extend(self.lidar_files(i, conditions));
+        files.extend(self.lidar_files(i, scene, conditions));
         files
     }
 
     /// Frame `i`'s LiDAR files, when the camera has a LiDAR: one turn from the eye, in
     /// the air `conditions` drew.
-    fn lidar_files(&self, i: usize, conditions: &sensor::Conditions) -> Vec<(String, Vec<u8>)> {
+    fn lidar_files(
+        &self,
+        i: usize,
+        scene: &FrameScene,
+        conditions: &sensor::Conditions,
+    ) -> Vec<(String, Vec<u8>)> {
         let (camera, dir) = (self.input.camera, &self.dir);
         let (Some(spec), Some(target)) = (&camera.lidar, self.input.lidar) else {
             return Vec::new();
@@ -238,7 +308,21 @@ impl<'a> PathFrames<'a> {
         let pose = &self.poses[i];
         let scanner = lidar::Scanner::of(spec, sensor::air_extinction(conditions, pose.eye[1]));
         let seed = self.input.conditions_seed;
-        let points = lidar::scan(target, &scanner, pose, seed, &camera.name, i as u64);
+        // What moves, where the frame has it (the path's target holds what stands still).
+        let moving = scene
+            .movement
+            .as_ref()
+            .map(|m| lidar::Target::of_objects(scene.scene(), self.input.kinds, |id| m.moves(id)));
+        let name = &camera.name;
+        let points = lidar::scan(
+            target,
+            moving.as_ref(),
+            &scanner,
+            pose,
+            seed,
+            name,
+            i as u64,
+        );
         let mut files = vec![
             (
                 format!("{dir}/velodyne/{i:06}.bin"),
@@ -282,6 +366,31 @@ impl<'a> PathFrames<'a> {
         )
     }
 
+    /// Hands frame `i`'s images to `emit`: RGB, ids, depth, normals and the Cityscapes
+    /// files; returns the depth file's name (in the camera's folder) and the panoptic
+    /// segments.
+    fn emit_images<E>(
+        &self,
+        i: usize,
+        pngs: render::FramePngs,
+        semantic: Option<SemanticFiles>,
+        emit: &mut impl FnMut(String, Vec<u8>) -> Result<(), E>,
+    ) -> Result<(String, Option<Vec<Segment>>), E> {
+        let dir = &self.dir;
+        let depth_name = format!("depth/{i:06}.{}", self.input.camera.depth.extension());
+        emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
+        emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
+        emit(format!("{dir}/{depth_name}"), pngs.depth)?;
+        if let Some(normals) = pngs.normals {
+            emit(format!("{dir}/normals/{i:06}.png"), normals)?;
+        }
+        let (semantic, panoptic) = semantic.unzip();
+        for (suffix, png) in semantic.into_iter().flatten() {
+            emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
+        }
+        Ok((depth_name, panoptic))
+    }
+
     /// Renders and annotates frame `i`, handing each of its files to `emit` (name, bytes)
     /// as soon as it is ready; stops at the first error `emit` returns.
     pub fn render<E>(
@@ -289,7 +398,7 @@ impl<'a> PathFrames<'a> {
         i: usize,
         mut emit: impl FnMut(String, Vec<u8>) -> Result<(), E>,
     ) -> Result<FrameRecord, E> {
-        let (input, intrinsics, dir) = (self.input, &self.intrinsics, &self.dir);
+        let (input, intrinsics) = (self.input, &self.intrinsics);
         let camera = input.camera;
         let depth_format = camera.depth;
         let pose = &self.poses[i];
@@ -300,13 +409,19 @@ impl<'a> PathFrames<'a> {
         };
         let seed = input.conditions_seed;
         let conditions = sensor::draw(input.weather, &camera.sensor, seed, i as u64);
+        let scene = self.posed(i, lighting);
+        let movement = scene.movement.as_ref();
+        let carried = movement.and_then(|m| lighting.moved(m));
+        let lighting = carried.as_ref().unwrap_or(lighting);
+        let moved_labels = movement.map(|m| annotate::moved_labels(input.labels, m));
+        let labels = moved_labels.as_deref().unwrap_or(input.labels);
         let travel = sensor::travel_direction_with(self.poses, i, self.median_step);
         let headlights = self.headlights(lighting.emission, i, travel);
         let headlit = !headlights.is_empty();
         let (adjusted, shade) = weathered(lighting, &conditions, pose, headlights);
         let lighting = adjusted.as_ref().unwrap_or(lighting);
         let (frame, footprints) = render::render_with(
-            input.scene,
+            scene.scene(),
             pose,
             intrinsics,
             lighting,
@@ -319,7 +434,7 @@ impl<'a> PathFrames<'a> {
         let developed = self.develop(&frame, pose, travel, lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
-        let frame_input = self.annotation_input(i, &frame, &developed.rgb, &footprints);
+        let frame_input = self.annotation_input(i, (&frame, &developed.rgb), &footprints, movement);
         let ((pngs, semantic), mut summary) = rayon::join(
             || {
                 rayon::join(
@@ -327,19 +442,9 @@ impl<'a> PathFrames<'a> {
                     || input.semantic.map(|c| semantic_files(c, &frame.instance)),
                 )
             },
-            || annotate::summarize(input.labels, &frame_input, input.thresholds),
+            || annotate::summarize(labels, &frame_input, input.thresholds),
         );
-        let depth_name = format!("depth/{i:06}.{}", depth_format.extension());
-        emit(format!("{dir}/rgb/{i:06}.png"), pngs.rgb)?;
-        emit(format!("{dir}/ids/{i:06}.png"), pngs.instance)?;
-        emit(format!("{dir}/{depth_name}"), pngs.depth)?;
-        if let Some(normals) = pngs.normals {
-            emit(format!("{dir}/normals/{i:06}.png"), normals)?;
-        }
-        let (semantic, panoptic) = semantic.unzip();
-        for (suffix, png) in semantic.into_iter().flatten() {
-            emit(format!("{dir}/semantic/{i:06}_{suffix}.png"), png)?;
-        }
+        let (depth_name, panoptic) = self.emit_images(i, pngs, semantic, &mut emit)?;
         summary.depth = Some(DepthFile {
             file_name: depth_name,
             format: depth_format.name(),
@@ -348,7 +453,7 @@ impl<'a> PathFrames<'a> {
         for (name, text) in self.label_files(i, &summary) {
             emit(name, text.into_bytes())?;
         }
-        for (name, bytes) in self.geometry_files(i, &frame.depth, &conditions) {
+        for (name, bytes) in self.geometry_files(i, &frame, &scene, &conditions) {
             emit(name, bytes)?;
         }
         let sheet = ContactSheet::boxes(&summary, input.categories)
@@ -360,9 +465,31 @@ impl<'a> PathFrames<'a> {
             conditions: drawn,
             sheet,
             panoptic,
+            traffic: movement.map(traffic_json),
         })
     }
 }
+
+/// Where the traffic stands in a frame, as `poses.json` records it: each moving object's
+/// offset from where `city.obj` has it (world metres, to the micrometre), and what each
+/// signal head shows.
+fn traffic_json(movement: &Movement) -> Value {
+    let r = |v: f64| (v * 1e6).round() / 1e6;
+    let objects: serde_json::Map<String, Value> = movement
+        .moves
+        .iter()
+        .map(|(id, o)| (id.to_string(), json!(o.map(r))))
+        .collect();
+    let signals: serde_json::Map<String, Value> = movement
+        .signals
+        .iter()
+        .map(|(id, state)| (id.to_string(), json!(state)))
+        .collect();
+    json!({"objects": objects, "signals": signals})
+}
+
+/// A frame's Cityscapes-format PNGs by suffix, and its panoptic segments.
+type SemanticFiles = (Vec<(&'static str, Vec<u8>)>, Vec<Segment>);
 
 /// The Cityscapes suffixes of a frame's `semantic/` files, in the order
 /// [`semantic_files`] makes them.
@@ -372,7 +499,7 @@ pub const SEMANTIC_SUFFIXES: [&str; 4] = ["labelIds", "instanceIds", "color", "p
 fn semantic_files(
     classes: &SemanticClasses,
     instance: &image::ImageBuffer<image::Luma<u32>, Vec<u32>>,
-) -> (Vec<(&'static str, Vec<u8>)>, Vec<Segment>) {
+) -> SemanticFiles {
     use crate::model::image_file::{PngEffort, encode_png};
     let frame = annotate::semantic(classes, instance);
     let pngs = [
@@ -457,8 +584,9 @@ pub(super) fn camera_intrinsics(camera: &CameraSpec) -> Intrinsics {
 pub fn poses_json(
     camera: &CameraSpec,
     poses: &[CameraPose],
-    conditions: impl IntoIterator<Item = Value>,
+    conditions: impl IntoIterator<Item = (Value, Option<Value>)>,
 ) -> Vec<u8> {
+    let mut moving = false;
     let (width, height) = (camera.resolution[0], camera.resolution[1]);
     let intrinsics = camera_intrinsics(camera);
     let depth_format = camera.depth;
@@ -467,11 +595,15 @@ pub fn poses_json(
                        "cx": intrinsics.cx, "cy": intrinsics.cy},
         "depth": {"format": depth_format.name(), "scale": depth_format.scale(),
                   "extension": depth_format.extension(), "sky": 0},
-        "frames": poses.iter().zip(conditions).enumerate().map(|(i, (p, c))| {
+        "frames": poses.iter().zip(conditions).enumerate().map(|(i, (p, (c, traffic)))| {
             let mut frame = json!({
                 "file_name": format!("rgb/{i:06}.png"), "eye": p.eye, "target": p.target,
                 "up": p.up, "angles": p.angles, "conditions": c
             });
+            if let Some(traffic) = traffic {
+                frame["traffic"] = traffic;
+                moving = true;
+            }
             if let Some(t) = p.time {
                 frame["time"] = json!(t);
             }
@@ -483,6 +615,12 @@ pub fn poses_json(
     });
     if let Some(fps) = camera.fps {
         poses_json["fps"] = json!(fps);
+    }
+    if moving {
+        poses_json["traffic"] = json!({
+            "objects": "per frame, each moving object's instance id and its offset [x, y, z] in world metres from where city.obj has it (lane vehicles, their plates and riders)",
+            "signals": "per frame, each signal head's instance id and the lamp it shows (red, amber or green)",
+        });
     }
     if camera.normals {
         poses_json["normals"] = json!({

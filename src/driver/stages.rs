@@ -28,11 +28,11 @@ use super::stage_key::StageKey;
 use crate::cache::Load;
 use crate::spec::{
     AnnotationsSpec, BuildingsSpec, CameraSpec, GenerateSpec, LampsSpec, LightingSpec, ObjectSpec,
-    OnError, OutputLayout, OutputSpec, Palette, Spec, SplitsSpec, WeatherSpec,
+    OnError, OutputLayout, OutputSpec, Palette, Spec, SplitsSpec, TrafficSpec, WeatherSpec,
 };
 use crate::{
     annotate, cameras, dataset, export, facades, lamps, layout, lidar, mirror, objects, parse,
-    place, plan, preview, render, scene, sensor, views,
+    place, plan, preview, render, scene, sensor, traffic, views,
 };
 
 /// A cached stage, in evaluation order.
@@ -385,6 +385,10 @@ pub struct PathInputs {
     /// before.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lidar_version: Option<u32>,
+    /// `traffic::VERSION` and `[traffic]`, when the traffic moves: a spec without it keys
+    /// as before.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub traffic: Option<(u32, TrafficSpec)>,
     pub camera: CameraSpec,
     pub lighting: LightingSpec,
     pub weather: WeatherSpec,
@@ -420,6 +424,7 @@ impl PathInputs {
             sensor_version: sensor::VERSION,
             views_version: views::VERSION,
             lidar_version: camera.lidar.is_some().then_some(lidar::VERSION),
+            traffic: spec.traffic.clone().map(|t| (traffic::VERSION, t)),
             // A camera's own lighting and weather replace the spec's, in the key once (as
             // `lighting`, `weather`): a camera without them keys as before.
             camera: CameraSpec {

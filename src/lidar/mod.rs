@@ -105,7 +105,22 @@ pub struct Target {
 impl Target {
     /// The target of `scene`'s triangles; `kinds` are its objects' kinds, by instance id − 1.
     pub fn of(scene: &PreparedScene, kinds: &[ObjectKind]) -> Target {
-        let t = &scene.triangles;
+        Target::of_objects(scene, kinds, |_| true)
+    }
+
+    /// The target of the triangles of `scene`'s objects that `take` takes (by instance
+    /// id): with moving traffic, what stands still once per path, and the moving objects
+    /// as each frame has them.
+    pub fn of_objects(
+        scene: &PreparedScene,
+        kinds: &[ObjectKind],
+        take: impl Fn(u32) -> bool,
+    ) -> Target {
+        let t: Vec<_> = scene
+            .triangles
+            .iter()
+            .filter(|t| take(t.instance))
+            .collect();
         // A material's colour, times its texture's mean where it has one.
         let albedo = |m: u32| {
             let material = &scene.materials[m as usize];
@@ -223,12 +238,14 @@ pub fn to_world(pose: &CameraPose) -> [[f64; 4]; 3] {
     std::array::from_fn(|row| [axes[0][row], axes[1][row], axes[2][row], pose.eye[row]])
 }
 
-/// One turn of `scanner` from `pose`'s eye, column by column (azimuth step, then beam
-/// top first); lost returns are left out. Noise and dropout draw from the stream
+/// One turn of `scanner` from `pose`'s eye against `target` and, with moving traffic,
+/// the `moving` objects where the frame has them, column by column (azimuth step, then
+/// beam top first); lost returns are left out. Noise and dropout draw from the stream
 /// (`seed`, "lidar " + `name`, frame · 2²⁰ + column), so the bytes do not depend on the
 /// thread count.
 pub fn scan(
     target: &Target,
+    moving: Option<&Target>,
     scanner: &Scanner,
     pose: &CameraPose,
     seed: u64,
@@ -260,10 +277,17 @@ pub fn scan(
                     let noise = gaussian(&mut rng) * scanner.noise;
                     let drop = rng.random::<f64>() < scanner.dropout;
                     let dir = world.map(|v| v as f32);
-                    let hit = target
+                    let still = target
                         .bvh
-                        .closest(origin, dir, scanner.max_range as f32, hint)?;
-                    hint = Some(hit.slot);
+                        .closest(origin, dir, scanner.max_range as f32, hint);
+                    if let Some(hit) = &still {
+                        hint = Some(hit.slot);
+                    }
+                    // What moves, nearer than what stands still.
+                    let reach = still.as_ref().map_or(scanner.max_range as f32, |h| h.t);
+                    let moved =
+                        moving.and_then(|m| Some((m, m.bvh.closest(origin, dir, reach, None)?)));
+                    let (target, hit) = moved.or(still.map(|h| (target, h)))?;
                     let n = target.normals[hit.triangle as usize];
                     let cos = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]).abs() as f64;
                     let range = f64::from(hit.t);

@@ -78,7 +78,7 @@ fn scans_are_the_same_bytes_on_one_thread_and_two() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| velodyne_bytes(&scan(&target, &small(), &pose(), 3, "top", 2)))
+        pool.install(|| velodyne_bytes(&scan(&target, None, &small(), &pose(), 3, "top", 2)))
     };
     let one = run(1);
     assert!(!one.is_empty());
@@ -87,7 +87,7 @@ fn scans_are_the_same_bytes_on_one_thread_and_two() {
 
 #[test]
 fn the_car_is_labelled_car_with_its_instance_where_it_stands() {
-    let points = scan(&target(), &small(), &pose(), 3, "top", 0);
+    let points = scan(&target(), None, &small(), &pose(), 3, "top", 0);
     let car: Vec<&Point> = points.iter().filter(|p| p.label == 10 | 5 << 16).collect();
     assert!(car.len() > 20, "{} car points", car.len());
     for p in &car {
@@ -111,7 +111,7 @@ fn without_noise_road_points_lie_on_the_road() {
         noise: 0.0,
         ..small()
     };
-    let points = scan(&target(), &scanner, &pose(), 3, "top", 0);
+    let points = scan(&target(), None, &scanner, &pose(), 3, "top", 0);
     for p in points.iter().filter(|p| p.label == 40) {
         assert!((p.xyz[2] + 1.7).abs() < 1e-3, "{p:?}");
     }
@@ -124,12 +124,13 @@ fn noise_and_dropout_are_seeded() {
         dropout: 0.2,
         ..small()
     };
-    let a = scan(&target(), &scanner, &pose(), 3, "top", 0);
-    assert_eq!(a, scan(&target(), &scanner, &pose(), 3, "top", 0));
-    assert_ne!(a, scan(&target(), &scanner, &pose(), 4, "top", 0));
-    assert_ne!(a, scan(&target(), &scanner, &pose(), 3, "top", 1));
+    let a = scan(&target(), None, &scanner, &pose(), 3, "top", 0);
+    assert_eq!(a, scan(&target(), None, &scanner, &pose(), 3, "top", 0));
+    assert_ne!(a, scan(&target(), None, &scanner, &pose(), 4, "top", 0));
+    assert_ne!(a, scan(&target(), None, &scanner, &pose(), 3, "top", 1));
     let all = scan(
         &target(),
+        None,
         &Scanner {
             dropout: 0.0,
             ..scanner.clone()
@@ -153,13 +154,13 @@ fn noise_and_dropout_are_seeded() {
 
 #[test]
 fn fog_dims_and_drops_far_returns() {
-    let clear = scan(&target(), &small(), &pose(), 3, "top", 0);
+    let clear = scan(&target(), None, &small(), &pose(), 3, "top", 0);
     let foggy = Scanner {
         extinction: 0.03,
         min_intensity: 0.05,
         ..small()
     };
-    let fog = scan(&target(), &foggy, &pose(), 3, "top", 0);
+    let fog = scan(&target(), None, &foggy, &pose(), 3, "top", 0);
     assert!(fog.len() < clear.len());
     let far = |ps: &[Point]| {
         ps.iter()
@@ -180,4 +181,56 @@ fn encodings_are_little_endian_records() {
     assert_eq!(bin.len(), 16);
     assert_eq!(f32::from_le_bytes(bin[4..8].try_into().unwrap()), -2.0);
     assert_eq!(label_bytes(&[p]), (10u32 | 7 << 16).to_le_bytes().to_vec());
+}
+
+/// The same parts as [`target`], the car apart: the road alone, and the car alone.
+fn split() -> (Target, Target) {
+    let mut road = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    quad(
+        &mut road,
+        [
+            [-100., 0., -100.],
+            [-100., 0., 100.],
+            [100., 0., 100.],
+            [100., 0., -100.],
+        ],
+        [0., 1., 0.],
+        label(Some(ObjectKind::Road), 1),
+    );
+    let mut car = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let id = label(Some(ObjectKind::Car), 5);
+    quad(
+        &mut car,
+        [[8., 0., -1.], [8., 0., 1.], [8., 1.5, 1.], [8., 1.5, -1.]],
+        [-1., 0., 0.],
+        id,
+    );
+    quad(
+        &mut car,
+        [
+            [8., 1.5, -1.],
+            [8., 1.5, 1.],
+            [12., 1.5, 1.],
+            [12., 1.5, -1.],
+        ],
+        [0., 1., 0.],
+        id,
+    );
+    (
+        Target::new(road.0, road.1, road.2, road.3),
+        Target::new(car.0, car.1, car.2, car.3),
+    )
+}
+
+#[test]
+fn what_moves_scanned_apart_gives_the_scan_of_the_whole() {
+    let (still, moving) = split();
+    let whole = scan(&target(), None, &small(), &pose(), 3, "top", 0);
+    let parts = scan(&still, Some(&moving), &small(), &pose(), 3, "top", 0);
+    assert_eq!(whole, parts);
+    assert!(whole.iter().any(|p| p.label >> 16 == 5));
+    // Without the moving part the car is gone, and the road behind it shows.
+    let road = scan(&still, None, &small(), &pose(), 3, "top", 0);
+    assert!(road.iter().all(|p| p.label >> 16 != 5));
+    assert_ne!(road, whole);
 }

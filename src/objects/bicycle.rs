@@ -144,6 +144,7 @@ pub fn place(
         misses += 1;
         let parked = rng.random::<f64>() < spec.parked;
         let lane_pick: f64 = rng.random();
+        let mut lane = None;
         let (frame, ridden) = if parked {
             let from_curb = PARKED_ROOM.max(1.0).min(far.max(PARKED_ROOM));
             let Some(spot) =
@@ -176,6 +177,13 @@ pub fn place(
             };
             let origin = [spot.position[0], ROAD_Y, spot.position[1]];
             let forward = spot.travel;
+            lane = Some(crate::model::LaneVehicle {
+                road: spot.road,
+                travel: spot.travel,
+                centre: spot.position,
+                half: RIDDEN_HALF,
+                bicycle: true,
+            });
             (Frame { origin, forward }, true)
         };
         misses = 0;
@@ -203,6 +211,9 @@ pub fn place(
             &spec.label,
             bicycle_meshes(&frame, &bike, materials),
         );
+        if let Some(lane) = lane {
+            placing.set_traffic(crate::model::TrafficRole::Vehicle(lane));
+        }
         if ridden {
             let helmet = rng.random::<f64>() < 2.0 / 3.0;
             let mut pick =
@@ -227,6 +238,7 @@ pub fn place(
                 std::collections::BTreeMap::new(),
                 Some(rider_keypoints(&frame, &bike, &rider)),
             );
+            placing.set_traffic(crate::model::TrafficRole::Carried { back: 1 });
         }
     }
     placed

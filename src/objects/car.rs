@@ -36,8 +36,8 @@ use super::text_plate::Background;
 use super::vehicle_parts::{Frame, Solid, centroid, finish_all};
 use super::wall_text::{self, Placed};
 use super::{ATTEMPTS, GIVE_UP, Placing, trig};
-use crate::model::Mesh;
 use crate::model::geometry::{ROAD_Y, STOP_LINE_END, StreetProfile};
+use crate::model::{LaneVehicle, Mesh, TrafficRole};
 use crate::spec::{CarBody, ObjectSpec};
 
 /// The roads camera's default `lane_offset`, metres right of the centre line.
@@ -350,13 +350,20 @@ pub fn place(
                 }),
             });
         }
-        cars.push((name, meshes, body));
+        let lane = (!parked).then_some(LaneVehicle {
+            road: spot.road,
+            travel: spot.travel,
+            centre: spot.position,
+            half,
+            bicycle: false,
+        });
+        cars.push((name, meshes, body, lane));
     }
     let page_name = format!("{}_plate_atlas", spec.label);
     let mut plates =
         wall_text::plate_objects(PLATE_CLASS, &faces, plates, &page_name, placing).into_iter();
     let placed = cars.len() as u32;
-    for (name, mut meshes, body) in cars {
+    for (name, mut meshes, body, lane) in cars {
         let two: Vec<_> = plates.by_ref().take(2).collect();
         if !texts {
             meshes.extend(two.iter().flat_map(|(object, _)| object.meshes.clone()));
@@ -369,9 +376,15 @@ pub fn place(
             meshes,
             variant,
         );
+        if let Some(lane) = lane {
+            placing.set_traffic(TrafficRole::Vehicle(lane));
+        }
         if texts {
-            for (object, info) in two {
+            for (back, (object, info)) in (1..).zip(two) {
                 placing.push(object, info);
+                if lane.is_some() {
+                    placing.set_traffic(TrafficRole::Carried { back });
+                }
             }
         }
     }

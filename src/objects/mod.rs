@@ -24,7 +24,7 @@
 //! the same bit for bit everywhere. The stage is pure: the driver reads the model files.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 18;
+pub const VERSION: u32 = 19;
 
 mod atlas_layout;
 mod bicycle;
@@ -67,6 +67,7 @@ use crate::model::{
 use crate::spec::{EntryKind, ObjectSpec};
 
 pub use objects_error::ObjectsError;
+pub use traffic_lights::{Signal, lamp_material};
 pub use traffic_signs::SignFace;
 pub use word_list::{WORDS, parse_words};
 
@@ -187,6 +188,8 @@ pub struct ObjectInfo {
     /// People and riders: the 17 COCO keypoints in COCO's order, world metres, from the
     /// rig their mesh is built on (each inside its body part). None for other objects.
     pub keypoints: Option<[[f64; 3]; 17]>,
+    /// What it is to moving traffic: a lane vehicle, carried by one, or a signal head.
+    pub traffic: Option<crate::model::TrafficRole>,
 }
 
 /// State shared by the entries of one group (see [`entry_groups`]) while they are placed
@@ -309,6 +312,13 @@ impl<'a> Placing<'a> {
         self.out.info.push(info);
     }
 
+    /// Sets what the object pushed last is to moving traffic.
+    pub fn set_traffic(&mut self, role: crate::model::TrafficRole) {
+        if let Some(info) = self.out.info.last_mut() {
+            info.traffic = Some(role);
+        }
+    }
+
     /// Pushes an object of `kind` and class `label` that carries no text.
     pub fn push_plain(
         &mut self,
@@ -356,6 +366,7 @@ impl<'a> Placing<'a> {
             meshes,
         };
         let info = ObjectInfo {
+            traffic: None,
             label: label.to_owned(),
             text: None,
             corners: Vec::new(),

@@ -23,7 +23,7 @@ use super::ground_spots::{Footprint, GroundSpots};
 use super::street_names::POLE_GREY;
 use super::{ObjectInfo, Placing};
 use crate::model::geometry::{KERB_Y, MeshBuilder};
-use crate::model::{Mesh, SceneObject};
+use crate::model::{Axis, Mesh, SceneObject, TrafficRole};
 use crate::spec::ObjectSpec;
 
 /// Height of the pole above the sidewalk, metres.
@@ -131,6 +131,7 @@ pub fn place(
                 meshes,
             };
             let info = ObjectInfo {
+                traffic: None,
                 label: spec.label.clone(),
                 text: None,
                 corners: Vec::new(),
@@ -138,9 +139,29 @@ pub fn place(
                 keypoints: None,
             };
             placing.push(object, info);
+            let axis = [Axis::Horizontal, Axis::Vertical][road];
+            placing.set_traffic(TrafficRole::Signal {
+                corner: corner.position,
+                axis,
+            });
+        }
+    }
+    if poles > 0 {
+        // Every lamp's lit and dark material, so that moving traffic can switch any lamp
+        // of any head (`[traffic]`): those no head shows now are added unused.
+        for lamp in Signal::ALL {
+            let (lit, dark, glow) = lamp.colours();
+            placing.glowing(&lamp_material(lamp, true), lit, glow);
+            placing.material(&lamp_material(lamp, false), || (dark, None));
         }
     }
     poles
+}
+
+/// The name of the material of `lamp`'s lens, lit or dark.
+pub fn lamp_material(lamp: Signal, lit: bool) -> String {
+    let state = if lit { "lit" } else { "dark" };
+    format!("signal_{}_{state}", lamp.name())
 }
 
 /// A head on the pole at `foot` looking along `facing` (unit, horizontal) and showing
@@ -185,9 +206,9 @@ fn head_meshes(
     for (k, lamp) in Signal::ALL.into_iter().enumerate() {
         let (lit, dark, glow) = lamp.colours();
         let material = if lamp == signal {
-            placing.glowing(&format!("signal_{}_lit", lamp.name()), lit, glow)
+            placing.glowing(&lamp_material(lamp, true), lit, glow)
         } else {
-            placing.material(&format!("signal_{}_dark", lamp.name()), || (dark, None))
+            placing.material(&lamp_material(lamp, false), || (dark, None))
         };
         let mut lens = MeshBuilder::new(material);
         let bottom = KERB_Y + HEAD_BOTTOM + height - step * (k as f64 + 0.5) - LAMP / 2.0;

@@ -356,6 +356,7 @@ pub(crate) fn plate_objects(
             let mut attributes = text_attributes(&p.plate);
             attributes.insert("text_light".to_owned(), light.name().to_owned());
             let info = ObjectInfo {
+                traffic: None,
                 label: label.to_owned(),
                 text: Some(p.text),
                 corners: p.corners,

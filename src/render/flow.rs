@@ -1,6 +1,6 @@
 //! A frame's depth, its pose and the next frame's pose → forward optical flow: where each
-//! pixel's surface point lands in the next frame, for a world that stands still while the
-//! camera moves.
+//! pixel's surface point lands in the next frame, the camera moving and, with moving
+//! traffic ([`Motion`]), the point moving with its object.
 //!
 //! Pixel `(x, y)`'s point is its centre `(x + ½, y + ½)` unprojected at the frame's depth
 //! there (the depth of the surface the centre sample saw), then projected by the next
@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use super::view::View;
 use super::{CameraPose, Intrinsics, PreparedScene};
+use crate::model::Movement;
 use crate::model::image_file::{PngEffort, encode_png};
 
 /// Forward flow of one frame, row-major: per pixel `(u, v)` in pixels and whether it is
@@ -32,11 +33,22 @@ pub struct Flow {
 const AGREE_RELATIVE: f64 = 0.01;
 const AGREE_METRES: f64 = 0.05;
 
+/// How the scene's objects move between the two frames: each pixel's point moves with the
+/// object its instance id names (`next`'s offset less `now`'s).
+pub struct Motion<'a> {
+    /// The frame's instance ids.
+    pub instance: &'a ImageBuffer<Luma<u32>, Vec<u32>>,
+    pub now: &'a Movement,
+    pub next: &'a Movement,
+}
+
 /// The flow from the frame seen from `pose` with `depth` (metres along the view axis, 0 for
-/// the sky) to the frame `next` sees of `scene`, both with intrinsics `k`.
+/// the sky) to the frame `next` sees of `scene` (posed as the next frame has it), both with
+/// intrinsics `k`; with `motion`, each point moves with its object.
 pub fn flow(
     scene: &PreparedScene,
     depth: &ImageBuffer<Luma<f32>, Vec<f32>>,
+    motion: Option<&Motion>,
     pose: &CameraPose,
     next: &CameraPose,
     k: &Intrinsics,
@@ -57,6 +69,28 @@ pub fn flow(
     }
     let (seen, _) = super::visibility(scene, next, k, &[]);
     let w = width as usize;
+    // Per moving instance, how far it moves to the next frame.
+    let moves: Vec<(u32, [f64; 3])> = motion.map_or_else(Vec::new, |m| {
+        m.now
+            .moves
+            .iter()
+            .map(|&(id, o)| {
+                let n = m.next.offset(id);
+                (id, [n[0] - o[0], n[1] - o[1], n[2] - o[2]])
+            })
+            .filter(|(_, d)| *d != [0.0; 3])
+            .collect()
+    });
+    let moved = |x: usize, y: usize, p: [f64; 3]| {
+        let Some(m) = motion.filter(|_| !moves.is_empty()) else {
+            return p;
+        };
+        let id = m.instance.as_raw()[y * w + x];
+        match moves.binary_search_by_key(&id, |(i, _)| *i) {
+            Ok(k) => std::array::from_fn(|j| p[j] + moves[k].1[j]),
+            Err(_) => p,
+        }
+    };
     let rows: Vec<(Vec<[f32; 2]>, Vec<bool>)> = (0..height as usize)
         .into_par_iter()
         .map(|y| {
@@ -65,7 +99,7 @@ pub fn flow(
                     let d = f64::from(depth.as_raw()[y * w + x]);
                     let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
                     let landing = (d > 0.0)
-                        .then(|| next_view.to_camera(view.unproject(px, py, d)))
+                        .then(|| next_view.to_camera(moved(x, y, view.unproject(px, py, d))))
                         .filter(|c| c[2] > next_view.near)
                         .map(|c| (next_view.project(c), c[2]))
                         .filter(|(p, z)| seen_at(&seen.depth, *p, *z));

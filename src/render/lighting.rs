@@ -95,6 +95,10 @@ pub struct Lighting {
     pub ambient_occlusion: f32,
     /// Lamp lights after dusk (empty by day).
     pub lights: Vec<Light>,
+    /// The lights that move with an object: `(index in lights, instance id)` (a car's
+    /// lamps, a lamp over its number plate), for moving traffic ([`Lighting::moved`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub carried: Vec<(u32, u32)>,
     /// Scale of the materials' emissive colours: 1 at night (lamp heads glow), 0 by day.
     pub emission: f32,
     /// Lit windows after dusk; `None` by day.
@@ -150,6 +154,28 @@ impl Lighting {
         out.ambient = out.ambient.map(|c| c * sky_scale);
         out.shadow_strength *= shadow_strength;
         out.lights.extend(extra);
+        Some(out)
+    }
+
+    /// This lighting with the lights objects carry moved with them by `movement`; `None`
+    /// when none of them moved.
+    pub fn moved(&self, movement: &crate::model::Movement) -> Option<Lighting> {
+        let shifted: Vec<(usize, [f64; 3])> = self
+            .carried
+            .iter()
+            .map(|&(light, id)| (light as usize, movement.offset(id)))
+            .filter(|(light, offset)| *light < self.lights.len() && *offset != [0.0; 3])
+            .collect();
+        if shifted.is_empty() {
+            return None;
+        }
+        let mut out = self.clone();
+        for (light, offset) in shifted {
+            let p = &mut out.lights[light].position;
+            for k in 0..3 {
+                p[k] += offset[k] as f32;
+            }
+        }
         Some(out)
     }
 
@@ -210,6 +236,7 @@ impl Lighting {
             shadow_strength: 1.0,
             ambient_occlusion: AMBIENT_OCCLUSION,
             lights,
+            carried: Vec::new(),
             emission: dark,
             windows,
             exposure,

@@ -92,7 +92,7 @@ mod shadow_tests;
 mod tests;
 
 pub use crate::model::CameraPose;
-pub use flow::{Flow, flow};
+pub use flow::{Flow, Motion, flow};
 pub use footprint::{Footprint, PAD as FOOTPRINT_PAD};
 pub use frame::{DepthFormat, Frame, FramePngs};
 pub use intrinsics::{DEFAULT_FAR, DEFAULT_NEAR, Intrinsics};

@@ -10,7 +10,7 @@ use super::mip_texture::MipTexture;
 use super::occlusion;
 use super::shadow_map::ShadowMap;
 use crate::model::geometry::{cross, dot, normalize};
-use crate::model::{Mesh, ObjectKind, Scene, SceneObject, Texture};
+use crate::model::{Mesh, Movement, ObjectKind, Scene, SceneObject, Texture};
 
 /// The most objects a scene may hold: instance ids are 24-bit (the ids PNG packs them into
 /// RGB, `id = R + 256·G + 256²·B`), and 0 is the sky.
@@ -26,12 +26,16 @@ pub struct PreparedScene {
     /// The last shadow map built, with the sun direction it was built for: a camera path
     /// under one sun builds it once.
     shadows: Mutex<Option<LastShadowMap>>,
+    /// The last shadow map built without the objects that move ([`PreparedScene::posed`]),
+    /// which each posed frame copies and adds its moved objects to.
+    still_shadows: Mutex<Option<LastShadowMap>>,
 }
 
 /// A sun direction's bits, the map's side and the map (`None`: the sun is down).
 type LastShadowMap = ([u32; 3], u32, Option<Arc<ShadowMap>>);
 
 /// What shading needs of a material.
+#[derive(Clone)]
 pub(crate) struct ShadeMaterial {
     pub colour: [f32; 3],
     pub texture: Option<u32>,
@@ -41,6 +45,7 @@ pub(crate) struct ShadeMaterial {
 }
 
 /// An object's box and its run of triangles.
+#[derive(Clone)]
 pub(crate) struct ObjectBounds {
     pub min: [f64; 3],
     pub max: [f64; 3],
@@ -55,6 +60,7 @@ pub(crate) struct ObjectBounds {
 }
 
 /// One triangle, wound counter-clockwise around `normal` (its front).
+#[derive(Clone)]
 pub(crate) struct Triangle {
     pub p: [[f32; 3]; 3],
     pub uv: [[f32; 2]; 3],
@@ -90,8 +96,89 @@ impl PreparedScene {
         if let Some(map) = last(&self.shadows.lock().unwrap_or_else(|e| e.into_inner())) {
             return map;
         }
-        let map = ShadowMap::build(self, sun.map(f64::from), side).map(Arc::new);
+        let map = ShadowMap::build(self, sun.map(f64::from), side, &[]).map(Arc::new);
         let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(kept) = last(&slot) {
+            return kept;
+        }
+        *slot = Some((key.0, key.1, map.clone()));
+        map
+    }
+
+    /// This scene with `movement` applied: its moving objects shifted by their offsets
+    /// (their bounds with them) and the signal lamps' materials swapped. With `shadows`
+    /// (the sun's direction and the map's side) the posed scene's shadow map is made at
+    /// once: the map of everything that stands still (built once per sun and kept here),
+    /// copied, with the moved objects added. The map's extent stays this scene's, so
+    /// shadows do not crawl from frame to frame; at time 0 (nothing moved) the map is
+    /// the very one the scene as built renders with.
+    pub fn posed(&self, movement: &Movement, shadows: Option<([f32; 3], u32)>) -> PreparedScene {
+        let mut triangles = self.triangles.clone();
+        let mut objects = self.objects.clone();
+        for &(id, offset) in &movement.moves {
+            let Some(object) = objects.get_mut((id as usize).wrapping_sub(1)) else {
+                continue;
+            };
+            if offset == [0.0; 3] {
+                continue;
+            }
+            let d = offset.map(|v| v as f32);
+            let run = &mut triangles[object.first..object.end];
+            for t in run.iter_mut() {
+                for p in &mut t.p {
+                    for k in 0..3 {
+                        p[k] += d[k];
+                    }
+                }
+            }
+            (object.min, object.max) = box_of(run);
+        }
+        for r in &movement.recolour {
+            let Some(object) = objects.get((r.instance as usize).wrapping_sub(1)) else {
+                continue;
+            };
+            for t in &mut triangles[object.first..object.end] {
+                if t.material == r.from {
+                    t.material = r.to;
+                }
+            }
+        }
+        let posed = PreparedScene {
+            textures: self.textures.clone(),
+            materials: self.materials.clone(),
+            objects,
+            triangles,
+            shadows: Mutex::new(None),
+            still_shadows: Mutex::new(None),
+        };
+        if let Some((sun, side)) = shadows {
+            let movers: Vec<u32> = movement.moves.iter().map(|(id, _)| *id).collect();
+            let map = self.still_shadow_map(sun, side, &movers).map(|still| {
+                let mut map = (*still).clone();
+                map.add(&posed, &movers);
+                Arc::new(map)
+            });
+            *posed.shadows.lock().unwrap_or_else(|e| e.into_inner()) =
+                Some((sun.map(f32::to_bits), side, map));
+        }
+        posed
+    }
+
+    /// The shadow map of everything but `movers` (instance ids, ascending), over this
+    /// scene's whole extent: built now, or the last one if it was for the same sun and
+    /// side.
+    fn still_shadow_map(&self, sun: [f32; 3], side: u32, movers: &[u32]) -> Option<Arc<ShadowMap>> {
+        let key = (sun.map(f32::to_bits), side);
+        let last = |slot: &Option<LastShadowMap>| {
+            slot.as_ref()
+                .filter(|(bits, built_side, _)| (*bits, *built_side) == key)
+                .map(|(_, _, map)| map.clone())
+        };
+        if let Some(map) = last(&self.still_shadows.lock().unwrap_or_else(|e| e.into_inner())) {
+            return map;
+        }
+        let map = ShadowMap::build(self, sun.map(f64::from), side, movers).map(Arc::new);
+        let mut slot = self.still_shadows.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(kept) = last(&slot) {
             return kept;
         }
@@ -189,6 +276,7 @@ pub fn prepare_with(scene: &Scene, mips: &TextureMips) -> Result<PreparedScene, 
         objects,
         triangles,
         shadows: Mutex::new(None),
+        still_shadows: Mutex::new(None),
     })
 }
 
@@ -286,19 +374,25 @@ fn flatten_mesh(
     Ok(())
 }
 
+/// The box around `triangles`' corners.
+fn box_of(triangles: &[Triangle]) -> ([f64; 3], [f64; 3]) {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for t in triangles {
+        for p in t.p {
+            for k in 0..3 {
+                min[k] = min[k].min(f64::from(p[k]));
+                max[k] = max[k].max(f64::from(p[k]));
+            }
+        }
+    }
+    (min, max)
+}
+
 impl ObjectBounds {
     /// The bounds of the object whose triangles are `triangles[first..]`.
     fn of(triangles: &[Triangle], first: usize, casts_shadow: bool) -> ObjectBounds {
-        let mut min = [f64::INFINITY; 3];
-        let mut max = [f64::NEG_INFINITY; 3];
-        for t in &triangles[first..] {
-            for p in t.p {
-                for k in 0..3 {
-                    min[k] = min[k].min(f64::from(p[k]));
-                    max[k] = max[k].max(f64::from(p[k]));
-                }
-            }
-        }
+        let (min, max) = box_of(&triangles[first..]);
         ObjectBounds {
             min,
             max,

@@ -27,13 +27,17 @@ pub fn lighting_for(
         .iter()
         .map(|p| Light::street_lamp(p.map(|v| v as f32), LAMP_COLOUR, range))
         .collect();
-    lights.extend(vehicle_lights(scene));
-    lights.extend(sign_lamps(scene));
+    let mut carried = Vec::new();
+    for (light, instance) in vehicle_lights(scene).into_iter().chain(sign_lamps(scene)) {
+        carried.push((lights.len() as u32, instance));
+        lights.push(light);
+    }
     let windows =
         LitWindows::from_facades(scene, facades, spec.lit_windows as f32, seed, WINDOW_COLOUR);
     lights.extend(windows.spill_lights(scene));
     let mut lighting = Lighting::from_sun(sun, spec.turbidity, lights, Some(windows));
     lighting.shadows = spec.shadows;
+    lighting.carried = carried;
     lighting
 }
 
@@ -49,22 +53,23 @@ const SIGN_LAMP_NEAR: f32 = 0.6;
 const SIGN_LAMP_RANGE: f32 = 3.0;
 const SIGN_LAMP_EDGE: f32 = 0.0;
 
-/// The lamps over every mesh of a lamp-lit material, in scene order.
-pub(crate) fn sign_lamps(scene: &Scene) -> Vec<Light> {
+/// The lamps over every mesh of a lamp-lit material, in scene order, each with its
+/// object's instance id.
+pub(crate) fn sign_lamps(scene: &Scene) -> Vec<(Light, u32)> {
     let lamp_lit: Vec<bool> = scene
         .materials
         .iter()
         .map(|m| m.name.contains(LAMP_LIT_SUFFIX))
         .collect();
     let mut out = Vec::new();
-    for object in &scene.objects {
+    for (object, instance) in scene.objects.iter().zip(1u32..) {
         for mesh in &object.meshes {
             if lamp_lit
                 .get(mesh.material as usize)
                 .copied()
                 .unwrap_or(false)
             {
-                out.extend(lamps_over(mesh));
+                out.extend(lamps_over(mesh).into_iter().map(|l| (l, instance)));
             }
         }
     }
@@ -149,10 +154,10 @@ const TAIL_NEAR: f32 = 1.0;
 
 /// Per vehicle: a beam from the centre of its headlight meshes (the `car_headlight`
 /// material) aimed away from its tail lights (`car_taillight`), and a small red light at
-/// the tail lights; in scene order.
-fn vehicle_lights(scene: &Scene) -> Vec<Light> {
+/// the tail lights; in scene order, each with its vehicle's instance id.
+fn vehicle_lights(scene: &Scene) -> Vec<(Light, u32)> {
     let mut out = Vec::new();
-    for object in &scene.objects {
+    for (object, instance) in scene.objects.iter().zip(1u32..) {
         let centre = |name: &str| {
             let (mut sum, mut n) = ([0f64; 3], 0usize);
             for mesh in &object.meshes {
@@ -183,10 +188,10 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
                     [0.0; 3]
                 }
             });
-            out.push(head_beam(head.map(|v| v as f32), aim, HEAD_LIGHT));
+            out.push((head_beam(head.map(|v| v as f32), aim, HEAD_LIGHT), instance));
         }
         if let Some(tail) = tail {
-            out.push(Light {
+            let light = Light {
                 position: tail.map(|v| v as f32),
                 colour: TAIL_LIGHT,
                 range: TAIL_RANGE,
@@ -194,7 +199,8 @@ fn vehicle_lights(scene: &Scene) -> Vec<Light> {
                 aim: [0.0; 3],
                 edge: -1.0,
                 cutoff: None,
-            });
+            };
+            out.push((light, instance));
         }
     }
     out
@@ -305,6 +311,8 @@ mod tests {
             }],
         };
         let lights = vehicle_lights(&scene);
+        assert!(lights.iter().all(|(_, instance)| *instance == 1));
+        let lights: Vec<Light> = lights.into_iter().map(|(l, _)| l).collect();
         assert_eq!(lights.len(), 2);
         let (head, tail) = (&lights[0], &lights[1]);
         assert!((head.position[0] - 2.0).abs() < 1e-6, "{:?}", head.position);
@@ -353,7 +361,7 @@ mod tests {
                 meshes: vec![face(0), face(1)],
             }],
         };
-        let lamps = sign_lamps(&scene);
+        let lamps: Vec<Light> = sign_lamps(&scene).into_iter().map(|(l, _)| l).collect();
         assert_eq!(
             lamps.len(),
             2,

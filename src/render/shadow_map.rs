@@ -31,6 +31,7 @@ pub(crate) const MIN_TEXEL: f64 = 0.005;
 const BAND: usize = 32;
 
 /// The scene's depth as seen from the sun.
+#[derive(Clone)]
 pub(crate) struct ShadowMap {
     /// Towards the sun.
     pub(crate) dir: [f64; 3],
@@ -47,9 +48,15 @@ pub(crate) struct ShadowMap {
 
 impl ShadowMap {
     /// The map of `scene` for the sun in direction `dir` (unit, towards the sun), at most
-    /// `side` texels a side (1 to [`MAX_SIDE`]). `None` for an empty scene or a sun at or
-    /// below the horizon.
-    pub(crate) fn build(scene: &PreparedScene, dir: [f64; 3], side: u32) -> Option<ShadowMap> {
+    /// `side` texels a side (1 to [`MAX_SIDE`]), leaving out the objects `without`
+    /// (instance ids, ascending; their bounds still count towards the extent). `None` for
+    /// an empty scene or a sun at or below the horizon.
+    pub(crate) fn build(
+        scene: &PreparedScene,
+        dir: [f64; 3],
+        side: u32,
+        without: &[u32],
+    ) -> Option<ShadowMap> {
         if dir[1].is_nan() || dir[1] <= 1e-3 || scene.triangles.is_empty() {
             return None;
         }
@@ -70,37 +77,7 @@ impl ShadowMap {
         let width = ((hi[0] - lo[0]) / texel).ceil() as usize + 2;
         let height = ((hi[1] - lo[1]) / texel).ceil() as usize + 2;
 
-        // Triangles in texel coordinates, binned by band.
-        let tris: Vec<[[f64; 3]; 3]> = scene
-            .triangles
-            .par_iter()
-            .map(|t| {
-                t.p.map(|p| {
-                    let p = p.map(f64::from);
-                    [
-                        (dot(p, right) - origin[0]) / texel,
-                        (dot(p, up) - origin[1]) / texel,
-                        dot(p, dir),
-                    ]
-                })
-            })
-            .collect();
-        let bins = band_bins(scene, &tris, height.div_ceil(BAND));
-        // Zeroed memory comes from the system untouched; each band fills its own rows, in
-        // parallel, straight into the map (no per-band buffers to copy).
-        let mut depth = vec![0.0f32; width * height];
-        depth
-            .par_chunks_mut(BAND * width)
-            .zip(&bins)
-            .enumerate()
-            .for_each(|(b, (band, bin))| {
-                band.fill(f32::NEG_INFINITY);
-                let rows = [b * BAND, ((b + 1) * BAND).min(height)];
-                for &i in bin {
-                    raster(&tris[i as usize], rows, width, band);
-                }
-            });
-        Some(ShadowMap {
+        let mut map = ShadowMap {
             dir,
             right,
             up,
@@ -109,8 +86,68 @@ impl ShadowMap {
             per_texel: 1.0 / texel,
             width,
             height,
-            depth,
-        })
+            // Zeroed memory comes from the system untouched; each band fills its own rows.
+            depth: vec![0.0f32; width * height],
+        };
+        let all: Vec<usize> = (0..scene.triangles.len()).collect();
+        let tris = map.texel_triangles(scene, &all);
+        let take = |i: u32| without.binary_search(&i).is_err();
+        let bins = band_bins(scene, &tris, &all, height.div_ceil(BAND), take);
+        map.fill(&tris, &bins, true);
+        Some(map)
+    }
+
+    /// Adds the triangles of objects `ids` (instance ids, ascending) of `scene` to the
+    /// map, as [`ShadowMap::build`] would have (a texel keeps the nearest surface to the
+    /// sun whatever the order): `scene` is the one the map was built from, posed.
+    pub(crate) fn add(&mut self, scene: &PreparedScene, ids: &[u32]) {
+        let chosen: Vec<usize> = ids
+            .iter()
+            .filter_map(|&id| scene.objects.get((id as usize).wrapping_sub(1)))
+            .flat_map(|o| o.first..o.end)
+            .collect();
+        let tris = self.texel_triangles(scene, &chosen);
+        let bins = band_bins(scene, &tris, &chosen, self.height.div_ceil(BAND), |_| true);
+        self.fill(&tris, &bins, false);
+    }
+
+    /// The triangles `chosen` (indices into the scene's) in texel coordinates and depth
+    /// towards the sun.
+    fn texel_triangles(&self, scene: &PreparedScene, chosen: &[usize]) -> Vec<[[f64; 3]; 3]> {
+        let (right, up, dir, origin, texel) =
+            (self.right, self.up, self.dir, self.origin, self.texel);
+        chosen
+            .par_iter()
+            .map(|&i| {
+                scene.triangles[i].p.map(|p| {
+                    let p = p.map(f64::from);
+                    [
+                        (dot(p, right) - origin[0]) / texel,
+                        (dot(p, up) - origin[1]) / texel,
+                        dot(p, dir),
+                    ]
+                })
+            })
+            .collect()
+    }
+
+    /// Rasterizes each band's triangles (`bins`, indices into `tris`) into its rows, the
+    /// bands in parallel, each owning its rows; `clear` first empties the rows.
+    fn fill(&mut self, tris: &[[[f64; 3]; 3]], bins: &[Vec<u32>], clear: bool) {
+        let (width, height) = (self.width, self.height);
+        self.depth
+            .par_chunks_mut(BAND * width)
+            .zip(bins)
+            .enumerate()
+            .for_each(|(b, (band, bin))| {
+                if clear {
+                    band.fill(f32::NEG_INFINITY);
+                }
+                let rows = [b * BAND, ((b + 1) * BAND).min(height)];
+                for &i in bin {
+                    raster(&tris[i as usize], rows, width, band);
+                }
+            });
     }
 
     /// What the test needs of a surface with unit normal `n`, the same at each of its
@@ -303,12 +340,19 @@ fn light_space_bounds(
     (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
 }
 
-/// Per band of [`BAND`] rows, the triangles (`tris`, in texel coordinates) that reach it.
+/// Per band of [`BAND`] rows, the triangles (`tris`, in texel coordinates, of the scene's
+/// triangles `chosen`) of the objects `take` takes (by instance id) that reach it.
 ///
 /// Flat ground at the scene's lowest level shades nothing (nothing lies below it to
 /// receive its shadow) and is the largest area to fill: left out, its texels read as lit,
 /// as anything at or above it found them anyway.
-fn band_bins(scene: &PreparedScene, tris: &[[[f64; 3]; 3]], bands: usize) -> Vec<Vec<u32>> {
+fn band_bins(
+    scene: &PreparedScene,
+    tris: &[[[f64; 3]; 3]],
+    chosen: &[usize],
+    bands: usize,
+    take: impl Fn(u32) -> bool,
+) -> Vec<Vec<u32>> {
     let floor = scene
         .objects
         .iter()
@@ -319,9 +363,9 @@ fn band_bins(scene: &PreparedScene, tris: &[[[f64; 3]; 3]], bands: usize) -> Vec
     };
     let mut bins = vec![Vec::new(); bands];
     for (i, t) in tris.iter().enumerate() {
-        let triangle = &scene.triangles[i];
+        let triangle = &scene.triangles[chosen[i]];
         let object = &scene.objects[triangle.instance as usize - 1];
-        if !object.casts_shadow || is_floor(triangle) {
+        if !object.casts_shadow || !take(triangle.instance) || is_floor(triangle) {
             continue;
         }
         let y0 = t.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min);

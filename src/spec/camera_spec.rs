@@ -149,8 +149,8 @@ pub struct CameraSpec {
     /// Roads path with `fps` (a timed drive): also write each frame's forward optical flow
     /// to the next frame, `flow/NNNNNN.png` in the KITTI flow encoding (16-bit RGB,
     /// `u = (R − 2¹⁵) / 64`, `v = (G − 2¹⁵) / 64`, B = 1 where valid), for every frame but
-    /// the last. Only the camera moves, so the flow is the camera's motion over the
-    /// frame's depth; a point the next frame does not see is not valid. Off, nothing is
+    /// the last: the camera's motion over the frame's depth and, with `[traffic]`, each
+    /// point moving with its object; a point the next frame does not see is not valid. Off, nothing is
     /// worked out and it stays out of the stage keys.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub flow: bool,

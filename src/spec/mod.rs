@@ -46,6 +46,7 @@ mod spec;
 mod spec_errors;
 mod splits_spec;
 mod toml_json;
+mod traffic_spec;
 mod value_checks;
 mod value_range;
 mod weather_spec;
@@ -84,6 +85,7 @@ pub use spec::{
 };
 pub use spec_errors::SpecErrors;
 pub use splits_spec::{SPLIT_NAMES, SplitBy, SplitsSpec};
+pub use traffic_spec::TrafficSpec;
 pub use value_range::ValueRange;
 pub use weather_spec::{Weather, WeatherKinds, WeatherSpec};
 
@@ -231,6 +233,7 @@ fn check_values(spec: &Spec, path: &Path, world: &dyn SpecWorld, findings: &mut 
         }
     }
     splits_spec::check_splits(spec.splits.as_ref(), spec.cameras.len(), findings);
+    traffic_spec::check_traffic(spec.traffic.as_ref(), findings);
 }
 
 /// `spec_path`'s folder joined with `relative` (relative paths resolve against the spec's

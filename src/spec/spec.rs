@@ -16,6 +16,7 @@ use super::limits_spec::LimitsSpec;
 use super::object_spec::ObjectSpec;
 use super::output_spec::OutputSpec;
 use super::splits_spec::SplitsSpec;
+use super::traffic_spec::TrafficSpec;
 use super::weather_spec::WeatherSpec;
 use crate::model::PixelClass;
 
@@ -75,6 +76,11 @@ pub struct Spec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(with = "SplitsSpec")]
     pub splits: Option<SplitsSpec>,
+    /// Traffic that moves on timed drives: lane cars and ridden bicycles along their
+    /// lanes, through signalled junctions. Absent: nothing moves.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "TrafficSpec")]
+    pub traffic: Option<TrafficSpec>,
 }
 
 /// The layout: generated (paper 3.1) or drawn by the user, then mirrored (paper 3.3).

@@ -9,10 +9,13 @@ bit is lost: u = (R - 2^15) / 64, v = (G - 2^15) / 64, valid = B), and checks:
 1. every frame but the last has a flow file of the image's size, B is 0 or 1, R and G are
    0 where B is 0, the sky (id 0 in ids/) is never valid, and most pixels are valid;
 2. the geometry, recomputed here from poses.json alone (the camera basis from eye,
-   target and up, the intrinsics) and the frame's depth/: every valid pixel's centre,
-   unprojected at its depth and projected by the next pose, lands where the flow says:
-   at least 99.9 % of valid pixels within 1/64 px (the PNG's step) of the landings at
-   either end of the depth file's rounding step;
+   target and up, the intrinsics; with moving traffic, each frame's `traffic.objects`
+   offsets) and the frame's depth/ and ids/: every valid pixel's centre, unprojected at
+   its depth, moved with its object (the next frame's offset less this one's) and
+   projected by the next pose, lands where the flow says: at least 99.9 % of valid pixels
+   within 1/64 px (the PNG's step) of the landings at either end of the depth file's
+   rounding step. With traffic, the pixels of objects that moved must be there, and most
+   of them must be off the camera-only landing (the flow holds the objects' motion);
 3. warping: of the valid pixels, at least 95 % land on the same instance in the next
    frame's ids/, and the next frame's RGB sampled (bilinearly) where the flow points
    matches this frame's far better than without the flow: the mean absolute error on
@@ -64,6 +67,19 @@ def bilinear(image, x, y):
     return top * (1 - fy) + bottom * fy
 
 
+def motion(frame, next_frame, ids):
+    """Per pixel of `ids`, how far its object moves to the next frame (world metres), from
+    poses.json's traffic offsets; zero for what stands still."""
+    now = frame.get("traffic", {}).get("objects", {})
+    later = next_frame.get("traffic", {}).get("objects", {})
+    moved = np.zeros(ids.shape + (3,))
+    for key, offset in now.items():
+        delta = np.array(later.get(key, offset), dtype=np.float64) - np.array(offset)
+        if np.abs(delta).max() > 0:
+            moved[ids == int(key)] = delta
+    return moved
+
+
 def main(folder):
     folder = Path(folder)
     poses = json.loads((folder / "poses.json").read_text())
@@ -76,6 +92,7 @@ def main(folder):
     xs, ys = np.meshgrid(np.arange(width) + 0.5, np.arange(height) + 0.5)
     totals = dict(pixels=0, valid=0, same_id=0)
     geometry, warped_err, plain_err = [], [], []
+    movers = dict(pixels=0, off_camera=0)
     for i in range(len(frames) - 1):
         stem, next_stem = f"{i:06d}", f"{i + 1:06d}"
         uv, valid = read_flow(folder / "flow" / f"{stem}.png")
@@ -91,9 +108,10 @@ def main(folder):
         eye2, right2, up2, forward2 = basis(frames[i + 1])
         x, y, d = xs[valid], ys[valid], depth[valid]
         a, b = (x - k["cx"]) / k["fx"], (y - k["cy"]) / k["fy"]
+        moved = motion(frames[i], frames[i + 1], ids)[valid]
 
-        def landing(d):
-            world = eye + d[:, None] * (forward + a[:, None] * right - b[:, None] * up)
+        def landing(d, moved=moved):
+            world = eye + d[:, None] * (forward + a[:, None] * right - b[:, None] * up) + moved
             rel = world - eye2
             cz = rel @ forward2
             u2 = k["cx"] + k["fx"] * (rel @ right2) / cz
@@ -106,6 +124,13 @@ def main(folder):
         lo, hi = np.minimum(low, high), np.maximum(low, high)
         f = uv[valid]
         geometry.append(np.maximum(np.maximum(lo - f, f - hi), 0).max(1))
+        # The objects' own motion is in the flow: camera-only landings miss it.
+        is_mover = np.abs(moved).max(1) > 0.01
+        if is_mover.any():
+            still = np.zeros_like(moved)
+            camera_only = landing(d, still)[is_mover]
+            movers["pixels"] += int(is_mover.sum())
+            movers["off_camera"] += int((np.abs(camera_only - f[is_mover]).max(1) > 0.5).sum())
 
         # 3. Warping.
         tx, ty = x + uv[valid][:, 0], y + uv[valid][:, 1]
@@ -129,6 +154,15 @@ def main(folder):
         f"{100 * (geometry > 1 / 64 + 1e-6).mean():.3f} % (worst {geometry.max():.3f} px); same instance after warping {100 * same:.2f} %; "
         f"RGB mean abs error warped {warped:.2f} vs unwarped {plain:.2f} (of 255)"
     )
+    traffic = any("traffic" in frame for frame in frames)
+    if traffic:
+        print(
+            f"  moving traffic: {movers['pixels']} valid pixels of objects that moved, "
+            f"{100 * movers['off_camera'] / max(movers['pixels'], 1):.1f} % of them more than "
+            f"half a pixel off the camera-only flow"
+        )
+        assert movers["pixels"] > 1000, "no valid pixel of a moving object"
+        assert movers["off_camera"] > 0.5 * movers["pixels"], "the flow misses the objects' motion"
     assert valid_share > 0.5, f"only {valid_share:.3f} of pixels valid"
     assert (geometry > 1 / 64 + 1e-6).mean() <= 0.001, "flow off the geometry from poses.json"
     assert same >= 0.95, f"only {same:.4f} of valid pixels land on their instance"

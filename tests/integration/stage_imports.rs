@@ -21,16 +21,18 @@ use std::path::{Path, PathBuf};
 const STAGES: &[&str] = &[
     "layout", "parse", "mirror", "lamps", "place", "plan", "preview", "facades", "scene",
     "objects", "export", "cameras", "render", "annotate", "sensor", "stats", "views", "dataset",
-    "lidar",
+    "lidar", "traffic",
 ];
 
 /// The stages a stage may read besides itself and the shared modules: the graph's
 /// declared edges. `views` chooses among the cameras stage's draws by rendering them in
-/// the scene; `dataset` writes its COCO documents with the annotate stage's writer.
+/// the scene; `dataset` writes its COCO documents with the annotate stage's writer;
+/// `traffic` switches the signal heads' lamps the objects stage made.
 const EDGES: &[(&str, &[&str])] = &[
     ("views", &["cameras", "render", "scene"]),
     ("dataset", &["annotate"]),
     ("lidar", &["render"]),
+    ("traffic", &["objects"]),
 ];
 
 /// What every stage may use: types and geometry (`model`), the spec, seeded randomness, hashing,

@@ -23,7 +23,7 @@ use crate::driver::chunks::{self, PathPlan};
 use crate::driver::shard::{Shard, ShardStats};
 use crate::model::{CameraPose, FacadeSet, Lamp, ObjectKind, ParsedLayout, Scene};
 use crate::spec::{LightingSpec, OutputLayout, Vary};
-use crate::{annotate, lidar, render, rng, scene, views};
+use crate::{annotate, lidar, render, rng, scene, traffic, views};
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
 /// parsed layout, the lamps and the facades.
@@ -292,30 +292,29 @@ impl Pipeline<'_> {
         let semantic = state.plan.semantic.as_ref();
         let done = std::sync::atomic::AtomicUsize::new(0);
         let chunk_list = std::mem::take(&mut state.chunks);
-        let lidar_target = lidar_target(camera, &chunk_list, state.gathered.as_ref());
-        let lidar_target = lidar_target.as_ref();
-        let render =
-            |range: std::ops::Range<usize>, gathered: &Gathered| -> Result<Outputs, BuildError> {
-                let key = chunks::chunk_key(frames_key, &range);
-                let outputs =
-                    self.with_path_input(index, gathered, (semantic, lidar_target), |input| {
-                        let path = frames::PathFrames::new(input, poses);
-                        let keep_all =
-                            self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
-                        let modes = (store, keep_all);
-                        chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
-                            let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                            (self.progress)(&camera.name, n, total);
-                        })
-                    });
-                let outputs = outputs.map_err(|source| self.cache_error(source))?;
-                if store {
-                    self.cache
-                        .put("frames-chunk", &key, &outputs, &[])
-                        .map_err(|source| self.cache_error(source))?;
-                }
-                Ok(outputs)
-            };
+        let (lidar_target, traffic) = self.path_extras(index, &chunk_list, state, poses);
+        let extras = (lidar_target.as_ref(), traffic.as_ref());
+        let render = |range: std::ops::Range<usize>,
+                      gathered: &Gathered|
+         -> Result<Outputs, BuildError> {
+            let key = chunks::chunk_key(frames_key, &range);
+            let outputs = self.with_path_input(index, gathered, (semantic, extras), |input| {
+                let path = frames::PathFrames::new(input, poses);
+                let keep_all = self.inputs.frames[index].output.layout == OutputLayout::Webdataset;
+                let modes = (store, keep_all);
+                chunks::render_chunk(self.cache, &path, poses.len(), range, modes, || {
+                    let n = 1 + done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    (self.progress)(&camera.name, n, total);
+                })
+            });
+            let outputs = outputs.map_err(|source| self.cache_error(source))?;
+            if store {
+                self.cache
+                    .put("frames-chunk", &key, &outputs, &[])
+                    .map_err(|source| self.cache_error(source))?;
+            }
+            Ok(outputs)
+        };
         // What every frame reads (the shadow map, the cloud field) once, with every core,
         // before chunks start side by side and each asks for it (`render_chunk` does not:
         // two chunks starting together would each build the same map).
@@ -324,7 +323,7 @@ impl Pipeline<'_> {
             .zip(&ranges)
             .find(|(c, r)| matches!(c, Chunk::Render) && !r.is_empty());
         if let (Some((_, range)), Some(gathered)) = (first, state.gathered.as_ref()) {
-            self.with_path_input(index, gathered, (semantic, lidar_target), |input| {
+            self.with_path_input(index, gathered, (semantic, extras), |input| {
                 frames::PathFrames::new(input, poses).warm(range.start);
             });
         }
@@ -351,6 +350,69 @@ impl Pipeline<'_> {
             .collect();
         // The first error in chunk order, whichever chunk failed first.
         rendered.into_iter().flatten().collect()
+    }
+
+    /// What path `index`'s frames read besides the scene, made once for all its chunks:
+    /// the LiDAR's target and the traffic.
+    fn path_extras(
+        &self,
+        index: usize,
+        chunks: &[Chunk],
+        state: &PathState,
+        poses: &[CameraPose],
+    ) -> (Option<lidar::Target>, Option<traffic::Traffic>) {
+        let camera = &self.inputs.frames[index].path.camera;
+        let gathered = state.gathered.as_ref();
+        let traffic = self.path_traffic(index, gathered, poses);
+        let target = lidar_target(camera, chunks, gathered, traffic.as_ref());
+        (target, traffic)
+    }
+
+    /// Path `index`'s traffic, with `[traffic]` when a chunk renders (`gathered`): its lane
+    /// vehicles and signal heads, a timed drive's junctions green as its camera crosses
+    /// them. `None` without, or when nothing in the scene moves.
+    fn path_traffic(
+        &self,
+        index: usize,
+        gathered: Option<&Gathered>,
+        poses: &[CameraPose],
+    ) -> Option<traffic::Traffic> {
+        let path = &self.inputs.frames[index].path;
+        let ((_, spec), (_, scene, parsed, ..)) = (path.traffic.as_ref()?, gathered?);
+        let roles: Vec<_> = self
+            .object_info
+            .iter()
+            .map(|info| info.as_ref().and_then(|i| i.traffic.clone()))
+            .collect();
+        let material = |name: String| {
+            scene
+                .materials
+                .iter()
+                .position(|m| m.name == name)
+                .map(|m| m as u32)
+        };
+        let lamp = |s: crate::objects::Signal| {
+            Some([
+                material(crate::objects::lamp_material(s, true))?,
+                material(crate::objects::lamp_material(s, false))?,
+            ])
+        };
+        let [red, amber, green] = crate::objects::Signal::ALL.map(lamp);
+        let lamps = red.zip(amber).zip(green).map(|((r, a), g)| [r, a, g]);
+        let ego: Vec<(f64, [f64; 2])> = poses
+            .iter()
+            .filter_map(|p| Some((p.time?, [p.eye[0], p.eye[2]])))
+            .collect();
+        let traffic = traffic::plan(&traffic::TrafficInput {
+            spec,
+            layout: parsed,
+            metres_per_pixel: path.export.metres_per_pixel,
+            roles: &roles,
+            lamps,
+            seed: path.seed,
+            ego: &ego,
+        });
+        (!traffic.is_empty()).then_some(traffic)
     }
 
     /// Path `index`'s prepared scene, poses and first frame's lighting, for
@@ -433,7 +495,7 @@ impl Pipeline<'_> {
         &self,
         index: usize,
         g: &Gathered,
-        (semantic, lidar): (Option<&annotate::SemanticClasses>, Option<&lidar::Target>),
+        (semantic, (lidar, traffic)): (Option<&annotate::SemanticClasses>, PathExtras),
         f: impl FnOnce(&frames::PathInput) -> R,
     ) -> R {
         let (prepared, scene, _, lamps, facades) = g;
@@ -474,17 +536,24 @@ impl Pipeline<'_> {
             conditions_seed: rng::stream(path.seed, "conditions", index as u64).next_u64(),
             semantic,
             lidar,
+            traffic,
+            kinds: &scene.objects.iter().map(|o| o.kind).collect::<Vec<_>>(),
         };
         f(&input)
     }
 }
 
-/// The LiDAR's BVH over the scene, when the camera has a LiDAR and a chunk renders: built
-/// once for every chunk of the path.
+/// What a path's frames read besides the scene, made once per path: the LiDAR's target
+/// and the traffic.
+type PathExtras<'a> = (Option<&'a lidar::Target>, Option<&'a traffic::Traffic>);
+
+/// The LiDAR's BVH over the scene (with moving traffic, over what stands still), when the
+/// camera has a LiDAR and a chunk renders: built once for every chunk of the path.
 fn lidar_target(
     camera: &crate::spec::CameraSpec,
     chunks: &[Chunk],
     gathered: Option<&Gathered>,
+    traffic: Option<&traffic::Traffic>,
 ) -> Option<lidar::Target> {
     let (prepared, scene, ..) = camera
         .lidar
@@ -492,7 +561,10 @@ fn lidar_target(
         .filter(|_| chunks.iter().any(|c| matches!(c, Chunk::Render)))
         .and(gathered)?;
     let kinds: Vec<ObjectKind> = scene.objects.iter().map(|o| o.kind).collect();
-    Some(lidar::Target::of(prepared, &kinds))
+    let moving = traffic.map(|t| t.at(0.0));
+    Some(lidar::Target::of_objects(prepared, &kinds, |id| {
+        !moving.as_ref().is_some_and(|m| m.moves(id))
+    }))
 }
 
 /// A camera path's lighting under `sun`.

@@ -136,6 +136,7 @@ fn city_info(
         .map(|object| {
             let facade = facade_of.get(&object.name)?;
             Some(objects::ObjectInfo {
+                traffic: None,
                 label: object.class.clone(),
                 text: None,
                 corners: Vec::new(),

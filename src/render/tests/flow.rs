@@ -23,7 +23,7 @@ fn valid_flow_lands_on_the_same_surface_in_the_next_frame() {
     let next = pose([-2.2, 1.6, 10.5], [4.0, 1.4, -20.0]);
     let frame = render(&prepared, &here, &k, &flat(), 1);
     let after = render(&prepared, &next, &k, &flat(), 1);
-    let flow = flow(&prepared, &frame.depth, &here, &next, &k);
+    let flow = flow(&prepared, &frame.depth, None, &here, &next, &k);
     let (mut valid, mut same, mut moved) = (0, 0, 0);
     for y in 0..k.height {
         for x in 0..k.width {
@@ -64,7 +64,7 @@ fn a_still_camera_has_zero_flow_everywhere_but_the_sky() {
     let k = Intrinsics::from_fov(64, 48, 0.7);
     let here = pose([0.0, 1.6, 10.0], [1.0, 1.4, -20.0]);
     let frame = render(&prepared, &here, &k, &flat(), 1);
-    let flow = flow(&prepared, &frame.depth, &here, &here, &k);
+    let flow = flow(&prepared, &frame.depth, None, &here, &here, &k);
     for (i, (&uv, &valid)) in flow.uv.iter().zip(&flow.valid).enumerate() {
         let sky = frame.instance.as_raw()[i] == 0;
         assert_eq!(valid, !sky, "pixel {i}");
@@ -93,7 +93,7 @@ fn what_the_next_frame_hides_has_no_flow() {
     let next = pose([1.5, 0.0, 0.0], [1.5, 0.0, -20.0]);
     let frame = render(&prepared, &here, &k, &flat(), 1);
     let after = render(&prepared, &next, &k, &flat(), 1);
-    let flow = flow(&prepared, &frame.depth, &here, &next, &k);
+    let flow = flow(&prepared, &frame.depth, None, &here, &next, &k);
     let (mut hidden, mut hidden_valid) = (0, 0);
     for y in 0..k.height {
         for x in 0..k.width {

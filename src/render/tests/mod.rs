@@ -14,6 +14,7 @@ mod footprints;
 mod night;
 mod normals;
 mod perspective;
+mod posing;
 mod preparing;
 mod sampling;
 
@@ -131,6 +132,7 @@ pub(super) fn flat() -> Lighting {
         shadow_strength: 1.0,
         ambient_occlusion: 0.0,
         lights: Vec::new(),
+        carried: Vec::new(),
         emission: 0.0,
         windows: None,
         exposure: 1.0,

@@ -268,12 +268,11 @@ fn mean_luma(frame: &Frame, id: u32, rows: std::ops::Range<u32>) -> f64 {
 
 #[test]
 fn lit_signs_show_their_letters_at_night_and_nothing_changes_by_day() {
-    use crate::render::scene_lighting::sign_lamps;
     let scene = three_signs(true);
     let prepared = prepare(&scene).unwrap();
     let k = Intrinsics::from_fov(192, 128, 1.2);
     let eye = pose([0.0; 3], [0.0, 0.0, -1.0]);
-    let night = Lighting::night(sign_lamps(&scene), None);
+    let night = Lighting::night(lamps_of(&scene), None);
     let frame = render(&prepared, &eye, &k, &night, 1);
     // Signs are instances 2, 3 and 4; the rows they cover.
     let rows: Vec<u32> = (0..128)
@@ -294,8 +293,16 @@ fn lit_signs_show_their_letters_at_night_and_nothing_changes_by_day() {
     assert!(paper > letters + 60.0, "paper {paper} vs letters {letters}");
     // By day the backlit face and the sign lamp are off: the same bytes as plain pages.
     let day = |scene: &Scene| {
-        let day = Lighting::from_sun(&crate::render::sun::DAY, 3.0, sign_lamps(scene), None);
+        let day = Lighting::from_sun(&crate::render::sun::DAY, 3.0, lamps_of(scene), None);
         render(&prepare(scene).unwrap(), &eye, &k, &day, 1)
     };
     assert_eq!(day(&scene).rgb(), day(&three_signs(false)).rgb());
+}
+
+/// The sign lamps of `scene`, without their objects.
+fn lamps_of(scene: &crate::model::Scene) -> Vec<Light> {
+    crate::render::scene_lighting::sign_lamps(scene)
+        .into_iter()
+        .map(|(l, _)| l)
+        .collect()
 }
