@@ -29,4 +29,5 @@ mod shards;
 mod spec_edit;
 mod spec_errors;
 mod stage_imports;
+mod traffic;
 mod visibility;
