@@ -29,6 +29,8 @@ pub const MAX_SIDE: u32 = 4096;
 pub(crate) const MIN_TEXEL: f64 = 0.005;
 /// Rows per parallel band.
 const BAND: usize = 32;
+/// Side of an overlay tile, texels ([`ShadowMap::add`]).
+const TILE: usize = 16;
 
 /// The scene's depth as seen from the sun.
 #[derive(Clone)]
@@ -43,7 +45,38 @@ pub(crate) struct ShadowMap {
     per_texel: f64,
     width: usize,
     height: usize,
-    depth: Vec<f32>,
+    /// Per texel, row-major; shared by the posed frames' maps built on it.
+    depth: std::sync::Arc<Vec<f32>>,
+    /// With moving objects added ([`ShadowMap::add`]): the tiles they touch, which
+    /// replace `depth`'s there.
+    overlay: Option<Overlay>,
+}
+
+/// The tiles of a map that moving objects touch: each a copy of the map's texels there
+/// with the objects added.
+#[derive(Clone)]
+struct Overlay {
+    /// Per tile (row-major, [`TILE`] texels a side), its slot in `data`, or `u32::MAX`.
+    slot: Vec<u32>,
+    tiles_x: usize,
+    /// `TILE × TILE` texels per slot, row-major.
+    data: Vec<f32>,
+}
+
+impl Overlay {
+    /// The texel at `(x, y)` when its tile is in the overlay.
+    fn texel(&self, x: usize, y: usize) -> Option<f32> {
+        let slot = self.slot[(y / TILE) * self.tiles_x + x / TILE];
+        (slot != u32::MAX)
+            .then(|| self.data[slot as usize * TILE * TILE + (y % TILE) * TILE + x % TILE])
+    }
+
+    /// Whether any texel of the 4 × 4 window from `(x0, y0)` lies in the overlay.
+    fn touches(&self, x0: usize, y0: usize) -> bool {
+        (y0 / TILE..=(y0 + 3) / TILE).any(|ty| {
+            (x0 / TILE..=(x0 + 3) / TILE).any(|tx| self.slot[ty * self.tiles_x + tx] != u32::MAX)
+        })
+    }
 }
 
 impl ShadowMap {
@@ -86,20 +119,37 @@ impl ShadowMap {
             per_texel: 1.0 / texel,
             width,
             height,
-            // Zeroed memory comes from the system untouched; each band fills its own rows.
-            depth: vec![0.0f32; width * height],
+            depth: std::sync::Arc::new(Vec::new()),
+            overlay: None,
         };
         let all: Vec<usize> = (0..scene.triangles.len()).collect();
         let tris = map.texel_triangles(scene, &all);
         let take = |i: u32| without.binary_search(&i).is_err();
         let bins = band_bins(scene, &tris, &all, height.div_ceil(BAND), take);
-        map.fill(&tris, &bins, true);
+        // Zeroed memory comes from the system untouched; each band fills its own rows, in
+        // parallel, straight into the map (no per-band buffers to copy).
+        let mut depth = vec![0.0f32; width * height];
+        depth
+            .par_chunks_mut(BAND * width)
+            .zip(&bins)
+            .enumerate()
+            .for_each(|(b, (band, bin))| {
+                band.fill(f32::NEG_INFINITY);
+                let rows = [b * BAND, ((b + 1) * BAND).min(height)];
+                for &i in bin {
+                    raster(&tris[i as usize], rows, [0, width], width, band);
+                }
+            });
+        map.depth = std::sync::Arc::new(depth);
         Some(map)
     }
 
     /// Adds the triangles of objects `ids` (instance ids, ascending) of `scene` to the
     /// map, as [`ShadowMap::build`] would have (a texel keeps the nearest surface to the
     /// sun whatever the order): `scene` is the one the map was built from, posed.
+    ///
+    /// The map's own texels are shared, not copied: the objects go into an overlay of the
+    /// tiles they touch, each tile a copy of the map's texels there.
     pub(crate) fn add(&mut self, scene: &PreparedScene, ids: &[u32]) {
         let chosen: Vec<usize> = ids
             .iter()
@@ -107,8 +157,60 @@ impl ShadowMap {
             .flat_map(|o| o.first..o.end)
             .collect();
         let tris = self.texel_triangles(scene, &chosen);
-        let bins = band_bins(scene, &tris, &chosen, self.height.div_ceil(BAND), |_| true);
-        self.fill(&tris, &bins, false);
+        let bins = band_bins(scene, &tris, &chosen, 1, |_| true);
+        let tris: Vec<&[[f64; 3]; 3]> = bins[0].iter().map(|&i| &tris[i as usize]).collect();
+        let (tiles_x, tiles_y) = (self.width.div_ceil(TILE), self.height.div_ceil(TILE));
+        // The tiles each triangle's box reaches, in texels.
+        let reach = |t: &[[f64; 3]; 3], k: usize, end: usize| {
+            let lo = t.iter().map(|v| v[k]).fold(f64::INFINITY, f64::min);
+            let hi = t.iter().map(|v| v[k]).fold(f64::NEG_INFINITY, f64::max);
+            let a = (lo.floor().max(0.0) as usize).min(end);
+            let b = (hi.ceil().max(0.0) as usize).min(end);
+            (a / TILE, b.saturating_sub(1).max(a) / TILE)
+        };
+        let mut slot = vec![u32::MAX; tiles_x * tiles_y];
+        let mut slots = 0u32;
+        for t in &tris {
+            let ((x0, x1), (y0, y1)) = (reach(t, 0, self.width), reach(t, 1, self.height));
+            for ty in y0..=y1.min(tiles_y - 1) {
+                for tx in x0..=x1.min(tiles_x - 1) {
+                    let s = &mut slot[ty * tiles_x + tx];
+                    if *s == u32::MAX {
+                        *s = slots;
+                        slots += 1;
+                    }
+                }
+            }
+        }
+        // Each tile a copy of the map there (texels beyond its edge left empty).
+        let mut data = vec![f32::NEG_INFINITY; slots as usize * TILE * TILE];
+        for (tile, &s) in slot.iter().enumerate().filter(|(_, s)| **s != u32::MAX) {
+            let (tx, ty) = (tile % tiles_x, tile / tiles_x);
+            let cols = [tx * TILE, ((tx + 1) * TILE).min(self.width)];
+            for y in ty * TILE..((ty + 1) * TILE).min(self.height) {
+                let to = s as usize * TILE * TILE + (y - ty * TILE) * TILE;
+                data[to..to + cols[1] - cols[0]].copy_from_slice(
+                    &self.depth[y * self.width + cols[0]..y * self.width + cols[1]],
+                );
+            }
+        }
+        for t in &tris {
+            let ((x0, x1), (y0, y1)) = (reach(t, 0, self.width), reach(t, 1, self.height));
+            for ty in y0..=y1.min(tiles_y - 1) {
+                for tx in x0..=x1.min(tiles_x - 1) {
+                    let s = slot[ty * tiles_x + tx] as usize;
+                    let rows = [ty * TILE, ((ty + 1) * TILE).min(self.height)];
+                    let cols = [tx * TILE, ((tx + 1) * TILE).min(self.width)];
+                    let tile = &mut data[s * TILE * TILE..(s + 1) * TILE * TILE];
+                    raster(t, rows, cols, TILE, tile);
+                }
+            }
+        }
+        self.overlay = Some(Overlay {
+            slot,
+            tiles_x,
+            data,
+        });
     }
 
     /// The triangles `chosen` (indices into the scene's) in texel coordinates and depth
@@ -129,25 +231,6 @@ impl ShadowMap {
                 })
             })
             .collect()
-    }
-
-    /// Rasterizes each band's triangles (`bins`, indices into `tris`) into its rows, the
-    /// bands in parallel, each owning its rows; `clear` first empties the rows.
-    fn fill(&mut self, tris: &[[[f64; 3]; 3]], bins: &[Vec<u32>], clear: bool) {
-        let (width, height) = (self.width, self.height);
-        self.depth
-            .par_chunks_mut(BAND * width)
-            .zip(bins)
-            .enumerate()
-            .for_each(|(b, (band, bin))| {
-                if clear {
-                    band.fill(f32::NEG_INFINITY);
-                }
-                let rows = [b * BAND, ((b + 1) * BAND).min(height)];
-                for &i in bin {
-                    raster(&tris[i as usize], rows, width, band);
-                }
-            });
     }
 
     /// What the test needs of a surface with unit normal `n`, the same at each of its
@@ -188,7 +271,10 @@ impl ShadowMap {
         let zf = at_most(z);
         let (x0, y0) = (ix as i64 - 1, iy as i64 - 1);
         let mut lit = 0.0;
-        if x0 >= 0 && y0 >= 0 && x0 + 4 <= self.width as i64 && y0 + 4 <= self.height as i64 {
+        let inside =
+            x0 >= 0 && y0 >= 0 && x0 + 4 <= self.width as i64 && y0 + 4 <= self.height as i64;
+        let overlaid = |o: &Overlay| o.touches(x0 as usize, y0 as usize);
+        if inside && !self.overlay.as_ref().is_some_and(overlaid) {
             // Inside the map, as nearly every lookup is: four rows of four texels.
             let (x0, y0) = (x0 as usize, y0 as usize);
             for (j, wy) in wy.iter().enumerate() {
@@ -207,15 +293,24 @@ impl ShadowMap {
                 lit += wy;
                 continue;
             }
-            let row = &self.depth[y as usize * self.width..][..self.width];
             for (i, wx) in wx.iter().enumerate() {
                 let x = x0 + i as i64;
-                if x < 0 || x >= self.width as i64 || row[x as usize] <= zf {
+                if x < 0 || x >= self.width as i64 || self.texel(x as usize, y as usize) <= zf {
                     lit += wy * wx;
                 }
             }
         }
         lit as f32
+    }
+}
+
+impl ShadowMap {
+    /// The depth at texel `(x, y)` (inside the map): the overlay's where it has the tile.
+    fn texel(&self, x: usize, y: usize) -> f32 {
+        self.overlay
+            .as_ref()
+            .and_then(|o| o.texel(x, y))
+            .unwrap_or_else(|| self.depth[y * self.width + x])
     }
 }
 
@@ -236,15 +331,16 @@ fn at_most(z: f64) -> f32 {
 }
 
 /// Writes the max depth of triangle `t` (texel coordinates and depth) at the texel centres
-/// it covers within `rows` into `band`.
-fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
+/// it covers within `rows` and `cols` into `band`, whose rows (from `rows[0]`) are
+/// `stride` texels apart and start at column `cols[0]`.
+fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], cols: [usize; 2], stride: usize, band: &mut [f32]) {
     let [a, b, c] = *t;
     let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     if area.is_nan() || area.abs() <= 1e-12 {
         return;
     }
-    let x0 = a[0].min(b[0]).min(c[0]).floor().max(0.0) as usize;
-    let x1 = (a[0].max(b[0]).max(c[0]).ceil().max(0.0) as usize).min(width);
+    let x0 = (a[0].min(b[0]).min(c[0]).floor().max(0.0) as usize).max(cols[0]);
+    let x1 = (a[0].max(b[0]).max(c[0]).ceil().max(0.0) as usize).min(cols[1]);
     let y0 = (a[1].min(b[1]).min(c[1]).floor().max(0.0) as usize).max(rows[0]);
     let y1 = (a[1].max(b[1]).max(c[1]).ceil().max(0.0) as usize).min(rows[1]);
     let inv = 1.0 / area;
@@ -260,11 +356,11 @@ fn raster(t: &[[f64; 3]; 3], rows: [usize; 2], width: usize, band: &mut [f32]) {
         if xa >= xb {
             continue;
         }
-        let row = &mut band[(y - rows[0]) * width..][..width];
+        let row = &mut band[(y - rows[0]) * stride..][..cols[1] - cols[0]];
         // The row's terms once; every texel then runs the same arithmetic, its depth kept
         // or not by a select instead of a branch (mispredicted at every span's ends).
         let (ay, by, cy) = (a[1] - py, b[1] - py, c[1] - py);
-        for (slot, x) in row[xa..xb].iter_mut().zip(xa..) {
+        for (slot, x) in row[xa - cols[0]..xb - cols[0]].iter_mut().zip(xa..) {
             let px = x as f64 + 0.5;
             // Barycentric weights; a texel centre on an edge counts for both sides.
             let w0 = ((b[0] - px) * cy - by * (c[0] - px)) * inv;
@@ -487,7 +583,7 @@ mod tests {
             }
             let mut spans = vec![f32::NEG_INFINITY; (rows[1] - rows[0]) * width];
             let mut whole = spans.clone();
-            raster(&t, rows, width, &mut spans);
+            raster(&t, rows, [0, width], width, &mut spans);
             raster_whole_box(&t, rows, width, &mut whole);
             assert!(
                 spans
@@ -496,6 +592,69 @@ mod tests {
                     .all(|(a, b)| a.to_bits() == b.to_bits()),
                 "triangle {t:?}"
             );
+        }
+    }
+
+    #[test]
+    fn moving_objects_added_over_the_still_map_give_the_whole_map_texel_for_texel() {
+        use crate::render::tests::{UNIT_UV, cuboid, material, object, quad};
+        let plane = quad(
+            0,
+            [
+                [-30.0, 0.0, -30.0],
+                [30.0, 0.0, -30.0],
+                [30.0, 0.0, 30.0],
+                [-30.0, 0.0, 30.0],
+            ],
+            UNIT_UV,
+            [0.0, 1.0, 0.0],
+        );
+        let mut objects = vec![
+            object("plane", vec![plane]),
+            object("tower", cuboid(0, [-6.0, 0.0, -6.0], [-3.0, 12.0, -3.0])),
+        ];
+        // Cars (3 to 12) side by side, some close enough to share tiles.
+        for k in 0..10 {
+            let x = -20.0 + 4.3 * k as f32;
+            let z = if k % 2 == 0 { 2.0 } else { 9.5 };
+            objects.push(object(
+                "car",
+                cuboid(0, [x, 0.0, z], [x + 3.9, 1.6, z + 1.8]),
+            ));
+        }
+        let scene = crate::model::Scene {
+            textures: Vec::new(),
+            materials: vec![material([0.5; 3], None, [0.0; 3])],
+            objects,
+        };
+        let prepared = crate::render::prepare(&scene).unwrap();
+        let cars: Vec<u32> = (3..=12).collect();
+        let dir = crate::model::geometry::normalize([0.4, 0.7, 0.3]).unwrap();
+        let whole = ShadowMap::build(&prepared, dir, 700, &[]).unwrap();
+        let mut parts = ShadowMap::build(&prepared, dir, 700, &cars).unwrap();
+        assert!(parts.overlay.is_none());
+        parts.add(&prepared, &cars);
+        let overlay = parts.overlay.as_ref().unwrap();
+        let tiles = overlay.slot.iter().filter(|s| **s != u32::MAX).count();
+        assert!(tiles > 10 && tiles * 10 < overlay.slot.len(), "{tiles}");
+        let mut differ = 0;
+        for y in 0..whole.height {
+            for x in 0..whole.width {
+                assert_eq!(whole.texel(x, y), parts.texel(x, y), "({x}, {y})");
+                differ += usize::from(
+                    whole.depth[y * whole.width + x] != parts.depth[y * parts.width + x],
+                );
+            }
+        }
+        // The still map lacks the cars; the overlay puts them back.
+        assert!(differ > 100, "{differ}");
+        // And the soft test reads the same everywhere on the ground.
+        let up = whole.receiver([0.0, 1.0, 0.0]).unwrap();
+        for i in 0..60 {
+            for j in 0..60 {
+                let p = [-30.0 + f64::from(i), 0.0, -30.0 + f64::from(j)];
+                assert_eq!(whole.light_at(p, &up), parts.light_at(p, &up), "{p:?}");
+            }
         }
     }
 }
