@@ -15,13 +15,12 @@ fn quad(out: &mut Parts, q: [[f32; 3]; 4], n: [f32; 3], label: u32) {
     }
 }
 
-/// A 200 m road plane at y = 0 and a box (a car, instance 5) from x 8 to 12, z −1 to 1,
-/// 1.5 m high.
-fn target() -> Target {
-    let mut t = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let road = label(Some(ObjectKind::Road), 1);
+/// A 200 m road plane at y = 0 (instance 1) and a box (a car, instance 5) from x 8 to 12,
+/// z −1 to 1, 1.5 m high: the two parts apart.
+fn parts() -> (Parts, Parts) {
+    let mut road = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     quad(
-        &mut t,
+        &mut road,
         [
             [-100., 0., -100.],
             [-100., 0., 100.],
@@ -29,18 +28,19 @@ fn target() -> Target {
             [100., 0., -100.],
         ],
         [0., 1., 0.],
-        road,
+        label(Some(ObjectKind::Road), 1),
     );
-    let car = label(Some(ObjectKind::Car), 5);
+    let mut car = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let id = label(Some(ObjectKind::Car), 5);
     // The face towards the sensor (x = 8) and the roof.
     quad(
-        &mut t,
+        &mut car,
         [[8., 0., -1.], [8., 0., 1.], [8., 1.5, 1.], [8., 1.5, -1.]],
         [-1., 0., 0.],
-        car,
+        id,
     );
     quad(
-        &mut t,
+        &mut car,
         [
             [8., 1.5, -1.],
             [8., 1.5, 1.],
@@ -48,8 +48,18 @@ fn target() -> Target {
             [12., 1.5, -1.],
         ],
         [0., 1., 0.],
-        car,
+        id,
     );
+    (road, car)
+}
+
+/// The road and the car in one target.
+fn target() -> Target {
+    let (mut t, car) = parts();
+    t.0.extend(car.0);
+    t.1.extend(car.1);
+    t.2.extend(car.2);
+    t.3.extend(car.3);
     Target::new(t.0, t.1, t.2, t.3)
 }
 
@@ -183,39 +193,9 @@ fn encodings_are_little_endian_records() {
     assert_eq!(label_bytes(&[p]), (10u32 | 7 << 16).to_le_bytes().to_vec());
 }
 
-/// The same parts as [`target`], the car apart: the road alone, and the car alone.
+/// The road alone, and the car alone.
 fn split() -> (Target, Target) {
-    let mut road = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    quad(
-        &mut road,
-        [
-            [-100., 0., -100.],
-            [-100., 0., 100.],
-            [100., 0., 100.],
-            [100., 0., -100.],
-        ],
-        [0., 1., 0.],
-        label(Some(ObjectKind::Road), 1),
-    );
-    let mut car = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let id = label(Some(ObjectKind::Car), 5);
-    quad(
-        &mut car,
-        [[8., 0., -1.], [8., 0., 1.], [8., 1.5, 1.], [8., 1.5, -1.]],
-        [-1., 0., 0.],
-        id,
-    );
-    quad(
-        &mut car,
-        [
-            [8., 1.5, -1.],
-            [8., 1.5, 1.],
-            [12., 1.5, 1.],
-            [12., 1.5, -1.],
-        ],
-        [0., 1., 0.],
-        id,
-    );
+    let (road, car) = parts();
     (
         Target::new(road.0, road.1, road.2, road.3),
         Target::new(car.0, car.1, car.2, car.3),

@@ -87,22 +87,9 @@ impl PreparedScene {
     /// stored is kept. A camera path builds it once ahead of its frames
     /// ([`super::warm_shadow_map`]).
     pub(crate) fn shadow_map(&self, sun: [f32; 3], side: u32) -> Option<Arc<ShadowMap>> {
-        let key = (sun.map(f32::to_bits), side);
-        let last = |slot: &Option<LastShadowMap>| {
-            slot.as_ref()
-                .filter(|(bits, built_side, _)| (*bits, *built_side) == key)
-                .map(|(_, _, map)| map.clone())
-        };
-        if let Some(map) = last(&self.shadows.lock().unwrap_or_else(|e| e.into_inner())) {
-            return map;
-        }
-        let map = ShadowMap::build(self, sun.map(f64::from), side, &[]).map(Arc::new);
-        let mut slot = self.shadows.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(kept) = last(&slot) {
-            return kept;
-        }
-        *slot = Some((key.0, key.1, map.clone()));
-        map
+        kept_map(&self.shadows, sun, side, || {
+            ShadowMap::build(self, sun.map(f64::from), side, &[])
+        })
     }
 
     /// This scene with `movement` applied: its moving objects shifted by their offsets
@@ -168,22 +155,9 @@ impl PreparedScene {
     /// scene's whole extent: built now, or the last one if it was for the same sun and
     /// side.
     fn still_shadow_map(&self, sun: [f32; 3], side: u32, movers: &[u32]) -> Option<Arc<ShadowMap>> {
-        let key = (sun.map(f32::to_bits), side);
-        let last = |slot: &Option<LastShadowMap>| {
-            slot.as_ref()
-                .filter(|(bits, built_side, _)| (*bits, *built_side) == key)
-                .map(|(_, _, map)| map.clone())
-        };
-        if let Some(map) = last(&self.still_shadows.lock().unwrap_or_else(|e| e.into_inner())) {
-            return map;
-        }
-        let map = ShadowMap::build(self, sun.map(f64::from), side, movers).map(Arc::new);
-        let mut slot = self.still_shadows.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(kept) = last(&slot) {
-            return kept;
-        }
-        *slot = Some((key.0, key.1, map.clone()));
-        map
+        kept_map(&self.still_shadows, sun, side, || {
+            ShadowMap::build(self, sun.map(f64::from), side, movers)
+        })
     }
 
     /// Number of drawable triangles (degenerate and non-finite ones are dropped).
@@ -372,6 +346,33 @@ fn flatten_mesh(
         });
     }
     Ok(())
+}
+
+/// The map `slot` keeps if it was built for `sun` and `side`, else one `build` makes now
+/// (and `slot` keeps, unless another frame stored one meanwhile: the same bytes). The lock
+/// is not held while building ([`PreparedScene::shadow_map`] says why).
+fn kept_map(
+    slot: &Mutex<Option<LastShadowMap>>,
+    sun: [f32; 3],
+    side: u32,
+    build: impl FnOnce() -> Option<ShadowMap>,
+) -> Option<Arc<ShadowMap>> {
+    let key = (sun.map(f32::to_bits), side);
+    let last = |slot: &Option<LastShadowMap>| {
+        slot.as_ref()
+            .filter(|(bits, built_side, _)| (*bits, *built_side) == key)
+            .map(|(_, _, map)| map.clone())
+    };
+    if let Some(map) = last(&slot.lock().unwrap_or_else(|e| e.into_inner())) {
+        return map;
+    }
+    let map = build().map(Arc::new);
+    let mut kept = slot.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(earlier) = last(&kept) {
+        return earlier;
+    }
+    *kept = Some((key.0, key.1, map.clone()));
+    map
 }
 
 /// The box around `triangles`' corners.
