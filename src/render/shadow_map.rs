@@ -597,18 +597,8 @@ mod tests {
 
     #[test]
     fn moving_objects_added_over_the_still_map_give_the_whole_map_texel_for_texel() {
-        use crate::render::tests::{UNIT_UV, cuboid, material, object, quad};
-        let plane = quad(
-            0,
-            [
-                [-30.0, 0.0, -30.0],
-                [30.0, 0.0, -30.0],
-                [30.0, 0.0, 30.0],
-                [-30.0, 0.0, 30.0],
-            ],
-            UNIT_UV,
-            [0.0, 1.0, 0.0],
-        );
+        use crate::render::tests::{cuboid, ground_quad, material, object};
+        let plane = ground_quad(30.0);
         let mut objects = vec![
             object("plane", vec![plane]),
             object("tower", cuboid(0, [-6.0, 0.0, -6.0], [-3.0, 12.0, -3.0])),

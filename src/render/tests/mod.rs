@@ -47,7 +47,7 @@ pub(super) fn quad(material: u32, c: [[f32; 3]; 4], uv: [[f32; 2]; 4], normal: [
 }
 
 /// A flat ground quad (material 0) reaching `half` metres from the origin each way, up.
-fn ground_quad(half: f32) -> Mesh {
+pub(super) fn ground_quad(half: f32) -> Mesh {
     let c = [
         [-half, 0.0, -half],
         [half, 0.0, -half],

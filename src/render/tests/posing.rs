@@ -1,24 +1,14 @@
 //! A posed scene ([`PreparedScene::posed`]): moved objects and swapped lamps render as a
 //! scene built with them there, shadows included.
 
-use super::{UNIT_UV, cuboid, material, object, pose, quad};
+use super::{cuboid, ground_quad, material, object, pose};
 use crate::model::{Movement, Recolour, Scene};
 use crate::render::*;
 
 /// A 40 m plane, a tall box and a small "car" box (object 3) that moves, and a "lamp"
 /// (object 4) of material 1 that can be switched to material 2.
 fn street(car_at: f32) -> Scene {
-    let plane = quad(
-        0,
-        [
-            [-20.0, 0.0, -20.0],
-            [20.0, 0.0, -20.0],
-            [20.0, 0.0, 20.0],
-            [-20.0, 0.0, 20.0],
-        ],
-        UNIT_UV,
-        [0.0, 1.0, 0.0],
-    );
+    let plane = ground_quad(20.0);
     Scene {
         textures: Vec::new(),
         materials: vec![
