@@ -25,7 +25,7 @@
 //! | annotate | [`annotate`] | instance images, labels, poses | COCO JSON, YOLO, ICDAR, KITTI |
 //! | render | [`render`] | scene, camera pose, intrinsics, lighting | [`render::Frame`]: RGB, ids, depth (normals); [`render::Flow`] to the next pose |
 //! | sensor | [`sensor`] | a frame's radiance and depth, camera, drawn weather | the RGB image a camera saves |
-//! | traffic | [`traffic`] | objects' lane vehicles and signal heads, roads, `spec.traffic`, seed, a timed drive's poses | [`traffic::Traffic`]; `at(t)`: the [`model::Movement`] a frame poses the scene with |
+//! | traffic | [`traffic`] | objects' lane vehicles, signal heads and walking people, roads, `spec.traffic`, seed, a timed drive's poses | [`traffic::Traffic`]; `at(t)`: the [`model::Movement`] a frame poses the scene with |
 //! | lidar | [`lidar`] | prepared scene's triangles, object kinds, a camera pose, scanner | [`lidar::Point`]s with SemanticKITTI labels: a camera's `velodyne/`, `labels/` |
 //! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |

@@ -618,7 +618,7 @@ pub fn poses_json(
     }
     if moving {
         poses_json["traffic"] = json!({
-            "objects": "per frame, each moving object's instance id and its offset [x, y, z] in world metres from where city.obj has it (lane vehicles, their plates and riders)",
+            "objects": "per frame, each moving object's instance id and its offset [x, y, z] in world metres from where city.obj has it (lane vehicles, their plates and riders, walking people)",
             "signals": "per frame, each signal head's instance id and the lamp it shows (red, amber or green)",
         });
     }

@@ -47,4 +47,4 @@ pub use pixel_class::PixelClass;
 pub use road::{Axis, Road};
 pub use scene::{LAMP_LIT_SUFFIX, Material, Mesh, Scene, SceneObject};
 pub use texture::{Texture, encode_png};
-pub use traffic_role::{LaneVehicle, TrafficRole};
+pub use traffic_role::{Crossing, LaneVehicle, TrafficRole, Walk};

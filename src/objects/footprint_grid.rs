@@ -60,6 +60,11 @@ impl FootprintGrid {
         self.footprints.push(footprint);
     }
 
+    /// Every footprint, in the order pushed.
+    pub(super) fn footprints(&self) -> &[Footprint] {
+        &self.footprints
+    }
+
     pub(super) fn last(&self) -> Option<&Footprint> {
         self.footprints.last()
     }

@@ -7,6 +7,8 @@
 //! other road by the object's radius. Spots keep [`LAMP_CLEARANCE`] plus their radius from
 //! lamps and their radius plus theirs from every spot taken before.
 
+mod ways;
+
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
@@ -43,6 +45,9 @@ pub struct GroundSpots<'a> {
     taken: FootprintGrid,
     /// Every zebra crossing: its road's index and its along-axis range, metres.
     zebras: Vec<(usize, [f64; 2])>,
+    /// The footprints of people walking along strips (indices in `taken`, ascending): in
+    /// no one's way, as they move on.
+    walkers: Vec<usize>,
 }
 
 /// A street corner, in metres (x east, z south), and the horizontal and vertical road that
@@ -120,12 +125,20 @@ impl<'a> GroundSpots<'a> {
                 .enumerate()
                 .flat_map(|(i, s)| s.zebras.into_iter().map(move |(along, _)| (i, along)))
                 .collect(),
+            walkers: Vec::new(),
         }
     }
 
     /// Half the strip's width, in metres.
     pub fn strip_half(&self) -> f64 {
         self.strip_px / 2.0 * self.mpp
+    }
+
+    /// Marks the footprint taken last as a person walking along a strip's.
+    pub fn mark_walker(&mut self) {
+        if let Some(last) = self.taken.footprints().len().checked_sub(1) {
+            self.walkers.push(last);
+        }
     }
 
     /// Gives back the ground `spot` took (the last taken): its caller found it unfit.
@@ -302,82 +315,6 @@ impl<'a> GroundSpots<'a> {
         })
     }
 
-    /// A free spot on a zebra crossing (uniform among them) for an object of `radius`
-    /// metres: wholly on the zebra along the road, at most `reach` metres either side of
-    /// its centre line and `radius` inside the curbs, travelling across the road either
-    /// way. None when the city has no zebra crossing, or after `attempts`.
-    pub fn zebra(
-        &mut self,
-        rng: &mut Pcg64,
-        radius: f64,
-        reach: f64,
-        attempts: u32,
-    ) -> Option<Spot> {
-        (0..attempts).find_map(|_| {
-            let (road, along, fits) = self.pick_zebra(rng, radius)?;
-            let half = (road.edges[1] - road.edges[0]) * self.mpp / 2.0;
-            let limit = reach.min(half - radius);
-            let across = road.line * self.mpp + (2.0 * rng.random::<f64>() - 1.0) * limit;
-            let back: bool = rng.random();
-            if !(fits && limit >= 0.0 && across.is_finite()) {
-                return None;
-            }
-            let position = image_point(road, along, across);
-            if !self.inside_image(position.map(|v| v / self.mpp))
-                || !self.claim(Footprint::Circle(position, radius))
-            {
-                return None;
-            }
-            // Across the road: the side direction of the road's lanes.
-            let t = travel(road.axis, true);
-            let side = [-t[1], t[0]];
-            Some(Spot {
-                position,
-                travel: if back { side.map(|v| -v) } else { side },
-                road: road.id,
-            })
-        })
-    }
-
-    /// A free spot in the sidewalk strip at one end of a zebra crossing, `from_curb` metres
-    /// from the curb, for an object of `radius` metres; its `travel` points across the
-    /// curb at the road (where someone waiting to cross looks). None after `attempts`.
-    pub fn zebra_kerb(
-        &mut self,
-        rng: &mut Pcg64,
-        radius: f64,
-        from_curb: f64,
-        attempts: u32,
-    ) -> Option<Spot> {
-        let offset = from_curb / self.mpp;
-        (0..attempts).find_map(|_| {
-            let (road, along, fits) = self.pick_zebra(rng, radius)?;
-            let high: bool = rng.random();
-            if !fits {
-                return None;
-            }
-            let along = along / self.mpp;
-            let across = if high {
-                road.edges[1] + offset
-            } else {
-                road.edges[0] - offset
-            };
-            let px = image_point(road, along, across);
-            // A zebra's end meets the corner, where the strip runs on into the crossing
-            // road's: one pixel past the strip's far edge lies in a block or that strip, never
-            // on a road.
-            let beyond = self.strip_px - offset + 1.0;
-            let behind = image_point(road, along, across + if high { beyond } else { -beyond });
-            if !self.inside_image(px) || self.on_road(px, 0.0) || self.on_road(behind, 0.0) {
-                return None;
-            }
-            let mut spot = self.take(road, high, px, radius)?;
-            let towards = if high { -1.0 } else { 1.0 };
-            spot.travel = image_point(road, 0.0, towards);
-            Some(spot)
-        })
-    }
-
     /// The street corners: where the strips of a horizontal and a vertical road that cross
     /// (or meet) touch, half a strip from both curbs, with a block pixel diagonally behind.
     /// In (horizontal road, vertical road, north-west, north-east, south-west, south-east)
@@ -428,19 +365,6 @@ impl<'a> GroundSpots<'a> {
             corners.swap(i, rng.random_range(0..=i));
         }
         corners
-    }
-
-    /// A zebra crossing (uniform among them) and an along-road position on it, metres,
-    /// leaving `radius` to both its edges; whether the crossing is deep enough for that.
-    /// None, drawing nothing, when the city has no zebra crossing.
-    fn pick_zebra(&self, rng: &mut Pcg64, radius: f64) -> Option<(&'a Road, f64, bool)> {
-        if self.zebras.is_empty() {
-            return None;
-        }
-        let (i, [a, b]) = self.zebras[rng.random_range(0..self.zebras.len())];
-        let along = a + radius + rng.random::<f64>() * (b - a - 2.0 * radius);
-        let fits = b - a >= 2.0 * radius && along.is_finite();
-        Some((&self.layout.roads[i], along, fits))
     }
 
     /// A road (uniform among the roads), a side and an along-position on it.

@@ -24,6 +24,13 @@
 //! line (lane cars wait behind the stop lines, clear of them). Its `waiting` share of the
 //! others stand at the zebras' ends, at the curb, facing the road as if about to cross (as
 //! many as the ends hold; the rest join the strips).
+//!
+//! For moving traffic each walking person gets a [`TrafficRole::Pedestrian`]: a person
+//! crossing (or waiting to) keeps to the half of its zebra on its right and takes its
+//! whole way over to its place on the far side, [`CURB_ROOM`] past the far curb (or as far
+//! past it as it waits); a person walking along a strip may walk as far as nothing that
+//! stands is in its way, up to its block's corner ([`walk_on`], once every entry is
+//! placed).
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
@@ -31,14 +38,14 @@ use rand_pcg::Pcg64;
 use std::collections::BTreeMap;
 
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
-use super::ground_spots::GroundSpots;
+use super::ground_spots::{GroundSpots, Spot};
 use super::person_pose::{
     self, ANKLE, ELBOW, HIP, KNEE, Pose, Prop, SHOULDER, Skeleton, WRIST, along,
 };
 use super::vehicle_parts::{Frame, Solid, finish_all};
 use super::{ATTEMPTS, GIVE_UP, Placing};
-use crate::model::Mesh;
 use crate::model::geometry::{KERB_Y, MARKING_Y, WALK_SHARE, cross, dot, normalize, sub, trig};
+use crate::model::{Crossing, Mesh, TrafficRole, Walk};
 use crate::spec::ObjectSpec;
 
 /// Ground a person takes: the radius of its circle in metres (a tall walker's stride and
@@ -160,15 +167,16 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         // others keep their draws).
         let crossing = spec.crossing > 0.0 && rng.random::<f64>() < spec.crossing;
         let mut waiting = !crossing && spec.waiting > 0.0 && rng.random::<f64>() < spec.waiting;
-        let mut spot = None;
+        let mut way = None;
         if crossing {
-            spot = (0..ATTEMPTS).find_map(|_| spots.zebra(rng, ROOM, ZEBRA_REACH, 1));
+            way = (0..ATTEMPTS).find_map(|_| spots.zebra(rng, ROOM, ZEBRA_REACH, CURB_ROOM, 1));
         } else if waiting {
             let from_curb = CURB_ROOM + rng.random::<f64>() * WAITING_DEPTH;
-            spot = (0..ATTEMPTS).find_map(|_| spots.zebra_kerb(rng, ROOM, from_curb, 1));
+            way = (0..ATTEMPTS).find_map(|_| spots.zebra_kerb(rng, ROOM, from_curb, 1));
             // With the zebras' ends full, this one stands in a strip like the others.
-            waiting = spot.is_some();
+            waiting = way.is_some();
         }
+        let mut spot = way.map(|w| w.spot);
         if spot.is_none() && !crossing {
             let from_curb = CURB_ROOM + rng.random::<f64>() * (far - CURB_ROOM);
             spot = (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1));
@@ -182,6 +190,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let (c, s) = trig::cos_sin_deg((2.0 * rng.random::<f64>() - 1.0) * WAITING_TURN);
             let t = spot.travel;
             [t[0] * c - t[1] * s, t[0] * s + t[1] * c]
+        } else if crossing {
+            spot.travel
         } else if walking {
             let back = rng.random::<bool>();
             spot.travel.map(|t| if back { -t } else { t })
@@ -208,7 +218,39 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             attributes,
             Some(keypoints),
         );
+        if let Some(way) = way {
+            placing.set_traffic(walk(&spot, spot.travel, way.reach, Some(way.crossing)));
+        } else if walking {
+            // How far it walks is known once everything stands: [`walk_on`].
+            placing.set_traffic(walk(&spot, forward, 0.0, None));
+            spots.mark_walker();
+        }
         misses = 0;
+    }
+}
+
+/// The part in moving traffic of a person at `spot` walking along `travel`.
+fn walk(spot: &Spot, travel: [f64; 2], reach: f64, crossing: Option<Crossing>) -> TrafficRole {
+    TrafficRole::Pedestrian(Walk {
+        travel,
+        centre: spot.position,
+        room: ROOM,
+        road: spot.road,
+        reach,
+        crossing,
+    })
+}
+
+/// Sets how far each person walking along a strip may walk (its [`Walk::reach`]), now
+/// that everything standing on the ground is placed: up to the first thing in its way,
+/// the strip's end, or 200 m (`MAX_WALK`).
+pub fn walk_on(spots: &GroundSpots, placing: &mut Placing) {
+    for info in &mut placing.out.info {
+        if let Some(TrafficRole::Pedestrian(w)) = &mut info.traffic
+            && w.crossing.is_none()
+        {
+            w.reach = spots.free_run(w.centre, w.travel, w.room, w.road);
+        }
     }
 }
 

@@ -9,9 +9,10 @@ use super::findings::Findings;
 /// bicycles drive along their lanes on a timed drive (a roads camera with `fps`): each
 /// keeps its lane and goes straight on, follows the one ahead (Newell's car-following
 /// model), stops at a junction's stop line while its road has no green and at the end of
-/// its road. Every junction runs one signal cycle (the signal heads show it, lamp by
-/// lamp); every position is a function of the seed and the time alone, so any frame
-/// renders on its own. Parked cars and bicycles, pedestrians and everything else stand
+/// its road. Walking people walk on along their sidewalks; people on and waiting at zebra
+/// crossings cross. Every junction runs one signal cycle (the signal heads show it, lamp
+/// by lamp); every position is a function of the seed and the time alone, so any frame
+/// renders on its own. Parked cars and bicycles, standing people and everything else stand
 /// still. Cameras without a time see the traffic as it stands at time 0.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -24,6 +25,12 @@ pub struct TrafficSpec {
     #[serde(default = "default_bicycle_kmh")]
     #[schemars(length(equal = 2))]
     pub bicycle_kmh: [f64; 2],
+    /// The range each walking person's speed is drawn from, km/h: `[min, max]`. People
+    /// walk along the sidewalks (stopping short of what stands in their way and of each
+    /// other) and across the zebra crossings (while the road they cross has red).
+    #[serde(default = "default_walk_kmh")]
+    #[schemars(length(equal = 2))]
+    pub walk_kmh: [f64; 2],
     /// A junction's whole signal cycle, seconds: each road green, amber (3 s), then red
     /// for all (2 s), in turn.
     #[serde(default = "default_cycle")]
@@ -36,6 +43,7 @@ impl Default for TrafficSpec {
         TrafficSpec {
             car_kmh: default_car_kmh(),
             bicycle_kmh: default_bicycle_kmh(),
+            walk_kmh: default_walk_kmh(),
             cycle: default_cycle(),
         }
     }
@@ -46,6 +54,9 @@ fn default_car_kmh() -> [f64; 2] {
 }
 fn default_bicycle_kmh() -> [f64; 2] {
     [12.0, 20.0]
+}
+fn default_walk_kmh() -> [f64; 2] {
+    [3.6, 5.4]
 }
 fn default_cycle() -> f64 {
     40.0
@@ -59,6 +70,7 @@ pub(crate) fn check_traffic(traffic: Option<&TrafficSpec>, findings: &mut Findin
     for (key, [min, max]) in [
         ("traffic.car_kmh", traffic.car_kmh),
         ("traffic.bicycle_kmh", traffic.bicycle_kmh),
+        ("traffic.walk_kmh", traffic.walk_kmh),
     ] {
         if !(1.0..=130.0).contains(&min) || !(1.0..=130.0).contains(&max) {
             findings.error(

@@ -1,6 +1,6 @@
-//! Traffic stage: the lane vehicles and signal heads the objects stage placed (their
-//! [`TrafficRole`]s), the roads, `[traffic]`, the seed and a timed drive's poses →
-//! [`Traffic`]; [`Traffic::at`] gives the [`Movement`] at any time.
+//! Traffic stage: the lane vehicles, signal heads and walking people the objects stage
+//! placed (their [`TrafficRole`]s), the roads, `[traffic]`, the seed and a timed drive's
+//! poses → [`Traffic`]; [`Traffic::at`] gives the [`Movement`] at any time.
 //!
 //! # The model
 //!
@@ -26,6 +26,9 @@
 //!   out once from the front of its lane backwards (each from the one ahead's), not
 //!   stepped frame by frame: every position is a function of the seed and the time alone,
 //!   and any frame renders on its own.
+//! - **People** walk along the sidewalks and across the zebra crossings (the
+//!   `pedestrians` module): straight on, kept apart from each other and, by the signals
+//!   and the stop lines, from the vehicles.
 //! - **Time 0** is where the scene has every vehicle: before it, all stand still.
 //! - **A timed drive** crosses junctions with the traffic: a junction the drive's camera
 //!   passes through is phased so that its road's green is centred on the moment the
@@ -34,10 +37,11 @@
 //! Pure: positions, cycles and speeds are worked out with + − × ÷ and floor only.
 
 /// Bump when the traffic's positions or signal states change for the same inputs.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 mod junctions;
 mod path;
+mod pedestrians;
 mod signal;
 #[cfg(test)]
 mod tests;
@@ -47,7 +51,7 @@ pub use signal::{ALL_RED, AMBER};
 use rand::RngExt;
 
 use crate::model::geometry::STOP_LINE_END;
-use crate::model::{Axis, LaneVehicle, Movement, ParsedLayout, Recolour, TrafficRole};
+use crate::model::{Axis, LaneVehicle, Movement, ParsedLayout, Recolour, TrafficRole, Walk};
 use crate::objects::Signal;
 use crate::spec::TrafficSpec;
 use junctions::Junction;
@@ -129,6 +133,18 @@ struct Placed {
 pub fn plan(input: &TrafficInput) -> Traffic {
     let junctions = junctions::junctions(input.layout, input.metres_per_pixel);
     let schedules = schedules(input, &junctions);
+    let walks: Vec<(u32, Walk)> = input
+        .roles
+        .iter()
+        .enumerate()
+        .filter_map(|(index, role)| match role {
+            Some(TrafficRole::Pedestrian(w)) => Some((index as u32 + 1, *w)),
+            _ => None,
+        })
+        .collect();
+    let (on_zebras, on_sidewalks): (Vec<_>, Vec<_>) =
+        walks.into_iter().partition(|(_, w)| w.crossing.is_some());
+    let crossers = pedestrians::crossings(input, &junctions, &schedules, &on_zebras);
     let mut placed = Vec::new();
     let mut carried = Vec::new();
     let mut heads = Vec::new();
@@ -136,7 +152,12 @@ pub fn plan(input: &TrafficInput) -> Traffic {
         let instance = index as u32 + 1;
         match role {
             Some(TrafficRole::Vehicle(v)) => {
-                if let Some(p) = place(input, &junctions, &schedules, instance, v) {
+                let ahead = Ahead {
+                    junctions: &junctions,
+                    schedules: &schedules,
+                    crossers: &crossers,
+                };
+                if let Some(p) = place(input, &ahead, instance, v) {
                     placed.push(p);
                 }
             }
@@ -160,13 +181,23 @@ pub fn plan(input: &TrafficInput) -> Traffic {
             _ => {}
         }
     }
+    let mut all = lanes(placed);
+    all.extend(lanes(pedestrians::sidewalks(input, &on_sidewalks)));
+    all.extend(crossers.into_iter().map(|c| c.lane));
     Traffic {
-        lanes: lanes(placed),
+        lanes: all,
         carried,
         heads,
         schedules,
         lamps: input.lamps,
     }
+}
+
+/// What a vehicle meets on its road: the junctions, their cycles, and the people crossing.
+struct Ahead<'a> {
+    junctions: &'a [Junction],
+    schedules: &'a [Schedule],
+    crossers: &'a [pedestrians::Crosser],
 }
 
 /// Each junction's cycle: a seeded phase, or green centred on the drive's camera.
@@ -210,13 +241,7 @@ fn ego_axis(ego: &[(f64, [f64; 2])]) -> Option<Axis> {
 }
 
 /// A lane vehicle's way on its own; `None` when its road is not in the layout.
-fn place(
-    input: &TrafficInput,
-    junctions: &[Junction],
-    schedules: &[Schedule],
-    instance: u32,
-    v: &LaneVehicle,
-) -> Option<Placed> {
+fn place(input: &TrafficInput, ahead: &Ahead, instance: u32, v: &LaneVehicle) -> Option<Placed> {
     let road = input.layout.roads.iter().find(|r| r.id == v.road)?;
     let mpp = input.metres_per_pixel;
     let (along, across, travel_along) = match road.axis {
@@ -234,22 +259,33 @@ fn place(
     };
     let mut rng = crate::rng::stream(input.seed, "traffic-speed", u64::from(instance));
     let speed = (kmh[0] + rng.random::<f64>() * (kmh[1] - kmh[0])) / 3.6;
-    let mut stops: Vec<Stop> = junctions
+    let mut stops: Vec<Stop> = ahead
+        .junctions
         .iter()
-        .zip(schedules)
-        .filter(|(j, _)| j.roads.contains(&road.id))
-        .filter_map(|(j, schedule)| {
+        .zip(ahead.schedules)
+        .enumerate()
+        .filter(|(_, (j, _))| j.roads.contains(&road.id))
+        .filter_map(|(k, (j, schedule))| {
             let (al, ac) = j.along_across(road.axis);
             if !(ac[0] < band[1] && band[0] < ac[1]) {
                 return None;
             }
             let entry = if sign > 0 { al[0] } else { -al[1] };
             let at = entry - STOP_LINE_END - v.half[0];
+            // Until the people on its zebras there are off the road.
+            let not_before = ahead
+                .crossers
+                .iter()
+                .filter(|c| c.road == road.id && c.junction == k)
+                .map(|c| c.clear)
+                .fold(0.0, f64::max);
             (at >= s0 - 1e-9).then_some(Stop {
                 at,
-                length: al[1] - al[0] + STOP_LINE_END + 2.0 * v.half[0],
+                // Over the zebra before the junction, through it, and over the one after.
+                length: al[1] - al[0] + 2.0 * STOP_LINE_END + 2.0 * v.half[0],
                 schedule: *schedule,
                 axis: road.axis,
+                not_before,
             })
         })
         .collect();

@@ -25,6 +25,8 @@ pub(super) struct Stop {
     pub schedule: Schedule,
     /// The axis of its road.
     pub axis: Axis,
+    /// The earliest it may cross (people still on a zebra it crosses).
+    pub not_before: f64,
 }
 
 /// The most signal cycles a vehicle waits for the one ahead to clear a junction before it
@@ -117,6 +119,17 @@ impl Path {
         }
     }
 
+    /// The way of a person standing at `s0` who walks `reach` at `speed` from time
+    /// `start` on.
+    pub fn walk(s0: f64, start: f64, speed: f64, reach: f64) -> Path {
+        let mut knots = vec![(0.0, s0)];
+        if start > 0.0 {
+            knots.push((start, s0));
+        }
+        knots.push((start + reach / speed, s0 + reach));
+        Path { knots }
+    }
+
     /// The position at time `t`.
     pub fn at(&self, t: f64) -> f64 {
         let k = self.knots.partition_point(|(kt, _)| *kt <= t);
@@ -163,7 +176,9 @@ fn entry(stop: &Stop, arrive: f64, speed: f64, lead: Option<&Path>) -> Option<f6
         Some(lead) => lead.reach(stop.at + stop.length)?,
         None => f64::NEG_INFINITY,
     };
-    let mut go = stop.schedule.entry(stop.axis, arrive, own);
+    let mut go = stop
+        .schedule
+        .entry(stop.axis, arrive.max(stop.not_before), own);
     for _ in 0..MAX_CYCLES {
         if (go + own).max(held) <= stop.schedule.closes(stop.axis, go) {
             return Some(go);

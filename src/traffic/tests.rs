@@ -42,6 +42,8 @@ fn city() -> (ParsedLayout, Vec<SceneObject>, Vec<Option<TrafficRole>>) {
         "kind = \"car\"\nlabel = \"car\"\ncount = 160\nparked = 0.0\n",
         "kind = \"bicycle\"\nlabel = \"bicycle\"\ncount = 40\nparked = 0.0\n",
         "kind = \"traffic_light\"\nlabel = \"traffic_light\"\ncount = 12\n",
+        "kind = \"tree\"\nlabel = \"tree\"\ncount = 60\n",
+        "kind = \"person\"\nlabel = \"person\"\ncount = 300\ncrossing = 0.1\nwaiting = 0.1\n",
     ]
     .iter()
     .map(|t| toml::from_str(t).unwrap())
@@ -63,10 +65,17 @@ fn city() -> (ParsedLayout, Vec<SceneObject>, Vec<Option<TrafficRole>>) {
 }
 
 fn traffic(ego: &[(f64, [f64; 2])]) -> (Traffic, Vec<Option<TrafficRole>>, ParsedLayout) {
+    traffic_with(&TrafficSpec::default(), ego)
+}
+
+/// The city's traffic under `spec`.
+fn traffic_with(
+    spec: &TrafficSpec,
+    ego: &[(f64, [f64; 2])],
+) -> (Traffic, Vec<Option<TrafficRole>>, ParsedLayout) {
     let (layout, _, roles) = city();
-    let spec = TrafficSpec::default();
     let traffic = plan(&TrafficInput {
-        spec: &spec,
+        spec,
         layout: &layout,
         metres_per_pixel: 1.0,
         roles: &roles,
@@ -89,9 +98,14 @@ fn the_city_has_lanes_heads_and_carried_objects() {
         .iter()
         .filter(|r| matches!(r, Some(TrafficRole::Vehicle(_))))
         .count();
+    let walking = roles
+        .iter()
+        .filter(|r| matches!(r, Some(TrafficRole::Pedestrian(_))))
+        .count();
     let drivers: usize = t.lanes.iter().map(|l| l.drivers.len()).sum();
     assert!(vehicles > 60, "{vehicles}");
-    assert_eq!(drivers, vehicles);
+    assert!(walking > 100, "{walking}");
+    assert_eq!(drivers, vehicles + walking);
     assert!(t.lanes.iter().any(|l| l.drivers.len() >= 3));
     assert!(t.heads.len() >= 20, "{}", t.heads.len());
     // Every ridden bicycle carries its rider.
@@ -108,7 +122,11 @@ fn at_time_zero_and_before_everything_stands_where_the_scene_has_it() {
             .filter(|r| {
                 matches!(
                     r,
-                    Some(TrafficRole::Vehicle(_) | TrafficRole::Carried { .. })
+                    Some(
+                        TrafficRole::Vehicle(_)
+                            | TrafficRole::Carried { .. }
+                            | TrafficRole::Pedestrian(_)
+                    )
                 )
             })
             .count();
@@ -306,6 +324,172 @@ fn a_schedule_lets_a_vehicle_in_only_on_green_with_time_to_clear() {
                     s.state(other, go + clear - 1e-9) != Signal::Green,
                     "{t} {clear}"
                 );
+            }
+        }
+    }
+}
+
+/// `[traffic]` with a cycle long enough to walk across the test city's roads (32 m wide
+/// at its 1 m a pixel: 27 s at a walk) in the other road's green.
+fn wide_roads() -> TrafficSpec {
+    TrafficSpec {
+        cycle: 80.0,
+        ..TrafficSpec::default()
+    }
+}
+
+/// Each walking person's circle at time `time`: `(instance, centre, radius)`.
+fn people(t: &Traffic, roles: &[Option<TrafficRole>], time: f64) -> Vec<(u32, [f64; 2], f64)> {
+    t.at(time)
+        .moves
+        .into_iter()
+        .filter_map(|(id, o)| {
+            let Some(TrafficRole::Pedestrian(w)) = &roles[id as usize - 1] else {
+                return None;
+            };
+            Some((id, [w.centre[0] + o[0], w.centre[1] + o[2]], w.room))
+        })
+        .collect()
+}
+
+#[test]
+fn people_walk_on_and_cross_never_touching_each_other_or_a_vehicle() {
+    let (t, roles, _) = traffic_with(&wide_roads(), &[]);
+    let mut last: BTreeMap<u32, [f64; 2]> = BTreeMap::new();
+    for time in times() {
+        let p = people(&t, &roles, time);
+        // Circles of people apart (touching at most), and off every vehicle's rectangle.
+        for (i, a) in p.iter().enumerate() {
+            for b in &p[i + 1..] {
+                let d = ((a.1[0] - b.1[0]).powi(2) + (a.1[1] - b.1[1]).powi(2)).sqrt();
+                assert!(
+                    d >= a.2 + b.2 - 1e-6,
+                    "{} and {} {d} apart at {time}",
+                    a.0,
+                    b.0
+                );
+            }
+            for v in footprints(&t, &roles, time) {
+                let [x, z] = v.1;
+                let dx = a.1[0] - a.1[0].clamp(x[0], x[1]);
+                let dz = a.1[1] - a.1[1].clamp(z[0], z[1]);
+                assert!(
+                    dx * dx + dz * dz >= a.2 * a.2 - 1e-6,
+                    "{} and {} at {time}",
+                    a.0,
+                    v.0
+                );
+            }
+            // Straight on along its travel, never back, at a walk.
+            let Some(TrafficRole::Pedestrian(w)) = &roles[a.0 as usize - 1] else {
+                unreachable!()
+            };
+            let moved = [a.1[0] - w.centre[0], a.1[1] - w.centre[1]];
+            assert!((moved[0] * w.travel[1] - moved[1] * w.travel[0]).abs() < 1e-9);
+            let run = moved[0] * w.travel[0] + moved[1] * w.travel[1];
+            assert!(run <= w.reach + 1e-9, "{} beyond its reach at {time}", a.0);
+            if let Some(before) = last.get(&a.0) {
+                let step = (a.1[0] - before[0]) * w.travel[0] + (a.1[1] - before[1]) * w.travel[1];
+                assert!(
+                    (-1e-9..=5.4 / 3.6 * 0.1 + 1e-9).contains(&step),
+                    "{} at {time}",
+                    a.0
+                );
+            }
+            last.insert(a.0, a.1);
+        }
+    }
+    // Most people on the sidewalks got somewhere, and people crossed from both the zebras
+    // and their ends.
+    let moved = |pick: &dyn Fn(&Walk) -> bool| {
+        let (mut all, mut far) = (0, 0);
+        for (id, p) in &last {
+            let Some(TrafficRole::Pedestrian(w)) = &roles[*id as usize - 1] else {
+                continue;
+            };
+            if pick(w) {
+                all += 1;
+                let d = ((p[0] - w.centre[0]).powi(2) + (p[1] - w.centre[1]).powi(2)).sqrt();
+                far += usize::from(d > 2.0 && (d - w.reach).abs() < 1e-6 || d > 10.0);
+            }
+        }
+        (far, all)
+    };
+    let (far, all) = moved(&|w| w.crossing.is_none());
+    assert!(far * 2 > all, "{far} of {all} on the sidewalks");
+    let (far, all) = moved(&|w| w.crossing.is_some_and(|c| c.waiting));
+    assert!(
+        all >= 5 && far * 10 >= all * 9,
+        "{far} of {all} waiting crossed"
+    );
+    let (far, all) = moved(&|w| w.crossing.is_some_and(|c| !c.waiting));
+    assert!(
+        all >= 5 && far == all,
+        "{far} of {all} on the zebras crossed"
+    );
+}
+
+#[test]
+fn people_wait_at_the_kerb_while_the_road_they_cross_may_go() {
+    let (t, roles, layout) = traffic_with(&wide_roads(), &[]);
+    let junctions = junctions::junctions(&layout, 1.0);
+    let mut crossing = 0;
+    for time in times() {
+        for (id, c, _) in people(&t, &roles, time) {
+            let Some(TrafficRole::Pedestrian(w)) = &roles[id as usize - 1] else {
+                unreachable!()
+            };
+            if !w.crossing.is_some_and(|z| z.waiting) {
+                continue;
+            }
+            let road = layout.roads.iter().find(|r| r.id == w.road).unwrap();
+            let across = match road.axis {
+                Axis::Horizontal => c[1],
+                Axis::Vertical => c[0],
+            };
+            if !(road.edges[0] < across && across < road.edges[1]) {
+                continue;
+            }
+            // On the road: the road it crosses is red at its junction.
+            crossing += 1;
+            let j = junctions
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1.distance(w.centre).total_cmp(&b.1.distance(w.centre)))
+                .unwrap()
+                .0;
+            assert_eq!(
+                t.schedules[j].state(road.axis, time),
+                Signal::Red,
+                "{id} at {time}"
+            );
+        }
+    }
+    assert!(crossing > 100, "{crossing}");
+}
+
+#[test]
+fn a_drive_never_meets_a_person_crossing() {
+    let (_, _, layout) = traffic(&[]);
+    for road in layout
+        .roads
+        .iter()
+        .filter(|r| r.axis == Axis::Horizontal)
+        .take(3)
+    {
+        // 8 m/s along the road's right-hand lane from its start, for 40 s.
+        let z = road.line + 4.0;
+        let ego: Vec<(f64, [f64; 2])> = (0..400)
+            .map(|k| {
+                let time = f64::from(k) / 10.0;
+                (time, [road.start + 8.0 * time, z])
+            })
+            .collect();
+        let (t, roles, _) = traffic_with(&wide_roads(), &ego);
+        for (time, eye) in &ego {
+            for (id, c, r) in people(&t, &roles, *time) {
+                let d = ((c[0] - eye[0]).powi(2) + (c[1] - eye[1]).powi(2)).sqrt();
+                assert!(d > r, "{id} at {time}: {d} m from the camera");
             }
         }
     }

@@ -193,9 +193,13 @@ fn people_waiting_stand_at_the_zebras_ends_facing_the_road() {
     let mut found = 0;
     for k in 0..20 {
         let from_curb = CURB_ROOM + WAITING_DEPTH * f64::from(k % 3) / 2.0;
-        let Some(spot) = spots.zebra_kerb(&mut rng, ROOM, from_curb, 40) else {
+        let Some(way) = spots.zebra_kerb(&mut rng, ROOM, from_curb, 40) else {
             continue;
         };
+        let spot = way.spot;
+        // It crosses to the same distance past the far curb.
+        let far = [0, 1].map(|k| spot.position[k] + spot.travel[k] * way.reach);
+        assert!((beside(spot.road as usize, far).1 - from_curb).abs() < 1e-9);
         found += 1;
         assert!(at_an_end(spot.position, 1e-6), "{:?}", spot.position);
         let road = road_of(&city, spot.road);
@@ -249,26 +253,54 @@ fn zebra_spots_travel_across_their_road_and_never_overlap() {
     let input = input(&city, &specs);
     let mut spots = crate::objects::ground_spots::GroundSpots::new(&input);
     let mut rng = crate::rng::stream(7, "test", 0);
-    let mut taken: Vec<[f64; 2]> = Vec::new();
+    let mut ways: Vec<[[f64; 2]; 2]> = Vec::new();
     for _ in 0..30 {
-        let Some(spot) = spots.zebra(&mut rng, 0.6, 2.4, 40) else {
+        let Some(way) = spots.zebra(&mut rng, 0.6, 2.4, 0.45, 40) else {
             continue;
         };
+        let spot = way.spot;
         let road = road_of(&city, spot.road);
-        let across = match road.axis {
-            Axis::Horizontal => [0.0, 1.0],
-            Axis::Vertical => [1.0, 0.0],
+        let (across, along) = match road.axis {
+            Axis::Horizontal => ([0.0, 1.0], [1.0, 0.0]),
+            Axis::Vertical => ([1.0, 0.0], [0.0, 1.0]),
         };
-        let d = spot.travel[0] * across[0] + spot.travel[1] * across[1];
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        let d = dot(spot.travel, across);
         assert!((d.abs() - 1.0).abs() < 1e-12, "{:?}", spot.travel);
-        for p in &taken {
-            let gap =
-                ((p[0] - spot.position[0]).powi(2) + (p[1] - spot.position[1]).powi(2)).sqrt();
-            assert!(gap >= 1.2 - 1e-9, "{gap}");
+        // In the half of its zebra on its right (heading h, the right is (−h.z, h.x)).
+        let right = [-spot.travel[1], spot.travel[0]];
+        let [a, b] = way.crossing.zebra;
+        let from_middle = dot(spot.position, along) - (a + b) / 2.0;
+        assert!(
+            from_middle * dot(right, along) >= 0.6 - 1e-9,
+            "{from_middle}"
+        );
+        // To 0.45 m past the far curb.
+        let mpp = input.metres_per_pixel;
+        let end = dot(spot.position, across) + d * way.reach;
+        let curb = if d > 0.0 {
+            road.edges[1]
+        } else {
+            road.edges[0]
+        } * mpp;
+        assert!((end - curb - d * 0.45).abs() < 1e-9, "{end} {curb}");
+        // The ways (start to end, 0.6 either side) never share ground.
+        let (c0, l) = (dot(spot.position, across), dot(spot.position, along));
+        let (l, c) = ([l - 0.6, l + 0.6], [c0.min(end) - 0.6, c0.max(end) + 0.6]);
+        let mine = match road.axis {
+            Axis::Horizontal => [l, c],
+            Axis::Vertical => [c, l],
+        };
+        let apart = |a: [f64; 2], b: [f64; 2]| a[1] <= b[0] + 1e-9 || b[1] <= a[0] + 1e-9;
+        for w in &ways {
+            assert!(
+                apart(mine[0], w[0]) || apart(mine[1], w[1]),
+                "{mine:?} {w:?}"
+            );
         }
-        taken.push(spot.position);
+        ways.push(mine);
     }
-    assert!(taken.len() >= 20, "{}", taken.len());
+    assert!(ways.len() >= 12, "{}", ways.len());
 }
 
 /// The objects of `specs` inserted into `city` at `mpp` metres per pixel.
@@ -283,4 +315,52 @@ fn insert_at(city: &City, mpp: f64, specs: &[ObjectSpec]) -> Inserted {
 /// The road of `city` with id `id`.
 fn road_of(city: &City, id: u32) -> &crate::model::Road {
     city.layout.roads.iter().find(|r| r.id == id).unwrap()
+}
+
+#[test]
+fn a_walker_walks_up_to_what_stands_in_its_way_but_not_to_other_walkers() {
+    use crate::objects::ground_spots::{Footprint, GroundSpots};
+    let city = city();
+    let specs: [ObjectSpec; 0] = [];
+    let input = input(&city, &specs);
+    let mut spots = GroundSpots::new(&input);
+    let mut rng = crate::rng::stream(7, "test", 0);
+    let mut checked = 0;
+    for _ in 0..40 {
+        let Some(spot) = spots.strip_at(&mut rng, 0.6, 1.0, 40) else {
+            continue;
+        };
+        spots.mark_walker();
+        let (p, t) = (spot.position, spot.travel);
+        let free = spots.free_run(p, t, 0.6, spot.road);
+        if free < 8.0 {
+            continue;
+        }
+        // Another walker 5 m ahead is no obstacle (it walks on); a post 0.3 m aside of
+        // the walker's line 6 m ahead is.
+        let at = |d: f64, aside: f64| {
+            [
+                p[0] + t[0] * d - t[1] * aside,
+                p[1] + t[1] * d + t[0] * aside,
+            ]
+        };
+        if !spots.claim(Footprint::Circle(at(5.0, 0.0), 0.6)) {
+            continue;
+        }
+        spots.mark_walker();
+        assert_eq!(spots.free_run(p, t, 0.6, spot.road), free);
+        if !spots.claim(Footprint::Circle(at(6.5, 0.3), 0.2)) {
+            continue;
+        }
+        let want = 6.5 - (0.8f64 * 0.8 - 0.3 * 0.3).sqrt();
+        let got = spots.free_run(p, t, 0.6, spot.road);
+        assert!((got - want.min(free)).abs() < 1e-9, "{got} vs {want}");
+        // One beside its band is not in the way.
+        let post = at(3.0, 1.5);
+        if spots.claim(Footprint::Circle(post, 0.2)) {
+            assert_eq!(spots.free_run(p, t, 0.6, spot.road), got);
+        }
+        checked += 1;
+    }
+    assert!(checked >= 5, "{checked}");
 }
