@@ -3,6 +3,8 @@
 
 use std::collections::BTreeMap;
 
+use serde::Deserialize;
+use serde_json::value::RawValue;
 use serde_json::{Map, Value};
 
 use super::{DatasetError, Member};
@@ -13,35 +15,41 @@ pub(super) struct CameraCoco<'a> {
     pub camera: &'a str,
     images: Vec<Map<String, Value>>,
     categories: Vec<Category>,
-    /// Per image (by index), its annotations, `id` removed.
-    annotations: Vec<Vec<Map<String, Value>>>,
+    /// Per image (by index), its annotations as the document has them (borrowed, not
+    /// parsed: a path's annotations parsed at once took ten times its `coco.json`).
+    annotations: Vec<Vec<&'a RawValue>>,
+}
+
+/// A `coco.json` as read: its annotations left raw.
+#[derive(Deserialize)]
+struct Document<'a> {
+    images: Vec<Map<String, Value>>,
+    categories: Vec<Map<String, Value>>,
+    #[serde(borrow)]
+    annotations: Vec<&'a RawValue>,
+}
+
+/// What an annotation is read for before it is written again.
+#[derive(Deserialize)]
+struct AnnotationIds {
+    #[serde(default)]
+    image_id: u64,
 }
 
 impl<'a> CameraCoco<'a> {
     /// `bytes`, as the frames stage writes `frames/<camera>/coco.json`: image `i` has id
     /// `i + 1` and file name `rgb/NNNNNN.png` for frame `i`.
-    pub fn parse(camera: &'a str, bytes: &[u8]) -> Result<CameraCoco<'a>, DatasetError> {
+    pub fn parse(camera: &'a str, bytes: &'a [u8]) -> Result<CameraCoco<'a>, DatasetError> {
         let bad = |why: String| DatasetError(format!("frames/{camera}/coco.json: {why}"));
-        let doc: Value = serde_json::from_slice(bytes).map_err(|e| bad(e.to_string()))?;
-        let list = |key: &str| -> Result<Vec<Map<String, Value>>, DatasetError> {
-            doc.get(key)
-                .and_then(Value::as_array)
-                .ok_or_else(|| bad(format!("no {key} list")))?
-                .iter()
-                .map(|v| {
-                    v.as_object()
-                        .cloned()
-                        .ok_or_else(|| bad(format!("an item of {key} is no object")))
-                })
-                .collect()
-        };
-        let images = list("images")?;
+        let doc: Document = serde_json::from_slice(bytes).map_err(|e| bad(e.to_string()))?;
+        let images = doc.images;
         for (i, image) in images.iter().enumerate() {
             if image.get("id").and_then(Value::as_u64) != Some(i as u64 + 1) {
                 return Err(bad(format!("image {i} has not id {}", i + 1)));
             }
         }
-        let categories = list("categories")?
+        let categories = doc
+            .categories
             .into_iter()
             .map(|c| {
                 Ok(Category {
@@ -60,13 +68,14 @@ impl<'a> CameraCoco<'a> {
             })
             .collect::<Result<Vec<_>, DatasetError>>()?;
         let mut annotations = vec![Vec::new(); images.len()];
-        for mut a in list("annotations")? {
-            let image = a.get("image_id").and_then(Value::as_u64).unwrap_or(0) as usize;
+        for a in doc.annotations {
+            let ids: AnnotationIds =
+                serde_json::from_str(a.get()).map_err(|e| bad(e.to_string()))?;
+            let image = ids.image_id as usize;
             let slot = image
                 .checked_sub(1)
                 .and_then(|i| annotations.get_mut(i))
                 .ok_or_else(|| bad(format!("an annotation of image {image}, which it lacks")))?;
-            a.shift_remove("id");
             slot.push(a);
         }
         Ok(CameraCoco {
@@ -133,57 +142,71 @@ pub(super) fn document(
         first_id.push(next);
         next += d.frames() as u64;
     }
-    let lines: Vec<CocoLines> = members
-        .iter()
-        .map(|m| {
-            let d = &documents[m.camera];
-            let id = first_id[m.camera] + m.frame as u64;
-            let mut image = d.images[m.frame].clone();
-            image.insert("id".into(), Value::from(id));
-            if webdataset.is_some() {
-                let key = super::stem(d.camera, m.frame);
-                image.insert("file_name".into(), Value::from(format!("{key}.png")));
-                let depth = serde_json::json!({
-                    "file_name": format!("{key}.depth.npy"),
-                    "format": "f32",
-                    "scale": 1.0,
-                });
-                image.insert("depth".into(), depth);
-            } else {
-                let dir = format!("frames/{}/", d.camera);
-                prefix(&mut image, &dir);
-                if let Some(Value::Object(depth)) = image.get_mut("depth") {
-                    prefix(depth, &dir);
-                }
+    // Each member's lines made as the writer asks for them, never all at once: it reads
+    // the images in its first pass, the annotations in its second.
+    let lines = |m: &Member, with_annotations: bool| -> Result<CocoLines, DatasetError> {
+        let d = &documents[m.camera];
+        let id = first_id[m.camera] + m.frame as u64;
+        let mut image = d.images[m.frame].clone();
+        image.insert("id".into(), Value::from(id));
+        if webdataset.is_some() {
+            let key = super::stem(d.camera, m.frame);
+            image.insert("file_name".into(), Value::from(format!("{key}.png")));
+            let depth = serde_json::json!({
+                "file_name": format!("{key}.depth.npy"),
+                "format": "f32",
+                "scale": 1.0,
+            });
+            image.insert("depth".into(), depth);
+        } else {
+            let dir = format!("frames/{}/", d.camera);
+            prefix(&mut image, &dir);
+            if let Some(Value::Object(depth)) = image.get_mut("depth") {
+                prefix(depth, &dir);
             }
-            let annotations = d.annotations[m.frame]
-                .iter()
-                .map(|a| {
-                    let mut a = a.clone();
-                    a.insert("image_id".into(), Value::from(id));
-                    let category = a.get("category_id").and_then(Value::as_u64).unwrap_or(0);
-                    let merged = maps[m.camera].get(&category).ok_or_else(|| {
-                        DatasetError(format!(
-                            "frames/{}/coco.json: an annotation of category {category}, which it does not list",
-                            d.camera
-                        ))
-                    })?;
-                    a.insert("category_id".into(), Value::from(*merged));
-                    Ok(Value::Object(a).to_string())
-                })
-                .collect::<Result<Vec<_>, DatasetError>>()?;
-            Ok(CocoLines {
-                image: Value::Object(image).to_string(),
-                annotations,
+        }
+        let bad = |why: String| DatasetError(format!("frames/{}/coco.json: {why}", d.camera));
+        let annotations = d.annotations[m.frame]
+            .iter()
+            .filter(|_| with_annotations)
+            .map(|raw| {
+                let mut a: Map<String, Value> =
+                    serde_json::from_str(raw.get()).map_err(|e| bad(e.to_string()))?;
+                a.shift_remove("id");
+                a.insert("image_id".into(), Value::from(id));
+                let category = a.get("category_id").and_then(Value::as_u64).unwrap_or(0);
+                let merged = maps[m.camera].get(&category).ok_or_else(|| {
+                    bad(format!(
+                        "an annotation of category {category}, which it does not list"
+                    ))
+                })?;
+                a.insert("category_id".into(), Value::from(*merged));
+                Ok(Value::Object(a).to_string())
             })
+            .collect::<Result<Vec<_>, DatasetError>>()?;
+        Ok(CocoLines {
+            image: Value::Object(image).to_string(),
+            annotations,
         })
-        .collect::<Result<Vec<_>, DatasetError>>()?;
+    };
     let mut out = Vec::new();
-    write_coco(&mut out, &categories, |pass| {
-        lines.iter().try_for_each(pass)
-    })
-    .expect("writing to memory does not fail");
-    Ok(out)
+    let mut failed = None;
+    let mut passes = 0;
+    let written = write_coco(&mut out, &categories, |pass| {
+        passes += 1;
+        members.iter().try_for_each(|m| match lines(m, passes > 1) {
+            Ok(lines) => pass(&lines),
+            Err(e) => {
+                failed = Some(e);
+                Err(std::io::Error::other("a member's lines"))
+            }
+        })
+    });
+    match (written, failed) {
+        (_, Some(e)) => Err(e),
+        (Ok(()), None) => Ok(out),
+        (Err(e), None) => Err(DatasetError(format!("writing a split's COCO: {e}"))),
+    }
 }
 
 /// `file_name` made relative to the output folder.
