@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Draws assets/readme/traffic.jpg: two frames of a timed drive through moving traffic
-(`[traffic]`), each vehicle that moves boxed in its track's colour (from the MOT ground
-truth, gt/gt.txt), with the trail of its box's foot over the frames between.
+(`[traffic]`), each vehicle and person that moves boxed in its track's colour (from the
+MOT ground truth, gt/gt.txt), with the trail of its box's foot over the frames between.
 
 usage: traffic.py <frames/<camera> folder> <out.jpg> <first frame> <last frame>
 
