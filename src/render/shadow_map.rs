@@ -53,22 +53,48 @@ pub(crate) struct ShadowMap {
 }
 
 /// The tiles of a map that moving objects touch: each a copy of the map's texels there
-/// with the objects added.
+/// with the objects added, made the first time a lookup reads it (a frame reads the few
+/// tiles its view shows; the objects touch tiles all over the city). A tile's texels do
+/// not depend on when or by which thread it is made.
 #[derive(Clone)]
 struct Overlay {
-    /// Per tile (row-major, [`TILE`] texels a side), its slot in `data`, or `u32::MAX`.
+    /// Per tile (row-major, [`TILE`] texels a side), its slot, or `u32::MAX`.
     slot: Vec<u32>,
     tiles_x: usize,
-    /// `TILE × TILE` texels per slot, row-major.
-    data: Vec<f32>,
+    /// Per slot, the objects' triangles (indices into `tris`) whose boxes reach it.
+    bins: Vec<Vec<u32>>,
+    /// The objects' triangles in texel coordinates and depth towards the sun.
+    tris: std::sync::Arc<Vec<[[f64; 3]; 3]>>,
+    /// Per slot, its `TILE × TILE` texels, row-major, once made.
+    tiles: Vec<std::sync::OnceLock<Box<[f32]>>>,
 }
 
 impl Overlay {
-    /// The texel at `(x, y)` when its tile is in the overlay.
-    fn texel(&self, x: usize, y: usize) -> Option<f32> {
-        let slot = self.slot[(y / TILE) * self.tiles_x + x / TILE];
-        (slot != u32::MAX)
-            .then(|| self.data[slot as usize * TILE * TILE + (y % TILE) * TILE + x % TILE])
+    /// The texel at `(x, y)` of `map` (whose overlay this is) when its tile is in the
+    /// overlay.
+    fn texel(&self, map: &ShadowMap, x: usize, y: usize) -> Option<f32> {
+        let (tx, ty) = (x / TILE, y / TILE);
+        let slot = self.slot[ty * self.tiles_x + tx];
+        (slot != u32::MAX).then(|| self.tile(map, slot, tx, ty)[(y % TILE) * TILE + x % TILE])
+    }
+
+    /// Slot `slot`'s texels (tile `(tx, ty)`): the map's there, with its triangles.
+    fn tile(&self, map: &ShadowMap, slot: u32, tx: usize, ty: usize) -> &[f32] {
+        self.tiles[slot as usize].get_or_init(|| {
+            // Texels beyond the map's edge are left empty.
+            let mut tile = vec![f32::NEG_INFINITY; TILE * TILE].into_boxed_slice();
+            let rows = [ty * TILE, ((ty + 1) * TILE).min(map.height)];
+            let cols = [tx * TILE, ((tx + 1) * TILE).min(map.width)];
+            for y in rows[0]..rows[1] {
+                let to = (y - rows[0]) * TILE;
+                tile[to..to + cols[1] - cols[0]]
+                    .copy_from_slice(&map.depth[y * map.width + cols[0]..y * map.width + cols[1]]);
+            }
+            for &i in &self.bins[slot as usize] {
+                raster(&self.tris[i as usize], rows, cols, TILE, &mut tile);
+            }
+            tile
+        })
     }
 
     /// Whether any texel of the 4 × 4 window from `(x0, y0)` lies in the overlay.
@@ -169,47 +195,29 @@ impl ShadowMap {
             (a / TILE, b.saturating_sub(1).max(a) / TILE)
         };
         let mut slot = vec![u32::MAX; tiles_x * tiles_y];
-        let mut slots = 0u32;
-        for t in &tris {
+        let mut bins: Vec<Vec<u32>> = Vec::new();
+        for (k, t) in tris.iter().enumerate() {
             let ((x0, x1), (y0, y1)) = (reach(t, 0, self.width), reach(t, 1, self.height));
             for ty in y0..=y1.min(tiles_y - 1) {
                 for tx in x0..=x1.min(tiles_x - 1) {
                     let s = &mut slot[ty * tiles_x + tx];
                     if *s == u32::MAX {
-                        *s = slots;
-                        slots += 1;
+                        *s = bins.len() as u32;
+                        bins.push(Vec::new());
                     }
+                    bins[*s as usize].push(k as u32);
                 }
             }
         }
-        // Each tile a copy of the map there (texels beyond its edge left empty).
-        let mut data = vec![f32::NEG_INFINITY; slots as usize * TILE * TILE];
-        for (tile, &s) in slot.iter().enumerate().filter(|(_, s)| **s != u32::MAX) {
-            let (tx, ty) = (tile % tiles_x, tile / tiles_x);
-            let cols = [tx * TILE, ((tx + 1) * TILE).min(self.width)];
-            for y in ty * TILE..((ty + 1) * TILE).min(self.height) {
-                let to = s as usize * TILE * TILE + (y - ty * TILE) * TILE;
-                data[to..to + cols[1] - cols[0]].copy_from_slice(
-                    &self.depth[y * self.width + cols[0]..y * self.width + cols[1]],
-                );
-            }
-        }
-        for t in &tris {
-            let ((x0, x1), (y0, y1)) = (reach(t, 0, self.width), reach(t, 1, self.height));
-            for ty in y0..=y1.min(tiles_y - 1) {
-                for tx in x0..=x1.min(tiles_x - 1) {
-                    let s = slot[ty * tiles_x + tx] as usize;
-                    let rows = [ty * TILE, ((ty + 1) * TILE).min(self.height)];
-                    let cols = [tx * TILE, ((tx + 1) * TILE).min(self.width)];
-                    let tile = &mut data[s * TILE * TILE..(s + 1) * TILE * TILE];
-                    raster(t, rows, cols, TILE, tile);
-                }
-            }
-        }
+        let tris: Vec<[[f64; 3]; 3]> = tris.into_iter().copied().collect();
         self.overlay = Some(Overlay {
             slot,
             tiles_x,
-            data,
+            tiles: (0..bins.len())
+                .map(|_| std::sync::OnceLock::new())
+                .collect(),
+            bins,
+            tris: std::sync::Arc::new(tris),
         });
     }
 
@@ -309,7 +317,7 @@ impl ShadowMap {
     fn texel(&self, x: usize, y: usize) -> f32 {
         self.overlay
             .as_ref()
-            .and_then(|o| o.texel(x, y))
+            .and_then(|o| o.texel(self, x, y))
             .unwrap_or_else(|| self.depth[y * self.width + x])
     }
 }
