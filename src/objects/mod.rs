@@ -188,7 +188,8 @@ pub struct ObjectInfo {
     /// People and riders: the 17 COCO keypoints in COCO's order, world metres, from the
     /// rig their mesh is built on (each inside its body part). None for other objects.
     pub keypoints: Option<[[f64; 3]; 17]>,
-    /// What it is to moving traffic: a lane vehicle, carried by one, or a signal head.
+    /// What it is to moving traffic: a lane vehicle, carried by one, a signal head, or a
+    /// walking person.
     pub traffic: Option<crate::model::TrafficRole>,
 }
 
