@@ -29,6 +29,16 @@ impl Junction {
     }
 }
 
+/// The index of the junction of `junctions` nearest to `p` (x, z); the first of equals.
+pub(super) fn nearest(junctions: &[Junction], p: [f64; 2]) -> Option<usize> {
+    junctions
+        .iter()
+        .enumerate()
+        .map(|(j, junction)| (junction.distance(p), j))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, j)| j)
+}
+
 /// Every junction of the layout, horizontal roads first in id order, then by vertical
 /// road id.
 pub(super) fn junctions(layout: &ParsedLayout, metres_per_pixel: f64) -> Vec<Junction> {

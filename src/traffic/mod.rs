@@ -145,6 +145,11 @@ pub fn plan(input: &TrafficInput) -> Traffic {
     let (on_zebras, on_sidewalks): (Vec<_>, Vec<_>) =
         walks.into_iter().partition(|(_, w)| w.crossing.is_some());
     let crossers = pedestrians::crossings(input, &junctions, &schedules, &on_zebras);
+    let ahead = Ahead {
+        junctions: &junctions,
+        schedules: &schedules,
+        crossers: &crossers,
+    };
     let mut placed = Vec::new();
     let mut carried = Vec::new();
     let mut heads = Vec::new();
@@ -152,11 +157,6 @@ pub fn plan(input: &TrafficInput) -> Traffic {
         let instance = index as u32 + 1;
         match role {
             Some(TrafficRole::Vehicle(v)) => {
-                let ahead = Ahead {
-                    junctions: &junctions,
-                    schedules: &schedules,
-                    crossers: &crossers,
-                };
                 if let Some(p) = place(input, &ahead, instance, v) {
                     placed.push(p);
                 }
@@ -165,12 +165,7 @@ pub fn plan(input: &TrafficInput) -> Traffic {
                 carried.push((instance, instance - back));
             }
             Some(TrafficRole::Signal { corner, axis }) => {
-                let nearest = junctions
-                    .iter()
-                    .enumerate()
-                    .map(|(j, junction)| (junction.distance(*corner), j))
-                    .min_by(|a, b| a.0.total_cmp(&b.0));
-                if let Some((_, junction)) = nearest {
+                if let Some(junction) = junctions::nearest(&junctions, *corner) {
                     heads.push(Head {
                         instance,
                         junction,
@@ -198,6 +193,12 @@ struct Ahead<'a> {
     junctions: &'a [Junction],
     schedules: &'a [Schedule],
     crossers: &'a [pedestrians::Crosser],
+}
+
+/// A speed in m/s drawn uniformly from `kmh` (km/h) by `instance`'s own stream.
+fn drawn_speed(seed: u64, stream: &str, instance: u32, kmh: [f64; 2]) -> f64 {
+    let mut rng = crate::rng::stream(seed, stream, u64::from(instance));
+    (kmh[0] + rng.random::<f64>() * (kmh[1] - kmh[0])) / 3.6
 }
 
 /// Each junction's cycle: a seeded phase, or green centred on the drive's camera.
@@ -257,8 +258,7 @@ fn place(input: &TrafficInput, ahead: &Ahead, instance: u32, v: &LaneVehicle) ->
     } else {
         input.spec.car_kmh
     };
-    let mut rng = crate::rng::stream(input.seed, "traffic-speed", u64::from(instance));
-    let speed = (kmh[0] + rng.random::<f64>() * (kmh[1] - kmh[0])) / 3.6;
+    let speed = drawn_speed(input.seed, "traffic-speed", instance, kmh);
     let mut stops: Vec<Stop> = ahead
         .junctions
         .iter()

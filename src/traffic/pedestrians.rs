@@ -15,8 +15,6 @@
 //!   green for the other road (the road it crosses has red), early enough to be over before
 //!   the road it crosses gets green again; vehicles clear the zebras before that green.
 
-use rand::RngExt;
-
 use super::junctions::Junction;
 use super::path::{Path, Stop};
 use super::signal::Schedule;
@@ -43,21 +41,18 @@ pub(super) struct Crosser {
 
 /// A walking person's speed, m/s.
 fn speed(input: &TrafficInput, instance: u32) -> f64 {
-    let kmh = input.spec.walk_kmh;
-    let mut rng = crate::rng::stream(input.seed, "traffic-walk", u64::from(instance));
-    (kmh[0] + rng.random::<f64>() * (kmh[1] - kmh[0])) / 3.6
+    super::drawn_speed(input.seed, "traffic-walk", instance, input.spec.walk_kmh)
 }
 
 /// Along and across coordinates of `p` for a walk along `travel` (a unit vector along x
 /// or z): `(sign, along × sign, across)`.
 fn frame(travel: [f64; 2], p: [f64; 2]) -> (i8, f64, f64) {
-    if travel[0].abs() >= travel[1].abs() {
-        let sign = if travel[0] >= 0.0 { 1 } else { -1 };
-        (sign, f64::from(sign) * p[0], p[1])
-    } else {
-        let sign = if travel[1] >= 0.0 { 1 } else { -1 };
-        (sign, f64::from(sign) * p[1], p[0])
-    }
+    let (k, across) = match walk_axis(travel) {
+        Axis::Horizontal => (0, p[1]),
+        Axis::Vertical => (1, p[0]),
+    };
+    let sign = if travel[k] >= 0.0 { 1 } else { -1 };
+    (sign, f64::from(sign) * p[k], across)
 }
 
 /// The people walking along sidewalks (`(instance, walk)`), ready to be put in lanes:
@@ -122,11 +117,7 @@ pub(super) fn crossings(
         .iter()
         .filter_map(|&(instance, w)| {
             let crossing = w.crossing?;
-            let (_, j) = junctions
-                .iter()
-                .enumerate()
-                .map(|(j, junction)| (junction.distance(w.centre), j))
-                .min_by(|a, b| a.0.total_cmp(&b.0))?;
+            let j = super::junctions::nearest(junctions, w.centre)?;
             let speed = speed(input, instance);
             let (_, s0, _) = frame(w.travel, w.centre);
             let own = w.reach / speed;
