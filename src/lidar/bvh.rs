@@ -294,8 +294,7 @@ impl Bvh {
         t_max: f32,
         hint: Option<u32>,
     ) -> Option<Hit> {
-        let inv = dir.map(|d| 1.0 / d);
-        let oi: [f32; 3] = std::array::from_fn(|k| origin[k] * inv[k]);
+        let ray = Ray::new(origin, dir);
         let mut best: Option<Hit> = None;
         let mut reach = t_max;
         if let Some(slot) = hint
@@ -314,13 +313,13 @@ impl Bvh {
         let mut stack = [(0u32, 0.0f32); 64];
         let mut top = 0;
         let root = self.nodes.first().filter(|_| !self.ordered.is_empty());
-        let mut next = root.and_then(|r| slab(r, oi, inv, reach)).map(|_| 0u32);
+        let mut next = root.and_then(|r| slab(r, &ray, reach)).map(|_| 0u32);
         while let Some(n) = next.take() {
             let node = &self.nodes[n as usize];
             if node.count == 0 {
                 let (l, r) = (node.start, node.start + 1);
-                let tl = slab(&self.nodes[l as usize], oi, inv, reach);
-                let tr = slab(&self.nodes[r as usize], oi, inv, reach);
+                let tl = slab(&self.nodes[l as usize], &ray, reach);
+                let tr = slab(&self.nodes[r as usize], &ray, reach);
                 next = match (tl, tr) {
                     (Some(a), Some(b)) => {
                         let ((near, _), far) = if a <= b {
@@ -366,22 +365,48 @@ impl Bvh {
     }
 }
 
-/// Where the ray enters `node`'s box, if it does before `reach` (`oi`: the ray's origin
-/// times `inv`, its direction's reciprocal, per axis).
+/// A ray as the box test reads it: its origin, its direction's reciprocal per axis
+/// (±∞ for a zero component) and, per axis, whether it points down that axis.
+struct Ray {
+    origin: [f32; 3],
+    inv: [f32; 3],
+    negative: [bool; 3],
+}
+
+impl Ray {
+    fn new(origin: [f32; 3], dir: [f32; 3]) -> Ray {
+        Ray {
+            origin,
+            inv: dir.map(|d| 1.0 / d),
+            negative: dir.map(|d| d.is_sign_negative()),
+        }
+    }
+}
+
+/// Where the ray enters `node`'s box, if it does before `reach`.
+///
+/// Per axis, the plane the ray meets first (by its direction's sign) gives the entry and
+/// the other the exit (Williams et al. 2005), so no axis needs a min and a max. An axis
+/// the ray runs parallel to gives ±∞ (outside the slab: no entry) or, when the origin lies
+/// on one of its planes, `0 · ∞` = NaN; the comparisons below keep the running bound
+/// whenever the candidate is NaN (a comparison with NaN is false), so that axis bounds
+/// nothing, as the ray lies in the closed slab. Plain comparisons are one instruction
+/// each; `f32::min` and `max`, with their NaN handling, cost a third of a scan.
 #[inline]
-fn slab(node: &Node, oi: [f32; 3], inv: [f32; 3], reach: f32) -> Option<f32> {
-    let a = [0, 1, 2].map(|k| node.min[k] * inv[k] - oi[k]);
-    let b = [0, 1, 2].map(|k| node.max[k] * inv[k] - oi[k]);
-    let t0 = a[0]
-        .min(b[0])
-        .max(a[1].min(b[1]))
-        .max(a[2].min(b[2]))
-        .max(0.0);
-    let t1 = a[0]
-        .max(b[0])
-        .min(a[1].max(b[1]))
-        .min(a[2].max(b[2]))
-        .min(reach);
+fn slab(node: &Node, ray: &Ray, reach: f32) -> Option<f32> {
+    let mut t0 = 0.0f32;
+    let mut t1 = reach;
+    for k in 0..3 {
+        let (near, far) = if ray.negative[k] {
+            (node.max[k], node.min[k])
+        } else {
+            (node.min[k], node.max[k])
+        };
+        let enter = (near - ray.origin[k]) * ray.inv[k];
+        let exit = (far - ray.origin[k]) * ray.inv[k];
+        t0 = if enter > t0 { enter } else { t0 };
+        t1 = if exit < t1 { exit } else { t1 };
+    }
     (t0 <= t1).then_some(t0)
 }
 
@@ -454,6 +479,50 @@ mod tests {
         assert_eq!(a.order, b.order);
         let key = |n: &Node| (n.min, n.max, n.start, n.count);
         assert!(a.nodes.iter().map(key).eq(b.nodes.iter().map(key)));
+    }
+
+    /// Rays along the axes (two or one zero components, each of either sign) through a
+    /// city-like soup of axis-aligned walls and floors on a whole-metre grid, starting on
+    /// the grid's planes too (where a box face may lie in the ray's own plane): the same
+    /// closest hits as brute force.
+    #[test]
+    fn rays_along_the_axes_hit_as_brute_force() {
+        let mut rng = crate::rng::stream(7, "bvh-axis", 0);
+        let mut tris = Vec::new();
+        for _ in 0..1500 {
+            let c: [f32; 3] = std::array::from_fn(|_| rng.random_range(-40..40) as f32);
+            let (a, b) = (rng.random_range(1..6) as f32, rng.random_range(1..6) as f32);
+            let quad: [[f32; 3]; 4] = match rng.random_range(0..3) {
+                0 => [[0.0, 0.0, 0.0], [a, 0.0, 0.0], [a, b, 0.0], [0.0, b, 0.0]],
+                1 => [[0.0, 0.0, 0.0], [0.0, 0.0, a], [0.0, b, a], [0.0, b, 0.0]],
+                _ => [[0.0, 0.0, 0.0], [a, 0.0, 0.0], [a, 0.0, b], [0.0, 0.0, b]],
+            };
+            let q = quad.map(|p| std::array::from_fn(|k| c[k] + p[k]));
+            tris.push([q[0], q[1], q[2]]);
+            tris.push([q[0], q[2], q[3]]);
+        }
+        let bvh = Bvh::build(&tris);
+        let mut hits = 0;
+        for i in 0..3000 {
+            // Whole or half metres: on the walls' planes, or between them.
+            let o: [f32; 3] = std::array::from_fn(|_| rng.random_range(-90..90) as f32 * 0.5);
+            let mut d = [0.0f32; 3];
+            d[i % 3] = if i % 2 == 0 { 1.0 } else { -1.0 };
+            if i % 5 == 0 {
+                d[(i + 1) % 3] = -0.0;
+            }
+            if i % 7 == 0 {
+                d[(i + 2) % 3] = 0.3;
+            }
+            let brute = (0..tris.len())
+                .filter_map(|k| intersect(&tris[k], o, d).map(|t| (t, k as u32)))
+                .filter(|(t, _)| *t < 1e6)
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            let fast = bvh.closest(o, d, 1e6, None).map(|h| (h.t, h.triangle));
+            assert_eq!(fast.map(|f| f.0), brute.map(|b| b.0), "ray {o:?} {d:?}");
+            hits += usize::from(fast.is_some());
+        }
+        assert!(hits > 300, "{hits} rays hit");
     }
 
     #[test]
