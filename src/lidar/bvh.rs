@@ -36,15 +36,46 @@ pub struct Hit {
     pub slot: u32,
 }
 
-fn bounds(tris: &[Tri], order: &[u32]) -> ([f32; 3], [f32; 3]) {
+/// What the build reads of a triangle, worked out once: its box and its centroid.
+#[derive(Clone, Copy)]
+struct Prim {
+    min: [f32; 3],
+    max: [f32; 3],
+    centroid: [f32; 3],
+}
+
+impl Prim {
+    fn of(t: &Tri) -> Prim {
+        Prim {
+            min: std::array::from_fn(|k| least(least(t[0][k], t[1][k]), t[2][k])),
+            max: std::array::from_fn(|k| most(most(t[0][k], t[1][k]), t[2][k])),
+            centroid: std::array::from_fn(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0),
+        }
+    }
+}
+
+/// The smaller of a candidate `v` and a running bound `b` (`b` when `v` is NaN, as
+/// `f32::min` gives, in one instruction).
+#[inline]
+fn least(v: f32, b: f32) -> f32 {
+    if v < b { v } else { b }
+}
+
+/// The larger of a candidate `v` and a running bound `b` (`b` when `v` is NaN).
+#[inline]
+fn most(v: f32, b: f32) -> f32 {
+    if v > b { v } else { b }
+}
+
+/// The box around `order`'s triangles.
+fn bounds(prims: &[Prim], order: &[u32]) -> ([f32; 3], [f32; 3]) {
     let mut min = [f32::INFINITY; 3];
     let mut max = [f32::NEG_INFINITY; 3];
     for &i in order {
-        for p in &tris[i as usize] {
-            for k in 0..3 {
-                min[k] = min[k].min(p[k]);
-                max[k] = max[k].max(p[k]);
-            }
+        let p = &prims[i as usize];
+        for k in 0..3 {
+            min[k] = least(p.min[k], min[k]);
+            max[k] = most(p.max[k], max[k]);
         }
     }
     (min, max)
@@ -85,12 +116,12 @@ const PARALLEL: usize = 1 << 15;
 /// The subtree over `order` (which sits at `start` in the whole order), partitioned in
 /// place: its nodes, the root first, a node's two children side by side, child indices
 /// relative to the returned nodes and leaf runs to the whole order.
-fn subtree(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
+fn subtree(tris: &[Prim], order: &mut [u32], start: u32) -> Vec<Node> {
     if order.len() < PARALLEL {
         return sequential(tris, order, start);
     }
     let (min, max) = bounds(tris, order);
-    let Some(left) = partition(tris, order) else {
+    let Some(left) = partition(tris, order, (min, max)) else {
         return vec![Node {
             min,
             max,
@@ -132,7 +163,7 @@ fn subtree(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
 }
 
 /// [`subtree`] on one thread.
-fn sequential(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
+fn sequential(tris: &[Prim], order: &mut [u32], start: u32) -> Vec<Node> {
     let (min, max) = bounds(tris, order);
     let mut nodes = vec![Node {
         min,
@@ -143,10 +174,13 @@ fn sequential(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
     let mut todo = vec![0usize];
     while let Some(n) = todo.pop() {
         let Node {
-            start: s, count, ..
+            min,
+            max,
+            start: s,
+            count,
         } = nodes[n];
         let run = s as usize..(s + count) as usize;
-        let Some(left) = partition(tris, &mut order[run]) else {
+        let Some(left) = partition(tris, &mut order[run], (min, max)) else {
             continue;
         };
         let first = nodes.len();
@@ -170,15 +204,15 @@ fn sequential(tris: &[Tri], order: &mut [u32], start: u32) -> Vec<Node> {
     nodes
 }
 
-/// Splits `order` where the binned SAH is cheapest, the left part first: its length, or
-/// `None` when the run stays a leaf.
-fn partition(tris: &[Tri], order: &mut [u32]) -> Option<usize> {
+/// Splits `order` (inside `bounds`) where the binned SAH is cheapest, the left part
+/// first: its length, or `None` when the run stays a leaf.
+fn partition(tris: &[Prim], order: &mut [u32], bounds: ([f32; 3], [f32; 3])) -> Option<usize> {
     if order.len() <= LEAF {
         return None;
     }
-    let (axis, cut, lo, hi) = best_cut(tris, order)?;
+    let (axis, cut, lo, hi) = best_cut(tris, order, bounds)?;
     let scale = BINS as f32 / (hi - lo);
-    let bin = |i: u32| (((centroid(&tris[i as usize], axis) - lo) * scale) as usize).min(BINS - 1);
+    let bin = |i: u32| (((tris[i as usize].centroid[axis] - lo) * scale) as usize).min(BINS - 1);
     let mut left = 0;
     for i in 0..order.len() {
         if bin(order[i]) < cut {
@@ -189,16 +223,20 @@ fn partition(tris: &[Tri], order: &mut [u32]) -> Option<usize> {
     (left > 0 && left < order.len()).then_some(left)
 }
 
-/// The axis and bin boundary of the cheapest split of `run` (with the centroids' span
-/// on that axis), if one is cheaper than a leaf.
-fn best_cut(tris: &[Tri], order: &[u32]) -> Option<(usize, usize, f32, f32)> {
+/// The axis and bin boundary of the cheapest split of `order` (inside `bounds`), with
+/// the centroids' span on that axis, if one is cheaper than a leaf.
+fn best_cut(
+    tris: &[Prim],
+    order: &[u32],
+    (min, max): ([f32; 3], [f32; 3]),
+) -> Option<(usize, usize, f32, f32)> {
     let mut best: Option<(f32, usize, usize, f32, f32)> = None;
     for axis in 0..3 {
         let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
         for &i in order {
-            let c = centroid(&tris[i as usize], axis);
-            lo = lo.min(c);
-            hi = hi.max(c);
+            let c = tris[i as usize].centroid[axis];
+            lo = least(c, lo);
+            hi = most(c, hi);
         }
         if hi - lo <= 1e-6 {
             continue;
@@ -208,13 +246,11 @@ fn best_cut(tris: &[Tri], order: &[u32]) -> Option<(usize, usize, f32, f32)> {
         let mut counts = [0usize; BINS];
         for &i in order {
             let t = &tris[i as usize];
-            let b = (((centroid(t, axis) - lo) * scale) as usize).min(BINS - 1);
+            let b = (((t.centroid[axis] - lo) * scale) as usize).min(BINS - 1);
             counts[b] += 1;
-            for p in t {
-                for (k, v) in p.iter().enumerate() {
-                    boxes[b].0[k] = boxes[b].0[k].min(*v);
-                    boxes[b].1[k] = boxes[b].1[k].max(*v);
-                }
+            for k in 0..3 {
+                boxes[b].0[k] = least(t.min[k], boxes[b].0[k]);
+                boxes[b].1[k] = most(t.max[k], boxes[b].1[k]);
             }
         }
         for cut in 1..BINS {
@@ -225,8 +261,8 @@ fn best_cut(tris: &[Tri], order: &[u32]) -> Option<(usize, usize, f32, f32)> {
                 for b in range {
                     n += counts[b];
                     for k in 0..3 {
-                        min[k] = min[k].min(boxes[b].0[k]);
-                        max[k] = max[k].max(boxes[b].1[k]);
+                        min[k] = least(boxes[b].0[k], min[k]);
+                        max[k] = most(boxes[b].1[k], max[k]);
                     }
                 }
                 area(min, max) * n as f32
@@ -238,12 +274,7 @@ fn best_cut(tris: &[Tri], order: &[u32]) -> Option<(usize, usize, f32, f32)> {
         }
     }
     let (cost, axis, cut, lo, hi) = best?;
-    let (min, max) = bounds(tris, order);
     (cost < area(min, max) * order.len() as f32).then_some((axis, cut, lo, hi))
-}
-
-fn centroid(t: &Tri, k: usize) -> f32 {
-    (t[0][k] + t[1][k] + t[2][k]) / 3.0
 }
 
 fn area(min: [f32; 3], max: [f32; 3]) -> f32 {
@@ -263,10 +294,10 @@ impl Bvh {
         for (i, t) in original.iter().enumerate() {
             split_long(*t, i as u32, &mut pieces);
         }
-        let tris: Vec<Tri> = pieces.iter().map(|p| p.0).collect();
-        let mut order: Vec<u32> = (0..tris.len() as u32).collect();
-        let nodes = subtree(&tris, &mut order, 0);
-        let ordered = order.iter().map(|&i| tris[i as usize]).collect();
+        let prims: Vec<Prim> = pieces.iter().map(|p| Prim::of(&p.0)).collect();
+        let mut order: Vec<u32> = (0..prims.len() as u32).collect();
+        let nodes = subtree(&prims, &mut order, 0);
+        let ordered = order.iter().map(|&i| pieces[i as usize].0).collect();
         for i in &mut order {
             *i = pieces[*i as usize].1;
         }
