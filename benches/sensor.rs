@@ -63,6 +63,7 @@ fn main() {
             pose,
             intrinsics: [554.0, 554.0, 320.0, 240.0],
             motion: None,
+            shutter: None,
             horizon: [0.7, 0.8, 0.95],
             clouds: sensor::CloudLight {
                 sun_direction: [0.0, 0.8, -0.6],

@@ -29,6 +29,10 @@ use crate::sensor::{self, CloudLight, SensorFrame};
 use crate::spec::{CameraPath, CameraSpec, WeatherSpec};
 use crate::traffic::Traffic;
 
+/// How far the eye (world metres) and each object (by instance id) move while a frame's
+/// shutter is open ([`PathFrames::shutter_motion`]).
+type ShutterShift = ([f32; 3], Vec<[f32; 3]>);
+
 /// Everything one camera path needs besides its poses.
 pub struct PathInput<'a> {
     /// Per text object by instance id: its words' world corners, for ICDAR quads.
@@ -339,16 +343,57 @@ impl<'a> PathFrames<'a> {
         files
     }
 
-    /// The RGB image the camera's sensor makes of `frame` under `conditions`.
+    /// On a timed drive with moving traffic and motion blur, how far the eye and each
+    /// object move while frame `i`'s shutter is open: `motion_blur` metres at the drive's
+    /// speed (`speed_kmh`) give the shutter's time; the eye's motion comes from the
+    /// neighbouring frames' poses and times, the objects' from the traffic at the
+    /// shutter's opening and closing. `(eye, moved by instance id)`.
+    fn shutter_motion(
+        &self,
+        i: usize,
+        scene: &FrameScene,
+        conditions: &sensor::Conditions,
+    ) -> Option<ShutterShift> {
+        let (traffic, _) = self.input.traffic.zip(scene.movement.as_ref())?;
+        let t = self.poses[i].time?;
+        let speed = self.input.camera.speed_kmh.unwrap_or(30.0) / 3.6;
+        let shutter = conditions.motion_blur / speed;
+        if shutter.is_nan() || shutter <= 0.0 {
+            return None;
+        }
+        let (open, close) = (traffic.at(t - 0.5 * shutter), traffic.at(t + 0.5 * shutter));
+        let last = close.moves.last().map_or(0, |m| m.0 as usize);
+        let mut moved = vec![[0.0f32; 3]; last + 1];
+        for (id, to) in &close.moves {
+            let from = open.offset(*id);
+            moved[*id as usize] = std::array::from_fn(|k| (to[k] - from[k]) as f32);
+        }
+        let timed = |j: usize| self.poses.get(j).and_then(|p| Some((p.eye, p.time?)));
+        let (a, b) = (timed(i.saturating_sub(1))?, timed(i + 1).or(timed(i))?);
+        let eye = if b.1 > a.1 {
+            std::array::from_fn(|k| ((b.0[k] - a.0[k]) / (b.1 - a.1) * shutter) as f32)
+        } else {
+            [0.0; 3]
+        };
+        Some((eye, moved))
+    }
+
+    /// The RGB image the camera's sensor makes of `frame` under `conditions` (`shutter`:
+    /// [`PathFrames::shutter_motion`]).
     fn develop(
         &self,
         frame: &render::Frame,
         pose: &CameraPose,
-        travel: Option<[f64; 3]>,
+        (travel, shutter): (Option<[f64; 3]>, Option<ShutterShift>),
         lighting: &Lighting,
         conditions: &sensor::Conditions,
     ) -> sensor::Developed {
         let (intrinsics, camera) = (&self.intrinsics, self.input.camera);
+        let shutter = shutter.as_ref().map(|(eye, moved)| sensor::ShutterMotion {
+            eye: *eye,
+            instance: frame.instance.as_raw(),
+            moved,
+        });
         sensor::develop(
             &SensorFrame {
                 width: camera.resolution[0],
@@ -358,6 +403,7 @@ impl<'a> PathFrames<'a> {
                 pose: *pose,
                 intrinsics: [intrinsics.fx, intrinsics.fy, intrinsics.cx, intrinsics.cy],
                 motion: travel,
+                shutter,
                 horizon: lighting.sky.horizon(),
                 clouds: cloud_light(lighting),
                 scene_exposure: lighting.exposure,
@@ -431,7 +477,8 @@ impl<'a> PathFrames<'a> {
         );
         // The sensor stage replaces the RGB image only: ids and depth stay as rendered; the
         // labels read the final image only to drop what it does not show.
-        let developed = self.develop(&frame, pose, travel, lighting, &conditions);
+        let shutter = self.shutter_motion(i, &scene, &conditions);
+        let developed = self.develop(&frame, pose, (travel, shutter), lighting, &conditions);
         let headlit = (camera.path == CameraPath::Roads).then_some(headlit);
         let drawn = drawn_json(&conditions, developed.exposure, &sun, shade, headlit);
         let frame_input = self.annotation_input(i, (&frame, &developed.rgb), &footprints, movement);

@@ -8,7 +8,7 @@
 //! | pass | module | space |
 //! |---|---|---|
 //! | weather: overcast sky, fog, wet surfaces and rain streaks | `weather` | scene radiance |
-//! | motion blur from the camera's travel | `optics` | scene radiance |
+//! | motion blur from the camera's travel (and, on a timed drive with traffic, every moving object's) | `optics` | scene radiance |
 //! | chromatic aberration, vignetting | `optics` | on the sensor |
 //! | exposure (scene: the lighting's; auto: log-average luminance → mid grey, less in dim frames; or fixed), × 2^ev | `tone` | exposed |
 //! | shot and read noise | `noise` | exposed |
@@ -21,7 +21,7 @@
 //! counter-based hash of the frame's seed, transcendental functions come from `libm`.
 
 /// Bump when this stage's output bytes change: it is part of the frames stage's key.
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 
 mod clouds;
 mod conditions;
@@ -57,12 +57,28 @@ pub struct SensorFrame<'a> {
     pub intrinsics: [f64; 4],
     /// Unit direction the camera travels in (for motion blur), if known.
     pub motion: Option<[f64; 3]>,
+    /// On a timed drive with moving traffic, what moves while the shutter is open: motion
+    /// blur then follows it instead of `motion`.
+    pub shutter: Option<ShutterMotion<'a>>,
     /// The sky's linear colour at the horizon (fog and grey skies take their colour from it).
     pub horizon: [f32; 3],
     /// The sun's and the sky's light on the clouds.
     pub clouds: CloudLight,
     /// The lighting's own exposure for its time of day (`exposure = "scene"`).
     pub scene_exposure: f32,
+}
+
+/// How far the camera and each object move while the shutter is open (a timed drive with
+/// moving traffic; the shutter's time is [`Conditions::motion_blur`] metres at the drive's
+/// speed).
+#[derive(Clone, Copy, Debug)]
+pub struct ShutterMotion<'a> {
+    /// How far the eye moves, world metres (x, y, z).
+    pub eye: [f32; 3],
+    /// The frame's instance ids, row-major.
+    pub instance: &'a [u32],
+    /// How far object `id` moves, by id (index 0, the sky, and ids beyond: nothing).
+    pub moved: &'a [[f32; 3]],
 }
 
 /// The developed frame and the exposure multiplier it was taken with.
@@ -95,17 +111,22 @@ pub fn develop(frame: &SensorFrame, c: &Conditions) -> Developed {
             c.cloud_offset,
         );
         weather::apply_weather(&mut light, frame.depth, w, &rays, frame.horizon, c);
-        let motion = frame
-            .motion
-            .unwrap_or(frame.pose.basis().map_or([0.0; 3], |b| b.forward));
-        optics::motion_blur(
-            &mut light,
-            frame.depth,
-            w,
-            &rays,
-            motion.map(|v| v as f32),
-            c.motion_blur as f32,
-        );
+        if let Some(m) = frame.shutter {
+            let moved = (m.instance, m.moved);
+            optics::moving_blur(&mut light, frame.depth, w, &rays, m.eye, moved);
+        } else {
+            let motion = frame
+                .motion
+                .unwrap_or(frame.pose.basis().map_or([0.0; 3], |b| b.forward));
+            optics::motion_blur(
+                &mut light,
+                frame.depth,
+                w,
+                &rays,
+                motion.map(|v| v as f32),
+                c.motion_blur as f32,
+            );
+        }
     }
     optics::chromatic_aberration(&mut light, w, c.chromatic_aberration as f32);
     optics::vignette(&mut light, w, c.vignetting as f32);

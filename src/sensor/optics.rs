@@ -38,10 +38,57 @@ pub(crate) fn motion_blur(
     if travel <= 0.0 {
         return;
     }
+    blur_along(
+        linear,
+        depth,
+        width,
+        rays,
+        motion.map(|m| m * travel),
+        |_| None,
+    );
+}
+
+/// Motion blur of a camera whose eye moves by `eye` (world metres) while the shutter is
+/// open, among objects that move too: `moved[id]` is how far object `id` (the instance
+/// image `instance`'s value) moves over the same time (absent or zero: it stands still).
+/// Each pixel averages the image along the path its scene point, carried by its object,
+/// takes on screen.
+pub(crate) fn moving_blur(
+    linear: &mut [[f32; 3]],
+    depth: &[f32],
+    width: u32,
+    rays: &Rays,
+    eye: [f32; 3],
+    (instance, moved): (&[u32], &[[f32; 3]]),
+) {
+    let still = eye.iter().all(|v| *v == 0.0);
+    if (still && moved.iter().all(|m| m.iter().all(|v| *v == 0.0))) || instance.len() != depth.len()
+    {
+        return;
+    }
+    blur_along(linear, depth, width, rays, eye, |i| {
+        moved
+            .get(instance[i] as usize)
+            .filter(|m| m.iter().any(|v| *v != 0.0))
+            .copied()
+    });
+}
+
+/// Blurs each pixel along the screen path of its scene point while the eye moves by
+/// `eye` and the point by `point(pixel index)` (None: it stands still), both centred on
+/// the frame's instant.
+fn blur_along(
+    linear: &mut [[f32; 3]],
+    depth: &[f32],
+    width: u32,
+    rays: &Rays,
+    eye: [f32; 3],
+    point: impl Fn(usize) -> Option<[f32; 3]> + Sync,
+) {
     let w = width.max(1) as usize;
     let h = linear.len() / w;
     let source = linear.to_vec();
-    let half = motion.map(|m| m * travel * 0.5);
+    let half = eye.map(|m| m * 0.5);
     let before = [0, 1, 2].map(|k| rays.eye[k] - half[k]);
     let after = [0, 1, 2].map(|k| rays.eye[k] + half[k]);
     linear.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
@@ -52,8 +99,17 @@ pub(crate) fn motion_blur(
             }
             let v = rays.dir(x, y);
             let p = [0, 1, 2].map(|k| rays.eye[k] + d * v[k]);
-            let (Some(a), Some(b)) = (rays.project_from(before, p), rays.project_from(after, p))
-            else {
+            let (from, to) = match point(y * w + x) {
+                None => (p, p),
+                Some(m) => (
+                    [0, 1, 2].map(|k| p[k] - 0.5 * m[k]),
+                    [0, 1, 2].map(|k| p[k] + 0.5 * m[k]),
+                ),
+            };
+            let (Some(a), Some(b)) = (
+                rays.project_from(before, from),
+                rays.project_from(after, to),
+            ) else {
                 continue;
             };
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
@@ -148,6 +204,89 @@ mod tests {
         // Red is sampled nearer the centre (it appears farther out), blue farther.
         assert!(peak(0) > 60 && peak(2) < 60, "{} {}", peak(0), peak(2));
         assert_eq!(peak(1), 60);
+    }
+
+    /// A wall 5 m ahead, seen `w` pixels wide: its image striped every 2 pixels, its
+    /// depth, and its ids (the middle third of the columns object 7, the rest object 3).
+    struct Wall {
+        w: usize,
+        rays: Rays,
+        img: Vec<[f32; 3]>,
+        depth: Vec<f32>,
+        ids: Vec<u32>,
+    }
+
+    fn striped_wall() -> Wall {
+        let (w, h) = (60usize, 40usize);
+        let pose = CameraPose::level([0.0, 1.5, 0.0], [0.0, 1.5, -10.0]);
+        Wall {
+            w,
+            rays: Rays::new(&pose, [40.0, 40.0, 30.0, 20.0]).unwrap(),
+            img: (0..w * h).map(|i| [(i % w / 2 % 2) as f32; 3]).collect(),
+            depth: vec![5.0; w * h],
+            ids: (0..w * h)
+                .map(|i| if (20..40).contains(&(i % w)) { 7 } else { 3 })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn a_moving_object_blurs_and_what_stands_still_does_not() {
+        let Wall {
+            w,
+            rays,
+            img,
+            depth,
+            ids,
+        } = striped_wall();
+        // Object 7 moves 0.5 m to the right (4 pixels at 5 m), the camera stands.
+        let mut moved = vec![[0.0f32; 3]; 8];
+        moved[7] = [0.5, 0.0, 0.0];
+        let mut blurred = img.clone();
+        moving_blur(
+            &mut blurred,
+            &depth,
+            w as u32,
+            &rays,
+            [0.0; 3],
+            (&ids, &moved),
+        );
+        let changed = |x: usize| (blurred[20 * w + x][0] - img[20 * w + x][0]).abs() > 0.05;
+        assert!((24..36).all(changed), "the mover streaks");
+        assert!(
+            !(0..18).any(changed) && !(42..60).any(changed),
+            "the rest stays"
+        );
+        // Nothing moving: nothing changes.
+        let mut still = img.clone();
+        let none = vec![[0.0f32; 3]; 8];
+        moving_blur(&mut still, &depth, w as u32, &rays, [0.0; 3], (&ids, &none));
+        assert_eq!(still, img);
+    }
+
+    #[test]
+    fn the_eye_moving_alone_blurs_as_the_camera_blur_does() {
+        let Wall {
+            w,
+            rays,
+            img,
+            depth,
+            ids,
+        } = striped_wall();
+        let none = vec![[0.0f32; 3]; 8];
+        let mut moving = img.clone();
+        moving_blur(
+            &mut moving,
+            &depth,
+            w as u32,
+            &rays,
+            [0.3, 0.0, 0.0],
+            (&ids, &none),
+        );
+        let mut camera = img.clone();
+        motion_blur(&mut camera, &depth, w as u32, &rays, [1.0, 0.0, 0.0], 0.3);
+        assert_eq!(moving, camera);
+        assert_ne!(moving, img);
     }
 
     #[test]

@@ -39,6 +39,7 @@ fn develop_with(c: &Conditions) -> Developed {
             pose,
             intrinsics,
             motion: None,
+            shutter: None,
             horizon: [0.45, 0.62, 0.9],
             clouds: CloudLight {
                 sun_direction: [0.0, 0.8, -0.6],

@@ -44,6 +44,9 @@ pub struct SensorSpec {
     pub chromatic_aberration: ValueRange,
     /// Motion blur: metres the camera travels while the shutter is open, along its path
     /// (from the neighbouring frames' poses). A car at 36 km/h with a 1/30 s shutter: 0.33.
+    /// On a timed drive with `[traffic]` it sets the shutter's time (these metres at the
+    /// drive's `speed_kmh`), and the camera (as its poses move) and every moving vehicle
+    /// and person blur over that time.
     #[serde(default = "zero")]
     #[schemars(schema_with = "sensor_ranges::travel")]
     pub motion_blur: ValueRange,
