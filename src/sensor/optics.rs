@@ -230,63 +230,44 @@ mod tests {
         }
     }
 
+    impl Wall {
+        /// The wall's image after [`moving_blur`] with the eye moving by `eye` and the
+        /// objects by `moved`.
+        fn blurred(&self, eye: [f32; 3], moved: &[[f32; 3]]) -> Vec<[f32; 3]> {
+            let mut img = self.img.clone();
+            let (w, ids) = (self.w as u32, &self.ids);
+            moving_blur(&mut img, &self.depth, w, &self.rays, eye, (ids, moved));
+            img
+        }
+    }
+
     #[test]
     fn a_moving_object_blurs_and_what_stands_still_does_not() {
-        let Wall {
-            w,
-            rays,
-            img,
-            depth,
-            ids,
-        } = striped_wall();
+        let wall = striped_wall();
         // Object 7 moves 0.5 m to the right (4 pixels at 5 m), the camera stands.
         let mut moved = vec![[0.0f32; 3]; 8];
         moved[7] = [0.5, 0.0, 0.0];
-        let mut blurred = img.clone();
-        moving_blur(
-            &mut blurred,
-            &depth,
-            w as u32,
-            &rays,
-            [0.0; 3],
-            (&ids, &moved),
-        );
-        let changed = |x: usize| (blurred[20 * w + x][0] - img[20 * w + x][0]).abs() > 0.05;
+        let blurred = wall.blurred([0.0; 3], &moved);
+        let w = wall.w;
+        let changed = |x: usize| (blurred[20 * w + x][0] - wall.img[20 * w + x][0]).abs() > 0.05;
         assert!((24..36).all(changed), "the mover streaks");
         assert!(
             !(0..18).any(changed) && !(42..60).any(changed),
             "the rest stays"
         );
         // Nothing moving: nothing changes.
-        let mut still = img.clone();
-        let none = vec![[0.0f32; 3]; 8];
-        moving_blur(&mut still, &depth, w as u32, &rays, [0.0; 3], (&ids, &none));
-        assert_eq!(still, img);
+        assert_eq!(wall.blurred([0.0; 3], &[[0.0; 3]; 8]), wall.img);
     }
 
     #[test]
     fn the_eye_moving_alone_blurs_as_the_camera_blur_does() {
-        let Wall {
-            w,
-            rays,
-            img,
-            depth,
-            ids,
-        } = striped_wall();
-        let none = vec![[0.0f32; 3]; 8];
-        let mut moving = img.clone();
-        moving_blur(
-            &mut moving,
-            &depth,
-            w as u32,
-            &rays,
-            [0.3, 0.0, 0.0],
-            (&ids, &none),
-        );
-        let mut camera = img.clone();
-        motion_blur(&mut camera, &depth, w as u32, &rays, [1.0, 0.0, 0.0], 0.3);
+        let wall = striped_wall();
+        let moving = wall.blurred([0.3, 0.0, 0.0], &[[0.0; 3]; 8]);
+        let mut camera = wall.img.clone();
+        let (w, rays) = (wall.w as u32, &wall.rays);
+        motion_blur(&mut camera, &wall.depth, w, rays, [1.0, 0.0, 0.0], 0.3);
         assert_eq!(moving, camera);
-        assert_ne!(moving, img);
+        assert_ne!(moving, wall.img);
     }
 
     #[test]
