@@ -356,7 +356,12 @@ impl<'a> PathFrames<'a> {
     ) -> Option<ShutterShift> {
         let (traffic, _) = self.input.traffic.zip(scene.movement.as_ref())?;
         let t = self.poses[i].time?;
-        let speed = self.input.camera.speed_kmh.unwrap_or(30.0) / 3.6;
+        let speed = self
+            .input
+            .camera
+            .speed_kmh
+            .unwrap_or(crate::views::DRIVE_KMH)
+            / 3.6;
         let shutter = conditions.motion_blur / speed;
         if shutter.is_nan() || shutter <= 0.0 {
             return None;
