@@ -47,8 +47,9 @@ struct Prim {
 impl Prim {
     fn of(t: &Tri) -> Prim {
         Prim {
-            min: std::array::from_fn(|k| least(least(t[0][k], t[1][k]), t[2][k])),
-            max: std::array::from_fn(|k| most(most(t[0][k], t[1][k]), t[2][k])),
+            // Folded from ±∞ as `bounds` folds, so a NaN corner is skipped, not kept.
+            min: std::array::from_fn(|k| t.iter().fold(f32::INFINITY, |b, p| least(p[k], b))),
+            max: std::array::from_fn(|k| t.iter().fold(f32::NEG_INFINITY, |b, p| most(p[k], b))),
             centroid: std::array::from_fn(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0),
         }
     }
