@@ -44,7 +44,7 @@ pub(crate) fn motion_blur(
         width,
         rays,
         motion.map(|m| m * travel),
-        |_| None,
+        |_| [0.0; 3],
     );
 }
 
@@ -67,23 +67,20 @@ pub(crate) fn moving_blur(
         return;
     }
     blur_along(linear, depth, width, rays, eye, |i| {
-        moved
-            .get(instance[i] as usize)
-            .filter(|m| m.iter().any(|v| *v != 0.0))
-            .copied()
+        moved.get(instance[i] as usize).copied().unwrap_or([0.0; 3])
     });
 }
 
 /// Blurs each pixel along the screen path of its scene point while the eye moves by
-/// `eye` and the point by `point(pixel index)` (None: it stands still), both centred on
-/// the frame's instant.
+/// `eye` and the point by `point(pixel index)` (zero: it stands still, and `p ∓ 0` is
+/// `p` exactly), both centred on the frame's instant.
 fn blur_along(
     linear: &mut [[f32; 3]],
     depth: &[f32],
     width: u32,
     rays: &Rays,
     eye: [f32; 3],
-    point: impl Fn(usize) -> Option<[f32; 3]> + Sync,
+    point: impl Fn(usize) -> [f32; 3] + Sync,
 ) {
     let w = width.max(1) as usize;
     let h = linear.len() / w;
@@ -99,13 +96,9 @@ fn blur_along(
             }
             let v = rays.dir(x, y);
             let p = [0, 1, 2].map(|k| rays.eye[k] + d * v[k]);
-            let (from, to) = match point(y * w + x) {
-                None => (p, p),
-                Some(m) => (
-                    [0, 1, 2].map(|k| p[k] - 0.5 * m[k]),
-                    [0, 1, 2].map(|k| p[k] + 0.5 * m[k]),
-                ),
-            };
+            let m = point(y * w + x);
+            let from = [0, 1, 2].map(|k| p[k] - 0.5 * m[k]);
+            let to = [0, 1, 2].map(|k| p[k] + 0.5 * m[k]);
             let (Some(a), Some(b)) = (
                 rays.project_from(before, from),
                 rays.project_from(after, to),
