@@ -39,24 +39,27 @@ pub struct SemanticFrame {
 }
 
 /// Frame labels from its instance image (`0` the sky, `k + 1` the scene's object `k`).
+///
+/// Everything a pixel gets depends on its instance id alone, so each image is one lookup
+/// a pixel in a table per instance id, and the segments come from each shown id's pixel
+/// count and box.
 pub fn semantic(
     classes: &SemanticClasses,
     instance: &ImageBuffer<Luma<u32>, Vec<u32>>,
 ) -> SemanticFrame {
     let (width, height) = instance.dimensions();
-    // Which instance ids the frame shows (an id past the scene's is `unlabeled`).
+    // Instance ids past the scene's are `unlabeled`, as `ids` is: all are counted there.
     let ids = classes.of_instance.len();
-    let mut shown = vec![false; ids + 1];
-    for &id in instance.as_raw() {
-        shown[(id as usize).min(ids)] = true;
-    }
+    let raw = instance.as_raw();
+    let index = |id: u32| (id as usize).min(ids);
+    let extents = extents(raw, width as usize, ids);
     // Each shown object's instanceIds value: numbered per label in instance-id order.
     let mut counts = [0u32; 256];
     let values: Vec<u16> = (0..=ids)
         .map(|id| {
             let label = classes.label_of(id as u32);
             let k = &mut counts[usize::from(label.id)];
-            let value = if shown[id] && label.has_instances && *k < 1000 {
+            let value = if extents[id].0 > 0 && label.has_instances && *k < 1000 {
                 *k += 1;
                 u32::from(label.id) * 1000 + *k - 1
             } else {
@@ -65,68 +68,103 @@ pub fn semantic(
             value as u16
         })
         .collect();
-    let raw = instance.as_raw();
-    let label_ids = GrayImage::from_raw(
-        width,
-        height,
-        raw.iter().map(|&id| classes.label_of(id).id).collect(),
-    )
-    .expect("one label a pixel");
-    let instance_ids = ImageBuffer::from_raw(
-        width,
-        height,
-        raw.iter()
-            .map(|&id| values[(id as usize).min(ids)])
-            .collect(),
-    )
-    .expect("one value a pixel");
-    let color = RgbImage::from_raw(
-        width,
-        height,
-        label_ids
-            .as_raw()
-            .iter()
-            .flat_map(|&id| classes.labels[usize::from(id)].color)
-            .collect(),
-    )
-    .expect("one colour a pixel");
-    let (panoptic, segments) = panoptic(classes, &instance_ids);
+    let label_of = |value: u16| value_label(classes, value);
+    let label_id: Vec<u8> = (0..=ids).map(|id| classes.label_of(id as u32).id).collect();
+    let colour: Vec<[u8; 3]> = label_id
+        .iter()
+        .map(|&l| classes.labels[usize::from(l)].color)
+        .collect();
+    let segment_rgb: Vec<[u8; 3]> = values
+        .iter()
+        .map(|&value| {
+            let [lo, hi] = value.to_le_bytes();
+            if label_of(value).ignore_in_eval {
+                [0, 0, 0]
+            } else {
+                [lo, hi, 0]
+            }
+        })
+        .collect();
+    let per_pixel = |table: &[[u8; 3]]| -> RgbImage {
+        let mut bytes = Vec::with_capacity(raw.len() * 3);
+        for &id in raw {
+            bytes.extend_from_slice(&table[index(id)]);
+        }
+        RgbImage::from_raw(width, height, bytes).expect("three bytes a pixel")
+    };
+    let label_ids = raw.iter().map(|&id| label_id[index(id)]).collect();
+    let instance_ids = raw.iter().map(|&id| values[index(id)]).collect();
     SemanticFrame {
-        label_ids,
-        instance_ids,
-        color,
-        panoptic,
-        segments,
+        label_ids: GrayImage::from_raw(width, height, label_ids).expect("one label a pixel"),
+        instance_ids: ImageBuffer::from_raw(width, height, instance_ids)
+            .expect("one value a pixel"),
+        color: per_pixel(&colour),
+        panoptic: per_pixel(&segment_rgb),
+        segments: segments(classes, &values, &extents),
     }
 }
 
-/// The panoptic image and segments of an `instanceIds` image, as `createPanopticImgs`.
-fn panoptic(
-    classes: &SemanticClasses,
-    instance_ids: &ImageBuffer<Luma<u16>, Vec<u16>>,
-) -> (RgbImage, Vec<Segment>) {
-    let (width, height) = instance_ids.dimensions();
-    // Per value: pixel count and box [x0, y0, x1, y1].
-    let mut found = vec![(0u64, [u32::MAX, u32::MAX, 0, 0]); 1 << 16];
-    for (x, y, value) in instance_ids.enumerate_pixels() {
-        let (area, b) = &mut found[usize::from(value[0])];
-        *area += 1;
-        *b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+/// A pixel count and box `[x0, y0, x1, y1]` (inclusive).
+type Extent = (u64, [u32; 4]);
+
+/// Per instance id `0..=ids` (ids past `ids` counted at `ids`): its pixels in `raw` (rows
+/// `width` long) and their box, taken a run of equal ids at a time.
+fn extents(raw: &[u32], width: usize, ids: usize) -> Vec<Extent> {
+    let mut extents = vec![(0u64, [u32::MAX, u32::MAX, 0, 0]); ids + 1];
+    for (y, row) in raw.chunks_exact(width.max(1)).enumerate() {
+        let mut x = 0;
+        while x < row.len() {
+            let id = row[x];
+            let end = row[x..]
+                .iter()
+                .position(|&v| v != id)
+                .map_or(row.len(), |n| x + n);
+            let (area, b) = &mut extents[(id as usize).min(ids)];
+            *area += (end - x) as u64;
+            *b = [
+                b[0].min(x as u32),
+                b[1].min(y as u32),
+                b[2].max(end as u32 - 1),
+                b[3].max(y as u32),
+            ];
+            x = end;
+        }
     }
-    let found = (0..=u16::MAX).zip(found).filter(|(_, (area, _))| *area > 0);
-    // The label of an instanceIds value (`unlabeled` for one past the table, which
-    // `semantic` never writes).
-    let label = |value: u16| {
-        let id = if value < 1000 { value } else { value / 1000 };
-        classes
-            .labels
-            .get(usize::from(id))
-            .unwrap_or(&classes.labels[0])
-    };
-    let segments: Vec<Segment> = found
-        .filter(|(value, _)| !label(*value).ignore_in_eval)
+    extents
+}
+
+/// The label of an instanceIds value (`unlabeled` for one past the table, which
+/// [`semantic`] never writes).
+fn value_label(classes: &SemanticClasses, value: u16) -> &CityscapesLabel {
+    let id = if value < 1000 { value } else { value / 1000 };
+    classes
+        .labels
+        .get(usize::from(id))
+        .unwrap_or(&classes.labels[0])
+}
+
+/// The panoptic segments, by value, as `createPanopticImgs` makes them from the
+/// instanceIds image: the pixels of every instance id with one value (`values`) together,
+/// the values of labels ignored in evaluation left out.
+fn segments(classes: &SemanticClasses, values: &[u16], extents: &[Extent]) -> Vec<Segment> {
+    let mut by_value: std::collections::BTreeMap<u16, Extent> = Default::default();
+    for (&value, &(area, b)) in values.iter().zip(extents).filter(|(_, e)| e.0 > 0) {
+        let (total, bb) = by_value
+            .entry(value)
+            .or_insert((0, [u32::MAX, u32::MAX, 0, 0]));
+        *total += area;
+        *bb = [
+            bb[0].min(b[0]),
+            bb[1].min(b[1]),
+            bb[2].max(b[2]),
+            bb[3].max(b[3]),
+        ];
+    }
+    by_value
+        .into_iter()
+        .filter(|(value, _)| !value_label(classes, *value).ignore_in_eval)
         .map(|(value, (area, b))| {
-            let label = label(value);
+            let label = value_label(classes, value);
             Segment {
                 id: u32::from(value),
                 category_id: label.id,
@@ -135,17 +173,7 @@ fn panoptic(
                 iscrowd: u8::from(value < 1000 && label.has_instances),
             }
         })
-        .collect();
-    let panoptic = RgbImage::from_fn(width, height, |x, y| {
-        let value = instance_ids.get_pixel(x, y)[0];
-        if label(value).ignore_in_eval {
-            image::Rgb([0, 0, 0])
-        } else {
-            let [lo, hi] = value.to_le_bytes();
-            image::Rgb([lo, hi, 0])
-        }
-    });
-    (panoptic, segments)
+        .collect()
 }
 
 /// One image of a COCO panoptic document.
@@ -238,6 +266,84 @@ mod tests {
         assert_eq!((car.area, car.bbox, car.iscrowd), (2, [1, 1, 2, 1], 0));
         let road = &frame.segments[0];
         assert_eq!((road.area, road.bbox), (3, [2, 0, 2, 3]));
+    }
+
+    #[test]
+    fn every_pixel_and_segment_is_what_its_instance_makes_it() {
+        use rand::RngExt;
+        // 1,200 cars (more than a label numbers), people, roads, a `dynamic` object, and
+        // ids past the table, in runs of random length over a 197-pixel-wide frame.
+        let mut homes = vec![(ObjectKind::Road, "road"); 3];
+        homes.extend(vec![(ObjectKind::Car, "car"); 1200]);
+        homes.extend(vec![(ObjectKind::Person, "person"); 40]);
+        let mut classes = SemanticClasses::of(&homes).unwrap();
+        classes.of_instance[1] = 5;
+        let past = classes.of_instance.len() as u32;
+        let mut rng = crate::rng::stream(3, "semantic-test", 0);
+        let (width, height) = (197u32, 121u32);
+        let mut raw = Vec::new();
+        while raw.len() < (width * height) as usize {
+            let id = rng.random_range(0..past + 3);
+            raw.extend(std::iter::repeat_n(id, rng.random_range(1..9)));
+        }
+        raw.truncate((width * height) as usize);
+        let frame = semantic(
+            &classes,
+            &ImageBuffer::from_raw(width, height, raw.clone()).unwrap(),
+        );
+        // Reference: numbered per label in instance-id order among the ids shown.
+        let mut shown: Vec<u32> = raw.iter().map(|&id| id.min(past)).collect();
+        shown.sort_unstable();
+        shown.dedup();
+        let mut counts = [0u32; 256];
+        let mut value_of = std::collections::HashMap::new();
+        for &id in &shown {
+            let label = classes.label_of(id);
+            let k = &mut counts[usize::from(label.id)];
+            let numbered = label.has_instances && *k < 1000;
+            let value =
+                u32::from(label.id) * if numbered { 1000 } else { 1 } + *k * u32::from(numbered);
+            *k += u32::from(numbered);
+            value_of.insert(id, value as u16);
+        }
+        let mut expected: std::collections::BTreeMap<u16, (u64, [u32; 4])> = Default::default();
+        for (i, &id) in raw.iter().enumerate() {
+            let (x, y) = (i as u32 % width, i as u32 / width);
+            let label = classes.label_of(id);
+            let value = value_of[&id.min(past)];
+            assert_eq!(frame.label_ids.get_pixel(x, y)[0], label.id);
+            assert_eq!(frame.instance_ids.get_pixel(x, y)[0], value);
+            assert_eq!(frame.color.get_pixel(x, y).0, label.color);
+            let void = value_label(&classes, value).ignore_in_eval;
+            let [lo, hi] = value.to_le_bytes();
+            let rgb = if void { [0, 0, 0] } else { [lo, hi, 0] };
+            assert_eq!(frame.panoptic.get_pixel(x, y).0, rgb);
+            if !void {
+                let e = expected.entry(value).or_insert((0, [x, y, x, y]));
+                e.0 += 1;
+                e.1 = [e.1[0].min(x), e.1[1].min(y), e.1[2].max(x), e.1[3].max(y)];
+            }
+        }
+        assert!(counts[26] == 1000 && expected.len() > 1000);
+        let got: Vec<(u16, u64, [u32; 4])> = frame
+            .segments
+            .iter()
+            .map(|s| {
+                (
+                    s.id as u16,
+                    s.area,
+                    [
+                        s.bbox[0],
+                        s.bbox[1],
+                        s.bbox[0] + s.bbox[2] - 1,
+                        s.bbox[1] + s.bbox[3] - 1,
+                    ],
+                )
+            })
+            .collect();
+        let want: Vec<(u16, u64, [u32; 4])> =
+            expected.into_iter().map(|(v, (a, b))| (v, a, b)).collect();
+        assert_eq!(got, want);
     }
 
     #[test]
