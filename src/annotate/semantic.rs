@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::json;
 
 use super::cityscapes::{CityscapesLabel, SemanticClasses};
+use crate::model::PixelBox;
 
 /// One panoptic segment, as COCO panoptic's `segments_info` holds it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -53,13 +54,14 @@ pub fn semantic(
     let raw = instance.as_raw();
     let index = |id: u32| (id as usize).min(ids);
     let extents = extents(raw, width as usize, ids);
+    let label_id: Vec<u8> = (0..=ids).map(|id| classes.label_of(id as u32).id).collect();
     // Each shown object's instanceIds value: numbered per label in instance-id order.
     let mut counts = [0u32; 256];
     let values: Vec<u16> = (0..=ids)
         .map(|id| {
-            let label = classes.label_of(id as u32);
+            let label = &classes.labels[usize::from(label_id[id])];
             let k = &mut counts[usize::from(label.id)];
-            let value = if extents[id].0 > 0 && label.has_instances && *k < 1000 {
+            let value = if extents[id].is_some() && label.has_instances && *k < 1000 {
                 *k += 1;
                 u32::from(label.id) * 1000 + *k - 1
             } else {
@@ -68,8 +70,6 @@ pub fn semantic(
             value as u16
         })
         .collect();
-    let label_of = |value: u16| value_label(classes, value);
-    let label_id: Vec<u8> = (0..=ids).map(|id| classes.label_of(id as u32).id).collect();
     let colour: Vec<[u8; 3]> = label_id
         .iter()
         .map(|&l| classes.labels[usize::from(l)].color)
@@ -78,7 +78,7 @@ pub fn semantic(
         .iter()
         .map(|&value| {
             let [lo, hi] = value.to_le_bytes();
-            if label_of(value).ignore_in_eval {
+            if value_label(classes, value).ignore_in_eval {
                 [0, 0, 0]
             } else {
                 [lo, hi, 0]
@@ -104,13 +104,14 @@ pub fn semantic(
     }
 }
 
-/// A pixel count and box `[x0, y0, x1, y1]` (inclusive).
-type Extent = (u64, [u32; 4]);
+/// A shown instance id's (or value's) pixel count and box.
+type Extent = (u64, PixelBox);
 
 /// Per instance id `0..=ids` (ids past `ids` counted at `ids`): its pixels in `raw` (rows
-/// `width` long) and their box, taken a run of equal ids at a time.
-fn extents(raw: &[u32], width: usize, ids: usize) -> Vec<Extent> {
-    let mut extents = vec![(0u64, [u32::MAX, u32::MAX, 0, 0]); ids + 1];
+/// `width` long) and their box, taken a run of equal ids at a time; `None` where the
+/// frame does not show it.
+fn extents(raw: &[u32], width: usize, ids: usize) -> Vec<Option<Extent>> {
+    let mut extents = vec![None; ids + 1];
     for (y, row) in raw.chunks_exact(width.max(1)).enumerate() {
         let mut x = 0;
         while x < row.len() {
@@ -119,14 +120,12 @@ fn extents(raw: &[u32], width: usize, ids: usize) -> Vec<Extent> {
                 .iter()
                 .position(|&v| v != id)
                 .map_or(row.len(), |n| x + n);
-            let (area, b) = &mut extents[(id as usize).min(ids)];
+            let (first, last, y) = (x as u32, end as u32 - 1, y as u32);
+            let (area, b) =
+                extents[(id as usize).min(ids)].get_or_insert((0, PixelBox::at(first, y)));
             *area += (end - x) as u64;
-            *b = [
-                b[0].min(x as u32),
-                b[1].min(y as u32),
-                b[2].max(end as u32 - 1),
-                b[3].max(y as u32),
-            ];
+            b.include(first, y);
+            b.include(last, y);
             x = end;
         }
     }
@@ -146,19 +145,17 @@ fn value_label(classes: &SemanticClasses, value: u16) -> &CityscapesLabel {
 /// The panoptic segments, by value, as `createPanopticImgs` makes them from the
 /// instanceIds image: the pixels of every instance id with one value (`values`) together,
 /// the values of labels ignored in evaluation left out.
-fn segments(classes: &SemanticClasses, values: &[u16], extents: &[Extent]) -> Vec<Segment> {
+fn segments(classes: &SemanticClasses, values: &[u16], extents: &[Option<Extent>]) -> Vec<Segment> {
     let mut by_value: std::collections::BTreeMap<u16, Extent> = Default::default();
-    for (&value, &(area, b)) in values.iter().zip(extents).filter(|(_, e)| e.0 > 0) {
-        let (total, bb) = by_value
-            .entry(value)
-            .or_insert((0, [u32::MAX, u32::MAX, 0, 0]));
+    let shown = values
+        .iter()
+        .zip(extents)
+        .filter_map(|(&v, e)| Some((v, (*e)?)));
+    for (value, (area, b)) in shown {
+        let (total, joined) = by_value.entry(value).or_insert((0, b));
         *total += area;
-        *bb = [
-            bb[0].min(b[0]),
-            bb[1].min(b[1]),
-            bb[2].max(b[2]),
-            bb[3].max(b[3]),
-        ];
+        joined.include(b.x_min, b.y_min);
+        joined.include(b.x_max, b.y_max);
     }
     by_value
         .into_iter()
@@ -169,7 +166,7 @@ fn segments(classes: &SemanticClasses, values: &[u16], extents: &[Extent]) -> Ve
                 id: u32::from(value),
                 category_id: label.id,
                 area,
-                bbox: [b[0], b[1], b[2] - b[0] + 1, b[3] - b[1] + 1],
+                bbox: b.bbox(),
                 iscrowd: u8::from(value < 1000 && label.has_instances),
             }
         })
