@@ -3,7 +3,9 @@
 //! - layout generation, parsing, lamp siting and building placement, for the default
 //!   768 × 768 layout and for a 4 × 4 mirrored one (3072 × 3072);
 //! - a cold build (empty cache, no output folder; up to 5 runs) with every stage's median,
-//!   then a no-op rebuild (everything cached), through the library and as a whole process.
+//!   then a no-op rebuild (everything cached), through the library and as a whole process;
+//! - reading an OpenStreetMap extract into its map (`osm::read`): the committed
+//!   `assets/osm/helsinki.osm.pbf` (1.0 × 1.7 km of central Helsinki) and its PNG picture.
 //!
 //! Targets on the 2-core machine (issue 2): layout + parse + place for 768 × 768 under
 //! 50 ms; a no-op rebuild under 30 ms; (issue 11) the cold build of the day spec without
@@ -35,6 +37,34 @@ fn main() {
     stages("768x768", &[], runs);
     stages("4x4 mirrored (3072x3072)", &[2, 1, 2, 1], runs);
     noop_rebuild(runs);
+    osm_read(runs);
+}
+
+/// `osm::read` of the Helsinki extract from its bytes (the file read once, outside the
+/// timing), then its picture.
+fn osm_read(runs: usize) {
+    let bytes = std::fs::read(repo().join("assets/osm/helsinki.osm.pbf")).unwrap();
+    let mut reads = Vec::new();
+    let mut draws = Vec::new();
+    let mut counts = (0, 0, 0);
+    for _ in 0..runs {
+        let start = Instant::now();
+        let map = cityspec::osm::read(&bytes, None).unwrap();
+        let read = Instant::now();
+        black_box(cityspec::osm::draw(&map, 2048));
+        draws.push(read.elapsed());
+        reads.push(read - start);
+        counts = (map.buildings.len(), map.roads.len(), map.features.len());
+    }
+    println!(
+        "OSM helsinki.osm.pbf ({} KiB): {} buildings, {} road and path pieces, {} features",
+        bytes.len() / 1024,
+        counts.0,
+        counts.1,
+        counts.2
+    );
+    row("  osm::read (PBF → map in metres)", &mut reads);
+    row("  osm::draw (2048-pixel picture)", &mut draws);
 }
 
 fn stages(label: &str, ops: &[u8], runs: usize) {

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Parser, Subcommand};
 
 use super::shared_args::{CacheArg, JobsArg, OutArg, SetArg};
+use crate::model::GeoBox;
 
 /// Turn a versioned TOML spec into a synthetic city dataset: a road layout, the city plan,
 /// a textured 3D city, and rendered, labelled frames. The same spec gives the same bytes
@@ -147,6 +148,37 @@ pub enum Command {
     /// Work with the stage cache.
     #[command(subcommand)]
     Cache(CacheCommand),
+    /// Read an OpenStreetMap extract into the map a city is built from: building footprints
+    /// (with courtyards) and heights, road centrelines with their widths and sidewalks,
+    /// and the map's traffic signals, lamps, trees, benches, signs and crossings, in
+    /// metres around the box's centre. Prints what it read; writes it as JSON and as a
+    /// picture when asked.
+    ///
+    /// Buildings with a node outside the box are left out; roads are cut at its edges. The
+    /// rules (which tags, which defaults, the projection) are in docs/osm.md. Building a
+    /// city from the map is not there yet: the city's geometry takes axis-aligned
+    /// layouts only.
+    #[command(
+        after_help = "Examples:\n  cityspec osm assets/osm/helsinki.osm.pbf --picture map.png\n  cityspec osm city.osm --bbox 60.165,24.936,60.172,24.950 --json map.json"
+    )]
+    Osm {
+        /// The extract: an .osm.pbf file or OSM XML.
+        #[arg(value_name = "EXTRACT")]
+        file: PathBuf,
+        /// Only what lies in this box: south,west,north,east in degrees (default: the
+        /// file's own bounds, else the extent of its nodes).
+        #[arg(long, value_name = "S,W,N,E", value_parser = parse_box)]
+        bbox: Option<GeoBox>,
+        /// Write the map as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Write a picture of the map (PNG, north up) to this file.
+        #[arg(long, value_name = "FILE")]
+        picture: Option<PathBuf>,
+        /// The picture's longer side in pixels.
+        #[arg(long, value_name = "PIXELS", default_value_t = 2048, value_parser = clap::value_parser!(u32).range(64..=16384))]
+        picture_size: u32,
+    },
     /// Show each cached stage of a spec: what its key is the hash of (its version, the
     /// spec parts it reads, the stages and input files it consumes) and what the cache
     /// holds under it. Runs nothing and writes nothing.
@@ -259,4 +291,30 @@ pub enum FacadesCommand {
         #[arg(value_name = "DIR")]
         dir: PathBuf,
     },
+}
+
+/// `--bbox S,W,N,E`: four numbers in degrees, south below north and west left of east.
+fn parse_box(text: &str) -> Result<GeoBox, String> {
+    let numbers: Vec<f64> = text
+        .split(',')
+        .map(|n| {
+            n.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{n:?} is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    let [south, west, north, east] = numbers[..] else {
+        return Err(format!(
+            "expected four numbers south,west,north,east; got {}",
+            numbers.len()
+        ));
+    };
+    let b = GeoBox {
+        south,
+        west,
+        north,
+        east,
+    };
+    crate::osm::check_box(&b).map_err(|e| e.to_string())?;
+    Ok(b)
 }

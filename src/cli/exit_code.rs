@@ -24,6 +24,8 @@ pub fn exit_code(error: &BuildError) -> u8 {
         | BuildError::Classes { .. }
         | BuildError::Strict { .. }
         | BuildError::DuplicateName { .. }
+        | BuildError::OsmFile { .. }
+        | BuildError::Osm { .. }
         | BuildError::OutNotAFolder { .. }
         | BuildError::NotACache { .. } => INPUT,
         // The spec asked for more objects than instance ids can tell apart.

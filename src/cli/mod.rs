@@ -16,6 +16,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::driver::{self, BuildError, BuildOptions};
+use crate::model::FeatureKind;
 use args::{Args, CacheCommand, Command, FacadesCommand};
 use shared_args::{CacheArg, JobsArg, OutArg, SetArg};
 
@@ -124,6 +125,21 @@ pub fn run() -> ExitCode {
             set: SetArg { sets },
         } => validate_command(&cx, &specs, &sets),
         Command::Facades(FacadesCommand::Export { dir }) => facades_export(&cx, &dir),
+        Command::Osm {
+            file,
+            bbox,
+            json,
+            picture,
+            picture_size,
+        } => osm(
+            &cx,
+            &file,
+            bbox,
+            driver::OsmOutputs {
+                json,
+                picture: picture.map(|p| (p, picture_size)),
+            },
+        ),
         Command::Cache(CacheCommand::Gc {
             specs,
             cache: CacheArg { cache },
@@ -300,6 +316,53 @@ fn facades_export(cx: &Context, dir: &Path) -> ExitCode {
         }
         Err(e) => exit_for(&[e], &cx.out),
     }
+}
+
+/// `cityspec osm EXTRACT`: what the map holds.
+fn osm(
+    cx: &Context,
+    file: &Path,
+    bbox: Option<crate::model::GeoBox>,
+    outputs: driver::OsmOutputs,
+) -> ExitCode {
+    let map = match driver::read_osm(file, bbox, &outputs) {
+        Ok(map) => map,
+        Err(e) => return exit_for(&[e], &cx.out),
+    };
+    let b = &map.bounds;
+    let [x0, z0, x1, z1] = map.extent;
+    let area: f64 = map.buildings.iter().map(|b| b.area).sum();
+    let with_height = map.buildings.iter().filter(|b| b.height.is_some()).count();
+    let drivable: Vec<_> = map.roads.iter().filter(|r| r.drivable).collect();
+    let km =
+        |roads: &[&crate::model::MapRoad]| roads.iter().map(|r| r.length).sum::<f64>() / 1000.0;
+    let paths: Vec<_> = map.roads.iter().filter(|r| !r.drivable).collect();
+    let l = &map.left_out;
+    cx.out.info(&format!(
+        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box",
+        file.display(),
+        b.south, b.west, b.north, b.east, x1 - x0, z1 - z0,
+        map.buildings.len(), with_height, area,
+        drivable.len(), km(&drivable), paths.len(), km(&paths),
+        count(&map, FeatureKind::TrafficSignals), count(&map, FeatureKind::StreetLamp),
+        count(&map, FeatureKind::Tree), count(&map, FeatureKind::Bench),
+        count(&map, FeatureKind::TrafficSign), count(&map, FeatureKind::Crossing),
+        l.buildings_outside, l.buildings_open, l.buildings_incomplete, l.ways_missing_nodes, l.roads_outside,
+    ));
+    for (what, path) in [
+        ("map", outputs.json.as_deref()),
+        ("picture", outputs.picture.as_ref().map(|p| p.0.as_path())),
+    ] {
+        if let Some(path) = path {
+            cx.out
+                .info(&format!("wrote the {what} to {}", path.display()));
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+fn count(map: &crate::model::OsmMap, kind: FeatureKind) -> usize {
+    map.features.iter().filter(|f| f.kind == kind).count()
 }
 
 /// `cityspec cache gc`: what it kept and removed, and (even with `--quiet`) what it left

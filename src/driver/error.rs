@@ -94,6 +94,20 @@ pub enum BuildError {
         first: PathBuf,
         second: PathBuf,
     },
+    /// `cityspec osm`: the extract cannot be read (missing, not a regular file, too large).
+    #[error("cannot read the extract {}: {source}", file.display())]
+    OsmFile {
+        file: PathBuf,
+        #[source]
+        source: crate::spec::InputFileError,
+    },
+    /// `cityspec osm`: the extract is not OpenStreetMap data, or broken, or the box is wrong.
+    #[error("{}: {source}", file.display())]
+    Osm {
+        file: PathBuf,
+        #[source]
+        source: crate::osm::OsmError,
+    },
     /// `cityspec pack` could not read a file it packs, or write the archive.
     #[error("cannot pack {}: {source}", path.display())]
     Pack { path: PathBuf, source: io::Error },

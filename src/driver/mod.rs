@@ -21,6 +21,7 @@ mod inputs;
 #[cfg(test)]
 mod kitti_tests;
 mod model_files;
+mod osm_map;
 mod output_names;
 mod pack;
 mod pipeline;
@@ -51,6 +52,7 @@ pub use codec::VERSION as CODEC_VERSION;
 pub use decode_error::DecodeError;
 pub use error::BuildError;
 pub use explain::{Explained, StageLine, explain};
+pub use osm_map::{MAX_EXTRACT_BYTES, OsmOutputs, read_osm};
 pub use output_names::{OutputNames, is_safe_relative};
 pub use pack::{Packed, SPEC_ENTRY, pack};
 pub use pipeline::ArtifactOut;

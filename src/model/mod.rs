@@ -21,6 +21,7 @@ mod instances;
 mod lamp;
 mod movement;
 mod object_kind;
+mod osm_map;
 mod parsed_layout;
 mod pixel_box;
 mod pixel_class;
@@ -41,6 +42,9 @@ pub use instances::{Instance, Instances};
 pub use lamp::Lamp;
 pub use movement::{Movement, Recolour};
 pub use object_kind::ObjectKind;
+pub use osm_map::{
+    FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapRoad, OsmElement, OsmMap,
+};
 pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;
 pub use pixel_class::PixelClass;

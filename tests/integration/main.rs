@@ -22,6 +22,7 @@ mod input_files;
 mod instances;
 mod lock;
 mod mutations;
+mod osm;
 mod pack;
 mod sensor;
 mod shard_kill;

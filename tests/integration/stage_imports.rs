@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 const STAGES: &[&str] = &[
     "layout", "parse", "mirror", "lamps", "place", "plan", "preview", "facades", "scene",
     "objects", "export", "cameras", "render", "annotate", "sensor", "stats", "views", "dataset",
-    "lidar", "traffic",
+    "lidar", "traffic", "osm",
 ];
 
 /// The stages a stage may read besides itself and the shared modules: the graph's

@@ -1,0 +1,53 @@
+//! `cityspec osm`: an extract read into the map a city will be built from, written as
+//! JSON and a picture.
+
+use std::path::{Path, PathBuf};
+
+use super::BuildError;
+use crate::atomic_file::write_atomic;
+use crate::model::{GeoBox, OsmMap, encode_png};
+use crate::spec::read_capped;
+
+/// The largest extract `cityspec osm` reads: a city's PBF (Berlin's is about 80 MB) fits,
+/// with room.
+pub const MAX_EXTRACT_BYTES: u64 = 1 << 30;
+
+/// Where `cityspec osm` writes, and how large the picture is.
+pub struct OsmOutputs {
+    /// The map as JSON.
+    pub json: Option<PathBuf>,
+    /// A picture of the map (PNG), and its longer side in pixels.
+    pub picture: Option<(PathBuf, u32)>,
+}
+
+/// Reads `file` (restricted to `bbox` when given) and writes what `outputs` asks for.
+pub fn read_osm(
+    file: &Path,
+    bbox: Option<GeoBox>,
+    outputs: &OsmOutputs,
+) -> Result<OsmMap, BuildError> {
+    let bytes = read_capped(file, MAX_EXTRACT_BYTES).map_err(|source| BuildError::OsmFile {
+        file: file.to_owned(),
+        source,
+    })?;
+    let map = crate::osm::read(&bytes, bbox).map_err(|source| BuildError::Osm {
+        file: file.to_owned(),
+        source,
+    })?;
+    drop(bytes);
+    let write = |path: &Path, bytes: &[u8]| {
+        write_atomic(path, bytes).map_err(|source| BuildError::Output {
+            path: path.to_owned(),
+            source,
+        })
+    };
+    if let Some(path) = &outputs.json {
+        let mut json = serde_json::to_vec_pretty(&map).expect("a map serializes");
+        json.push(b'\n');
+        write(path, &json)?;
+    }
+    if let Some((path, side)) = &outputs.picture {
+        write(path, &encode_png(&crate::osm::draw(&map, *side)))?;
+    }
+    Ok(map)
+}

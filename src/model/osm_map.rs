@@ -1,0 +1,150 @@
+//! A map read from an OpenStreetMap extract (`osm::read`), in metres.
+
+use serde::{Deserialize, Serialize};
+
+/// What cityspec reads from an OpenStreetMap extract: building footprints, road
+/// centrelines and the map's street furniture, projected to metres around the box's
+/// centre. Coordinates are `[x, z]`: x east and z south, as in [`crate::model::CityPlan`].
+/// Every list is sorted by OSM id (and part), so the same extract and box give the same
+/// map, whatever order the file holds its elements in.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct OsmMap {
+    /// The box read, in degrees: the one asked for, else the file's own bounds, else the
+    /// extent of its nodes.
+    pub bounds: GeoBox,
+    /// Latitude and longitude (degrees) of the origin `[0, 0]`: the box's centre.
+    pub origin: [f64; 2],
+    /// Metres per degree of longitude and of latitude at the origin (the projection,
+    /// see `osm::Projection`).
+    pub metres_per_degree: [f64; 2],
+    /// The box in metres: `[min_x, min_z, max_x, max_z]`.
+    pub extent: [f64; 4],
+    /// Buildings wholly inside the box, by OSM id.
+    pub buildings: Vec<MapBuilding>,
+    /// Roads and paths, clipped to the box, by way id and piece.
+    pub roads: Vec<MapRoad>,
+    /// Street furniture the map places (signals, lamps, trees, benches, signs,
+    /// crossings), inside the box, by node id.
+    pub features: Vec<MapFeature>,
+    /// What was in the file and left out, and why.
+    pub left_out: LeftOut,
+}
+
+/// A box in degrees.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GeoBox {
+    pub south: f64,
+    pub west: f64,
+    pub north: f64,
+    pub east: f64,
+}
+
+impl GeoBox {
+    /// Whether `(lat, lon)` lies in the box (edges included).
+    pub fn contains(&self, lat: f64, lon: f64) -> bool {
+        (self.south..=self.north).contains(&lat) && (self.west..=self.east).contains(&lon)
+    }
+}
+
+/// The OSM element a map item comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OsmElement {
+    Way(i64),
+    Relation(i64),
+}
+
+/// A building footprint: one outer ring with its holes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapBuilding {
+    /// The closed way or multipolygon relation tagged `building=*`.
+    pub element: OsmElement,
+    /// Which outer ring of a multipolygon (0 for a way).
+    pub part: u32,
+    /// The `building` tag's value (`yes`, `apartments`, …).
+    pub kind: String,
+    /// The outer ring, ordered so that its shoelace area in `[x, z]` is positive, without
+    /// repeating its first point.
+    pub outer: Vec<[f64; 2]>,
+    /// Inner rings (courtyards), ordered the other way round, without repeating first
+    /// points.
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// Footprint area in square metres: the outer ring's less its holes'.
+    pub area: f64,
+    /// Height in metres where the map gives one (`height`, else `building:levels` (+
+    /// `roof:levels`) × the floor height); else the city seeds one.
+    pub height: Option<f64>,
+    /// Where the height came from: `height`, `levels` or `none`.
+    pub height_from: String,
+    /// `roof:shape` where the map gives it.
+    pub roof_shape: Option<String>,
+}
+
+/// A road or path centreline with its cross-section.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapRoad {
+    /// The way's id.
+    pub way: i64,
+    /// Which piece of the way inside the box (0 when the box does not cut it).
+    pub piece: u32,
+    /// The `highway` tag's value.
+    pub class: String,
+    /// Whether cars drive on it (motorway to service roads and their links).
+    pub drivable: bool,
+    /// The centreline, at least two points.
+    pub centreline: Vec<[f64; 2]>,
+    /// The centreline's length in metres.
+    pub length: f64,
+    /// Carriageway width in metres.
+    pub width: f64,
+    /// Where the width came from: `width`, `lanes` or `default`.
+    pub width_from: String,
+    /// Sidewalk widths in metres on the left and the right of the way's direction (0: none).
+    pub sidewalks: [f64; 2],
+    /// `oneway=yes` (or a roundabout, or a motorway).
+    pub oneway: bool,
+    /// `junction=roundabout`.
+    pub roundabout: bool,
+    /// The `name` tag.
+    pub name: Option<String>,
+    /// Whether the box cut the way.
+    pub clipped: bool,
+}
+
+/// A node the map tags as street furniture.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapFeature {
+    pub node: i64,
+    pub kind: FeatureKind,
+    pub at: [f64; 2],
+    /// The tag that says what it is, `key=value` (`traffic_sign=DE:206`).
+    pub tag: String,
+}
+
+/// What a [`MapFeature`] is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeatureKind {
+    TrafficSignals,
+    StreetLamp,
+    Tree,
+    Bench,
+    TrafficSign,
+    Crossing,
+}
+
+/// Counts of what the reader left out, each for the reason its name gives.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LeftOut {
+    /// Buildings with a node outside the box.
+    pub buildings_outside: u32,
+    /// `building=*` ways that do not close, or with fewer than three distinct points.
+    pub buildings_open: u32,
+    /// Multipolygon buildings whose member ways are not all in the file or do not close
+    /// into rings.
+    pub buildings_incomplete: u32,
+    /// Ways naming a node the file does not hold.
+    pub ways_missing_nodes: u32,
+    /// Roads wholly outside the box.
+    pub roads_outside: u32,
+}

@@ -1,0 +1,396 @@
+//! The reader's one pass: what an extract's elements leave behind, resolved into an
+//! [`OsmMap`] once the file ends (so files in any element order read the same).
+
+use std::collections::HashMap;
+
+use super::OsmError;
+use super::clip::clip;
+use super::elements::Sink;
+use super::projection::Projection;
+use super::rings::{contains, join, signed_area};
+use super::tags;
+use crate::model::{
+    FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapRoad, OsmElement, OsmMap,
+};
+
+/// A building's tags, as read.
+struct BuildingTags {
+    kind: String,
+    height: Option<f64>,
+    height_from: &'static str,
+    roof_shape: Option<String>,
+}
+
+impl BuildingTags {
+    /// The building a way or relation's tags make it, if any.
+    fn of(tags: &[(&str, &str)]) -> Option<BuildingTags> {
+        let kind = tags::get(tags, "building").filter(|b| *b != "no")?;
+        let (height, height_from) = tags::height(tags);
+        Some(BuildingTags {
+            kind: kind.to_owned(),
+            height,
+            height_from,
+            roof_shape: tags::get(tags, "roof:shape").map(str::to_owned),
+        })
+    }
+}
+
+/// A road's tags, as read.
+struct RoadTags {
+    class: String,
+    width: (f64, &'static str),
+    sidewalks: [f64; 2],
+    oneway: bool,
+    roundabout: bool,
+    name: Option<String>,
+}
+
+/// A multipolygon relation tagged `building=*`: its id, its member ways (`true`: an
+/// outer ring's) and its tags.
+type BuildingRelation = (i64, Vec<(i64, bool)>, BuildingTags);
+
+/// Rings as node ids: the outer ones and the inner ones.
+type Rings = (Vec<Vec<i64>>, Vec<Vec<i64>>);
+
+/// Everything kept from the elements: node positions, every way's nodes (a multipolygon
+/// may name any of them) and the tags of the ways and nodes the map uses.
+#[derive(Default)]
+pub struct Collector {
+    file_bounds: Option<GeoBox>,
+    nodes: HashMap<i64, [i32; 2]>,
+    way_nodes: HashMap<i64, Vec<i64>>,
+    features: Vec<(i64, FeatureKind, String)>,
+    buildings: Vec<(i64, BuildingTags)>,
+    roads: Vec<(i64, RoadTags)>,
+    relations: Vec<BuildingRelation>,
+}
+
+impl Sink for Collector {
+    fn bounds(&mut self, south: f64, west: f64, north: f64, east: f64) {
+        self.file_bounds = Some(GeoBox {
+            south,
+            west,
+            north,
+            east,
+        });
+    }
+
+    fn node(&mut self, id: i64, lat: i32, lon: i32, tags: &[(&str, &str)]) {
+        self.nodes.insert(id, [lat, lon]);
+        if let Some((kind, tag)) = tags::feature(tags) {
+            self.features.push((id, kind, tag));
+        }
+    }
+
+    fn way(&mut self, id: i64, refs: &[i64], tags: &[(&str, &str)]) {
+        self.way_nodes.insert(id, refs.to_vec());
+        if let Some(building) = BuildingTags::of(tags) {
+            self.buildings.push((id, building));
+        }
+        let area = tags::get(tags, "area") == Some("yes");
+        if let Some(class) = tags::get(tags, "highway").filter(|c| !tags::not_a_way(c) && !area) {
+            let roundabout = tags::get(tags, "junction") == Some("roundabout");
+            let oneway = matches!(tags::get(tags, "oneway"), Some("yes" | "1" | "-1"))
+                || roundabout
+                || class == "motorway";
+            self.roads.push((
+                id,
+                RoadTags {
+                    class: class.to_owned(),
+                    width: tags::width(class, tags),
+                    sidewalks: tags::sidewalks(class, tags),
+                    oneway,
+                    roundabout,
+                    name: tags::get(tags, "name").map(str::to_owned),
+                },
+            ));
+        }
+    }
+
+    fn relation(&mut self, id: i64, ways: &[(i64, &str)], tags: &[(&str, &str)]) {
+        if tags::get(tags, "type") != Some("multipolygon") {
+            return;
+        }
+        if let Some(building) = BuildingTags::of(tags) {
+            let members = ways
+                .iter()
+                .map(|(w, role)| (*w, *role != "inner"))
+                .collect();
+            self.relations.push((id, members, building));
+        }
+    }
+}
+
+impl Collector {
+    /// The map inside `bbox` (else the file's bounds, else its nodes' extent).
+    pub fn finish(self, bbox: Option<GeoBox>) -> Result<OsmMap, OsmError> {
+        let bounds = match bbox.or(self.file_bounds) {
+            Some(b) => b,
+            None => self.node_extent().ok_or(OsmError::NoNodes)?,
+        };
+        let projection = Projection::new(
+            (bounds.south + bounds.north) / 2.0,
+            (bounds.west + bounds.east) / 2.0,
+        );
+        let [x0, z1] = projection.project(bounds.south, bounds.west);
+        let [x1, z0] = projection.project(bounds.north, bounds.east);
+        let extent = [x0, z0, x1, z1];
+        let mut left_out = LeftOut::default();
+        let mut buildings = self.way_buildings(&bounds, &projection, &mut left_out);
+        buildings.extend(self.relation_buildings(&bounds, &projection, &mut left_out));
+        buildings.sort_by_key(|b| (b.element, b.part));
+        let roads = self.roads(extent, &projection, &mut left_out);
+        let mut features: Vec<MapFeature> = self
+            .features
+            .iter()
+            .filter_map(|(id, kind, tag)| {
+                let [lat, lon] = degrees(self.nodes[id]);
+                bounds.contains(lat, lon).then(|| MapFeature {
+                    node: *id,
+                    kind: *kind,
+                    at: projection.project(lat, lon),
+                    tag: tag.clone(),
+                })
+            })
+            .collect();
+        features.sort_by_key(|f| f.node);
+        Ok(OsmMap {
+            bounds,
+            origin: projection.origin,
+            metres_per_degree: projection.metres_per_degree,
+            extent,
+            buildings,
+            roads,
+            features,
+            left_out,
+        })
+    }
+
+    fn node_extent(&self) -> Option<GeoBox> {
+        let mut it = self.nodes.values().map(|&n| degrees(n));
+        let [lat, lon] = it.next()?;
+        let mut b = GeoBox {
+            south: lat,
+            west: lon,
+            north: lat,
+            east: lon,
+        };
+        for [lat, lon] in it {
+            b.south = b.south.min(lat);
+            b.north = b.north.max(lat);
+            b.west = b.west.min(lon);
+            b.east = b.east.max(lon);
+        }
+        Some(b)
+    }
+
+    /// `(lat, lon)` of every node of `refs`, or `None` when the file lacks one.
+    fn locate(&self, refs: &[i64]) -> Option<Vec<[f64; 2]>> {
+        refs.iter()
+            .map(|id| self.nodes.get(id).map(|&n| degrees(n)))
+            .collect()
+    }
+
+    fn way_buildings(
+        &self,
+        bounds: &GeoBox,
+        projection: &Projection,
+        left_out: &mut LeftOut,
+    ) -> Vec<MapBuilding> {
+        let mut out = Vec::new();
+        for (id, tags) in &self.buildings {
+            let refs = &self.way_nodes[id];
+            if refs.len() < 4 || refs.first() != refs.last() {
+                left_out.buildings_open += 1;
+                continue;
+            }
+            let Some(points) = self.locate(&refs[..refs.len() - 1]) else {
+                left_out.ways_missing_nodes += 1;
+                continue;
+            };
+            if !points.iter().all(|&[lat, lon]| bounds.contains(lat, lon)) {
+                left_out.buildings_outside += 1;
+                continue;
+            }
+            match ring(&points, projection, true) {
+                Some(outer) => out.push(building(OsmElement::Way(*id), 0, tags, outer, Vec::new())),
+                None => left_out.buildings_open += 1,
+            }
+        }
+        out
+    }
+
+    fn relation_buildings(
+        &self,
+        bounds: &GeoBox,
+        projection: &Projection,
+        left_out: &mut LeftOut,
+    ) -> Vec<MapBuilding> {
+        let mut out = Vec::new();
+        for (id, members, tags) in &self.relations {
+            let Some(rings) = self.relation_rings(members) else {
+                left_out.buildings_incomplete += 1;
+                continue;
+            };
+            let (outers, inners) = rings;
+            let located: Option<Vec<Vec<[f64; 2]>>> = outers
+                .iter()
+                .chain(&inners)
+                .map(|r| self.locate(r))
+                .collect();
+            let Some(located) = located else {
+                left_out.ways_missing_nodes += 1;
+                continue;
+            };
+            let inside = located
+                .iter()
+                .flatten()
+                .all(|&[lat, lon]| bounds.contains(lat, lon));
+            if !inside {
+                left_out.buildings_outside += 1;
+                continue;
+            }
+            let projected: Vec<Option<Vec<[f64; 2]>>> = located
+                .iter()
+                .enumerate()
+                .map(|(i, r)| ring(r, projection, i < outers.len()))
+                .collect();
+            let (outer_rings, inner_rings) = projected.split_at(outers.len());
+            let inner_rings: Vec<&Vec<[f64; 2]>> = inner_rings.iter().flatten().collect();
+            for (part, outer) in outer_rings.iter().flatten().enumerate() {
+                let holes = inner_rings
+                    .iter()
+                    .filter(|h| contains(outer, h[0]))
+                    .map(|h| (*h).clone())
+                    .collect();
+                let element = OsmElement::Relation(*id);
+                out.push(building(element, part as u32, tags, outer.clone(), holes));
+            }
+        }
+        out
+    }
+
+    /// A multipolygon's outer and inner rings as node ids, or `None` when a member is
+    /// missing or the rings do not close.
+    fn relation_rings(&self, members: &[(i64, bool)]) -> Option<Rings> {
+        let mut outer = Vec::new();
+        let mut inner = Vec::new();
+        for (way, is_outer) in members {
+            let refs = self.way_nodes.get(way)?.as_slice();
+            if *is_outer {
+                outer.push(refs)
+            } else {
+                inner.push(refs)
+            }
+        }
+        let outers = join(&outer)?;
+        (!outers.is_empty()).then_some(())?;
+        Some((outers, join(&inner)?))
+    }
+
+    fn roads(
+        &self,
+        extent: [f64; 4],
+        projection: &Projection,
+        left_out: &mut LeftOut,
+    ) -> Vec<MapRoad> {
+        let mut out = Vec::new();
+        for (id, tags) in &self.roads {
+            let Some(points) = self.locate(&self.way_nodes[id]) else {
+                left_out.ways_missing_nodes += 1;
+                continue;
+            };
+            let mut line: Vec<[f64; 2]> = points
+                .iter()
+                .map(|&[lat, lon]| projection.project(lat, lon))
+                .collect();
+            line.dedup();
+            if line.len() < 2 {
+                continue;
+            }
+            let pieces = clip(&line, extent);
+            if pieces.is_empty() {
+                left_out.roads_outside += 1;
+            }
+            let clipped = pieces.len() != 1 || pieces[0] != line;
+            for (piece, centreline) in pieces.into_iter().enumerate() {
+                out.push(MapRoad {
+                    way: *id,
+                    piece: piece as u32,
+                    class: tags.class.clone(),
+                    drivable: tags::drivable(&tags.class),
+                    length: length(&centreline),
+                    centreline,
+                    width: tags.width.0,
+                    width_from: tags.width.1.to_owned(),
+                    sidewalks: tags.sidewalks,
+                    oneway: tags.oneway,
+                    roundabout: tags.roundabout,
+                    name: tags.name.clone(),
+                    clipped,
+                });
+            }
+        }
+        out.sort_by_key(|r| (r.way, r.piece));
+        out
+    }
+}
+
+/// A ring of `(lat, lon)` in metres, repeated points dropped, turned so that its
+/// shoelace area is positive for an outer ring and negative for a hole; `None` when fewer
+/// than three distinct points or no area remain.
+fn ring(points: &[[f64; 2]], projection: &Projection, outer: bool) -> Option<Vec<[f64; 2]>> {
+    let mut ring: Vec<[f64; 2]> = points
+        .iter()
+        .map(|&[lat, lon]| projection.project(lat, lon))
+        .collect();
+    ring.dedup();
+    while ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    }
+    let area = signed_area(&ring);
+    if ring.len() < 3 || area == 0.0 {
+        return None;
+    }
+    if (area > 0.0) != outer {
+        ring.reverse();
+    }
+    Some(ring)
+}
+
+fn building(
+    element: OsmElement,
+    part: u32,
+    tags: &BuildingTags,
+    outer: Vec<[f64; 2]>,
+    holes: Vec<Vec<[f64; 2]>>,
+) -> MapBuilding {
+    let area = signed_area(&outer) + holes.iter().map(|h| signed_area(h)).sum::<f64>();
+    MapBuilding {
+        element,
+        part,
+        kind: tags.kind.clone(),
+        outer,
+        holes,
+        area,
+        height: tags.height,
+        height_from: tags.height_from.to_owned(),
+        roof_shape: tags.roof_shape.clone(),
+    }
+}
+
+/// `(lat, lon)` in degrees of a node's 10⁻⁷ degrees.
+fn degrees([lat, lon]: [i32; 2]) -> [f64; 2] {
+    [f64::from(lat) / 1e7, f64::from(lon) / 1e7]
+}
+
+/// A polyline's length.
+pub fn length(line: &[[f64; 2]]) -> f64 {
+    line.windows(2)
+        .map(|w| {
+            let (dx, dz) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+            // Not `hypot`: the platform's libm; a square root is the same bits everywhere.
+            (dx * dx + dz * dz).sqrt()
+        })
+        .sum()
+}

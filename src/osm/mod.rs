@@ -1,0 +1,84 @@
+//! The OpenStreetMap stage: an extract (`.osm` XML or `.osm.pbf`) → [`OsmMap`]: building
+//! footprints with their holes and heights, road centrelines with widths and sidewalks,
+//! and the street furniture the map places, in metres around the box's centre.
+//!
+//! Entry: [`read`]. The driver reads the file's bytes; this stage streams them once
+//! (`elements`: PBF blocks decoded one at a time, XML event by event) into what the map
+//! needs (`collect`: node positions, every way's nodes, the tags it uses), then resolves
+//! ways and multipolygons, projects (`projection`, documented there) and cuts roads to the
+//! box (`clip`). [`draw`] pictures the map. The rules (which tags, which defaults) are in
+//! `docs/osm.md`.
+//!
+//! This is the first part of issue 43: the map a city will be built from. The geometry
+//! core (blocks, roads, lamps, placement, markings, cameras) still takes axis-aligned
+//! layouts only, so no spec builds a city from a map yet.
+
+mod clip;
+mod collect;
+mod draw;
+mod elements;
+mod projection;
+mod rings;
+mod tags;
+#[cfg(test)]
+mod tests;
+
+pub use draw::draw;
+pub use projection::Projection;
+pub use tags::{FLOOR_HEIGHT, LANE_WIDTH, SIDEWALK_WIDTH};
+
+use crate::model::{GeoBox, OsmMap};
+
+/// Why an extract could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum OsmError {
+    /// Neither a PBF file nor XML with an `<osm>` root.
+    #[error("not an OpenStreetMap extract: expected an .osm.pbf file or OSM XML (<osm>)")]
+    NotOsm,
+    /// The PBF decoder refused a block.
+    #[error("broken .osm.pbf: {0}")]
+    Pbf(String),
+    /// The XML is malformed, or an element lacks what OSM requires.
+    #[error("broken OSM XML at byte {offset}: {message}")]
+    Xml { offset: u64, message: String },
+    /// The extract holds no node, and no box was given.
+    #[error("the extract holds no nodes")]
+    NoNodes,
+    /// The box is empty, inverted or off the globe.
+    #[error("the box {0}")]
+    Box(String),
+}
+
+/// Reads the extract `bytes` (PBF or XML, told apart by their first bytes) and returns
+/// what lies inside `bbox` (else the file's own bounds, else its nodes' extent).
+pub fn read(bytes: &[u8], bbox: Option<GeoBox>) -> Result<OsmMap, OsmError> {
+    if let Some(b) = bbox {
+        check_box(&b)?;
+    }
+    let mut sink = collect::Collector::default();
+    if elements::is_pbf(bytes) {
+        elements::read_pbf(bytes, &mut sink)?;
+    } else {
+        elements::read_xml(bytes, &mut sink)?;
+    }
+    sink.finish(bbox)
+}
+
+/// A box must have its south below its north and its west left of its east, on the globe.
+pub fn check_box(b: &GeoBox) -> Result<(), OsmError> {
+    let on_globe = [b.south, b.north].iter().all(|l| l.abs() <= 90.0)
+        && [b.west, b.east].iter().all(|l| l.abs() <= 180.0);
+    if !on_globe {
+        return Err(OsmError::Box(format!(
+            "{},{},{},{} is off the globe: latitudes lie in [-90, 90], longitudes in [-180, 180]",
+            b.south, b.west, b.north, b.east
+        )));
+    }
+    if b.south >= b.north || b.west >= b.east {
+        return Err(OsmError::Box(format!(
+            "{},{},{},{} is empty: give south,west,north,east with south < north and west < east",
+            b.south, b.west, b.north, b.east
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,300 @@
+//! What OSM tags say about a road's cross-section, a building's height and a node's
+//! furniture, with the defaults cityspec uses where the map is silent (`docs/osm.md`).
+
+use crate::model::FeatureKind;
+
+/// A lane's width where a road gives `lanes` but no `width`, metres.
+pub const LANE_WIDTH: f64 = 3.25;
+/// A floor's height for `building:levels`, metres.
+pub const FLOOR_HEIGHT: f64 = 3.0;
+/// A sidewalk's width where the map gives none (`sidewalk:width`), metres.
+pub const SIDEWALK_WIDTH: f64 = 2.0;
+
+/// The value of `key` among `tags`.
+pub fn get<'a>(tags: &[(&str, &'a str)], key: &str) -> Option<&'a str> {
+    tags.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
+}
+
+/// A length in metres from an OSM value: `12`, `12.5 m`, `12m`, `40'`, `40 ft`, `40'6"`.
+/// `None` for anything else, or a length that is not positive.
+pub fn metres(value: &str) -> Option<f64> {
+    let v = value.trim().replace(',', ".");
+    let parsed = if let Some((feet, rest)) = v.split_once('\'') {
+        let inches = rest.trim().trim_end_matches('"').trim();
+        let inches: f64 = if inches.is_empty() {
+            0.0
+        } else {
+            inches.parse().ok()?
+        };
+        Some(feet.trim().parse::<f64>().ok()? * 0.3048 + inches * 0.0254)
+    } else if let Some(feet) = v.strip_suffix("ft") {
+        Some(feet.trim().parse::<f64>().ok()? * 0.3048)
+    } else {
+        v.strip_suffix('m').unwrap_or(&v).trim().parse::<f64>().ok()
+    };
+    parsed.filter(|m| m.is_finite() && *m > 0.0)
+}
+
+/// Highway classes cars drive on.
+pub fn drivable(class: &str) -> bool {
+    matches!(
+        class,
+        "motorway"
+            | "trunk"
+            | "primary"
+            | "secondary"
+            | "tertiary"
+            | "unclassified"
+            | "residential"
+            | "living_street"
+            | "service"
+            | "road"
+            | "motorway_link"
+            | "trunk_link"
+            | "primary_link"
+            | "secondary_link"
+            | "tertiary_link"
+    )
+}
+
+/// Highway values that are not ways at all (areas, planned or removed roads).
+pub fn not_a_way(class: &str) -> bool {
+    matches!(
+        class,
+        "proposed" | "construction" | "abandoned" | "razed" | "platform" | "rest_area" | "services"
+    )
+}
+
+/// Lanes of a class when the map gives neither `width` nor `lanes`.
+fn default_lanes(class: &str) -> f64 {
+    match class.trim_end_matches("_link") {
+        _ if class.ends_with("_link") => 1.0,
+        "motorway" | "trunk" | "primary" => 4.0,
+        "secondary" | "tertiary" | "unclassified" | "residential" | "road" => 2.0,
+        "living_street" => 1.5,
+        "service" => 1.0,
+        _ => 0.0,
+    }
+}
+
+/// Width of a path that is not a road (footway, cycleway, steps, …), metres.
+const PATH_WIDTH: f64 = 2.0;
+
+/// A way's carriageway width and where it came from: `width`, else `lanes` × the lane
+/// width, else the class's default lanes (a path's default width for non-roads).
+pub fn width(class: &str, tags: &[(&str, &str)]) -> (f64, &'static str) {
+    if let Some(w) = get(tags, "width").and_then(metres) {
+        return (w, "width");
+    }
+    let lanes = get(tags, "lanes").and_then(|l| l.trim().parse::<f64>().ok());
+    if let Some(l) = lanes.filter(|l| l.is_finite() && *l >= 1.0) {
+        return (l * LANE_WIDTH, "lanes");
+    }
+    let lanes = default_lanes(class);
+    if lanes > 0.0 {
+        (lanes * LANE_WIDTH, "default")
+    } else {
+        (PATH_WIDTH, "default")
+    }
+}
+
+/// Sidewalk widths, left and right of the way's direction: from `sidewalk`,
+/// `sidewalk:left|right|both` (`separate` means the map draws it as its own way: none
+/// here), the width from `sidewalk:width`; where the map is silent, both sides on
+/// residential to primary roads and none elsewhere.
+pub fn sidewalks(class: &str, tags: &[(&str, &str)]) -> [f64; 2] {
+    let width = get(tags, "sidewalk:width")
+        .and_then(metres)
+        .unwrap_or(SIDEWALK_WIDTH);
+    let yes = |v: &str| matches!(v, "yes" | "both");
+    let side = |key: &str| {
+        get(tags, key).map(|v| {
+            if yes(v) || v == "left" || v == "right" {
+                width
+            } else {
+                0.0
+            }
+        })
+    };
+    let both = get(tags, "sidewalk:both").map(|v| if yes(v) { width } else { 0.0 });
+    let (mut left, mut right) = match get(tags, "sidewalk") {
+        Some("both" | "yes") => (width, width),
+        Some("left") => (width, 0.0),
+        Some("right") => (0.0, width),
+        Some(_) => (0.0, 0.0),
+        None => {
+            let urban = matches!(
+                class,
+                "primary"
+                    | "secondary"
+                    | "tertiary"
+                    | "unclassified"
+                    | "residential"
+                    | "living_street"
+            );
+            let w = if urban { width } else { 0.0 };
+            (w, w)
+        }
+    };
+    if let Some(b) = both {
+        (left, right) = (b, b);
+    }
+    if let Some(l) = side("sidewalk:left") {
+        left = l;
+    }
+    if let Some(r) = side("sidewalk:right") {
+        right = r;
+    }
+    [left, right]
+}
+
+/// A building's height and where it came from: `height`, else (`building:levels` +
+/// `roof:levels`) × the floor height.
+pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
+    if let Some(h) = get(tags, "height").and_then(metres) {
+        return (Some(h), "height");
+    }
+    let levels = |key| {
+        get(tags, key)
+            .and_then(|l| l.trim().parse::<f64>().ok())
+            .filter(|l| l.is_finite() && *l >= 0.0)
+    };
+    match levels("building:levels") {
+        Some(l) if l > 0.0 => {
+            let roof = levels("roof:levels").unwrap_or(0.0);
+            (Some((l + roof) * FLOOR_HEIGHT), "levels")
+        }
+        _ => (None, "none"),
+    }
+}
+
+/// What street furniture a node's tags make it, and the tag that says so.
+pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
+    let tagged = |k: &str, v: &str| format!("{k}={v}");
+    if let Some(sign) = get(tags, "traffic_sign") {
+        return Some((FeatureKind::TrafficSign, tagged("traffic_sign", sign)));
+    }
+    match (
+        get(tags, "highway"),
+        get(tags, "natural"),
+        get(tags, "amenity"),
+    ) {
+        (Some("traffic_signals"), ..) => Some((
+            FeatureKind::TrafficSignals,
+            tagged("highway", "traffic_signals"),
+        )),
+        (Some("street_lamp"), ..) => {
+            Some((FeatureKind::StreetLamp, tagged("highway", "street_lamp")))
+        }
+        (Some("crossing"), ..) => Some((FeatureKind::Crossing, tagged("highway", "crossing"))),
+        (_, Some("tree"), _) => Some((FeatureKind::Tree, tagged("natural", "tree"))),
+        (.., Some("bench")) => Some((FeatureKind::Bench, tagged("amenity", "bench"))),
+        (Some("bench"), ..) => Some((FeatureKind::Bench, tagged("highway", "bench"))),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lengths_read_as_osm_writes_them() {
+        assert_eq!(metres("12"), Some(12.0));
+        assert_eq!(metres("12.5 m"), Some(12.5));
+        assert_eq!(metres("7,5"), Some(7.5));
+        assert_eq!(metres("12m"), Some(12.0));
+        assert!((metres("40'").unwrap() - 12.192).abs() < 1e-9);
+        assert!((metres("40'6\"").unwrap() - 12.3444).abs() < 1e-9);
+        assert!((metres("10 ft").unwrap() - 3.048).abs() < 1e-9);
+        for bad in ["", "tall", "-3", "0", "NaN", "inf", "3 storeys"] {
+            assert_eq!(metres(bad), None, "{bad}");
+        }
+    }
+
+    #[test]
+    fn width_comes_from_width_then_lanes_then_the_class() {
+        assert_eq!(width("residential", &[("width", "7.5")]), (7.5, "width"));
+        assert_eq!(
+            width("residential", &[("lanes", "3")]),
+            (3.0 * LANE_WIDTH, "lanes")
+        );
+        assert_eq!(width("primary", &[]), (4.0 * LANE_WIDTH, "default"));
+        assert_eq!(width("primary_link", &[]), (LANE_WIDTH, "default"));
+        assert_eq!(width("footway", &[]), (2.0, "default"));
+        // A nonsense lanes value falls through to the class.
+        assert_eq!(
+            width("service", &[("lanes", "many")]),
+            (LANE_WIDTH, "default")
+        );
+    }
+
+    #[test]
+    fn sidewalks_follow_the_tags_and_default_by_class() {
+        assert_eq!(sidewalks("residential", &[]), [2.0, 2.0]);
+        assert_eq!(sidewalks("service", &[]), [0.0, 0.0]);
+        assert_eq!(
+            sidewalks("residential", &[("sidewalk", "right")]),
+            [0.0, 2.0]
+        );
+        assert_eq!(
+            sidewalks("residential", &[("sidewalk", "separate")]),
+            [0.0, 0.0]
+        );
+        assert_eq!(sidewalks("residential", &[("sidewalk", "no")]), [0.0, 0.0]);
+        assert_eq!(
+            sidewalks(
+                "service",
+                &[("sidewalk:left", "yes"), ("sidewalk:width", "3")]
+            ),
+            [3.0, 0.0]
+        );
+        assert_eq!(
+            sidewalks("primary", &[("sidewalk:both", "separate")]),
+            [0.0, 0.0]
+        );
+    }
+
+    #[test]
+    fn height_comes_from_height_then_levels() {
+        assert_eq!(
+            height(&[("height", "21 m"), ("building:levels", "3")]),
+            (Some(21.0), "height")
+        );
+        assert_eq!(
+            height(&[("building:levels", "5"), ("roof:levels", "1")]),
+            (Some(18.0), "levels")
+        );
+        assert_eq!(height(&[("building:levels", "0")]), (None, "none"));
+        assert_eq!(height(&[("building", "yes")]), (None, "none"));
+    }
+
+    #[test]
+    fn nodes_become_the_furniture_their_tags_name() {
+        assert_eq!(
+            feature(&[("highway", "traffic_signals")]).unwrap().0,
+            FeatureKind::TrafficSignals
+        );
+        assert_eq!(
+            feature(&[("highway", "street_lamp")]).unwrap().0,
+            FeatureKind::StreetLamp
+        );
+        assert_eq!(
+            feature(&[("natural", "tree")]).unwrap().0,
+            FeatureKind::Tree
+        );
+        assert_eq!(
+            feature(&[("amenity", "bench")]).unwrap().0,
+            FeatureKind::Bench
+        );
+        assert_eq!(
+            feature(&[("highway", "give_way"), ("traffic_sign", "DE:205")]),
+            Some((FeatureKind::TrafficSign, "traffic_sign=DE:205".to_owned()))
+        );
+        assert_eq!(
+            feature(&[("highway", "crossing")]).unwrap().0,
+            FeatureKind::Crossing
+        );
+        assert_eq!(feature(&[("amenity", "post_box")]), None);
+    }
+}

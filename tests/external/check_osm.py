@@ -1,0 +1,148 @@
+"""Checks `cityspec osm`'s map of an extract against pyosmium, an independent OSM reader
+(libosmium): its own node locations, its own multipolygon assembly (the area handler) and
+its own haversine lengths.
+
+    python check_osm.py EXTRACT MAP.json
+
+- every building area osmium assembles (closed ways and multipolygon relations tagged
+  building=*, not building=no) whose nodes all lie in the map's box is in the map, and the
+  map holds no other; each one's footprint area (outer rings less holes, on a sphere of
+  radius 6,371,008.8 m, equirectangular at the building's own latitude) within 2 %;
+- every drivable highway way wholly inside the box is in the map uncut, its centreline
+  length within 2 % of osmium's haversine length; a way the box cuts is in the map with
+  pieces no longer than the whole way (2 % slack); every mapped road's class and way are
+  osmium's.
+Prints the counts and the worst differences; exits 1 on the first failed check.
+"""
+import json
+import math
+import sys
+
+import osmium
+import osmium.geom
+
+R = 6371008.8
+DRIVABLE = {
+    "motorway", "trunk", "primary", "secondary", "tertiary", "unclassified", "residential",
+    "living_street", "service", "road", "motorway_link", "trunk_link", "primary_link",
+    "secondary_link", "tertiary_link",
+}
+
+
+def ring_area(points):
+    """|shoelace area| in m² of (lat, lon) points, equirectangular at their mean latitude."""
+    lat0 = math.radians(sum(p[0] for p in points) / len(points))
+    xy = [(R * math.cos(lat0) * math.radians(lon), R * math.radians(lat)) for lat, lon in points]
+    twice = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(xy, xy[1:] + xy[:1]))
+    return abs(twice) / 2
+
+
+class Reader(osmium.SimpleHandler):
+    def __init__(self, box):
+        super().__init__()
+        self.box = box
+        self.buildings = {}  # ("way"|"relation", id) -> area
+        self.outside = 0
+        self.ways = {}  # id -> (class, length m, nodes inside, node count)
+
+    def inside(self, loc):
+        s, w, n, e = self.box
+        return s <= loc.lat <= n and w <= loc.lon <= e
+
+    def area(self, a):
+        building = a.tags.get("building")
+        if building is None or building == "no":
+            return
+        key = ("way" if a.from_way() else "relation", a.orig_id())
+        rings = []
+        for outer in a.outer_rings():
+            rings.append((1, [n.location for n in outer]))
+            for inner in a.inner_rings(outer):
+                rings.append((-1, [n.location for n in inner]))
+        if not all(self.inside(l) for _, ring in rings for l in ring):
+            self.outside += 1
+            return
+        self.buildings[key] = sum(
+            sign * ring_area([(l.lat, l.lon) for l in ring[:-1]]) for sign, ring in rings
+        )
+
+    def way(self, w):
+        highway = w.tags.get("highway")
+        if highway not in DRIVABLE or w.tags.get("area") == "yes":
+            return
+        if not all(n.location.valid() for n in w.nodes):
+            return
+        inside = sum(self.inside(n.location) for n in w.nodes)
+        self.ways[w.id] = (highway, osmium.geom.haversine_distance(w.nodes), inside, len(w.nodes))
+
+
+def fail(message):
+    print("FAIL:", message)
+    sys.exit(1)
+
+
+def main(extract, map_path):
+    with open(map_path) as f:
+        m = json.load(f)
+    b = m["bounds"]
+    reader = Reader((b["south"], b["west"], b["north"], b["east"]))
+    reader.apply_file(extract, locations=True)
+
+    ours = {}
+    for building in m["buildings"]:
+        (kind, oid), = building["element"].items()
+        ours[(kind, oid)] = ours.get((kind, oid), 0.0) + building["area"]
+    theirs = reader.buildings
+    missing = sorted(set(theirs) - set(ours))
+    extra = sorted(set(ours) - set(theirs))
+    if missing:
+        fail(f"{len(missing)} buildings osmium assembles inside the box are not in the map: {missing[:10]}")
+    if extra:
+        fail(f"{len(extra)} buildings in the map are not osmium's: {extra[:10]}")
+    worst = max(theirs, key=lambda k: abs(ours[k] / theirs[k] - 1))
+    worst_rel = abs(ours[worst] / theirs[worst] - 1)
+    if worst_rel > 0.02:
+        fail(f"building {worst}: area {ours[worst]:.1f} m², osmium {theirs[worst]:.1f} m²")
+    print(
+        f"buildings: {len(theirs)} inside the box, all in the map and no other "
+        f"({reader.outside} cross the box); footprint areas agree within {100 * worst_rel:.3f} % "
+        f"(worst {worst[0]} {worst[1]}); {sum(theirs.values()):.0f} m² against the map's "
+        f"{sum(ours.values()):.0f} m²"
+    )
+
+    pieces = {}
+    for road in m["roads"]:
+        pieces.setdefault(road["way"], []).append(road)
+    whole, cut, worst_rel, worst_way = 0, 0, 0.0, None
+    for way, (highway, length, inside, count) in sorted(reader.ways.items()):
+        mine = pieces.get(way, [])
+        if inside == count:
+            if len(mine) != 1 or mine[0]["clipped"]:
+                fail(f"way {way} ({highway}) lies inside the box: expected it whole, got {len(mine)} pieces")
+            rel = abs(mine[0]["length"] / length - 1) if length > 0 else abs(mine[0]["length"])
+            if rel > 0.02:
+                fail(f"way {way}: centreline {mine[0]['length']:.2f} m, osmium {length:.2f} m")
+            if rel > worst_rel:
+                worst_rel, worst_way = rel, way
+            whole += 1
+        elif mine:
+            total = sum(p["length"] for p in mine)
+            if total > length * 1.02:
+                fail(f"way {way}: pieces inside the box {total:.2f} m, the whole way {length:.2f} m")
+            cut += 1
+        if any(p["class"] != highway or not p["drivable"] for p in mine):
+            fail(f"way {way}: class {[p['class'] for p in mine]} in the map, {highway} in osmium")
+    stray = [
+        r["way"] for r in m["roads"] if r["drivable"] and r["way"] not in reader.ways
+    ]
+    if stray:
+        fail(f"{len(stray)} drivable roads in the map are not osmium's drivable ways: {stray[:10]}")
+    km = sum(r[1] for r in reader.ways.values() if r[2] == r[3]) / 1000
+    print(
+        f"roads: {whole} drivable ways inside the box ({km:.2f} km), each whole in the map with "
+        f"its length within {100 * worst_rel:.4f} % (worst way {worst_way}); {cut} cut by the box"
+    )
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])

@@ -1,0 +1,111 @@
+//! `cityspec osm` as a user meets it: the committed extract read, its map and picture
+//! written, and bad input refused with exit code 2, naming the file, writing nothing.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn osm(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(dir)
+        .arg("osm")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn text(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn extract() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/osm/helsinki.osm.pbf")
+        .display()
+        .to_string()
+}
+
+#[test]
+fn the_helsinki_extract_reads_into_a_map_and_a_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = osm(
+        dir.path(),
+        &[
+            &extract(),
+            "--json",
+            "map.json",
+            "--picture",
+            "map.png",
+            "--picture-size",
+            "300",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let said = text(&out);
+    assert!(
+        said.contains("448 buildings (156 with a height from the map)"),
+        "{said}"
+    );
+    assert!(said.contains("933 road pieces"), "{said}");
+    let map: serde_json::Value =
+        serde_json::from_slice(&fs::read(dir.path().join("map.json")).unwrap()).unwrap();
+    assert_eq!(map["buildings"].as_array().unwrap().len(), 448);
+    let picture = image::open(dir.path().join("map.png")).unwrap();
+    assert_eq!(picture.height(), 300);
+    // The same extract, the same bytes.
+    let again = tempfile::tempdir().unwrap();
+    let out = osm(again.path(), &[&extract(), "--json", "map.json"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        fs::read(again.path().join("map.json")).unwrap(),
+        fs::read(dir.path().join("map.json")).unwrap()
+    );
+}
+
+#[test]
+fn a_box_narrows_the_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = osm(
+        dir.path(),
+        &[&extract(), "--bbox", "60.1665,24.938,60.17,24.946"],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    assert!(text(&out).contains("44 buildings"), "{}", text(&out));
+}
+
+#[test]
+fn bad_input_is_exit_code_2_and_names_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("photo.osm"), b"\x89PNG\r\n\x1a\n not a map").unwrap();
+    fs::write(
+        dir.path().join("broken.osm"),
+        "<osm><node id=\"1\" lat=\"60\"/></osm>",
+    )
+    .unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["missing.osm.pbf"],
+            "cannot read the extract missing.osm.pbf: no such file",
+        ),
+        (&["photo.osm"], "photo.osm: not an OpenStreetMap extract"),
+        (
+            &["broken.osm"],
+            "broken.osm: broken OSM XML at byte 5: <node> has no lon",
+        ),
+        (&["broken.osm", "--bbox", "60,25,59,26"], "is empty"),
+        (&["broken.osm", "--bbox", "60,25"], "expected four numbers"),
+        (&["broken.osm", "--bbox", "95,25,96,26"], "off the globe"),
+        (&["."], "not a regular file"),
+    ];
+    for (args, expected) in cases {
+        let mut args = args.to_vec();
+        args.extend(["--json", "map.json"]);
+        let out = osm(dir.path(), &args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", text(&out));
+        assert!(text(&out).contains(expected), "{args:?}: {}", text(&out));
+        assert!(
+            !dir.path().join("map.json").exists(),
+            "{args:?} wrote a map"
+        );
+    }
+}
