@@ -339,7 +339,7 @@ fn osm(
     let paths: Vec<_> = map.roads.iter().filter(|r| !r.drivable).collect();
     let l = &map.left_out;
     cx.out.info(&format!(
-        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box",
+        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  street: carriageway {:.0} m², sidewalks {:.0} m², {} blocks ({:.0} m²); {} road segments narrowed between buildings, {} unpaved under them\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box",
         file.display(),
         b.south, b.west, b.north, b.east, x1 - x0, z1 - z0,
         map.buildings.len(), with_height, area,
@@ -347,6 +347,8 @@ fn osm(
         count(&map, FeatureKind::TrafficSignals), count(&map, FeatureKind::StreetLamp),
         count(&map, FeatureKind::Tree), count(&map, FeatureKind::Bench),
         count(&map, FeatureKind::TrafficSign), count(&map, FeatureKind::Crossing),
+        surface(&map.carriageway), surface(&map.sidewalks), map.blocks.len(), surface(&map.blocks),
+        l.segments_narrowed, l.segments_blocked,
         l.buildings_outside, l.buildings_open, l.buildings_incomplete, l.ways_missing_nodes, l.roads_outside,
     ));
     for (what, path) in [
@@ -359,6 +361,10 @@ fn osm(
         }
     }
     ExitCode::SUCCESS
+}
+
+fn surface(polygons: &[crate::model::MapPolygon]) -> f64 {
+    polygons.iter().map(|p| p.area).sum()
 }
 
 fn count(map: &crate::model::OsmMap, kind: FeatureKind) -> usize {

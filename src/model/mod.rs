@@ -43,7 +43,7 @@ pub use lamp::Lamp;
 pub use movement::{Movement, Recolour};
 pub use object_kind::ObjectKind;
 pub use osm_map::{
-    FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapRoad, OsmElement, OsmMap,
+    FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapPolygon, MapRoad, OsmElement, OsmMap,
 };
 pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;

@@ -26,6 +26,13 @@ pub struct OsmMap {
     /// Street furniture the map places (signals, lamps, trees, benches, signs,
     /// crossings), inside the box, by node id.
     pub features: Vec<MapFeature>,
+    /// The carriageways of the roads with a surface, as one set of polygons (junctions,
+    /// bends and roundabouts where they overlap), clear of every building.
+    pub carriageway: Vec<MapPolygon>,
+    /// The sidewalks beside them, less the carriageway, clear of every building.
+    pub sidewalks: Vec<MapPolygon>,
+    /// The city blocks: the box less carriageways and sidewalks.
+    pub blocks: Vec<MapPolygon>,
     /// What was in the file and left out, and why.
     pub left_out: LeftOut,
 }
@@ -105,10 +112,27 @@ pub struct MapRoad {
     pub oneway: bool,
     /// `junction=roundabout`.
     pub roundabout: bool,
+    /// Whether it is paved into the street surface: drivable and on the ground (not in a
+    /// tunnel, under a building or cover, or below ground level).
+    pub surface: bool,
+    /// Per centreline segment, `[carriageway width, left sidewalk, right sidewalk]` as
+    /// paved, narrowed where a mapped building stands closer than the road's nominal
+    /// cross-section (0 width: the segment runs through a building and is not paved).
+    /// Empty when the road has no surface.
+    pub fitted: Vec<[f64; 3]>,
     /// The `name` tag.
     pub name: Option<String>,
     /// Whether the box cut the way.
     pub clipped: bool,
+}
+
+/// A polygon in metres: its outer ring (positive shoelace area in `[x, z]`) and holes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapPolygon {
+    pub outer: Vec<[f64; 2]>,
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// Square metres: the outer ring's less its holes'.
+    pub area: f64,
 }
 
 /// A node the map tags as street furniture.
@@ -147,4 +171,9 @@ pub struct LeftOut {
     pub ways_missing_nodes: u32,
     /// Roads wholly outside the box.
     pub roads_outside: u32,
+    /// Road segments with a surface narrowed to stay clear of a mapped building.
+    pub segments_narrowed: u32,
+    /// Road segments left unpaved: a mapped building stands on them (a passage through
+    /// it the map does not tag, or a mapping error).
+    pub segments_blocked: u32,
 }

@@ -42,6 +42,7 @@ struct RoadTags {
     sidewalks: [f64; 2],
     oneway: bool,
     roundabout: bool,
+    surface: bool,
     name: Option<String>,
 }
 
@@ -93,9 +94,17 @@ impl Sink for Collector {
             let oneway = matches!(tags::get(tags, "oneway"), Some("yes" | "1" | "-1"))
                 || roundabout
                 || class == "motorway";
+            let below = tags::get(tags, "tunnel").is_some_and(|t| t != "no")
+                || tags::get(tags, "covered").is_some_and(|c| c != "no")
+                || tags::get(tags, "indoor").is_some_and(|i| i != "no")
+                || tags::get(tags, "location") == Some("underground")
+                || tags::get(tags, "layer")
+                    .and_then(|l| l.trim().parse::<i32>().ok())
+                    .is_some_and(|l| l < 0);
             self.roads.push((
                 id,
                 RoadTags {
+                    surface: tags::drivable(class) && !below,
                     class: class.to_owned(),
                     width: tags::width(class, tags),
                     sidewalks: tags::sidewalks(class, tags),
@@ -139,7 +148,9 @@ impl Collector {
         let mut buildings = self.way_buildings(&bounds, &projection, &mut left_out);
         buildings.extend(self.relation_buildings(&bounds, &projection, &mut left_out));
         buildings.sort_by_key(|b| (b.element, b.part));
-        let roads = self.roads(extent, &projection, &mut left_out);
+        let mut roads = self.roads(extent, &projection, &mut left_out);
+        super::fit::fit(&mut roads, &buildings, extent, &mut left_out);
+        let [carriageway, sidewalks, blocks] = super::surfaces::surfaces(&roads, extent);
         let mut features: Vec<MapFeature> = self
             .features
             .iter()
@@ -162,6 +173,9 @@ impl Collector {
             buildings,
             roads,
             features,
+            carriageway,
+            sidewalks,
+            blocks,
             left_out,
         })
     }
@@ -326,6 +340,8 @@ impl Collector {
                     sidewalks: tags.sidewalks,
                     oneway: tags.oneway,
                     roundabout: tags.roundabout,
+                    surface: tags.surface,
+                    fitted: Vec::new(),
                     name: tags.name.clone(),
                     clipped,
                 });

@@ -7,6 +7,7 @@ use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_polygon_mut};
 use imageproc::point::Point;
 
+use super::rings::left_normal;
 use crate::model::{FeatureKind, MapRoad, OsmMap};
 
 const GROUND: Rgb<u8> = Rgb([236, 234, 226]);
@@ -23,12 +24,19 @@ pub fn draw(map: &OsmMap, max_side: u32) -> RgbImage {
     let size = |l: f64| ((l * scale).ceil() as u32).clamp(1, max_side.max(16));
     let mut img = RgbImage::from_pixel(size(x1 - x0), size(z1 - z0), GROUND);
     let px = |p: [f64; 2]| [(p[0] - x0) * scale, (p[1] - z0) * scale];
-    for road in map.roads.iter().filter(|r| r.sidewalks != [0.0, 0.0]) {
-        band(&mut img, road, true, px, scale, SIDEWALK);
+    for (polygons, colour) in [(&map.sidewalks, SIDEWALK), (&map.carriageway, CARRIAGEWAY)] {
+        for p in polygons {
+            fill_rings(
+                &mut img,
+                std::iter::once(&p.outer).chain(&p.holes),
+                px,
+                colour,
+            );
+        }
     }
-    for road in &map.roads {
+    for road in map.roads.iter().filter(|r| !r.surface) {
         let colour = if road.drivable { CARRIAGEWAY } else { PATH };
-        band(&mut img, road, false, px, scale, colour);
+        band(&mut img, road, px, scale, colour);
     }
     for b in &map.buildings {
         let colour = match b.height {
@@ -39,10 +47,12 @@ pub fn draw(map: &OsmMap, max_side: u32) -> RgbImage {
             }
             None => NO_HEIGHT,
         };
-        fill(&mut img, &b.outer, px, colour);
-        for hole in &b.holes {
-            fill(&mut img, hole, px, GROUND);
-        }
+        fill_rings(
+            &mut img,
+            std::iter::once(&b.outer).chain(&b.holes),
+            px,
+            colour,
+        );
     }
     let dot = (0.8 * scale).round().max(2.0) as i32;
     for f in &map.features {
@@ -58,6 +68,48 @@ pub fn draw(map: &OsmMap, max_side: u32) -> RgbImage {
         draw_filled_circle_mut(&mut img, (x.round() as i32, y.round() as i32), dot, colour);
     }
     img
+}
+
+/// Fills the inside of `rings` (metres) by the even–odd rule, so holes stay unpainted:
+/// every pixel whose centre lies inside.
+fn fill_rings<'a>(
+    img: &mut RgbImage,
+    rings: impl Iterator<Item = &'a Vec<[f64; 2]>>,
+    px: impl Fn([f64; 2]) -> [f64; 2],
+    colour: Rgb<u8>,
+) {
+    let edges: Vec<([f64; 2], [f64; 2])> = rings
+        .flat_map(|ring| {
+            let n = ring.len();
+            (0..n).map(move |i| (ring[i], ring[(i + 1) % n]))
+        })
+        .map(|(a, b)| (px(a), px(b)))
+        .collect();
+    let Some((y0, y1)) = edges.iter().fold(None, |acc: Option<(f64, f64)>, (a, b)| {
+        let (lo, hi) = (a[1].min(b[1]), a[1].max(b[1]));
+        Some(acc.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))))
+    }) else {
+        return;
+    };
+    let (w, h) = (i64::from(img.width()), i64::from(img.height()));
+    let mut xs: Vec<f64> = Vec::new();
+    for y in (y0.floor() as i64).max(0)..=(y1.ceil() as i64).min(h - 1) {
+        let cy = y as f64 + 0.5;
+        xs.clear();
+        for (a, b) in &edges {
+            if (a[1] > cy) != (b[1] > cy) {
+                xs.push(a[0] + (cy - a[1]) / (b[1] - a[1]) * (b[0] - a[0]));
+            }
+        }
+        xs.sort_by(f64::total_cmp);
+        for pair in xs.chunks_exact(2) {
+            let from = ((pair[0] - 0.5).ceil() as i64).max(0);
+            let to = ((pair[1] - 0.5).floor() as i64).min(w - 1);
+            for x in from..=to {
+                img.put_pixel(x as u32, y as u32, colour);
+            }
+        }
+    }
 }
 
 /// Fills a ring given in metres.
@@ -78,43 +130,27 @@ fn fill(img: &mut RgbImage, ring: &[[f64; 2]], px: impl Fn([f64; 2]) -> [f64; 2]
     }
 }
 
-/// Paints `road`'s carriageway, or with `sidewalks` the band from its right sidewalk's
-/// outer edge to its left one's (x east, z south: left of the way's direction), round at
+/// Paints a road without a surface (a path, a road in a tunnel) at its width, round at
 /// the joints.
 fn band(
     img: &mut RgbImage,
     road: &MapRoad,
-    sidewalks: bool,
     px: impl Fn([f64; 2]) -> [f64; 2],
     scale: f64,
     colour: Rgb<u8>,
 ) {
-    let [left, right] = if sidewalks {
-        road.sidewalks
-    } else {
-        [0.0, 0.0]
-    };
-    let half = (road.width + left + right) / 2.0;
-    let shift = (left - right) / 2.0;
+    let half = road.width / 2.0;
     for w in road.centreline.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-        let len = (dx * dx + dz * dz).sqrt();
-        if len == 0.0 {
+        let Some(n) = left_normal(a, b) else {
             continue;
-        }
-        let n = [dz / len, -dx / len];
+        };
         let at = |p: [f64; 2], s: f64| [p[0] + n[0] * s, p[1] + n[1] * s];
-        let quad = [
-            at(a, shift + half),
-            at(b, shift + half),
-            at(b, shift - half),
-            at(a, shift - half),
-        ];
+        let quad = [at(a, half), at(b, half), at(b, -half), at(a, -half)];
         fill(img, &quad, &px, colour);
+        let r = (half * scale).round() as i32;
         for p in [a, b] {
-            let [x, y] = px(at(p, shift));
-            let r = (half * scale).round() as i32;
+            let [x, y] = px(p);
             if r > 0 {
                 draw_filled_circle_mut(img, (x.round() as i32, y.round() as i32), r, colour);
             }

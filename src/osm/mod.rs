@@ -5,8 +5,10 @@
 //! Entry: [`read`]. The driver reads the file's bytes; this stage streams them once
 //! (`elements`: PBF blocks decoded one at a time, XML event by event) into what the map
 //! needs (`collect`: node positions, every way's nodes, the tags it uses), then resolves
-//! ways and multipolygons, projects (`projection`, documented there) and cuts roads to the
-//! box (`clip`). [`draw`] pictures the map. The rules (which tags, which defaults) are in
+//! ways and multipolygons, projects (`projection`, documented there), cuts roads to the
+//! box (`clip`), fits each paved road segment between the buildings (`fit`) and builds the
+//! street surface: carriageway, sidewalks and blocks as polygons (`surfaces`). [`draw`]
+//! pictures the map. The rules (which tags, which defaults) are in
 //! `docs/osm.md`.
 //!
 //! This is the first part of issue 43: the map a city will be built from. The geometry
@@ -17,8 +19,10 @@ mod clip;
 mod collect;
 mod draw;
 mod elements;
+mod fit;
 mod projection;
 mod rings;
+mod surfaces;
 mod tags;
 #[cfg(test)]
 mod tests;

@@ -43,6 +43,14 @@ pub fn signed_area(ring: &[[f64; 2]]) -> f64 {
     twice / 2.0
 }
 
+/// The unit normal to the left of the direction `a → b` (x east, z south: for a way
+/// running east, north), or `None` when `a` is `b`.
+pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+    let len = (dx * dx + dz * dz).sqrt();
+    (len > 0.0).then(|| [dz / len, -dx / len])
+}
+
 /// Whether `p` lies inside `ring` (even–odd rule).
 pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
     let n = ring.len();

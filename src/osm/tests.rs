@@ -297,3 +297,107 @@ fn the_picture_shows_buildings_roads_and_furniture() {
     );
     assert_eq!(px.0, [236, 234, 226]);
 }
+
+/// A street running east along 60.0005° N in three segments, 6.5 m wide with 2 m
+/// sidewalks, between a building 4.5 m north of its first segment, one across its second
+/// and one 2 m south of its third.
+const FITTED: &str = r#"<osm version="0.6">
+  <bounds minlat="60.0000000" minlon="25.0000000" maxlat="60.0010000" maxlon="25.0030000"/>
+  <node id="1" lat="60.0005" lon="25.0000"/>
+  <node id="2" lat="60.0005" lon="25.0010"/>
+  <node id="3" lat="60.0005" lon="25.0020"/>
+  <node id="4" lat="60.0005" lon="25.0030"/>
+  <node id="11" lat="60.0005404" lon="25.0002"/>
+  <node id="12" lat="60.0005404" lon="25.0006"/>
+  <node id="13" lat="60.0007" lon="25.0006"/>
+  <node id="14" lat="60.0007" lon="25.0002"/>
+  <node id="21" lat="60.0004" lon="25.0013"/>
+  <node id="22" lat="60.0004" lon="25.0016"/>
+  <node id="23" lat="60.0006" lon="25.0016"/>
+  <node id="24" lat="60.0006" lon="25.0013"/>
+  <node id="31" lat="60.0003" lon="25.0023"/>
+  <node id="32" lat="60.0003" lon="25.0026"/>
+  <node id="33" lat="60.0004820" lon="25.0026"/>
+  <node id="34" lat="60.0004820" lon="25.0023"/>
+  <way id="1"><nd ref="1"/><nd ref="2"/><nd ref="3"/><nd ref="4"/>
+    <tag k="highway" v="residential"/><tag k="width" v="6.5"/><tag k="sidewalk" v="both"/></way>
+  <way id="10"><nd ref="11"/><nd ref="12"/><nd ref="13"/><nd ref="14"/><nd ref="11"/><tag k="building" v="yes"/></way>
+  <way id="20"><nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="24"/><nd ref="21"/><tag k="building" v="yes"/></way>
+  <way id="30"><nd ref="31"/><nd ref="32"/><nd ref="33"/><nd ref="34"/><nd ref="31"/><tag k="building" v="yes"/></way>
+</osm>
+"#;
+
+#[test]
+fn roads_narrow_between_buildings_and_stop_at_one_across_them() {
+    let map = read(FITTED.as_bytes(), None).unwrap();
+    let road = &map.roads[0];
+    let metre = 1.0 / map.metres_per_degree[1]; // degrees of latitude a metre
+    let north = 0.0000404 / metre; // the first building's distance, metres
+    let south = 0.0000180 / metre; // the third's
+    assert!(
+        (north - 4.50).abs() < 0.01 && (south - 2.0).abs() < 0.01,
+        "{north} {south}"
+    );
+    let [a, b, c] = [road.fitted[0], road.fitted[1], road.fitted[2]];
+    // North (left of east): the carriageway keeps 3.25 m, the left sidewalk what is left.
+    assert_eq!(a[0], 6.5);
+    assert!((a[1] - (north - fit::MARGIN - 3.25)).abs() < 1e-9, "{a:?}");
+    assert_eq!(a[2], 2.0);
+    // Across the road: not paved.
+    assert_eq!(b, [0.0; 3]);
+    // South: the carriageway narrows to the building, no right sidewalk is left.
+    assert!((c[0] - 2.0 * (south - fit::MARGIN)).abs() < 1e-9, "{c:?}");
+    assert_eq!((c[1], c[2]), (2.0, 0.0));
+    assert_eq!(
+        (
+            map.left_out.segments_narrowed,
+            map.left_out.segments_blocked
+        ),
+        (2, 1)
+    );
+}
+
+#[test]
+fn carriageway_sidewalks_and_blocks_tile_the_box_clear_of_buildings() {
+    for map in [read(FITTED.as_bytes(), None).unwrap(), town()] {
+        let [x0, z0, x1, z1] = map.extent;
+        let area = |ps: &[crate::model::MapPolygon]| ps.iter().map(|p| p.area).sum::<f64>();
+        let (c, s, b) = (
+            area(&map.carriageway),
+            area(&map.sidewalks),
+            area(&map.blocks),
+        );
+        let whole = (x1 - x0) * (z1 - z0);
+        assert!(
+            ((c + s + b) / whole - 1.0).abs() < 1e-6,
+            "{c} + {s} + {b} against {whole}"
+        );
+        assert!(c > 0.0 && s > 0.0 && !map.blocks.is_empty());
+        let inside = |ps: &[crate::model::MapPolygon], p: [f64; 2]| {
+            ps.iter().any(|poly| {
+                rings::contains(&poly.outer, p) && !poly.holes.iter().any(|h| rings::contains(h, p))
+            })
+        };
+        // No corner or centre of a building lies on the street.
+        for building in &map.buildings {
+            let n = building.outer.len() as f64;
+            let centre = building
+                .outer
+                .iter()
+                .fold([0.0, 0.0], |acc, p| [acc[0] + p[0] / n, acc[1] + p[1] / n]);
+            for p in building.outer.iter().copied().chain([centre]) {
+                assert!(
+                    !inside(&map.carriageway, p) && !inside(&map.sidewalks, p),
+                    "{p:?}"
+                );
+            }
+        }
+        // Every paved segment's middle is on the carriageway.
+        for road in map.roads.iter().filter(|r| r.surface) {
+            for (w, f) in road.centreline.windows(2).zip(&road.fitted) {
+                let mid = [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0];
+                assert_eq!(inside(&map.carriageway, mid), f[0] > 0.0, "{mid:?} {f:?}");
+            }
+        }
+    }
+}

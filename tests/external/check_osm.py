@@ -11,7 +11,10 @@ its own haversine lengths.
 - every drivable highway way wholly inside the box is in the map uncut, its centreline
   length within 2 % of osmium's haversine length; a way the box cuts is in the map with
   pieces no longer than the whole way (2 % slack); every mapped road's class and way are
-  osmium's.
+  osmium's;
+- (shapely) no building osmium assembles overlaps the map's street (carriageway and
+  sidewalks) by more than 0.01 m²; every paved segment's centreline lies on the
+  carriageway; blocks, sidewalks and carriageway tile the box without overlap.
 Prints the counts and the worst differences; exits 1 on the first failed check.
 """
 import json
@@ -20,6 +23,8 @@ import sys
 
 import osmium
 import osmium.geom
+import shapely
+from shapely.geometry import LineString, Polygon, box
 
 R = 6371008.8
 DRIVABLE = {
@@ -42,6 +47,7 @@ class Reader(osmium.SimpleHandler):
         super().__init__()
         self.box = box
         self.buildings = {}  # ("way"|"relation", id) -> area
+        self.shapes = {}  # ("way"|"relation", id) -> [(+1 outer | -1 inner, [(lat, lon)])]
         self.outside = 0
         self.ways = {}  # id -> (class, length m, nodes inside, node count)
 
@@ -65,6 +71,7 @@ class Reader(osmium.SimpleHandler):
         self.buildings[key] = sum(
             sign * ring_area([(l.lat, l.lon) for l in ring[:-1]]) for sign, ring in rings
         )
+        self.shapes[key] = [(sign, [(l.lat, l.lon) for l in ring]) for sign, ring in rings]
 
     def way(self, w):
         highway = w.tags.get("highway")
@@ -141,6 +148,59 @@ def main(extract, map_path):
     print(
         f"roads: {whole} drivable ways inside the box ({km:.2f} km), each whole in the map with "
         f"its length within {100 * worst_rel:.4f} % (worst way {worst_way}); {cut} cut by the box"
+    )
+    check_street(m, reader)
+
+
+def polygons(items):
+    return [Polygon(p["outer"], p["holes"]) for p in items]
+
+
+def check_street(m, reader):
+    """The street's polygons against osmium's buildings, projected as the map documents."""
+    lat0, lon0 = m["origin"]
+    kx, kz = m["metres_per_degree"]
+    project = lambda pts: [((lon - lon0) * kx, -(lat - lat0) * kz) for lat, lon in pts]
+    carriageway = shapely.union_all(polygons(m["carriageway"]))
+    sidewalks = shapely.union_all(polygons(m["sidewalks"]))
+    blocks = shapely.union_all(polygons(m["blocks"]))
+    street = shapely.union_all([carriageway, sidewalks])
+    worst, worst_key, touching = 0.0, None, 0
+    for key, rings in reader.shapes.items():
+        outer = [Polygon(project(r)) for sign, r in rings if sign > 0]
+        inner = [Polygon(project(r)) for sign, r in rings if sign < 0]
+        footprint = shapely.difference(shapely.union_all(outer), shapely.union_all(inner)) if inner else shapely.union_all(outer)
+        overlap = shapely.intersection(footprint.buffer(0), street).area
+        if overlap > 1e-6:
+            touching += 1
+        if overlap > worst:
+            worst, worst_key = overlap, key
+    if worst > 0.01:
+        fail(f"building {worst_key} overlaps the street by {worst:.3f} m²")
+    x0, z0, x1, z1 = m["extent"]
+    whole = box(x0, z0, x1, z1).area
+    tiled = carriageway.area + sidewalks.area + blocks.area
+    overlaps = (
+        shapely.intersection(carriageway, sidewalks).area
+        + shapely.intersection(street, blocks).area
+    )
+    if abs(tiled / whole - 1) > 1e-4 or overlaps > 1.0:
+        fail(f"street and blocks cover {tiled:.1f} m² of the box's {whole:.1f} m², overlapping by {overlaps:.2f} m²")
+    paved = grown = 0
+    reach = carriageway.buffer(0.01)
+    for road in m["roads"]:
+        for (a, b), (width, _, _) in zip(zip(road["centreline"], road["centreline"][1:]), road["fitted"]):
+            if width > 0:
+                paved += 1
+                if not reach.contains(LineString([a, b])):
+                    fail(f"way {road['way']}: a paved segment {a}–{b} leaves the carriageway")
+    left = m["left_out"]
+    print(
+        f"street: {len(reader.shapes)} buildings clear of carriageway and sidewalks (worst overlap "
+        f"{worst:.4f} m², {touching} touch by more than 1e-6 m²); {paved} paved segments on the "
+        f"carriageway ({left['segments_narrowed']} narrowed, {left['segments_blocked']} unpaved under "
+        f"buildings); carriageway {carriageway.area:.0f} m², sidewalks {sidewalks.area:.0f} m², "
+        f"{len(m['blocks'])} blocks {blocks.area:.0f} m² tile the box ({overlaps:.3f} m² overlap)"
     )
 
 

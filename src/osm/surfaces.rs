@@ -1,0 +1,123 @@
+//! The street surface as polygons (`i_overlay`): carriageways, sidewalks and the blocks
+//! between them.
+//!
+//! Each paved segment's carriageway is its centreline stroked to its fitted width with
+//! round caps, so consecutive segments join round and crossing roads merge into one
+//! junction; the union of all of them, cut to the box, is the carriageway. Each sidewalk is the strip
+//! beside its segment's carriageway on its side, with a disc at every joint as wide as the
+//! narrower of the segment's two sidewalks (filling the outside of bends); the union of
+//! those cut to the box, less the carriageway, is the sidewalks. The blocks are the box less
+//! both; a block under [`MIN_BLOCK`] (a sliver between strips) is paved as sidewalk.
+
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::float::overlay::FloatOverlay;
+use i_overlay::mesh::float::stroke::offset::StrokeOffset;
+use i_overlay::mesh::float::style::{LineCap, StrokeStyle};
+
+use super::rings::{left_normal, signed_area};
+use crate::model::{MapPolygon, MapRoad};
+
+/// Radians an arc's segments turn: 24 to a full circle.
+const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
+
+/// The smallest block, square metres: anything smaller left between the street's surfaces
+/// is paved as sidewalk.
+pub const MIN_BLOCK: f64 = 4.0;
+
+type Contours = Vec<Vec<[f64; 2]>>;
+
+/// Carriageway, sidewalks and blocks of `roads` inside `extent`.
+pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
+    let mut carriageway: Contours = Vec::new();
+    let mut sidewalks: Contours = Vec::new();
+    for road in roads.iter().filter(|r| r.surface) {
+        for (w, &[width, left, right]) in road.centreline.windows(2).zip(&road.fitted) {
+            if width <= 0.0 {
+                continue;
+            }
+            let (a, b) = (w[0], w[1]);
+            let style = StrokeStyle::new(width)
+                .start_cap(LineCap::Round(ARC_STEP))
+                .end_cap(LineCap::Round(ARC_STEP));
+            for shape in [a, b].stroke(style, false) {
+                carriageway.extend(shape);
+            }
+            let Some(n) = left_normal(a, b) else {
+                continue;
+            };
+            let at = |p: [f64; 2], s: f64| [p[0] + n[0] * s, p[1] + n[1] * s];
+            let half = width / 2.0;
+            for (inner, outer) in [(half, half + left), (-half - right, -half)] {
+                if outer > inner {
+                    sidewalks.push(vec![at(a, inner), at(b, inner), at(b, outer), at(a, outer)]);
+                }
+            }
+            let round = left.min(right);
+            if round > 0.0 {
+                let style = StrokeStyle::new(width + 2.0 * round)
+                    .start_cap(LineCap::Round(ARC_STEP))
+                    .end_cap(LineCap::Round(ARC_STEP));
+                for shape in [a, a]
+                    .stroke(style.clone(), false)
+                    .into_iter()
+                    .chain([b, b].stroke(style, false))
+                {
+                    sidewalks.extend(shape);
+                }
+            }
+        }
+    }
+    let [x0, z0, x1, z1] = extent;
+    let bounds = vec![[x0, z0], [x1, z0], [x1, z1], [x0, z1]];
+    // Both cut to the box: round caps reach past its edge.
+    let carriageway_shapes = FloatOverlay::with_subj_and_clip(&carriageway, &bounds)
+        .overlay(OverlayRule::Intersect, FillRule::NonZero);
+    let carriageway_flat: Contours = carriageway_shapes.iter().flatten().cloned().collect();
+    let sidewalks_inside: Contours = FloatOverlay::with_subj_and_clip(&sidewalks, &bounds)
+        .overlay(OverlayRule::Intersect, FillRule::NonZero)
+        .into_iter()
+        .flatten()
+        .collect();
+    let sidewalk_shapes = FloatOverlay::with_subj_and_clip(&sidewalks_inside, &carriageway_flat)
+        .overlay(OverlayRule::Difference, FillRule::NonZero);
+    let mut street: Contours = carriageway_flat.clone();
+    street.extend(sidewalk_shapes.iter().flatten().cloned());
+    let block_shapes = FloatOverlay::with_subj_and_clip(&bounds, &street)
+        .overlay(OverlayRule::Difference, FillRule::NonZero);
+    let [carriageway, mut sidewalks, blocks] =
+        [carriageway_shapes, sidewalk_shapes, block_shapes].map(polygons);
+    // Slivers the strips leave between them (at bends, where sidewalks meet at a
+    // junction) are pavement, not blocks.
+    let (blocks, slivers): (Vec<_>, Vec<_>) = blocks.into_iter().partition(|b| b.area >= MIN_BLOCK);
+    sidewalks.extend(slivers);
+    [carriageway, sidewalks, blocks]
+}
+
+/// `i_overlay`'s shapes (outer contour first, holes after) as map polygons, turned to
+/// the map's orientation (outer rings positive in `[x, z]`).
+fn polygons(shapes: Vec<Contours>) -> Vec<MapPolygon> {
+    shapes
+        .into_iter()
+        .filter_map(|mut shape| {
+            if shape.is_empty() {
+                return None;
+            }
+            let mut outer = shape.remove(0);
+            if signed_area(&outer) < 0.0 {
+                outer.reverse();
+            }
+            let holes: Contours = shape
+                .into_iter()
+                .map(|mut h| {
+                    if signed_area(&h) > 0.0 {
+                        h.reverse();
+                    }
+                    h
+                })
+                .collect();
+            let area = signed_area(&outer) + holes.iter().map(|h| signed_area(h)).sum::<f64>();
+            (area > 0.0).then_some(MapPolygon { outer, holes, area })
+        })
+        .collect()
+}
