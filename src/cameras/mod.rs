@@ -47,7 +47,7 @@ pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath
 pub use orbit_path::{orbit_length, orbit_path};
 pub use overview::{
     OVERVIEW_FAR, OVERVIEW_HEIGHT, OVERVIEW_ORBIT_POSES, OVERVIEW_SHADOW_MAP_SIDE, OVERVIEW_SIZE,
-    OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, overview,
+    OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, map_overview, overview,
 };
 pub use road_path::{Drive, ROAD_PITCH, RoadPath, road_path, road_path_draws, tour_length};
 pub use sidewalk_path::{

@@ -64,3 +64,29 @@ pub fn overview(layout: &ParsedLayout, metres_per_pixel: f64) -> Overview {
         supersample: OVERVIEW_SUPERSAMPLE,
     }
 }
+
+/// The overview of a map's box `[min_x, min_z, max_x, max_z]` (metres, `OsmMap::extent`):
+/// the same shot as [`overview`] of a layout that size, from the box's north-east corner,
+/// half the diagonal out from its centre and [`OVERVIEW_HEIGHT`] of the diagonal up.
+pub fn map_overview(extent: [f64; 4]) -> Overview {
+    let [x0, z0, x1, z1] = extent;
+    let (w, h) = (x1 - x0, z1 - z0);
+    let diagonal = (w * w + h * h).sqrt();
+    let centre = [(x0 + x1) / 2.0, (z0 + z1) / 2.0];
+    // North-east: +x, −z; the radius along the diagonal's half.
+    let out = diagonal / 2.0 * std::f64::consts::FRAC_1_SQRT_2;
+    let pose = (diagonal > 0.0 && diagonal.is_finite()).then(|| {
+        CameraPose::level(
+            [centre[0] + out, diagonal * OVERVIEW_HEIGHT, centre[1] - out],
+            [centre[0], 0.0, centre[1]],
+        )
+    });
+    Overview {
+        pose,
+        width: OVERVIEW_SIZE[0],
+        height: OVERVIEW_SIZE[1],
+        tan_half_fov: OVERVIEW_TAN_HALF_FOV,
+        far: diagonal * OVERVIEW_FAR,
+        supersample: OVERVIEW_SUPERSAMPLE,
+    }
+}

@@ -159,7 +159,7 @@ pub enum Command {
     /// city from the map is not there yet: the city's geometry takes axis-aligned
     /// layouts only.
     #[command(
-        after_help = "Examples:\n  cityspec osm assets/osm/helsinki.osm.pbf --picture map.png\n  cityspec osm city.osm --bbox 60.165,24.936,60.172,24.950 --json map.json"
+        after_help = "Examples:\n  cityspec osm assets/osm/helsinki.osm.pbf --picture map.png --overview city.png\n  cityspec osm city.osm --bbox 60.165,24.936,60.172,24.950 --json map.json"
     )]
     Osm {
         /// The extract: an .osm.pbf file or OSM XML.
@@ -175,6 +175,11 @@ pub enum Command {
         /// Write a picture of the map (PNG, north up) to this file.
         #[arg(long, value_name = "FILE")]
         picture: Option<PathBuf>,
+        /// Render the map's 3D city from the air to this file (PNG): its street surface and
+        /// its buildings on their footprints, at their mapped heights, clad in the
+        /// built-in facades, under a day sun at the map's latitude.
+        #[arg(long, value_name = "FILE")]
+        overview: Option<PathBuf>,
         /// The picture's longer side in pixels.
         #[arg(long, value_name = "PIXELS", default_value_t = 2048, value_parser = clap::value_parser!(u32).range(64..=16384))]
         picture_size: u32,

@@ -131,6 +131,7 @@ pub fn run() -> ExitCode {
             json,
             picture,
             picture_size,
+            overview,
         } => osm(
             &cx,
             &file,
@@ -138,6 +139,7 @@ pub fn run() -> ExitCode {
             driver::OsmOutputs {
                 json,
                 picture: picture.map(|p| (p, picture_size)),
+                overview,
             },
         ),
         Command::Cache(CacheCommand::Gc {

@@ -18,7 +18,12 @@ pub struct OsmOutputs {
     pub json: Option<PathBuf>,
     /// A picture of the map (PNG), and its longer side in pixels.
     pub picture: Option<(PathBuf, u32)>,
+    /// The 3D city of the map from the air (PNG), as `overview.png` shows a spec's city.
+    pub overview: Option<PathBuf>,
 }
+
+/// The seed of the map city's facades and unmapped heights, and of its sun.
+const SEED: u64 = 1;
 
 /// Reads `file` (restricted to `bbox` when given) and writes what `outputs` asks for.
 pub fn read_osm(
@@ -49,5 +54,36 @@ pub fn read_osm(
     if let Some((path, side)) = &outputs.picture {
         write(path, &encode_png(&crate::osm::draw(&map, *side)))?;
     }
+    if let Some(path) = &outputs.overview {
+        write(path, &encode_png(&overview(file, &map)?))?;
+    }
     Ok(map)
+}
+
+/// The map's 3D city (the built-in facades, a day sun at the map's latitude) from the air.
+fn overview(file: &Path, map: &OsmMap) -> Result<image::RgbImage, BuildError> {
+    let floor = crate::spec::FacadesSpec::default().floor_height;
+    let (facades, _) = crate::facades::process_builtin(floor, crate::spec::OnError::Error)
+        .map_err(|source| BuildError::Facades {
+            spec: file.to_owned(),
+            source,
+        })?;
+    let scene = crate::scene::map_city(&crate::scene::MapSceneInput {
+        map,
+        facades: &facades,
+        seed: SEED,
+    });
+    let prepared = crate::render::prepare(&scene).map_err(|source| BuildError::Render {
+        spec: file.to_owned(),
+        source,
+    })?;
+    let light = crate::spec::LightingSpec {
+        latitude: map.origin[0],
+        ..crate::spec::LightingSpec::default()
+    };
+    let sun = crate::render::Sun::overview(&light, SEED);
+    let lighting = crate::render::lighting_for(&light, &sun, &scene, &facades, &[], SEED)
+        .from_the_air(crate::cameras::OVERVIEW_SHADOW_MAP_SIDE);
+    let shot = crate::cameras::map_overview(map.extent);
+    Ok(super::pipeline::render_shot(&prepared, &shot, &lighting))
 }

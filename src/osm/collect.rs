@@ -7,8 +7,9 @@ use super::OsmError;
 use super::clip::clip;
 use super::elements::Sink;
 use super::projection::Projection;
-use super::rings::{contains, join, signed_area};
+use super::rings::join;
 use super::tags;
+use crate::model::geometry::polygon::{contains, signed_area};
 use crate::model::{
     FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapRoad, OsmElement, OsmMap,
 };

@@ -7,7 +7,7 @@ use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_polygon_mut};
 use imageproc::point::Point;
 
-use super::rings::left_normal;
+use crate::model::geometry::polygon::left_normal;
 use crate::model::{FeatureKind, MapRoad, OsmMap};
 
 const GROUND: Rgb<u8> = Rgb([236, 234, 226]);

@@ -9,7 +9,7 @@
 //! than [`MIN_CARRIAGEWAY`] (a building across the road: a passage the map does not tag, or
 //! a mapping error) is not paved.
 
-use super::rings::contains;
+use crate::model::geometry::polygon::contains;
 use crate::model::{LeftOut, MapBuilding, MapRoad};
 
 /// Clearance kept between a paved surface and a building, metres.

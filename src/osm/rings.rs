@@ -1,4 +1,4 @@
-//! Polygons: rings joined from a multipolygon's member ways, shoelace areas, point in ring.
+//! Rings joined from a multipolygon's member ways.
 
 /// Joins ways (node id sequences) into closed rings, end to end, in the members' order:
 /// each ring starts with the first way not used yet and takes, again and again, the first
@@ -30,44 +30,6 @@ pub fn join(ways: &[&[i64]]) -> Option<Vec<Vec<i64>>> {
     Some(rings)
 }
 
-/// The shoelace area of a ring (first point not repeated): positive when it turns from +x
-/// towards +z.
-pub fn signed_area(ring: &[[f64; 2]]) -> f64 {
-    let n = ring.len();
-    let mut twice = 0.0;
-    for i in 0..n {
-        let [x0, z0] = ring[i];
-        let [x1, z1] = ring[(i + 1) % n];
-        twice += x0 * z1 - x1 * z0;
-    }
-    twice / 2.0
-}
-
-/// The unit normal to the left of the direction `a → b` (x east, z south: for a way
-/// running east, north), or `None` when `a` is `b`.
-pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
-    let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-    let len = (dx * dx + dz * dz).sqrt();
-    (len > 0.0).then(|| [dz / len, -dx / len])
-}
-
-/// Whether `p` lies inside `ring` (even–odd rule).
-pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
-    let n = ring.len();
-    let mut inside = false;
-    let mut j = n - 1;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[j]);
-        if (a[1] > p[1]) != (b[1] > p[1])
-            && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0]
-        {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,15 +45,5 @@ mod tests {
         assert_eq!(rings, vec![vec![1, 2, 3, 4], vec![7, 8, 9]]);
         // A gap: the ring cannot close.
         assert_eq!(join(&[a, b]), None);
-    }
-
-    #[test]
-    fn area_and_inside_of_a_square() {
-        let square = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]];
-        assert_eq!(signed_area(&square), 4.0);
-        let back: Vec<_> = square.iter().rev().copied().collect();
-        assert_eq!(signed_area(&back), -4.0);
-        assert!(contains(&square, [1.0, 1.0]));
-        assert!(!contains(&square, [3.0, 1.0]));
     }
 }

@@ -15,7 +15,7 @@ use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
 use i_overlay::mesh::float::style::{LineCap, StrokeStyle};
 
-use super::rings::{left_normal, signed_area};
+use crate::model::geometry::polygon::{left_normal, signed_area};
 use crate::model::{MapPolygon, MapRoad};
 
 /// Radians an arc's segments turn: 24 to a full circle.

@@ -100,7 +100,10 @@ fn buildings_are_their_rings_with_courtyards_and_heights() {
         "{} {expected}",
         rel.area
     );
-    assert!(rings::signed_area(&rel.outer) > 0.0 && rings::signed_area(&rel.holes[0]) < 0.0);
+    assert!(
+        crate::model::geometry::polygon::signed_area(&rel.outer) > 0.0
+            && crate::model::geometry::polygon::signed_area(&rel.holes[0]) < 0.0
+    );
     assert_eq!(
         (rel.height, rel.height_from.as_str()),
         (Some(4.0 * FLOOR_HEIGHT), "levels")
@@ -375,7 +378,11 @@ fn carriageway_sidewalks_and_blocks_tile_the_box_clear_of_buildings() {
         assert!(c > 0.0 && s > 0.0 && !map.blocks.is_empty());
         let inside = |ps: &[crate::model::MapPolygon], p: [f64; 2]| {
             ps.iter().any(|poly| {
-                rings::contains(&poly.outer, p) && !poly.holes.iter().any(|h| rings::contains(h, p))
+                crate::model::geometry::polygon::contains(&poly.outer, p)
+                    && !poly
+                        .holes
+                        .iter()
+                        .any(|h| crate::model::geometry::polygon::contains(h, p))
             })
         };
         // No corner or centre of a building lies on the street.

@@ -39,6 +39,7 @@ pub const VERSION: u32 = 7;
 mod blocks;
 mod buildings;
 mod horizon;
+mod map_city;
 mod markings;
 mod procedural;
 mod roads;
@@ -56,6 +57,7 @@ use surfaces::Surfaces;
 // The build driver measures the strip for its street cameras as the scene does.
 pub use crate::model::geometry::strip_width_px;
 pub use buildings::{TINTS, building_name};
+pub use map_city::{MapSceneInput, map_city};
 pub use street_lamps::light_position;
 
 /// How far the ground reaches beyond the layout on every side, in metres.

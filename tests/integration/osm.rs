@@ -63,6 +63,31 @@ fn the_helsinki_extract_reads_into_a_map_and_a_picture() {
 }
 
 #[test]
+fn the_overview_is_the_maps_3d_city_from_the_air() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
+    let out = osm(
+        dir.path(),
+        &[cut.to_str().unwrap(), "--overview", "city.png"],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let city = image::open(dir.path().join("city.png")).unwrap().to_rgb8();
+    assert_eq!(city.dimensions(), (1280, 960));
+    // Sky, grass, asphalt, facades and roofs: far more than a handful of colours.
+    let colours: std::collections::BTreeSet<[u8; 3]> = city.pixels().map(|p| p.0).collect();
+    assert!(colours.len() > 5_000, "{} colours", colours.len());
+    let again = tempfile::tempdir().unwrap();
+    osm(
+        again.path(),
+        &[cut.to_str().unwrap(), "--overview", "city.png"],
+    );
+    assert_eq!(
+        fs::read(again.path().join("city.png")).unwrap(),
+        fs::read(dir.path().join("city.png")).unwrap()
+    );
+}
+
+#[test]
 fn a_box_narrows_the_map() {
     let dir = tempfile::tempdir().unwrap();
     let out = osm(

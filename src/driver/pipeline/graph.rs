@@ -290,22 +290,27 @@ impl Pipeline<'_> {
             |p, (prepared, scene, parsed, lamps, facades)| {
                 let lighting = overview_lighting(&p.inputs.overview, &scene, &lamps, &facades);
                 let shot = cameras::overview(&parsed, p.inputs.overview.export.metres_per_pixel);
-                let frame = match &shot.pose {
-                    Some(pose) => {
-                        let mut intrinsics = render::Intrinsics::from_fov(
-                            shot.width,
-                            shot.height,
-                            shot.tan_half_fov,
-                        );
-                        intrinsics.far = shot.far;
-                        render::render(&prepared, pose, &intrinsics, &lighting, shot.supersample)
-                            .rgb()
-                    }
-                    None => RgbImage::new(shot.width, shot.height),
-                };
+                let frame = render_shot(&prepared, &shot, &lighting);
                 Ok(((), one("overview.png", codec::encode_png(&frame))))
             },
         )
+    }
+}
+
+/// An overview shot rendered: black when it has no pose (an empty city).
+pub(crate) fn render_shot(
+    prepared: &render::PreparedScene,
+    shot: &cameras::Overview,
+    lighting: &render::Lighting,
+) -> RgbImage {
+    match &shot.pose {
+        Some(pose) => {
+            let mut intrinsics =
+                render::Intrinsics::from_fov(shot.width, shot.height, shot.tan_half_fov);
+            intrinsics.far = shot.far;
+            render::render(prepared, pose, &intrinsics, lighting, shot.supersample).rgb()
+        }
+        None => RgbImage::new(shot.width, shot.height),
     }
 }
 

@@ -24,6 +24,7 @@ mod evaluate;
 mod facade_shares;
 mod frames_stage;
 mod graph;
+pub(crate) use graph::render_shot;
 mod scene_values;
 
 use evaluate::evaluated;

@@ -62,6 +62,38 @@ impl MeshBuilder {
         self.quad(corners, UP, uvs);
     }
 
+    /// A horizontal polygon at height `y`, facing up: `outer` (x, z) less `holes`,
+    /// triangulated by ear clipping (`earcut`), uv = metres / `tile` as [`Self::floor`].
+    /// Rings need not repeat their first point; a ring of fewer than three points, or a
+    /// polygon earcut cannot cut, adds nothing.
+    pub fn polygon(&mut self, outer: &[[f64; 2]], holes: &[Vec<[f64; 2]>], y: f64, tile: f64) {
+        if outer.len() < 3 {
+            return;
+        }
+        let mut points: Vec<[f64; 2]> = outer.to_vec();
+        let mut starts: Vec<u32> = Vec::with_capacity(holes.len());
+        for hole in holes.iter().filter(|h| h.len() >= 3) {
+            starts.push(points.len() as u32);
+            points.extend_from_slice(hole);
+        }
+        let mut triangles: Vec<u32> = Vec::new();
+        earcut::Earcut::new().earcut(points.iter().copied(), &starts, &mut triangles);
+        let base = self.mesh.positions.len() as u32;
+        for &[x, z] in &points {
+            self.mesh.positions.push(to_f32([x, y, z]));
+            self.mesh.normals.push(to_f32(UP));
+            self.mesh.uvs.push([(x / tile) as f32, (z / tile) as f32]);
+        }
+        for t in triangles.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| points[i as usize]);
+            // Counter-clockwise seen from above (y up, so x × z turns the other way).
+            let turn = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            let [i, j, k] = [t[0], t[1], t[2]].map(|i| base + i);
+            let tri = if turn < 0.0 { [i, j, k] } else { [i, k, j] };
+            self.mesh.indices.extend_from_slice(&tri);
+        }
+    }
+
     /// A vertical quad from bottom corner `a` to bottom corner `b` (x, z), from height `y0`
     /// up to `y1`, facing the horizontal unit `normal`. `u` spans `u_span` from the wall's
     /// left to its right as seen from the front; `v` runs `v_span[0]` at the top to
@@ -241,5 +273,29 @@ mod tests {
             let stored = mesh.normals[mesh.indices[3 * t] as usize].map(f64::from);
             assert!(dot(n, stored) > 0.0, "triangle {t}");
         }
+    }
+
+    #[test]
+    fn a_polygon_with_a_hole_is_its_area_facing_up() {
+        let mut mesh = MeshBuilder::new(0);
+        let outer = [[0.0, 0.0], [10.0, 0.0], [10.0, 6.0], [0.0, 6.0]];
+        let hole = vec![[2.0, 2.0], [2.0, 4.0], [4.0, 4.0], [4.0, 2.0]];
+        mesh.polygon(&outer, &[hole], 1.5, 2.0);
+        let mesh = mesh.finish();
+        let mut area = 0.0;
+        for t in mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[t[k] as usize].map(f64::from));
+            let n = cross(sub(b, a), sub(c, a));
+            // Counter-clockwise seen from above: the face's normal points up.
+            assert!(dot(n, UP) > 0.0, "{a:?} {b:?} {c:?}");
+            area += n[1] / 2.0;
+        }
+        assert!((area - (60.0 - 4.0)).abs() < 1e-9, "{area}");
+        assert!(mesh.positions.iter().all(|p| p[1] == 1.5));
+        assert_eq!(mesh.uvs[1], [5.0, 0.0]);
+        // Fewer than three points: nothing.
+        let mut none = MeshBuilder::new(0);
+        none.polygon(&[[0.0, 0.0], [1.0, 0.0]], &[], 0.0, 1.0);
+        assert!(none.is_empty());
     }
 }

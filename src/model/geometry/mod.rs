@@ -19,6 +19,7 @@
 mod facade_choice;
 mod material_book;
 mod mesh_builder;
+pub mod polygon;
 mod road_rect;
 pub mod rounding;
 mod street_profile;

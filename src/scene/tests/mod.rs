@@ -10,6 +10,7 @@ use crate::model::{
 use crate::test_support::{TestCity, test_city};
 
 mod buildings;
+mod map_city;
 mod streets;
 mod whole_scene;
 

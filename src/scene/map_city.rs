@@ -1,0 +1,257 @@
+//! An [`OsmMap`] + facades → the 3D city of a real place: its street surface and its
+//! buildings on their real footprints, at their mapped heights.
+//!
+//! | object | class | geometry | material |
+//! |---|---|---|---|
+//! | `ground` | ground | one quad under the box, [`GROUND_MARGIN`] beyond it | `grass` |
+//! | `block_0007` | block | the block polygon at kerb height (blocks with a mapped building first, then those without: parks, squares, yards) | `paving`; `grass` without a building |
+//! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
+//! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
+//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out | `facade_*`, `roof_*` |
+//!
+//! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
+//! facade is seeded per building (`rng::stream(seed, "map-facade", i)`) and keeps its own
+//! scale on every wall: one facade width along u per its width in metres, and one floor of
+//! the facade per floor of the building. The facade's ground floor runs along the bottom
+//! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
+//! line (so windows are never stretched).
+//!
+//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces,
+//! markings, the map's lamps, trees, benches and signs, and blocks filled where the map
+//! has no buildings.
+
+use rand::RngExt;
+
+use super::object;
+use super::surfaces::Surfaces;
+use crate::model::geometry::polygon::contains;
+use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
+use crate::model::{Facade, FacadeSet, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
+
+/// How far the ground reaches beyond the box, metres.
+pub const GROUND_MARGIN: f64 = 200.0;
+/// Metres one repeat of a roof texture covers, and of the plain roof.
+const ROOF_TILE: f64 = 4.0;
+/// Floors a building without a mapped height gets, drawn uniformly.
+const SEEDED_FLOORS: std::ops::RangeInclusive<u32> = 3..=7;
+
+/// The map scene's input.
+pub struct MapSceneInput<'a> {
+    pub map: &'a OsmMap,
+    pub facades: &'a FacadeSet,
+    pub seed: u64,
+}
+
+/// The 3D city of `input.map`. Pure and deterministic.
+pub fn map_city(input: &MapSceneInput) -> Scene {
+    let mut book = MaterialBook::default();
+    let surfaces = Surfaces::register(&mut book);
+    let map = input.map;
+    let mut objects: Vec<SceneObject> = Vec::new();
+    let [x0, z0, x1, z1] = map.extent;
+    let mut ground = MeshBuilder::new(surfaces.grass);
+    let m = GROUND_MARGIN;
+    ground.floor(
+        [x0 - m, x1 + m],
+        [z0 - m, z1 + m],
+        0.0,
+        super::procedural::GRASS_TILE,
+    );
+    objects.push(object(
+        ObjectKind::Ground,
+        "ground".to_owned(),
+        vec![ground],
+    ));
+    // A block with no mapped building in it is a park, a square or a yard: grass.
+    let (built, open): (Vec<MapPolygon>, Vec<MapPolygon>) =
+        map.blocks.iter().cloned().partition(|block| {
+            map.buildings.iter().any(|b| {
+                contains(&block.outer, b.outer[0])
+                    && !block.holes.iter().any(|h| contains(h, b.outer[0]))
+            })
+        });
+    objects.extend(flat(
+        &built,
+        ObjectKind::Block,
+        surfaces.paving,
+        KERB_Y,
+        2.0,
+    ));
+    objects.extend(flat(
+        &open,
+        ObjectKind::Block,
+        surfaces.grass,
+        KERB_Y,
+        super::procedural::GRASS_TILE,
+    ));
+    objects.extend(flat(
+        &map.sidewalks,
+        ObjectKind::Sidewalk,
+        surfaces.concrete,
+        KERB_Y,
+        2.0,
+    ));
+    objects.extend(flat(
+        &map.carriageway,
+        ObjectKind::Road,
+        surfaces.asphalt,
+        ROAD_Y,
+        4.0,
+    ));
+    objects.extend(buildings(input, &mut book));
+    let (textures, materials) = book.finish();
+    Scene {
+        textures,
+        materials,
+        objects,
+    }
+}
+
+/// One object of `kind` per polygon, flat at height `y`.
+fn flat(
+    polygons: &[MapPolygon],
+    kind: ObjectKind,
+    material: u32,
+    y: f64,
+    tile: f64,
+) -> Vec<SceneObject> {
+    polygons
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let mut mesh = MeshBuilder::new(material);
+            mesh.polygon(&p.outer, &p.holes, y, tile);
+            object(kind, format!("{}_{i:04}", kind.name()), vec![mesh])
+        })
+        .collect()
+}
+
+/// Every building: walls with its facade, a flat roof.
+fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
+    let facades = &input.facades.facades;
+    let choice: Vec<(Option<usize>, u32)> = (0..input.map.buildings.len())
+        .map(|i| {
+            let mut rng = crate::rng::stream(input.seed, "map-facade", i as u64);
+            let facade = (!facades.is_empty()).then(|| rng.random_range(0..facades.len()));
+            (facade, rng.random_range(SEEDED_FLOORS))
+        })
+        .collect();
+    // Materials in facade order, then roofs, each once and only when used.
+    let none = [0.0; 3];
+    let mut wall_material = vec![None; facades.len()];
+    for (f, _) in &choice {
+        if let Some(f) = *f {
+            let facade = &facades[f];
+            wall_material[f].get_or_insert_with(|| {
+                book.add(
+                    &format!("facade_{}", facade.name),
+                    [1.0; 3],
+                    Some(&facade.texture),
+                    none,
+                )
+            });
+        }
+    }
+    let roofs = &input.facades.roofs;
+    let mut roof_material = vec![None; roofs.len()];
+    for f in choice.iter().filter_map(|c| c.0) {
+        if let Some(r) = roofs.get(facades[f].roof as usize) {
+            roof_material[facades[f].roof as usize].get_or_insert_with(|| {
+                book.add(
+                    &format!("roof_{}", r.name),
+                    [1.0; 3],
+                    Some(&r.texture),
+                    none,
+                )
+            });
+        }
+    }
+    let plain_wall = book.add("facade_plain", [0.55, 0.5, 0.45], None, none);
+    let plain_roof = book.add("roof_plain", [0.3, 0.3, 0.3], None, none);
+    input
+        .map
+        .buildings
+        .iter()
+        .zip(&choice)
+        .enumerate()
+        .map(|(i, (b, &(f, floors)))| {
+            let facade = f
+                .map(|f| &facades[f])
+                .filter(|f| f.height > 0.0 && f.width > 0.0 && f.floors > 0);
+            let floor = facade.map_or(3.0, |f| f.height / f64::from(f.floors));
+            let height = b.height.unwrap_or(f64::from(floors) * floor);
+            let mut walls =
+                MeshBuilder::new(f.and_then(|f| wall_material[f]).unwrap_or(plain_wall));
+            for ring in std::iter::once(&b.outer).chain(&b.holes) {
+                for e in 0..ring.len() {
+                    wall(
+                        &mut walls,
+                        ring[e],
+                        ring[(e + 1) % ring.len()],
+                        height,
+                        facade,
+                    );
+                }
+            }
+            let roof = f.and_then(|f| {
+                roof_material
+                    .get(facades[f].roof as usize)
+                    .copied()
+                    .flatten()
+            });
+            let mut top = MeshBuilder::new(roof.unwrap_or(plain_roof));
+            top.polygon(&b.outer, &b.holes, KERB_Y + height, ROOF_TILE);
+            object(
+                ObjectKind::Building,
+                format!("building_{i:04}"),
+                vec![walls, top],
+            )
+        })
+        .collect()
+}
+
+/// The wall along footprint edge `a → b` (facing left of it: outwards on an outer ring,
+/// into the courtyard on a hole), `height` tall on the kerb, clad in `facade` at its own
+/// scale (see the module's note), or plain.
+fn wall(mesh: &mut MeshBuilder, a: [f64; 2], b: [f64; 2], height: f64, facade: Option<&Facade>) {
+    let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+    let len = (dx * dx + dz * dz).sqrt();
+    if len == 0.0 || height <= 0.0 {
+        return;
+    }
+    // + 0.0: no negative zero in a normal.
+    let normal = [dz / len + 0.0, 0.0, -dx / len + 0.0];
+    let Some(f) = facade else {
+        mesh.wall(
+            a,
+            b,
+            [KERB_Y, KERB_Y + height],
+            normal,
+            [0.0, len / 3.0],
+            [0.0, 1.0],
+        );
+        return;
+    };
+    let u = [0.0, len / f.width];
+    let floor = f.height / f64::from(f.floors);
+    // v runs 0 at the facade's top to 1 at its ground line; its ground floor is the last
+    // 1 / floors of v, the floors above it the rest.
+    let ground_v = 1.0 - 1.0 / f64::from(f.floors);
+    let ground = floor.min(height);
+    mesh.wall(
+        a,
+        b,
+        [KERB_Y, KERB_Y + ground],
+        normal,
+        u,
+        [1.0 - ground / floor * (1.0 - ground_v), 1.0],
+    );
+    let upper = f.height - floor;
+    let mut y = ground;
+    while y < height && upper > 0.0 {
+        let top = (y + upper).min(height);
+        let cut = (y + upper - top) / upper * ground_v;
+        mesh.wall(a, b, [KERB_Y + y, KERB_Y + top], normal, u, [cut, ground_v]);
+        y = top;
+    }
+}

@@ -1,0 +1,234 @@
+//! The 3D city of an OpenStreetMap map: footprints, mapped heights, facades at their own
+//! scale, the street surface.
+
+use super::facade_set;
+use crate::model::geometry::KERB_Y;
+use crate::model::geometry::polygon::contains;
+use crate::model::{
+    LeftOut, MapBuilding, MapPolygon, ObjectKind, OsmElement, OsmMap, Scene, SceneObject,
+};
+use crate::scene::{MapSceneInput, map_city};
+
+/// A map of two buildings beside a street: an L-shaped one 18 m tall with a courtyard
+/// cut into its long arm, and a square one the map gives no height.
+fn map() -> OsmMap {
+    let square = |x: f64, z: f64, s: f64| vec![[x, z], [x + s, z], [x + s, z + s], [x, z + s]];
+    let polygon =
+        |outer: Vec<[f64; 2]>, holes: Vec<Vec<[f64; 2]>>, area| MapPolygon { outer, holes, area };
+    let l_shape = vec![
+        [0.0, 0.0],
+        [30.0, 0.0],
+        [30.0, 10.0],
+        [10.0, 10.0],
+        [10.0, 30.0],
+        [0.0, 30.0],
+    ];
+    let courtyard: Vec<[f64; 2]> = square(14.0, 3.0, 4.0).into_iter().rev().collect();
+    let building = |element, outer, holes: Vec<Vec<[f64; 2]>>, area, height| MapBuilding {
+        element,
+        part: 0,
+        kind: "yes".to_owned(),
+        outer,
+        holes,
+        area,
+        height,
+        height_from: "height".to_owned(),
+        roof_shape: None,
+    };
+    OsmMap {
+        bounds: crate::model::GeoBox {
+            south: 60.0,
+            west: 25.0,
+            north: 60.001,
+            east: 25.001,
+        },
+        origin: [60.0005, 25.0005],
+        metres_per_degree: [55_800.0, 111_412.0],
+        extent: [-10.0, -20.0, 60.0, 50.0],
+        buildings: vec![
+            building(
+                OsmElement::Way(1),
+                l_shape,
+                vec![courtyard],
+                500.0 - 16.0,
+                Some(18.0),
+            ),
+            building(
+                OsmElement::Way(2),
+                square(40.0, 0.0, 12.0),
+                Vec::new(),
+                144.0,
+                None,
+            ),
+        ],
+        roads: Vec::new(),
+        features: Vec::new(),
+        carriageway: vec![polygon(
+            vec![[-10.0, -20.0], [60.0, -20.0], [60.0, -10.0], [-10.0, -10.0]],
+            Vec::new(),
+            700.0,
+        )],
+        sidewalks: vec![polygon(
+            vec![[-10.0, -10.0], [60.0, -10.0], [60.0, -8.0], [-10.0, -8.0]],
+            Vec::new(),
+            140.0,
+        )],
+        blocks: vec![polygon(
+            vec![[-10.0, -8.0], [60.0, -8.0], [60.0, 50.0], [-10.0, 50.0]],
+            Vec::new(),
+            4060.0,
+        )],
+        left_out: LeftOut::default(),
+    }
+}
+
+fn city() -> Scene {
+    map_city(&MapSceneInput {
+        map: &map(),
+        facades: &facade_set(),
+        seed: 7,
+    })
+}
+
+fn triangles(object: &SceneObject) -> impl Iterator<Item = [[f32; 3]; 3]> + '_ {
+    object.meshes.iter().flat_map(|m| {
+        m.indices
+            .chunks_exact(3)
+            .map(|t| [0, 1, 2].map(|k| m.positions[t[k] as usize]))
+    })
+}
+
+fn area_from_above(t: [[f32; 3]; 3]) -> f64 {
+    let [a, b, c] = t.map(|p| [f64::from(p[0]), f64::from(p[2])]);
+    ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs() / 2.0
+}
+
+#[test]
+fn buildings_stand_on_their_footprints_at_their_heights() {
+    let scene = city();
+    let buildings: Vec<&SceneObject> = scene
+        .objects
+        .iter()
+        .filter(|o| o.kind == ObjectKind::Building)
+        .collect();
+    assert_eq!(buildings.len(), 2);
+    for (object, map_building) in buildings.iter().zip(&map().buildings) {
+        let [walls, roof] = [&object.meshes[0], &object.meshes[1]];
+        // The roof covers the footprint less its courtyard, flat at the top of the walls.
+        let roof_area: f64 = roof
+            .indices
+            .chunks_exact(3)
+            .map(|t| area_from_above([0, 1, 2].map(|k| roof.positions[t[k] as usize])))
+            .sum();
+        assert!(
+            (roof_area - map_building.area).abs() < 1e-3,
+            "{roof_area} {}",
+            map_building.area
+        );
+        let top = roof.positions[0][1];
+        assert!(roof.positions.iter().all(|p| p[1] == top));
+        let wall_top = walls
+            .positions
+            .iter()
+            .map(|p| p[1])
+            .fold(f32::MIN, f32::max);
+        assert_eq!(wall_top, top);
+        match map_building.height {
+            Some(h) => assert!((f64::from(top) - KERB_Y - h).abs() < 1e-4, "{top}"),
+            // 3 to 7 floors of 3 m (the test facades' floor).
+            None => {
+                let floors = (f64::from(top) - KERB_Y) / 3.0;
+                assert!(
+                    (3.0..=7.0).contains(&floors) && (floors - floors.round()).abs() < 1e-4,
+                    "{floors}"
+                );
+            }
+        }
+        // Every wall faces out of the footprint (into the courtyard on a hole's edges):
+        // half a metre in front of each wall quad's middle is outside the building.
+        for quad in walls.indices.chunks_exact(6) {
+            let corners = [quad[0], quad[1], quad[2], quad[5]].map(|i| walls.positions[i as usize]);
+            let n = walls.normals[quad[0] as usize];
+            let mid = |k: usize| corners.iter().map(|c| f64::from(c[k])).sum::<f64>() / 4.0;
+            let out = [
+                mid(0) + f64::from(n[0]) * 0.5,
+                mid(2) + f64::from(n[2]) * 0.5,
+            ];
+            let inside = contains(&map_building.outer, out)
+                && !map_building.holes.iter().any(|h| contains(h, out));
+            assert!(
+                !inside,
+                "a wall at {corners:?} faces {n:?}, into the building"
+            );
+        }
+    }
+}
+
+#[test]
+fn facades_keep_their_scale_on_every_wall() {
+    // One unit of v is the facade's whole height, one of u its width: whatever the wall's
+    // length and the building's height, windows keep their size.
+    let scene = city();
+    let facades = facade_set().facades;
+    for object in scene
+        .objects
+        .iter()
+        .filter(|o| o.kind == ObjectKind::Building)
+    {
+        let walls = &object.meshes[0];
+        let material = &scene.materials[walls.material as usize];
+        let facade = facades
+            .iter()
+            .find(|f| material.name == format!("facade_{}", f.name))
+            .expect("a facade");
+        for quad in walls.indices.chunks_exact(6) {
+            let corners: Vec<usize> = quad.iter().map(|&i| i as usize).collect();
+            let (p, uv) = (&walls.positions, &walls.uvs);
+            let (lo, hi) = (
+                corners
+                    .iter()
+                    .min_by(|a, b| p[**a][1].total_cmp(&p[**b][1]))
+                    .copied()
+                    .unwrap(),
+                corners
+                    .iter()
+                    .max_by(|a, b| p[**a][1].total_cmp(&p[**b][1]))
+                    .copied()
+                    .unwrap(),
+            );
+            let metres = f64::from(p[hi][1] - p[lo][1]);
+            let v = f64::from(uv[lo][1] - uv[hi][1]);
+            assert!(
+                (metres / v - facade.height).abs() < 1e-3,
+                "{metres} m over v {v}"
+            );
+            assert!(
+                uv.iter().all(|t| (0.0..=1.0 + 1e-6).contains(&t[1])),
+                "v stays on the facade"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_street_surface_and_the_blocks_are_paved() {
+    let scene = city();
+    let kinds: Vec<ObjectKind> = scene.objects.iter().map(|o| o.kind).collect();
+    for kind in [
+        ObjectKind::Ground,
+        ObjectKind::Block,
+        ObjectKind::Sidewalk,
+        ObjectKind::Road,
+    ] {
+        assert_eq!(kinds.iter().filter(|k| **k == kind).count(), 1, "{kind:?}");
+    }
+    let road = scene
+        .objects
+        .iter()
+        .find(|o| o.kind == ObjectKind::Road)
+        .unwrap();
+    let area: f64 = triangles(road).map(area_from_above).sum();
+    assert!((area - 700.0).abs() < 1e-3, "{area}");
+    // Same input, same scene.
+    assert_eq!(city(), scene);
+}
