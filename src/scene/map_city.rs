@@ -126,23 +126,28 @@ fn flat(
         .collect()
 }
 
-/// Every building: walls with its facade, a flat roof.
-fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
-    let facades = &input.facades.facades;
-    let choice: Vec<(Option<usize>, u32)> = (0..input.map.buildings.len())
-        .map(|i| {
-            let mut rng = crate::rng::stream(input.seed, "map-facade", i as u64);
-            let facade = (!facades.is_empty()).then(|| rng.random_range(0..facades.len()));
-            (facade, rng.random_range(SEEDED_FLOORS))
-        })
-        .collect();
-    // Materials in facade order, then roofs, each once and only when used.
-    let none = [0.0; 3];
-    let mut wall_material = vec![None; facades.len()];
-    for (f, _) in &choice {
-        if let Some(f) = *f {
-            let facade = &facades[f];
-            wall_material[f].get_or_insert_with(|| {
+/// Each building's material per facade and per roof (registered once, when used), and
+/// the plain ones.
+struct Cladding {
+    wall: Vec<Option<u32>>,
+    roof: Vec<Option<u32>>,
+    plain_wall: u32,
+    plain_roof: u32,
+}
+
+impl Cladding {
+    /// Registers, in facade order then roof order, the materials `facades` (one per
+    /// building, `None`: plain) use.
+    fn register(
+        set: &crate::model::FacadeSet,
+        facades: &[Option<usize>],
+        book: &mut MaterialBook,
+    ) -> Cladding {
+        let none = [0.0; 3];
+        let mut wall = vec![None; set.facades.len()];
+        for f in facades.iter().flatten() {
+            let facade = &set.facades[*f];
+            wall[*f].get_or_insert_with(|| {
                 book.add(
                     &format!("facade_{}", facade.name),
                     [1.0; 3],
@@ -151,37 +156,54 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
                 )
             });
         }
-    }
-    let roofs = &input.facades.roofs;
-    let mut roof_material = vec![None; roofs.len()];
-    for f in choice.iter().filter_map(|c| c.0) {
-        if let Some(r) = roofs.get(facades[f].roof as usize) {
-            roof_material[facades[f].roof as usize].get_or_insert_with(|| {
-                book.add(
-                    &format!("roof_{}", r.name),
-                    [1.0; 3],
-                    Some(&r.texture),
-                    none,
-                )
-            });
+        let mut roof = vec![None; set.roofs.len()];
+        for f in facades.iter().flatten() {
+            let index = set.facades[*f].roof as usize;
+            if let Some(r) = set.roofs.get(index) {
+                roof[index].get_or_insert_with(|| {
+                    book.add(
+                        &format!("roof_{}", r.name),
+                        [1.0; 3],
+                        Some(&r.texture),
+                        none,
+                    )
+                });
+            }
+        }
+        Cladding {
+            wall,
+            roof,
+            plain_wall: book.add("facade_plain", [0.55, 0.5, 0.45], None, none),
+            plain_roof: book.add("roof_plain", [0.3, 0.3, 0.3], None, none),
         }
     }
-    let plain_wall = book.add("facade_plain", [0.55, 0.5, 0.45], None, none);
-    let plain_roof = book.add("roof_plain", [0.3, 0.3, 0.3], None, none);
+}
+
+/// Every building: walls with its facade, a flat roof.
+fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
+    let facades = &input.facades.facades;
+    let (choice, floors): (Vec<Option<usize>>, Vec<u32>) = (0..input.map.buildings.len())
+        .map(|i| {
+            let mut rng = crate::rng::stream(input.seed, "map-facade", i as u64);
+            let facade = (!facades.is_empty()).then(|| rng.random_range(0..facades.len()));
+            (facade, rng.random_range(SEEDED_FLOORS))
+        })
+        .unzip();
+    let clad = Cladding::register(input.facades, &choice, book);
     input
         .map
         .buildings
         .iter()
-        .zip(&choice)
+        .zip(choice.iter().zip(&floors))
         .enumerate()
-        .map(|(i, (b, &(f, floors)))| {
+        .map(|(i, (b, (&f, &floors)))| {
             let facade = f
                 .map(|f| &facades[f])
                 .filter(|f| f.height > 0.0 && f.width > 0.0 && f.floors > 0);
             let floor = facade.map_or(3.0, |f| f.height / f64::from(f.floors));
             let height = b.height.unwrap_or(f64::from(floors) * floor);
             let mut walls =
-                MeshBuilder::new(f.and_then(|f| wall_material[f]).unwrap_or(plain_wall));
+                MeshBuilder::new(f.and_then(|f| clad.wall[f]).unwrap_or(clad.plain_wall));
             for ring in std::iter::once(&b.outer).chain(&b.holes) {
                 for e in 0..ring.len() {
                     wall(
@@ -193,13 +215,8 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
                     );
                 }
             }
-            let roof = f.and_then(|f| {
-                roof_material
-                    .get(facades[f].roof as usize)
-                    .copied()
-                    .flatten()
-            });
-            let mut top = MeshBuilder::new(roof.unwrap_or(plain_roof));
+            let roof = f.and_then(|f| clad.roof.get(facades[f].roof as usize).copied().flatten());
+            let mut top = MeshBuilder::new(roof.unwrap_or(clad.plain_roof));
             top.polygon(&b.outer, &b.holes, KERB_Y + height, ROOF_TILE);
             object(
                 ObjectKind::Building,
