@@ -167,7 +167,7 @@ pub enum Command {
         file: PathBuf,
         /// Only what lies in this box: south,west,north,east in degrees (default: the
         /// file's own bounds, else the extent of its nodes).
-        #[arg(long, value_name = "S,W,N,E", value_parser = parse_box)]
+        #[arg(long, value_name = "S,W,N,E", value_parser = parse_box, allow_hyphen_values = true)]
         bbox: Option<GeoBox>,
         /// Write the map as JSON to this file.
         #[arg(long, value_name = "FILE")]

@@ -333,11 +333,13 @@ fn osm(
     };
     let b = &map.bounds;
     let [x0, z0, x1, z1] = map.extent;
-    let area: f64 = map.buildings.iter().map(|b| b.area).sum();
+    // + 0.0: an empty sum is -0.0.
+    let area: f64 = map.buildings.iter().map(|b| b.area).sum::<f64>() + 0.0;
     let with_height = map.buildings.iter().filter(|b| b.height.is_some()).count();
     let drivable: Vec<_> = map.roads.iter().filter(|r| r.drivable).collect();
-    let km =
-        |roads: &[&crate::model::MapRoad]| roads.iter().map(|r| r.length).sum::<f64>() / 1000.0;
+    let km = |roads: &[&crate::model::MapRoad]| {
+        roads.iter().map(|r| r.length).sum::<f64>() / 1000.0 + 0.0
+    };
     let paths: Vec<_> = map.roads.iter().filter(|r| !r.drivable).collect();
     let l = &map.left_out;
     cx.out.info(&format!(
@@ -366,7 +368,7 @@ fn osm(
 }
 
 fn surface(polygons: &[crate::model::MapPolygon]) -> f64 {
-    polygons.iter().map(|p| p.area).sum()
+    polygons.iter().map(|p| p.area).sum::<f64>() + 0.0
 }
 
 fn count(map: &crate::model::OsmMap, kind: FeatureKind) -> usize {

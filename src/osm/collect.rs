@@ -134,10 +134,18 @@ impl Sink for Collector {
 impl Collector {
     /// The map inside `bbox` (else the file's bounds, else its nodes' extent).
     pub fn finish(self, bbox: Option<GeoBox>) -> Result<OsmMap, OsmError> {
-        let bounds = match bbox.or(self.file_bounds) {
-            Some(b) => b,
-            None => self.node_extent().ok_or(OsmError::NoNodes)?,
-        };
+        let held = self.node_extent().ok_or(OsmError::NoNodes)?;
+        let bounds = bbox.or(self.file_bounds).unwrap_or(held);
+        if let Some(asked) = bbox {
+            let degrees = |&[lat, lon]: &[i32; 2]| [f64::from(lat) / 1e7, f64::from(lon) / 1e7];
+            if !self
+                .nodes
+                .values()
+                .any(|n| asked.contains(degrees(n)[0], degrees(n)[1]))
+            {
+                return Err(OsmError::BoxMissesExtract { asked, held });
+            }
+        }
         let projection = Projection::new(
             (bounds.south + bounds.north) / 2.0,
             (bounds.west + bounds.east) / 2.0,

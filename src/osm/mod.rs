@@ -48,6 +48,13 @@ pub enum OsmError {
     /// The extract holds no node, and no box was given.
     #[error("the extract holds no nodes")]
     NoNodes,
+    /// No node of the extract lies in the box asked for.
+    #[error(
+        "no node of the extract lies in the box {}: the extract's nodes span {}",
+        fmt_box(asked),
+        fmt_box(held)
+    )]
+    BoxMissesExtract { asked: GeoBox, held: GeoBox },
     /// The box is empty, inverted or off the globe.
     #[error("the box {0}")]
     Box(String),
@@ -66,6 +73,11 @@ pub fn read(bytes: &[u8], bbox: Option<GeoBox>) -> Result<OsmMap, OsmError> {
         elements::read_xml(bytes, &mut sink)?;
     }
     sink.finish(bbox)
+}
+
+/// `south,west,north,east`, as `--bbox` takes it.
+fn fmt_box(b: &GeoBox) -> String {
+    format!("{},{},{},{}", b.south, b.west, b.north, b.east)
 }
 
 /// A box must have its south below its north and its west left of its east, on the globe.

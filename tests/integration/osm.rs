@@ -120,6 +120,10 @@ fn bad_input_is_exit_code_2_and_names_the_file() {
         (&["broken.osm", "--bbox", "60,25,59,26"], "is empty"),
         (&["broken.osm", "--bbox", "60,25"], "expected four numbers"),
         (&["broken.osm", "--bbox", "95,25,96,26"], "off the globe"),
+        (
+            &[&extract(), "--bbox", "-33.9,18.4,-33.8,18.5"],
+            "no node of the extract lies in the box -33.9,18.4,-33.8,18.5",
+        ),
         (&["."], "not a regular file"),
     ];
     for (args, expected) in cases {
