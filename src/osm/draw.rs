@@ -4,8 +4,7 @@
 //! yellow, trees green, benches brown, signs blue, crossings white).
 
 use image::{Rgb, RgbImage};
-use imageproc::drawing::{draw_filled_circle_mut, draw_polygon_mut};
-use imageproc::point::Point;
+use imageproc::drawing::draw_filled_circle_mut;
 
 use crate::model::geometry::polygon::left_normal;
 use crate::model::{FeatureKind, MapRoad, OsmMap};
@@ -112,24 +111,6 @@ fn fill_rings<'a>(
     }
 }
 
-/// Fills a ring given in metres.
-fn fill(img: &mut RgbImage, ring: &[[f64; 2]], px: impl Fn([f64; 2]) -> [f64; 2], colour: Rgb<u8>) {
-    let mut points: Vec<Point<i32>> = ring
-        .iter()
-        .map(|&p| {
-            let [x, y] = px(p);
-            Point::new(x.round() as i32, y.round() as i32)
-        })
-        .collect();
-    points.dedup();
-    while points.len() > 1 && points.first() == points.last() {
-        points.pop();
-    }
-    if points.len() >= 3 {
-        draw_polygon_mut(img, &points, colour);
-    }
-}
-
 /// Paints a road without a surface (a path, a road in a tunnel) at its width, round at
 /// the joints.
 fn band(
@@ -147,7 +128,7 @@ fn band(
         };
         let at = |p: [f64; 2], s: f64| [p[0] + n[0] * s, p[1] + n[1] * s];
         let quad = [at(a, half), at(b, half), at(b, -half), at(a, -half)];
-        fill(img, &quad, &px, colour);
+        fill_rings(img, std::iter::once(&quad.to_vec()), &px, colour);
         let r = (half * scale).round() as i32;
         for p in [a, b] {
             let [x, y] = px(p);

@@ -24,7 +24,7 @@ use rand::RngExt;
 
 use super::object;
 use super::surfaces::Surfaces;
-use crate::model::geometry::polygon::contains;
+use crate::model::geometry::polygon::{contains, left_normal};
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{Facade, FacadeSet, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
 
@@ -231,13 +231,13 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
 /// into the courtyard on a hole), `height` tall on the kerb, clad in `facade` at its own
 /// scale (see the module's note), or plain.
 fn wall(mesh: &mut MeshBuilder, a: [f64; 2], b: [f64; 2], height: f64, facade: Option<&Facade>) {
+    let Some(n) = left_normal(a, b).filter(|_| height > 0.0) else {
+        return;
+    };
     let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
     let len = (dx * dx + dz * dz).sqrt();
-    if len == 0.0 || height <= 0.0 {
-        return;
-    }
     // + 0.0: no negative zero in a normal.
-    let normal = [dz / len + 0.0, 0.0, -dx / len + 0.0];
+    let normal = [n[0] + 0.0, 0.0, n[1] + 0.0];
     let Some(f) = facade else {
         mesh.wall(
             a,
