@@ -28,7 +28,7 @@
 //! | traffic | [`traffic`] | objects' lane vehicles, signal heads and walking people, roads, `spec.traffic`, seed, a timed drive's poses | [`traffic::Traffic`]; `at(t)`: the [`model::Movement`] a frame poses the scene with |
 //! | lidar | [`lidar`] | prepared scene's triangles, object kinds, a camera pose, scanner | [`lidar::Point`]s with SemanticKITTI labels: a camera's `velodyne/`, `labels/` |
 //! | dataset | [`dataset`] | every camera path's `coco.json` and YOLO files, `spec.splits` | `coco/<split>.json`, the ultralytics `yolo/` folder |
-//! | (tool) | [`osm`] | an OpenStreetMap extract, a box | [`model::OsmMap`]: footprints, roads, furniture in metres (no city from it yet) |
+//! | (tool) | [`osm`] | an OpenStreetMap extract, a box | [`model::OsmMap`]: footprints, roads, furniture in metres; the layout stage of a `[layout.osm]` spec |
 //! | (tool) | [`stats`] | a built output folder | pixel share per kind, labels per frame, box heights |
 //!
 //! Shared types live in [`model`], with shared geometry (mesh building, road rectangles,

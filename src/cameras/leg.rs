@@ -13,7 +13,11 @@
 //!
 //! The camera starts at the road's start (0 m in): it looks forward, into the road.
 
-use crate::model::{Axis, ParsedLayout, Road};
+use crate::model::geometry::polygon::{distance, left_normal};
+use crate::model::{Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road};
+
+/// How far inside its kerb a map camera's lane stays, metres.
+pub(super) const KERB_CLEARANCE: f64 = 1.0;
 
 /// One road as driven: lane start `[x, z]` in metres, unit direction, and the length in
 /// metres the eye travels.
@@ -47,6 +51,67 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
         .iter()
         .map(|road| lane(road, m, lane_offset, road.length() * m))
         .collect()
+}
+
+/// The roads of `map` with a surface, in map order, as legs: each paved segment in the
+/// way's direction, on the right-hand lane: `lane_offset` right of the centreline, at most
+/// [`MAP_CAMERA_LANE`] and [`KERB_CLEARANCE`] inside the kerb; on the centreline of a
+/// one-way road. Each run of consecutive paved segments of a road
+/// (a junction continues the run; an unpaved segment ends it) is driven to `look_ahead`
+/// metres before its end, so the look-at point stays on the road; a run no longer than
+/// `look_ahead` is left out. When that leaves no leg, every run is driven whole.
+pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<Leg> {
+    let mut runs: Vec<Vec<PavedSegment>> = Vec::new();
+    let mut last: Option<PavedSegment> = None;
+    for s in map.paved_segments() {
+        let joined = last.is_some_and(|l| l.road == s.road && l.b == s.a);
+        if !joined {
+            runs.push(Vec::new());
+        }
+        if let Some(run) = runs.last_mut() {
+            run.push(s);
+        }
+        last = Some(s);
+    }
+    let lane = |s: &PavedSegment, length: f64| {
+        let n = left_normal(s.a, s.b)?;
+        let across = if map.roads[s.road].oneway {
+            0.0
+        } else {
+            lane_offset
+                .min(MAP_CAMERA_LANE)
+                .min(s.width / 2.0 - KERB_CLEARANCE)
+                .max(0.0)
+        };
+        let len = distance(s.a, s.b);
+        Some(Leg {
+            origin: [s.a[0] - n[0] * across, s.a[1] - n[1] * across],
+            dir: [(s.b[0] - s.a[0]) / len, (s.b[1] - s.a[1]) / len],
+            length,
+        })
+    };
+    let drive = |trim: f64| -> Vec<Leg> {
+        let mut legs = Vec::new();
+        for run in &runs {
+            let total: f64 = run.iter().map(|s| distance(s.a, s.b)).sum();
+            let mut left = total - trim;
+            for s in run {
+                if left <= 0.0 {
+                    break;
+                }
+                let length = distance(s.a, s.b).min(left);
+                left -= length;
+                legs.extend(lane(s, length));
+            }
+        }
+        legs
+    };
+    let trimmed = drive(look_ahead);
+    if trimmed.is_empty() {
+        drive(0.0)
+    } else {
+        trimmed
+    }
 }
 
 /// Points `n` evenly spaced by arc length along `legs` taken one after another (the jumps
@@ -245,6 +310,40 @@ mod tests {
         let backwards = road(2, Axis::Vertical, 300.0, 0.0, 50.5);
         let roads = vec![road(0, Axis::Horizontal, 0.0, 20.0, 100.5), nan, backwards];
         assert_eq!(summary(roads, 25.0), vec![([0.0, 100.5], 20.0)]);
+    }
+
+    #[test]
+    fn a_map_is_driven_on_the_right_lane_along_its_paved_roads() {
+        let map = crate::test_support::street_map();
+        let legs = map_legs(&map, 3.0, 20.0);
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        let expected = [
+            // The two-way road: east, then north-east after its bend, 1.5 m (the most a
+            // map camera keeps from a two-way road's centreline) right of it, the run
+            // trimmed by the look-ahead at its end.
+            ([-150.0, 1.5], [1.0, 0.0], 150.0),
+            ([1.5 * h, 1.5 * h], [h, -h], 100.0 * 2f64.sqrt() - 20.0),
+            // The one-way road: on its centreline. The footway has no surface.
+            ([-50.0, 0.0], [0.0, 1.0], 80.0),
+        ];
+        assert_eq!(legs.len(), expected.len());
+        for (leg, (origin, dir, length)) in legs.iter().zip(expected) {
+            assert!(
+                close(leg.origin[0], origin[0]) && close(leg.origin[1], origin[1]),
+                "{leg:?}"
+            );
+            assert!(
+                close(leg.dir[0], dir[0]) && close(leg.dir[1], dir[1]),
+                "{leg:?}"
+            );
+            assert!(close(leg.length, length), "{leg:?}");
+        }
+        // A narrow lane offset is kept; a look-ahead longer than every run drives all whole.
+        let whole = map_legs(&map, 0.5, 500.0);
+        assert_eq!(whole[0].origin, [-150.0, 0.5]);
+        let total: f64 = whole.iter().map(|l| l.length).sum();
+        assert!(close(total, 150.0 + 100.0 * 2f64.sqrt() + 100.0));
     }
 
     #[test]

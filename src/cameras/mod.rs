@@ -49,7 +49,10 @@ pub use overview::{
     OVERVIEW_FAR, OVERVIEW_HEIGHT, OVERVIEW_ORBIT_POSES, OVERVIEW_SHADOW_MAP_SIDE, OVERVIEW_SIZE,
     OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, map_overview, overview,
 };
-pub use road_path::{Drive, ROAD_PITCH, RoadPath, road_path, road_path_draws, tour_length};
+pub use road_path::{
+    Drive, ROAD_PITCH, RoadPath, map_road_path, map_road_path_draws, road_path, road_path_draws,
+    tour_length,
+};
 pub use sidewalk_path::{
     SidewalkPath, WALK_SHARE, sidewalk_path, sidewalk_path_draws, walk_length,
 };

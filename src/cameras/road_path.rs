@@ -4,9 +4,9 @@ use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 use super::aim::{Aim, aimed_pose};
-use super::leg::{legs, stations, stations_at};
+use super::leg::{Leg, legs, map_legs, stations, stations_at};
 use super::{CameraPose, mm};
-use crate::model::ParsedLayout;
+use crate::model::{OsmMap, ParsedLayout};
 use crate::rng;
 use crate::spec::FrameRule;
 
@@ -84,24 +84,58 @@ pub fn road_path_draws(
     seed: u64,
     draws: usize,
 ) -> Vec<Vec<CameraPose>> {
-    let valid = metres_per_pixel.is_finite()
-        && metres_per_pixel > 0.0
-        && path.look_ahead.is_finite()
-        && path.look_ahead > 0.0
-        && path.jitter.is_finite()
-        && path.jitter >= 0.0
-        && path.aim.is_valid()
-        && path.lane_offset.is_finite();
+    let valid = metres_per_pixel.is_finite() && metres_per_pixel > 0.0 && sound(path);
     if !valid {
         return Vec::new();
     }
     let legs = legs(layout, metres_per_pixel, path.lane_offset, path.look_ahead);
+    tour(&legs, path, seed, draws)
+}
+
+/// [`road_path_draws`] on a map's roads: each road with a surface driven along its
+/// centreline in the way's direction, paved segment by paved segment, on the right-hand
+/// lane (`lane_offset` right of the centreline, kept a metre inside the kerb), each run of
+/// consecutive paved segments to `look_ahead` metres before it ends (see
+/// `leg::map_legs`).
+pub fn map_road_path_draws(
+    map: &OsmMap,
+    path: &RoadPath,
+    seed: u64,
+    draws: usize,
+) -> Vec<Vec<CameraPose>> {
+    if !sound(path) {
+        return Vec::new();
+    }
+    let legs = map_legs(map, path.lane_offset, path.look_ahead);
+    tour(&legs, path, seed, draws)
+}
+
+/// [`map_road_path_draws`]' first draws: a map's [`road_path`].
+pub fn map_road_path(map: &OsmMap, path: &RoadPath, seed: u64) -> Vec<CameraPose> {
+    map_road_path_draws(map, path, seed, 1)
+        .into_iter()
+        .filter_map(|draws| draws.into_iter().next())
+        .collect()
+}
+
+/// Whether `path`'s settings are in range.
+fn sound(path: &RoadPath) -> bool {
+    path.look_ahead.is_finite()
+        && path.look_ahead > 0.0
+        && path.jitter.is_finite()
+        && path.jitter >= 0.0
+        && path.aim.is_valid()
+        && path.lane_offset.is_finite()
+}
+
+/// The frames along `legs`, `draws` poses each (see [`road_path_draws`]).
+fn tour(legs: &[Leg], path: &RoadPath, seed: u64, draws: usize) -> Vec<Vec<CameraPose>> {
     let total: f64 = legs.iter().map(|l| l.length).sum();
     let n = path.frames.frames(total);
     if let Some(drive) = path.drive {
-        return timed(&legs, total, n, drive, path, seed);
+        return timed(legs, total, n, drive, path, seed);
     }
-    stations(&legs, n)
+    stations(legs, n)
         .into_iter()
         .zip(0u64..)
         .map(|((eye, dir), i)| {
@@ -150,7 +184,7 @@ fn offset_target(pose: &mut CameraPose, dir: [f64; 2], [yaw, pitch]: [f64; 2]) {
 /// and stops at the tour's end). The aim and the jitter are drawn once, from
 /// frame 0's streams, so the camera holds its view; each pose records its time.
 fn timed(
-    legs: &[super::leg::Leg],
+    legs: &[Leg],
     total: f64,
     n: u32,
     drive: Drive,

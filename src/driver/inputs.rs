@@ -38,7 +38,7 @@ impl SpecInputs {
     pub fn read(spec_path: &Path, spec: &Spec) -> Result<SpecInputs, BuildError> {
         let mut files = Vec::new();
         let layout = layout_source(spec_path, spec)?;
-        if let LayoutSource::Image { path, .. } = &layout {
+        if let LayoutSource::Image { path, .. } | LayoutSource::Osm { path, .. } = &layout {
             files.push(path.clone());
         }
         let facades = facade_input(spec_path, spec, &mut files)?;
@@ -74,6 +74,12 @@ pub enum LayoutSource {
         path: PathBuf,
         bytes: Vec<u8>,
     },
+    /// An OpenStreetMap extract: its path (for messages), bytes and the box to build.
+    Osm {
+        path: PathBuf,
+        bytes: Vec<u8>,
+        bbox: Option<crate::model::GeoBox>,
+    },
 }
 
 /// Where the facades come from.
@@ -89,6 +95,27 @@ pub enum FacadeInput {
 
 /// Reads the layout image a spec names, if any.
 pub fn layout_source(spec_path: &Path, spec: &Spec) -> Result<LayoutSource, BuildError> {
+    if let Some(osm) = &spec.layout.osm {
+        let file = spec::resolve(spec_path, &osm.file);
+        let bytes =
+            spec::read_capped(&file, super::osm_map::MAX_EXTRACT_BYTES).map_err(|source| {
+                BuildError::Input {
+                    spec: spec_path.to_path_buf(),
+                    key: "layout.osm.file",
+                    file: file.clone(),
+                    entry: None,
+                    source: Box::new(InputProblem::Read {
+                        expected: "an OpenStreetMap extract",
+                        source,
+                    }),
+                }
+            })?;
+        return Ok(LayoutSource::Osm {
+            path: file,
+            bytes,
+            bbox: osm.geo_box(),
+        });
+    }
     let Some(relative) = &spec.layout.image else {
         return Ok(LayoutSource::Generate);
     };

@@ -68,8 +68,10 @@ fn overview(file: &Path, map: &OsmMap) -> Result<image::RgbImage, BuildError> {
             spec: file.to_owned(),
             source,
         })?;
+    let lamps = crate::lamps::map_lamps(map);
     let scene = crate::scene::map_city(&crate::scene::MapSceneInput {
         map,
+        lamps: &lamps,
         facades: &facades,
         seed: SEED,
     });

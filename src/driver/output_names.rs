@@ -14,6 +14,8 @@ use super::stages::{Produces, Stage};
 pub enum OutputNames {
     /// Exactly these names.
     Fixed(&'static [&'static str]),
+    /// `layout.png`, or `map.json` for a map layout.
+    Layout,
     /// `facades.json` and `textures/<file>.png`.
     Facades,
     /// `city.obj`, `city.mtl`, `city.glb` and `textures/<file>.png`.
@@ -34,6 +36,7 @@ impl OutputNames {
     pub fn of(stage: Stage, camera: Option<&str>) -> OutputNames {
         match stage.declaration().produces {
             Produces::Fixed(names) => OutputNames::Fixed(names),
+            Produces::Layout => OutputNames::Layout,
             Produces::Facades => OutputNames::Facades,
             Produces::Export => OutputNames::Export,
             Produces::Frames => OutputNames::Frames(camera.unwrap_or_default().to_owned()),
@@ -58,6 +61,7 @@ impl OutputNames {
         }
         match self {
             OutputNames::Fixed(names) => names.contains(&name),
+            OutputNames::Layout => matches!(name, "layout.png" | "map.json"),
             OutputNames::Facades => name == "facades.json" || is_texture(name),
             OutputNames::Export => {
                 matches!(name, "city.obj" | "city.mtl" | "city.glb") || is_texture(name)
@@ -83,6 +87,8 @@ impl OutputNames {
     fn required(&self) -> &'static [&'static str] {
         match self {
             OutputNames::Fixed(names) => names,
+            // One of its two names: checked in `check`.
+            OutputNames::Layout => &[],
             OutputNames::Facades => &["facades.json"],
             OutputNames::Export => &["city.glb", "city.mtl", "city.obj"],
             OutputNames::Frames(_) => &[],
@@ -101,6 +107,9 @@ impl OutputNames {
         }
         if let Some(missing) = self.required().iter().find(|r| !names.contains(r)) {
             return Err(format!("lacks output {missing:?}"));
+        }
+        if *self == OutputNames::Layout && names.len() != 1 {
+            return Err("holds not one output, layout.png or map.json".to_owned());
         }
         if let OutputNames::Frames(camera) = self {
             let coco = format!("frames/{camera}/coco.json");

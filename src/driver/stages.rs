@@ -60,6 +60,8 @@ pub enum Stage {
 pub enum Produces {
     /// Exactly these files.
     Fixed(&'static [&'static str]),
+    /// `layout.png`, or `map.json` for a map layout (`osm::read`).
+    Layout,
     /// `facades.json` and `textures/<file>.png`.
     Facades,
     /// `city.obj`, `city.mtl`, `city.glb` and `textures/<file>.png`.
@@ -99,11 +101,11 @@ const TABLE: [Declaration; 12] = [
     Declaration {
         stage: Layout,
         name: "layout",
-        entry: "`layout::generate` / `layout::decode`",
+        entry: "`layout::generate` / `layout::decode` / `osm::read`",
         versions: &[("layout::VERSION", layout::VERSION)],
         reads: &[],
-        files: "the layout image, when drawn (then no spec part)",
-        produces: Produces::Fixed(&["layout.png"]),
+        files: "the layout image, when drawn (then no spec part); the extract, for a map",
+        produces: Produces::Layout,
         load: Load::Bytes,
         artifact: false,
     },
@@ -182,7 +184,8 @@ const TABLE: [Declaration; 12] = [
         name: "preview",
         entry: "`preview::draw`",
         versions: &[("preview::VERSION", preview::VERSION)],
-        reads: &[Mirror, Parse, Lamps, Place],
+        // Layout only for a map layout (its picture), the others only for a layout image.
+        reads: &[Layout, Mirror, Parse, Lamps, Place],
         files: "",
         produces: Produces::Fixed(&["plan.png"]),
         load: Load::References,
@@ -197,7 +200,8 @@ const TABLE: [Declaration; 12] = [
             ("scene::VERSION", scene::VERSION),
             ("objects::VERSION", objects::VERSION),
         ],
-        reads: &[Parse, Lamps, Place, Facades],
+        // Layout only for a map layout, Parse, Lamps and Place only for a layout image.
+        reads: &[Layout, Parse, Lamps, Place, Facades],
         files: "every mesh model and word file the objects name",
         produces: Produces::Export,
         load: Load::References,
@@ -297,6 +301,45 @@ pub enum LayoutInputs {
         #[serde(skip)]
         bytes: Arc<Vec<u8>>,
     },
+    /// An OpenStreetMap extract: its path (for messages) and bytes, keyed by their hash,
+    /// and the box.
+    Map {
+        osm_version: u32,
+        bbox: Option<crate::model::GeoBox>,
+        #[serde(skip)]
+        path: std::path::PathBuf,
+        #[serde(skip)]
+        bytes: Arc<Vec<u8>>,
+    },
+}
+
+impl LayoutInputs {
+    /// The layout stage's inputs: `layout`, read by the driver, and the spec's generator.
+    fn of(layout: &LayoutSource, spec: &Spec) -> LayoutInputs {
+        let l = &spec.layout;
+        match layout {
+            LayoutSource::Image { path, bytes } => LayoutInputs::Drawn {
+                path: path.clone(),
+                bytes: Arc::new(bytes.clone()),
+            },
+            LayoutSource::Osm { path, bytes, bbox } => LayoutInputs::Map {
+                osm_version: crate::osm::VERSION,
+                bbox: *bbox,
+                path: path.clone(),
+                bytes: Arc::new(bytes.clone()),
+            },
+            LayoutSource::Generate => LayoutInputs::Generate {
+                generate: l.generate.clone().unwrap_or_default(),
+                palette: l.palette.clone(),
+                seed: spec.seed,
+            },
+        }
+    }
+
+    /// Whether the layout is a map (`[layout.osm]`).
+    pub fn is_map(&self) -> bool {
+        matches!(self, LayoutInputs::Map { .. })
+    }
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -470,7 +513,12 @@ impl Inputs {
     /// The parts of `spec` each stage reads, and the layout image it names, if any.
     pub fn of(spec: &Spec, layout: &LayoutSource) -> Inputs {
         let l = &spec.layout;
-        let mpp = l.metres_per_pixel;
+        // A map is in metres.
+        let mpp = if matches!(layout, LayoutSource::Osm { .. }) {
+            1.0
+        } else {
+            l.metres_per_pixel
+        };
         let export = Arc::new(ExportInputs {
             scene_version: scene::VERSION,
             objects_version: objects::VERSION,
@@ -488,17 +536,7 @@ impl Inputs {
             })
             .collect();
         Inputs {
-            layout: match layout {
-                LayoutSource::Image { path, bytes } => LayoutInputs::Drawn {
-                    path: path.clone(),
-                    bytes: Arc::new(bytes.clone()),
-                },
-                LayoutSource::Generate => LayoutInputs::Generate {
-                    generate: l.generate.clone().unwrap_or_default(),
-                    palette: l.palette.clone(),
-                    seed: spec.seed,
-                },
-            },
+            layout: LayoutInputs::of(layout, spec),
             mirror: MirrorInputs {
                 mirror: l.mirror.clone(),
             },
@@ -565,7 +603,21 @@ impl Inputs {
 
     /// Whether `stage`'s key holds the key of `read`, one of its declared reads.
     fn uses(&self, stage: Stage, read: Stage) -> bool {
-        !(stage == Place && read == Facades && !self.place.reads_facades())
+        if !self.runs(read) {
+            return false;
+        }
+        let map = self.layout.is_map();
+        match (stage, read) {
+            (Place, Facades) => self.place.reads_facades(),
+            (Export | Preview, Layout) => map,
+            _ => true,
+        }
+    }
+
+    /// Whether the spec has `stage`: a map layout has no mirror, parse, lamps, place or
+    /// plan stage (its streets, buildings and lamps come from the map).
+    pub fn runs(&self, stage: Stage) -> bool {
+        !(self.layout.is_map() && matches!(stage, Mirror | Parse | Lamps | Place | Plan))
     }
 }
 
@@ -593,7 +645,7 @@ impl Keys {
             paths: Vec::new(),
             made: BTreeMap::new(),
         };
-        for stage in Stage::ALL {
+        for stage in Stage::ALL.into_iter().filter(|s| inputs.runs(*s)) {
             let cameras = match stage {
                 Frames => inputs.frames.len(),
                 Dataset => usize::from(inputs.dataset.is_some()),
@@ -664,7 +716,12 @@ impl Keys {
                     .iter()
                     .map(|key| (stage, None, key.as_str()))
                     .collect(),
-                _ => vec![(stage, None, self.city[&stage].as_str())],
+                _ => self
+                    .city
+                    .get(&stage)
+                    .map(|key| (stage, None, key.as_str()))
+                    .into_iter()
+                    .collect(),
             })
             .collect()
     }
@@ -677,6 +734,9 @@ fn file_digests(stage: Stage, files: &SpecInputs) -> Vec<(&'static str, String)>
             LayoutSource::Generate => Vec::new(),
             LayoutSource::Image { bytes, .. } => {
                 vec![("image", crate::hash::sha256_hex(bytes))]
+            }
+            LayoutSource::Osm { bytes, .. } => {
+                vec![("extract", crate::hash::sha256_hex(bytes))]
             }
         },
         Facades => match &files.facades {

@@ -20,7 +20,10 @@
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
+mod map_lamps;
 mod road_side;
+
+pub use map_lamps::map_lamps;
 
 use std::collections::HashMap;
 

@@ -27,6 +27,7 @@ mod pixel_box;
 mod pixel_class;
 mod road;
 mod scene;
+mod streets;
 mod texture;
 mod traffic_role;
 
@@ -42,13 +43,16 @@ pub use instances::{Instance, Instances};
 pub use lamp::Lamp;
 pub use movement::{Movement, Recolour};
 pub use object_kind::ObjectKind;
+pub use osm_map::CAMERA_LANE as MAP_CAMERA_LANE;
 pub use osm_map::{
     FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapPolygon, MapRoad, OsmElement, OsmMap,
+    PavedSegment,
 };
 pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;
 pub use pixel_class::PixelClass;
 pub use road::{Axis, Road};
 pub use scene::{LAMP_LIT_SUFFIX, Material, Mesh, Scene, SceneObject};
+pub use streets::Streets;
 pub use texture::{Texture, encode_png};
 pub use traffic_role::{Crossing, LaneVehicle, TrafficRole, Walk};

@@ -37,6 +37,84 @@ pub struct OsmMap {
     pub left_out: LeftOut,
 }
 
+/// The farthest right of a two-way road's centreline a camera drives on a map, metres (on
+/// a one-way road it drives on the centreline); vehicles standing on a map's roads keep
+/// their near side this much farther out, so the camera's lane stays clear.
+pub const CAMERA_LANE: f64 = 1.5;
+
+/// One paved segment of a road: a piece of its centreline, `a → b` in the way's
+/// direction, with the cross-section it was fitted to ([`MapRoad::fitted`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PavedSegment {
+    /// Index of the road in [`OsmMap::roads`].
+    pub road: usize,
+    pub a: [f64; 2],
+    pub b: [f64; 2],
+    /// Carriageway width, metres.
+    pub width: f64,
+    /// Sidewalk widths left and right of `a → b`, metres.
+    pub sidewalks: [f64; 2],
+}
+
+impl OsmMap {
+    /// Every paved segment, road by road in map order, along each road's centreline.
+    pub fn paved_segments(&self) -> impl Iterator<Item = PavedSegment> + '_ {
+        self.roads
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.surface)
+            .flat_map(|(i, r)| {
+                r.centreline
+                    .windows(2)
+                    .zip(&r.fitted)
+                    .filter(|(_, f)| f[0] > 0.0)
+                    .map(move |(w, f)| PavedSegment {
+                        road: i,
+                        a: w[0],
+                        b: w[1],
+                        width: f[0],
+                        sidewalks: [f[1], f[2]],
+                    })
+            })
+    }
+
+    /// The paved segment nearest to `p`, the point of its centreline nearest to `p` and
+    /// the distance to it; the first of equals in map order. None without paved segments.
+    pub fn nearest_paved(&self, p: [f64; 2]) -> Option<(PavedSegment, [f64; 2], f64)> {
+        use super::geometry::polygon::{distance, nearest};
+        self.paved_segments()
+            .map(|s| {
+                let q = nearest(s.a, s.b, p);
+                (s, q, distance(p, q))
+            })
+            .fold(None, |best, c| match best {
+                Some(b) if b.2 <= c.2 => Some(b),
+                _ => Some(c),
+            })
+    }
+
+    /// The distance from `p` to the nearest building wall (infinite without buildings).
+    pub fn building_distance(&self, p: [f64; 2]) -> f64 {
+        use super::geometry::polygon::{distance, nearest};
+        self.buildings
+            .iter()
+            .flat_map(|b| std::iter::once(&b.outer).chain(&b.holes))
+            .flat_map(|ring| {
+                (0..ring.len())
+                    .map(move |e| distance(p, nearest(ring[e], ring[(e + 1) % ring.len()], p)))
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Whether `p` lies inside a building's footprint (not in one of its courtyards).
+    pub fn in_building(&self, p: [f64; 2]) -> bool {
+        use super::geometry::polygon::contains;
+        self.buildings
+            .iter()
+            .any(|b| contains(&b.outer, p) && !b.holes.iter().any(|h| contains(h, p)))
+    }
+}
+
 /// A box in degrees.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GeoBox {
@@ -47,6 +125,27 @@ pub struct GeoBox {
 }
 
 impl GeoBox {
+    /// What is wrong with the box, if anything: off the globe, or empty or inverted.
+    pub fn problem(&self) -> Option<String> {
+        let b = self;
+        let on_globe = [b.south, b.north].iter().all(|l| l.abs() <= 90.0)
+            && [b.west, b.east].iter().all(|l| l.abs() <= 180.0);
+        if !on_globe {
+            return Some(format!(
+                "{},{},{},{} is off the globe: latitudes lie in [-90, 90], longitudes in \
+                 [-180, 180]",
+                b.south, b.west, b.north, b.east
+            ));
+        }
+        (b.south >= b.north || b.west >= b.east).then(|| {
+            format!(
+                "{},{},{},{} is empty: give south,west,north,east with south < north and \
+                 west < east",
+                b.south, b.west, b.north, b.east
+            )
+        })
+    }
+
     /// Whether `(lat, lon)` lies in the box (edges included).
     pub fn contains(&self, lat: f64, lon: f64) -> bool {
         (self.south..=self.north).contains(&lat) && (self.west..=self.east).contains(&lon)

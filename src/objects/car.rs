@@ -29,7 +29,7 @@
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
-use super::ground_spots::{GroundSpots, RoadSlot};
+use super::ground_spots::{RoadSlot, RoadSpots};
 use super::number_plate::{self, registration};
 use super::plate_light::PlateLight;
 use super::text_plate::Background;
@@ -223,7 +223,7 @@ struct Paints {
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
-    spots: &mut GroundSpots,
+    spots: &mut impl RoadSpots,
     placing: &mut Placing,
 ) -> u32 {
     // Plates are text objects when the spec makes objects of their class.

@@ -102,6 +102,31 @@ pub struct RoadSlot {
     pub gap: f64,
 }
 
+/// Where a vehicle may stand on a road: a layout's roads ([`GroundSpots`]) or a map's
+/// (`map_spots::MapSpots`).
+pub trait RoadSpots {
+    /// A random road, side and place along it where `slot` fits (given the road's width
+    /// in metres), clear of other roads and of everything taken; the footprint is taken.
+    /// None after `attempts`.
+    fn road(
+        &mut self,
+        rng: &mut Pcg64,
+        attempts: u32,
+        slot: impl Fn(f64) -> Option<RoadSlot>,
+    ) -> Option<Spot>;
+}
+
+impl RoadSpots for GroundSpots<'_> {
+    fn road(
+        &mut self,
+        rng: &mut Pcg64,
+        attempts: u32,
+        slot: impl Fn(f64) -> Option<RoadSlot>,
+    ) -> Option<Spot> {
+        GroundSpots::road(self, rng, attempts, slot)
+    }
+}
+
 impl<'a> GroundSpots<'a> {
     pub fn new(input: &'a ObjectsInput) -> Self {
         let mpp = input.metres_per_pixel;

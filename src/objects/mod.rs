@@ -32,6 +32,7 @@ mod car;
 mod entry_groups;
 mod footprint_grid;
 mod ground_spots;
+mod map_objects;
 mod number_plate;
 pub mod obj_lines;
 mod objects_error;
@@ -66,6 +67,7 @@ use crate::model::{
 };
 use crate::spec::{EntryKind, ObjectSpec};
 
+pub use map_objects::{MapObjectsInput, insert_map};
 pub use objects_error::ObjectsError;
 pub use traffic_lights::{Signal, lamp_material};
 pub use traffic_signs::SignFace;

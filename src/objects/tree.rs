@@ -209,25 +209,87 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
             let Some(foot) = foot else {
                 continue;
             };
-            let k = TreeSpecies::ALL
-                .iter()
-                .position(|&s| s == kind)
-                .unwrap_or(0);
-            let mut leaves = |shade: usize| {
-                placing.material(&format!("tree_leaves_{k}_{shade}"), || {
-                    (LEAVES[k][shade], None)
-                })
+            let tree = Tree {
+                kind,
+                height,
+                crown,
+                shades: [shade, other],
             };
-            let leaves = [leaves(shade), leaves(other)];
-            let bark = placing.material(&format!("tree_bark_{k}"), || (BARK[k], None));
-            let meshes = tree_meshes(kind, height, crown, [foot[0], foot[1]], rng, bark, leaves);
-            let name = placing.name("tree");
-            let species = Some(("species", kind.name().to_owned()));
-            let tree = crate::model::ObjectKind::Tree;
-            placing.push_variant(tree, name, &spec.label, meshes, species);
+            push_tree(placing, &spec.label, &tree, foot, rng);
             misses = 0;
             break;
         }
+    }
+}
+
+/// A tree as drawn: species, height and crown radius in metres, its two leaf shades.
+struct Tree {
+    kind: TreeSpecies,
+    height: f64,
+    crown: f64,
+    shades: [usize; 2],
+}
+
+/// Pushes `tree` standing at `foot`, of class `label`; its crown's shape is drawn from
+/// `rng`.
+fn push_tree(placing: &mut Placing, label: &str, tree: &Tree, foot: [f64; 2], rng: &mut Pcg64) {
+    let k = TreeSpecies::ALL
+        .iter()
+        .position(|&s| s == tree.kind)
+        .unwrap_or(0);
+    let mut leaves = |shade: usize| {
+        placing.material(&format!("tree_leaves_{k}_{shade}"), || {
+            (LEAVES[k][shade], None)
+        })
+    };
+    let leaves = [leaves(tree.shades[0]), leaves(tree.shades[1])];
+    let bark = placing.material(&format!("tree_bark_{k}"), || (BARK[k], None));
+    let meshes = tree_meshes(tree.kind, tree.height, tree.crown, foot, rng, bark, leaves);
+    let name = placing.name("tree");
+    let species = Some(("species", tree.kind.name().to_owned()));
+    let kind = crate::model::ObjectKind::Tree;
+    placing.push_variant(kind, name, label, meshes, species);
+}
+
+/// Trees where a map has them: one per site of `sites` (its foot, and the largest crown
+/// radius it has room for), in order, up to `spec.count`. Each draws its species (from
+/// `spec.species`, else all), height (from `spec.height`) and shades from `rng`; its crown
+/// is its species' for that height, cut to the room; a site with room for no crown of
+/// half a metre gets no tree.
+pub fn place_mapped(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    sites: &[([f64; 2], f64)],
+    placing: &mut Placing,
+) {
+    let species: &[TreeSpecies] = if spec.species.is_empty() {
+        &TreeSpecies::ALL
+    } else {
+        &spec.species
+    };
+    let mut placed = 0;
+    for &(foot, room) in sites {
+        if placed >= spec.count {
+            break;
+        }
+        let kind = species[rng.random_range(0..species.len())];
+        let t: f64 = rng.random();
+        let [low, high] = spec.height_range();
+        let height = low + t * (high - low);
+        let shade = rng.random_range(0..4usize);
+        let other = (shade + rng.random_range(1..4usize)) % 4;
+        let crown = crown_radius(kind, height).min(room);
+        if crown.is_nan() || crown < 0.5 {
+            continue;
+        }
+        let tree = Tree {
+            kind,
+            height,
+            crown,
+            shades: [shade, other],
+        };
+        push_tree(placing, &spec.label, &tree, foot, rng);
+        placed += 1;
     }
 }
 

@@ -9,7 +9,7 @@
 //! than [`MIN_CARRIAGEWAY`] (a building across the road: a passage the map does not tag, or
 //! a mapping error) is not paved.
 
-use crate::model::geometry::polygon::contains;
+use crate::model::geometry::polygon::{contains, nearest};
 use crate::model::{LeftOut, MapBuilding, MapRoad};
 
 /// Clearance kept between a paved surface and a building, metres.
@@ -168,17 +168,6 @@ fn clearance(
         }
     }
     near
-}
-
-/// The point of segment `a`–`b` nearest to `p`.
-fn nearest(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> [f64; 2] {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let len2 = d[0] * d[0] + d[1] * d[1];
-    if len2 == 0.0 {
-        return a;
-    }
-    let t = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
-    [a[0] + t * d[0], a[1] + t * d[1]]
 }
 
 /// Whether segments `p`–`q` and `a`–`b` cross or touch.

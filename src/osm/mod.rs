@@ -11,9 +11,14 @@
 //! pictures the map. The rules (which tags, which defaults) are in
 //! `docs/osm.md`.
 //!
-//! This is the first part of issue 43: the map a city will be built from. The geometry
-//! core (blocks, roads, lamps, placement, markings, cameras) still takes axis-aligned
-//! layouts only, so no spec builds a city from a map yet.
+//! In a build, this is the layout stage of a spec with `[layout.osm]`: its map
+//! (`map.json`) replaces the mirror, parse, lamps, place and plan stages, and the city is
+//! built from it by `scene::map_city`, `lamps::map_lamps`, `objects::insert_map` and
+//! `cameras::map_road_path`.
+
+/// Bump when the map read from an extract changes: it is part of the layout stage's key for
+/// a map layout.
+pub const VERSION: u32 = 1;
 
 mod clip;
 mod collect;
@@ -82,19 +87,5 @@ fn fmt_box(b: &GeoBox) -> String {
 
 /// A box must have its south below its north and its west left of its east, on the globe.
 pub fn check_box(b: &GeoBox) -> Result<(), OsmError> {
-    let on_globe = [b.south, b.north].iter().all(|l| l.abs() <= 90.0)
-        && [b.west, b.east].iter().all(|l| l.abs() <= 180.0);
-    if !on_globe {
-        return Err(OsmError::Box(format!(
-            "{},{},{},{} is off the globe: latitudes lie in [-90, 90], longitudes in [-180, 180]",
-            b.south, b.west, b.north, b.east
-        )));
-    }
-    if b.south >= b.north || b.west >= b.east {
-        return Err(OsmError::Box(format!(
-            "{},{},{},{} is empty: give south,west,north,east with south < north and west < east",
-            b.south, b.west, b.north, b.east
-        )));
-    }
-    Ok(())
+    b.problem().map_or(Ok(()), |p| Err(OsmError::Box(p)))
 }

@@ -7,6 +7,7 @@
 //! | `block_0007` | block | the block polygon at kerb height (blocks with a mapped building first, then those without: parks, squares, yards) | `paving`; `grass` without a building |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
+//! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
 //! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
@@ -17,8 +18,8 @@
 //! line (so windows are never stretched).
 //!
 //! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces,
-//! markings, the map's lamps, trees, benches and signs, and blocks filled where the map
-//! has no buildings.
+//! markings, the map's benches and signs, and blocks filled where the map has no
+//! buildings. Its trees are objects (`objects::insert_map`).
 
 use rand::RngExt;
 
@@ -26,7 +27,7 @@ use super::object;
 use super::surfaces::Surfaces;
 use crate::model::geometry::polygon::{contains, left_normal};
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
-use crate::model::{Facade, FacadeSet, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
+use crate::model::{Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
 
 /// How far the ground reaches beyond the box, metres.
 pub const GROUND_MARGIN: f64 = 200.0;
@@ -38,6 +39,8 @@ const SEEDED_FLOORS: std::ops::RangeInclusive<u32> = 3..=7;
 /// The map scene's input.
 pub struct MapSceneInput<'a> {
     pub map: &'a OsmMap,
+    /// The map's lamps (`lamps::map_lamps`), in metres.
+    pub lamps: &'a [Lamp],
     pub facades: &'a FacadeSet,
     pub seed: u64,
 }
@@ -97,6 +100,11 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         surfaces.asphalt,
         ROAD_Y,
         4.0,
+    ));
+    objects.extend(super::street_lamps::lamp_objects(
+        input.lamps,
+        1.0,
+        &surfaces,
     ));
     objects.extend(buildings(input, &mut book));
     let (textures, materials) = book.finish();

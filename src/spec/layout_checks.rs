@@ -27,11 +27,27 @@ pub(crate) fn check_layout(
     findings: &mut Findings<'_, '_>,
 ) -> Option<LayoutExtent> {
     let mut base = None;
+    if layout.osm.is_some() {
+        // A map: `map_checks` checks it; no other source may be given beside it.
+        for other in ["layout.generate", "layout.image"] {
+            if findings.written(other) {
+                let line = findings.line_of("layout.osm");
+                findings.error(
+                    other,
+                    format!(
+                        "expected one layout source, found `{other}` beside `[layout.osm]` \
+                         (on line {line})"
+                    ),
+                );
+            }
+        }
+        return None;
+    }
     match (&layout.generate, &layout.image) {
         (None, None) => findings.error(
             "layout",
-            "expected a layout source, `[layout.generate]` or `layout.image = \"….png\"`, \
-             found neither",
+            "expected a layout source, `[layout.generate]`, `layout.image = \"….png\"` or \
+             `[layout.osm]`, found none",
         ),
         (Some(_), Some(_)) => {
             let line = findings.line_of("layout.generate");

@@ -32,6 +32,7 @@ mod lidar_spec;
 mod lighting_spec;
 mod limits_spec;
 mod locator;
+mod map_checks;
 mod merge;
 mod object_checks;
 mod object_spec;
@@ -81,7 +82,7 @@ pub use report::report;
 pub use sensor_spec::{ExposureMode, SensorSpec};
 pub use spec::{
     BUILTIN_FACADES, BuildingsSpec, Color, FacadesSpec, GenerateSpec, LampsSpec, LayoutSpec,
-    OnError, Palette, SPEC_VERSION, Spec,
+    OnError, OsmLayoutSpec, Palette, SPEC_VERSION, Spec,
 };
 pub use spec_errors::SpecErrors;
 pub use splits_spec::{SPLIT_NAMES, SplitBy, SplitsSpec};
@@ -215,6 +216,7 @@ pub fn load_with(
 /// The checks of a deserialized spec's values, each finding placed at its key.
 fn check_values(spec: &Spec, path: &Path, world: &dyn SpecWorld, findings: &mut Findings) {
     let extent = layout_checks::check_layout(&spec.layout, path, world, findings);
+    map_checks::check_map(spec, path, world, findings);
     value_checks::check_palette(&spec.layout.palette, findings);
     value_checks::check_buildings(&spec.buildings, findings);
     value_checks::check_facades(&spec.facades, path, world, findings);

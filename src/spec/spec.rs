@@ -96,6 +96,14 @@ pub struct LayoutSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(with = "String", length(min = 1))]
     pub image: Option<String>,
+    /// An OpenStreetMap extract to build a real place from (issue 43): its buildings on
+    /// their footprints at their heights, its roads at any angle. Give one of `generate`,
+    /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror`, `palette`, `[lamps]`
+    /// and `[buildings]` do not apply (the map is in metres, lamps stand where it has
+    /// them), cameras drive `roads` only, and objects are `tree` and `car` entries (see
+    /// docs/osm.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub osm: Option<OsmLayoutSpec>,
     /// Mirror operations applied in order, each appending a flipped copy:
     /// 1 flips vertically (copy below), 2 horizontally (copy to the right), 3 both (2 then 1).
     /// `[2, 1]` turns one layout into a 2×2 city.
@@ -112,6 +120,32 @@ pub struct LayoutSpec {
     #[serde(default = "default_metres_per_pixel")]
     #[schemars(range(min = 0.05, max = 100.0))]
     pub metres_per_pixel: f64,
+}
+
+/// An OpenStreetMap extract as a layout.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OsmLayoutSpec {
+    /// The extract, `.osm.pbf` or OSM XML, relative to the spec's folder.
+    #[schemars(length(min = 1))]
+    pub file: String,
+    /// The box to build, `[south, west, north, east]` in degrees; without it the file's
+    /// own bounds (else the extent of its nodes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bbox: Option<[f64; 4]>,
+}
+
+impl OsmLayoutSpec {
+    /// The box, if given.
+    pub fn geo_box(&self) -> Option<crate::model::GeoBox> {
+        self.bbox
+            .map(|[south, west, north, east]| crate::model::GeoBox {
+                south,
+                west,
+                north,
+                east,
+            })
+    }
 }
 
 /// Parameters of the random layout generator (paper 3.1). Lengths in pixels.

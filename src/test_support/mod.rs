@@ -7,10 +7,12 @@
 
 mod fake_world;
 mod pixel_rows;
+mod street_map;
 mod test_city;
 
 pub use fake_world::FakeWorld;
 pub use pixel_rows::pixel_classes;
+pub use street_map::street_map;
 // The layout stage's output with the roads and blocks it drew, for the parse tests.
 pub use crate::model::GeneratedLayout;
 pub use test_city::{TestCity, decoded, generated, mirrored, parsed, scene, test_city};

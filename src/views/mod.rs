@@ -20,7 +20,7 @@ pub mod clear;
 use rand::Rng;
 
 use crate::cameras::{self, CameraPose};
-use crate::model::{ParsedLayout, Scene};
+use crate::model::{OsmMap, Scene, Streets};
 use crate::render::PreparedScene;
 use crate::rng;
 use crate::scene;
@@ -35,7 +35,7 @@ pub const DRIVE_KMH: f64 = 30.0;
 /// What choosing a path's views reads.
 pub struct ViewsInput<'a> {
     pub camera: &'a CameraSpec,
-    pub layout: &'a ParsedLayout,
+    pub streets: Streets<'a>,
     pub scene: &'a Scene,
     pub prepared: &'a PreparedScene,
     pub metres_per_pixel: f64,
@@ -47,7 +47,7 @@ pub struct ViewsInput<'a> {
 pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
     let ViewsInput {
         camera,
-        layout,
+        streets,
         scene,
         prepared,
         metres_per_pixel: mpp,
@@ -57,29 +57,19 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
     // cameras leaves every other camera's poses as they were.
     let camera_seed = rng::stream(seed, &format!("camera/{}", camera.name), 0).next_u64();
     let aim = cameras::Aim::of(camera);
+    let layout = match streets {
+        Streets::Layout(layout) => layout,
+        Streets::Map(map) => return map_poses(map, camera, scene, camera_seed),
+    };
     match camera.path {
         CameraPath::Roads => {
-            let path = cameras::RoadPath {
-                frames: camera.frame_rule(),
-                aim,
-                look_ahead: camera.look_ahead,
-                jitter: camera.jitter,
-                lane_offset: camera.lane_offset,
-                drive: camera.fps.map(|fps| cameras::Drive {
-                    fps,
-                    speed: camera.speed_kmh.unwrap_or(DRIVE_KMH) / 3.6,
-                }),
-            };
+            let path = road_path(camera);
             if path.drive.is_some() {
                 // A timed drive keeps every frame: one time step apart, none skipped.
                 return cameras::road_path(layout, mpp, &path, camera_seed);
             }
             let draws = cameras::road_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
-            // Fields of view down and across the picture.
-            let down = cameras::tan_half_degrees(camera.fov);
-            let aspect = f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
-            let boxes = clear::vehicle_boxes(scene);
-            clear::unblocked(draws, &boxes, [down * aspect, down])
+            unblocked(camera, scene, draws)
         }
         CameraPath::Sidewalks => {
             let path = cameras::SidewalkPath {
@@ -100,5 +90,43 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
             // A range of heights: the orbit flies at its middle.
             cameras::orbit_path(layout, mpp, frames, camera.height.at(0.5))
         }
+    }
+}
+
+/// Each frame's first draw whose view no vehicle fills.
+fn unblocked(camera: &CameraSpec, scene: &Scene, draws: Vec<Vec<CameraPose>>) -> Vec<CameraPose> {
+    // Fields of view down and across the picture.
+    let down = cameras::tan_half_degrees(camera.fov);
+    let aspect = f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
+    let boxes = clear::vehicle_boxes(scene);
+    clear::unblocked(draws, &boxes, [down * aspect, down])
+}
+
+/// A camera's poses on a map: along its roads (the only path a map takes yet; the spec
+/// refuses the others), as on a layout's.
+fn map_poses(map: &OsmMap, camera: &CameraSpec, scene: &Scene, seed: u64) -> Vec<CameraPose> {
+    if camera.path != CameraPath::Roads {
+        return Vec::new();
+    }
+    let path = road_path(camera);
+    if path.drive.is_some() {
+        return cameras::map_road_path(map, &path, seed);
+    }
+    let draws = cameras::map_road_path_draws(map, &path, seed, clear::DRAWS);
+    unblocked(camera, scene, draws)
+}
+
+/// How `camera` drives a road tour.
+fn road_path(camera: &CameraSpec) -> cameras::RoadPath {
+    cameras::RoadPath {
+        frames: camera.frame_rule(),
+        aim: cameras::Aim::of(camera),
+        look_ahead: camera.look_ahead,
+        jitter: camera.jitter,
+        lane_offset: camera.lane_offset,
+        drive: camera.fps.map(|fps| cameras::Drive {
+            fps,
+            speed: camera.speed_kmh.unwrap_or(DRIVE_KMH) / 3.6,
+        }),
     }
 }

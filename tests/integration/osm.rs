@@ -138,3 +138,98 @@ fn bad_input_is_exit_code_2_and_names_the_file() {
         );
     }
 }
+
+/// A spec whose layout is `extract` (relative to the spec's folder), with `frames` street
+/// frames, trees and cars.
+fn map_spec(extract: &str, frames: u32) -> String {
+    format!(
+        "version = 1\nname = 'kamppi'\nseed = 3\n\
+         [layout.osm]\nfile = '{extract}'\n\
+         [[objects]]\nkind = 'tree'\ncount = 100\n\
+         [[objects]]\nkind = 'car'\ncount = 4\n\
+         [[cameras]]\nname = 'street'\npath = 'roads'\nframes = {frames}\n\
+         resolution = [160, 120]\nlane_offset = 2.0\n\
+         [annotations]\nclasses = ['building', 'lamp', 'tree', 'car']\nyolo = true\n"
+    )
+}
+
+fn build(dir: &Path, spec: &str, out: &str) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(dir)
+        .args(["build", "-q", spec, "--out", out, "--cache", "cache"])
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_spec_builds_a_city_with_labelled_frames_from_a_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
+    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    fs::write(dir.path().join("map.toml"), map_spec("kamppi.osm.pbf", 6)).unwrap();
+    let out = build(dir.path(), "map.toml", "a");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let city = dir.path().join("a/kamppi");
+    for file in [
+        "city.glb",
+        "overview.png",
+        "plan.png",
+        "frames/street/coco.json",
+    ] {
+        assert!(city.join(file).is_file(), "{file} is written");
+    }
+    let coco: serde_json::Value =
+        serde_json::from_slice(&fs::read(city.join("frames/street/coco.json")).unwrap()).unwrap();
+    assert_eq!(coco["images"].as_array().unwrap().len(), 6);
+    let named = |id: &serde_json::Value| {
+        coco["categories"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["id"] == *id)
+            .map(|c| c["name"].as_str().unwrap().to_owned())
+            .unwrap()
+    };
+    let seen: std::collections::BTreeSet<String> = coco["annotations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| named(&a["category_id"]))
+        .collect();
+    assert!(
+        seen.contains("building") && seen.contains("tree"),
+        "{seen:?}"
+    );
+    // Built again from an empty cache: the same bytes.
+    fs::remove_dir_all(dir.path().join("cache")).unwrap();
+    let out = build(dir.path(), "map.toml", "b");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let b = dir.path().join("b/kamppi");
+    for file in [
+        "city.glb",
+        "overview.png",
+        "frames/street/coco.json",
+        "frames/street/rgb/000000.png",
+    ] {
+        assert_eq!(
+            fs::read(city.join(file)).unwrap(),
+            fs::read(b.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+}
+
+#[test]
+fn a_map_spec_whose_extract_is_broken_is_exit_code_2_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(
+        dir.path().join("broken.osm"),
+        "<osm><node id='1' lat='60.1'",
+    )
+    .unwrap();
+    fs::write(dir.path().join("map.toml"), map_spec("broken.osm", 1)).unwrap();
+    let out = build(dir.path(), "map.toml", "out");
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+    assert!(text(&out).contains("broken.osm"), "{}", text(&out));
+    assert!(!dir.path().join("out/kamppi/city.glb").exists());
+}

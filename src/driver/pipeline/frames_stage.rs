@@ -21,16 +21,16 @@ use super::evaluate::one;
 use crate::cache::{Load, Miss, Outputs};
 use crate::driver::chunks::{self, PathPlan};
 use crate::driver::shard::{Shard, ShardStats};
-use crate::model::{CameraPose, FacadeSet, Lamp, ObjectKind, ParsedLayout, Scene};
+use crate::model::{CameraPose, FacadeSet, Lamp, ObjectKind, Scene};
 use crate::spec::{LightingSpec, OutputLayout, Vary};
 use crate::{annotate, lidar, render, rng, scene, traffic, views};
 
 /// What rendering a path needs besides the spec: the prepared and the plain scene, the
-/// parsed layout, the lamps and the facades.
+/// streets (a parsed layout or a map), the lamps and the facades.
 type Gathered = (
     Arc<render::PreparedScene>,
     Arc<Scene>,
-    Arc<ParsedLayout>,
+    super::CityStreets,
     Arc<Vec<Lamp>>,
     Arc<FacadeSet>,
 );
@@ -90,8 +90,12 @@ impl Pipeline<'_> {
     /// every shard shares: the city's artifact stages and every path's plan. Writes only
     /// the cache.
     pub fn shard_work(&mut self, shard: Option<Shard>) -> Result<ShardStats, BuildError> {
-        self.need_mirror()?;
-        self.need_plan()?;
+        if self.inputs.runs(Stage::Mirror) {
+            self.need_mirror()?;
+        }
+        if self.inputs.runs(Stage::Plan) {
+            self.need_plan()?;
+        }
         self.need_preview()?;
         self.need_export()?;
         self.need_overview()?;
@@ -172,7 +176,7 @@ impl Pipeline<'_> {
         Ok((
             self.prepared_scene()?,
             self.scene()?,
-            self.parsed()?,
+            self.streets()?,
             self.lamp_sites()?,
             self.facade_set()?,
         ))
@@ -378,7 +382,11 @@ impl Pipeline<'_> {
         poses: &[CameraPose],
     ) -> Option<traffic::Traffic> {
         let path = &self.inputs.frames[index].path;
-        let ((_, spec), (_, scene, parsed, ..)) = (path.traffic.as_ref()?, gathered?);
+        let ((_, spec), (_, scene, streets, ..)) = (path.traffic.as_ref()?, gathered?);
+        // Traffic moves on a layout's roads only (the spec refuses it with a map).
+        let super::CityStreets::Layout(parsed) = streets else {
+            return None;
+        };
         let roles: Vec<_> = self
             .object_info
             .iter()
@@ -445,8 +453,8 @@ impl Pipeline<'_> {
 
     /// Poses, categories and YOLO classes of path `index`.
     fn compute_plan(&self, index: usize, g: &Gathered) -> Result<PathPlan, BuildError> {
-        let (prepared, scene, parsed, _, _) = g;
-        let poses = self.poses(index, prepared, scene, parsed);
+        let (prepared, scene, streets, _, _) = g;
+        let poses = self.poses(index, prepared, scene, streets);
         let path = &self.inputs.frames[index].path;
         let labels = frame_labels::labels(path, scene, &self.object_info, &self.sign_faces);
         let objects: Vec<(ObjectKind, &str)> = scene
@@ -477,12 +485,12 @@ impl Pipeline<'_> {
         index: usize,
         prepared: &render::PreparedScene,
         scene: &Scene,
-        parsed: &ParsedLayout,
+        streets: &super::CityStreets,
     ) -> Vec<CameraPose> {
         let path = &self.inputs.frames[index].path;
         views::poses(&views::ViewsInput {
             camera: &path.camera,
-            layout: parsed,
+            streets: streets.get(),
             scene,
             prepared,
             metres_per_pixel: path.export.metres_per_pixel,

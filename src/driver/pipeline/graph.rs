@@ -13,13 +13,16 @@ use super::Pipeline;
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
 use crate::cache::Blob;
-use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::model::{Building, FacadeSet, Lamp, OsmMap, ParsedLayout, Scene};
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
 };
 
 impl Pipeline<'_> {
     pub(super) fn need_layout(&mut self) -> Result<(), BuildError> {
+        if self.inputs.layout.is_map() {
+            return self.need_map();
+        }
         self.stage(
             Stage::Layout,
             None,
@@ -42,11 +45,53 @@ impl Pipeline<'_> {
                             source,
                         })?
                     }
+                    LayoutInputs::Map { .. } => unreachable!("a map is read by need_map"),
                 };
                 let png = codec::encode_png(&image);
                 Ok((image, one("layout.png", png)))
             },
         )
+    }
+
+    /// The layout stage of a map layout: the extract read into `map.json`.
+    fn need_map(&mut self) -> Result<(), BuildError> {
+        self.stage(
+            Stage::Layout,
+            None,
+            |p| &mut p.map,
+            |_| Ok(()),
+            |p, ()| {
+                let LayoutInputs::Map {
+                    bbox, path, bytes, ..
+                } = &p.inputs.layout
+                else {
+                    unreachable!("need_map runs for a map layout")
+                };
+                let map = crate::osm::read(bytes, *bbox).map_err(|source| BuildError::Osm {
+                    file: path.clone(),
+                    source,
+                })?;
+                let json = codec::to_json(&map);
+                Ok((map, one("map.json", json)))
+            },
+        )
+    }
+
+    /// The map of a map layout.
+    pub(super) fn osm_map(&mut self) -> Result<Arc<OsmMap>, BuildError> {
+        self.need_map()?;
+        value(&mut self.map, Stage::Layout, |o| {
+            codec::from_json(codec::output(o, "map.json")?)
+        })
+    }
+
+    /// The city's streets: the parsed layout's roads, or the map's.
+    pub(super) fn streets(&mut self) -> Result<super::CityStreets, BuildError> {
+        Ok(if self.inputs.layout.is_map() {
+            super::CityStreets::Map(self.osm_map()?)
+        } else {
+            super::CityStreets::Layout(self.parsed()?)
+        })
     }
 
     pub(super) fn layout_image(&mut self) -> Result<Arc<RgbImage>, BuildError> {
@@ -121,7 +166,16 @@ impl Pipeline<'_> {
         )
     }
 
+    /// The lamps: the lamps stage's, or, on a map, where the map has them.
     pub(super) fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
+        if self.inputs.layout.is_map() {
+            if let Some(lamps) = &self.map_lamps {
+                return Ok(Arc::clone(lamps));
+            }
+            let lamps = Arc::new(lamps::map_lamps(&*self.osm_map()?));
+            self.map_lamps = Some(Arc::clone(&lamps));
+            return Ok(lamps);
+        }
         self.need_lamps()?;
         value(&mut self.lamps, Stage::Lamps, |o| {
             codec::from_json(codec::output(o, "lamps.json")?)
@@ -179,6 +233,18 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn need_preview(&mut self) -> Result<(), BuildError> {
+        if self.inputs.layout.is_map() {
+            return self.stage(
+                Stage::Preview,
+                None,
+                |p| &mut p.preview,
+                |p| p.osm_map(),
+                |_, map| {
+                    let picture = crate::osm::draw(&map, MAP_PICTURE_SIDE);
+                    Ok(((), one("plan.png", codec::encode_png(&picture))))
+                },
+            );
+        }
         let gather = |p: &mut Self| {
             Ok((
                 p.mirrored_image()?,
@@ -277,7 +343,7 @@ impl Pipeline<'_> {
             Ok((
                 p.prepared_scene()?,
                 p.scene()?,
-                p.parsed()?,
+                p.streets()?,
                 p.lamp_sites()?,
                 p.facade_set()?,
             ))
@@ -287,15 +353,23 @@ impl Pipeline<'_> {
             None,
             |p| &mut p.overview,
             gather,
-            |p, (prepared, scene, parsed, lamps, facades)| {
+            |p, (prepared, scene, streets, lamps, facades)| {
                 let lighting = overview_lighting(&p.inputs.overview, &scene, &lamps, &facades);
-                let shot = cameras::overview(&parsed, p.inputs.overview.export.metres_per_pixel);
+                let shot = match streets {
+                    super::CityStreets::Layout(parsed) => {
+                        cameras::overview(&parsed, p.inputs.overview.export.metres_per_pixel)
+                    }
+                    super::CityStreets::Map(map) => cameras::map_overview(map.extent),
+                };
                 let frame = render_shot(&prepared, &shot, &lighting);
                 Ok(((), one("overview.png", codec::encode_png(&frame))))
             },
         )
     }
 }
+
+/// The longer side of a map layout's `plan.png`, pixels.
+const MAP_PICTURE_SIDE: u32 = 2048;
 
 /// An overview shot rendered: black when it has no pose (an empty city).
 pub(crate) fn render_shot(

@@ -36,7 +36,23 @@ use super::stage_key::StageKey;
 use super::stages::{Inputs, Keys, Stage};
 use crate::cache::{Blob, Cache, Outputs};
 use crate::diagnostic::Diagnostic;
-use crate::model::{Building, FacadeSet, Lamp, ParsedLayout, Scene};
+use crate::model::{Building, FacadeSet, Lamp, OsmMap, ParsedLayout, Scene, Streets};
+
+/// A city's streets, held: a parsed layout or a map.
+#[derive(Clone)]
+pub(super) enum CityStreets {
+    Layout(Arc<ParsedLayout>),
+    Map(Arc<OsmMap>),
+}
+
+impl CityStreets {
+    pub(super) fn get(&self) -> Streets<'_> {
+        match self {
+            CityStreets::Layout(parsed) => Streets::Layout(parsed),
+            CityStreets::Map(map) => Streets::Map(map),
+        }
+    }
+}
 use crate::spec::Spec;
 use crate::{objects, render};
 
@@ -99,6 +115,10 @@ pub struct Pipeline<'a> {
     /// Reports frames rendered: (camera name, frames done, frames in the path).
     progress: &'a (dyn Fn(&str, usize, usize) + Sync),
     layout: Option<Slot<RgbImage>>,
+    /// A map layout's layout stage (`map.json`).
+    map: Option<Slot<OsmMap>>,
+    /// A map layout's lamps, made from the map when first asked for.
+    map_lamps: Option<Arc<Vec<Lamp>>>,
     mirror: Option<Slot<RgbImage>>,
     parse: Option<Slot<ParsedLayout>>,
     lamps: Option<Slot<Vec<Lamp>>>,
@@ -149,6 +169,8 @@ impl<'a> Pipeline<'a> {
             mips: render::TextureMips::default(),
             progress,
             layout: None,
+            map: None,
+            map_lamps: None,
             mirror: None,
             parse: None,
             lamps: None,
@@ -242,6 +264,7 @@ impl<'a> Pipeline<'a> {
     /// The outputs of `stage` (`camera`'s for `frames`), once evaluated.
     fn outputs_of(&self, stage: Stage, camera: Option<usize>) -> &Outputs {
         match stage {
+            Stage::Layout if self.inputs.layout.is_map() => &evaluated(&self.map).outputs,
             Stage::Layout => &evaluated(&self.layout).outputs,
             Stage::Mirror => &evaluated(&self.mirror).outputs,
             Stage::Parse => &evaluated(&self.parse).outputs,

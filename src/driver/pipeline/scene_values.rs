@@ -24,6 +24,9 @@ impl Pipeline<'_> {
             self.read_diagnostics(&diagnostics)?;
             return Ok(scene);
         }
+        if self.inputs.layout.is_map() {
+            return self.map_scene();
+        }
         let parsed = self.parsed()?;
         let lamps = self.lamp_sites()?;
         let buildings = self.buildings()?;
@@ -72,6 +75,58 @@ impl Pipeline<'_> {
         let first = objects::merge(&mut built, inserted);
         self.sign_faces = sign_faces.iter().map(|(i, f)| (first + i, *f)).collect();
         self.object_info = city_info(&built, first, &buildings, &facades, &inputs);
+        self.object_info.extend(info.into_iter().map(Some));
+        self.triangles = Some(built.triangle_count());
+        self.runs.push(StageRun {
+            stage: "scene",
+            camera: None,
+            key: String::new(),
+            status: StageStatus::Ran,
+            time: start.elapsed(),
+            repaired: None,
+        });
+        let built = Arc::new(built);
+        self.scene = Some(Arc::clone(&built));
+        let diagnostics = self.scene_diagnostics.clone();
+        self.read_diagnostics(&diagnostics)?;
+        Ok(built)
+    }
+
+    /// The scene of a map layout: the map's city (`scene::map_city`, lamps where the map
+    /// has them) and the objects placed on its streets (`objects::insert_map`).
+    fn map_scene(&mut self) -> Result<Arc<Scene>, BuildError> {
+        let map = self.osm_map()?;
+        let lamps = self.lamp_sites()?;
+        let facades = self.facade_set()?;
+        let start = Instant::now();
+        let inputs = Arc::clone(&self.inputs.export);
+        let mut built = scene::map_city(&scene::MapSceneInput {
+            map: &map,
+            lamps: &lamps,
+            facades: &facades,
+            seed: inputs.seed,
+        });
+        let (inserted, mips) = rayon::join(
+            || {
+                objects::insert_map(&objects::MapObjectsInput {
+                    specs: &inputs.objects,
+                    map: &map,
+                    lamps: &lamps,
+                    facades: &facades,
+                    seed: inputs.seed,
+                })
+            },
+            || render::TextureMips::of(&built.textures),
+        );
+        self.mips = mips;
+        let mut inserted = inserted.map_err(|source| BuildError::Objects {
+            spec: self.spec_path.clone(),
+            source,
+        })?;
+        self.scene_diagnostics = inserted.shortfalls(&inputs.objects);
+        let info = std::mem::take(&mut inserted.info);
+        let first = objects::merge(&mut built, inserted);
+        self.object_info = vec![None; first];
         self.object_info.extend(info.into_iter().map(Some));
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {

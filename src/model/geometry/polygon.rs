@@ -22,6 +22,23 @@ pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
     (len > 0.0).then(|| [dz / len, -dx / len])
 }
 
+/// The point of segment `a`–`b` nearest to `p`.
+pub fn nearest(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> [f64; 2] {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    if len2 == 0.0 {
+        return a;
+    }
+    let t = (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0);
+    [a[0] + t * d[0], a[1] + t * d[1]]
+}
+
+/// The distance from `p` to `q`.
+pub fn distance(p: [f64; 2], q: [f64; 2]) -> f64 {
+    let (dx, dz) = (q[0] - p[0], q[1] - p[1]);
+    (dx * dx + dz * dz).sqrt()
+}
+
 /// Whether `p` lies inside `ring` (even–odd rule).
 pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
     let n = ring.len();

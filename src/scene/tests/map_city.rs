@@ -84,6 +84,7 @@ fn map() -> OsmMap {
 
 fn city() -> Scene {
     map_city(&MapSceneInput {
+        lamps: &[],
         map: &map(),
         facades: &facade_set(),
         seed: 7,

@@ -1,0 +1,72 @@
+//! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
+//! problems the schema cannot see: the file and the box, and what a map layout does not
+//! take yet (mirroring, moving traffic, cameras off the roads, objects other than trees
+//! and cars).
+
+use std::path::Path;
+
+use super::findings::Findings;
+use super::spec::Spec;
+use super::{CameraPath, EntryKind, SpecWorld, resolve};
+
+/// Checks `spec`'s map layout, if it has one.
+pub(crate) fn check_map(
+    spec: &Spec,
+    spec_path: &Path,
+    world: &dyn SpecWorld,
+    findings: &mut Findings,
+) {
+    let Some(osm) = &spec.layout.osm else {
+        return;
+    };
+    let file = resolve(spec_path, &osm.file);
+    if let Err(problem) = world.file(&file) {
+        findings.error(
+            "layout.osm.file",
+            format!(
+                "expected an OpenStreetMap extract (.osm.pbf or .osm) at {}, found {problem}",
+                file.display()
+            ),
+        );
+    }
+    if let Some(problem) = osm.geo_box().and_then(|b| b.problem()) {
+        findings.error("layout.osm.bbox", format!("the box {problem}"));
+    }
+    if !spec.layout.mirror.is_empty() {
+        findings.error(
+            "layout.mirror",
+            "a map is not mirrored: expected no `mirror` with `[layout.osm]`",
+        );
+    }
+    if spec.traffic.is_some() {
+        findings.error(
+            "traffic",
+            "traffic does not move on a map layout yet: expected no `[traffic]` with \
+             `[layout.osm]`",
+        );
+    }
+    for (i, camera) in spec.cameras.iter().enumerate() {
+        if camera.path != CameraPath::Roads {
+            findings.error(
+                &format!("cameras[{i}].path"),
+                format!(
+                    "cameras on a map layout drive its roads: expected path = \"roads\", \
+                     found \"{}\"",
+                    format!("{:?}", camera.path).to_lowercase()
+                ),
+            );
+        }
+    }
+    for (i, object) in spec.objects.iter().enumerate() {
+        if !matches!(object.kind, EntryKind::Tree | EntryKind::Car) {
+            findings.error(
+                &format!("objects[{i}].kind"),
+                format!(
+                    "objects on a map layout are trees (at the map's trees) and cars: \
+                     expected kind = \"tree\" or \"car\", found \"{}\"",
+                    object.kind.name()
+                ),
+            );
+        }
+    }
+}
