@@ -1,6 +1,8 @@
 //! City-scale benchmark: `cargo bench --bench city`.
 //!
-//! For the default 768 × 768 city and 2 × 2 and 4 × 4 mirrored ones, each cold build
+//! For the default 768 × 768 city, 2 × 2 and 4 × 4 mirrored ones and 1 km² of central
+//! Helsinki from OpenStreetMap (`specs/osm.toml` without cameras: PBF to a textured city,
+//! issue 43), each cold build
 //! (spec to OBJ + MTL + textures + GLB, with the built-in facades already cached, as the
 //! issue asks) runs in its own process so its peak memory can be read. Prints, per case,
 //! triangles, the median time of every stage, the median total and the peak resident
@@ -48,8 +50,15 @@ fn main() {
 
     println!("cityspec city benchmark: {runs} cold builds per case, built-in facades cached");
     let mut points = Vec::new();
-    for (label, mirror) in CASES {
-        let spec = write_spec(dir.path(), &label.replace(' ', "_"), &day, mirror);
+    let mut cases: Vec<(&str, PathBuf)> = CASES
+        .iter()
+        .map(|(label, mirror)| {
+            let spec = write_spec(dir.path(), &label.replace(' ', "_"), &day, mirror);
+            (*label, spec)
+        })
+        .collect();
+    cases.push(("OpenStreetMap 1 km2", write_osm_spec(dir.path())));
+    for (label, spec) in cases {
         let mut results = Vec::new();
         for run in 0..runs {
             let cache = dir
@@ -146,6 +155,21 @@ fn write_spec(dir: &Path, name: &str, day: &str, mirror: &str) -> PathBuf {
     );
     let path = dir.join(format!("{name}.toml"));
     fs::write(&path, text).unwrap();
+    path
+}
+
+/// `specs/osm.toml` (1 km² of central Helsinki from the committed extract) without its
+/// cameras and splits: the extract read, its city built, exported and seen from the air.
+fn write_osm_spec(dir: &Path) -> PathBuf {
+    let osm = fs::read_to_string(repo().join("specs/osm.toml")).unwrap();
+    let cut = match (osm.find("[[cameras]]"), osm.find("[lighting]")) {
+        (Some(a), Some(b)) if a < b => format!("{}{}", &osm[..a], &osm[b..]),
+        _ => osm,
+    };
+    let cut = cut.split("[splits]").next().unwrap().to_owned();
+    let assets = format!("\"{}/assets/", repo().display());
+    let path = dir.join("osm.toml");
+    fs::write(&path, cut.replace("\"../assets/", &assets)).unwrap();
     path
 }
 

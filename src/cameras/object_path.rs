@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::CameraPose;
 use super::aim::{Aim, aimed_pose, unit};
-use crate::model::ParsedLayout;
+use crate::model::Streets;
 use crate::model::geometry::cos_sin_deg;
 use crate::rng;
 use crate::spec::ValueRange;
@@ -65,14 +65,15 @@ pub struct ObjectView {
 /// the object (uniformly among `targets`), the distance, the bearing, then the aim. A
 /// candidate whose line of sight is steeper than `MAX_ELEVATION` steps back to that
 /// elevation if the distance range allows, else it is dropped; a candidate whose eye is
-/// outside the layout or within [`CLEARANCE`] of a block is dropped, so a frame may get
+/// outside the layout or within [`CLEARANCE`] of a block (on a map: outside its box or
+/// within [`CLEARANCE`] of a building) is dropped, so a frame may get
 /// fewer candidates, or none. The pose's recorded heading and
 /// pitch are the aim's turn off the line of sight.
 ///
 /// No candidates at all without targets or with a parameter out of range
 /// (`metres_per_pixel` positive and finite, ranges finite, distances positive).
 pub fn object_views(
-    layout: &ParsedLayout,
+    streets: Streets,
     metres_per_pixel: f64,
     targets: &[ObjectTarget],
     path: &ObjectsPath,
@@ -114,7 +115,7 @@ pub fn object_views(
                         target.centre[0] + out[0] * distance,
                         target.centre[2] + out[1] * distance,
                     ];
-                    if !free(layout, m, ground) {
+                    if !free(streets, m, ground) {
                         return None;
                     }
                     let sight = [
@@ -145,10 +146,19 @@ fn turned(v: [f64; 2], degrees: f64) -> [f64; 2] {
     [c * v[0] - s * v[1], c * v[1] + s * v[0]]
 }
 
-/// Whether ground point `p` (metres) is inside the layout and at least [`CLEARANCE`] from
-/// every block, checked at `p` and at the four points that far from it along the axes
-/// (blocks are unions of pixel rectangles, at least a few metres wide).
-fn free(layout: &ParsedLayout, m: f64, p: [f64; 2]) -> bool {
+/// Whether ground point `p` (metres) is free to stand on: on a layout, inside it and at
+/// least [`CLEARANCE`] from every block, checked at `p` and at the four points that far
+/// from it along the axes (blocks are unions of pixel rectangles, at least a few metres
+/// wide); on a map, inside its box and out of every building by at least [`CLEARANCE`].
+fn free(streets: Streets, m: f64, p: [f64; 2]) -> bool {
+    let layout = match streets {
+        Streets::Layout(layout) => layout,
+        Streets::Map(map) => {
+            let [x0, z0, x1, z1] = map.extent;
+            let inside = (x0..=x1).contains(&p[0]) && (z0..=z1).contains(&p[1]);
+            return inside && !map.in_building(p) && map.building_distance(p) >= CLEARANCE;
+        }
+    };
     let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
     let c = CLEARANCE;
     let probes = [
@@ -170,6 +180,7 @@ fn free(layout: &ParsedLayout, m: f64, p: [f64; 2]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::ParsedLayout;
     use crate::model::{Band, Block, PxRect};
 
     /// A 100 × 100 m layout at 1 m per pixel with one block x 40–60, z 40–60.
@@ -219,8 +230,49 @@ mod tests {
     };
 
     #[test]
+    fn on_a_map_views_stand_in_its_box_clear_of_its_buildings() {
+        let map = crate::test_support::street_map();
+        // A plate on the building's north wall (z 19, x −120…−100), and its middle: with
+        // bearings all round, eyes fall on the street, in the building and out of the box.
+        let wall = ObjectTarget {
+            id: 1,
+            centre: [-110.0, 3.0, 19.0],
+            front: Some([0.0, -1.0]),
+        };
+        let mut around = path(ValueRange::Fixed(0.0));
+        around.angle = ValueRange::Between([-180.0, 180.0]);
+        around.distance = ValueRange::Between([2.0, 60.0]);
+        let views = object_views(Streets::Map(&map), 1.0, &[wall], &around, 4);
+        let eyes: Vec<[f64; 2]> = views
+            .iter()
+            .flatten()
+            .map(|v| [v.pose.eye[0], v.pose.eye[2]])
+            .collect();
+        assert!(eyes.len() > 20, "{} eyes", eyes.len());
+        assert!(
+            eyes.len() < views.len() * ATTEMPTS as usize,
+            "some are dropped"
+        );
+        for eye in eyes {
+            let [x0, z0, x1, z1] = map.extent;
+            assert!(
+                (x0..=x1).contains(&eye[0]) && (z0..=z1).contains(&eye[1]),
+                "{eye:?}"
+            );
+            assert!(!map.in_building(eye), "{eye:?}");
+            assert!(map.building_distance(eye) >= CLEARANCE - 1e-3, "{eye:?}");
+        }
+    }
+
+    #[test]
     fn views_stand_in_front_of_the_object_outside_the_block_and_look_at_it() {
-        let views = object_views(&layout(), 1.0, &[TEXT], &path(ValueRange::Fixed(0.0)), 4);
+        let views = object_views(
+            Streets::Layout(&layout()),
+            1.0,
+            &[TEXT],
+            &path(ValueRange::Fixed(0.0)),
+            4,
+        );
         assert_eq!(views.len(), 20);
         for frame in &views {
             // Every eye in front of the wall is free: all attempts survive.
@@ -251,7 +303,13 @@ mod tests {
             front: Some([0.0, 1.0]),
             ..TEXT
         };
-        let views = object_views(&layout(), 1.0, &[behind], &path(ValueRange::Fixed(0.0)), 4);
+        let views = object_views(
+            Streets::Layout(&layout()),
+            1.0,
+            &[behind],
+            &path(ValueRange::Fixed(0.0)),
+            4,
+        );
         assert!(views.iter().all(|f| f.is_empty()));
         // A lamp without a front, beside the block: any bearing, never into the block.
         let lamp = ObjectTarget {
@@ -260,7 +318,7 @@ mod tests {
             front: None,
         };
         let turned = path(ValueRange::Between([-20.0, 20.0]));
-        let views = object_views(&layout(), 1.0, &[lamp, TEXT], &turned, 9);
+        let views = object_views(Streets::Layout(&layout()), 1.0, &[lamp, TEXT], &turned, 9);
         let mut off_centre = 0;
         for v in views.iter().flatten() {
             let [x, _, z] = v.pose.eye;
@@ -275,9 +333,9 @@ mod tests {
         assert!(off_centre > 20, "{off_centre}");
         assert_eq!(
             views,
-            object_views(&layout(), 1.0, &[lamp, TEXT], &turned, 9)
+            object_views(Streets::Layout(&layout()), 1.0, &[lamp, TEXT], &turned, 9)
         );
-        assert!(object_views(&layout(), 1.0, &[], &turned, 9).is_empty());
+        assert!(object_views(Streets::Layout(&layout()), 1.0, &[], &turned, 9).is_empty());
     }
 
     #[test]
@@ -289,14 +347,14 @@ mod tests {
             ..TEXT
         };
         let near = path(ValueRange::Fixed(0.0));
-        let views = object_views(&layout(), 1.0, &[high], &near, 4);
+        let views = object_views(Streets::Layout(&layout()), 1.0, &[high], &near, 4);
         assert!(views.iter().all(|f| f.is_empty()));
         // …while a range reaching 35 m gives views, none steeper than 20°.
         let far = ObjectsPath {
             distance: ValueRange::Between([4.0, 35.0]),
             ..near
         };
-        let views = object_views(&layout(), 1.0, &[high], &far, 4);
+        let views = object_views(Streets::Layout(&layout()), 1.0, &[high], &far, 4);
         let mut n = 0;
         for v in views.iter().flatten() {
             let p = v.pose;

@@ -11,9 +11,9 @@ pub const REACH: f64 = 25.0;
 /// mapped on the centreline) stands, metres.
 pub const KERB_SETBACK: f64 = 0.5;
 
-/// A lamp at every `street_lamp` feature of `map` within [`REACH`] of a paved road, in
+/// A lamp at every `street_lamp` feature of `map` within `REACH` of a paved road, in
 /// the map's node order, positions in metres (a metre per "pixel"): where the map puts
-/// it, or, when that is on the carriageway, [`KERB_SETBACK`] behind the kerb on the same
+/// it, or, when that is on the carriageway, `KERB_SETBACK` behind the kerb on the same
 /// side of the centreline. It faces the nearest point of that road's centreline, and
 /// `road` is that road's index in `map.roads`. A lamp inside a building is left out.
 pub fn map_lamps(map: &OsmMap) -> Vec<Lamp> {

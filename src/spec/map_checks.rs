@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, cameras off the roads, objects other than trees
-//! and cars).
+//! take yet (mirroring, moving traffic, sidewalk and orbit cameras, objects other than
+//! trees and cars).
 
 use std::path::Path;
 
@@ -46,12 +46,12 @@ pub(crate) fn check_map(
         );
     }
     for (i, camera) in spec.cameras.iter().enumerate() {
-        if camera.path != CameraPath::Roads {
+        if !matches!(camera.path, CameraPath::Roads | CameraPath::Objects) {
             findings.error(
                 &format!("cameras[{i}].path"),
                 format!(
-                    "cameras on a map layout drive its roads: expected path = \"roads\", \
-                     found \"{}\"",
+                    "cameras on a map layout drive its roads or look at its objects: \
+                     expected path = \"roads\" or \"objects\", found \"{}\"",
                     format!("{:?}", camera.path).to_lowercase()
                 ),
             );

@@ -9,7 +9,7 @@
 use rayon::prelude::*;
 
 use crate::cameras::{self, ObjectTarget, ObjectView, ObjectsPath};
-use crate::model::{CameraPose, ParsedLayout, Scene};
+use crate::model::{CameraPose, Scene, Streets};
 use crate::render::{self, Intrinsics, PreparedScene};
 use crate::spec::{CameraSpec, DEFAULT_FRAMES};
 
@@ -27,7 +27,7 @@ pub const MIN_CHECK_PIXELS: u64 = 4;
 pub fn aimed_poses(
     prepared: &PreparedScene,
     scene: &Scene,
-    layout: &ParsedLayout,
+    streets: Streets,
     metres_per_pixel: f64,
     camera: &CameraSpec,
     seed: u64,
@@ -39,7 +39,7 @@ pub fn aimed_poses(
         distance: camera.distance,
         angle: camera.angle,
     };
-    let candidates = cameras::object_views(layout, metres_per_pixel, &targets, &path, seed);
+    let candidates = cameras::object_views(streets, metres_per_pixel, &targets, &path, seed);
     let check = check_intrinsics(camera);
     let chosen: Vec<Option<CameraPose>> = candidates
         .par_iter()

@@ -59,7 +59,12 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
     let aim = cameras::Aim::of(camera);
     let layout = match streets {
         Streets::Layout(layout) => layout,
-        Streets::Map(map) => return map_poses(map, camera, scene, camera_seed),
+        Streets::Map(map) => {
+            if camera.path == CameraPath::Objects {
+                return aimed::aimed_poses(prepared, scene, streets, 1.0, camera, camera_seed);
+            }
+            return map_poses(map, camera, scene, camera_seed);
+        }
     };
     match camera.path {
         CameraPath::Roads => {
@@ -82,7 +87,7 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
             clear::unfilled(prepared, draws, &check)
         }
         CameraPath::Objects => {
-            aimed::aimed_poses(prepared, scene, layout, mpp, camera, camera_seed)
+            aimed::aimed_poses(prepared, scene, streets, mpp, camera, camera_seed)
         }
         CameraPath::Orbit => {
             let length = cameras::orbit_length(layout, mpp);
@@ -102,8 +107,8 @@ fn unblocked(camera: &CameraSpec, scene: &Scene, draws: Vec<Vec<CameraPose>>) ->
     clear::unblocked(draws, &boxes, [down * aspect, down])
 }
 
-/// A camera's poses on a map: along its roads (the only path a map takes yet; the spec
-/// refuses the others), as on a layout's.
+/// A road camera's poses on a map, as on a layout's (the spec refuses sidewalks and orbit
+/// paths on a map).
 fn map_poses(map: &OsmMap, camera: &CameraSpec, scene: &Scene, seed: u64) -> Vec<CameraPose> {
     if camera.path != CameraPath::Roads {
         return Vec::new();
