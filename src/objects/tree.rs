@@ -156,11 +156,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         misses += 1;
         let kind = species[rng.random_range(0..species.len())];
         for _ in 0..REDRAWS {
-            let t: f64 = rng.random();
-            let [low, high] = spec.height_range();
-            let height = low + t * (high - low);
-            let shade = rng.random_range(0..4usize);
-            let other = (shade + rng.random_range(1..4usize)) % 4;
+            let (height, shades) = draw_size(spec, rng);
             let in_plaza = rng.random::<f64>() < spec.plazas;
             let kerbside = crown_radius(kind, height)
                 .min(street_crown)
@@ -213,7 +209,7 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
                 kind,
                 height,
                 crown,
-                shades: [shade, other],
+                shades,
             };
             push_tree(placing, &spec.label, &tree, foot, rng);
             misses = 0;
@@ -228,6 +224,16 @@ struct Tree {
     height: f64,
     crown: f64,
     shades: [usize; 2],
+}
+
+/// A tree's height (from `spec.height`) and its two leaf shades, drawn from `rng` in
+/// that order.
+fn draw_size(spec: &ObjectSpec, rng: &mut Pcg64) -> (f64, [usize; 2]) {
+    let t: f64 = rng.random();
+    let [low, high] = spec.height_range();
+    let shade = rng.random_range(0..4usize);
+    let other = (shade + rng.random_range(1..4usize)) % 4;
+    (low + t * (high - low), [shade, other])
 }
 
 /// Pushes `tree` standing at `foot`, of class `label`; its crown's shape is drawn from
@@ -273,11 +279,7 @@ pub fn place_mapped(
             break;
         }
         let kind = species[rng.random_range(0..species.len())];
-        let t: f64 = rng.random();
-        let [low, high] = spec.height_range();
-        let height = low + t * (high - low);
-        let shade = rng.random_range(0..4usize);
-        let other = (shade + rng.random_range(1..4usize)) % 4;
+        let (height, shades) = draw_size(spec, rng);
         let crown = crown_radius(kind, height).min(room);
         if crown.is_nan() || crown < 0.5 {
             continue;
@@ -286,7 +288,7 @@ pub fn place_mapped(
             kind,
             height,
             crown,
-            shades: [shade, other],
+            shades,
         };
         push_tree(placing, &spec.label, &tree, foot, rng);
         placed += 1;

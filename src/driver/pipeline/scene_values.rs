@@ -76,20 +76,7 @@ impl Pipeline<'_> {
         self.sign_faces = sign_faces.iter().map(|(i, f)| (first + i, *f)).collect();
         self.object_info = city_info(&built, first, &buildings, &facades, &inputs);
         self.object_info.extend(info.into_iter().map(Some));
-        self.triangles = Some(built.triangle_count());
-        self.runs.push(StageRun {
-            stage: "scene",
-            camera: None,
-            key: String::new(),
-            status: StageStatus::Ran,
-            time: start.elapsed(),
-            repaired: None,
-        });
-        let built = Arc::new(built);
-        self.scene = Some(Arc::clone(&built));
-        let diagnostics = self.scene_diagnostics.clone();
-        self.read_diagnostics(&diagnostics)?;
-        Ok(built)
+        self.keep_scene(built, start)
     }
 
     /// The scene of a map layout: the map's city (`scene::map_city`, lamps where the map
@@ -128,6 +115,11 @@ impl Pipeline<'_> {
         let first = objects::merge(&mut built, inserted);
         self.object_info = vec![None; first];
         self.object_info.extend(info.into_iter().map(Some));
+        self.keep_scene(built, start)
+    }
+
+    /// Keeps `built`, made since `start`, as the build's scene, and tells its diagnostics.
+    fn keep_scene(&mut self, built: Scene, start: Instant) -> Result<Arc<Scene>, BuildError> {
         self.triangles = Some(built.triangle_count());
         self.runs.push(StageRun {
             stage: "scene",
