@@ -16,6 +16,10 @@
 use crate::model::geometry::polygon::{distance, left_normal};
 use crate::model::{Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road};
 
+/// How much farther from its end a map's road run is driven when the box cut its road
+/// there, metres.
+pub(super) const EDGE_TRIM: f64 = 50.0;
+
 /// How far inside its kerb a map camera's lane stays, metres.
 pub(super) const KERB_CLEARANCE: f64 = 1.0;
 
@@ -58,8 +62,9 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
 /// [`MAP_CAMERA_LANE`] and [`KERB_CLEARANCE`] inside the kerb; on the centreline of a
 /// one-way road. Each run of consecutive paved segments of a road
 /// (a junction continues the run; an unpaved segment ends it) is driven to `look_ahead`
-/// metres before its end, so the look-at point stays on the road; a run no longer than
-/// `look_ahead` is left out. When that leaves no leg, every run is driven whole.
+/// metres before its end, so the look-at point stays on the road, and [`EDGE_TRIM`] more
+/// when it ends on the box's edge; a run no longer than that is left out. When that
+/// leaves no leg, every run is driven whole.
 pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<Leg> {
     let mut runs: Vec<Vec<PavedSegment>> = Vec::new();
     let mut last: Option<PavedSegment> = None;
@@ -90,11 +95,20 @@ pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<L
             length,
         })
     };
+    // A run that ends where the box cuts its road stops short of the cut as well, so the
+    // camera does not look out of the city into the empty ground beyond the box.
+    let [x0, z0, x1, z1] = map.extent;
+    let at_edge = |p: [f64; 2]| {
+        let near = |a: f64, b: f64| (a - b).abs() < 0.01;
+        near(p[0], x0) || near(p[0], x1) || near(p[1], z0) || near(p[1], z1)
+    };
     let drive = |trim: f64| -> Vec<Leg> {
         let mut legs = Vec::new();
         for run in &runs {
             let total: f64 = run.iter().map(|s| distance(s.a, s.b)).sum();
-            let mut left = total - trim;
+            let end = run.last().is_some_and(|s| at_edge(s.b));
+            let edge = if end && trim > 0.0 { EDGE_TRIM } else { 0.0 };
+            let mut left = total - trim - edge;
             for s in run {
                 if left <= 0.0 {
                     break;
@@ -322,10 +336,15 @@ mod tests {
             // The two-way road: east, then north-east after its bend, 1.5 m (the most a
             // map camera keeps from a two-way road's centreline) right of it, the run
             // trimmed by the look-ahead at its end.
+            // Both runs end on the box's edge, so they stop EDGE_TRIM shorter still.
             ([-150.0, 1.5], [1.0, 0.0], 150.0),
-            ([1.5 * h, 1.5 * h], [h, -h], 100.0 * 2f64.sqrt() - 20.0),
+            (
+                [1.5 * h, 1.5 * h],
+                [h, -h],
+                100.0 * 2f64.sqrt() - 20.0 - EDGE_TRIM,
+            ),
             // The one-way road: on its centreline. The footway has no surface.
-            ([-50.0, 0.0], [0.0, 1.0], 80.0),
+            ([-50.0, 0.0], [0.0, 1.0], 100.0 - 20.0 - EDGE_TRIM),
         ];
         assert_eq!(legs.len(), expected.len());
         for (leg, (origin, dir, length)) in legs.iter().zip(expected) {
@@ -339,6 +358,10 @@ mod tests {
             );
             assert!(close(leg.length, length), "{leg:?}");
         }
+        // A run ending inside the box stops the look-ahead short of its end only.
+        let mut inside = map.clone();
+        inside.roads[1].centreline[1] = [-50.0, 90.0];
+        assert!(close(map_legs(&inside, 3.0, 20.0)[2].length, 70.0));
         // A narrow lane offset is kept; a look-ahead longer than every run drives all whole.
         let whole = map_legs(&map, 0.5, 500.0);
         assert_eq!(whole[0].origin, [-150.0, 0.5]);
