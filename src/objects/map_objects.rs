@@ -137,8 +137,10 @@ impl MapSpots {
     fn new(map: &OsmMap, lamps: &[Lamp], trees: &[([f64; 2], f64)]) -> MapSpots {
         // Only segments where the narrowest vehicle can stand clear of the cameras' lane
         // (see `near_side`): on a two-way road's far half, on a one-way road's right.
-        let segments: Vec<PavedSegment> = map
-            .paved_segments()
+        let all: Vec<PavedSegment> = map.paved_segments().collect();
+        let segments: Vec<PavedSegment> = all
+            .iter()
+            .copied()
             .filter(|s| {
                 let near = if map.roads[s.road].oneway {
                     MAP_CAMERA_LANE
@@ -167,7 +169,6 @@ impl MapSpots {
         for f in map.features.iter().filter(|f| kept.contains(&f.kind)) {
             taken.push(Footprint::Circle(f.at, CROSSING_ROOM));
         }
-        let all = map.paved_segments().collect();
         MapSpots {
             all,
             segments,
