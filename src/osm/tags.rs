@@ -186,7 +186,15 @@ pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
         (Some("street_lamp"), ..) => {
             Some((FeatureKind::StreetLamp, tagged("highway", "street_lamp")))
         }
-        (Some("crossing"), ..) => Some((FeatureKind::Crossing, tagged("highway", "crossing"))),
+        // A crossing the map says has no markings keeps the tag that says so.
+        (Some("crossing"), ..) => Some((
+            FeatureKind::Crossing,
+            match (get(tags, "crossing"), get(tags, "crossing:markings")) {
+                (Some("unmarked"), _) => tagged("crossing", "unmarked"),
+                (_, Some("no")) => tagged("crossing:markings", "no"),
+                _ => tagged("highway", "crossing"),
+            },
+        )),
         (_, Some("tree"), _) => Some((FeatureKind::Tree, tagged("natural", "tree"))),
         (.., Some("bench")) => Some((FeatureKind::Bench, tagged("amenity", "bench"))),
         (Some("bench"), ..) => Some((FeatureKind::Bench, tagged("highway", "bench"))),
@@ -292,8 +300,16 @@ mod tests {
             Some((FeatureKind::TrafficSign, "traffic_sign=DE:205".to_owned()))
         );
         assert_eq!(
-            feature(&[("highway", "crossing")]).unwrap().0,
-            FeatureKind::Crossing
+            feature(&[("highway", "crossing"), ("crossing", "traffic_signals")]),
+            Some((FeatureKind::Crossing, "highway=crossing".to_owned()))
+        );
+        assert_eq!(
+            feature(&[("crossing", "unmarked"), ("highway", "crossing")]),
+            Some((FeatureKind::Crossing, "crossing=unmarked".to_owned()))
+        );
+        assert_eq!(
+            feature(&[("highway", "crossing"), ("crossing:markings", "no")]),
+            Some((FeatureKind::Crossing, "crossing:markings=no".to_owned()))
         );
         assert_eq!(feature(&[("amenity", "post_box")]), None);
     }

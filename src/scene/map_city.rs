@@ -7,6 +7,7 @@
 //! | `block_0007` | block | the block polygon at kerb height (blocks with a mapped building first, then those without: parks, squares, yards) | `paving`; `grass` without a building |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
+//! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
 //! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out | `facade_*`, `roof_*` |
 //!
@@ -17,9 +18,8 @@
 //! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
 //! line (so windows are never stretched).
 //!
-//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces,
-//! markings, the map's benches and signs, and blocks filled where the map has no
-//! buildings. Its trees are objects (`objects::insert_map`).
+//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces, stop
+//! lines, the map's benches and signs, and blocks filled where the map has no buildings. Its trees are objects (`objects::insert_map`).
 
 use rand::RngExt;
 
@@ -100,6 +100,10 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         surfaces.asphalt,
         ROAD_Y,
         4.0,
+    ));
+    objects.extend(super::map_markings::map_marking_objects(
+        map,
+        surfaces.marking,
     ));
     objects.extend(super::street_lamps::lamp_objects(
         input.lamps,

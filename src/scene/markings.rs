@@ -177,12 +177,12 @@ fn rect(mesh: &mut MeshBuilder, road: &Road, across: [f64; 2], along: [f64; 2]) 
 }
 
 /// As many whole dashes as fit in `stretch`, centred in it.
-fn centred_dashes(stretch: [f64; 2]) -> Vec<[f64; 2]> {
+pub(super) fn centred_dashes(stretch: [f64; 2]) -> Vec<[f64; 2]> {
     centred_pieces(stretch, DASH, GAP)
 }
 
 /// As many pieces `length` long and `gap` apart as fit in `range`, centred in it.
-fn centred_pieces(range: [f64; 2], length: f64, gap: f64) -> Vec<[f64; 2]> {
+pub(super) fn centred_pieces(range: [f64; 2], length: f64, gap: f64) -> Vec<[f64; 2]> {
     let room = range[1] - range[0];
     let period = length + gap;
     // n pieces take n·length + (n − 1)·gap.

@@ -11,6 +11,7 @@ use crate::test_support::{TestCity, test_city};
 
 mod buildings;
 mod map_city;
+mod map_markings;
 mod streets;
 mod whole_scene;
 

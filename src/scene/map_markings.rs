@@ -1,0 +1,399 @@
+//! A map's paved roads → `marking_NNNN` objects (NNNN: the road's index in the map):
+//! white dashes along each road's centreline and between its lanes, and a zebra crossing
+//! where the map has a marked crossing on the road. Markings follow the centreline through
+//! its bends, and stay out of junctions.
+//!
+//! - **Lanes.** A segment of carriageway `w` metres wide holds `⌊w / LANE⌋` lanes (at least
+//!   one). A two-way road of two lanes or more gets a dashed centre line, and its halves
+//!   dashed lines between their own lanes; a one-way road of `n` lanes gets `n − 1` dashed
+//!   lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
+//! - **Dashes.** [`DASH`](crate::model::geometry::zebras::DASH) long and
+//!   [`GAP`](super::markings::GAP) apart, counted along the road's centreline (so
+//!   they run on through a bend) and centred in each stretch the road leaves them:
+//!   a run of paved segments less its junctions and zebras.
+//! - **Junctions.** Where three or more arms of paved roads meet (a road ending on
+//!   another, two roads crossing at a shared node; a way simply continuing into the next
+//!   is not a junction), each road's lines stop [`LINE_CLEARANCE`] before the other
+//!   roads' carriageways: `h' / sin θ + h / tan θ` along the road from the junction, `h`
+//!   and `h'` the half-widths and θ the angle between the roads (at least [`MIN_SINE`]).
+//! - **Zebras.** A `highway=crossing` node within [`ON_ROAD`] of a paved road's
+//!   centreline, unless the map says it has no markings (`crossing=unmarked`,
+//!   `crossing:markings=no`), gets bars [`BAR`] wide and
+//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`] apart and centred from kerb
+//!   to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra that would reach into a
+//!   junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
+//!
+//! Not drawn on maps yet: stop lines, parking-lane edges, arrows.
+
+use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, centred_dashes, centred_pieces};
+use super::object;
+use crate::model::geometry::polygon::{distance, nearest};
+use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
+use crate::model::geometry::{MARKING_Y, MeshBuilder, UP};
+use crate::model::{FeatureKind, MapRoad, ObjectKind, OsmMap, SceneObject};
+
+/// The narrowest lane a carriageway is divided into, metres.
+pub const LANE: f64 = 2.75;
+/// How close to a paved centreline a crossing node lies to be that road's crossing, metres.
+pub const ON_ROAD: f64 = 0.5;
+/// The least sine of the angle between two roads at a junction that a clearance is worked
+/// out with: a shallower fork clears as at this angle (about 17°).
+pub const MIN_SINE: f64 = 0.3;
+/// Points closer than this are one node, metres (projected nodes of one OSM node are
+/// equal; this only absorbs rounding).
+const SAME_POINT: f64 = 0.01;
+/// The tags of a crossing the map says has no markings (`osm::read` keeps them).
+pub const UNMARKED_CROSSING: [&str; 2] = ["crossing=unmarked", "crossing:markings=no"];
+
+/// The markings of every paved road of `map`, in road order; roads without any are left
+/// out. Pure and deterministic.
+pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
+    let lines: Vec<Centreline> = map
+        .roads
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.surface)
+        .map(|(i, r)| Centreline::of(i, r))
+        .collect();
+    let junctions = junctions(&lines);
+    let zebras = zebras(map, &lines);
+    lines
+        .iter()
+        .filter_map(|line| {
+            let mut mesh = MeshBuilder::new(material);
+            let mut blocked: Vec<[f64; 2]> = junctions
+                .iter()
+                .filter(|j| j.road == line.road)
+                .map(|j| {
+                    [
+                        j.at - j.reach - LINE_CLEARANCE,
+                        j.at + j.reach + LINE_CLEARANCE,
+                    ]
+                })
+                .collect();
+            for z in zebras.iter().filter(|z| z.road == line.road) {
+                let clear = |j: &&Junction| {
+                    j.road != line.road || (z.at - j.at).abs() >= j.reach + ZEBRA_DEPTH / 2.0
+                };
+                if junctions.iter().all(|j| clear(&j)) {
+                    line.zebra(&mut mesh, z);
+                    let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
+                    blocked.push([z.at - half, z.at + half]);
+                }
+            }
+            for run in line.runs() {
+                for stretch in free(run, &blocked) {
+                    for dash in centred_dashes(stretch) {
+                        line.dash(&mut mesh, dash);
+                    }
+                }
+            }
+            (!mesh.is_empty()).then(|| {
+                object(
+                    ObjectKind::Marking,
+                    format!("marking_{:04}", line.road),
+                    vec![mesh],
+                )
+            })
+        })
+        .collect()
+}
+
+/// The offsets (metres right of the centreline) of the dashed lines of a carriageway
+/// `width` metres wide: the centre line and lane lines of a two-way road, the lane lines of
+/// a one-way one.
+pub fn lane_lines(width: f64, oneway: bool) -> Vec<f64> {
+    let lanes = (width / LANE).floor().max(1.0) as u32;
+    if oneway {
+        let lane = width / f64::from(lanes);
+        return (1..lanes)
+            .map(|k| -width / 2.0 + f64::from(k) * lane)
+            .collect();
+    }
+    if lanes < 2 {
+        return Vec::new();
+    }
+    let per_side = lanes / 2;
+    let lane = width / 2.0 / f64::from(per_side);
+    let mut lines = vec![0.0];
+    for k in 1..per_side {
+        lines.extend([-f64::from(k) * lane, f64::from(k) * lane]);
+    }
+    lines
+}
+
+/// A paved road's centreline as its markings are laid out: arc length at each point.
+struct Centreline<'a> {
+    road: usize,
+    map_road: &'a MapRoad,
+    /// Arc length (metres from the first point) of each point of the centreline.
+    at: Vec<f64>,
+    /// The centreline's bounding box, `[min_x, min_z, max_x, max_z]`.
+    bounds: [f64; 4],
+}
+
+/// Where a junction lies on a road and how far its other roads' carriageways reach along
+/// it either way, metres.
+struct Junction {
+    road: usize,
+    at: f64,
+    reach: f64,
+}
+
+/// A zebra crossing on a road: where along it, on which segment.
+struct Zebra {
+    road: usize,
+    segment: usize,
+    at: f64,
+}
+
+impl<'a> Centreline<'a> {
+    fn of(road: usize, map_road: &'a MapRoad) -> Centreline<'a> {
+        let mut at = vec![0.0];
+        for w in map_road.centreline.windows(2) {
+            at.push(at[at.len() - 1] + distance(w[0], w[1]));
+        }
+        let bounds = map_road.centreline.iter().fold(
+            [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |b, p| {
+                [
+                    b[0].min(p[0]),
+                    b[1].min(p[1]),
+                    b[2].max(p[0]),
+                    b[3].max(p[1]),
+                ]
+            },
+        );
+        Centreline {
+            road,
+            map_road,
+            at,
+            bounds,
+        }
+    }
+
+    fn points(&self) -> &[[f64; 2]] {
+        &self.map_road.centreline
+    }
+
+    /// Carriageway width of segment `s` as paved (0: not paved).
+    fn width(&self, s: usize) -> f64 {
+        self.map_road.fitted.get(s).map_or(0.0, |f| f[0])
+    }
+
+    /// Arc-length ranges of the runs of consecutive paved segments.
+    fn runs(&self) -> Vec<[f64; 2]> {
+        let mut runs: Vec<[f64; 2]> = Vec::new();
+        let mut open: Option<f64> = None;
+        for s in 0..self.at.len() - 1 {
+            match (self.width(s) > 0.0, open) {
+                (true, None) => open = Some(self.at[s]),
+                (false, Some(start)) => {
+                    runs.push([start, self.at[s]]);
+                    open = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(start) = open {
+            runs.push([start, self.at[self.at.len() - 1]]);
+        }
+        runs
+    }
+
+    /// The point of the centreline nearest to `p` within `tolerance`: (segment, arc
+    /// length, unit direction of the segment); the first of equals.
+    fn locate(&self, p: [f64; 2], tolerance: f64) -> Option<(usize, f64, [f64; 2])> {
+        let b = self.bounds;
+        if p[0] < b[0] - tolerance
+            || p[1] < b[1] - tolerance
+            || p[0] > b[2] + tolerance
+            || p[1] > b[3] + tolerance
+        {
+            return None;
+        }
+        let points = self.points();
+        (0..points.len() - 1)
+            .filter(|&s| self.width(s) > 0.0)
+            .map(|s| {
+                let q = nearest(points[s], points[s + 1], p);
+                (s, distance(p, q), self.at[s] + distance(points[s], q))
+            })
+            .filter(|&(_, d, _)| d <= tolerance)
+            .fold(None, |best: Option<(usize, f64, f64)>, c| match best {
+                Some(b) if b.1 <= c.1 => Some(b),
+                _ => Some(c),
+            })
+            .and_then(|(s, _, at)| Some((s, at, unit(points[s], points[s + 1])?)))
+    }
+
+    /// How many arms of this road leave `p` (on it): one at an end of an open road, two
+    /// elsewhere.
+    fn arms_at(&self, p: [f64; 2]) -> u32 {
+        let points = self.points();
+        let (first, last) = (points[0], points[points.len() - 1]);
+        let closed = distance(first, last) <= SAME_POINT;
+        let at_end = distance(p, first) <= SAME_POINT || distance(p, last) <= SAME_POINT;
+        if at_end && !closed { 1 } else { 2 }
+    }
+
+    /// One dash over arc lengths `along` on every lane line of each segment it crosses.
+    fn dash(&self, mesh: &mut MeshBuilder, along: [f64; 2]) {
+        let points = self.points();
+        for s in 0..points.len() - 1 {
+            let (a, b) = (self.at[s].max(along[0]), self.at[s + 1].min(along[1]));
+            let width = self.width(s);
+            if a >= b || width <= 0.0 {
+                continue;
+            }
+            for offset in lane_lines(width, self.map_road.oneway) {
+                let half = LINE_WIDTH / 2.0;
+                self.rect(
+                    mesh,
+                    s,
+                    [a - self.at[s], b - self.at[s]],
+                    [offset - half, offset + half],
+                );
+            }
+        }
+    }
+
+    /// The bars of `zebra`, along its segment, kerb to kerb.
+    fn zebra(&self, mesh: &mut MeshBuilder, zebra: &Zebra) {
+        let s = zebra.segment;
+        let half = self.width(s) / 2.0 - CURB_CLEARANCE;
+        let centre = zebra.at - self.at[s];
+        let along = [centre - ZEBRA_DEPTH / 2.0, centre + ZEBRA_DEPTH / 2.0];
+        for bar in centred_pieces([-half, half], BAR, BAR_GAP) {
+            self.rect(mesh, s, along, bar);
+        }
+    }
+
+    /// A marking quad on segment `s`: `along` it (metres from its first point) and
+    /// `across` it (metres right of it).
+    fn rect(&self, mesh: &mut MeshBuilder, s: usize, along: [f64; 2], across: [f64; 2]) {
+        let (a, b) = (self.points()[s], self.points()[s + 1]);
+        let Some(t) = unit(a, b) else {
+            return;
+        };
+        // Right of a → b (x east, z south).
+        let n = [-t[1], t[0]];
+        let at = |l: f64, c: f64| {
+            [
+                a[0] + t[0] * l + n[0] * c,
+                MARKING_Y,
+                a[1] + t[1] * l + n[1] * c,
+            ]
+        };
+        let corners = [
+            at(along[0], across[0]),
+            at(along[1], across[0]),
+            at(along[1], across[1]),
+            at(along[0], across[1]),
+        ];
+        // The whole mark is one white quad; uv 0..1 over it.
+        let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        mesh.quad(corners, UP, uvs);
+    }
+}
+
+/// Unit vector from `a` to `b`, None where they coincide.
+fn unit(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let len = distance(a, b);
+    (len > 0.0).then(|| [(b[0] - a[0]) / len, (b[1] - a[1]) / len])
+}
+
+/// Every junction of the paved roads `lines`, once per road through it, in road order and
+/// then along the road: each point of a centreline where three or more arms meet.
+fn junctions(lines: &[Centreline]) -> Vec<Junction> {
+    let mut out = Vec::new();
+    let mut seen: Vec<[f64; 2]> = Vec::new();
+    for &p in lines.iter().flat_map(|line| line.points()) {
+        if seen.iter().any(|&q| distance(p, q) <= SAME_POINT) {
+            continue;
+        }
+        seen.push(p);
+        // The roads through p: (road, arc length there, direction, half-width, arms).
+        let through: Vec<(usize, f64, [f64; 2], f64, u32)> = lines
+            .iter()
+            .filter_map(|other| {
+                let (s, at, dir) = other.locate(p, SAME_POINT)?;
+                Some((other.road, at, dir, other.width(s) / 2.0, other.arms_at(p)))
+            })
+            .collect();
+        if through.iter().map(|t| t.4).sum::<u32>() < 3 {
+            continue;
+        }
+        for &(road, at, dir, half, _) in &through {
+            let reach = through
+                .iter()
+                .filter(|o| o.0 != road)
+                .map(|&(_, _, other, other_half, _)| {
+                    let cos = (dir[0] * other[0] + dir[1] * other[1]).abs().min(1.0);
+                    let sin = (1.0 - cos * cos).sqrt().max(MIN_SINE);
+                    other_half / sin + half * cos / sin
+                })
+                .fold(0.0, f64::max);
+            out.push(Junction { road, at, reach });
+        }
+    }
+    out.sort_by(|a, b| a.road.cmp(&b.road).then(a.at.total_cmp(&b.at)));
+    out
+}
+
+/// The zebra crossings: each marked crossing node on a paved road, on the nearest road's
+/// nearest segment (the first road of equals).
+fn zebras(map: &OsmMap, lines: &[Centreline]) -> Vec<Zebra> {
+    map.features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::Crossing && !UNMARKED_CROSSING.contains(&f.tag.as_str()))
+        .filter_map(|f| {
+            lines
+                .iter()
+                .filter_map(|line| {
+                    let (segment, at, _) = line.locate(f.at, ON_ROAD)?;
+                    let q = nearest(line.points()[segment], line.points()[segment + 1], f.at);
+                    Some((
+                        distance(q, f.at),
+                        Zebra {
+                            road: line.road,
+                            segment,
+                            at,
+                        },
+                    ))
+                })
+                .fold(None, |best: Option<(f64, Zebra)>, c| match best {
+                    Some(b) if b.0 <= c.0 => Some(b),
+                    _ => Some(c),
+                })
+                .map(|(_, z)| z)
+        })
+        .collect()
+}
+
+/// What is left of `run` (arc lengths) outside the `blocked` ranges, in order.
+fn free(run: [f64; 2], blocked: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut cuts: Vec<[f64; 2]> = blocked
+        .iter()
+        .filter(|b| b[1] > run[0] && b[0] < run[1])
+        .copied()
+        .collect();
+    cuts.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    let mut out = Vec::new();
+    let mut from = run[0];
+    for cut in cuts {
+        if cut[0] > from {
+            out.push([from, cut[0].min(run[1])]);
+        }
+        from = from.max(cut[1]);
+    }
+    if from < run[1] {
+        out.push([from, run[1]]);
+    }
+    out
+}

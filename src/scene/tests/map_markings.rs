@@ -1,0 +1,223 @@
+//! Road markings on a map (`map_markings`): lane lines by width, dashes that follow the
+//! centreline through a bend and stop before a junction, zebras at marked crossings.
+
+use crate::model::geometry::MARKING_Y;
+use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
+use crate::model::{FeatureKind, MapFeature, ObjectKind, SceneObject};
+use crate::scene::map_markings::{UNMARKED_CROSSING, lane_lines, map_marking_objects};
+use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP};
+use crate::test_support::street_map;
+
+/// The quads of a marking object: four corners each, `[x, z]`.
+fn quads(object: &SceneObject) -> Vec<[[f64; 2]; 4]> {
+    let mesh = &object.meshes[0];
+    assert_eq!(mesh.positions.len() % 4, 0);
+    assert!(mesh.positions.iter().all(|p| p[1] == MARKING_Y as f32));
+    mesh.positions
+        .chunks(4)
+        .map(|q| std::array::from_fn(|i| [f64::from(q[i][0]), f64::from(q[i][2])]))
+        .collect()
+}
+
+/// A quad's length along `dir` and across it, and its centre.
+fn measure(q: &[[f64; 2]; 4], dir: [f64; 2]) -> (f64, f64, [f64; 2]) {
+    let along = |p: [f64; 2]| p[0] * dir[0] + p[1] * dir[1];
+    let across = |p: [f64; 2]| -p[0] * dir[1] + p[1] * dir[0];
+    let span = |f: &dyn Fn([f64; 2]) -> f64| {
+        let v: Vec<f64> = q.iter().map(|&p| f(p)).collect();
+        v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+    };
+    let centre = [
+        q.iter().map(|p| p[0]).sum::<f64>() / 4.0,
+        q.iter().map(|p| p[1]).sum::<f64>() / 4.0,
+    ];
+    (span(&along), span(&across), centre)
+}
+
+fn crossing(node: i64, at: [f64; 2], tag: &str) -> MapFeature {
+    MapFeature {
+        node,
+        kind: FeatureKind::Crossing,
+        at,
+        tag: tag.to_owned(),
+    }
+}
+
+const EPS: f64 = 1e-4;
+
+#[test]
+fn lanes_split_the_carriageway_by_width_and_direction() {
+    // Two-way: a centre line from two lanes up, lane lines within each half.
+    assert_eq!(lane_lines(3.25, false), Vec::<f64>::new());
+    assert_eq!(lane_lines(6.5, false), vec![0.0]);
+    assert_eq!(lane_lines(9.75, false), vec![0.0]);
+    assert_eq!(lane_lines(12.0, false), vec![0.0, -3.0, 3.0]);
+    // One-way: n lanes, n − 1 lines, evenly.
+    assert_eq!(lane_lines(3.25, true), Vec::<f64>::new());
+    assert_eq!(lane_lines(6.5, true), vec![0.0]);
+    assert_eq!(lane_lines(9.75, true), vec![-1.625, 1.625]);
+}
+
+#[test]
+fn dashes_follow_the_centreline_and_stop_before_the_junction() {
+    let map = street_map();
+    let objects = map_marking_objects(&map, 3);
+    // Road 0 (two-way, 12 m: lines at 0 and ±3) and road 1 (one-way, 8 m: a line at 0);
+    // the footway has none.
+    let names: Vec<&str> = objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["marking_0000", "marking_0001"]);
+    assert!(objects.iter().all(|o| o.kind == ObjectKind::Marking));
+    let road0 = quads(&objects[0]);
+    // Road 1 meets road 0's first segment at (−50, 0), from the south: road 0's lines keep
+    // road 1's half-width (4 m) and the clearance from it, road 1's road 0's (6 m).
+    for q in &road0 {
+        let (along, across, c) = if q.iter().all(|p| p[0] <= EPS) {
+            measure(q, [1.0, 0.0])
+        } else {
+            let d = std::f64::consts::FRAC_1_SQRT_2;
+            measure(q, [d, -d])
+        };
+        assert!((across - LINE_WIDTH).abs() < EPS, "{q:?}");
+        assert!(along <= DASH + EPS, "{q:?}");
+        // On a line: 0 or ±3 m from the centreline.
+        let off = if c[0] <= 0.0 {
+            c[1]
+        } else {
+            (c[0] + c[1]) * std::f64::consts::FRAC_1_SQRT_2
+        };
+        assert!(
+            [0.0, 3.0, -3.0].iter().any(|l| (off - l).abs() < 0.01),
+            "{q:?}"
+        );
+        for p in q {
+            assert!((p[0] + 50.0).abs() >= 4.0 + LINE_CLEARANCE - EPS, "{q:?}");
+        }
+    }
+    // Dashes on both sides of the bend at (0, 0), on each of its three lines.
+    let before = road0
+        .iter()
+        .filter(|q| q.iter().all(|p| p[0] < 0.0))
+        .count();
+    let after = road0
+        .iter()
+        .filter(|q| q.iter().all(|p| p[0] > 0.0))
+        .count();
+    assert!(before >= 3 * 10 && after >= 3 * 10, "{before} {after}");
+    // The bend runs on: the dash pattern is counted along the centreline, so dashes and
+    // gaps alternate across it (one dash may be split into two quads there).
+    let centre: Vec<f64> = road0
+        .iter()
+        .filter(|q| q.iter().all(|p| p[0] < -55.0 && p[1].abs() < 1.0))
+        .map(|q| q.iter().map(|p| p[0]).fold(f64::MIN, f64::max))
+        .collect();
+    for pair in centre.windows(2) {
+        assert!(
+            ((pair[1] - pair[0]) - (DASH + GAP)).abs() < EPS,
+            "{centre:?}"
+        );
+    }
+    // Road 1's line keeps road 0's half-width and the clearance from the junction.
+    let road1 = quads(&objects[1]);
+    assert!(!road1.is_empty());
+    for q in &road1 {
+        let (along, across, c) = measure(q, [0.0, 1.0]);
+        assert!((along - DASH).abs() < EPS && (across - LINE_WIDTH).abs() < EPS);
+        assert!((c[0] + 50.0).abs() < EPS, "{q:?}");
+        assert!(
+            q.iter().all(|p| p[1] >= 6.0 + LINE_CLEARANCE - EPS),
+            "{q:?}"
+        );
+    }
+}
+
+#[test]
+fn marked_crossings_get_zebras_and_the_lines_keep_clear() {
+    let mut map = street_map();
+    map.features.extend([
+        // On road 0, marked; 0.3 m off its centreline (still on it).
+        crossing(20, [-100.0, 0.3], "highway=crossing"),
+        // Unmarked, both ways the map says so.
+        crossing(21, [-130.0, 0.0], UNMARKED_CROSSING[0]),
+        crossing(22, [-70.0, 0.0], UNMARKED_CROSSING[1]),
+        // In the junction with road 1: its bars would lie on road 1's carriageway.
+        crossing(23, [-52.0, 0.0], "highway=crossing"),
+        // Off every road (on the footway).
+        crossing(24, [0.0, 40.0], "highway=crossing"),
+    ]);
+    let objects = map_marking_objects(&map, 3);
+    let road0 = quads(&objects[0]);
+    let bars: Vec<(f64, f64, [f64; 2])> = road0
+        .iter()
+        .map(|q| measure(q, [1.0, 0.0]))
+        .filter(|m| (m.1 - BAR).abs() < EPS)
+        .collect();
+    // 12 m less the clearances: 11.4 m holds 10 bars (10 × 0.5 + 9 × 0.6 = 10.4).
+    assert_eq!(bars.len(), 10, "{bars:?}");
+    for (along, _, c) in &bars {
+        assert!((along - ZEBRA_DEPTH).abs() < EPS);
+        assert!((c[0] + 100.0).abs() < EPS, "{c:?}");
+    }
+    let (lo, hi) = bars.iter().fold((f64::MAX, f64::MIN), |(lo, hi), b| {
+        (lo.min(b.2[1] - BAR / 2.0), hi.max(b.2[1] + BAR / 2.0))
+    });
+    assert!((lo + 6.0 - CURB_CLEARANCE - 0.5).abs() < EPS, "{lo}");
+    assert!((hi - 6.0 + CURB_CLEARANCE + 0.5).abs() < EPS, "{hi}");
+    assert!(
+        bars.windows(2)
+            .all(|b| (b[1].2[1] - b[0].2[1] - BAR - BAR_GAP).abs() < EPS)
+    );
+    // The lines stop the clearance before the zebra; the unmarked crossings and the one in
+    // the junction leave the lines as they were.
+    for q in &road0 {
+        let (_, across, c) = measure(q, [1.0, 0.0]);
+        if (across - LINE_WIDTH).abs() < EPS && c[0] < 0.0 {
+            for p in q {
+                let d = (p[0] + 100.0).abs();
+                assert!(d >= ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE - EPS, "{q:?}");
+            }
+        }
+    }
+    // Each stretch left holds its own centred dashes: [−150, −103] five with 4 m either
+    // side, [−97, −55.5] (to the junction's clearance) five with 1.25 m; past the junction
+    // the lines are as without the crossings, and road 1's too.
+    let starts = |range: [f64; 2]| -> Vec<f64> {
+        let mut v: Vec<f64> = road0
+            .iter()
+            .filter(|q| {
+                q.iter()
+                    .all(|p| p[0] > range[0] && p[0] < range[1] && p[1].abs() < 0.1)
+            })
+            .map(|q| q.iter().map(|p| p[0]).fold(f64::MAX, f64::min))
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let expect = |first: f64| {
+        (0..5)
+            .map(|k| first + 9.0 * f64::from(k))
+            .collect::<Vec<_>>()
+    };
+    let close = |a: Vec<f64>, b: Vec<f64>| {
+        a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| (x - y).abs() < EPS)
+    };
+    assert!(
+        close(starts([-150.0, -103.0]), expect(-146.0)),
+        "{:?}",
+        starts([-150.0, -103.0])
+    );
+    assert!(
+        close(starts([-97.0, -55.0]), expect(-95.75)),
+        "{:?}",
+        starts([-97.0, -55.0])
+    );
+    let plain = map_marking_objects(&street_map(), 3);
+    let past = |qs: &[[[f64; 2]; 4]]| -> Vec<[[f64; 2]; 4]> {
+        qs.iter()
+            .filter(|q| q.iter().all(|p| p[0] > -50.0))
+            .copied()
+            .collect()
+    };
+    assert_eq!(past(&road0), past(&quads(&plain[0])));
+    assert!(!past(&road0).is_empty());
+    assert_eq!(objects[1], plain[1]);
+}
