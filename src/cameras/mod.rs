@@ -7,7 +7,8 @@
 //!   road until the look-at point reaches its end (never out of town), with frames evenly
 //!   spaced by arc length over the whole tour and a seeded target jitter;
 //! - [`sidewalk_path`] walks clockwise around each block on its sidewalk, shop fronts on
-//!   the right, the street on the left;
+//!   the right, the street on the left; on a map, [`map_sidewalk_path`] walks each
+//!   road's sidewalks along its polyline, the block on the right;
 //! - [`object_views`] stands in free space around objects of chosen classes and aims at
 //!   them: candidates per frame, of which the build keeps the first whose object the
 //!   renderer shows;
@@ -30,6 +31,7 @@ pub const VERSION: u32 = 11;
 
 mod aim;
 mod leg;
+mod map_walk;
 mod object_path;
 mod orbit_path;
 mod overview;
@@ -43,6 +45,9 @@ use crate::model::geometry::mm;
 pub use crate::model::geometry::tan_half_degrees;
 pub use crate::spec::FrameRule;
 pub use aim::Aim;
+pub use map_walk::{
+    CARRIAGEWAY_CLEARANCE, MIN_SIDEWALK, MIN_STRETCH, map_sidewalk_path, map_sidewalk_path_draws,
+};
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
 pub use orbit_path::{orbit_length, orbit_path};
 pub use overview::{

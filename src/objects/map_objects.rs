@@ -4,6 +4,7 @@
 //! | kind | where |
 //! |---|---|
 //! | tree | at the map's `natural=tree` nodes, in node order, up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
+//! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road; a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`] clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`] plus its half length from every other road's carriageway |
 //!
 //! Other kinds are not placed on maps yet: the spec refuses them, and [`insert_map`]
@@ -17,7 +18,7 @@ use rand_pcg::Pcg64;
 
 use super::footprint_grid::FootprintGrid;
 use super::ground_spots::{Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot};
-use super::{Inserted, ObjectsError, ObjectsInput, Placing, car, tree};
+use super::{Inserted, ObjectsError, ObjectsInput, Placing, car, traffic_lights, tree};
 use crate::model::geometry::polygon::{distance, left_normal, nearest};
 use crate::model::{
     FacadeSet, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment,
@@ -27,6 +28,8 @@ use crate::spec::{EntryKind, ObjectSpec};
 /// Metres a car keeps, beyond its half length, from every other road's carriageway: the
 /// mouth of a junction stays clear.
 pub const JUNCTION_CLEARANCE: f64 = 3.0;
+/// How far behind the kerb a mapped signal's pole stands, metres.
+pub const POLE_BEHIND_KERB: f64 = 0.5;
 /// Ground a mapped crossing or signal keeps free of cars, radius in metres.
 const CROSSING_ROOM: f64 = 4.0;
 /// The narrowest vehicle's width, metres (a small car's).
@@ -46,11 +49,12 @@ pub struct MapObjectsInput<'a> {
 
 /// Places every entry of `input.specs` on the map, in entry order. Pure and deterministic.
 pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
-    if let Some(spec) = input
-        .specs
-        .iter()
-        .find(|s| !matches!(s.kind, EntryKind::Tree | EntryKind::Car))
-    {
+    if let Some(spec) = input.specs.iter().find(|s| {
+        !matches!(
+            s.kind,
+            EntryKind::Tree | EntryKind::Car | EntryKind::TrafficLight
+        )
+    }) {
         return Err(ObjectsError::NotOnMap {
             kind: spec.kind.name().to_owned(),
         });
@@ -77,12 +81,20 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
     let mut placing = Placing::new(&objects);
     let sites = tree_sites(input.map);
     let mut spots = MapSpots::new(input.map, input.lamps, &sites);
+    let signals = signal_sites(input.map);
     let mut placed = Vec::new();
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
         let before = placing.out.objects.len();
         let count = match spec.kind {
             EntryKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
+            EntryKind::TrafficLight => traffic_lights::place_mapped(
+                spec,
+                &mut rng,
+                &signals,
+                &mut |f| spots.claim(f),
+                &mut placing,
+            ),
             _ => {
                 tree::place_mapped(spec, &mut rng, &sites, &mut placing);
                 (placing.out.objects.len() - before) as u32
@@ -120,6 +132,47 @@ fn tree_sites(map: &OsmMap) -> Vec<([f64; 2], f64)> {
         .collect()
 }
 
+/// The map's signals that can stand, in node order: per `highway=traffic_signals` node on
+/// a carriageway, its poles (foot, facing) [`POLE_BEHIND_KERB`] behind the kerbs of the
+/// nearest paved segment at the node: behind the right kerb (of the way's direction)
+/// looking back along it, and on a two-way road behind the left kerb looking ahead; each
+/// clear of buildings and of every other road's carriageway by the pole's radius.
+fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
+    let paved: Vec<PavedSegment> = map.paved_segments().collect();
+    let room = traffic_lights::RADIUS;
+    let clear = |s: &PavedSegment, foot: [f64; 2]| {
+        !map.in_building(foot)
+            && map.building_distance(foot) >= room
+            && paved
+                .iter()
+                .filter(|o| o.road != s.road)
+                .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
+    };
+    map.features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::TrafficSignals)
+        .filter_map(|f| {
+            let (s, q, d) = map.nearest_paved(f.at)?;
+            let len = distance(s.a, s.b);
+            if d > s.width / 2.0 || len <= 0.0 {
+                return None;
+            }
+            let t = [(s.b[0] - s.a[0]) / len, (s.b[1] - s.a[1]) / len];
+            let right = [-t[1], t[0]];
+            let out = s.width / 2.0 + POLE_BEHIND_KERB;
+            let mut poles = vec![(
+                [q[0] + right[0] * out, q[1] + right[1] * out],
+                [-t[0], -t[1]],
+            )];
+            if !map.roads[s.road].oneway {
+                poles.push(([q[0] - right[0] * out, q[1] - right[1] * out], t));
+            }
+            poles.retain(|&(foot, _)| clear(&s, foot));
+            (!poles.is_empty()).then_some(poles)
+        })
+        .collect()
+}
+
 /// The map's paved segments as places for vehicles.
 struct MapSpots {
     /// Every paved segment (the roads a vehicle keeps clear of).
@@ -130,7 +183,11 @@ struct MapSpots {
     ends: Vec<f64>,
     /// Whether each segment's road is one-way (driven `a → b` only).
     oneway: Vec<bool>,
+    /// What stands: lamps, trees and what entries placed.
     taken: FootprintGrid,
+    /// The ground around mapped crossings and signals, kept free of vehicles only (a
+    /// signal's own poles stand in it).
+    rooms: FootprintGrid,
 }
 
 impl MapSpots {
@@ -165,9 +222,10 @@ impl MapSpots {
         for (at, _) in trees {
             taken.push(Footprint::Circle(*at, tree::TRUNK_ROOM));
         }
+        let mut rooms = FootprintGrid::new(GRID_CELL);
         let kept = [FeatureKind::Crossing, FeatureKind::TrafficSignals];
         for f in map.features.iter().filter(|f| kept.contains(&f.kind)) {
-            taken.push(Footprint::Circle(f.at, CROSSING_ROOM));
+            rooms.push(Footprint::Circle(f.at, CROSSING_ROOM));
         }
         MapSpots {
             all,
@@ -175,7 +233,17 @@ impl MapSpots {
             ends,
             oneway,
             taken,
+            rooms,
         }
+    }
+
+    /// Takes `footprint` when it is clear of everything taken; whether it was.
+    fn claim(&mut self, footprint: Footprint) -> bool {
+        if self.taken.overlaps(&footprint) {
+            return false;
+        }
+        self.taken.push(footprint);
+        true
     }
 
     /// How far right of segment `k`'s centreline a vehicle driving along it (`forward`:
@@ -260,7 +328,10 @@ impl RoadSpots for MapSpots {
                 return None;
             }
             let probe = Self::circles(p, dir, r.half, r.gap);
-            if probe.iter().any(|c| self.taken.overlaps(c)) {
+            if probe
+                .iter()
+                .any(|c| self.taken.overlaps(c) || self.rooms.overlaps(c))
+            {
                 return None;
             }
             for c in Self::circles(p, dir, r.half, 0.0) {
@@ -291,7 +362,10 @@ mod tests {
     }
 
     fn place(specs: &[ObjectSpec]) -> Result<Inserted, ObjectsError> {
-        let map = crate::test_support::street_map();
+        place_on(&crate::test_support::street_map(), specs)
+    }
+
+    fn place_on(map: &OsmMap, specs: &[ObjectSpec]) -> Result<Inserted, ObjectsError> {
         // Where `lamps::map_lamps` puts the map's lamps.
         let lamp = |id, position, facing| Lamp {
             id,
@@ -305,7 +379,7 @@ mod tests {
         ];
         insert_map(&MapObjectsInput {
             specs,
-            map: &map,
+            map,
             lamps: &lamps,
             facades: &crate::model::FacadeSet {
                 facades: Vec::new(),
@@ -383,6 +457,99 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn signal_poles_stand_behind_the_kerbs_looking_at_the_traffic() {
+        let mut map = crate::test_support::street_map();
+        let signal = |node, at| crate::model::MapFeature {
+            node,
+            kind: FeatureKind::TrafficSignals,
+            at,
+            tag: "highway=traffic_signals".to_owned(),
+        };
+        map.features.extend([
+            // Road 0, two-way, 12 m, eastwards: a pole each side.
+            signal(30, [-90.0, 0.0]),
+            // Road 1, one-way southwards, 8 m: one pole, behind its right (west) kerb.
+            signal(31, [-50.0, 60.0]),
+            // In the junction: its pole would stand on road 0's carriageway.
+            signal(32, [-50.0, 0.5]),
+            // Off every road.
+            signal(33, [0.0, 30.0]),
+            // Its right pole's ground is the lamp's at (−20, 6.5): the left pole only.
+            signal(34, [-20.0, 0.0]),
+        ]);
+        let specs = entries(
+            "[[objects]]\nkind = 'traffic_light'\nlabel = 'light'\ncount = 10\n\n\
+             [[objects]]\nkind = 'car'\ncount = 40\nparked = 0.7\n",
+        );
+        let inserted = place_on(&map, &specs).expect("signals place");
+        assert_eq!(inserted.placed[0], 4);
+        assert_eq!(inserted, place_on(&map, &specs).expect("signals place"));
+        let poles: Vec<&SceneObject> = inserted
+            .objects
+            .iter()
+            .filter(|o| o.kind == ObjectKind::SignalPole)
+            .collect();
+        let heads: Vec<(&SceneObject, &crate::objects::ObjectInfo)> = inserted
+            .objects
+            .iter()
+            .zip(&inserted.info)
+            .filter(|(o, _)| o.kind == ObjectKind::TrafficLight)
+            .collect();
+        assert_eq!((poles.len(), heads.len()), (4, 4));
+        let centre = |o: &SceneObject| {
+            let p = footprint(o);
+            let n = p.len() as f64;
+            p.iter()
+                .fold([0.0, 0.0], |c, q| [c[0] + q[0] / n, c[1] + q[1] / n])
+        };
+        // (foot, facing) per pole, in node order.
+        let expected = [
+            ([-90.0, 6.5], [-1.0, 0.0]),
+            ([-90.0, -6.5], [1.0, 0.0]),
+            ([-54.5, 60.0], [0.0, -1.0]),
+            ([-20.0, -6.5], [1.0, 0.0]),
+        ];
+        for ((pole, (head, info)), (foot, facing)) in poles.iter().zip(&heads).zip(expected) {
+            assert!(distance(centre(pole), foot) < 1e-3, "{:?}", centre(pole));
+            assert_eq!(
+                (head.class.as_str(), info.label.as_str()),
+                ("light", "light")
+            );
+            assert!(["red", "amber", "green"].contains(&info.attributes["state"].as_str()));
+            // The head hangs out from the pole towards the traffic it faces.
+            let h = centre(head);
+            let out = [h[0] - foot[0], h[1] - foot[1]];
+            assert!(out[0] * facing[0] + out[1] * facing[1] > 0.2, "{out:?}");
+            assert!(
+                (out[0] * facing[1] - out[1] * facing[0]).abs() < 0.05,
+                "{out:?}"
+            );
+        }
+        // The later cars keep off the poles' ground.
+        for car in inserted
+            .objects
+            .iter()
+            .filter(|o| o.kind == ObjectKind::Car)
+        {
+            for p in footprint(car) {
+                for (foot, _) in expected {
+                    assert!(
+                        distance(p, foot) >= traffic_lights::RADIUS - 1e-3,
+                        "{}",
+                        car.name
+                    );
+                }
+            }
+        }
+        // `count` caps the poles.
+        let three = entries("[[objects]]\nkind = 'traffic_light'\nlabel = 'light'\ncount = 3\n");
+        assert_eq!(
+            place_on(&map, &three).expect("signals place").placed,
+            vec![3]
+        );
     }
 
     #[test]

@@ -6,7 +6,9 @@ use thiserror::Error;
 /// An objects-stage error; every variant names the spec's `model` or `words_file` string.
 #[derive(Debug, Error)]
 pub enum ObjectsError {
-    #[error("{kind} objects are not placed on a map layout yet (only tree and car are)")]
+    #[error(
+        "{kind} objects are not placed on a map layout yet (only tree, car and traffic_light are)"
+    )]
     NotOnMap { kind: String },
     #[error("word file {file}: the build did not read it, or it holds no words")]
     MissingWords { file: String },

@@ -99,21 +99,7 @@ pub fn place(
             continue;
         }
         poles += 1;
-        let [x, z] = corner.position;
-        let mut pole = MeshBuilder::new(pole_material);
-        pole.oriented_box(
-            [x, KERB_Y, z],
-            [1.0, 0.0],
-            [POLE_HALF, POLE_HALF],
-            POLE_HEIGHT,
-        );
-        let name = placing.name("signal_pole");
-        placing.push_plain(
-            crate::model::ObjectKind::SignalPole,
-            name,
-            "pole",
-            vec![pole.finish()],
-        );
+        push_pole(placing, corner.position, pole_material);
         // Along the horizontal road (x), then the vertical one (z), away from the crossing.
         let looks = [[corner.sides[0], 0.0], [0.0, corner.sides[1]]];
         for (road, facing) in looks.into_iter().enumerate() {
@@ -122,23 +108,7 @@ pub fn place(
                 (true, false) => Signal::Green,
                 (true, true) => Signal::Amber,
             };
-            let meshes = head_meshes([x, z], facing, signal, body, placing);
-            let name = placing.name("traffic_light");
-            let object = SceneObject {
-                name,
-                kind: crate::model::ObjectKind::TrafficLight,
-                class: spec.label.clone(),
-                meshes,
-            };
-            let info = ObjectInfo {
-                traffic: None,
-                label: spec.label.clone(),
-                text: None,
-                corners: Vec::new(),
-                attributes: BTreeMap::from([("state".to_owned(), signal.name().to_owned())]),
-                keypoints: None,
-            };
-            placing.push(object, info);
+            push_head(placing, spec, corner.position, facing, signal, body);
             let axis = [Axis::Horizontal, Axis::Vertical][road];
             placing.set_traffic(TrafficRole::Signal {
                 corner: corner.position,
@@ -147,15 +117,106 @@ pub fn place(
         }
     }
     if poles > 0 {
-        // Every lamp's lit and dark material, so that moving traffic can switch any lamp
-        // of any head (`[traffic]`): those no head shows now are added unused.
-        for lamp in Signal::ALL {
-            let (lit, dark, glow) = lamp.colours();
-            placing.glowing(&lamp_material(lamp, true), lit, glow);
-            placing.material(&lamp_material(lamp, false), || (dark, None));
-        }
+        register_lamps(placing);
     }
     poles
+}
+
+/// Signal poles where a map has its signals: `signals` holds, per mapped signal in node
+/// order, its poles (foot, and the way its head looks: at the traffic it stops), up to
+/// `spec.count` poles in all. A pole whose ground `claim` refuses (a lamp, a tree, a car
+/// of an earlier entry) is left out. Each signal draws what it shows (red half the time,
+/// amber a tenth, else green: all its heads alike, as they stop one road both ways), each
+/// pole its body colour. Returns how many poles stand.
+pub fn place_mapped(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    signals: &[Vec<([f64; 2], [f64; 2])>],
+    claim: &mut dyn FnMut(Footprint) -> bool,
+    placing: &mut Placing,
+) -> u32 {
+    let pole_material = placing.material("signal_pole", || (POLE_GREY, None));
+    let mut poles = 0u32;
+    'signals: for signal_poles in signals {
+        let signal = match rng.random_range(0..10u32) {
+            0..=4 => Signal::Red,
+            5 => Signal::Amber,
+            _ => Signal::Green,
+        };
+        for &(foot, facing) in signal_poles {
+            if poles >= spec.count {
+                break 'signals;
+            }
+            let body = rng.random_range(0..BODIES.len());
+            if !claim(Footprint::Circle(foot, RADIUS)) {
+                continue;
+            }
+            poles += 1;
+            push_pole(placing, foot, pole_material);
+            push_head(placing, spec, foot, facing, signal, body);
+        }
+    }
+    if poles > 0 {
+        register_lamps(placing);
+    }
+    poles
+}
+
+/// A grey pole standing at `foot` on the sidewalk.
+fn push_pole(placing: &mut Placing, foot: [f64; 2], material: u32) {
+    let mut pole = MeshBuilder::new(material);
+    pole.oriented_box(
+        [foot[0], KERB_Y, foot[1]],
+        [1.0, 0.0],
+        [POLE_HALF, POLE_HALF],
+        POLE_HEIGHT,
+    );
+    let name = placing.name("signal_pole");
+    placing.push_plain(
+        crate::model::ObjectKind::SignalPole,
+        name,
+        "pole",
+        vec![pole.finish()],
+    );
+}
+
+/// A labelled head on the pole at `foot`, looking along `facing` and showing `signal`
+/// (its COCO attribute `state`).
+fn push_head(
+    placing: &mut Placing,
+    spec: &ObjectSpec,
+    foot: [f64; 2],
+    facing: [f64; 2],
+    signal: Signal,
+    body: usize,
+) {
+    let meshes = head_meshes(foot, facing, signal, body, placing);
+    let name = placing.name("traffic_light");
+    let object = SceneObject {
+        name,
+        kind: crate::model::ObjectKind::TrafficLight,
+        class: spec.label.clone(),
+        meshes,
+    };
+    let info = ObjectInfo {
+        traffic: None,
+        label: spec.label.clone(),
+        text: None,
+        corners: Vec::new(),
+        attributes: BTreeMap::from([("state".to_owned(), signal.name().to_owned())]),
+        keypoints: None,
+    };
+    placing.push(object, info);
+}
+
+/// Every lamp's lit and dark material, so that moving traffic can switch any lamp of any
+/// head (`[traffic]`): those no head shows now are added unused.
+fn register_lamps(placing: &mut Placing) {
+    for lamp in Signal::ALL {
+        let (lit, dark, glow) = lamp.colours();
+        placing.glowing(&lamp_material(lamp, true), lit, glow);
+        placing.material(&lamp_material(lamp, false), || (dark, None));
+    }
 }
 
 /// The name of the material of `lamp`'s lens, lit or dark.

@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, sidewalk and orbit cameras, objects other than
-//! trees and cars).
+//! take yet (mirroring, moving traffic, orbit cameras, objects other than trees, cars and
+//! traffic lights).
 
 use std::path::Path;
 
@@ -46,24 +46,29 @@ pub(crate) fn check_map(
         );
     }
     for (i, camera) in spec.cameras.iter().enumerate() {
-        if !matches!(camera.path, CameraPath::Roads | CameraPath::Objects) {
+        if camera.path == CameraPath::Orbit {
             findings.error(
                 &format!("cameras[{i}].path"),
                 format!(
-                    "cameras on a map layout drive its roads or look at its objects: \
-                     expected path = \"roads\" or \"objects\", found \"{}\"",
+                    "cameras on a map layout drive its roads, walk its sidewalks or look at \
+                     its objects: expected path = \"roads\", \"sidewalks\" or \"objects\", \
+                     found \"{}\"",
                     format!("{:?}", camera.path).to_lowercase()
                 ),
             );
         }
     }
     for (i, object) in spec.objects.iter().enumerate() {
-        if !matches!(object.kind, EntryKind::Tree | EntryKind::Car) {
+        if !matches!(
+            object.kind,
+            EntryKind::Tree | EntryKind::Car | EntryKind::TrafficLight
+        ) {
             findings.error(
                 &format!("objects[{i}].kind"),
                 format!(
-                    "objects on a map layout are trees (at the map's trees) and cars: \
-                     expected kind = \"tree\" or \"car\", found \"{}\"",
+                    "objects on a map layout are trees (at the map's trees), cars and traffic \
+                     lights (at the map's signals): expected kind = \"tree\", \"car\" or \
+                     \"traffic_light\", found \"{}\"",
                     object.kind.name()
                 ),
             );

@@ -100,8 +100,8 @@ pub struct LayoutSpec {
     /// their footprints at their heights, its roads at any angle. Give one of `generate`,
     /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror`, `palette`, `[lamps]`
     /// and `[buildings]` do not apply (the map is in metres, lamps stand where it has
-    /// them), cameras take the `roads` and `objects` paths, and objects are `tree` and
-    /// `car` entries (see docs/osm.md).
+    /// them), cameras take the `roads`, `sidewalks` and `objects` paths, and objects are
+    /// `tree`, `car` and `traffic_light` entries (see docs/osm.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub osm: Option<OsmLayoutSpec>,
     /// Mirror operations applied in order, each appending a flipped copy:

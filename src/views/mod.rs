@@ -63,7 +63,7 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
             if camera.path == CameraPath::Objects {
                 return aimed::aimed_poses(prepared, scene, streets, 1.0, camera, camera_seed);
             }
-            return map_poses(map, camera, scene, camera_seed);
+            return map_poses(map, camera, scene, prepared, camera_seed);
         }
     };
     match camera.path {
@@ -107,9 +107,22 @@ fn unblocked(camera: &CameraSpec, scene: &Scene, draws: Vec<Vec<CameraPose>>) ->
     clear::unblocked(draws, &boxes, [down * aspect, down])
 }
 
-/// A road camera's poses on a map, as on a layout's (the spec refuses sidewalks and orbit
+/// A road or sidewalk camera's poses on a map, kept as on a layout (the spec refuses orbit
 /// paths on a map).
-fn map_poses(map: &OsmMap, camera: &CameraSpec, scene: &Scene, seed: u64) -> Vec<CameraPose> {
+fn map_poses(
+    map: &OsmMap,
+    camera: &CameraSpec,
+    scene: &Scene,
+    prepared: &PreparedScene,
+    seed: u64,
+) -> Vec<CameraPose> {
+    if camera.path == CameraPath::Sidewalks {
+        let aim = cameras::Aim::of(camera);
+        let draws =
+            cameras::map_sidewalk_path_draws(map, camera.frame_rule(), aim, seed, clear::DRAWS);
+        let check = aimed::check_intrinsics(camera);
+        return clear::unfilled(prepared, draws, &check);
+    }
     if camera.path != CameraPath::Roads {
         return Vec::new();
     }
