@@ -14,7 +14,9 @@
 //! The camera starts at the road's start (0 m in): it looks forward, into the road.
 
 use crate::model::geometry::polygon::{distance, left_normal};
-use crate::model::{Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road};
+use crate::model::{
+    Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road, map_camera_lane,
+};
 
 /// How much farther from its end a map's road run is driven when the box cut its road
 /// there, metres.
@@ -59,8 +61,8 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
 
 /// The roads of `map` with a surface, in map order, as legs: each paved segment in the
 /// way's direction, on the right-hand lane: `lane_offset` right of the centreline, at most
-/// [`MAP_CAMERA_LANE`] and [`KERB_CLEARANCE`] inside the kerb; on the centreline of a
-/// one-way road. Each run of consecutive paved segments of a road
+/// [`MAP_CAMERA_LANE`] and [`KERB_CLEARANCE`] inside the kerb; on a one-way road in the
+/// lane [`map_camera_lane`] gives (left of the centreline when the lanes are even). Each run of consecutive paved segments of a road
 /// (a junction continues the run; an unpaved segment ends it) is driven to `look_ahead`
 /// metres before its end, so the look-at point stays on the road, and [`EDGE_TRIM`] more
 /// when it ends on the box's edge; a run no longer than that is left out. When that
@@ -81,7 +83,7 @@ pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<L
     let lane = |s: &PavedSegment, length: f64| {
         let n = left_normal(s.a, s.b)?;
         let across = if map.roads[s.road].oneway {
-            0.0
+            map_camera_lane(s.width)
         } else {
             lane_offset
                 .min(MAP_CAMERA_LANE)
@@ -343,8 +345,9 @@ mod tests {
                 [h, -h],
                 100.0 * 2f64.sqrt() - 20.0 - EDGE_TRIM,
             ),
-            // The one-way road: on its centreline. The footway has no surface.
-            ([-50.0, 0.0], [0.0, 1.0], 100.0 - 20.0 - EDGE_TRIM),
+            // The one-way road (south, 8 m: two lanes of 4 m) in the middle of its left
+            // lane, 2 m east of its centreline. The footway has no surface.
+            ([-48.0, 0.0], [0.0, 1.0], 100.0 - 20.0 - EDGE_TRIM),
         ];
         assert_eq!(legs.len(), expected.len());
         for (leg, (origin, dir, length)) in legs.iter().zip(expected) {
@@ -358,6 +361,10 @@ mod tests {
             );
             assert!(close(leg.length, length), "{leg:?}");
         }
+        // Three lanes (9 m): the middle one, on the centreline.
+        let mut three = map.clone();
+        three.roads[1].fitted[0][0] = 9.0;
+        assert_eq!(map_legs(&three, 3.0, 20.0)[2].origin, [-50.0, 0.0]);
         // A run ending inside the box stops the look-ahead short of its end only.
         let mut inside = map.clone();
         inside.roads[1].centreline[1] = [-50.0, 90.0];

@@ -27,7 +27,7 @@
 //! [`CameraPose`] lives in [`crate::model`]; the renderer consumes it.
 
 /// Bump when this stage's output changes: it is part of the stage's cache key.
-pub const VERSION: u32 = 11;
+pub const VERSION: u32 = 12;
 
 mod aim;
 mod leg;

@@ -48,6 +48,7 @@ pub use osm_map::{
     FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapPolygon, MapRoad, OsmElement, OsmMap,
     PavedSegment,
 };
+pub use osm_map::{LANE as MAP_LANE, camera_lane as map_camera_lane, lanes as map_lanes};
 pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;
 pub use pixel_class::PixelClass;

@@ -38,9 +38,32 @@ pub struct OsmMap {
 }
 
 /// The farthest right of a two-way road's centreline a camera drives on a map, metres (on
-/// a one-way road it drives on the centreline); vehicles standing on a map's roads keep
-/// their near side this much farther out, so the camera's lane stays clear.
+/// a one-way road see [`camera_lane`]); vehicles standing on a map's roads keep their near
+/// side this much farther out, so the camera's lane stays clear.
 pub const CAMERA_LANE: f64 = 1.5;
+
+/// The narrowest lane a map's carriageway is divided into, metres: a carriageway `w`
+/// metres wide holds `⌊w / LANE⌋` lanes (at least one). Its markings split it so, and the
+/// cameras drive in its lanes.
+pub const LANE: f64 = 2.75;
+
+/// The lanes of a carriageway `width` metres wide ([`LANE`]).
+pub fn lanes(width: f64) -> u32 {
+    (width / LANE).floor().max(1.0) as u32
+}
+
+/// Where a camera drives on a map's one-way carriageway `width` metres wide, metres right
+/// of its centreline: in the middle of the lane left of the centreline when the lanes are
+/// even (the centreline is a lane line then; the right kerb stays for parking), else on
+/// the centreline (the middle lane).
+pub fn camera_lane(width: f64) -> f64 {
+    let n = lanes(width);
+    if n.is_multiple_of(2) {
+        -width / f64::from(n) / 2.0
+    } else {
+        0.0
+    }
+}
 
 /// One paved segment of a road: a piece of its centreline, `a → b` in the way's
 /// direction, with the cross-section it was fitted to ([`MapRoad::fitted`]).

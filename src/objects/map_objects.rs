@@ -22,6 +22,7 @@ use super::{Inserted, ObjectsError, ObjectsInput, Placing, car, traffic_lights, 
 use crate::model::geometry::polygon::{distance, left_normal, nearest};
 use crate::model::{
     FacadeSet, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment,
+    map_camera_lane,
 };
 use crate::spec::{EntryKind, ObjectSpec};
 
@@ -200,7 +201,7 @@ impl MapSpots {
             .copied()
             .filter(|s| {
                 let near = if map.roads[s.road].oneway {
-                    MAP_CAMERA_LANE
+                    map_camera_lane(s.width) + MAP_CAMERA_LANE
                 } else {
                     0.0
                 };
@@ -248,11 +249,15 @@ impl MapSpots {
 
     /// How far right of segment `k`'s centreline a vehicle driving along it (`forward`:
     /// from `a` to `b`) keeps its near side, so that it stays [`MAP_CAMERA_LANE`] clear
-    /// of the cameras' lane: cameras drive `a → b` only, on a one-way road's centreline,
-    /// and [`MAP_CAMERA_LANE`] right of a two-way road's (so on its far side, a vehicle
+    /// of the cameras' lane: cameras drive `a → b` only, on a one-way road in the lane
+    /// [`map_camera_lane`] gives, and [`MAP_CAMERA_LANE`] right of a two-way road's (so on its far side, a vehicle
     /// driving the other way needs only to keep to its own half).
     fn near_side(&self, k: usize, forward: bool) -> f64 {
-        let camera = if self.oneway[k] { 0.0 } else { MAP_CAMERA_LANE };
+        let camera = if self.oneway[k] {
+            map_camera_lane(self.segments[k].width)
+        } else {
+            MAP_CAMERA_LANE
+        };
         if forward {
             camera + MAP_CAMERA_LANE
         } else {
@@ -441,7 +446,7 @@ mod tests {
             let (segment, _, _) = map.nearest_paved(centre).expect("a road");
             // The cameras' lane, signed right of the segment's direction.
             let lane = if map.roads[segment.road].oneway {
-                0.0
+                map_camera_lane(segment.width)
             } else {
                 MAP_CAMERA_LANE
             };

@@ -4,7 +4,7 @@
 //! its bends, and stay out of junctions.
 //!
 //! - **Lanes.** A segment of carriageway `w` metres wide holds `⌊w / LANE⌋` lanes (at least
-//!   one). A two-way road of two lanes or more gets a dashed centre line, and its halves
+//!   one, [`MAP_LANE`](crate::model::MAP_LANE)). A two-way road of two lanes or more gets a dashed centre line, and its halves
 //!   dashed lines between their own lanes; a one-way road of `n` lanes gets `n − 1` dashed
 //!   lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
 //! - **Dashes.** [`DASH`](crate::model::geometry::zebras::DASH) long and
@@ -30,10 +30,8 @@ use super::object;
 use crate::model::geometry::polygon::{distance, nearest};
 use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
 use crate::model::geometry::{MARKING_Y, MeshBuilder, UP};
-use crate::model::{FeatureKind, MapRoad, ObjectKind, OsmMap, SceneObject};
+use crate::model::{FeatureKind, MapRoad, ObjectKind, OsmMap, SceneObject, map_lanes};
 
-/// The narrowest lane a carriageway is divided into, metres.
-pub const LANE: f64 = 2.75;
 /// How close to a paved centreline a crossing node lies to be that road's crossing, metres.
 pub const ON_ROAD: f64 = 0.5;
 /// The least sine of the angle between two roads at a junction that a clearance is worked
@@ -103,7 +101,7 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
 /// `width` metres wide: the centre line and lane lines of a two-way road, the lane lines of
 /// a one-way one.
 pub fn lane_lines(width: f64, oneway: bool) -> Vec<f64> {
-    let lanes = (width / LANE).floor().max(1.0) as u32;
+    let lanes = map_lanes(width);
     if oneway {
         let lane = width / f64::from(lanes);
         return (1..lanes)
