@@ -99,11 +99,7 @@ pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<L
     };
     // A run that ends where the box cuts its road stops short of the cut as well, so the
     // camera does not look out of the city into the empty ground beyond the box.
-    let [x0, z0, x1, z1] = map.extent;
-    let at_edge = |p: [f64; 2]| {
-        let near = |a: f64, b: f64| (a - b).abs() < 0.01;
-        near(p[0], x0) || near(p[0], x1) || near(p[1], z0) || near(p[1], z1)
-    };
+    let at_edge = |p: [f64; 2]| on_box_edge(map, p);
     let drive = |trim: f64| -> Vec<Leg> {
         let mut legs = Vec::new();
         for run in &runs {
@@ -128,6 +124,14 @@ pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<L
     } else {
         trimmed
     }
+}
+
+/// Whether `p` lies on the edge of `map`'s box (within a centimetre): where the box cut
+/// the road that ends there.
+pub(super) fn on_box_edge(map: &OsmMap, p: [f64; 2]) -> bool {
+    let [x0, z0, x1, z1] = map.extent;
+    let near = |a: f64, b: f64| (a - b).abs() < 0.01;
+    near(p[0], x0) || near(p[0], x1) || near(p[1], z0) || near(p[1], z1)
 }
 
 /// Points `n` evenly spaced by arc length along `legs` taken one after another (the jumps

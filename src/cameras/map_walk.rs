@@ -14,9 +14,9 @@
 
 use super::CameraPose;
 use super::aim::{Aim, aimed_pose};
-use super::leg::{EDGE_TRIM, Leg, stations};
+use super::leg::{EDGE_TRIM, Leg, on_box_edge, stations};
 use crate::model::geometry::WALK_SHARE;
-use crate::model::geometry::polygon::{distance, nearest};
+use crate::model::geometry::polygon::{direction, distance, nearest};
 use crate::model::{OsmMap, PavedSegment};
 use crate::rng;
 use crate::spec::FrameRule;
@@ -76,14 +76,10 @@ fn walk_legs(map: &OsmMap) -> Vec<Leg> {
     let segments: Vec<PavedSegment> = map.paved_segments().collect();
     let grid = Grid::of(&segments);
     let [x0, z0, x1, z1] = map.extent;
-    let on_edge = |p: [f64; 2]| {
-        let near = |a: f64, b: f64| (a - b).abs() < 0.01;
-        near(p[0], x0) || near(p[0], x1) || near(p[1], z0) || near(p[1], z1)
-    };
     let cuts: Vec<[f64; 2]> = segments
         .iter()
         .flat_map(|s| [s.a, s.b])
-        .filter(|&p| on_edge(p))
+        .filter(|&p| on_box_edge(map, p))
         .collect();
     let walkable = |p: [f64; 2]| {
         let inside = p[0] > x0 && p[0] < x1 && p[1] > z0 && p[1] < z1;
@@ -98,13 +94,12 @@ fn walk_legs(map: &OsmMap) -> Vec<Leg> {
     for s in &segments {
         for side in [1, 0] {
             let width = s.sidewalks[side];
-            let len = distance(s.a, s.b);
-            if width < MIN_SIDEWALK || len <= 0.0 {
-                continue;
-            }
             // Right sidewalk a → b, left b → a: the block on the walker's right.
             let (from, to) = if side == 1 { (s.a, s.b) } else { (s.b, s.a) };
-            let dir = [(to[0] - from[0]) / len, (to[1] - from[1]) / len];
+            let Some(dir) = direction(from, to).filter(|_| width >= MIN_SIDEWALK) else {
+                continue;
+            };
+            let len = distance(from, to);
             let right = [-dir[1], dir[0]];
             let out = s.width / 2.0 + width * (1.0 - WALK_SHARE);
             let origin = [from[0] + right[0] * out, from[1] + right[1] * out];

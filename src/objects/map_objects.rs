@@ -19,7 +19,7 @@ use rand_pcg::Pcg64;
 use super::footprint_grid::FootprintGrid;
 use super::ground_spots::{Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot};
 use super::{Inserted, ObjectsError, ObjectsInput, Placing, car, traffic_lights, tree};
-use crate::model::geometry::polygon::{distance, left_normal, nearest};
+use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
 use crate::model::{
     FacadeSet, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment,
     map_camera_lane,
@@ -154,11 +154,7 @@ fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
         .filter(|f| f.kind == FeatureKind::TrafficSignals)
         .filter_map(|f| {
             let (s, q, d) = map.nearest_paved(f.at)?;
-            let len = distance(s.a, s.b);
-            if d > s.width / 2.0 || len <= 0.0 {
-                return None;
-            }
-            let t = [(s.b[0] - s.a[0]) / len, (s.b[1] - s.a[1]) / len];
+            let t = direction(s.a, s.b).filter(|_| d <= s.width / 2.0)?;
             let right = [-t[1], t[0]];
             let out = s.width / 2.0 + POLE_BEHIND_KERB;
             let mut poles = vec![(

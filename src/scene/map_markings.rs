@@ -27,7 +27,7 @@
 
 use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, centred_dashes, centred_pieces};
 use super::object;
-use crate::model::geometry::polygon::{distance, nearest};
+use crate::model::geometry::polygon::{direction, distance, nearest};
 use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
 use crate::model::geometry::{MARKING_Y, MeshBuilder, UP};
 use crate::model::{FeatureKind, MapRoad, ObjectKind, OsmMap, SceneObject, map_lanes};
@@ -70,10 +70,11 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
                 })
                 .collect();
             for z in zebras.iter().filter(|z| z.road == line.road) {
-                let clear = |j: &&Junction| {
-                    j.road != line.road || (z.at - j.at).abs() >= j.reach + ZEBRA_DEPTH / 2.0
-                };
-                if junctions.iter().all(|j| clear(&j)) {
+                let clear = junctions
+                    .iter()
+                    .filter(|j| j.road == line.road)
+                    .all(|j| (z.at - j.at).abs() >= j.reach + ZEBRA_DEPTH / 2.0);
+                if clear {
                     line.zebra(&mut mesh, z);
                     let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
                     blocked.push([z.at - half, z.at + half]);
@@ -205,8 +206,8 @@ impl<'a> Centreline<'a> {
     }
 
     /// The point of the centreline nearest to `p` within `tolerance`: (segment, arc
-    /// length, unit direction of the segment); the first of equals.
-    fn locate(&self, p: [f64; 2], tolerance: f64) -> Option<(usize, f64, [f64; 2])> {
+    /// length, unit direction of the segment, distance from `p`); the first of equals.
+    fn locate(&self, p: [f64; 2], tolerance: f64) -> Option<(usize, f64, [f64; 2], f64)> {
         let b = self.bounds;
         if p[0] < b[0] - tolerance
             || p[1] < b[1] - tolerance
@@ -227,7 +228,7 @@ impl<'a> Centreline<'a> {
                 Some(b) if b.1 <= c.1 => Some(b),
                 _ => Some(c),
             })
-            .and_then(|(s, _, at)| Some((s, at, unit(points[s], points[s + 1])?)))
+            .and_then(|(s, d, at)| Some((s, at, direction(points[s], points[s + 1])?, d)))
     }
 
     /// How many arms of this road leave `p` (on it): one at an end of an open road, two
@@ -276,7 +277,7 @@ impl<'a> Centreline<'a> {
     /// `across` it (metres right of it).
     fn rect(&self, mesh: &mut MeshBuilder, s: usize, along: [f64; 2], across: [f64; 2]) {
         let (a, b) = (self.points()[s], self.points()[s + 1]);
-        let Some(t) = unit(a, b) else {
+        let Some(t) = direction(a, b) else {
             return;
         };
         // Right of a → b (x east, z south).
@@ -300,12 +301,6 @@ impl<'a> Centreline<'a> {
     }
 }
 
-/// Unit vector from `a` to `b`, None where they coincide.
-fn unit(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
-    let len = distance(a, b);
-    (len > 0.0).then(|| [(b[0] - a[0]) / len, (b[1] - a[1]) / len])
-}
-
 /// Every junction of the paved roads `lines`, once per road through it, in road order and
 /// then along the road: each point of a centreline where three or more arms meet.
 fn junctions(lines: &[Centreline]) -> Vec<Junction> {
@@ -320,7 +315,7 @@ fn junctions(lines: &[Centreline]) -> Vec<Junction> {
         let through: Vec<(usize, f64, [f64; 2], f64, u32)> = lines
             .iter()
             .filter_map(|other| {
-                let (s, at, dir) = other.locate(p, SAME_POINT)?;
+                let (s, at, dir, _) = other.locate(p, SAME_POINT)?;
                 Some((other.road, at, dir, other.width(s) / 2.0, other.arms_at(p)))
             })
             .collect();
@@ -354,16 +349,9 @@ fn zebras(map: &OsmMap, lines: &[Centreline]) -> Vec<Zebra> {
             lines
                 .iter()
                 .filter_map(|line| {
-                    let (segment, at, _) = line.locate(f.at, ON_ROAD)?;
-                    let q = nearest(line.points()[segment], line.points()[segment + 1], f.at);
-                    Some((
-                        distance(q, f.at),
-                        Zebra {
-                            road: line.road,
-                            segment,
-                            at,
-                        },
-                    ))
+                    let (segment, at, _, d) = line.locate(f.at, ON_ROAD)?;
+                    let road = line.road;
+                    Some((d, Zebra { road, segment, at }))
                 })
                 .fold(None, |best: Option<(f64, Zebra)>, c| match best {
                     Some(b) if b.0 <= c.0 => Some(b),

@@ -22,6 +22,12 @@ pub fn left_normal(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
     (len > 0.0).then(|| [dz / len, -dx / len])
 }
 
+/// The unit vector from `a` towards `b`; None where they coincide.
+pub fn direction(a: [f64; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let len = distance(a, b);
+    (len > 0.0).then(|| [(b[0] - a[0]) / len, (b[1] - a[1]) / len])
+}
+
 /// The point of segment `a`–`b` nearest to `p`.
 pub fn nearest(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> [f64; 2] {
     let d = [b[0] - a[0], b[1] - a[1]];
