@@ -20,7 +20,7 @@ pub mod clear;
 use rand::Rng;
 
 use crate::cameras::{self, CameraPose};
-use crate::model::{OsmMap, Scene, Streets};
+use crate::model::{Scene, Streets};
 use crate::render::PreparedScene;
 use crate::rng;
 use crate::scene;
@@ -56,45 +56,52 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
     // Seeded by the camera's name, not its place in the list: adding or reordering
     // cameras leaves every other camera's poses as they were.
     let camera_seed = rng::stream(seed, &format!("camera/{}", camera.name), 0).next_u64();
-    let aim = cameras::Aim::of(camera);
-    let layout = match streets {
-        Streets::Layout(layout) => layout,
-        Streets::Map(map) => {
-            if camera.path == CameraPath::Objects {
-                return aimed::aimed_poses(prepared, scene, streets, 1.0, camera, camera_seed);
-            }
-            return map_poses(map, camera, scene, prepared, camera_seed);
-        }
-    };
-    match camera.path {
-        CameraPath::Roads => {
+    match (camera.path, streets) {
+        (CameraPath::Roads, streets) => {
             let path = road_path(camera);
+            let (seed, n) = (camera_seed, clear::DRAWS);
             if path.drive.is_some() {
                 // A timed drive keeps every frame: one time step apart, none skipped.
-                return cameras::road_path(layout, mpp, &path, camera_seed);
+                return match streets {
+                    Streets::Layout(layout) => cameras::road_path(layout, mpp, &path, seed),
+                    Streets::Map(map) => cameras::map_road_path(map, &path, seed),
+                };
             }
-            let draws = cameras::road_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
+            let draws = match streets {
+                Streets::Layout(layout) => cameras::road_path_draws(layout, mpp, &path, seed, n),
+                Streets::Map(map) => cameras::map_road_path_draws(map, &path, seed, n),
+            };
             unblocked(camera, scene, draws)
         }
-        CameraPath::Sidewalks => {
-            let path = cameras::SidewalkPath {
-                frames: camera.frame_rule(),
-                aim,
-                sidewalk: f64::from(scene::strip_width_px(layout)) * mpp,
+        (CameraPath::Sidewalks, streets) => {
+            let (frames, aim) = (camera.frame_rule(), cameras::Aim::of(camera));
+            let draws = match streets {
+                Streets::Layout(layout) => {
+                    let path = cameras::SidewalkPath {
+                        frames,
+                        aim,
+                        sidewalk: f64::from(scene::strip_width_px(layout)) * mpp,
+                    };
+                    cameras::sidewalk_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS)
+                }
+                Streets::Map(map) => {
+                    cameras::map_sidewalk_path_draws(map, frames, aim, camera_seed, clear::DRAWS)
+                }
             };
-            let draws = cameras::sidewalk_path_draws(layout, mpp, &path, camera_seed, clear::DRAWS);
             let check = aimed::check_intrinsics(camera);
             clear::unfilled(prepared, draws, &check)
         }
-        CameraPath::Objects => {
+        (CameraPath::Objects, streets) => {
             aimed::aimed_poses(prepared, scene, streets, mpp, camera, camera_seed)
         }
-        CameraPath::Orbit => {
+        (CameraPath::Orbit, Streets::Layout(layout)) => {
             let length = cameras::orbit_length(layout, mpp);
             let frames = camera.frame_rule().frames(length);
             // A range of heights: the orbit flies at its middle.
             cameras::orbit_path(layout, mpp, frames, camera.height.at(0.5))
         }
+        // The spec refuses an orbit on a map.
+        (CameraPath::Orbit, Streets::Map(_)) => Vec::new(),
     }
 }
 
@@ -105,33 +112,6 @@ fn unblocked(camera: &CameraSpec, scene: &Scene, draws: Vec<Vec<CameraPose>>) ->
     let aspect = f64::from(camera.resolution[0]) / f64::from(camera.resolution[1].max(1));
     let boxes = clear::vehicle_boxes(scene);
     clear::unblocked(draws, &boxes, [down * aspect, down])
-}
-
-/// A road or sidewalk camera's poses on a map, kept as on a layout (the spec refuses orbit
-/// paths on a map).
-fn map_poses(
-    map: &OsmMap,
-    camera: &CameraSpec,
-    scene: &Scene,
-    prepared: &PreparedScene,
-    seed: u64,
-) -> Vec<CameraPose> {
-    if camera.path == CameraPath::Sidewalks {
-        let aim = cameras::Aim::of(camera);
-        let draws =
-            cameras::map_sidewalk_path_draws(map, camera.frame_rule(), aim, seed, clear::DRAWS);
-        let check = aimed::check_intrinsics(camera);
-        return clear::unfilled(prepared, draws, &check);
-    }
-    if camera.path != CameraPath::Roads {
-        return Vec::new();
-    }
-    let path = road_path(camera);
-    if path.drive.is_some() {
-        return cameras::map_road_path(map, &path, seed);
-    }
-    let draws = cameras::map_road_path_draws(map, &path, seed, clear::DRAWS);
-    unblocked(camera, scene, draws)
 }
 
 /// How `camera` drives a road tour.
