@@ -5,6 +5,7 @@
 //! |---|---|
 //! | tree | at the map's `natural=tree` nodes, in node order, up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road; a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
+//! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`] clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`] plus its half length from every other road's carriageway |
 //!
 //! Other kinds are not placed on maps yet: the spec refuses them, and [`insert_map`]
@@ -18,7 +19,11 @@ use rand_pcg::Pcg64;
 
 use super::footprint_grid::FootprintGrid;
 use super::ground_spots::{Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot};
-use super::{Inserted, ObjectsError, ObjectsInput, Placing, car, traffic_lights, tree};
+use super::traffic_signs::{self, MappedSign};
+use super::{
+    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, car, sign_codes, traffic_lights,
+    tree, user_mesh,
+};
 use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
 use crate::model::{
     FacadeSet, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment,
@@ -45,17 +50,23 @@ pub struct MapObjectsInput<'a> {
     /// The map's lamps (`lamps::map_lamps`), positions in metres.
     pub lamps: &'a [Lamp],
     pub facades: &'a FacadeSet,
+    /// The mesh entries' model files, by the spec's model string.
+    pub meshes: &'a BTreeMap<String, MeshFiles>,
     pub seed: u64,
 }
 
+/// The kinds of entries a map places.
+const MAP_KINDS: [EntryKind; 5] = [
+    EntryKind::Tree,
+    EntryKind::Car,
+    EntryKind::TrafficLight,
+    EntryKind::Sign,
+    EntryKind::Mesh,
+];
+
 /// Places every entry of `input.specs` on the map, in entry order. Pure and deterministic.
 pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
-    if let Some(spec) = input.specs.iter().find(|s| {
-        !matches!(
-            s.kind,
-            EntryKind::Tree | EntryKind::Car | EntryKind::TrafficLight
-        )
-    }) {
+    if let Some(spec) = input.specs.iter().find(|s| !MAP_KINDS.contains(&s.kind)) {
         return Err(ObjectsError::NotOnMap {
             kind: spec.kind.name().to_owned(),
         });
@@ -66,7 +77,6 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         blocks: Vec::new(),
         roads: Vec::new(),
     };
-    let meshes = BTreeMap::new();
     // What `Placing` reads of a layout's input: the specs, the seed and a metre a unit.
     let objects = ObjectsInput {
         specs: input.specs,
@@ -75,7 +85,7 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         buildings: &[],
         facades: input.facades,
         widths: None,
-        meshes: &meshes,
+        meshes: input.meshes,
         metres_per_pixel: 1.0,
         seed: input.seed,
     };
@@ -83,6 +93,7 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
     let sites = tree_sites(input.map);
     let mut spots = MapSpots::new(input.map, input.lamps, &sites);
     let signals = signal_sites(input.map);
+    let signs = sign_sites(input.map);
     let mut placed = Vec::new();
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
@@ -96,6 +107,21 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
                 &mut |f| spots.claim(f),
                 &mut placing,
             ),
+            EntryKind::Mesh => {
+                let tag = spec.at.as_deref().unwrap_or_default();
+                let clear = |p: [f64; 2], r: f64| off_streets_and_buildings(input.map, p, r);
+                user_mesh::place_mapped(
+                    spec,
+                    &mut rng,
+                    &node_sites(input.map, tag),
+                    &clear,
+                    &mut |f| spots.claim(f),
+                    &mut placing,
+                )?
+            }
+            EntryKind::Sign => {
+                traffic_signs::place_mapped(spec, &signs, &mut |f| spots.claim(f), &mut placing)
+            }
             _ => {
                 tree::place_mapped(spec, &mut rng, &sites, &mut placing);
                 (placing.out.objects.len() - before) as u32
@@ -109,7 +135,7 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         materials,
         objects: placing.out.objects,
         info: placing.out.info,
-        sign_faces: BTreeMap::new(),
+        sign_faces: placing.out.sign_faces,
         placed,
     })
 }
@@ -166,6 +192,96 @@ fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
             }
             poles.retain(|&(foot, _)| clear(&s, foot));
             (!poles.is_empty()).then_some(poles)
+        })
+        .collect()
+}
+
+/// The map's nodes tagged `tag` (a feature's `key=value`), in node order: each with the
+/// way a model there faces, towards the nearest point of a paved road's centreline within
+/// [`SIGN_REACH`] (none farther off).
+fn node_sites(map: &OsmMap, tag: &str) -> Vec<([f64; 2], Option<[f64; 2]>)> {
+    map.features
+        .iter()
+        .filter(|f| f.tag == tag)
+        .map(|f| {
+            let towards = map
+                .nearest_paved(f.at)
+                .filter(|(_, _, d)| *d <= SIGN_REACH)
+                .and_then(|(_, q, _)| direction(f.at, q));
+            (f.at, towards)
+        })
+        .collect()
+}
+
+/// Whether a footprint of radius `r` at `p` keeps off every paved carriageway and out of
+/// every building.
+fn off_streets_and_buildings(map: &OsmMap, p: [f64; 2], r: f64) -> bool {
+    !map.in_building(p)
+        && map.building_distance(p) >= r
+        && map
+            .paved_segments()
+            .all(|s| distance(p, nearest(s.a, s.b, p)) >= s.width / 2.0 + r)
+}
+
+/// How far from the nearest paved road's centreline a mapped sign may stand and still be
+/// that road's, metres: its carriageway's half, a sidewalk and a verge. Signs farther
+/// off stand on paths and squares, whose traffic the map does not pave.
+const SIGN_REACH: f64 = 15.0;
+
+/// The map's signs that can stand, in node order: each `traffic_sign` (and
+/// `highway=stop` / `give_way`) node with a design ([`sign_codes::design`]) within
+/// [`SIGN_REACH`] of a paved road. A post beside the road stands where the map has it
+/// (pushed out to [`POLE_BEHIND_KERB`] behind the kerb when it is nearer), facing the
+/// traffic on its side: on a one-way road the road's, on a two-way road the traffic
+/// driving on the right. A node on the carriageway (a node of the way) stands behind the
+/// right kerb of the way's direction. Posts in or at a building or on another road's
+/// carriageway are left out.
+fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
+    let paved: Vec<PavedSegment> = map.paved_segments().collect();
+    let room = traffic_signs::MAPPED_RADIUS;
+    let clear = |s: &PavedSegment, foot: [f64; 2]| {
+        !map.in_building(foot)
+            && map.building_distance(foot) >= room
+            && paved
+                .iter()
+                .filter(|o| o.road != s.road)
+                .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
+    };
+    map.features
+        .iter()
+        .filter(|f| f.kind == FeatureKind::TrafficSign)
+        .filter_map(|f| {
+            let (kind, speed) = sign_codes::design(&f.tag)?;
+            let (s, q, d) = map.nearest_paved(f.at)?;
+            let t = direction(s.a, s.b).filter(|_| d <= SIGN_REACH)?;
+            let right = [-t[1], t[0]];
+            let kerb = s.width / 2.0 + POLE_BEHIND_KERB;
+            let on_right = d <= s.width / 2.0
+                || (f.at[0] - q[0]) * right[0] + (f.at[1] - q[1]) * right[1] >= 0.0;
+            let out = if on_right {
+                right
+            } else {
+                [-right[0], -right[1]]
+            };
+            let foot = if d < kerb {
+                [q[0] + out[0] * kerb, q[1] + out[1] * kerb]
+            } else {
+                f.at
+            };
+            let travel = if on_right || map.roads[s.road].oneway {
+                t
+            } else {
+                [-t[0], -t[1]]
+            };
+            clear(&s, foot).then_some(MappedSign {
+                kind,
+                speed,
+                spot: Spot {
+                    position: foot,
+                    travel,
+                    road: s.road as u32,
+                },
+            })
         })
         .collect()
 }
@@ -351,6 +467,7 @@ impl RoadSpots for MapSpots {
 mod tests {
     use super::*;
     use crate::model::{ObjectKind, SceneObject};
+    use crate::spec::SignKind;
 
     fn entries(text: &str) -> Vec<ObjectSpec> {
         #[derive(serde::Deserialize)]
@@ -386,6 +503,7 @@ mod tests {
                 facades: Vec::new(),
                 roofs: Vec::new(),
             },
+            meshes: &BTreeMap::new(),
             seed: 5,
         })
     }
@@ -551,6 +669,151 @@ mod tests {
             place_on(&map, &three).expect("signals place").placed,
             vec![3]
         );
+    }
+
+    #[test]
+    fn signs_stand_at_the_mapped_posts_facing_the_traffic_on_their_side() {
+        let mut map = crate::test_support::street_map();
+        let sign = |node, at, tag: &str| crate::model::MapFeature {
+            node,
+            kind: FeatureKind::TrafficSign,
+            at,
+            tag: tag.to_owned(),
+        };
+        map.features.extend([
+            // Road 0, two-way, 12 m, eastwards: right (south) of it, the eastbound traffic.
+            sign(40, [-85.0, 8.0], "traffic_sign=DE:206"),
+            // Left of it: the westbound traffic.
+            sign(41, [-85.0, -8.0], "traffic_sign=FI:373;FI:372"),
+            // Road 1, one-way southwards, 8 m: left of it 0.2 m from the kerb, pushed out
+            // to half a metre behind it, facing the road's traffic.
+            sign(42, [-45.8, 60.0], "traffic_sign=DE:274[30]"),
+            // A node of road 0's way: behind its right kerb.
+            sign(43, [-70.0, 1.0], "highway=give_way"),
+            // No design of its meaning; too far from a paved road; on the lamp's ground.
+            sign(44, [-30.0, 8.0], "traffic_sign=GB:601.1"),
+            sign(45, [0.0, 30.0], "traffic_sign=DE:206"),
+            sign(46, [-20.0, 8.5], "traffic_sign=DE:206"),
+        ]);
+        let specs = entries("[[objects]]\nkind = 'sign'\ncount = 10\n");
+        let inserted = place_on(&map, &specs).expect("signs place");
+        assert_eq!(inserted.placed, vec![4]);
+        assert_eq!(inserted, place_on(&map, &specs).expect("signs place"));
+        // (kind, foot, facing) per sign, in node order.
+        let expected = [
+            (SignKind::Stop, [-85.0, 8.0], [-1.0, 0.0]),
+            (SignKind::NoStopping, [-85.0, -8.0], [1.0, 0.0]),
+            (SignKind::SpeedLimit, [-45.5, 60.0], [0.0, -1.0]),
+            (SignKind::Yield, [-70.0, 6.5], [-1.0, 0.0]),
+        ];
+        let faces: Vec<(&usize, &traffic_signs::SignFace)> = inserted.sign_faces.iter().collect();
+        assert_eq!(faces.len(), expected.len());
+        for ((&index, face), (kind, foot, facing)) in faces.into_iter().zip(expected) {
+            assert_eq!(inserted.objects[index].kind, ObjectKind::Sign);
+            assert_eq!(inserted.objects[index - 1].kind, ObjectKind::SignPole);
+            assert_eq!(face.kind, kind);
+            assert_eq!(face.normal, [facing[0], 0.0, facing[1]]);
+            let out = traffic_signs::FACE_OFFSET;
+            let centre = [foot[0] + facing[0] * out, foot[1] + facing[1] * out];
+            assert!(
+                distance([face.centre[0], face.centre[2]], centre) < 1e-9,
+                "{face:?}"
+            );
+        }
+        let speed = inserted
+            .materials
+            .iter()
+            .any(|m| m.name == "sign_speed_limit_30");
+        assert!(speed, "the limit's number comes from the tag");
+        // `signs` picks the types, `count` caps them.
+        let stops = entries("[[objects]]\nkind = 'sign'\nsigns = ['stop']\n");
+        assert_eq!(place_on(&map, &stops).expect("signs place").placed, vec![1]);
+        let two = entries("[[objects]]\nkind = 'sign'\ncount = 2\n");
+        assert_eq!(place_on(&map, &two).expect("signs place").placed, vec![2]);
+    }
+
+    #[test]
+    fn models_stand_at_the_mapped_nodes_of_their_tag_facing_the_nearest_road() {
+        let mut map = crate::test_support::street_map();
+        let bench = |node, at, tag: &str| crate::model::MapFeature {
+            node,
+            kind: FeatureKind::Bench,
+            at,
+            tag: tag.to_owned(),
+        };
+        map.features.extend([
+            // Beside road 0 (faces north, to it); beside road 1 (faces west, to it).
+            bench(50, [-85.0, 9.5], "amenity=bench"),
+            bench(51, [-43.0, 70.0], "amenity=bench"),
+            // Another tag; on road 0's carriageway; in the building.
+            bench(52, [-30.0, 9.5], "highway=bench"),
+            bench(53, [-60.0, 2.0], "amenity=bench"),
+            bench(54, [-110.0, 25.0], "amenity=bench"),
+        ]);
+        let files = MeshFiles {
+            obj: include_bytes!("../../assets/models/bench.obj").to_vec(),
+            mtl: Some(include_bytes!("../../assets/models/bench.mtl").to_vec()),
+            textures: BTreeMap::new(),
+        };
+        let meshes = BTreeMap::from([("bench.obj".to_owned(), files.clone())]);
+        let specs = entries(
+            "[[objects]]\nkind = 'mesh'\nlabel = 'bench'\ncount = 10\n\
+             model = 'bench.obj'\nat = 'amenity=bench'\nrotation = [0, 0]\n",
+        );
+        let place = || {
+            let lamps = [];
+            insert_map(&MapObjectsInput {
+                specs: &specs,
+                map: &map,
+                lamps: &lamps,
+                facades: &crate::model::FacadeSet {
+                    facades: Vec::new(),
+                    roofs: Vec::new(),
+                },
+                meshes: &meshes,
+                seed: 5,
+            })
+            .expect("benches place")
+        };
+        let inserted = place();
+        assert_eq!(inserted, place());
+        assert_eq!(inserted.placed, vec![2]);
+        let model = user_mesh::Model::load("bench.obj", &files).expect("bench loads");
+        // The model's −z (its front) onto the way to the road: (cos, sin) of the turn.
+        let expected = [([-85.0, 9.5], (1.0, 0.0)), ([-43.0, 70.0], (0.0, 1.0))];
+        for (object, (at, (c, s))) in inserted.objects.iter().zip(expected) {
+            assert_eq!(
+                (object.kind, object.class.as_str()),
+                (ObjectKind::Mesh, "bench")
+            );
+            let placed = object.meshes.iter().flat_map(|m| &m.positions);
+            let own = model.parts.iter().flat_map(|p| &p.positions);
+            for (p, v) in placed.zip(own) {
+                let want = [
+                    at[0] + c * v[0] + s * v[2],
+                    crate::model::geometry::KERB_Y + v[1] - model.min_y,
+                    at[1] - s * v[0] + c * v[2],
+                ];
+                for k in 0..3 {
+                    assert!((f64::from(p[k]) - want[k]).abs() < 1e-4, "{p:?} {want:?}");
+                }
+            }
+        }
+        // A mesh entry without a model file read is an error, not a silent skip.
+        let none = BTreeMap::new();
+        let lamps = [];
+        let missing = insert_map(&MapObjectsInput {
+            specs: &specs,
+            map: &map,
+            lamps: &lamps,
+            facades: &crate::model::FacadeSet {
+                facades: Vec::new(),
+                roofs: Vec::new(),
+            },
+            meshes: &none,
+            seed: 5,
+        });
+        assert!(matches!(missing, Err(ObjectsError::MissingModel { .. })));
     }
 
     #[test]

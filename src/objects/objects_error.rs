@@ -7,7 +7,7 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum ObjectsError {
     #[error(
-        "{kind} objects are not placed on a map layout yet (only tree, car and traffic_light are)"
+        "{kind} objects are not placed on a map layout yet (only tree, car, traffic_light and sign are)"
     )]
     NotOnMap { kind: String },
     #[error("word file {file}: the build did not read it, or it holds no words")]

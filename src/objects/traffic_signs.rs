@@ -67,6 +67,45 @@ pub fn place(
     placed
 }
 
+/// A sign the map has: its design, the number on it (a speed limit's) and where it
+/// stands, facing the traffic of [`Spot::travel`] (`map_objects::sign_sites`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MappedSign {
+    pub kind: SignKind,
+    pub speed: u32,
+    pub spot: Spot,
+}
+
+/// The ground a mapped sign holds, radius in metres: half its plate. Mapped posts stand
+/// where the map has them, closer together than [`RADIUS`] keeps a layout's.
+pub const MAPPED_RADIUS: f64 = PLATE / 2.0;
+
+/// Places the map's signs, in node order, up to the entry's `count`: each of a type the
+/// entry's `signs` lists (any when empty) whose ground `claim` grants. Returns how many.
+pub fn place_mapped(
+    spec: &ObjectSpec,
+    signs: &[MappedSign],
+    claim: &mut dyn FnMut(super::ground_spots::Footprint) -> bool,
+    placing: &mut Placing,
+) -> u32 {
+    let mut placed = 0;
+    for sign in signs {
+        if placed >= spec.count {
+            break;
+        }
+        if !(spec.signs.is_empty() || spec.signs.contains(&sign.kind)) {
+            continue;
+        }
+        let ground = super::ground_spots::Footprint::Circle(sign.spot.position, MAPPED_RADIUS);
+        if !claim(ground) {
+            continue;
+        }
+        push_sign(placing, spec, sign.kind, sign.speed, sign.spot);
+        placed += 1;
+    }
+    placed
+}
+
 /// Metres a sign placed off the mouths keeps from one of its type on the same side of
 /// the same road.
 pub const SPACING: f64 = 40.0;

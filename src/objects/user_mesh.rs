@@ -260,6 +260,67 @@ pub fn place(
     Ok(())
 }
 
+/// Places the spec's model at the map's nodes `sites` (each a position and, when a paved
+/// road is near, the way its front looks: towards the road), in node order, up to
+/// `spec.count`: each scaled and turned by the spec's ranges (from facing the road where
+/// it has one), where `clear` says a model of that radius fits and `claim` grants its
+/// ground. Returns how many stand.
+pub fn place_mapped(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    sites: &[([f64; 2], Option<[f64; 2]>)],
+    clear: &dyn Fn([f64; 2], f64) -> bool,
+    claim: &mut dyn FnMut(super::ground_spots::Footprint) -> bool,
+    placing: &mut Placing,
+) -> Result<u32, ObjectsError> {
+    let name = spec.model.as_deref().unwrap_or_default();
+    let files = placing
+        .input
+        .meshes
+        .get(name)
+        .ok_or_else(|| ObjectsError::MissingModel {
+            model: name.to_owned(),
+        })?;
+    let model = Model::load(name, files)?;
+    let mut materials: Option<Vec<u32>> = None;
+    let mut placed = 0;
+    for &(position, facing) in sites {
+        if placed >= spec.count {
+            break;
+        }
+        let scale = uniform(rng, spec.scale);
+        let turn = cos_sin_deg(uniform(rng, spec.rotation));
+        let radius = model.radius * scale;
+        if !clear(position, radius)
+            || !claim(super::ground_spots::Footprint::Circle(position, radius))
+        {
+            continue;
+        }
+        // Its −z onto `facing`, as a lane's heading: sin = −f.x, cos = −f.z.
+        let turn = facing.map_or(turn, |f| add((-f[1], -f[0]), turn));
+        let ids = materials.get_or_insert_with(|| {
+            model
+                .materials
+                .iter()
+                .map(|m| {
+                    let key = format!("{}_{}", spec.label, m.name);
+                    placing.add(&key, m.colour, m.texture.as_ref(), [0.0; 3])
+                })
+                .collect()
+        });
+        let spot = Spot {
+            position,
+            travel: facing.unwrap_or([0.0, -1.0]),
+            road: 0,
+        };
+        let meshes = instance(&model, ids, &spot, scale, turn, KERB_Y);
+        let name = placing.name(&spec.label);
+        placing.push_plain(crate::model::ObjectKind::Mesh, name, &spec.label, meshes);
+        placed += 1;
+    }
+    Ok(placed)
+}
+
 /// The model's parts scaled by `scale`, turned by `(cos, sin)` about y (counter-clockwise
 /// seen from above), its origin on `spot` and its lowest point at height `ground`.
 pub fn instance(

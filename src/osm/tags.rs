@@ -183,6 +183,9 @@ pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
             FeatureKind::TrafficSignals,
             tagged("highway", "traffic_signals"),
         )),
+        (Some(sign @ ("stop" | "give_way")), ..) => {
+            Some((FeatureKind::TrafficSign, tagged("highway", sign)))
+        }
         (Some("street_lamp"), ..) => {
             Some((FeatureKind::StreetLamp, tagged("highway", "street_lamp")))
         }
@@ -310,6 +313,10 @@ mod tests {
         assert_eq!(
             feature(&[("highway", "crossing"), ("crossing:markings", "no")]),
             Some((FeatureKind::Crossing, "crossing:markings=no".to_owned()))
+        );
+        assert_eq!(
+            feature(&[("highway", "stop")]),
+            Some((FeatureKind::TrafficSign, "highway=stop".to_owned()))
         );
         assert_eq!(feature(&[("amenity", "post_box")]), None);
     }

@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, objects other than trees, cars and
-//! traffic lights).
+//! take yet (mirroring, moving traffic, orbit cameras, objects other than trees, cars,
+//! traffic lights, signs and models at the map's nodes).
 
 use std::path::Path;
 
@@ -17,8 +17,18 @@ pub(crate) fn check_map(
     findings: &mut Findings,
 ) {
     let Some(osm) = &spec.layout.osm else {
+        for (i, object) in spec.objects.iter().enumerate() {
+            if object.at.is_some() {
+                findings.error(
+                    &format!("objects[{i}].at"),
+                    "`at` names the map's nodes a model stands at: expected it only with \
+                     `[layout.osm]`",
+                );
+            }
+        }
         return;
     };
+    check_map_objects(spec, findings);
     let file = resolve(spec_path, &osm.file);
     if let Err(problem) = world.file(&file) {
         findings.error(
@@ -58,17 +68,33 @@ pub(crate) fn check_map(
             );
         }
     }
+}
+
+/// The map's objects: the kinds a map places, a model's `at`.
+fn check_map_objects(spec: &Spec, findings: &mut Findings) {
     for (i, object) in spec.objects.iter().enumerate() {
+        if object.kind == EntryKind::Mesh && object.at.is_none() {
+            findings.error(
+                &format!("objects[{i}]"),
+                "a model on a map layout stands at the map's nodes: expected `at` (the \
+                 nodes' tag, e.g. at = \"amenity=bench\"), found none",
+            );
+        }
         if !matches!(
             object.kind,
-            EntryKind::Tree | EntryKind::Car | EntryKind::TrafficLight
+            EntryKind::Tree
+                | EntryKind::Car
+                | EntryKind::TrafficLight
+                | EntryKind::Sign
+                | EntryKind::Mesh
         ) {
             findings.error(
                 &format!("objects[{i}].kind"),
                 format!(
-                    "objects on a map layout are trees (at the map's trees), cars and traffic \
-                     lights (at the map's signals): expected kind = \"tree\", \"car\" or \
-                     \"traffic_light\", found \"{}\"",
+                    "objects on a map layout are trees (at the map's trees), cars, traffic \
+                     lights (at the map's signals), signs (at the map's signs) and models \
+                     (at the map's nodes `at` names): expected kind = \"tree\", \"car\", \
+                     \"traffic_light\", \"sign\" or \"mesh\", found \"{}\"",
                     object.kind.name()
                 ),
             );

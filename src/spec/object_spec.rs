@@ -76,6 +76,15 @@ pub struct ObjectSpec {
     /// mesh: where the models stand.
     #[serde(default)]
     pub on: Ground,
+    /// mesh, on a map layout only: the tag of the map's nodes the models stand at, as the
+    /// map writes it (`"amenity=bench"`; also `"highway=bench"`, `"natural=tree"`): one at
+    /// each such node off the carriageways and out of the buildings, in node order, up to
+    /// `count`, its front (−z) towards the nearest paved road within 15 m (turned from
+    /// there by `rotation`; farther off, turned by `rotation` alone). A mesh entry on a map
+    /// needs it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(length(min = 3))]
+    pub at: Option<String>,
     /// car: body types to draw from (all when empty); list one twice to draw it twice as often.
     #[serde(default)]
     #[schemars(length(max = 64))]
@@ -181,6 +190,7 @@ pub const KIND_KEYS: &[(&str, &[EntryKind])] = {
         ("scale", &[Mesh]),
         ("rotation", &[Mesh]),
         ("on", &[Mesh]),
+        ("at", &[Mesh]),
         ("bodies", &[Car]),
         ("parked", &[Car, Bicycle]),
         ("species", &[Tree]),

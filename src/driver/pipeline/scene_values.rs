@@ -100,6 +100,7 @@ impl Pipeline<'_> {
                     map: &map,
                     lamps: &lamps,
                     facades: &facades,
+                    meshes: &self.meshes,
                     seed: inputs.seed,
                 })
             },
@@ -111,8 +112,10 @@ impl Pipeline<'_> {
             source,
         })?;
         self.scene_diagnostics = inserted.shortfalls(&inputs.objects);
+        let sign_faces = std::mem::take(&mut inserted.sign_faces);
         let info = std::mem::take(&mut inserted.info);
         let first = objects::merge(&mut built, inserted);
+        self.sign_faces = sign_faces.iter().map(|(i, f)| (first + i, *f)).collect();
         self.object_info = vec![None; first];
         self.object_info.extend(info.into_iter().map(Some));
         self.keep_scene(built, start)
