@@ -109,7 +109,8 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
             ),
             EntryKind::Mesh => {
                 let tag = spec.at.as_deref().unwrap_or_default();
-                let clear = |p: [f64; 2], r: f64| off_streets_and_buildings(input.map, p, r);
+                let paved: Vec<PavedSegment> = input.map.paved_segments().collect();
+                let clear = |p: [f64; 2], r: f64| clear_ground(input.map, &paved, None, p, r);
                 user_mesh::place_mapped(
                     spec,
                     &mut rng,
@@ -166,14 +167,8 @@ fn tree_sites(map: &OsmMap) -> Vec<([f64; 2], f64)> {
 /// clear of buildings and of every other road's carriageway by the pole's radius.
 fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
-    let room = traffic_lights::RADIUS;
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
-        !map.in_building(foot)
-            && map.building_distance(foot) >= room
-            && paved
-                .iter()
-                .filter(|o| o.road != s.road)
-                .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
+        clear_ground(map, &paved, Some(s.road), foot, traffic_lights::RADIUS)
     };
     map.features
         .iter()
@@ -213,14 +208,21 @@ fn node_sites(map: &OsmMap, tag: &str) -> Vec<([f64; 2], Option<[f64; 2]>)> {
         .collect()
 }
 
-/// Whether a footprint of radius `r` at `p` keeps off every paved carriageway and out of
-/// every building.
-fn off_streets_and_buildings(map: &OsmMap, p: [f64; 2], r: f64) -> bool {
-    !map.in_building(p)
-        && map.building_distance(p) >= r
-        && map
-            .paved_segments()
-            .all(|s| distance(p, nearest(s.a, s.b, p)) >= s.width / 2.0 + r)
+/// Whether a footprint of radius `room` at `foot` keeps out of every building and off the
+/// carriageways of the `paved` segments, but those of road `own` when given.
+fn clear_ground(
+    map: &OsmMap,
+    paved: &[PavedSegment],
+    own: Option<usize>,
+    foot: [f64; 2],
+    room: f64,
+) -> bool {
+    !map.in_building(foot)
+        && map.building_distance(foot) >= room
+        && paved
+            .iter()
+            .filter(|o| Some(o.road) != own)
+            .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
 }
 
 /// How far from the nearest paved road's centreline a mapped sign may stand and still be
@@ -238,14 +240,14 @@ const SIGN_REACH: f64 = 15.0;
 /// carriageway are left out.
 fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
-    let room = traffic_signs::MAPPED_RADIUS;
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
-        !map.in_building(foot)
-            && map.building_distance(foot) >= room
-            && paved
-                .iter()
-                .filter(|o| o.road != s.road)
-                .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
+        clear_ground(
+            map,
+            &paved,
+            Some(s.road),
+            foot,
+            traffic_signs::MAPPED_RADIUS,
+        )
     };
     map.features
         .iter()

@@ -216,16 +216,8 @@ pub fn place(
     spots: &mut GroundSpots,
     placing: &mut Placing,
 ) -> Result<(), ObjectsError> {
-    let name = spec.model.as_deref().unwrap_or_default();
-    let files = placing
-        .input
-        .meshes
-        .get(name)
-        .ok_or_else(|| ObjectsError::MissingModel {
-            model: name.to_owned(),
-        })?;
-    let model = Model::load(name, files)?;
-    let mut materials: Option<Vec<u32>> = None;
+    let model = spec_model(spec, placing)?;
+    let mut copies = Copies::new(spec, &model);
     for _ in 0..spec.count {
         let scale = uniform(rng, spec.scale);
         let turn = cos_sin_deg(uniform(rng, spec.rotation));
@@ -243,7 +235,51 @@ pub fn place(
             // cos = −h.z.
             Ground::Lane => (ROAD_Y, add((-spot.travel[1], -spot.travel[0]), turn)),
         };
-        let ids = materials.get_or_insert_with(|| {
+        copies.push(placing, &spot, scale, turn, ground);
+    }
+    Ok(())
+}
+
+/// The model an entry names, loaded from the files the build read.
+fn spec_model(spec: &ObjectSpec, placing: &Placing) -> Result<Model, ObjectsError> {
+    let name = spec.model.as_deref().unwrap_or_default();
+    let files = placing
+        .input
+        .meshes
+        .get(name)
+        .ok_or_else(|| ObjectsError::MissingModel {
+            model: name.to_owned(),
+        })?;
+    Model::load(name, files)
+}
+
+/// An entry's copies of its model: its materials, made with the first copy.
+struct Copies<'m> {
+    spec: &'m ObjectSpec,
+    model: &'m Model,
+    materials: Option<Vec<u32>>,
+}
+
+impl<'m> Copies<'m> {
+    fn new(spec: &'m ObjectSpec, model: &'m Model) -> Copies<'m> {
+        Copies {
+            spec,
+            model,
+            materials: None,
+        }
+    }
+
+    /// Pushes a copy standing on `spot` ([`instance`]), named `<label>_NNNN`.
+    fn push(
+        &mut self,
+        placing: &mut Placing,
+        spot: &Spot,
+        scale: f64,
+        turn: (f64, f64),
+        ground: f64,
+    ) {
+        let (spec, model) = (self.spec, self.model);
+        let ids = self.materials.get_or_insert_with(|| {
             model
                 .materials
                 .iter()
@@ -253,11 +289,10 @@ pub fn place(
                 })
                 .collect()
         });
-        let meshes = instance(&model, ids, &spot, scale, turn, ground);
+        let meshes = instance(model, ids, spot, scale, turn, ground);
         let name = placing.name(&spec.label);
         placing.push_plain(crate::model::ObjectKind::Mesh, name, &spec.label, meshes);
     }
-    Ok(())
 }
 
 /// Places the spec's model at the map's nodes `sites` (each a position and, when a paved
@@ -273,16 +308,8 @@ pub fn place_mapped(
     claim: &mut dyn FnMut(super::ground_spots::Footprint) -> bool,
     placing: &mut Placing,
 ) -> Result<u32, ObjectsError> {
-    let name = spec.model.as_deref().unwrap_or_default();
-    let files = placing
-        .input
-        .meshes
-        .get(name)
-        .ok_or_else(|| ObjectsError::MissingModel {
-            model: name.to_owned(),
-        })?;
-    let model = Model::load(name, files)?;
-    let mut materials: Option<Vec<u32>> = None;
+    let model = spec_model(spec, placing)?;
+    let mut copies = Copies::new(spec, &model);
     let mut placed = 0;
     for &(position, facing) in sites {
         if placed >= spec.count {
@@ -298,24 +325,12 @@ pub fn place_mapped(
         }
         // Its −z onto `facing`, as a lane's heading: sin = −f.x, cos = −f.z.
         let turn = facing.map_or(turn, |f| add((-f[1], -f[0]), turn));
-        let ids = materials.get_or_insert_with(|| {
-            model
-                .materials
-                .iter()
-                .map(|m| {
-                    let key = format!("{}_{}", spec.label, m.name);
-                    placing.add(&key, m.colour, m.texture.as_ref(), [0.0; 3])
-                })
-                .collect()
-        });
         let spot = Spot {
             position,
             travel: facing.unwrap_or([0.0, -1.0]),
             road: 0,
         };
-        let meshes = instance(&model, ids, &spot, scale, turn, KERB_Y);
-        let name = placing.name(&spec.label);
-        placing.push_plain(crate::model::ObjectKind::Mesh, name, &spec.label, meshes);
+        copies.push(placing, &spot, scale, turn, KERB_Y);
         placed += 1;
     }
     Ok(placed)
