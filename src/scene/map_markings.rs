@@ -15,7 +15,9 @@
 //!   another, two roads crossing at a shared node; a way simply continuing into the next
 //!   is not a junction), each road's lines stop [`LINE_CLEARANCE`] before the other
 //!   roads' carriageways: `h' / sin θ + h / tan θ` along the road from the junction, `h`
-//!   and `h'` the half-widths and θ the angle between the roads (at least [`MIN_SINE`]).
+//!   and `h'` the half-widths and θ the angle between the roads. An arm whose sine is
+//!   under [`MIN_SINE`] (about 17°) carries the road on (ways are split at junctions) and
+//!   sets no clearance.
 //! - **Zebras.** A `highway=crossing` node within [`ON_ROAD`] of a paved road's
 //!   centreline, unless the map says it has no markings (`crossing=unmarked`,
 //!   `crossing:markings=no`), gets bars [`BAR`] wide and
@@ -23,9 +25,17 @@
 //!   to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra that would reach into a
 //!   junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
 //!
-//! Not drawn on maps yet: stop lines, parking-lane edges, arrows.
+//! - **Stop lines.** At each `highway=traffic_signals` or `highway=stop` node, on each
+//!   paved road within [`ON_ROAD`] of it, a line [`STOP_LINE`] wide crosses the lanes of
+//!   each direction of traffic coming to the node (both halves of a two-way road, one each
+//!   way; a one-way road's whole width), ending [`STOP_GAP`] before the node, before the zebras
+//!   within [`SIGNAL_ZEBRA`] of it, and before the carriageway of a junction the node lies
+//!   in, whichever the traffic meets first. A line that would lie in a junction or off its
+//!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
+//!
+//! Not drawn on maps yet: give-way lines, parking-lane edges, arrows.
 
-use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, centred_dashes, centred_pieces};
+use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, STOP_LINE, centred_dashes, centred_pieces};
 use super::object;
 use crate::model::geometry::polygon::{direction, distance, nearest};
 use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
@@ -34,12 +44,18 @@ use crate::model::{FeatureKind, MapRoad, ObjectKind, OsmMap, SceneObject, map_la
 
 /// How close to a paved centreline a crossing node lies to be that road's crossing, metres.
 pub const ON_ROAD: f64 = 0.5;
-/// The least sine of the angle between two roads at a junction that a clearance is worked
-/// out with: a shallower fork clears as at this angle (about 17°).
+/// The least sine of the angle between two roads at a junction that sets a clearance: a
+/// shallower arm carries the road on (about 17°).
 pub const MIN_SINE: f64 = 0.3;
 /// Points closer than this are one node, metres (projected nodes of one OSM node are
 /// equal; this only absorbs rounding).
 const SAME_POINT: f64 = 0.01;
+/// How far before its node (or the zebra, or the junction, the traffic meets first) a
+/// stop line ends, metres.
+pub const STOP_GAP: f64 = 1.0;
+/// Zebras this close to a signal along its road, metres, are the signal's: its stop lines
+/// stand before them.
+pub const SIGNAL_ZEBRA: f64 = 8.0;
 /// The tags of a crossing the map says has no markings (`osm::read` keeps them).
 pub const UNMARKED_CROSSING: [&str; 2] = ["crossing=unmarked", "crossing:markings=no"];
 
@@ -54,7 +70,17 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
         .map(|(i, r)| Centreline::of(i, r))
         .collect();
     let junctions = junctions(&lines);
-    let zebras = zebras(map, &lines);
+    // The zebras drawn: those clear of every junction.
+    let zebras: Vec<Zebra> = zebras(map, &lines)
+        .into_iter()
+        .filter(|z| {
+            junctions
+                .iter()
+                .filter(|j| j.road == z.road)
+                .all(|j| (z.at - j.at).abs() >= j.reach + ZEBRA_DEPTH / 2.0)
+        })
+        .collect();
+    let stops = stop_lines(map, &lines, &zebras, &junctions);
     lines
         .iter()
         .filter_map(|line| {
@@ -70,15 +96,18 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
                 })
                 .collect();
             for z in zebras.iter().filter(|z| z.road == line.road) {
-                let clear = junctions
-                    .iter()
-                    .filter(|j| j.road == line.road)
-                    .all(|j| (z.at - j.at).abs() >= j.reach + ZEBRA_DEPTH / 2.0);
-                if clear {
-                    line.zebra(&mut mesh, z);
-                    let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
-                    blocked.push([z.at - half, z.at + half]);
-                }
+                line.zebra(&mut mesh, z);
+                let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
+                blocked.push([z.at - half, z.at + half]);
+            }
+            for stop in stops.iter().filter(|l| l.road == line.road) {
+                let s = stop.segment;
+                let along = stop.along.map(|a| a - line.at[s]);
+                line.rect(&mut mesh, s, along, stop.across);
+                blocked.push([
+                    stop.along[0] - LINE_CLEARANCE,
+                    stop.along[1] + LINE_CLEARANCE,
+                ]);
             }
             for run in line.runs() {
                 for stretch in free(run, &blocked) {
@@ -137,6 +166,15 @@ struct Junction {
     road: usize,
     at: f64,
     reach: f64,
+}
+
+/// A stop line on a road: on which segment, over which arc lengths, and across which
+/// offsets (metres right of the centreline).
+struct StopLine {
+    road: usize,
+    segment: usize,
+    along: [f64; 2],
+    across: [f64; 2],
 }
 
 /// A zebra crossing on a road: where along it, on which segment.
@@ -262,6 +300,37 @@ impl<'a> Centreline<'a> {
         }
     }
 
+    /// The stop line over arc lengths `along` for the traffic running `sign` (1: along
+    /// the road), across its lanes; None when it would leave its paved run or touch one of
+    /// the road's `junctions`.
+    fn stop_line(&self, along: [f64; 2], sign: f64, junctions: &[&Junction]) -> Option<StopLine> {
+        self.runs()
+            .iter()
+            .find(|r| r[0] <= along[0] && along[1] <= r[1])?;
+        if junctions
+            .iter()
+            .any(|j| along[1] > j.at - j.reach && along[0] < j.at + j.reach)
+        {
+            return None;
+        }
+        let mid = (along[0] + along[1]) / 2.0;
+        let segment = (0..self.at.len() - 1)
+            .find(|&s| self.at[s] <= mid && mid <= self.at[s + 1] && self.width(s) > 0.0)?;
+        let reach = self.width(segment) / 2.0 - CURB_CLEARANCE;
+        let across = match (self.map_road.oneway, sign > 0.0) {
+            (true, _) => [-reach, reach],
+            // Traffic keeps right: along the road on its right half.
+            (false, true) => [LINE_WIDTH / 2.0, reach],
+            (false, false) => [-reach, -LINE_WIDTH / 2.0],
+        };
+        Some(StopLine {
+            road: self.road,
+            segment,
+            along,
+            across,
+        })
+    }
+
     /// The bars of `zebra`, along its segment, kerb to kerb.
     fn zebra(&self, mesh: &mut MeshBuilder, zebra: &Zebra) {
         let s = zebra.segment;
@@ -326,10 +395,11 @@ fn junctions(lines: &[Centreline]) -> Vec<Junction> {
             let reach = through
                 .iter()
                 .filter(|o| o.0 != road)
-                .map(|&(_, _, other, other_half, _)| {
+                .filter_map(|&(_, _, other, other_half, _)| {
                     let cos = (dir[0] * other[0] + dir[1] * other[1]).abs().min(1.0);
-                    let sin = (1.0 - cos * cos).sqrt().max(MIN_SINE);
-                    other_half / sin + half * cos / sin
+                    let sin = (1.0 - cos * cos).sqrt();
+                    // A shallower arm carries the road on (a way split at the junction).
+                    (sin >= MIN_SINE).then(|| other_half / sin + half * cos / sin)
                 })
                 .fold(0.0, f64::max);
             out.push(Junction { road, at, reach });
@@ -360,6 +430,61 @@ fn zebras(map: &OsmMap, lines: &[Centreline]) -> Vec<Zebra> {
                 .map(|(_, z)| z)
         })
         .collect()
+}
+
+/// The stop lines of the map's signals and stop nodes on the paved roads `lines` (see the
+/// module's docs): per node, per road through it in road order, the traffic running along
+/// the road before the traffic running against it (a line that would lie off the road's
+/// paved run is the traffic leaving the node: none).
+fn stop_lines(
+    map: &OsmMap,
+    lines: &[Centreline],
+    zebras: &[Zebra],
+    junctions: &[Junction],
+) -> Vec<StopLine> {
+    let stops = |f: &&crate::model::MapFeature| {
+        f.kind == FeatureKind::TrafficSignals || f.tag == "highway=stop"
+    };
+    let mut out = Vec::new();
+    // Every road through the node: ways are split at junctions, so traffic comes to a
+    // signal at a junction along the pieces that end there.
+    let through = map.features.iter().filter(stops).flat_map(|f| {
+        lines
+            .iter()
+            .filter_map(move |line| Some((line, line.locate(f.at, ON_ROAD)?.1)))
+    });
+    for (line, at) in through {
+        let road = line.road;
+        let own: Vec<&Junction> = junctions.iter().filter(|j| j.road == road).collect();
+        for sign in [1.0, -1.0] {
+            if sign < 0.0 && line.map_road.oneway {
+                continue;
+            }
+            // What the traffic meets first: the node, its zebras, the junction it is in.
+            let mut front = at;
+            for z in zebras.iter().filter(|z| z.road == road) {
+                if (z.at - at).abs() <= SIGNAL_ZEBRA {
+                    front = first(sign, front, z.at - sign * ZEBRA_DEPTH / 2.0);
+                }
+            }
+            for j in own.iter().filter(|j| (j.at - at).abs() <= j.reach) {
+                front = first(sign, front, j.at - sign * j.reach);
+            }
+            let near = front - sign * STOP_GAP;
+            let far = near - sign * STOP_LINE;
+            let along = [near.min(far), near.max(far)];
+            if let Some(stop) = line.stop_line(along, sign, &own) {
+                out.push(stop);
+            }
+        }
+    }
+    out
+}
+
+/// Of two arc lengths, the one traffic running `sign` (1: along the road, −1: against it)
+/// reaches first.
+fn first(sign: f64, a: f64, b: f64) -> f64 {
+    if sign > 0.0 { a.min(b) } else { a.max(b) }
 }
 
 /// What is left of `run` (arc lengths) outside the `blocked` ranges, in order.

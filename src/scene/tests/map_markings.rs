@@ -5,7 +5,7 @@ use crate::model::geometry::MARKING_Y;
 use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
 use crate::model::{FeatureKind, MapFeature, ObjectKind, SceneObject};
 use crate::scene::map_markings::{UNMARKED_CROSSING, lane_lines, map_marking_objects};
-use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP};
+use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP, STOP_LINE};
 use crate::test_support::street_map;
 
 /// The quads of a marking object: four corners each, `[x, z]`.
@@ -220,4 +220,112 @@ fn marked_crossings_get_zebras_and_the_lines_keep_clear() {
     assert_eq!(past(&road0), past(&quads(&plain[0])));
     assert!(!past(&road0).is_empty());
     assert_eq!(objects[1], plain[1]);
+}
+
+#[test]
+fn signals_and_stop_nodes_get_stop_lines_before_them() {
+    let mut map = street_map();
+    let node = |node, kind, at, tag: &str| MapFeature {
+        node,
+        kind,
+        at,
+        tag: tag.to_owned(),
+    };
+    let signal = FeatureKind::TrafficSignals;
+    map.features.extend([
+        // Road 0, two-way, 12 m, eastwards: a line each way.
+        node(30, signal, [-90.0, 0.0], "highway=traffic_signals"),
+        // Road 1, one-way southwards, 8 m: one line, kerb to kerb.
+        node(31, signal, [-50.0, 60.0], "highway=traffic_signals"),
+        // A stop node (a sign the map puts on the way).
+        node(32, FeatureKind::TrafficSign, [-120.0, 0.0], "highway=stop"),
+        // A signal 2 m before its zebra: the westbound line stands before the zebra.
+        node(33, FeatureKind::Crossing, [-20.0, 0.0], "highway=crossing"),
+        node(34, signal, [-22.0, 0.0], "highway=traffic_signals"),
+        // In the junction with road 1 (4 m either side of it along road 0).
+        node(35, signal, [-50.0, 0.0], "highway=traffic_signals"),
+        // Off every road; a give-way node (no stop line).
+        node(36, signal, [0.0, 40.0], "highway=traffic_signals"),
+        node(
+            37,
+            FeatureKind::TrafficSign,
+            [-135.0, 0.0],
+            "highway=give_way",
+        ),
+        // At road 1's end (a way split at a junction ends so): the traffic coming to it.
+        node(38, signal, [-50.0, 100.0], "highway=traffic_signals"),
+    ]);
+    let objects = map_marking_objects(&map, 3);
+    let reach = 6.0 - CURB_CLEARANCE;
+    let half = LINE_WIDTH / 2.0;
+    // (x range, z range) of each stop line on road 0's straight first part.
+    let mut road0: Vec<([f64; 2], [f64; 2])> = quads(&objects[0])
+        .iter()
+        .filter(|q| q.iter().all(|p| p[0] < 0.0))
+        .filter(|q| (measure(q, [1.0, 0.0]).0 - STOP_LINE).abs() < EPS)
+        .map(|q| {
+            let range = |k: usize| {
+                let v = q.iter().map(|p| p[k]);
+                [
+                    v.clone().fold(f64::MAX, f64::min),
+                    v.fold(f64::MIN, f64::max),
+                ]
+            };
+            (range(0), range(1))
+        })
+        .collect();
+    road0.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    let expected = [
+        // The stop node: eastbound on the south half, westbound on the north half.
+        ([-121.4, -121.0], [half, reach]),
+        ([-119.0, -118.6], [-reach, -half]),
+        ([-91.4, -91.0], [half, reach]),
+        ([-89.0, -88.6], [-reach, -half]),
+        // Before the junction's carriageway, each way.
+        ([-55.4, -55.0], [half, reach]),
+        ([-45.0, -44.6], [-reach, -half]),
+        // Eastbound before the signal, westbound before the zebra (bars −21.5 … −18.5).
+        ([-23.4, -23.0], [half, reach]),
+        ([-17.5, -17.1], [-reach, -half]),
+    ];
+    assert_eq!(road0.len(), expected.len(), "{road0:?}");
+    for ((x, z), (ex, ez)) in road0.iter().zip(expected) {
+        for k in 0..2 {
+            assert!(
+                (x[k] - ex[k]).abs() < EPS && (z[k] - ez[k]).abs() < EPS,
+                "{x:?} {z:?}"
+            );
+        }
+    }
+    // Road 1's lines cross its whole width, a metre before each signal; none where it
+    // leaves the junction's signal.
+    let road1: Vec<[[f64; 2]; 4]> = quads(&objects[1])
+        .into_iter()
+        .filter(|q| (measure(q, [0.0, 1.0]).0 - STOP_LINE).abs() < EPS)
+        .collect();
+    assert_eq!(road1.len(), 2);
+    for (q, z) in road1.iter().zip([58.8, 98.8]) {
+        let (_, across, c) = measure(q, [0.0, 1.0]);
+        assert!(
+            (across - 2.0 * (4.0 - CURB_CLEARANCE)).abs() < EPS,
+            "{across}"
+        );
+        assert!((c[0] + 50.0).abs() < EPS && (c[1] - z).abs() < EPS, "{c:?}");
+    }
+    // The dashes keep their clearance from every stop line.
+    for q in quads(&objects[0])
+        .iter()
+        .filter(|q| q.iter().all(|p| p[0] < 0.0))
+    {
+        if (measure(q, [1.0, 0.0]).1 - LINE_WIDTH).abs() > EPS {
+            continue;
+        }
+        for (x, _) in &expected {
+            for p in q {
+                let inside =
+                    p[0] > x[0] - LINE_CLEARANCE + EPS && p[0] < x[1] + LINE_CLEARANCE - EPS;
+                assert!(!inside, "{q:?} by the stop line {x:?}");
+            }
+        }
+    }
 }
