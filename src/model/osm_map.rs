@@ -263,8 +263,25 @@ pub struct MapFeature {
     pub node: i64,
     pub kind: FeatureKind,
     pub at: [f64; 2],
-    /// The tag that says what it is, `key=value` (`traffic_sign=DE:206`).
+    /// The tag that says what it is, `key=value` (`traffic_sign=DE:206`; a signal that
+    /// stops one direction only, `traffic_signals:direction=forward` or `backward`).
     pub tag: String,
+}
+
+/// The key a signal's one direction is kept under, whether the map writes it so or as
+/// `direction=forward` / `backward`.
+pub const SIGNAL_DIRECTION: &str = "traffic_signals:direction";
+
+impl MapFeature {
+    /// Which traffic a signal stops, by the direction of the way it stands on: `[along
+    /// the way, against it]`. Both unless its tag keeps one (`SIGNAL_DIRECTION`).
+    pub fn stops(&self) -> [bool; 2] {
+        match self.tag.strip_prefix(SIGNAL_DIRECTION) {
+            Some("=forward") => [true, false],
+            Some("=backward") => [false, true],
+            _ => [true, true],
+        }
+    }
 }
 
 /// What a [`MapFeature`] is.

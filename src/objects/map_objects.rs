@@ -4,7 +4,7 @@
 //! | kind | where |
 //! |---|---|
 //! | tree | at the map's `natural=tree` nodes, in node order, up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
-//! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road; a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
+//! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`] clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`] plus its half length from every other road's carriageway |
 //!
@@ -163,8 +163,9 @@ fn tree_sites(map: &OsmMap) -> Vec<([f64; 2], f64)> {
 /// The map's signals that can stand, in node order: per `highway=traffic_signals` node on
 /// a carriageway, its poles (foot, facing) [`POLE_BEHIND_KERB`] behind the kerbs of the
 /// nearest paved segment at the node: behind the right kerb (of the way's direction)
-/// looking back along it, and on a two-way road behind the left kerb looking ahead; each
-/// clear of buildings and of every other road's carriageway by the pole's radius.
+/// looking back along it, and on a two-way road behind the left kerb looking ahead (only
+/// the one for the direction a `traffic_signals:direction` tag names); each clear of
+/// buildings and of every other road's carriageway by the pole's radius.
 fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
@@ -178,11 +179,15 @@ fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
             let t = direction(s.a, s.b).filter(|_| d <= s.width / 2.0)?;
             let right = [-t[1], t[0]];
             let out = s.width / 2.0 + POLE_BEHIND_KERB;
-            let mut poles = vec![(
-                [q[0] + right[0] * out, q[1] + right[1] * out],
-                [-t[0], -t[1]],
-            )];
-            if !map.roads[s.road].oneway {
+            // A one-way road's traffic runs along it, whatever the signal's tag says.
+            let oneway = map.roads[s.road].oneway;
+            let [along, against] = f.stops();
+            let mut poles = Vec::new();
+            if along || oneway {
+                let foot = [q[0] + right[0] * out, q[1] + right[1] * out];
+                poles.push((foot, [-t[0], -t[1]]));
+            }
+            if against && !oneway {
                 poles.push(([q[0] - right[0] * out, q[1] - right[1] * out], t));
             }
             poles.retain(|&(foot, _)| clear(&s, foot));
@@ -600,13 +605,23 @@ mod tests {
             signal(33, [0.0, 30.0]),
             // Its right pole's ground is the lamp's at (−20, 6.5): the left pole only.
             signal(34, [-20.0, 0.0]),
+            // Stopping one direction only: the backward (westbound) traffic's pole, then
+            // the forward one's.
+            crate::model::MapFeature {
+                tag: "traffic_signals:direction=backward".to_owned(),
+                ..signal(35, [-130.0, 0.0])
+            },
+            crate::model::MapFeature {
+                tag: "traffic_signals:direction=forward".to_owned(),
+                ..signal(36, [-140.0, 0.0])
+            },
         ]);
         let specs = entries(
             "[[objects]]\nkind = 'traffic_light'\nlabel = 'light'\ncount = 10\n\n\
              [[objects]]\nkind = 'car'\ncount = 40\nparked = 0.7\n",
         );
         let inserted = place_on(&map, &specs).expect("signals place");
-        assert_eq!(inserted.placed[0], 4);
+        assert_eq!(inserted.placed[0], 6);
         assert_eq!(inserted, place_on(&map, &specs).expect("signals place"));
         let poles: Vec<&SceneObject> = inserted
             .objects
@@ -619,7 +634,7 @@ mod tests {
             .zip(&inserted.info)
             .filter(|(o, _)| o.kind == ObjectKind::TrafficLight)
             .collect();
-        assert_eq!((poles.len(), heads.len()), (4, 4));
+        assert_eq!((poles.len(), heads.len()), (6, 6));
         let centre = |o: &SceneObject| {
             let p = footprint(o);
             let n = p.len() as f64;
@@ -632,6 +647,8 @@ mod tests {
             ([-90.0, -6.5], [1.0, 0.0]),
             ([-54.5, 60.0], [0.0, -1.0]),
             ([-20.0, -6.5], [1.0, 0.0]),
+            ([-130.0, -6.5], [1.0, 0.0]),
+            ([-140.0, 6.5], [-1.0, 0.0]),
         ];
         for ((pole, (head, info)), (foot, facing)) in poles.iter().zip(&heads).zip(expected) {
             assert!(distance(centre(pole), foot) < 1e-3, "{:?}", centre(pole));

@@ -18,7 +18,7 @@
 
 /// Bump when the map read from an extract changes: it is part of the layout stage's key for
 /// a map layout.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
 mod clip;
 mod collect;

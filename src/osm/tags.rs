@@ -179,9 +179,13 @@ pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
         get(tags, "natural"),
         get(tags, "amenity"),
     ) {
+        // A signal the map says stops one direction only keeps the tag that says which.
         (Some("traffic_signals"), ..) => Some((
             FeatureKind::TrafficSignals,
-            tagged("highway", "traffic_signals"),
+            match get(tags, "traffic_signals:direction").or(get(tags, "direction")) {
+                Some(way @ ("forward" | "backward")) => tagged(crate::model::SIGNAL_DIRECTION, way),
+                _ => tagged("highway", "traffic_signals"),
+            },
         )),
         (Some(sign @ ("stop" | "give_way")), ..) => {
             Some((FeatureKind::TrafficSign, tagged("highway", sign)))
@@ -313,6 +317,29 @@ mod tests {
         assert_eq!(
             feature(&[("highway", "crossing"), ("crossing:markings", "no")]),
             Some((FeatureKind::Crossing, "crossing:markings=no".to_owned()))
+        );
+        assert_eq!(
+            feature(&[("highway", "traffic_signals"), ("direction", "backward")]),
+            Some((
+                FeatureKind::TrafficSignals,
+                "traffic_signals:direction=backward".to_owned()
+            ))
+        );
+        assert_eq!(
+            feature(&[
+                ("traffic_signals:direction", "forward"),
+                ("highway", "traffic_signals")
+            ]),
+            Some((
+                FeatureKind::TrafficSignals,
+                "traffic_signals:direction=forward".to_owned()
+            ))
+        );
+        assert_eq!(
+            feature(&[("highway", "traffic_signals"), ("direction", "90")])
+                .unwrap()
+                .1,
+            "highway=traffic_signals"
         );
         assert_eq!(
             feature(&[("highway", "stop")]),

@@ -28,7 +28,8 @@
 //! - **Stop lines.** At each `highway=traffic_signals` or `highway=stop` node, on each
 //!   paved road within [`ON_ROAD`] of it, a line [`STOP_LINE`] wide crosses the lanes of
 //!   each direction of traffic coming to the node (both halves of a two-way road, one each
-//!   way; a one-way road's whole width), ending [`STOP_GAP`] before the node, before the zebras
+//!   way, or the one way a `traffic_signals:direction` tag names; a one-way road's whole
+//!   width), ending [`STOP_GAP`] before the node, before the zebras
 //!   within [`SIGNAL_ZEBRA`] of it, and before the carriageway of a junction the node lies
 //!   in, whichever the traffic meets first. A line that would lie in a junction or off its
 //!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
@@ -451,13 +452,16 @@ fn stop_lines(
     let through = map.features.iter().filter(stops).flat_map(|f| {
         lines
             .iter()
-            .filter_map(move |line| Some((line, line.locate(f.at, ON_ROAD)?.1)))
+            .filter_map(move |line| Some((f, line, line.locate(f.at, ON_ROAD)?.1)))
     });
-    for (line, at) in through {
+    for (f, line, at) in through {
         let road = line.road;
         let own: Vec<&Junction> = junctions.iter().filter(|j| j.road == road).collect();
-        for sign in [1.0, -1.0] {
-            if sign < 0.0 && line.map_road.oneway {
+        // A one-way road's traffic runs along it, whatever the signal's tag says.
+        let oneway = line.map_road.oneway;
+        let [along, against] = f.stops();
+        for (sign, stopped) in [(1.0, along || oneway), (-1.0, against && !oneway)] {
+            if !stopped {
                 continue;
             }
             // What the traffic meets first: the node, its zebras, the junction it is in.

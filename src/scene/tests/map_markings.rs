@@ -254,6 +254,13 @@ fn signals_and_stop_nodes_get_stop_lines_before_them() {
         ),
         // At road 1's end (a way split at a junction ends so): the traffic coming to it.
         node(38, signal, [-50.0, 100.0], "highway=traffic_signals"),
+        // Stopping the westbound (backward) traffic only.
+        node(
+            39,
+            signal,
+            [-140.0, 0.0],
+            "traffic_signals:direction=backward",
+        ),
     ]);
     let objects = map_marking_objects(&map, 3);
     let reach = 6.0 - CURB_CLEARANCE;
@@ -276,6 +283,8 @@ fn signals_and_stop_nodes_get_stop_lines_before_them() {
         .collect();
     road0.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
     let expected = [
+        // The backward signal: westbound only.
+        ([-139.0, -138.6], [-reach, -half]),
         // The stop node: eastbound on the south half, westbound on the north half.
         ([-121.4, -121.0], [half, reach]),
         ([-119.0, -118.6], [-reach, -half]),
