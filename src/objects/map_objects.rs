@@ -491,6 +491,15 @@ mod tests {
     }
 
     fn place_on(map: &OsmMap, specs: &[ObjectSpec]) -> Result<Inserted, ObjectsError> {
+        place_with(map, specs, &BTreeMap::new())
+    }
+
+    /// [`place_on`] with the mesh entries' model files.
+    fn place_with(
+        map: &OsmMap,
+        specs: &[ObjectSpec],
+        meshes: &BTreeMap<String, MeshFiles>,
+    ) -> Result<Inserted, ObjectsError> {
         // Where `lamps::map_lamps` puts the map's lamps.
         let lamp = |id, position, facing| Lamp {
             id,
@@ -510,9 +519,19 @@ mod tests {
                 facades: Vec::new(),
                 roofs: Vec::new(),
             },
-            meshes: &BTreeMap::new(),
+            meshes,
             seed: 5,
         })
+    }
+
+    /// A node of the map tagged `tag`.
+    fn feature(node: i64, kind: FeatureKind, at: [f64; 2], tag: &str) -> crate::model::MapFeature {
+        crate::model::MapFeature {
+            node,
+            kind,
+            at,
+            tag: tag.to_owned(),
+        }
     }
 
     /// The corners of an object's footprint: its vertices' (x, z).
@@ -588,11 +607,13 @@ mod tests {
     #[test]
     fn signal_poles_stand_behind_the_kerbs_looking_at_the_traffic() {
         let mut map = crate::test_support::street_map();
-        let signal = |node, at| crate::model::MapFeature {
-            node,
-            kind: FeatureKind::TrafficSignals,
-            at,
-            tag: "highway=traffic_signals".to_owned(),
+        let signal = |node, at| {
+            feature(
+                node,
+                FeatureKind::TrafficSignals,
+                at,
+                "highway=traffic_signals",
+            )
         };
         map.features.extend([
             // Road 0, two-way, 12 m, eastwards: a pole each side.
@@ -693,12 +714,7 @@ mod tests {
     #[test]
     fn signs_stand_at_the_mapped_posts_facing_the_traffic_on_their_side() {
         let mut map = crate::test_support::street_map();
-        let sign = |node, at, tag: &str| crate::model::MapFeature {
-            node,
-            kind: FeatureKind::TrafficSign,
-            at,
-            tag: tag.to_owned(),
-        };
+        let sign = |node, at, tag| feature(node, FeatureKind::TrafficSign, at, tag);
         map.features.extend([
             // Road 0, two-way, 12 m, eastwards: right (south) of it, the eastbound traffic.
             sign(40, [-85.0, 8.0], "traffic_sign=DE:206"),
@@ -754,12 +770,7 @@ mod tests {
     #[test]
     fn models_stand_at_the_mapped_nodes_of_their_tag_facing_the_nearest_road() {
         let mut map = crate::test_support::street_map();
-        let bench = |node, at, tag: &str| crate::model::MapFeature {
-            node,
-            kind: FeatureKind::Bench,
-            at,
-            tag: tag.to_owned(),
-        };
+        let bench = |node, at, tag| feature(node, FeatureKind::Bench, at, tag);
         map.features.extend([
             // Beside road 0 (faces north, to it); beside road 1 (faces west, to it).
             bench(50, [-85.0, 9.5], "amenity=bench"),
@@ -779,21 +790,7 @@ mod tests {
             "[[objects]]\nkind = 'mesh'\nlabel = 'bench'\ncount = 10\n\
              model = 'bench.obj'\nat = 'amenity=bench'\nrotation = [0, 0]\n",
         );
-        let place = || {
-            let lamps = [];
-            insert_map(&MapObjectsInput {
-                specs: &specs,
-                map: &map,
-                lamps: &lamps,
-                facades: &crate::model::FacadeSet {
-                    facades: Vec::new(),
-                    roofs: Vec::new(),
-                },
-                meshes: &meshes,
-                seed: 5,
-            })
-            .expect("benches place")
-        };
+        let place = || place_with(&map, &specs, &meshes).expect("benches place");
         let inserted = place();
         assert_eq!(inserted, place());
         assert_eq!(inserted.placed, vec![2]);
@@ -819,19 +816,7 @@ mod tests {
             }
         }
         // A mesh entry without a model file read is an error, not a silent skip.
-        let none = BTreeMap::new();
-        let lamps = [];
-        let missing = insert_map(&MapObjectsInput {
-            specs: &specs,
-            map: &map,
-            lamps: &lamps,
-            facades: &crate::model::FacadeSet {
-                facades: Vec::new(),
-                roofs: Vec::new(),
-            },
-            meshes: &none,
-            seed: 5,
-        });
+        let missing = place_on(&map, &specs);
         assert!(matches!(missing, Err(ObjectsError::MissingModel { .. })));
     }
 
