@@ -159,10 +159,12 @@ const TABLE: [Declaration; 12] = [
     Declaration {
         stage: Place,
         name: "place",
-        entry: "`place::place`",
+        entry: "`place::place` / `place::place_map_city`",
         versions: &[("place::VERSION", place::VERSION)],
-        // Facades only when `buildings.widths` is absent (see `PlaceInputs`).
-        reads: &[Parse, Facades],
+        // Facades only when `buildings.widths` is absent (see `PlaceInputs`); Layout only
+        // for a map layout (`place::place_map_city` on its blocks without buildings, when
+        // `fill_empty_blocks` asks for it), Parse only for a layout image.
+        reads: &[Layout, Parse, Facades],
         files: "",
         produces: Produces::Fixed(&["buildings.json"]),
         load: Load::Bytes,
@@ -370,6 +372,9 @@ pub struct PlaceInputs {
     pub buildings: BuildingsSpec,
     pub metres_per_pixel: f64,
     pub seed: u64,
+    /// A map layout's `fill_empty_blocks` (the stage runs for a map only with it).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub fill_empty_blocks: bool,
 }
 
 impl PlaceInputs {
@@ -556,6 +561,7 @@ impl Inputs {
                 buildings: spec.buildings.clone(),
                 metres_per_pixel: mpp,
                 seed: spec.seed,
+                fill_empty_blocks: l.osm.as_ref().is_some_and(|osm| osm.fill_empty_blocks),
             },
             plan: PlanInputs {
                 metres_per_pixel: mpp,
@@ -609,15 +615,23 @@ impl Inputs {
         let map = self.layout.is_map();
         match (stage, read) {
             (Place, Facades) => self.place.reads_facades(),
-            (Export | Preview, Layout) => map,
+            (Export | Preview | Place, Layout) => map,
             _ => true,
         }
     }
 
-    /// Whether the spec has `stage`: a map layout has no mirror, parse, lamps, place or
-    /// plan stage (its streets, buildings and lamps come from the map).
+    /// Whether the spec has `stage`: a map layout has no mirror, parse, lamps or plan
+    /// stage (its streets, buildings and lamps come from the map), and a place stage only
+    /// to fill its blocks without buildings.
     pub fn runs(&self, stage: Stage) -> bool {
-        !(self.layout.is_map() && matches!(stage, Mirror | Parse | Lamps | Place | Plan))
+        if !self.layout.is_map() {
+            return true;
+        }
+        match stage {
+            Mirror | Parse | Lamps | Plan => false,
+            Place => self.place.fill_empty_blocks,
+            _ => true,
+        }
     }
 }
 

@@ -129,6 +129,17 @@ impl OsmMap {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// Whether block `block` has a mapped building in it (the first corner of its outer
+    /// ring inside the block's outer ring and outside its holes). One without is a park, a
+    /// square or a yard, or, where the map is sparse, unmapped houses.
+    pub fn block_is_built(&self, block: &MapPolygon) -> bool {
+        use super::geometry::polygon::contains;
+        self.buildings.iter().any(|b| {
+            contains(&block.outer, b.outer[0])
+                && !block.holes.iter().any(|h| contains(h, b.outer[0]))
+        })
+    }
+
     /// Whether `p` lies inside a building's footprint (not in one of its courtyards).
     pub fn in_building(&self, p: [f64; 2]) -> bool {
         use super::geometry::polygon::contains;
@@ -175,20 +186,25 @@ impl GeoBox {
     }
 }
 
-/// The OSM element a map item comes from.
+/// The OSM element a map item comes from; for a building the map does not have,
+/// `Placed`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum OsmElement {
     Way(i64),
     Relation(i64),
+    /// Not in the map: placed by Algorithm 1 in block number `n` of [`OsmMap::blocks`], a
+    /// block the map has no building in (`place::place_map`).
+    Placed(u32),
 }
 
 /// A building footprint: one outer ring with its holes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MapBuilding {
-    /// The closed way or multipolygon relation tagged `building=*`.
+    /// The closed way or multipolygon relation tagged `building=*` (or `Placed`).
     pub element: OsmElement,
-    /// Which outer ring of a multipolygon (0 for a way).
+    /// Which outer ring of a multipolygon (0 for a way); of a placed building, which of
+    /// its block's, in placing order.
     pub part: u32,
     /// The `building` tag's value (`yes`, `apartments`, …).
     pub kind: String,
@@ -207,6 +223,10 @@ pub struct MapBuilding {
     pub height_from: String,
     /// `roof:shape` where the map gives it.
     pub roof_shape: Option<String>,
+    /// Of a placed building sized by a facade (the paper's rule: one building size per
+    /// facade), that facade's index; the city clads it with it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub facade: Option<u32>,
 }
 
 /// A road or path centreline with its cross-section.

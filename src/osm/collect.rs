@@ -401,6 +401,7 @@ fn building(
         height: tags.height,
         height_from: tags.height_from.to_owned(),
         roof_shape: tags.roof_shape.clone(),
+        facade: None,
     }
 }
 

@@ -15,13 +15,15 @@ pub const VERSION: u32 = 1;
 
 mod block_mask;
 mod filler;
+mod map_blocks;
 mod widths;
 
+pub use map_blocks::{CELL, Sizes, place_map};
 pub use widths::widths_px;
 
 use rayon::prelude::*;
 
-use crate::model::{Block, Building, FacadeSet, PxRect};
+use crate::model::{Block, Building, FacadeSet, MapBuilding, OsmMap, PxRect};
 use crate::spec::BuildingsSpec;
 
 /// The city's buildings: `spec`'s widths, or (paper 3.2) one building size per facade of
@@ -42,6 +44,31 @@ pub fn place_city(
     let gap = (spec.gap / metres_per_pixel).round() as u32;
     place(blocks, &widths, gap, seed)
 }
+/// A map's buildings where it has none (`map_blocks`): `spec`'s widths and gap, or (paper
+/// 3.2) one building size per facade of `facades`, which then gives the building its
+/// facade and its height.
+pub fn place_map_city(
+    map: &OsmMap,
+    spec: &BuildingsSpec,
+    facades: Option<&FacadeSet>,
+    seed: u64,
+) -> Vec<MapBuilding> {
+    let (widths, heights): (Vec<f64>, Option<Vec<f64>>) = match (&spec.widths, facades) {
+        (Some(widths), _) => (widths.clone(), None),
+        (None, Some(set)) => {
+            let (widths, heights) = set.facades.iter().map(|f| (f.width, f.height)).unzip();
+            (widths, Some(heights))
+        }
+        (None, None) => (Vec::new(), None),
+    };
+    let sizes = Sizes {
+        widths: &widths,
+        facade_heights: heights.as_deref(),
+        gap: spec.gap,
+    };
+    place_map(map, &sizes, seed)
+}
+
 use block_mask::BlockMask;
 use filler::Filler;
 

@@ -18,14 +18,17 @@
 //! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
 //! line (so windows are never stretched).
 //!
-//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces, stop
-//! lines, the map's benches and signs, and blocks filled where the map has no buildings. Its trees are objects (`objects::insert_map`).
+//! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
+//! the map's list after its own, each clad in the facade it was sized for, as tall as it.
+//!
+//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces. Trees,
+//! signals, signs and benches are objects (`objects::insert_map`).
 
 use rand::RngExt;
 
 use super::object;
 use super::surfaces::Surfaces;
-use crate::model::geometry::polygon::{contains, left_normal};
+use crate::model::geometry::polygon::left_normal;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
 
@@ -66,13 +69,11 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         vec![ground],
     ));
     // A block with no mapped building in it is a park, a square or a yard: grass.
-    let (built, open): (Vec<MapPolygon>, Vec<MapPolygon>) =
-        map.blocks.iter().cloned().partition(|block| {
-            map.buildings.iter().any(|b| {
-                contains(&block.outer, b.outer[0])
-                    && !block.holes.iter().any(|h| contains(h, b.outer[0]))
-            })
-        });
+    let (built, open): (Vec<MapPolygon>, Vec<MapPolygon>) = map
+        .blocks
+        .iter()
+        .cloned()
+        .partition(|block| map.block_is_built(block));
     objects.extend(flat(
         &built,
         ObjectKind::Block,
@@ -194,11 +195,14 @@ impl Cladding {
 /// Every building: walls with its facade, a flat roof.
 fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
     let facades = &input.facades.facades;
-    let (choice, floors): (Vec<Option<usize>>, Vec<u32>) = (0..input.map.buildings.len())
-        .map(|i| {
+    let (choice, floors): (Vec<Option<usize>>, Vec<u32>) = (input.map.buildings.iter())
+        .enumerate()
+        .map(|(i, b)| {
             let mut rng = crate::rng::stream(input.seed, "map-facade", i as u64);
             let facade = (!facades.is_empty()).then(|| rng.random_range(0..facades.len()));
-            (facade, rng.random_range(SEEDED_FLOORS))
+            // A placed building keeps the facade it was sized for.
+            let sized = b.facade.map(|f| f as usize).filter(|&f| f < facades.len());
+            (sized.or(facade), rng.random_range(SEEDED_FLOORS))
         })
         .unzip();
     let clad = Cladding::register(input.facades, &choice, book);

@@ -233,3 +233,53 @@ fn a_map_spec_whose_extract_is_broken_is_exit_code_2_and_writes_nothing() {
     assert!(text(&out).contains("broken.osm"), "{}", text(&out));
     assert!(!dir.path().join("out/kamppi/city.glb").exists());
 }
+
+#[test]
+fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from_the_cache() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
+    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    let plain = map_spec("kamppi.osm.pbf", 1);
+    let filled = plain.replace(
+        "file = 'kamppi.osm.pbf'\n",
+        "file = 'kamppi.osm.pbf'\nfill_empty_blocks = true\n",
+    );
+    assert_ne!(plain, filled);
+    fs::write(dir.path().join("plain.toml"), plain).unwrap();
+    fs::write(dir.path().join("filled.toml"), filled).unwrap();
+    let out = build(dir.path(), "plain.toml", "a");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let verbose = |spec: &str, out: &str| {
+        Command::new(env!("CARGO_BIN_EXE_cityspec"))
+            .current_dir(dir.path())
+            .args(["build", "-v", spec, "--out", out, "--cache", "cache"])
+            .output()
+            .unwrap()
+    };
+    let out = verbose("filled.toml", "b");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let said = format!("{}{}", text(&out), String::from_utf8_lossy(&out.stdout));
+    // The map is the plain build's; only placing and what follows it run.
+    assert!(said.contains("cached layout"), "{said}");
+    assert!(said.contains("ran    place"), "{said}");
+    let buildings = |out: &str| {
+        let obj = fs::read_to_string(dir.path().join(out).join("kamppi/city.obj")).unwrap();
+        obj.lines().filter(|l| l.starts_with("o building_")).count()
+    };
+    let (mapped, all) = (buildings("a"), buildings("b"));
+    assert!(
+        all > mapped,
+        "{mapped} mapped, {all} with the empty blocks filled"
+    );
+    // From an empty cache: the same city.
+    fs::remove_dir_all(dir.path().join("cache")).unwrap();
+    let out = build(dir.path(), "filled.toml", "c");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    for file in ["city.obj", "plan.png", "frames/street/rgb/000000.png"] {
+        assert_eq!(
+            fs::read(dir.path().join("b/kamppi").join(file)).unwrap(),
+            fs::read(dir.path().join("c/kamppi").join(file)).unwrap(),
+            "{file}"
+        );
+    }
+}

@@ -13,7 +13,7 @@ use super::Pipeline;
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
 use crate::cache::Blob;
-use crate::model::{Building, FacadeSet, Lamp, OsmMap, ParsedLayout, Scene};
+use crate::model::{Building, FacadeSet, Lamp, MapBuilding, OsmMap, ParsedLayout, Scene};
 use crate::{
     cameras, export, facades, lamps, layout, mirror, parse, place, plan, preview, render, rng,
 };
@@ -85,10 +85,29 @@ impl Pipeline<'_> {
         })
     }
 
+    /// The map a map layout's city is built on: the map, with the place stage's
+    /// buildings on its blocks without any when the spec fills them.
+    pub(super) fn city_map(&mut self) -> Result<Arc<OsmMap>, BuildError> {
+        if let Some(map) = &self.city_map {
+            return Ok(Arc::clone(map));
+        }
+        let map = self.osm_map()?;
+        let city = if self.inputs.runs(Stage::Place) {
+            let placed = self.placed_on_map()?;
+            let mut city = (*map).clone();
+            city.buildings.extend(placed.iter().cloned());
+            Arc::new(city)
+        } else {
+            map
+        };
+        self.city_map = Some(Arc::clone(&city));
+        Ok(city)
+    }
+
     /// The city's streets: the parsed layout's roads, or the map's.
     pub(super) fn streets(&mut self) -> Result<super::CityStreets, BuildError> {
         Ok(if self.inputs.layout.is_map() {
-            super::CityStreets::Map(self.osm_map()?)
+            super::CityStreets::Map(self.city_map()?)
         } else {
             super::CityStreets::Layout(self.parsed()?)
         })
@@ -172,7 +191,7 @@ impl Pipeline<'_> {
             if let Some(lamps) = &self.map_lamps {
                 return Ok(Arc::clone(lamps));
             }
-            let lamps = Arc::new(lamps::map_lamps(&*self.osm_map()?));
+            let lamps = Arc::new(lamps::map_lamps(&*self.city_map()?));
             self.map_lamps = Some(Arc::clone(&lamps));
             return Ok(lamps);
         }
@@ -183,6 +202,9 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn need_place(&mut self) -> Result<(), BuildError> {
+        if self.inputs.layout.is_map() {
+            return self.need_map_place();
+        }
         let gather = |p: &mut Self| {
             let facades = match p.inputs.place.reads_facades() {
                 false => None,
@@ -208,6 +230,38 @@ impl Pipeline<'_> {
                 Ok((buildings, one("buildings.json", json)))
             },
         )
+    }
+
+    /// A map layout's place stage: buildings on the map's blocks without any.
+    fn need_map_place(&mut self) -> Result<(), BuildError> {
+        let gather = |p: &mut Self| {
+            let facades = match p.inputs.place.reads_facades() {
+                false => None,
+                true => Some(p.facade_set()?),
+            };
+            Ok((p.osm_map()?, facades))
+        };
+        self.stage(
+            Stage::Place,
+            None,
+            |p| &mut p.map_place,
+            gather,
+            |p, (map, facades)| {
+                let inputs = &p.inputs.place;
+                let buildings =
+                    place::place_map_city(&map, &inputs.buildings, facades.as_deref(), inputs.seed);
+                let json = codec::to_json(&buildings);
+                Ok((buildings, one("buildings.json", json)))
+            },
+        )
+    }
+
+    /// The buildings a map layout's place stage put on its blocks without any.
+    fn placed_on_map(&mut self) -> Result<Arc<Vec<MapBuilding>>, BuildError> {
+        self.need_map_place()?;
+        value(&mut self.map_place, Stage::Place, |o| {
+            codec::from_json(codec::output(o, "buildings.json")?)
+        })
     }
 
     pub(super) fn buildings(&mut self) -> Result<Arc<Vec<Building>>, BuildError> {
@@ -238,7 +292,7 @@ impl Pipeline<'_> {
                 Stage::Preview,
                 None,
                 |p| &mut p.preview,
-                |p| p.osm_map(),
+                |p| p.city_map(),
                 |_, map| {
                     let picture = crate::osm::draw(&map, MAP_PICTURE_SIDE);
                     Ok(((), one("plan.png", codec::encode_png(&picture))))

@@ -36,7 +36,7 @@ use super::stage_key::StageKey;
 use super::stages::{Inputs, Keys, Stage};
 use crate::cache::{Blob, Cache, Outputs};
 use crate::diagnostic::Diagnostic;
-use crate::model::{Building, FacadeSet, Lamp, OsmMap, ParsedLayout, Scene, Streets};
+use crate::model::{Building, FacadeSet, Lamp, MapBuilding, OsmMap, ParsedLayout, Scene, Streets};
 
 /// A city's streets, held: a parsed layout or a map.
 #[derive(Clone)]
@@ -123,6 +123,10 @@ pub struct Pipeline<'a> {
     parse: Option<Slot<ParsedLayout>>,
     lamps: Option<Slot<Vec<Lamp>>>,
     place: Option<Slot<Vec<Building>>>,
+    /// A map layout's place stage: buildings on its blocks without any.
+    map_place: Option<Slot<Vec<MapBuilding>>>,
+    /// The map with those buildings added (the map itself without the stage).
+    city_map: Option<Arc<OsmMap>>,
     plan: Option<Slot<()>>,
     preview: Option<Slot<()>>,
     /// Keys of stages `cityspec verify` reruns despite their cache entry.
@@ -175,6 +179,8 @@ impl<'a> Pipeline<'a> {
             parse: None,
             lamps: None,
             place: None,
+            map_place: None,
+            city_map: None,
             plan: None,
             preview: None,
             recheck: None,
@@ -270,6 +276,7 @@ impl<'a> Pipeline<'a> {
             Stage::Parse => &evaluated(&self.parse).outputs,
             Stage::Lamps => &evaluated(&self.lamps).outputs,
             Stage::Facades => &evaluated(&self.facades).outputs,
+            Stage::Place if self.inputs.layout.is_map() => &evaluated(&self.map_place).outputs,
             Stage::Place => &evaluated(&self.place).outputs,
             Stage::Plan => &evaluated(&self.plan).outputs,
             Stage::Preview => &evaluated(&self.preview).outputs,

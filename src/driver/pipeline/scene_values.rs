@@ -82,7 +82,7 @@ impl Pipeline<'_> {
     /// The scene of a map layout: the map's city (`scene::map_city`, lamps where the map
     /// has them) and the objects placed on its streets (`objects::insert_map`).
     fn map_scene(&mut self) -> Result<Arc<Scene>, BuildError> {
-        let map = self.osm_map()?;
+        let map = self.city_map()?;
         let lamps = self.lamp_sites()?;
         let facades = self.facade_set()?;
         let start = Instant::now();
