@@ -9,7 +9,7 @@
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
-//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out | `facade_*`, `roof_*` |
+//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`map_roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
 //! facade is seeded per building (`rng::stream(seed, "map-facade", i)`) and keeps its own
@@ -21,16 +21,20 @@
 //! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
 //! the map's list after its own, each clad in the facade it was sized for, as tall as it.
 //!
-//! Not here yet (issue 43): roofs by `roof:shape` (every roof is flat), kerb faces. Trees,
+//! Not here yet (issue 43): kerb faces; roof shapes other than `map_roofs`' (gambrel,
+//! skillion, round, mansard …) and hipped roofs on more than four corners are flat. Trees,
 //! signals, signs and benches are objects (`objects::insert_map`).
 
 use rand::RngExt;
 
+use super::map_roofs::Roof;
 use super::object;
 use super::surfaces::Surfaces;
 use crate::model::geometry::polygon::left_normal;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
-use crate::model::{Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject};
+use crate::model::{
+    Facade, FacadeSet, Lamp, MapBuilding, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject,
+};
 
 /// How far the ground reaches beyond the box, metres.
 pub const GROUND_MARGIN: f64 = 200.0;
@@ -192,7 +196,7 @@ impl Cladding {
     }
 }
 
-/// Every building: walls with its facade, a flat roof.
+/// Every building: walls with its facade, a flat roof or its `roof:shape`'s.
 fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
     let facades = &input.facades.facades;
     let (choice, floors): (Vec<Option<usize>>, Vec<u32>) = (input.map.buildings.iter())
@@ -218,6 +222,7 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
                 .filter(|f| f.height > 0.0 && f.width > 0.0 && f.floors > 0);
             let floor = facade.map_or(3.0, |f| f.height / f64::from(f.floors));
             let height = b.height.unwrap_or(f64::from(floors) * floor);
+            let (height, roof_shape) = shaped_roof(b, height);
             let mut walls =
                 MeshBuilder::new(f.and_then(|f| clad.wall[f]).unwrap_or(clad.plain_wall));
             for ring in std::iter::once(&b.outer).chain(&b.holes) {
@@ -233,7 +238,10 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
             }
             let roof = f.and_then(|f| clad.roof.get(facades[f].roof as usize).copied().flatten());
             let mut top = MeshBuilder::new(roof.unwrap_or(clad.plain_roof));
-            top.polygon(&b.outer, &b.holes, KERB_Y + height, ROOF_TILE);
+            match roof_shape {
+                Some(shape) => shape.build(KERB_Y, height, ROOF_TILE, &mut top, &mut walls),
+                None => top.polygon(&b.outer, &b.holes, KERB_Y + height, ROOF_TILE),
+            }
             object(
                 ObjectKind::Building,
                 format!("building_{i:04}"),
@@ -241,6 +249,23 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
             )
         })
         .collect()
+}
+
+/// The walls' height and the roof of building `b`, `height` tall, with its `roof:shape`
+/// where `map_roofs` builds it on its footprint: a mapped `height` is the roof's top, so
+/// the walls stop the roof's rise below it (at most half-way); else the roof rises above.
+fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
+    let roof = (b.roof_shape.as_deref())
+        .filter(|_| b.holes.is_empty())
+        .and_then(|shape| Roof::of(shape, &b.outer));
+    match roof {
+        Some(mut roof) if b.height_from == "height" => {
+            let eave = (height - roof.rise).max(height / 2.0);
+            roof.rise = height - eave;
+            (eave, Some(roof))
+        }
+        roof => (height, roof),
+    }
 }
 
 /// The wall along footprint edge `a → b` (facing left of it: outwards on an outer ring,

@@ -27,26 +27,36 @@ impl MeshBuilder {
     /// either way round. A quad of (near) zero area is skipped: it would only add
     /// degenerate triangles.
     pub fn quad(&mut self, corners: [[f64; 3]; 4], normal: [f64; 3], uvs: [[f64; 2]; 4]) {
-        let [a, b, c, _] = corners;
+        self.face(&corners, normal, &uvs, &[0, 1, 2, 0, 2, 3]);
+    }
+
+    /// Adds a triangle facing the side of `normal` (unit), wound to face it; one of (near)
+    /// zero area is skipped.
+    pub fn triangle(&mut self, corners: [[f64; 3]; 3], normal: [f64; 3], uvs: [[f64; 2]; 3]) {
+        self.face(&corners, normal, &uvs, &[0, 1, 2]);
+    }
+
+    /// A planar face of `corners` in order round its edge (triangles `fan`, indices into
+    /// them), wound to face `normal`'s side: reversed when the first three corners turn
+    /// the other way. Skipped when those three span (near) zero area.
+    fn face(&mut self, corners: &[[f64; 3]], normal: [f64; 3], uvs: &[[f64; 2]], fan: &[u32]) {
+        let [a, b, c] = [corners[0], corners[1], corners[2]];
         let n = cross(sub(b, a), sub(c, a));
         let twice_area = dot(n, n).sqrt();
         if twice_area.is_nan() || twice_area < 1e-6 {
             return;
         }
-        let order: [usize; 4] = if dot(n, normal) >= 0.0 {
-            [0, 1, 2, 3]
-        } else {
-            [0, 3, 2, 1]
-        };
+        let flip = dot(n, normal) < 0.0;
         let base = self.mesh.positions.len() as u32;
-        for i in order {
+        let count = corners.len();
+        for k in 0..count {
+            // Reversed: the first corner stays, the rest run backwards.
+            let i = if flip { (count - k) % count } else { k };
             self.mesh.positions.push(to_f32(corners[i]));
             self.mesh.normals.push(to_f32(normal));
             self.mesh.uvs.push([uvs[i][0] as f32, uvs[i][1] as f32]);
         }
-        self.mesh
-            .indices
-            .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+        self.mesh.indices.extend(fan.iter().map(|i| base + i));
     }
 
     /// A horizontal quad `[x0, x1] × [z0, z1]` at height `y`, facing up, with uv = metres /

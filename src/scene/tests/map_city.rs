@@ -234,3 +234,68 @@ fn the_street_surface_and_the_blocks_are_paved() {
     // Same input, same scene.
     assert_eq!(city(), scene);
 }
+
+#[test]
+fn roofs_follow_roof_shape_with_a_mapped_height_at_the_top() {
+    let mut map = map();
+    // The L with its courtyard: gabled asked, flat built. The square without a height: a
+    // pyramid over walls of its seeded floors. A 20 × 10 m house 12 m tall: gabled,
+    // its ridge at 12 m.
+    map.buildings[0].roof_shape = Some("gabled".to_owned());
+    map.buildings[1].roof_shape = Some("pyramidal".to_owned());
+    map.buildings[1].height_from = "none".to_owned();
+    let mut house = map.buildings[1].clone();
+    house.outer = vec![[0.0, 35.0], [20.0, 35.0], [20.0, 45.0], [0.0, 45.0]];
+    (house.area, house.height) = (200.0, Some(12.0));
+    house.roof_shape = Some("gabled".to_owned());
+    house.height_from = "height".to_owned();
+    map.buildings.push(house);
+    let scene = map_city(&MapSceneInput {
+        lamps: &[],
+        map: &map,
+        facades: &facade_set(),
+        seed: 7,
+    });
+    let flat = city();
+    let buildings: Vec<&SceneObject> = (scene.objects.iter())
+        .filter(|o| o.kind == ObjectKind::Building)
+        .collect();
+    let highest =
+        |mesh: &crate::model::Mesh| mesh.positions.iter().map(|p| p[1]).fold(f32::MIN, f32::max);
+    // The L is as it was without a shape.
+    let flat_l = flat
+        .objects
+        .iter()
+        .find(|o| o.name == buildings[0].name)
+        .unwrap();
+    assert_eq!(buildings[0].meshes, flat_l.meshes);
+    // The pyramid: its walls as tall as the flat roof was, its apex above them.
+    let flat_square = flat
+        .objects
+        .iter()
+        .find(|o| o.name == buildings[1].name)
+        .unwrap();
+    let eave = highest(&flat_square.meshes[1]);
+    assert_eq!(highest(&buildings[1].meshes[0]), eave);
+    let apex = highest(&buildings[1].meshes[1]);
+    assert!(
+        (f64::from(apex - eave) - 0.6 * 6.0).abs() < 1e-4,
+        "{apex} {eave}"
+    );
+    // The house: the ridge at its mapped height, the walls below by the roof's rise (0.6
+    // of its half-depth), gables rising to the ridge.
+    let [walls, roof] = [&buildings[2].meshes[0], &buildings[2].meshes[1]];
+    assert!((f64::from(highest(roof)) - KERB_Y - 12.0).abs() < 1e-4);
+    assert!(
+        (f64::from(highest(walls)) - KERB_Y - 12.0).abs() < 1e-4,
+        "the gables"
+    );
+    let wall_quads =
+        (walls.positions.iter()).filter(|p| (f64::from(p[1]) - KERB_Y - 9.0).abs() < 1e-4);
+    assert!(wall_quads.count() >= 8, "the walls stop at 12 − 3 m");
+    let covered: f64 = triangles(buildings[2])
+        .skip(walls.indices.len() / 3)
+        .map(area_from_above)
+        .sum();
+    assert!((covered - 200.0).abs() < 1e-3, "{covered}");
+}

@@ -1,0 +1,564 @@
+//! A map building's footprint + `roof:shape` → its roof, where the shape is one built on
+//! that footprint; for any other shape or footprint the city lays a flat roof.
+//!
+//! | `roof:shape` | footprint | roof |
+//! |---|---|---|
+//! | `gabled` | any, without a courtyard | a ridge along the longest side's direction, over the middle of the footprint's depth across it; the slopes fall to the two farthest lines (the eaves), and every wall rises to the roof above it (the gables) |
+//! | `hipped` | four corners, convex, without a courtyard | a ridge at mid-depth along the longer pair of opposite sides, shortened by the half-depth at each end: four slopes (a pyramid when nothing is left of the ridge) |
+//! | `pyramidal` | convex, no courtyard | every side slopes up to a point over the footprint's centroid |
+//! | `dome`, `onion` | the same | the footprint drawn in towards its centroid and up in four rings, as a quarter circle: a flat-shaded dome |
+//!
+//! Slopes rise [`PITCH`] per metre of run (about 31°), at most [`MAX_RISE`]; a dome rises
+//! its footprint's mean radius, at most [`MAX_DOME`]. Where the map gives the building's
+//! `height`, it is the roof's top (OSM's rule): the walls stop the rise below it (at most
+//! half the height). A height from `building:levels`, or a seeded one, is the walls': the
+//! roof rises above it.
+//!
+//! A gabled roof is the footprint triangulated (`earcut`), each triangle cut by the ridge
+//! line, each piece lifted by the roof's height over its side (so every face is planar);
+//! its gables are each footprint side's wall from the eaves up to the roof, cut at the
+//! ridge where the side crosses it. Roof faces take the roof texture projected from above
+//! (uv = metres / the tile), each triangle flat-shaded, facing up and out.
+
+use crate::model::geometry::MeshBuilder;
+use crate::model::geometry::polygon::{left_normal, signed_area};
+use crate::model::geometry::trig::cos_sin_deg;
+use crate::model::geometry::{cross, dot, sub};
+
+/// Rise per metre of run of a sloped roof.
+pub const PITCH: f64 = 0.6;
+/// The most a sloped roof rises, metres.
+pub const MAX_RISE: f64 = 8.0;
+/// The most a dome rises, metres.
+pub const MAX_DOME: f64 = 20.0;
+/// Rings of a dome between its foot and its top.
+const DOME_RINGS: u32 = 4;
+
+/// A roof to build on a footprint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Roof {
+    shape: Shape,
+    /// The footprint, counter-clockwise in `[x, z]` (positive area), from the corner the
+    /// shape starts at.
+    outer: Vec<[f64; 2]>,
+    /// How far the top rises above the eaves, metres.
+    pub rise: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Shape {
+    /// A ridge along unit `d` over the line `v = mid` (`v` the distance to the left of
+    /// `d`), the eaves `half` away on either side.
+    Gable { d: [f64; 2], mid: f64, half: f64 },
+    /// Ridge from over the middle of side 1 to over the middle of side 3 (sides 0 and 2
+    /// are the long ones); `hip` metres cut from each end.
+    Hip { hip: f64 },
+    /// A point over `apex`.
+    Pyramid { apex: [f64; 2] },
+    /// Rings drawn in towards `centre`.
+    Dome { centre: [f64; 2] },
+}
+
+impl Roof {
+    /// The roof `shape` (a `roof:shape` value) makes on footprint `outer` (without
+    /// courtyards), or `None`: a flat roof.
+    pub fn of(shape: &str, outer: &[[f64; 2]]) -> Option<Roof> {
+        if outer.len() < 3 || signed_area(outer) <= 0.0 {
+            return None;
+        }
+        if shape == "gabled" {
+            return gable(outer);
+        }
+        if !convex(outer) {
+            return None;
+        }
+        match shape {
+            "hipped" if outer.len() == 4 => {
+                let side = |i: usize| distance(outer[i], outer[(i + 1) % 4]);
+                // Sides 0 and 2 the long ones.
+                let turn = usize::from(side(1) + side(3) > side(0) + side(2));
+                let outer: Vec<[f64; 2]> = (0..4).map(|i| outer[(i + turn) % 4]).collect();
+                let half_depth =
+                    (distance(outer[1], outer[2]) + distance(outer[3], outer[0])) / 4.0;
+                let rise = (PITCH * half_depth).min(MAX_RISE);
+                let ridge = distance(mid(outer[1], outer[2]), mid(outer[3], outer[0]));
+                if ridge <= 2.0 * half_depth {
+                    return Roof::of("pyramidal", &outer);
+                }
+                Some(Roof {
+                    shape: Shape::Hip { hip: half_depth },
+                    outer,
+                    rise,
+                })
+            }
+            "pyramidal" => {
+                let apex = centroid(outer)?;
+                let run = (0..outer.len())
+                    .map(|i| line_distance(apex, outer[i], outer[(i + 1) % outer.len()]))
+                    .fold(f64::INFINITY, f64::min);
+                Some(Roof {
+                    shape: Shape::Pyramid { apex },
+                    outer: outer.to_vec(),
+                    rise: (PITCH * run).min(MAX_RISE),
+                })
+            }
+            "dome" | "onion" => {
+                let centre = centroid(outer)?;
+                let radius =
+                    outer.iter().map(|&p| distance(p, centre)).sum::<f64>() / outer.len() as f64;
+                Some(Roof {
+                    shape: Shape::Dome { centre },
+                    outer: outer.to_vec(),
+                    rise: radius.min(MAX_DOME),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// Builds the roof on walls `eave` metres high (above the ground `base`): its slopes
+    /// into `roof` (uv = metres / `tile`), its gables into `walls`.
+    pub fn build(
+        &self,
+        base: f64,
+        eave: f64,
+        tile: f64,
+        roof: &mut MeshBuilder,
+        walls: &mut MeshBuilder,
+    ) {
+        let y = base + eave;
+        let mut slopes = Slopes { mesh: roof, tile };
+        let (o, top) = (&self.outer, y + self.rise);
+        match self.shape {
+            Shape::Gable { d, mid, half } => {
+                let height = |p: [f64; 2]| {
+                    let v = p[1] * d[0] - p[0] * d[1];
+                    y + self.rise * (1.0 - ((v - mid).abs() / half).min(1.0))
+                };
+                let lift = |p: [f64; 2]| at(p, height(p));
+                for [a, b, c] in earcut_triangles(o) {
+                    for piece in cut(&[a, b, c], d, mid) {
+                        for k in 1..piece.len() - 1 {
+                            slopes.add(lift(piece[0]), lift(piece[k]), lift(piece[k + 1]));
+                        }
+                    }
+                }
+                for i in 0..o.len() {
+                    for piece in cut(&[o[i], o[(i + 1) % o.len()]], d, mid) {
+                        gable_wall(walls, piece[0], piece[1], y, &height);
+                    }
+                }
+            }
+            Shape::Hip { hip } => self.hipped(y, hip, &mut slopes),
+            Shape::Pyramid { apex } => {
+                for i in 0..o.len() {
+                    slopes.add(at(o[i], y), at(o[(i + 1) % o.len()], y), at(apex, top));
+                }
+            }
+            Shape::Dome { centre } => self.dome(y, centre, &mut slopes),
+        }
+    }
+
+    /// A hipped roof's four slopes, eaves at `y`, `hip` cut from each end of the ridge.
+    fn hipped(&self, y: f64, hip: f64, slopes: &mut Slopes) {
+        let (o, top) = (&self.outer, y + self.rise);
+        let (m1, m3) = (mid(o[1], o[2]), mid(o[3], o[0]));
+        let t = hip / distance(m1, m3);
+        let toward = |from: [f64; 2], to: [f64; 2]| {
+            [
+                from[0] + (to[0] - from[0]) * t,
+                from[1] + (to[1] - from[1]) * t,
+            ]
+        };
+        let (r1, r3) = (at(toward(m1, m3), top), at(toward(m3, m1), top));
+        let p = o.iter().map(|&p| at(p, y)).collect::<Vec<_>>();
+        for (a, b, c, d) in [(p[0], p[1], r1, r3), (p[2], p[3], r3, r1)] {
+            slopes.add(a, b, c);
+            slopes.add(a, c, d);
+        }
+        slopes.add(p[1], p[2], r1);
+        slopes.add(p[3], p[0], r3);
+    }
+
+    /// A dome's rings, its foot at `y`, drawn in towards `centre`.
+    fn dome(&self, y: f64, centre: [f64; 2], slopes: &mut Slopes) {
+        let o = &self.outer;
+        let ring = |k: u32| -> Vec<[f64; 3]> {
+            let (cos, sin) = cos_sin_deg(90.0 * f64::from(k) / f64::from(DOME_RINGS));
+            let h = y + self.rise * sin;
+            o.iter()
+                .map(|&p| at([0, 1].map(|j| centre[j] + (p[j] - centre[j]) * cos), h))
+                .collect()
+        };
+        for k in 0..DOME_RINGS {
+            let (low, high) = (ring(k), ring(k + 1));
+            for i in 0..o.len() {
+                let j = (i + 1) % o.len();
+                slopes.add(low[i], low[j], high[j]);
+                slopes.add(low[i], high[j], high[i]);
+            }
+        }
+    }
+}
+
+/// Roof faces going into one mesh: flat-shaded triangles facing up, the roof texture
+/// projected from above.
+struct Slopes<'a> {
+    mesh: &'a mut MeshBuilder,
+    tile: f64,
+}
+
+impl Slopes<'_> {
+    fn add(&mut self, a: [f64; 3], b: [f64; 3], c: [f64; 3]) {
+        let n = cross(sub(b, a), sub(c, a));
+        let len = dot(n, n).sqrt();
+        if len.is_nan() || len <= 1e-9 {
+            return;
+        }
+        let sign = if n[1] < 0.0 { -1.0 } else { 1.0 };
+        let normal = n.map(|v| sign * v / len + 0.0);
+        let tile = self.tile;
+        let uvs = [a, b, c].map(|p| [p[0] / tile, p[2] / tile]);
+        self.mesh.triangle([a, b, c], normal, uvs);
+    }
+}
+
+/// `p` at height `h`.
+fn at(p: [f64; 2], h: f64) -> [f64; 3] {
+    [p[0], h, p[1]]
+}
+
+/// A gabled roof on `outer`: its frame along the longest side.
+fn gable(outer: &[[f64; 2]]) -> Option<Roof> {
+    let n = outer.len();
+    let (mut best, mut d) = (0.0, [1.0, 0.0]);
+    for i in 0..n {
+        let (a, b) = (outer[i], outer[(i + 1) % n]);
+        let len = distance(a, b);
+        if len > best {
+            (best, d) = (len, [(b[0] - a[0]) / len, (b[1] - a[1]) / len]);
+        }
+    }
+    let across = outer.iter().map(|p| p[1] * d[0] - p[0] * d[1]);
+    let (lo, hi) = across.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    let half = (hi - lo) / 2.0;
+    (half > 0.0).then(|| Roof {
+        shape: Shape::Gable {
+            d,
+            mid: (lo + hi) / 2.0,
+            half,
+        },
+        outer: outer.to_vec(),
+        rise: (PITCH * half).min(MAX_RISE),
+    })
+}
+
+/// The triangles of a ring (`earcut`), as points.
+fn earcut_triangles(ring: &[[f64; 2]]) -> Vec<[[f64; 2]; 3]> {
+    let mut indices: Vec<u32> = Vec::new();
+    earcut::Earcut::new().earcut(ring.iter().copied(), &[], &mut indices);
+    indices
+        .chunks_exact(3)
+        .map(|t| [0, 1, 2].map(|k| ring[t[k] as usize]))
+        .collect()
+}
+
+/// A convex polygon or a segment (`points` in order) cut by the line `v = mid` (`v` the
+/// distance to the left of unit `d`): its pieces on either side, each in order.
+fn cut(points: &[[f64; 2]], d: [f64; 2], mid: f64) -> Vec<Vec<[f64; 2]>> {
+    let v = |p: [f64; 2]| p[1] * d[0] - p[0] * d[1] - mid;
+    let closed = points.len() > 2;
+    let mut sides: [Vec<[f64; 2]>; 2] = [Vec::new(), Vec::new()];
+    let n = points.len();
+    for i in 0..n {
+        let p = points[i];
+        let side = usize::from(v(p) > 0.0);
+        sides[side].push(p);
+        if v(p) == 0.0 {
+            sides[1].push(p);
+        }
+        if i + 1 == n && !closed {
+            break;
+        }
+        let q = points[(i + 1) % n];
+        let (vp, vq) = (v(p), v(q));
+        if (vp < 0.0 && vq > 0.0) || (vp > 0.0 && vq < 0.0) {
+            let t = vp / (vp - vq);
+            let x = [p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t];
+            sides[0].push(x);
+            sides[1].push(x);
+        }
+    }
+    let least = if closed { 3 } else { 2 };
+    sides.into_iter().filter(|s| s.len() >= least).collect()
+}
+
+/// The gable part of the wall along footprint side `a → b` (on one side of the ridge):
+/// from the eaves at `y` up to the roof's `height` above each end, facing out, in the
+/// walls' material: the walls' texture's top strip across it.
+fn gable_wall(
+    walls: &mut MeshBuilder,
+    a: [f64; 2],
+    b: [f64; 2],
+    y: f64,
+    height: &dyn Fn([f64; 2]) -> f64,
+) {
+    let Some(n) = left_normal(a, b) else {
+        return;
+    };
+    let u = distance(a, b) / 3.0;
+    let normal = [n[0] + 0.0, 0.0, n[1] + 0.0];
+    let (low_a, low_b) = ([a[0], y, a[1]], [b[0], y, b[1]]);
+    let (top_a, top_b) = ([a[0], height(a), a[1]], [b[0], height(b), b[1]]);
+    // An end at the eaves is a corner, not an edge: a triangle, never a quad with two
+    // corners in one place.
+    const LOW: f64 = 1e-6;
+    match (top_a[1] - y > LOW, top_b[1] - y > LOW) {
+        (true, true) => walls.quad(
+            [low_a, low_b, top_b, top_a],
+            normal,
+            [[0.0, 0.02], [u, 0.02], [u, 0.0], [0.0, 0.0]],
+        ),
+        (false, true) => walls.triangle(
+            [low_a, low_b, top_b],
+            normal,
+            [[0.0, 0.02], [u, 0.02], [u, 0.0]],
+        ),
+        (true, false) => walls.triangle(
+            [low_a, low_b, top_a],
+            normal,
+            [[0.0, 0.02], [u, 0.02], [0.0, 0.0]],
+        ),
+        (false, false) => {}
+    }
+}
+
+/// Whether every corner of the counter-clockwise ring turns left (collinear ones pass).
+fn convex(ring: &[[f64; 2]]) -> bool {
+    let n = ring.len();
+    signed_area(ring) > 0.0
+        && (0..n).all(|i| {
+            let (a, b, c) = (ring[i], ring[(i + 1) % n], ring[(i + 2) % n]);
+            (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]) >= 0.0
+        })
+}
+
+/// The area centroid of a ring.
+fn centroid(ring: &[[f64; 2]]) -> Option<[f64; 2]> {
+    let (mut a, mut cx, mut cz) = (0.0, 0.0, 0.0);
+    let o = ring[0];
+    for i in 1..ring.len() - 1 {
+        let (p, q) = (ring[i], ring[i + 1]);
+        let w = ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])) / 2.0;
+        a += w;
+        cx += w * (o[0] + p[0] + q[0]) / 3.0;
+        cz += w * (o[1] + p[1] + q[1]) / 3.0;
+    }
+    (a > 0.0).then(|| [cx / a, cz / a])
+}
+
+fn mid(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
+}
+
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    crate::model::geometry::polygon::distance(a, b)
+}
+
+/// Distance from `p` to the line through `a` and `b`.
+fn line_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let len = distance(a, b);
+    if len == 0.0 {
+        return distance(p, a);
+    }
+    ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])).abs() / len
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Mesh;
+
+    /// A `w × d` rectangle at `c`, its long side turned `deg` from x, counter-clockwise.
+    fn rectangle(c: [f64; 2], (w, d): (f64, f64), deg: f64) -> Vec<[f64; 2]> {
+        let (k, s) = cos_sin_deg(deg);
+        [[-w, -d], [w, -d], [w, d], [-w, d]]
+            .map(|[x, z]| [c[0] + (x * k - z * s) / 2.0, c[1] + (x * s + z * k) / 2.0])
+            .to_vec()
+    }
+
+    /// A regular `n`-gon of radius `r` round `c`, counter-clockwise.
+    fn regular(c: [f64; 2], r: f64, n: u32) -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| {
+                let (k, s) = cos_sin_deg(360.0 * f64::from(i) / f64::from(n));
+                [c[0] + r * k, c[1] + r * s]
+            })
+            .collect()
+    }
+
+    /// A concave footprint: an L of two 8 m wide arms, 20 m long.
+    const L_SHAPE: [[f64; 2]; 6] = [
+        [0.0, 0.0],
+        [20.0, 0.0],
+        [20.0, 8.0],
+        [8.0, 8.0],
+        [8.0, 20.0],
+        [0.0, 20.0],
+    ];
+
+    /// The roof built on walls 10 m high: (roof mesh, walls mesh).
+    fn built(shape: &str, outer: &[[f64; 2]]) -> (Roof, Mesh, Mesh) {
+        let roof = Roof::of(shape, outer).expect("a roof of that shape");
+        let (mut top, mut walls) = (MeshBuilder::new(0), MeshBuilder::new(1));
+        roof.build(0.0, 10.0, 4.0, &mut top, &mut walls);
+        (roof, top.finish(), walls.finish())
+    }
+
+    fn triangles(mesh: &Mesh) -> Vec<[[f64; 3]; 3]> {
+        mesh.indices
+            .chunks_exact(3)
+            .map(|t| [0, 1, 2].map(|k| mesh.positions[t[k] as usize].map(f64::from)))
+            .collect()
+    }
+
+    /// Each triangle's area seen from above, and its normal's rise (the winding's).
+    fn from_above(t: [[f64; 3]; 3]) -> (f64, f64) {
+        let [a, b, c] = t;
+        let n = cross(sub(b, a), sub(c, a));
+        (n[1].abs() / 2.0, n[1] / dot(n, n).sqrt())
+    }
+
+    /// The slopes cover the footprint once, all facing up; the top is `rise` above the
+    /// eaves, nothing below them.
+    fn covers(outer: &[[f64; 2]], roof: &Roof, top: &Mesh) {
+        let mut area = 0.0;
+        for t in triangles(top) {
+            let (a, up) = from_above(t);
+            assert!(up > 0.0, "{t:?} faces down");
+            area += a;
+            for p in t {
+                assert!(
+                    p[1] >= 10.0 - 1e-4 && p[1] <= 10.0 + roof.rise + 1e-4,
+                    "{p:?}"
+                );
+            }
+        }
+        assert!(
+            (area - signed_area(outer)).abs() < 1e-3,
+            "{area} {}",
+            signed_area(outer)
+        );
+        let highest = top
+            .positions
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(0.0, f64::max);
+        assert!((highest - 10.0 - roof.rise).abs() < 1e-4);
+    }
+
+    /// The points of `mesh` at the top, `rise` above the eaves.
+    fn ridge(mesh: &Mesh, rise: f64) -> Vec<[f64; 2]> {
+        let mut top: Vec<[f64; 2]> = (mesh.positions.iter())
+            .filter(|p| (f64::from(p[1]) - 10.0 - rise).abs() < 1e-4)
+            .map(|p| [f64::from(p[0]), f64::from(p[2])])
+            .collect();
+        top.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        top.dedup_by(|a, b| distance(*a, *b) < 1e-3);
+        top
+    }
+
+    #[test]
+    fn a_gabled_roof_runs_its_ridge_along_the_long_sides_with_a_gable_at_each_end() {
+        // Given from a short side, so the ridge must turn.
+        let mut outer = rectangle([5.0, 7.0], (20.0, 10.0), 30.0);
+        outer.rotate_left(1);
+        let (roof, top, walls) = built("gabled", &outer);
+        assert_eq!(roof.rise, PITCH * 5.0);
+        covers(&outer, &roof, &top);
+        // The ridge: 20 m along the long sides' direction, over the middle.
+        let line = ridge(&top, roof.rise);
+        let (ends, long) = ((line[0], line[line.len() - 1]), cos_sin_deg(30.0));
+        assert!((distance(ends.0, ends.1) - 20.0).abs() < 1e-3, "{line:?}");
+        for p in &line {
+            let across = (p[1] - 7.0) * long.0 - (p[0] - 5.0) * long.1;
+            assert!(across.abs() < 1e-4, "{p:?} off the middle");
+        }
+        // Gables: upright, outwards, 10 m × the rise / 2 at each end.
+        let mut area = 0.0;
+        for (g, n) in triangles(&walls).iter().zip(walls.indices.chunks_exact(3)) {
+            let n = walls.normals[n[0] as usize].map(f64::from);
+            assert_eq!(n[1], 0.0);
+            assert!(
+                g.iter()
+                    .all(|p| p[1] >= 10.0 - 1e-4 && p[1] <= 10.0 + roof.rise + 1e-4)
+            );
+            let out = [g[0][0] - 5.0, 0.0, g[0][2] - 7.0];
+            assert!(dot(out, n) > 0.0, "faces in");
+            let [a, b, c] = *g;
+            let m = cross(sub(b, a), sub(c, a));
+            area += dot(m, m).sqrt() / 2.0;
+        }
+        assert!((area - 2.0 * 10.0 * roof.rise / 2.0).abs() < 1e-3, "{area}");
+        // A concave footprint takes a gabled roof too, covered once.
+        let l_shape = L_SHAPE;
+        let (roof, top, _) = built("gabled", &l_shape);
+        covers(&l_shape, &roof, &top);
+    }
+
+    #[test]
+    fn a_hipped_roof_shortens_the_ridge_by_the_half_depth_and_has_no_gables() {
+        let outer = rectangle([0.0, 0.0], (20.0, 10.0), -15.0);
+        let (roof, top, walls) = built("hipped", &outer);
+        covers(&outer, &roof, &top);
+        let line = ridge(&top, roof.rise);
+        assert!((distance(line[0], line[1]) - 10.0).abs() < 1e-3, "{line:?}");
+        assert!(walls.indices.is_empty());
+        // A square leaves no ridge: a pyramid.
+        let square = rectangle([0.0, 0.0], (10.0, 10.0), 0.0);
+        let (roof, top, _) = built("hipped", &square);
+        covers(&square, &roof, &top);
+        assert_eq!(ridge(&top, roof.rise).len(), 1);
+    }
+
+    #[test]
+    fn pyramids_and_domes_rise_over_the_centroid() {
+        let hexagon = regular([3.0, -4.0], 6.0, 6);
+        let (roof, top, _) = built("pyramidal", &hexagon);
+        covers(&hexagon, &roof, &top);
+        let apex = ridge(&top, roof.rise);
+        assert_eq!(apex.len(), 1);
+        assert!(distance(apex[0], [3.0, -4.0]) < 1e-4);
+        // Run: the hexagon's inradius.
+        assert!((roof.rise - PITCH * 6.0 * cos_sin_deg(30.0).0).abs() < 1e-9);
+        let octagon = regular([0.0, 0.0], 9.0, 8);
+        let (roof, top, _) = built("dome", &octagon);
+        assert!((roof.rise - 9.0).abs() < 1e-9);
+        covers(&octagon, &roof, &top);
+        assert_eq!(
+            top.indices.len() / 3,
+            8 * 4 * 2 - 8,
+            "the top ring is a point"
+        );
+    }
+
+    #[test]
+    fn other_shapes_and_footprints_get_a_flat_roof() {
+        let l_shape = L_SHAPE;
+        let pentagon = regular([0.0, 0.0], 6.0, 5);
+        let clockwise: Vec<[f64; 2]> = rectangle([0.0, 0.0], (8.0, 6.0), 0.0)
+            .into_iter()
+            .rev()
+            .collect();
+        assert_eq!(Roof::of("pyramidal", &l_shape), None);
+        assert_eq!(Roof::of("hipped", &pentagon), None);
+        assert_eq!(
+            Roof::of("gambrel", &rectangle([0.0, 0.0], (8.0, 6.0), 0.0)),
+            None
+        );
+        assert_eq!(Roof::of("gabled", &clockwise), None);
+        assert!(Roof::of("pyramidal", &pentagon).is_some());
+    }
+}
