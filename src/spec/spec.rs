@@ -98,10 +98,11 @@ pub struct LayoutSpec {
     pub image: Option<String>,
     /// An OpenStreetMap extract to build a real place from (issue 43): its buildings on
     /// their footprints at their heights, its roads at any angle. Give one of `generate`,
-    /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror`, `palette`, `[lamps]`
-    /// and `[buildings]` do not apply (the map is in metres, lamps stand where it has
-    /// them), cameras take the `roads`, `sidewalks` and `objects` paths, and objects are
-    /// `tree`, `car` and `traffic_light` entries (see docs/osm.md).
+    /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror`, `palette` and
+    /// `[lamps]` do not apply, nor `[buildings]` unless `fill_empty_blocks` is on (the map
+    /// is in metres, lamps stand where it has them), cameras take the `roads`, `sidewalks`
+    /// and `objects` paths, and objects are `tree`, `car`, `traffic_light`, `sign` and
+    /// `mesh` entries (see docs/osm.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub osm: Option<OsmLayoutSpec>,
     /// Mirror operations applied in order, each appending a flipped copy:
