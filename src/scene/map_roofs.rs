@@ -144,7 +144,10 @@ impl Roof {
                     }
                 }
                 for i in 0..o.len() {
-                    for piece in cut(&[o[i], o[(i + 1) % o.len()]], d, mid) {
+                    let mut pieces = cut(&[o[i], o[(i + 1) % o.len()]], d, mid);
+                    // A side on the ridge line is on both sides of it: one wall.
+                    pieces.dedup();
+                    for piece in pieces {
                         gable_wall(walls, piece[0], piece[1], y, &height);
                     }
                 }
@@ -506,6 +509,31 @@ mod tests {
         let l_shape = L_SHAPE;
         let (roof, top, _) = built("gabled", &l_shape);
         covers(&l_shape, &roof, &top);
+        // A notch whose inner side lies on the ridge line (z = 10): its wall once.
+        let notched = [
+            [0.0, 0.0],
+            [20.0, 0.0],
+            [20.0, 20.0],
+            [12.0, 20.0],
+            [12.0, 10.0],
+            [8.0, 10.0],
+            [8.0, 20.0],
+            [0.0, 20.0],
+        ];
+        let (roof, top, walls) = built("gabled", &notched);
+        covers(&notched, &roof, &top);
+        let mut faces: Vec<String> = triangles(&walls)
+            .iter()
+            .map(|t| {
+                let mut t = *t;
+                t.sort_by(|a, b| a.partial_cmp(b).unwrap());
+                format!("{t:?}")
+            })
+            .collect();
+        let all = faces.len();
+        faces.sort();
+        faces.dedup();
+        assert_eq!(faces.len(), all, "a gable wall twice");
     }
 
     #[test]
