@@ -21,7 +21,7 @@
 use rayon::prelude::*;
 
 use super::{place_in_block, widths_px};
-use crate::model::geometry::polygon::signed_area;
+use crate::model::geometry::polygon::{longest_side, signed_area};
 use crate::model::{Band, Block, MapBuilding, MapPolygon, OsmElement, OsmMap, PxRect};
 
 /// Side of a cell, metres.
@@ -125,16 +125,8 @@ struct Frame {
 
 impl Frame {
     fn of(outer: &[[f64; 2]]) -> Option<Frame> {
-        let (mut best, mut d) = (0.0, [1.0, 0.0]);
-        for (i, &a) in outer.iter().enumerate() {
-            let b = outer[(i + 1) % outer.len()];
-            let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-            let len = (dx * dx + dz * dz).sqrt();
-            if len > best {
-                (best, d) = (len, [dx / len, dz / len]);
-            }
-        }
-        (best > 0.0 && outer.len() >= 3).then_some(Frame { d })
+        let d = longest_side(outer).filter(|_| outer.len() >= 3)?;
+        Some(Frame { d })
     }
 
     fn to_uv(&self, p: [f64; 2]) -> [f64; 2] {

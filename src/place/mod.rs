@@ -35,11 +35,7 @@ pub fn place_city(
     metres_per_pixel: f64,
     seed: u64,
 ) -> Vec<Building> {
-    let widths_m: Vec<f64> = match (&spec.widths, facades) {
-        (Some(widths), _) => widths.clone(),
-        (None, Some(set)) => set.facades.iter().map(|f| f.width).collect(),
-        (None, None) => Vec::new(),
-    };
+    let (widths_m, _) = sizes_m(spec, facades);
     let widths = widths_px(&widths_m, metres_per_pixel);
     let gap = (spec.gap / metres_per_pixel).round() as u32;
     place(blocks, &widths, gap, seed)
@@ -53,20 +49,26 @@ pub fn place_map_city(
     facades: Option<&FacadeSet>,
     seed: u64,
 ) -> Vec<MapBuilding> {
-    let (widths, heights): (Vec<f64>, Option<Vec<f64>>) = match (&spec.widths, facades) {
-        (Some(widths), _) => (widths.clone(), None),
-        (None, Some(set)) => {
-            let (widths, heights) = set.facades.iter().map(|f| (f.width, f.height)).unzip();
-            (widths, Some(heights))
-        }
-        (None, None) => (Vec::new(), None),
-    };
+    let (widths, heights) = sizes_m(spec, facades);
     let sizes = Sizes {
         widths: &widths,
         facade_heights: heights.as_deref(),
         gap: spec.gap,
     };
     place_map(map, &sizes, seed)
+}
+
+/// Building widths in metres: `spec`'s, or (paper 3.2) one per facade of `facades`, then
+/// with the facades' heights, in the same order.
+fn sizes_m(spec: &BuildingsSpec, facades: Option<&FacadeSet>) -> (Vec<f64>, Option<Vec<f64>>) {
+    match (&spec.widths, facades) {
+        (Some(widths), _) => (widths.clone(), None),
+        (None, Some(set)) => {
+            let (widths, heights) = set.facades.iter().map(|f| (f.width, f.height)).unzip();
+            (widths, Some(heights))
+        }
+        (None, None) => (Vec::new(), None),
+    }
 }
 
 use block_mask::BlockMask;

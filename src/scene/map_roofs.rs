@@ -21,7 +21,7 @@
 //! (uv = metres / the tile), each triangle flat-shaded, facing up and out.
 
 use crate::model::geometry::MeshBuilder;
-use crate::model::geometry::polygon::{left_normal, signed_area};
+use crate::model::geometry::polygon::{left_normal, longest_side, signed_area};
 use crate::model::geometry::trig::cos_sin_deg;
 use crate::model::geometry::{cross, dot, sub};
 
@@ -233,15 +233,7 @@ fn at(p: [f64; 2], h: f64) -> [f64; 3] {
 
 /// A gabled roof on `outer`: its frame along the longest side.
 fn gable(outer: &[[f64; 2]]) -> Option<Roof> {
-    let n = outer.len();
-    let (mut best, mut d) = (0.0, [1.0, 0.0]);
-    for i in 0..n {
-        let (a, b) = (outer[i], outer[(i + 1) % n]);
-        let len = distance(a, b);
-        if len > best {
-            (best, d) = (len, [(b[0] - a[0]) / len, (b[1] - a[1]) / len]);
-        }
-    }
+    let d = longest_side(outer)?;
     let across = outer.iter().map(|p| p[1] * d[0] - p[0] * d[1]);
     let (lo, hi) = across.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))

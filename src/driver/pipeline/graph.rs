@@ -205,13 +205,7 @@ impl Pipeline<'_> {
         if self.inputs.layout.is_map() {
             return self.need_map_place();
         }
-        let gather = |p: &mut Self| {
-            let facades = match p.inputs.place.reads_facades() {
-                false => None,
-                true => Some(p.facade_set()?),
-            };
-            Ok((p.parsed()?, facades))
-        };
+        let gather = |p: &mut Self| Ok((p.parsed()?, p.place_facades()?));
         self.stage(
             Stage::Place,
             None,
@@ -232,15 +226,17 @@ impl Pipeline<'_> {
         )
     }
 
+    /// The facades placing reads: only when the spec gives no widths (paper 3.2).
+    fn place_facades(&mut self) -> Result<Option<Arc<FacadeSet>>, BuildError> {
+        Ok(match self.inputs.place.reads_facades() {
+            false => None,
+            true => Some(self.facade_set()?),
+        })
+    }
+
     /// A map layout's place stage: buildings on the map's blocks without any.
     fn need_map_place(&mut self) -> Result<(), BuildError> {
-        let gather = |p: &mut Self| {
-            let facades = match p.inputs.place.reads_facades() {
-                false => None,
-                true => Some(p.facade_set()?),
-            };
-            Ok((p.osm_map()?, facades))
-        };
+        let gather = |p: &mut Self| Ok((p.osm_map()?, p.place_facades()?));
         self.stage(
             Stage::Place,
             None,

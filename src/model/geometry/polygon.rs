@@ -45,6 +45,21 @@ pub fn distance(p: [f64; 2], q: [f64; 2]) -> f64 {
     (dx * dx + dz * dz).sqrt()
 }
 
+/// The unit direction of `ring`'s longest side (the first, of equal ones; the ring
+/// closes), or `None` when no side has length.
+pub fn longest_side(ring: &[[f64; 2]]) -> Option<[f64; 2]> {
+    let n = ring.len();
+    let (mut best, mut d) = (0.0, None);
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let len = distance(a, b);
+        if len > best {
+            (best, d) = (len, Some([(b[0] - a[0]) / len, (b[1] - a[1]) / len]));
+        }
+    }
+    d
+}
+
 /// Whether `p` lies inside `ring` (even–odd rule).
 pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
     let n = ring.len();
