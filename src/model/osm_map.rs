@@ -33,6 +33,10 @@ pub struct OsmMap {
     pub sidewalks: Vec<MapPolygon>,
     /// The city blocks: the box less carriageways and sidewalks.
     pub blocks: Vec<MapPolygon>,
+    /// The green ground the map has on the blocks (parks, gardens, grass, woods), cut to
+    /// each block, in block order.
+    #[serde(default)]
+    pub green: Vec<MapGreen>,
     /// What was in the file and left out, and why.
     pub left_out: LeftOut,
 }
@@ -138,6 +142,15 @@ impl OsmMap {
             contains(&block.outer, b.outer[0])
                 && !block.holes.iter().any(|h| contains(h, b.outer[0]))
         })
+    }
+
+    /// The green ground on block `n` (an index into [`OsmMap::blocks`]).
+    pub fn green_on(&self, n: usize) -> Vec<&MapPolygon> {
+        self.green
+            .iter()
+            .filter(|g| g.block as usize == n)
+            .map(|g| &g.shape)
+            .collect()
     }
 
     /// Whether `p` lies inside a building's footprint (not in one of its courtyards).
@@ -277,6 +290,14 @@ pub struct MapPolygon {
     pub area: f64,
 }
 
+/// Green ground on one block: the part of the map's green areas that lies on block
+/// `block` (an index into [`OsmMap::blocks`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapGreen {
+    pub block: u32,
+    pub shape: MapPolygon,
+}
+
 /// A node the map tags as street furniture.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MapFeature {
@@ -335,4 +356,7 @@ pub struct LeftOut {
     /// Road segments left unpaved: a mapped building stands on them (a passage through
     /// it the map does not tag, or a mapping error).
     pub segments_blocked: u32,
+    /// Green areas whose member ways are not all in the file or do not close into rings.
+    #[serde(default)]
+    pub green_incomplete: u32,
 }

@@ -65,6 +65,10 @@ pub struct Collector {
     buildings: Vec<(i64, BuildingTags)>,
     roads: Vec<(i64, RoadTags)>,
     relations: Vec<BuildingRelation>,
+    /// Closed ways that are green ground (`tags::green`), by id.
+    green_ways: Vec<i64>,
+    /// Multipolygons that are green ground: id and member ways (`true`: outer).
+    green_relations: Vec<(i64, Vec<(i64, bool)>)>,
 }
 
 impl Sink for Collector {
@@ -88,6 +92,8 @@ impl Sink for Collector {
         self.way_nodes.insert(id, refs.to_vec());
         if let Some(building) = BuildingTags::of(tags) {
             self.buildings.push((id, building));
+        } else if tags::green(tags) {
+            self.green_ways.push(id);
         }
         let area = tags::get(tags, "area") == Some("yes");
         if let Some(class) = tags::get(tags, "highway").filter(|c| !tags::not_a_way(c) && !area) {
@@ -121,12 +127,15 @@ impl Sink for Collector {
         if tags::get(tags, "type") != Some("multipolygon") {
             return;
         }
-        if let Some(building) = BuildingTags::of(tags) {
-            let members = ways
-                .iter()
+        let members = || {
+            ways.iter()
                 .map(|(w, role)| (*w, *role != "inner"))
-                .collect();
-            self.relations.push((id, members, building));
+                .collect()
+        };
+        if let Some(building) = BuildingTags::of(tags) {
+            self.relations.push((id, members(), building));
+        } else if tags::green(tags) {
+            self.green_relations.push((id, members()));
         }
     }
 }
@@ -160,6 +169,8 @@ impl Collector {
         let mut roads = self.roads(extent, &projection, &mut left_out);
         super::fit::fit(&mut roads, &buildings, extent, &mut left_out);
         let [carriageway, sidewalks, blocks] = super::surfaces::surfaces(&roads, extent);
+        let green_areas = self.green_areas(&projection, &mut left_out);
+        let green = super::surfaces::green(&green_areas, &blocks);
         let mut features: Vec<MapFeature> = self
             .features
             .iter()
@@ -185,6 +196,7 @@ impl Collector {
             carriageway,
             sidewalks,
             blocks,
+            green,
             left_out,
         })
     }
@@ -288,6 +300,49 @@ impl Collector {
                     .collect();
                 let element = OsmElement::Relation(*id);
                 out.push(building(element, part as u32, tags, outer.clone(), holes));
+            }
+        }
+        out
+    }
+
+    /// The green areas, each as its outer ring then its holes, projected (they may reach
+    /// past the box: `surfaces::green` cuts them to the blocks). Ways that do not close
+    /// are skipped; multipolygons that do not close are counted in `left_out`.
+    fn green_areas(
+        &self,
+        projection: &Projection,
+        left_out: &mut LeftOut,
+    ) -> Vec<Vec<Vec<[f64; 2]>>> {
+        let mut out = Vec::new();
+        let mut project = |refs: &[i64], outer: bool| -> Option<Option<Vec<[f64; 2]>>> {
+            let points = self.locate(refs);
+            if points.is_none() {
+                left_out.ways_missing_nodes += 1;
+            }
+            Some(ring(&points?, projection, outer))
+        };
+        for id in &self.green_ways {
+            let refs = &self.way_nodes[id];
+            if refs.len() < 4 || refs.first() != refs.last() {
+                continue;
+            }
+            if let Some(Some(outer)) = project(refs, true) {
+                out.push(vec![outer]);
+            }
+        }
+        for (_, members) in &self.green_relations {
+            let Some((outers, inners)) = self.relation_rings(members) else {
+                left_out.green_incomplete += 1;
+                continue;
+            };
+            let inners: Option<Vec<_>> = inners.iter().map(|r| project(r, false)).collect();
+            let Some(inners) = inners else { continue };
+            let inners: Vec<Vec<[f64; 2]>> = inners.into_iter().flatten().collect();
+            for outer in &outers {
+                if let Some(Some(outer)) = project(outer, true) {
+                    let holes = inners.iter().filter(|h| contains(&outer, h[0])).cloned();
+                    out.push(std::iter::once(outer.clone()).chain(holes).collect());
+                }
             }
         }
         out

@@ -8,6 +8,9 @@
 //! narrower of the segment's two sidewalks (filling the outside of bends); the union of
 //! those cut to the box, less the carriageway, is the sidewalks. The blocks are the box less
 //! both; a block under [`MIN_BLOCK`] (a sliver between strips) is paved as sidewalk.
+//!
+//! The green ground is the union of the map's green areas (`tags::green`) cut to each
+//! block: it never lies on the street, and each piece belongs to one block.
 
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -15,8 +18,9 @@ use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
 use i_overlay::mesh::float::style::{LineCap, StrokeStyle};
 
-use crate::model::geometry::polygon::{left_normal, signed_area};
-use crate::model::{MapPolygon, MapRoad};
+use crate::model::geometry::polygon::left_normal;
+use crate::model::geometry::polygon_set::{Contours, intersection, polygons};
+use crate::model::{MapGreen, MapPolygon, MapRoad};
 
 /// Radians an arc's segments turn: 24 to a full circle.
 const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
@@ -25,7 +29,8 @@ const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
 /// is paved as sidewalk.
 pub const MIN_BLOCK: f64 = 4.0;
 
-type Contours = Vec<Vec<[f64; 2]>>;
+/// The smallest piece of green ground kept, square metres.
+pub const MIN_GREEN: f64 = 1.0;
 
 /// Carriageway, sidewalks and blocks of `roads` inside `extent`.
 pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
@@ -94,30 +99,48 @@ pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
     [carriageway, sidewalks, blocks]
 }
 
-/// `i_overlay`'s shapes (outer contour first, holes after) as map polygons, turned to
-/// the map's orientation (outer rings positive in `[x, z]`).
-fn polygons(shapes: Vec<Contours>) -> Vec<MapPolygon> {
-    shapes
-        .into_iter()
-        .filter_map(|mut shape| {
-            if shape.is_empty() {
-                return None;
-            }
-            let mut outer = shape.remove(0);
-            if signed_area(&outer) < 0.0 {
-                outer.reverse();
-            }
-            let holes: Contours = shape
+/// The union of the green `areas` (each its outer ring then its holes) on each of
+/// `blocks`, in block order; pieces under [`MIN_GREEN`] dropped.
+pub fn green(areas: &[Contours], blocks: &[MapPolygon]) -> Vec<MapGreen> {
+    // Non-zero fill: an area's hole cancels its own outer ring only, so a point is green
+    // when any area holds it.
+    let union =
+        FloatOverlay::with_subj(&areas.concat()).overlay(OverlayRule::Subject, FillRule::NonZero);
+    let boxes: Vec<[f64; 4]> = union.iter().map(|shape| bounds(&shape[0])).collect();
+    let mut out = Vec::new();
+    for (n, block) in blocks.iter().enumerate() {
+        let b = bounds(&block.outer);
+        let near: Contours = union
+            .iter()
+            .zip(&boxes)
+            .filter(|(_, g)| g[0] < b[2] && b[0] < g[2] && g[1] < b[3] && b[1] < g[3])
+            .flat_map(|(shape, _)| shape.iter().cloned())
+            .collect();
+        if near.is_empty() {
+            continue;
+        }
+        out.extend(
+            intersection(block, &near)
                 .into_iter()
-                .map(|mut h| {
-                    if signed_area(&h) > 0.0 {
-                        h.reverse();
-                    }
-                    h
-                })
-                .collect();
-            let area = signed_area(&outer) + holes.iter().map(|h| signed_area(h)).sum::<f64>();
-            (area > 0.0).then_some(MapPolygon { outer, holes, area })
-        })
-        .collect()
+                .filter(|p| p.area >= MIN_GREEN)
+                .map(|shape| MapGreen {
+                    block: n as u32,
+                    shape,
+                }),
+        );
+    }
+    out
+}
+
+/// `[min_x, min_z, max_x, max_z]` of `ring`.
+fn bounds(ring: &[[f64; 2]]) -> [f64; 4] {
+    ring.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |[a, b, c, d], &[x, z]| [a.min(x), b.min(z), c.max(x), d.max(z)],
+    )
 }

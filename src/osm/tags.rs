@@ -168,6 +168,31 @@ pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
     }
 }
 
+/// Whether a closed way's or a multipolygon's tags make it green ground: grass, a park, a
+/// garden, woods and the like (`docs/osm.md`). A pitch or a playground is green only when
+/// its `surface` is grass or not given (a tennis court or a sandpit is not).
+pub fn green(tags: &[(&str, &str)]) -> bool {
+    let grassy = matches!(get(tags, "surface"), None | Some("grass"));
+    match (
+        get(tags, "leisure"),
+        get(tags, "landuse"),
+        get(tags, "natural"),
+    ) {
+        (Some("park" | "garden" | "dog_park" | "common" | "nature_reserve"), ..) => true,
+        (Some("pitch" | "playground"), ..) => grassy,
+        (
+            _,
+            Some(
+                "grass" | "meadow" | "village_green" | "recreation_ground" | "forest" | "cemetery"
+                | "allotments" | "flowerbed" | "orchard" | "greenfield" | "plant_nursery",
+            ),
+            _,
+        ) => true,
+        (.., Some("wood" | "scrub" | "grassland" | "heath")) => true,
+        _ => false,
+    }
+}
+
 /// What street furniture a node's tags make it, and the tag that says so.
 pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
     let tagged = |k: &str, v: &str| format!("{k}={v}");

@@ -408,3 +408,106 @@ fn carriageway_sidewalks_and_blocks_tile_the_box_clear_of_buildings() {
         }
     }
 }
+
+/// A street along the box's south edge and, north of it, a park with a pond (a
+/// multipolygon), a lawn overlapping the park's east side, and an asphalt pitch.
+const GREEN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <bounds minlat="60.0000000" minlon="25.0000000" maxlat="60.0010000" maxlon="25.0020000"/>
+  <node id="1" lat="60.0001" lon="24.9990"/>
+  <node id="2" lat="60.0001" lon="25.0030"/>
+  <node id="11" lat="60.0004" lon="25.0002"/>
+  <node id="12" lat="60.0004" lon="25.0008"/>
+  <node id="13" lat="60.0008" lon="25.0008"/>
+  <node id="14" lat="60.0008" lon="25.0002"/>
+  <node id="21" lat="60.0005" lon="25.0004"/>
+  <node id="22" lat="60.0005" lon="25.0005"/>
+  <node id="23" lat="60.0006" lon="25.0005"/>
+  <node id="24" lat="60.0006" lon="25.0004"/>
+  <node id="31" lat="60.0004" lon="25.0006"/>
+  <node id="32" lat="60.0004" lon="25.0012"/>
+  <node id="33" lat="60.0008" lon="25.0012"/>
+  <node id="34" lat="60.0008" lon="25.0006"/>
+  <node id="41" lat="60.0004" lon="25.0014"/>
+  <node id="42" lat="60.0004" lon="25.0018"/>
+  <node id="43" lat="60.0008" lon="25.0018"/>
+  <node id="44" lat="60.0008" lon="25.0014"/>
+  <way id="100"><nd ref="1"/><nd ref="2"/><tag k="highway" v="residential"/></way>
+  <way id="101"><nd ref="11"/><nd ref="12"/><nd ref="13"/><nd ref="14"/><nd ref="11"/></way>
+  <way id="102"><nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="24"/><nd ref="21"/></way>
+  <way id="103">
+    <nd ref="31"/><nd ref="32"/><nd ref="33"/><nd ref="34"/><nd ref="31"/>
+    <tag k="landuse" v="grass"/>
+  </way>
+  <way id="104">
+    <nd ref="41"/><nd ref="42"/><nd ref="43"/><nd ref="44"/><nd ref="41"/>
+    <tag k="leisure" v="pitch"/><tag k="surface" v="asphalt"/>
+  </way>
+  <relation id="300">
+    <member type="way" ref="101" role="outer"/>
+    <member type="way" ref="102" role="inner"/>
+    <tag k="type" v="multipolygon"/><tag k="leisure" v="park"/>
+  </relation>
+</osm>
+"#;
+
+#[test]
+fn green_ground_is_the_union_of_the_green_areas_less_their_holes_on_the_blocks() {
+    let map = read(GREEN.as_bytes(), None).unwrap();
+    let [dx, dz] = map.metres_per_degree;
+    // Park 4 × 6, lawn 4 × 6, their overlap 4 × 2, the pond 1 × 1 (in 0.0001°); not the
+    // asphalt pitch.
+    let expected = (24.0 + 24.0 - 8.0 - 1.0) * 1e-8 * dx * dz;
+    let area: f64 = map.green.iter().map(|g| g.shape.area).sum();
+    assert!(
+        (area - expected).abs() < 1e-6 * expected,
+        "{area} {expected}"
+    );
+    assert_eq!(
+        map.green.len(),
+        1,
+        "one piece: the park and the lawn joined"
+    );
+    let green = &map.green[0];
+    assert_eq!(green.shape.holes.len(), 1, "the pond");
+    // On its block, clear of the street.
+    let block = &map.blocks[green.block as usize];
+    use crate::model::geometry::polygon::contains;
+    assert!(green.shape.outer.iter().all(|&p| contains(&block.outer, p)));
+    for street in map.carriageway.iter().chain(&map.sidewalks) {
+        assert!(
+            green
+                .shape
+                .outer
+                .iter()
+                .all(|&p| !contains(&street.outer, p))
+        );
+    }
+    // The same from a file with the park before its ways and nodes.
+    let (start, end) = (
+        GREEN.find("  <relation").unwrap(),
+        GREEN.find("</osm>").unwrap(),
+    );
+    let first = GREEN.find("  <node").unwrap();
+    let reordered = format!(
+        "{}{}{}{}",
+        &GREEN[..first],
+        &GREEN[start..end],
+        &GREEN[first..start],
+        &GREEN[end..]
+    );
+    assert_eq!(read(reordered.as_bytes(), None).unwrap().green, map.green);
+}
+
+#[test]
+fn green_tags_are_grass_parks_and_woods_but_not_paved_pitches() {
+    let green = |tags: &[(&str, &str)]| tags::green(tags);
+    assert!(green(&[("leisure", "park")]));
+    assert!(green(&[("landuse", "grass")]));
+    assert!(green(&[("natural", "wood")]));
+    assert!(green(&[("leisure", "pitch")]));
+    assert!(green(&[("leisure", "pitch"), ("surface", "grass")]));
+    assert!(!green(&[("leisure", "pitch"), ("surface", "asphalt")]));
+    assert!(!green(&[("landuse", "residential")]));
+    assert!(!green(&[("amenity", "parking")]));
+}

@@ -11,6 +11,9 @@
 //!   from its exact extent across the row (padded by a hair against rounding);
 //! - its centre is inside (even-odd over the outer ring and the holes, by scanline).
 //!
+//! The map's green ground on the block (`OsmMap::green`: parks, grass, woods) counts as
+//! more holes, so a park keeps its grass and buildings fill only the rest of the block.
+//!
 //! Algorithm 1 then runs on those cells exactly as on a layout's pixels (`filler`), with
 //! the widths and the gap in cells (rounded, at least one), from the block's own stream
 //! `rng::stream(seed, "place", n)`, `n` the block's index in the map. Each square it places
@@ -48,19 +51,32 @@ pub fn place_map(map: &OsmMap, sizes: &Sizes, seed: u64) -> Vec<MapBuilding> {
             if map.block_is_built(block) {
                 return Vec::new();
             }
-            fill_block(block, n as u32, sizes, seed)
+            fill_block(block, &map.green_on(n), n as u32, sizes, seed)
         })
         .collect();
     per_block.into_iter().flatten().collect()
 }
 
-/// Algorithm 1 on one block polygon, number `n` of the map's.
-fn fill_block(block: &MapPolygon, n: u32, sizes: &Sizes, seed: u64) -> Vec<MapBuilding> {
+/// Algorithm 1 on one block polygon, number `n` of the map's, less its `green` ground.
+fn fill_block(
+    block: &MapPolygon,
+    green: &[&MapPolygon],
+    n: u32,
+    sizes: &Sizes,
+    seed: u64,
+) -> Vec<MapBuilding> {
     let Some(frame) = Frame::of(&block.outer) else {
         return Vec::new();
     };
+    // Green ground lies inside its block, so its rings are more holes to the even-odd
+    // test (and a hole in the green, block again).
     let rings: Vec<Vec<[f64; 2]>> = std::iter::once(&block.outer)
         .chain(&block.holes)
+        .chain(
+            green
+                .iter()
+                .flat_map(|g| std::iter::once(&g.outer).chain(&g.holes)),
+        )
         .map(|ring| ring.iter().map(|&p| frame.to_uv(p)).collect())
         .collect();
     let Some(grid) = Grid::of(&rings) else {
@@ -262,6 +278,7 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::MapGreen;
     use crate::model::geometry::polygon::contains;
     use crate::test_support::street_map;
 
@@ -400,6 +417,61 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn green_ground_keeps_its_grass_and_the_rest_of_its_block_is_filled() {
+        let mut map = map();
+        let plain = placed(&map, None);
+        // A strip across block 0's west end, 15 m of its 70, and all of block 1.
+        let (k, s) = (libm::cos(20f64.to_radians()), libm::sin(20f64.to_radians()));
+        let strip = polygon(
+            turned([60.0 - 27.5 * k, 60.0 - 27.5 * s], (15.0, 45.0), 20.0),
+            Vec::new(),
+        );
+        map.green = vec![
+            MapGreen {
+                block: 0,
+                shape: strip.clone(),
+            },
+            MapGreen {
+                block: 1,
+                shape: map.blocks[1].clone(),
+            },
+        ];
+        let buildings = placed(&map, None);
+        let in_0 = |bs: &[MapBuilding]| {
+            bs.iter()
+                .filter(|b| b.element == OsmElement::Placed(0))
+                .count()
+        };
+        assert!(in_0(&buildings) >= 5, "{}", in_0(&buildings));
+        assert!(
+            buildings.iter().all(|b| b.element == OsmElement::Placed(0)),
+            "the all-green block stays green"
+        );
+        // Whether any point of a grid over `b`'s footprint lies on the strip.
+        let on_grass = |b: &MapBuilding| {
+            (0..=20).any(|i| {
+                (0..=20).any(|j| {
+                    let (s, t) = (f64::from(i) / 20.0, f64::from(j) / 20.0);
+                    let p = [0, 1].map(|k| {
+                        b.outer[0][k]
+                            + (b.outer[1][k] - b.outer[0][k]) * s
+                            + (b.outer[3][k] - b.outer[0][k]) * t
+                    });
+                    contains(&strip.outer, p)
+                })
+            })
+        };
+        assert!(
+            plain.iter().any(on_grass),
+            "without the green, the strip is built on"
+        );
+        assert!(
+            !buildings.iter().any(on_grass),
+            "with it, nothing stands on the grass"
+        );
     }
 
     #[test]

@@ -4,7 +4,8 @@
 //! | object | class | geometry | material |
 //! |---|---|---|---|
 //! | `ground` | ground | one quad under the box, [`GROUND_MARGIN`] beyond it | `grass` |
-//! | `block_0007` | block | the block polygon at kerb height (blocks with a mapped building first, then those without: parks, squares, yards) | `paving`; `grass` without a building |
+//! | `block_0007` | block; ground (terrain) without a building | block 7's polygon at kerb height, less the map's green ground on it | `paving`; `grass` without a building (a park, a square or a yard) |
+//! | `green_0002` | ground (terrain) | a piece of the map's green ground (parks, gardens, grass, woods: `OsmMap::green`) at kerb height | `grass` |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
@@ -31,6 +32,7 @@ use super::map_roofs::Roof;
 use super::object;
 use super::surfaces::Surfaces;
 use crate::model::geometry::polygon::left_normal;
+use crate::model::geometry::polygon_set::difference;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
     Facade, FacadeSet, Lamp, MapBuilding, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject,
@@ -72,26 +74,7 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         "ground".to_owned(),
         vec![ground],
     ));
-    // A block with no mapped building in it is a park, a square or a yard: grass.
-    let (built, open): (Vec<MapPolygon>, Vec<MapPolygon>) = map
-        .blocks
-        .iter()
-        .cloned()
-        .partition(|block| map.block_is_built(block));
-    objects.extend(flat(
-        &built,
-        ObjectKind::Block,
-        surfaces.paving,
-        KERB_Y,
-        2.0,
-    ));
-    objects.extend(flat(
-        &open,
-        ObjectKind::Block,
-        surfaces.grass,
-        KERB_Y,
-        super::procedural::GRASS_TILE,
-    ));
+    objects.extend(blocks(map, &surfaces));
     objects.extend(flat(
         &map.sidewalks,
         ObjectKind::Sidewalk,
@@ -122,6 +105,38 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         materials,
         objects,
     }
+}
+
+/// Every block at kerb height, less the map's green ground on it: paved where a building
+/// stands in the block, grass (terrain) where none does (a park, a square or a yard); then
+/// the green ground itself, grass.
+fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
+    let mut objects: Vec<SceneObject> = map
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(n, block)| {
+            let green = map.green_on(n);
+            let (kind, material, tile) = if map.block_is_built(block) {
+                (ObjectKind::Block, surfaces.paving, 2.0)
+            } else {
+                let tile = super::procedural::GRASS_TILE;
+                (ObjectKind::Ground, surfaces.grass, tile)
+            };
+            let mut mesh = MeshBuilder::new(material);
+            for part in difference(block, &green) {
+                mesh.polygon(&part.outer, &part.holes, KERB_Y, tile);
+            }
+            object(kind, format!("block_{n:04}"), vec![mesh])
+        })
+        .collect();
+    objects.extend(map.green.iter().enumerate().map(|(i, g)| {
+        let mut mesh = MeshBuilder::new(surfaces.grass);
+        let tile = super::procedural::GRASS_TILE;
+        mesh.polygon(&g.shape.outer, &g.shape.holes, KERB_Y, tile);
+        object(ObjectKind::Ground, format!("green_{i:04}"), vec![mesh])
+    }));
+    objects
 }
 
 /// One object of `kind` per polygon, flat at height `y`.

@@ -109,6 +109,7 @@ pub fn street_map() -> OsmMap {
         carriageway: Vec::new(),
         sidewalks: Vec::new(),
         blocks: Vec::new(),
+        green: Vec::new(),
         left_out: LeftOut::default(),
     }
 }

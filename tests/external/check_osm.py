@@ -14,7 +14,10 @@ its own haversine lengths.
   osmium's;
 - (shapely) no building osmium assembles overlaps the map's street (carriageway and
   sidewalks) by more than 0.01 m²; every paved segment's centreline lies on the
-  carriageway; blocks, sidewalks and carriageway tile the box without overlap.
+  carriageway; blocks, sidewalks and carriageway tile the box without overlap;
+- (shapely) the map's green ground is the union of the green areas osmium assembles
+  (parks, gardens, grass, woods: the tags of docs/osm.md) cut to the blocks, its area
+  within 2 %, each piece inside the block it names and none on the street.
 Prints the counts and the worst differences; exits 1 on the first failed check.
 """
 import json
@@ -34,6 +37,21 @@ DRIVABLE = {
 }
 
 
+def green(tags):
+    """docs/osm.md's green ground, as `osm::tags::green` reads it."""
+    grassy = tags.get("surface") in (None, "grass")
+    leisure, landuse, natural = tags.get("leisure"), tags.get("landuse"), tags.get("natural")
+    return (
+        leisure in ("park", "garden", "dog_park", "common", "nature_reserve")
+        or (leisure in ("pitch", "playground") and grassy)
+        or landuse in (
+            "grass", "meadow", "village_green", "recreation_ground", "forest", "cemetery",
+            "allotments", "flowerbed", "orchard", "greenfield", "plant_nursery",
+        )
+        or natural in ("wood", "scrub", "grassland", "heath")
+    )
+
+
 def ring_area(points):
     """|shoelace area| in m² of (lat, lon) points, equirectangular at their mean latitude."""
     lat0 = math.radians(sum(p[0] for p in points) / len(points))
@@ -50,6 +68,7 @@ class Reader(osmium.SimpleHandler):
         self.shapes = {}  # ("way"|"relation", id) -> [(+1 outer | -1 inner, [(lat, lon)])]
         self.outside = 0
         self.ways = {}  # id -> (class, length m, nodes inside, node count)
+        self.green = []  # [(+1 outer | -1 inner, [(lat, lon)])] per green area
 
     def inside(self, loc):
         s, w, n, e = self.box
@@ -58,6 +77,12 @@ class Reader(osmium.SimpleHandler):
     def area(self, a):
         building = a.tags.get("building")
         if building is None or building == "no":
+            if green(a.tags):
+                self.green.append([
+                    (sign, [(n.lat, n.lon) for n in ring])
+                    for outer in a.outer_rings()
+                    for sign, ring in [(1, outer)] + [(-1, i) for i in a.inner_rings(outer)]
+                ])
             return
         key = ("way" if a.from_way() else "relation", a.orig_id())
         rings = []
@@ -150,6 +175,39 @@ def main(extract, map_path):
         f"its length within {100 * worst_rel:.4f} % (worst way {worst_way}); {cut} cut by the box"
     )
     check_street(m, reader)
+    check_green(m, reader)
+
+
+def check_green(m, reader):
+    """The map's green ground against osmium's green areas cut to the map's blocks."""
+    lat0, lon0 = m["origin"]
+    kx, kz = m["metres_per_degree"]
+    project = lambda pts: [((lon - lon0) * kx, -(lat - lat0) * kz) for lat, lon in pts]
+    areas = []
+    for rings in reader.green:
+        outer = shapely.union_all([Polygon(project(r)).buffer(0) for s, r in rings if s > 0])
+        inner = [Polygon(project(r)).buffer(0) for s, r in rings if s < 0]
+        areas.append(shapely.difference(outer, shapely.union_all(inner)) if inner else outer)
+    blocks = polygons(m["blocks"])
+    theirs = shapely.intersection(shapely.union_all(areas), shapely.union_all(blocks)).area
+    pieces = [(g["block"], Polygon(g["shape"]["outer"], g["shape"]["holes"])) for g in m["green"]]
+    ours = sum(p.area for _, p in pieces)
+    if theirs > 0 and abs(ours / theirs - 1) > 0.02:
+        fail(f"green ground {ours:.1f} m² in the map, {theirs:.1f} m² of osmium's green areas on the blocks")
+    street = shapely.union_all(polygons(m["carriageway"]) + polygons(m["sidewalks"]))
+    worst = 0.0
+    for n, piece in pieces:
+        outside = shapely.difference(piece, blocks[n]).area
+        on_street = shapely.intersection(piece, street).area
+        worst = max(worst, outside, on_street)
+    if worst > 0.01:
+        fail(f"a green piece leaves its block or lies on the street by {worst:.3f} m²")
+    print(
+        f"green: {len(reader.green)} green areas osmium assembles, {theirs:.0f} m² of them on the "
+        f"blocks against the map's {ours:.0f} m² in {len(pieces)} pieces "
+        f"({100 * abs(ours / theirs - 1) if theirs else 0:.3f} %); each piece in its block, "
+        f"none on the street (worst {worst:.4f} m²)"
+    )
 
 
 def polygons(items):

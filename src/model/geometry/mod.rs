@@ -15,11 +15,13 @@
 //! | [`units`]: metres ↔ pixels, millimetre rounding | plan, cameras, annotate, build |
 //! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render, facades, objects |
 //! | [`zebras`]: where each road's zebra crossings lie | scene, objects |
+//! | [`polygon_set`]: a map's polygons cut by polygons (`i_overlay`) | osm, scene |
 
 mod facade_choice;
 mod material_book;
 mod mesh_builder;
 pub mod polygon;
+pub mod polygon_set;
 mod road_rect;
 pub mod rounding;
 mod street_profile;

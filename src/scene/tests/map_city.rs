@@ -79,6 +79,7 @@ fn map() -> OsmMap {
             Vec::new(),
             4060.0,
         )],
+        green: Vec::new(),
         left_out: LeftOut::default(),
     }
 }
@@ -210,6 +211,42 @@ fn facades_keep_their_scale_on_every_wall() {
             );
         }
     }
+}
+
+#[test]
+fn green_ground_is_grass_cut_out_of_its_paved_block() {
+    let mut map = map();
+    let lawn = MapPolygon {
+        outer: vec![[35.0, 25.0], [55.0, 25.0], [55.0, 45.0], [35.0, 45.0]],
+        holes: Vec::new(),
+        area: 400.0,
+    };
+    map.green = vec![crate::model::MapGreen {
+        block: 0,
+        shape: lawn,
+    }];
+    let scene = map_city(&MapSceneInput {
+        lamps: &[],
+        map: &map,
+        facades: &facade_set(),
+        seed: 5,
+    });
+    let named = |name: &str| scene.objects.iter().find(|o| o.name == name).unwrap();
+    let (block, green) = (named("block_0000"), named("green_0000"));
+    assert_eq!(
+        (block.kind, green.kind),
+        (ObjectKind::Block, ObjectKind::Ground)
+    );
+    let area = |o: &SceneObject| triangles(o).map(area_from_above).sum::<f64>();
+    assert!((area(block) - 3660.0).abs() < 1e-3, "{}", area(block));
+    assert!((area(green) - 400.0).abs() < 1e-3, "{}", area(green));
+    let grass = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "grass")
+        .unwrap() as u32;
+    assert!(green.meshes.iter().all(|m| m.material == grass));
+    assert!(block.meshes.iter().all(|m| m.material != grass));
 }
 
 #[test]
