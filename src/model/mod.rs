@@ -45,7 +45,7 @@ pub use movement::{Movement, Recolour};
 pub use object_kind::ObjectKind;
 pub use osm_map::CAMERA_LANE as MAP_CAMERA_LANE;
 pub use osm_map::{
-    FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapGreen, MapPolygon, MapRoad,
+    FeatureKind, GeoBox, LeftOut, MapArea, MapBuilding, MapFeature, MapPolygon, MapRoad,
     OsmElement, OsmMap, PavedSegment, SIGNAL_DIRECTION,
 };
 pub use osm_map::{LANE as MAP_LANE, camera_lane as map_camera_lane, lanes as map_lanes};

@@ -36,7 +36,11 @@ pub struct OsmMap {
     /// The green ground the map has on the blocks (parks, gardens, grass, woods), cut to
     /// each block, in block order.
     #[serde(default)]
-    pub green: Vec<MapGreen>,
+    pub green: Vec<MapArea>,
+    /// The paved open ground the map has on the blocks (squares, pedestrian areas, car
+    /// parks) less the green, cut to each block, in block order.
+    #[serde(default)]
+    pub squares: Vec<MapArea>,
     /// What was in the file and left out, and why.
     pub left_out: LeftOut,
 }
@@ -146,11 +150,12 @@ impl OsmMap {
 
     /// The green ground on block `n` (an index into [`OsmMap::blocks`]).
     pub fn green_on(&self, n: usize) -> Vec<&MapPolygon> {
-        self.green
-            .iter()
-            .filter(|g| g.block as usize == n)
-            .map(|g| &g.shape)
-            .collect()
+        on_block(&self.green, n)
+    }
+
+    /// The squares on block `n` (an index into [`OsmMap::blocks`]).
+    pub fn squares_on(&self, n: usize) -> Vec<&MapPolygon> {
+        on_block(&self.squares, n)
     }
 
     /// Whether `p` lies inside a building's footprint (not in one of its courtyards).
@@ -160,6 +165,15 @@ impl OsmMap {
             .iter()
             .any(|b| contains(&b.outer, p) && !b.holes.iter().any(|h| contains(h, p)))
     }
+}
+
+/// The pieces of `areas` on block `n`.
+fn on_block(areas: &[MapArea], n: usize) -> Vec<&MapPolygon> {
+    areas
+        .iter()
+        .filter(|g| g.block as usize == n)
+        .map(|g| &g.shape)
+        .collect()
 }
 
 /// A box in degrees.
@@ -290,10 +304,10 @@ pub struct MapPolygon {
     pub area: f64,
 }
 
-/// Green ground on one block: the part of the map's green areas that lies on block
-/// `block` (an index into [`OsmMap::blocks`]).
+/// Open ground on one block: the part of the map's green areas (or of its squares) that
+/// lies on block `block` (an index into [`OsmMap::blocks`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct MapGreen {
+pub struct MapArea {
     pub block: u32,
     pub shape: MapPolygon,
 }
@@ -356,7 +370,8 @@ pub struct LeftOut {
     /// Road segments left unpaved: a mapped building stands on them (a passage through
     /// it the map does not tag, or a mapping error).
     pub segments_blocked: u32,
-    /// Green areas whose member ways are not all in the file or do not close into rings.
+    /// Green areas and squares whose member ways are not all in the file or do not close
+    /// into rings.
     #[serde(default)]
-    pub green_incomplete: u32,
+    pub areas_incomplete: u32,
 }

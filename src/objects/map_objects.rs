@@ -3,7 +3,7 @@
 //!
 //! | kind | where |
 //! |---|---|
-//! | tree | at the map's `natural=tree` nodes, in node order, up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
+//! | tree | at the map's `natural=tree` nodes, in node order, then on the map's green ground where it plants none (`green_tree_sites`, about one per 12 m square, in a seeded order), up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`] clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`] plus its half length from every other road's carriageway |
@@ -42,6 +42,12 @@ const CROSSING_ROOM: f64 = 4.0;
 const NARROWEST: f64 = 1.6;
 /// Largest crown radius of a mapped tree, metres.
 const MAX_CROWN: f64 = 4.0;
+/// Spacing of the trees seeded on green ground, metres: one to a square this wide, and
+/// none this near a tree the map has.
+const GREEN_TREE_SPACING: f64 = 12.0;
+/// How far a tree seeded on green ground stands inside its edge, metres (off the paths
+/// and sidewalks around it).
+const GREEN_TREE_INSET: f64 = 1.5;
 
 /// Everything placing objects on a map reads.
 pub struct MapObjectsInput<'a> {
@@ -90,7 +96,8 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         seed: input.seed,
     };
     let mut placing = Placing::new(&objects);
-    let sites = tree_sites(input.map);
+    let mut sites = tree_sites(input.map);
+    sites.extend(green_tree_sites(input.map, input.lamps, &sites, input.seed));
     let mut spots = MapSpots::new(input.map, input.lamps, &sites);
     let signals = signal_sites(input.map);
     let signs = sign_sites(input.map);
@@ -158,6 +165,63 @@ fn tree_sites(map: &OsmMap) -> Vec<([f64; 2], f64)> {
             (f.at, room.min(MAX_CROWN))
         })
         .collect()
+}
+
+/// Trees seeded on the map's green ground where it plants none, in a seeded order (so an
+/// entry's `count` thins them evenly): on each piece of green ground, one per
+/// [`GREEN_TREE_SPACING`] square of a grid in metres, at a point drawn in the middle
+/// third of the square (`rng::stream(seed, "map-green-trees", piece)`), kept when it lies
+/// on the piece [`GREEN_TREE_INSET`] inside its edges, [`GREEN_TREE_SPACING`] from every
+/// tree of `mapped`, clear of the lamps and out of the buildings; the crown has the room
+/// `tree_sites` gives.
+fn green_tree_sites(
+    map: &OsmMap,
+    lamps: &[Lamp],
+    mapped: &[([f64; 2], f64)],
+    seed: u64,
+) -> Vec<([f64; 2], f64)> {
+    use crate::model::geometry::polygon::contains;
+    let s = GREEN_TREE_SPACING;
+    let mut out = Vec::new();
+    for (i, green) in map.green.iter().enumerate() {
+        let mut rng = crate::rng::stream(seed, "map-green-trees", i as u64);
+        let shape = &green.shape;
+        let rings: Vec<&Vec<[f64; 2]>> =
+            std::iter::once(&shape.outer).chain(&shape.holes).collect();
+        let edge = |p: [f64; 2]| {
+            rings
+                .iter()
+                .flat_map(|r| r.iter().zip(r.iter().cycle().skip(1)))
+                .map(|(&a, &b)| distance(p, nearest(a, b, p)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let [x0, z0, x1, z1] = crate::model::geometry::polygon::bounds(&shape.outer);
+        for gz in (z0 / s).floor() as i64..=(z1 / s).floor() as i64 {
+            for gx in (x0 / s).floor() as i64..=(x1 / s).floor() as i64 {
+                let jitter = [rng.random_range(1.0..2.0), rng.random_range(1.0..2.0)];
+                let p = [
+                    (gx as f64 + jitter[0] / 3.0) * s,
+                    (gz as f64 + jitter[1] / 3.0) * s,
+                ];
+                let on = contains(&shape.outer, p)
+                    && !shape.holes.iter().any(|h| contains(h, p))
+                    && edge(p) >= GREEN_TREE_INSET;
+                let clear = on
+                    && mapped.iter().all(|(t, _)| distance(*t, p) >= s)
+                    && lamps
+                        .iter()
+                        .all(|l| distance(l.position, p) >= LAMP_CLEARANCE + tree::TRUNK_ROOM)
+                    && !map.in_building(p);
+                if clear {
+                    let room = map.building_distance(p) - tree::BUILDING_CLEARANCE;
+                    out.push((p, room.min(MAX_CROWN)));
+                }
+            }
+        }
+    }
+    let mut rng = crate::rng::stream(seed, "map-green-trees", u64::MAX);
+    rand::seq::SliceRandom::shuffle(out.as_mut_slice(), &mut rng);
+    out
 }
 
 /// The map's signals that can stand, in node order: per `highway=traffic_signals` node on
@@ -563,6 +627,56 @@ mod tests {
                 if d < best[1] { [0.0, d] } else { best }
             });
         assert!(trunk_foot[1] < 0.5, "the tree stands at its node");
+    }
+
+    #[test]
+    fn trees_are_seeded_on_green_ground_the_map_plants_none_on() {
+        use crate::model::geometry::polygon::contains;
+        let mut map = crate::test_support::street_map();
+        let outer = vec![[-145.0, 10.0], [-60.0, 10.0], [-60.0, 38.0], [-145.0, 38.0]];
+        map.green = vec![crate::model::MapArea {
+            block: 0,
+            shape: crate::model::MapPolygon {
+                outer: outer.clone(),
+                holes: Vec::new(),
+                area: 85.0 * 28.0,
+            },
+        }];
+        let mapped = tree_sites(&map);
+        assert_eq!(mapped.len(), 1, "the tree at (−80, 8.5)");
+        let lamps = [Lamp {
+            id: 0,
+            position: [-130.0, 30.0],
+            road: 0,
+            facing: [0.0, 1.0],
+        }];
+        let sites = green_tree_sites(&map, &lamps, &mapped, 5);
+        // About one per 144 m² of the 1,980 m² beside the building, fewer near the mapped
+        // tree and the lamp.
+        assert!((6..=16).contains(&sites.len()), "{}", sites.len());
+        let edge = |p: [f64; 2]| {
+            (0..4)
+                .map(|k| distance(p, nearest(outer[k], outer[(k + 1) % 4], p)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        for (i, &(p, room)) in sites.iter().enumerate() {
+            assert!(contains(&outer, p) && edge(p) >= GREEN_TREE_INSET, "{p:?}");
+            assert!(distance(p, [-80.0, 8.5]) >= GREEN_TREE_SPACING, "{p:?}");
+            assert!(distance(p, lamps[0].position) >= LAMP_CLEARANCE, "{p:?}");
+            assert!(!map.in_building(p), "{p:?}");
+            assert!(room > 0.0 && room <= MAX_CROWN);
+            for &(q, _) in &sites[i + 1..] {
+                assert!(distance(p, q) >= GREEN_TREE_SPACING / 3.0 - 1e-9);
+            }
+        }
+        assert_eq!(green_tree_sites(&map, &lamps, &mapped, 5), sites);
+        assert_ne!(green_tree_sites(&map, &lamps, &mapped, 6), sites);
+        // A tree entry takes the map's trees first, then these.
+        let specs = entries("[[objects]]\nkind = 'tree'\ncount = 100\n");
+        let inserted = place_on(&map, &specs).expect("trees place");
+        assert!(inserted.placed[0] > 1, "{:?}", inserted.placed);
+        // With no green ground, the map's one tree only.
+        assert_eq!(place(&specs).expect("trees place").placed, vec![1]);
     }
 
     #[test]

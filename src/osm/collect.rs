@@ -51,6 +51,10 @@ struct RoadTags {
 /// outer ring's) and its tags.
 type BuildingRelation = (i64, Vec<(i64, bool)>, BuildingTags);
 
+/// A multipolygon relation that is open ground: its id, its member ways (`true`: an outer
+/// ring's) and which ground.
+type OpenRelation = (i64, Vec<(i64, bool)>, Open);
+
 /// Rings as node ids: the outer ones and the inner ones.
 type Rings = (Vec<Vec<i64>>, Vec<Vec<i64>>);
 
@@ -65,10 +69,28 @@ pub struct Collector {
     buildings: Vec<(i64, BuildingTags)>,
     roads: Vec<(i64, RoadTags)>,
     relations: Vec<BuildingRelation>,
-    /// Closed ways that are green ground (`tags::green`), by id.
-    green_ways: Vec<i64>,
-    /// Multipolygons that are green ground: id and member ways (`true`: outer).
-    green_relations: Vec<(i64, Vec<(i64, bool)>)>,
+    /// Closed ways that are open ground, by id: green (`tags::green`) or a square
+    /// (`tags::square`).
+    open_ways: Vec<(i64, Open)>,
+    /// Multipolygons that are open ground: id, member ways (`true`: outer) and which.
+    open_relations: Vec<OpenRelation>,
+}
+
+/// Which open ground an area is.
+#[derive(Clone, Copy, PartialEq)]
+enum Open {
+    Green,
+    Square,
+}
+
+impl Open {
+    fn of(tags: &[(&str, &str)]) -> Option<Open> {
+        if tags::green(tags) {
+            Some(Open::Green)
+        } else {
+            tags::square(tags).then_some(Open::Square)
+        }
+    }
 }
 
 impl Sink for Collector {
@@ -92,8 +114,8 @@ impl Sink for Collector {
         self.way_nodes.insert(id, refs.to_vec());
         if let Some(building) = BuildingTags::of(tags) {
             self.buildings.push((id, building));
-        } else if tags::green(tags) {
-            self.green_ways.push(id);
+        } else if let Some(open) = Open::of(tags) {
+            self.open_ways.push((id, open));
         }
         let area = tags::get(tags, "area") == Some("yes");
         if let Some(class) = tags::get(tags, "highway").filter(|c| !tags::not_a_way(c) && !area) {
@@ -134,8 +156,8 @@ impl Sink for Collector {
         };
         if let Some(building) = BuildingTags::of(tags) {
             self.relations.push((id, members(), building));
-        } else if tags::green(tags) {
-            self.green_relations.push((id, members()));
+        } else if let Some(open) = Open::of(tags) {
+            self.open_relations.push((id, members(), open));
         }
     }
 }
@@ -169,8 +191,9 @@ impl Collector {
         let mut roads = self.roads(extent, &projection, &mut left_out);
         super::fit::fit(&mut roads, &buildings, extent, &mut left_out);
         let [carriageway, sidewalks, blocks] = super::surfaces::surfaces(&roads, extent);
-        let green_areas = self.green_areas(&projection, &mut left_out);
-        let green = super::surfaces::green(&green_areas, &blocks);
+        let [green, squares] = [Open::Green, Open::Square]
+            .map(|open| self.open_areas(open, &projection, &mut left_out));
+        let [green, squares] = super::surfaces::open_ground(&green, &squares, &blocks);
         let mut features: Vec<MapFeature> = self
             .features
             .iter()
@@ -197,6 +220,7 @@ impl Collector {
             sidewalks,
             blocks,
             green,
+            squares,
             left_out,
         })
     }
@@ -305,11 +329,12 @@ impl Collector {
         out
     }
 
-    /// The green areas, each as its outer ring then its holes, projected (they may reach
-    /// past the box: `surfaces::green` cuts them to the blocks). Ways that do not close
-    /// are skipped; multipolygons that do not close are counted in `left_out`.
-    fn green_areas(
+    /// The `open` areas, each as its outer ring then its holes, projected (they may reach
+    /// past the box: `surfaces::open_ground` cuts them to the blocks). Ways that do not
+    /// close are skipped; multipolygons that do not close are counted in `left_out`.
+    fn open_areas(
         &self,
+        open: Open,
         projection: &Projection,
         left_out: &mut LeftOut,
     ) -> Vec<Vec<Vec<[f64; 2]>>> {
@@ -321,7 +346,7 @@ impl Collector {
             }
             Some(ring(&points?, projection, outer))
         };
-        for id in &self.green_ways {
+        for (id, _) in self.open_ways.iter().filter(|w| w.1 == open) {
             let refs = &self.way_nodes[id];
             if refs.len() < 4 || refs.first() != refs.last() {
                 continue;
@@ -330,9 +355,9 @@ impl Collector {
                 out.push(vec![outer]);
             }
         }
-        for (_, members) in &self.green_relations {
+        for (_, members, _) in self.open_relations.iter().filter(|r| r.2 == open) {
             let Some((outers, inners)) = self.relation_rings(members) else {
-                left_out.green_incomplete += 1;
+                left_out.areas_incomplete += 1;
                 continue;
             };
             let inners: Option<Vec<_>> = inners.iter().map(|r| project(r, false)).collect();

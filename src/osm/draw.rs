@@ -1,5 +1,5 @@
 //! A picture of an [`OsmMap`] from above, north up: green ground (parks, grass, woods)
-//! pale green, sidewalks light grey, carriageways dark grey, paths tan, buildings by height (lighter is taller, brick where the map gives no
+//! pale green, squares (and pedestrian areas, car parks) light stone, sidewalks light grey, carriageways dark grey, paths tan, buildings by height (lighter is taller, brick where the map gives no
 //! height), courtyards cut out, and the map's furniture as dots (signals red, lamps
 //! yellow, trees green, benches brown, signs blue, crossings white).
 
@@ -11,6 +11,7 @@ use crate::model::{FeatureKind, MapRoad, OsmMap};
 
 const GROUND: Rgb<u8> = Rgb([236, 234, 226]);
 const GREEN: Rgb<u8> = Rgb([190, 222, 170]);
+const SQUARE: Rgb<u8> = Rgb([216, 212, 200]);
 const SIDEWALK: Rgb<u8> = Rgb([196, 196, 196]);
 const CARRIAGEWAY: Rgb<u8> = Rgb([88, 88, 92]);
 const PATH: Rgb<u8> = Rgb([214, 190, 150]);
@@ -24,12 +25,13 @@ pub fn draw(map: &OsmMap, max_side: u32) -> RgbImage {
     let size = |l: f64| ((l * scale).ceil() as u32).clamp(1, max_side.max(16));
     let mut img = RgbImage::from_pixel(size(x1 - x0), size(z1 - z0), GROUND);
     let px = |p: [f64; 2]| [(p[0] - x0) * scale, (p[1] - z0) * scale];
-    let green = map.green.iter().map(|g| (&g.shape, GREEN));
+    let open = (map.green.iter().map(|g| (&g.shape, GREEN)))
+        .chain(map.squares.iter().map(|g| (&g.shape, SQUARE)));
     let street = [(&map.sidewalks, SIDEWALK), (&map.carriageway, CARRIAGEWAY)]
         .into_iter()
         .flat_map(|(polygons, colour)| polygons.iter().map(move |p| (p, colour)));
     {
-        for (p, colour) in green.chain(street) {
+        for (p, colour) in open.chain(street) {
             fill_rings(
                 &mut img,
                 std::iter::once(&p.outer).chain(&p.holes),

@@ -1,6 +1,6 @@
 //! The OpenStreetMap stage: an extract (`.osm` XML or `.osm.pbf`) → [`OsmMap`]: building
 //! footprints with their holes and heights, road centrelines with widths and sidewalks,
-//! green ground (parks, lawns, woods),
+//! open ground (parks, lawns, woods; squares, car parks),
 //! and the street furniture the map places, in metres around the box's centre.
 //!
 //! Entry: [`read`]. The driver reads the file's bytes; this stage streams them once
@@ -19,7 +19,7 @@
 
 /// Bump when the map read from an extract changes: it is part of the layout stage's key for
 /// a map layout.
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 
 mod clip;
 mod collect;

@@ -9,8 +9,9 @@
 //! those cut to the box, less the carriageway, is the sidewalks. The blocks are the box less
 //! both; a block under [`MIN_BLOCK`] (a sliver between strips) is paved as sidewalk.
 //!
-//! The green ground is the union of the map's green areas (`tags::green`) cut to each
-//! block: it never lies on the street, and each piece belongs to one block.
+//! The open ground is the union of the map's green areas (`tags::green`), and of its
+//! squares (`tags::square`) less the green, cut to each block: it never lies on the
+//! street, and each piece belongs to one block.
 
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -18,9 +19,9 @@ use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
 use i_overlay::mesh::float::style::{LineCap, StrokeStyle};
 
-use crate::model::geometry::polygon::left_normal;
+use crate::model::geometry::polygon::{bounds, left_normal};
 use crate::model::geometry::polygon_set::{Contours, intersection, polygons};
-use crate::model::{MapGreen, MapPolygon, MapRoad};
+use crate::model::{MapArea, MapPolygon, MapRoad};
 
 /// Radians an arc's segments turn: 24 to a full circle.
 const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
@@ -29,7 +30,7 @@ const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
 /// is paved as sidewalk.
 pub const MIN_BLOCK: f64 = 4.0;
 
-/// The smallest piece of green ground kept, square metres.
+/// The smallest piece of open ground kept, square metres.
 pub const MIN_GREEN: f64 = 1.0;
 
 /// Carriageway, sidewalks and blocks of `roads` inside `extent`.
@@ -99,22 +100,42 @@ pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
     [carriageway, sidewalks, blocks]
 }
 
-/// The union of the green `areas` (each its outer ring then its holes) on each of
-/// `blocks`, in block order; pieces under [`MIN_GREEN`] dropped.
-pub fn green(areas: &[Contours], blocks: &[MapPolygon]) -> Vec<MapGreen> {
-    // Non-zero fill: an area's hole cancels its own outer ring only, so a point is green
+/// The open ground on `blocks`: the union of the `green` areas, and the union of the
+/// `squares` less the green (a lawn mapped on a square is grass), each cut to each
+/// block, in block order (each its outer ring then its holes); pieces under
+/// [`MIN_GREEN`] dropped.
+pub fn open_ground(
+    green: &[Contours],
+    squares: &[Contours],
+    blocks: &[MapPolygon],
+) -> [Vec<MapArea>; 2] {
+    // Non-zero fill: an area's hole cancels its own outer ring only, so a point is open
     // when any area holds it.
-    let union =
-        FloatOverlay::with_subj(&areas.concat()).overlay(OverlayRule::Subject, FillRule::NonZero);
-    let boxes: Vec<[f64; 4]> = union.iter().map(|shape| bounds(&shape[0])).collect();
+    let union = |areas: &[Contours]| -> Contours {
+        FloatOverlay::with_subj(&areas.concat())
+            .overlay(OverlayRule::Subject, FillRule::NonZero)
+            .concat()
+    };
+    let green = union(green);
+    let squares: Contours = FloatOverlay::with_subj_and_clip(&union(squares), &green)
+        .overlay(OverlayRule::Difference, FillRule::NonZero)
+        .concat();
+    [on_blocks(&green, blocks), on_blocks(&squares, blocks)]
+}
+
+/// The shapes of `union` (rings from an overlay, non-zero) cut to each block.
+fn on_blocks(union: &Contours, blocks: &[MapPolygon]) -> Vec<MapArea> {
+    let boxes: Vec<[f64; 4]> = union.iter().map(|ring| bounds(ring)).collect();
     let mut out = Vec::new();
     for (n, block) in blocks.iter().enumerate() {
         let b = bounds(&block.outer);
+        // Rings whose box meets the block's: a hole always comes with its outer ring,
+        // whose box holds the hole's.
         let near: Contours = union
             .iter()
             .zip(&boxes)
             .filter(|(_, g)| g[0] < b[2] && b[0] < g[2] && g[1] < b[3] && b[1] < g[3])
-            .flat_map(|(shape, _)| shape.iter().cloned())
+            .map(|(ring, _)| ring.clone())
             .collect();
         if near.is_empty() {
             continue;
@@ -123,24 +144,11 @@ pub fn green(areas: &[Contours], blocks: &[MapPolygon]) -> Vec<MapGreen> {
             intersection(block, &near)
                 .into_iter()
                 .filter(|p| p.area >= MIN_GREEN)
-                .map(|shape| MapGreen {
+                .map(|shape| MapArea {
                     block: n as u32,
                     shape,
                 }),
         );
     }
     out
-}
-
-/// `[min_x, min_z, max_x, max_z]` of `ring`.
-fn bounds(ring: &[[f64; 2]]) -> [f64; 4] {
-    ring.iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |[a, b, c, d], &[x, z]| [a.min(x), b.min(z), c.max(x), d.max(z)],
-    )
 }

@@ -193,7 +193,16 @@ pub fn green(tags: &[(&str, &str)]) -> bool {
     }
 }
 
-/// What street furniture a node's tags make it, and the tag that says so.
+/// Whether a closed way's or a multipolygon's tags make it paved open ground: a square,
+/// a pedestrian area, a car park or a market place (`docs/osm.md`).
+pub fn square(tags: &[(&str, &str)]) -> bool {
+    let area = get(tags, "area") == Some("yes");
+    get(tags, "place") == Some("square")
+        || (area && matches!(get(tags, "highway"), Some("pedestrian" | "footway")))
+        || (matches!(get(tags, "amenity"), Some("parking" | "marketplace"))
+            && get(tags, "parking").is_none_or(|p| p == "surface"))
+}
+
 pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
     let tagged = |k: &str, v: &str| format!("{k}={v}");
     if let Some(sign) = get(tags, "traffic_sign") {

@@ -410,7 +410,8 @@ fn carriageway_sidewalks_and_blocks_tile_the_box_clear_of_buildings() {
 }
 
 /// A street along the box's south edge and, north of it, a park with a pond (a
-/// multipolygon), a lawn overlapping the park's east side, and an asphalt pitch.
+/// multipolygon), a lawn overlapping the park's east side, an asphalt pitch, and a
+/// square overlapping the lawn's east side.
 const GREEN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
 <osm version="0.6">
   <bounds minlat="60.0000000" minlon="25.0000000" maxlat="60.0010000" maxlon="25.0020000"/>
@@ -432,6 +433,10 @@ const GREEN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <node id="42" lat="60.0004" lon="25.0018"/>
   <node id="43" lat="60.0008" lon="25.0018"/>
   <node id="44" lat="60.0008" lon="25.0014"/>
+  <node id="51" lat="60.0005" lon="25.0010"/>
+  <node id="52" lat="60.0005" lon="25.0013"/>
+  <node id="53" lat="60.0007" lon="25.0013"/>
+  <node id="54" lat="60.0007" lon="25.0010"/>
   <way id="100"><nd ref="1"/><nd ref="2"/><tag k="highway" v="residential"/></way>
   <way id="101"><nd ref="11"/><nd ref="12"/><nd ref="13"/><nd ref="14"/><nd ref="11"/></way>
   <way id="102"><nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="24"/><nd ref="21"/></way>
@@ -442,6 +447,10 @@ const GREEN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <way id="104">
     <nd ref="41"/><nd ref="42"/><nd ref="43"/><nd ref="44"/><nd ref="41"/>
     <tag k="leisure" v="pitch"/><tag k="surface" v="asphalt"/>
+  </way>
+  <way id="105">
+    <nd ref="51"/><nd ref="52"/><nd ref="53"/><nd ref="54"/><nd ref="51"/>
+    <tag k="place" v="square"/>
   </way>
   <relation id="300">
     <member type="way" ref="101" role="outer"/>
@@ -459,6 +468,13 @@ fn green_ground_is_the_union_of_the_green_areas_less_their_holes_on_the_blocks()
     // asphalt pitch.
     let expected = (24.0 + 24.0 - 8.0 - 1.0) * 1e-8 * dx * dz;
     let area: f64 = map.green.iter().map(|g| g.shape.area).sum();
+    assert!(
+        (area - expected).abs() < 1e-6 * expected,
+        "{area} {expected}"
+    );
+    // The square 2 × 3, less its 2 × 2 under the lawn: grass wins.
+    let expected = 2.0 * 1e-8 * dx * dz;
+    let area: f64 = map.squares.iter().map(|g| g.shape.area).sum();
     assert!(
         (area - expected).abs() < 1e-6 * expected,
         "{area} {expected}"
@@ -496,11 +512,12 @@ fn green_ground_is_the_union_of_the_green_areas_less_their_holes_on_the_blocks()
         &GREEN[first..start],
         &GREEN[end..]
     );
-    assert_eq!(read(reordered.as_bytes(), None).unwrap().green, map.green);
+    let again = read(reordered.as_bytes(), None).unwrap();
+    assert_eq!((again.green, again.squares), (map.green, map.squares));
 }
 
 #[test]
-fn green_tags_are_grass_parks_and_woods_but_not_paved_pitches() {
+fn green_tags_are_grass_parks_and_woods_and_squares_are_paved_open_ground() {
     let green = |tags: &[(&str, &str)]| tags::green(tags);
     assert!(green(&[("leisure", "park")]));
     assert!(green(&[("landuse", "grass")]));
@@ -510,4 +527,16 @@ fn green_tags_are_grass_parks_and_woods_but_not_paved_pitches() {
     assert!(!green(&[("leisure", "pitch"), ("surface", "asphalt")]));
     assert!(!green(&[("landuse", "residential")]));
     assert!(!green(&[("amenity", "parking")]));
+    let square = |tags: &[(&str, &str)]| tags::square(tags);
+    assert!(square(&[("place", "square")]));
+    assert!(square(&[("highway", "pedestrian"), ("area", "yes")]));
+    assert!(
+        !square(&[("highway", "pedestrian")]),
+        "a street, not an area"
+    );
+    assert!(square(&[("amenity", "parking")]));
+    assert!(!square(&[
+        ("amenity", "parking"),
+        ("parking", "underground")
+    ]));
 }

@@ -11,8 +11,9 @@
 //!   from its exact extent across the row (padded by a hair against rounding);
 //! - its centre is inside (even-odd over the outer ring and the holes, by scanline).
 //!
-//! The map's green ground on the block (`OsmMap::green`: parks, grass, woods) counts as
-//! more holes, so a park keeps its grass and buildings fill only the rest of the block.
+//! The map's open ground on the block (`OsmMap::green`: parks, grass, woods;
+//! `OsmMap::squares`: squares, pedestrian areas, car parks) counts as more holes, so a
+//! park keeps its grass, a square stays open, and buildings fill only the rest.
 //!
 //! Algorithm 1 then runs on those cells exactly as on a layout's pixels (`filler`), with
 //! the widths and the gap in cells (rounded, at least one), from the block's own stream
@@ -51,16 +52,18 @@ pub fn place_map(map: &OsmMap, sizes: &Sizes, seed: u64) -> Vec<MapBuilding> {
             if map.block_is_built(block) {
                 return Vec::new();
             }
-            fill_block(block, &map.green_on(n), n as u32, sizes, seed)
+            let mut open = map.green_on(n);
+            open.extend(map.squares_on(n));
+            fill_block(block, &open, n as u32, sizes, seed)
         })
         .collect();
     per_block.into_iter().flatten().collect()
 }
 
-/// Algorithm 1 on one block polygon, number `n` of the map's, less its `green` ground.
+/// Algorithm 1 on one block polygon, number `n` of the map's, less its `open` ground.
 fn fill_block(
     block: &MapPolygon,
-    green: &[&MapPolygon],
+    open: &[&MapPolygon],
     n: u32,
     sizes: &Sizes,
     seed: u64,
@@ -68,13 +71,12 @@ fn fill_block(
     let Some(frame) = Frame::of(&block.outer) else {
         return Vec::new();
     };
-    // Green ground lies inside its block, so its rings are more holes to the even-odd
-    // test (and a hole in the green, block again).
+    // Open ground lies inside its block, so its rings are more holes to the even-odd
+    // test (and a hole in it, block again).
     let rings: Vec<Vec<[f64; 2]>> = std::iter::once(&block.outer)
         .chain(&block.holes)
         .chain(
-            green
-                .iter()
+            open.iter()
                 .flat_map(|g| std::iter::once(&g.outer).chain(&g.holes)),
         )
         .map(|ring| ring.iter().map(|&p| frame.to_uv(p)).collect())
@@ -278,7 +280,7 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::MapGreen;
+    use crate::model::MapArea;
     use crate::model::geometry::polygon::contains;
     use crate::test_support::street_map;
 
@@ -420,25 +422,24 @@ mod tests {
     }
 
     #[test]
-    fn green_ground_keeps_its_grass_and_the_rest_of_its_block_is_filled() {
+    fn green_ground_and_squares_stay_open_and_the_rest_of_their_block_is_filled() {
         let mut map = map();
         let plain = placed(&map, None);
-        // A strip across block 0's west end, 15 m of its 70, and all of block 1.
+        // Green: a strip across block 0's west end, 15 m of its 70.
         let (k, s) = (libm::cos(20f64.to_radians()), libm::sin(20f64.to_radians()));
         let strip = polygon(
             turned([60.0 - 27.5 * k, 60.0 - 27.5 * s], (15.0, 45.0), 20.0),
             Vec::new(),
         );
-        map.green = vec![
-            MapGreen {
-                block: 0,
-                shape: strip.clone(),
-            },
-            MapGreen {
-                block: 1,
-                shape: map.blocks[1].clone(),
-            },
-        ];
+        map.green = vec![MapArea {
+            block: 0,
+            shape: strip.clone(),
+        }];
+        // Block 1 a square.
+        map.squares = vec![MapArea {
+            block: 1,
+            shape: map.blocks[1].clone(),
+        }];
         let buildings = placed(&map, None);
         let in_0 = |bs: &[MapBuilding]| {
             bs.iter()
@@ -448,7 +449,7 @@ mod tests {
         assert!(in_0(&buildings) >= 5, "{}", in_0(&buildings));
         assert!(
             buildings.iter().all(|b| b.element == OsmElement::Placed(0)),
-            "the all-green block stays green"
+            "the block that is a square stays open"
         );
         // Whether any point of a grid over `b`'s footprint lies on the strip.
         let on_grass = |b: &MapBuilding| {

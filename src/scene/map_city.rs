@@ -4,8 +4,9 @@
 //! | object | class | geometry | material |
 //! |---|---|---|---|
 //! | `ground` | ground | one quad under the box, [`GROUND_MARGIN`] beyond it | `grass` |
-//! | `block_0007` | block; ground (terrain) without a building | block 7's polygon at kerb height, less the map's green ground on it | `paving`; `grass` without a building (a park, a square or a yard) |
+//! | `block_0007` | block; ground (terrain) without a building | block 7's polygon at kerb height, less the map's green ground and squares on it | `paving`; `grass` without a building (a park, a square or a yard) |
 //! | `green_0002` | ground (terrain) | a piece of the map's green ground (parks, gardens, grass, woods: `OsmMap::green`) at kerb height | `grass` |
+//! | `square_0002` | block | a piece of the map's paved open ground (squares, pedestrian areas, car parks: `OsmMap::squares`) at kerb height | `paving` |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
@@ -107,16 +108,17 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
     }
 }
 
-/// Every block at kerb height, less the map's green ground on it: paved where a building
+/// Every block at kerb height, less the map's open ground on it: paved where a building
 /// stands in the block, grass (terrain) where none does (a park, a square or a yard); then
-/// the green ground itself, grass.
+/// the green ground, grass, and the squares, paved.
 fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
     let mut objects: Vec<SceneObject> = map
         .blocks
         .iter()
         .enumerate()
         .map(|(n, block)| {
-            let green = map.green_on(n);
+            let mut open = map.green_on(n);
+            open.extend(map.squares_on(n));
             let (kind, material, tile) = if map.block_is_built(block) {
                 (ObjectKind::Block, surfaces.paving, 2.0)
             } else {
@@ -124,7 +126,7 @@ fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
                 (ObjectKind::Ground, surfaces.grass, tile)
             };
             let mut mesh = MeshBuilder::new(material);
-            for part in difference(block, &green) {
+            for part in difference(block, &open) {
                 mesh.polygon(&part.outer, &part.holes, KERB_Y, tile);
             }
             object(kind, format!("block_{n:04}"), vec![mesh])
@@ -135,6 +137,11 @@ fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
         let tile = super::procedural::GRASS_TILE;
         mesh.polygon(&g.shape.outer, &g.shape.holes, KERB_Y, tile);
         object(ObjectKind::Ground, format!("green_{i:04}"), vec![mesh])
+    }));
+    objects.extend(map.squares.iter().enumerate().map(|(i, g)| {
+        let mut mesh = MeshBuilder::new(surfaces.paving);
+        mesh.polygon(&g.shape.outer, &g.shape.holes, KERB_Y, 2.0);
+        object(ObjectKind::Block, format!("square_{i:04}"), vec![mesh])
     }));
     objects
 }

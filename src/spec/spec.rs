@@ -136,8 +136,8 @@ pub struct OsmLayoutSpec {
     pub bbox: Option<[f64; 4]>,
     /// Fills every block the map has no building in with buildings placed by the paper's
     /// Algorithm 1, sized as `[buildings]` says (by default one size per facade, which
-    /// then gives the building its facade and height), keeping off the map's green ground
-    /// (parks, lawns, woods). Off by default: in a well-mapped city such a block is a
+    /// then gives the building its facade and height), keeping off the map's open ground
+    /// (parks, lawns, woods, squares, car parks). Off by default: in a well-mapped city such a block is a
     /// park, a square or a yard; turn it on where the map is sparse and its houses are not
     /// mapped.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]

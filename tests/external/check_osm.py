@@ -16,8 +16,10 @@ its own haversine lengths.
   sidewalks) by more than 0.01 m²; every paved segment's centreline lies on the
   carriageway; blocks, sidewalks and carriageway tile the box without overlap;
 - (shapely) the map's green ground is the union of the green areas osmium assembles
-  (parks, gardens, grass, woods: the tags of docs/osm.md) cut to the blocks, its area
-  within 2 %, each piece inside the block it names and none on the street.
+  (parks, gardens, grass, woods: the tags of docs/osm.md) cut to the blocks, and its
+  squares the union of the squares, pedestrian areas and car parks less the green, cut
+  to the blocks: each within 2 % of the map's area, each piece inside the block it
+  names and none on the street.
 Prints the counts and the worst differences; exits 1 on the first failed check.
 """
 import json
@@ -52,6 +54,16 @@ def green(tags):
     )
 
 
+def square(tags):
+    """docs/osm.md's paved open ground, as `osm::tags::square` reads it."""
+    area = tags.get("area") == "yes"
+    return (
+        tags.get("place") == "square"
+        or (area and tags.get("highway") in ("pedestrian", "footway"))
+        or (tags.get("amenity") in ("parking", "marketplace") and tags.get("parking") in (None, "surface"))
+    )
+
+
 def ring_area(points):
     """|shoelace area| in m² of (lat, lon) points, equirectangular at their mean latitude."""
     lat0 = math.radians(sum(p[0] for p in points) / len(points))
@@ -69,6 +81,7 @@ class Reader(osmium.SimpleHandler):
         self.outside = 0
         self.ways = {}  # id -> (class, length m, nodes inside, node count)
         self.green = []  # [(+1 outer | -1 inner, [(lat, lon)])] per green area
+        self.squares = []  # the same per square
 
     def inside(self, loc):
         s, w, n, e = self.box
@@ -77,8 +90,9 @@ class Reader(osmium.SimpleHandler):
     def area(self, a):
         building = a.tags.get("building")
         if building is None or building == "no":
-            if green(a.tags):
-                self.green.append([
+            kind = self.green if green(a.tags) else self.squares if square(a.tags) else None
+            if kind is not None:
+                kind.append([
                     (sign, [(n.lat, n.lon) for n in ring])
                     for outer in a.outer_rings()
                     for sign, ring in [(1, outer)] + [(-1, i) for i in a.inner_rings(outer)]
@@ -179,21 +193,32 @@ def main(extract, map_path):
 
 
 def check_green(m, reader):
-    """The map's green ground against osmium's green areas cut to the map's blocks."""
+    """The map's green ground and squares against osmium's areas cut to the map's blocks."""
     lat0, lon0 = m["origin"]
     kx, kz = m["metres_per_degree"]
     project = lambda pts: [((lon - lon0) * kx, -(lat - lat0) * kz) for lat, lon in pts]
-    areas = []
-    for rings in reader.green:
-        outer = shapely.union_all([Polygon(project(r)).buffer(0) for s, r in rings if s > 0])
-        inner = [Polygon(project(r)).buffer(0) for s, r in rings if s < 0]
-        areas.append(shapely.difference(outer, shapely.union_all(inner)) if inner else outer)
+
+    def union(shapes):
+        areas = []
+        for rings in shapes:
+            outer = shapely.union_all([Polygon(project(r)).buffer(0) for s, r in rings if s > 0])
+            inner = [Polygon(project(r)).buffer(0) for s, r in rings if s < 0]
+            areas.append(shapely.difference(outer, shapely.union_all(inner)) if inner else outer)
+        return shapely.union_all(areas)
+
+    green = union(reader.green)
+    squares = shapely.difference(union(reader.squares), green)
+    check_open("green", green, len(reader.green), m, m["green"])
+    check_open("squares", squares, len(reader.squares), m, m["squares"])
+
+
+def check_open(name, theirs_union, count, m, mine):
     blocks = polygons(m["blocks"])
-    theirs = shapely.intersection(shapely.union_all(areas), shapely.union_all(blocks)).area
-    pieces = [(g["block"], Polygon(g["shape"]["outer"], g["shape"]["holes"])) for g in m["green"]]
+    theirs = shapely.intersection(theirs_union, shapely.union_all(blocks)).area
+    pieces = [(g["block"], Polygon(g["shape"]["outer"], g["shape"]["holes"])) for g in mine]
     ours = sum(p.area for _, p in pieces)
     if theirs > 0 and abs(ours / theirs - 1) > 0.02:
-        fail(f"green ground {ours:.1f} m² in the map, {theirs:.1f} m² of osmium's green areas on the blocks")
+        fail(f"{name}: {ours:.1f} m² in the map, {theirs:.1f} m² of osmium's areas on the blocks")
     street = shapely.union_all(polygons(m["carriageway"]) + polygons(m["sidewalks"]))
     worst = 0.0
     for n, piece in pieces:
@@ -201,9 +226,9 @@ def check_green(m, reader):
         on_street = shapely.intersection(piece, street).area
         worst = max(worst, outside, on_street)
     if worst > 0.01:
-        fail(f"a green piece leaves its block or lies on the street by {worst:.3f} m²")
+        fail(f"{name}: a piece leaves its block or lies on the street by {worst:.3f} m²")
     print(
-        f"green: {len(reader.green)} green areas osmium assembles, {theirs:.0f} m² of them on the "
+        f"{name}: {count} areas osmium assembles, {theirs:.0f} m² of them on the "
         f"blocks against the map's {ours:.0f} m² in {len(pieces)} pieces "
         f"({100 * abs(ours / theirs - 1) if theirs else 0:.3f} %); each piece in its block, "
         f"none on the street (worst {worst:.4f} m²)"

@@ -77,6 +77,19 @@ pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
     inside
 }
 
+/// `[min_x, min_z, max_x, max_z]` of `ring`.
+pub fn bounds(ring: &[[f64; 2]]) -> [f64; 4] {
+    let far = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    ring.iter().fold(far, |[a, b, c, d], &[x, z]| {
+        [a.min(x), b.min(z), c.max(x), d.max(z)]
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -80,6 +80,7 @@ fn map() -> OsmMap {
             4060.0,
         )],
         green: Vec::new(),
+        squares: Vec::new(),
         left_out: LeftOut::default(),
     }
 }
@@ -214,16 +215,25 @@ fn facades_keep_their_scale_on_every_wall() {
 }
 
 #[test]
-fn green_ground_is_grass_cut_out_of_its_paved_block() {
+fn green_ground_and_squares_are_cut_out_of_their_paved_block() {
     let mut map = map();
     let lawn = MapPolygon {
         outer: vec![[35.0, 25.0], [55.0, 25.0], [55.0, 45.0], [35.0, 45.0]],
         holes: Vec::new(),
         area: 400.0,
     };
-    map.green = vec![crate::model::MapGreen {
+    map.green = vec![crate::model::MapArea {
         block: 0,
         shape: lawn,
+    }];
+    let plaza = MapPolygon {
+        outer: vec![[35.0, 5.0], [55.0, 5.0], [55.0, 15.0], [35.0, 15.0]],
+        holes: Vec::new(),
+        area: 200.0,
+    };
+    map.squares = vec![crate::model::MapArea {
+        block: 0,
+        shape: plaza,
     }];
     let scene = map_city(&MapSceneInput {
         lamps: &[],
@@ -233,12 +243,14 @@ fn green_ground_is_grass_cut_out_of_its_paved_block() {
     });
     let named = |name: &str| scene.objects.iter().find(|o| o.name == name).unwrap();
     let (block, green) = (named("block_0000"), named("green_0000"));
+    let square = named("square_0000");
     assert_eq!(
-        (block.kind, green.kind),
-        (ObjectKind::Block, ObjectKind::Ground)
+        (block.kind, green.kind, square.kind),
+        (ObjectKind::Block, ObjectKind::Ground, ObjectKind::Block)
     );
     let area = |o: &SceneObject| triangles(o).map(area_from_above).sum::<f64>();
-    assert!((area(block) - 3660.0).abs() < 1e-3, "{}", area(block));
+    assert!((area(block) - 3460.0).abs() < 1e-3, "{}", area(block));
+    assert!((area(square) - 200.0).abs() < 1e-3, "{}", area(square));
     assert!((area(green) - 400.0).abs() < 1e-3, "{}", area(green));
     let grass = scene
         .materials
@@ -247,6 +259,7 @@ fn green_ground_is_grass_cut_out_of_its_paved_block() {
         .unwrap() as u32;
     assert!(green.meshes.iter().all(|m| m.material == grass));
     assert!(block.meshes.iter().all(|m| m.material != grass));
+    assert!(square.meshes.iter().all(|m| m.material != grass));
 }
 
 #[test]
