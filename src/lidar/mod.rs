@@ -16,7 +16,7 @@ use crate::spec::LidarSpec;
 use bvh::{Bvh, Tri};
 
 /// Bump when a scan's bytes change.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// The weakest return a spec's scanner detects: albedo × cos(incidence) × the air's
 /// attenuation below this is lost (dark, grazing or fogged-out surfaces).
@@ -172,10 +172,12 @@ pub fn semantic_id(kind: ObjectKind) -> u32 {
         Rider => 31,
         Road => 40,
         Marking => 60,
-        Sidewalk => 48,
+        // A block is paved ground between the streets (a map's squares too), as
+        // Cityscapes' sidewalk 8 takes it; grass is ground.
+        Sidewalk | Block => 48,
         Building | Text => 50,
         Tree => 70,
-        Ground | Block | Hills => 72,
+        Ground | Hills => 72,
         Lamp | SignPole | SignalPole | StreetPole => 80,
         Sign | TrafficLight => 81,
         Mesh => 99,
