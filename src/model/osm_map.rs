@@ -126,14 +126,10 @@ impl OsmMap {
 
     /// The distance from `p` to the nearest building wall (infinite without buildings).
     pub fn building_distance(&self, p: [f64; 2]) -> f64 {
-        use super::geometry::polygon::{distance, nearest};
         self.buildings
             .iter()
             .flat_map(|b| std::iter::once(&b.outer).chain(&b.holes))
-            .flat_map(|ring| {
-                (0..ring.len())
-                    .map(move |e| distance(p, nearest(ring[e], ring[(e + 1) % ring.len()], p)))
-            })
+            .map(|ring| super::geometry::polygon::ring_distance(ring, p))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -148,14 +144,13 @@ impl OsmMap {
         })
     }
 
-    /// The green ground on block `n` (an index into [`OsmMap::blocks`]).
-    pub fn green_on(&self, n: usize) -> Vec<&MapPolygon> {
-        on_block(&self.green, n)
-    }
-
-    /// The squares on block `n` (an index into [`OsmMap::blocks`]).
-    pub fn squares_on(&self, n: usize) -> Vec<&MapPolygon> {
-        on_block(&self.squares, n)
+    /// The open ground on block `n` (an index into [`OsmMap::blocks`]): its green
+    /// ground, then its squares.
+    pub fn open_on(&self, n: usize) -> Vec<&MapPolygon> {
+        (self.green.iter().chain(&self.squares))
+            .filter(|g| g.block as usize == n)
+            .map(|g| &g.shape)
+            .collect()
     }
 
     /// Whether `p` lies inside a building's footprint (not in one of its courtyards).
@@ -165,15 +160,6 @@ impl OsmMap {
             .iter()
             .any(|b| contains(&b.outer, p) && !b.holes.iter().any(|h| contains(h, p)))
     }
-}
-
-/// The pieces of `areas` on block `n`.
-fn on_block(areas: &[MapArea], n: usize) -> Vec<&MapPolygon> {
-    areas
-        .iter()
-        .filter(|g| g.block as usize == n)
-        .map(|g| &g.shape)
-        .collect()
 }
 
 /// A box in degrees.

@@ -189,10 +189,8 @@ fn green_tree_sites(
         let rings: Vec<&Vec<[f64; 2]>> =
             std::iter::once(&shape.outer).chain(&shape.holes).collect();
         let edge = |p: [f64; 2]| {
-            rings
-                .iter()
-                .flat_map(|r| r.iter().zip(r.iter().cycle().skip(1)))
-                .map(|(&a, &b)| distance(p, nearest(a, b, p)))
+            (rings.iter())
+                .map(|r| crate::model::geometry::polygon::ring_distance(r, p))
                 .fold(f64::INFINITY, f64::min)
         };
         let [x0, z0, x1, z1] = crate::model::geometry::polygon::bounds(&shape.outer);

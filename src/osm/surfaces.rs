@@ -31,7 +31,7 @@ const ARC_STEP: f64 = std::f64::consts::PI / 12.0;
 pub const MIN_BLOCK: f64 = 4.0;
 
 /// The smallest piece of open ground kept, square metres.
-pub const MIN_GREEN: f64 = 1.0;
+pub const MIN_OPEN: f64 = 1.0;
 
 /// Carriageway, sidewalks and blocks of `roads` inside `extent`.
 pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
@@ -103,7 +103,7 @@ pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
 /// The open ground on `blocks`: the union of the `green` areas, and the union of the
 /// `squares` less the green (a lawn mapped on a square is grass), each cut to each
 /// block, in block order (each its outer ring then its holes); pieces under
-/// [`MIN_GREEN`] dropped.
+/// [`MIN_OPEN`] dropped.
 pub fn open_ground(
     green: &[Contours],
     squares: &[Contours],
@@ -143,7 +143,7 @@ fn on_blocks(union: &Contours, blocks: &[MapPolygon]) -> Vec<MapArea> {
         out.extend(
             intersection(block, &near)
                 .into_iter()
-                .filter(|p| p.area >= MIN_GREEN)
+                .filter(|p| p.area >= MIN_OPEN)
                 .map(|shape| MapArea {
                     block: n as u32,
                     shape,

@@ -52,8 +52,7 @@ pub fn place_map(map: &OsmMap, sizes: &Sizes, seed: u64) -> Vec<MapBuilding> {
             if map.block_is_built(block) {
                 return Vec::new();
             }
-            let mut open = map.green_on(n);
-            open.extend(map.squares_on(n));
+            let open = map.open_on(n);
             fill_block(block, &open, n as u32, sizes, seed)
         })
         .collect();

@@ -117,8 +117,7 @@ fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
         .iter()
         .enumerate()
         .map(|(n, block)| {
-            let mut open = map.green_on(n);
-            open.extend(map.squares_on(n));
+            let open = map.open_on(n);
             let (kind, material, tile) = if map.block_is_built(block) {
                 (ObjectKind::Block, surfaces.paving, 2.0)
             } else {

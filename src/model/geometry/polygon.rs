@@ -77,6 +77,14 @@ pub fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
     inside
 }
 
+/// The distance from `p` to the nearest point on the edges of the closed `ring`
+/// (infinite for an empty ring).
+pub fn ring_distance(ring: &[[f64; 2]], p: [f64; 2]) -> f64 {
+    (0..ring.len())
+        .map(|e| distance(p, nearest(ring[e], ring[(e + 1) % ring.len()], p)))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// `[min_x, min_z, max_x, max_z]` of `ring`.
 pub fn bounds(ring: &[[f64; 2]]) -> [f64; 4] {
     let far = [
