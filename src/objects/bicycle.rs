@@ -24,7 +24,7 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
-use super::ground_spots::{GroundSpots, RoadSlot};
+use super::ground_spots::{RoadSlot, StripSpots};
 use super::person::{self, Cap, HAIR, SHIRTS, SHOES, SKIN, TROUSERS, WALKER_ROOM};
 use super::person_pose::{ANKLE, ELBOW, HIP, KNEE, SHOULDER, WRIST};
 use super::vehicle_parts::{Frame, Solid, finish_all};
@@ -128,14 +128,17 @@ pub fn saddle_for(height: f64) -> f64 {
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
-    spots: &mut GroundSpots,
+    spots: &mut impl StripSpots,
     placing: &mut Placing,
 ) -> u32 {
     let mut placed = 0;
     let [low, high] = spec.height_range();
-    let strip = 2.0 * spots.strip_half();
-    // Parked: a metre from the curb, clear of the line a sidewalks camera walks.
-    let far = strip * (1.0 - WALK_SHARE) - WALKER_ROOM - PARKED_ROOM;
+    // Parked: a metre from the curb, clear of the line a sidewalks camera walks, on a
+    // sidewalk `strip` metres wide.
+    let from_curb = |strip: f64| {
+        let far = strip * (1.0 - WALK_SHARE) - WALKER_ROOM - PARKED_ROOM;
+        PARKED_ROOM.max(1.0).min(far.max(PARKED_ROOM))
+    };
     let mut misses = 0;
     for _ in 0..spec.count {
         if misses >= GIVE_UP {
@@ -146,7 +149,6 @@ pub fn place(
         let lane_pick: f64 = rng.random();
         let mut lane = None;
         let (frame, ridden) = if parked {
-            let from_curb = PARKED_ROOM.max(1.0).min(far.max(PARKED_ROOM));
             let Some(spot) =
                 (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, PARKED_ROOM, from_curb, 1))
             else {

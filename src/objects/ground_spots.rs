@@ -9,6 +9,8 @@
 
 mod ways;
 
+pub use ways::CrossingSpot;
+
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
@@ -114,6 +116,86 @@ pub trait RoadSpots {
         attempts: u32,
         slot: impl Fn(f64) -> Option<RoadSlot>,
     ) -> Option<Spot>;
+}
+
+/// Where people and parked bicycles stand beside the roads: a layout's sidewalk strips
+/// ([`GroundSpots`]) or a map's sidewalks (`map_objects::MapSpots`).
+pub trait StripSpots: RoadSpots {
+    /// A free sidewalk spot for an object of `radius` metres, `from_curb(w)` metres from
+    /// the kerb of a sidewalk `w` metres wide (a layout's strips are all one width), or
+    /// None after `attempts`. Its `travel` is the traffic's in the lane nearest to it.
+    fn strip_at(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: impl Fn(f64) -> f64,
+        attempts: u32,
+    ) -> Option<Spot>;
+
+    /// A free spot on a zebra crossing for a person crossing it:
+    /// [`GroundSpots::zebra`]. None where the ground has no zebra a person is placed on
+    /// (a map's: the spec refuses `crossing` on a map).
+    fn zebra(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        reach: f64,
+        beyond: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot>;
+
+    /// A free spot at a zebra's end for a person waiting to cross:
+    /// [`GroundSpots::zebra_kerb`]. None where there is none (a map's: the spec refuses
+    /// `waiting` on a map).
+    fn zebra_kerb(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot>;
+
+    /// Marks the footprint taken last as a person walking along a sidewalk, out of the
+    /// way of the others' walks ([`GroundSpots::free_run`]).
+    fn mark_walker(&mut self);
+}
+
+impl StripSpots for GroundSpots<'_> {
+    fn strip_at(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: impl Fn(f64) -> f64,
+        attempts: u32,
+    ) -> Option<Spot> {
+        let from_curb = from_curb(2.0 * self.strip_half());
+        GroundSpots::strip_at(self, rng, radius, from_curb, attempts)
+    }
+
+    fn zebra(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        reach: f64,
+        beyond: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot> {
+        GroundSpots::zebra(self, rng, radius, reach, beyond, attempts)
+    }
+
+    fn zebra_kerb(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot> {
+        GroundSpots::zebra_kerb(self, rng, radius, from_curb, attempts)
+    }
+
+    fn mark_walker(&mut self) {
+        GroundSpots::mark_walker(self)
+    }
 }
 
 impl RoadSpots for GroundSpots<'_> {

@@ -6,40 +6,31 @@
 //! | tree | at the map's `natural=tree` nodes, in node order, then on the map's green ground where it plants none (`green_tree_sites`, about one per 12 m square, in a seeded order), up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
-//! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`] clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`] plus its half length from every other road's carriageway |
+//! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`](crate::model::MAP_CAMERA_LANE) clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`](super::map_spots::JUNCTION_CLEARANCE) plus its half length from every other road's carriageway |
+//! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing ([`MapSpots`]); none on the zebras yet |
+//! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
 //!
-//! Other kinds are not placed on maps yet: the spec refuses them, and [`insert_map`]
-//! returns [`ObjectsError::NotOnMap`]. Entry `i` draws from `rng::stream(seed, "objects",
+//! Text, street names and moving traffic are not on maps yet: the spec refuses them, and
+//! [`insert_map`] returns [`ObjectsError::NotOnMap`]. Entry `i` draws from `rng::stream(seed, "objects",
 //! i)` as on a layout.
 
 use std::collections::BTreeMap;
 
 use rand::RngExt;
-use rand_pcg::Pcg64;
 
-use super::footprint_grid::FootprintGrid;
-use super::ground_spots::{Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot};
+use super::ground_spots::{LAMP_CLEARANCE, Spot};
+use super::map_spots::MapSpots;
 use super::traffic_signs::{self, MappedSign};
 use super::{
-    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, car, sign_codes, traffic_lights,
-    tree, user_mesh,
+    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, person, sign_codes,
+    traffic_lights, tree, user_mesh,
 };
-use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
-use crate::model::{
-    FacadeSet, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment,
-    map_camera_lane,
-};
+use crate::model::geometry::polygon::{direction, distance, nearest};
+use crate::model::{FacadeSet, FeatureKind, Lamp, OsmMap, ParsedLayout, PavedSegment};
 use crate::spec::{EntryKind, ObjectSpec};
 
-/// Metres a car keeps, beyond its half length, from every other road's carriageway: the
-/// mouth of a junction stays clear.
-pub const JUNCTION_CLEARANCE: f64 = 3.0;
 /// How far behind the kerb a mapped signal's pole stands, metres.
 pub const POLE_BEHIND_KERB: f64 = 0.5;
-/// Ground a mapped crossing or signal keeps free of cars, radius in metres.
-const CROSSING_ROOM: f64 = 4.0;
-/// The narrowest vehicle's width, metres (a small car's).
-const NARROWEST: f64 = 1.6;
 /// Largest crown radius of a mapped tree, metres.
 const MAX_CROWN: f64 = 4.0;
 /// Spacing of the trees seeded on green ground, metres: one to a square this wide, and
@@ -62,9 +53,11 @@ pub struct MapObjectsInput<'a> {
 }
 
 /// The kinds of entries a map places.
-const MAP_KINDS: [EntryKind; 5] = [
+const MAP_KINDS: [EntryKind; 7] = [
     EntryKind::Tree,
     EntryKind::Car,
+    EntryKind::Person,
+    EntryKind::Bicycle,
     EntryKind::TrafficLight,
     EntryKind::Sign,
     EntryKind::Mesh,
@@ -96,46 +89,11 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         seed: input.seed,
     };
     let mut placing = Placing::new(&objects);
-    let mut sites = tree_sites(input.map);
-    sites.extend(green_tree_sites(input.map, input.lamps, &sites, input.seed));
-    let mut spots = MapSpots::new(input.map, input.lamps, &sites);
-    let signals = signal_sites(input.map);
-    let signs = sign_sites(input.map);
+    let mut ground = MapGround::new(input);
     let mut placed = Vec::new();
     for (i, spec) in input.specs.iter().enumerate() {
         let mut rng = crate::rng::stream(input.seed, "objects", i as u64);
-        let before = placing.out.objects.len();
-        let count = match spec.kind {
-            EntryKind::Car => car::place(spec, &mut rng, &mut spots, &mut placing),
-            EntryKind::TrafficLight => traffic_lights::place_mapped(
-                spec,
-                &mut rng,
-                &signals,
-                &mut |f| spots.claim(f),
-                &mut placing,
-            ),
-            EntryKind::Mesh => {
-                let tag = spec.at.as_deref().unwrap_or_default();
-                let paved: Vec<PavedSegment> = input.map.paved_segments().collect();
-                let clear = |p: [f64; 2], r: f64| clear_ground(input.map, &paved, None, p, r);
-                user_mesh::place_mapped(
-                    spec,
-                    &mut rng,
-                    &node_sites(input.map, tag),
-                    &clear,
-                    &mut |f| spots.claim(f),
-                    &mut placing,
-                )?
-            }
-            EntryKind::Sign => {
-                traffic_signs::place_mapped(spec, &signs, &mut |f| spots.claim(f), &mut placing)
-            }
-            _ => {
-                tree::place_mapped(spec, &mut rng, &sites, &mut placing);
-                (placing.out.objects.len() - before) as u32
-            }
-        };
-        placed.push(count);
+        placed.push(ground.place(input, spec, &mut rng, &mut placing)?);
     }
     let (textures, materials) = placing.book.finish();
     Ok(Inserted {
@@ -146,6 +104,73 @@ pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
         sign_faces: placing.out.sign_faces,
         placed,
     })
+}
+
+/// Where a map's entries stand: its trees' sites (mapped, then seeded on its green), its
+/// signals' poles and signs' posts, and the ground the entries take.
+struct MapGround<'a> {
+    trees: Vec<([f64; 2], f64)>,
+    signals: Vec<Vec<([f64; 2], [f64; 2])>>,
+    signs: Vec<MappedSign>,
+    spots: MapSpots<'a>,
+}
+
+impl<'a> MapGround<'a> {
+    fn new(input: &MapObjectsInput<'a>) -> MapGround<'a> {
+        let mut trees = tree_sites(input.map);
+        trees.extend(green_tree_sites(input.map, input.lamps, &trees, input.seed));
+        MapGround {
+            spots: MapSpots::new(input.map, input.lamps, &trees),
+            signals: signal_sites(input.map),
+            signs: sign_sites(input.map),
+            trees,
+        }
+    }
+
+    /// Places entry `spec`'s objects; returns how many it counts (as a layout's entry).
+    fn place(
+        &mut self,
+        input: &MapObjectsInput,
+        spec: &ObjectSpec,
+        rng: &mut rand_pcg::Pcg64,
+        placing: &mut Placing,
+    ) -> Result<u32, ObjectsError> {
+        let before = placing.out.objects.len();
+        let spots = &mut self.spots;
+        Ok(match spec.kind {
+            EntryKind::Car => car::place(spec, rng, spots, placing),
+            EntryKind::Bicycle => bicycle::place(spec, rng, spots, placing),
+            EntryKind::Person => {
+                person::place(spec, rng, spots, placing);
+                (placing.out.objects.len() - before) as u32
+            }
+            EntryKind::TrafficLight => {
+                let claim = &mut |f| spots.claim(f);
+                traffic_lights::place_mapped(spec, rng, &self.signals, claim, placing)
+            }
+            EntryKind::Mesh => {
+                let tag = spec.at.as_deref().unwrap_or_default();
+                let paved: Vec<PavedSegment> = input.map.paved_segments().collect();
+                let clear = |p: [f64; 2], r: f64| clear_ground(input.map, &paved, None, p, r);
+                let sites = node_sites(input.map, tag);
+                user_mesh::place_mapped(
+                    spec,
+                    rng,
+                    &sites,
+                    &clear,
+                    &mut |f| spots.claim(f),
+                    placing,
+                )?
+            }
+            EntryKind::Sign => {
+                traffic_signs::place_mapped(spec, &self.signs, &mut |f| spots.claim(f), placing)
+            }
+            _ => {
+                tree::place_mapped(spec, rng, &self.trees, placing);
+                (placing.out.objects.len() - before) as u32
+            }
+        })
+    }
 }
 
 /// The map's trees that can stand: each `natural=tree` node off the carriageways and out
@@ -355,187 +380,11 @@ fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
         .collect()
 }
 
-/// The map's paved segments as places for vehicles.
-struct MapSpots {
-    /// Every paved segment (the roads a vehicle keeps clear of).
-    all: Vec<PavedSegment>,
-    /// The segments a vehicle may stand on.
-    segments: Vec<PavedSegment>,
-    /// Arc length at each segment's end, segments end to end.
-    ends: Vec<f64>,
-    /// Whether each segment's road is one-way (driven `a → b` only).
-    oneway: Vec<bool>,
-    /// What stands: lamps, trees and what entries placed.
-    taken: FootprintGrid,
-    /// The ground around mapped crossings and signals, kept free of vehicles only (a
-    /// signal's own poles stand in it).
-    rooms: FootprintGrid,
-}
-
-impl MapSpots {
-    fn new(map: &OsmMap, lamps: &[Lamp], trees: &[([f64; 2], f64)]) -> MapSpots {
-        // Only segments where the narrowest vehicle can stand clear of the cameras' lane
-        // (see `near_side`): on a two-way road's far half, on a one-way road's right.
-        let all: Vec<PavedSegment> = map.paved_segments().collect();
-        let segments: Vec<PavedSegment> = all
-            .iter()
-            .copied()
-            .filter(|s| {
-                let near = if map.roads[s.road].oneway {
-                    map_camera_lane(s.width) + MAP_CAMERA_LANE
-                } else {
-                    0.0
-                };
-                s.width / 2.0 >= near + NARROWEST
-            })
-            .collect();
-        let ends = segments
-            .iter()
-            .scan(0.0, |at, s| {
-                *at += distance(s.a, s.b);
-                Some(*at)
-            })
-            .collect();
-        let oneway = segments.iter().map(|s| map.roads[s.road].oneway).collect();
-        let mut taken = FootprintGrid::new(GRID_CELL);
-        for l in lamps {
-            taken.push(Footprint::Circle(l.position, LAMP_CLEARANCE));
-        }
-        for (at, _) in trees {
-            taken.push(Footprint::Circle(*at, tree::TRUNK_ROOM));
-        }
-        let mut rooms = FootprintGrid::new(GRID_CELL);
-        let kept = [FeatureKind::Crossing, FeatureKind::TrafficSignals];
-        for f in map.features.iter().filter(|f| kept.contains(&f.kind)) {
-            rooms.push(Footprint::Circle(f.at, CROSSING_ROOM));
-        }
-        MapSpots {
-            all,
-            segments,
-            ends,
-            oneway,
-            taken,
-            rooms,
-        }
-    }
-
-    /// Takes `footprint` when it is clear of everything taken; whether it was.
-    fn claim(&mut self, footprint: Footprint) -> bool {
-        if self.taken.overlaps(&footprint) {
-            return false;
-        }
-        self.taken.push(footprint);
-        true
-    }
-
-    /// How far right of segment `k`'s centreline a vehicle driving along it (`forward`:
-    /// from `a` to `b`) keeps its near side, so that it stays [`MAP_CAMERA_LANE`] clear
-    /// of the cameras' lane: cameras drive `a → b` only, on a one-way road in the lane
-    /// [`map_camera_lane`] gives, and [`MAP_CAMERA_LANE`] right of a two-way road's (so on its far side, a vehicle
-    /// driving the other way needs only to keep to its own half).
-    fn near_side(&self, k: usize, forward: bool) -> f64 {
-        let camera = if self.oneway[k] {
-            map_camera_lane(self.segments[k].width)
-        } else {
-            MAP_CAMERA_LANE
-        };
-        if forward {
-            camera + MAP_CAMERA_LANE
-        } else {
-            MAP_CAMERA_LANE - camera
-        }
-    }
-
-    /// Whether a footprint centred at `p` with half length `half` is clear of every road
-    /// but `road`.
-    fn clear_of_other_roads(&self, road: usize, p: [f64; 2], half: f64) -> bool {
-        self.all
-            .iter()
-            .filter(|s| s.road != road)
-            .all(|s| distance(p, nearest(s.a, s.b, p)) > s.width / 2.0 + half + JUNCTION_CLEARANCE)
-    }
-
-    /// The circles covering a `half`-sized box at `p` along `dir`, grown by `grow` along it.
-    fn circles(p: [f64; 2], dir: [f64; 2], half: [f64; 2], grow: f64) -> Vec<Footprint> {
-        let r = half[1];
-        let reach = (half[0] + grow - r).max(0.0);
-        let n = (reach / r).ceil() as usize;
-        (0..=2 * n)
-            .map(|k| {
-                let t = if n == 0 {
-                    0.0
-                } else {
-                    -reach + reach * k as f64 / n as f64
-                };
-                Footprint::Circle([p[0] + dir[0] * t, p[1] + dir[1] * t], r)
-            })
-            .collect()
-    }
-}
-
-impl RoadSpots for MapSpots {
-    /// A paved segment drawn by length, a direction (one-way roads: theirs; else either),
-    /// and a place along it where `slot` fits wholly on the segment.
-    fn road(
-        &mut self,
-        rng: &mut Pcg64,
-        attempts: u32,
-        slot: impl Fn(f64) -> Option<RoadSlot>,
-    ) -> Option<Spot> {
-        let total = *self.ends.last()?;
-        (0..attempts).find_map(|_| {
-            let at = rng.random::<f64>() * total;
-            let k = self
-                .ends
-                .partition_point(|&e| e <= at)
-                .min(self.ends.len() - 1);
-            let forward = self.oneway[k] || rng.random::<bool>();
-            let along: f64 = rng.random();
-            let s = self.segments[k];
-            let r = slot(s.width)?;
-            if r.offset - r.half[1] < self.near_side(k, forward) {
-                return None;
-            }
-            let (a, b) = if forward { (s.a, s.b) } else { (s.b, s.a) };
-            let len = distance(a, b);
-            let room = len - 2.0 * r.half[0];
-            let n = left_normal(a, b)?;
-            if room <= 0.0 {
-                return None;
-            }
-            let dir = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
-            let t = r.half[0] + along * room;
-            // Right of the direction of travel: the left normal turned round.
-            let p = [
-                a[0] + dir[0] * t - n[0] * r.offset,
-                a[1] + dir[1] * t - n[1] * r.offset,
-            ];
-            if !self.clear_of_other_roads(s.road, p, r.half[0]) {
-                return None;
-            }
-            let probe = Self::circles(p, dir, r.half, r.gap);
-            if probe
-                .iter()
-                .any(|c| self.taken.overlaps(c) || self.rooms.overlaps(c))
-            {
-                return None;
-            }
-            for c in Self::circles(p, dir, r.half, 0.0) {
-                self.taken.push(c);
-            }
-            Some(Spot {
-                position: p,
-                travel: dir,
-                road: s.road as u32,
-            })
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{ObjectKind, SceneObject};
+    use crate::model::geometry::polygon::left_normal;
+    use crate::model::{MAP_CAMERA_LANE, ObjectKind, SceneObject, map_camera_lane};
     use crate::spec::SignKind;
 
     fn entries(text: &str) -> Vec<ObjectSpec> {
@@ -713,6 +562,65 @@ mod tests {
                     car.name
                 );
             }
+        }
+    }
+
+    /// The middle of an object's footprint's bounding box.
+    fn middle(object: &SceneObject) -> [f64; 2] {
+        let points = footprint(object);
+        let lo = points
+            .iter()
+            .fold([f64::INFINITY; 2], |m, p| [m[0].min(p[0]), m[1].min(p[1])]);
+        let hi = points.iter().fold([f64::NEG_INFINITY; 2], |m, p| {
+            [m[0].max(p[0]), m[1].max(p[1])]
+        });
+        [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0]
+    }
+
+    #[test]
+    fn people_and_parked_bicycles_stand_on_the_sidewalks_ridden_ones_in_the_lanes() {
+        let specs = entries(
+            "[[objects]]\nkind = 'person'\ncount = 60\n\
+             [[objects]]\nkind = 'bicycle'\ncount = 30\nparked = 0.5\n",
+        );
+        let a = place(&specs).expect("people and bicycles place");
+        assert_eq!(a, place(&specs).expect("they place"), "deterministic");
+        assert_eq!(a.placed, vec![60, 30]);
+        let map = crate::test_support::street_map();
+        // Metres from `p` to the nearest carriageway's edge (negative on one).
+        let kerb = |p: [f64; 2]| {
+            (map.paved_segments())
+                .map(|s| distance(p, nearest(s.a, s.b, p)) - s.width / 2.0)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let of = |kind| a.objects.iter().filter(move |o| o.kind == kind);
+        for person in of(ObjectKind::Person) {
+            let d = kerb(middle(person));
+            // Between the kerb and the walk's line on a 3 m or 2 m sidewalk.
+            assert!(d > 0.3 && d < 2.1, "{} {d} m from the kerb", person.name);
+            assert!(!map.in_building(middle(person)), "{}", person.name);
+        }
+        let (mut parked, mut ridden) = (0, 0);
+        for bicycle in of(ObjectKind::Bicycle) {
+            let d = kerb(middle(bicycle));
+            if d < 0.0 {
+                ridden += 1;
+            } else {
+                assert!(d > 0.5 && d < 2.5, "{} {d} m from the kerb", bicycle.name);
+                parked += 1;
+            }
+        }
+        assert!(
+            parked >= 5 && ridden >= 5,
+            "{parked} parked, {ridden} ridden"
+        );
+        assert_eq!(
+            of(ObjectKind::Rider).count(),
+            ridden,
+            "a rider on each ridden one"
+        );
+        for rider in of(ObjectKind::Rider) {
+            assert!(kerb(middle(rider)) < 0.0, "{} off the road", rider.name);
         }
     }
 
@@ -934,10 +842,12 @@ mod tests {
 
     #[test]
     fn kinds_not_placed_on_maps_are_refused() {
-        let specs = entries("[[objects]]\nkind = 'text'\nlabel = 'text'\n");
-        assert!(matches!(
-            place(&specs),
-            Err(ObjectsError::NotOnMap { kind }) if kind == "text"
-        ));
+        for kind in ["text", "street_name"] {
+            let specs = entries(&format!("[[objects]]\nkind = '{kind}'\nlabel = 'x'\n"));
+            assert!(matches!(
+                place(&specs),
+                Err(ObjectsError::NotOnMap { kind: k }) if k == kind
+            ));
+        }
     }
 }

@@ -33,6 +33,7 @@ mod entry_groups;
 mod footprint_grid;
 mod ground_spots;
 mod map_objects;
+mod map_spots;
 mod number_plate;
 pub mod obj_lines;
 mod objects_error;

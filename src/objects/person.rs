@@ -38,7 +38,7 @@ use rand_pcg::Pcg64;
 use std::collections::BTreeMap;
 
 use super::car::{CAMERA_CLEARANCE, CAMERA_LANE};
-use super::ground_spots::{GroundSpots, Spot};
+use super::ground_spots::{GroundSpots, Spot, StripSpots};
 use super::person_pose::{
     self, ANKLE, ELBOW, HIP, KNEE, Pose, Prop, SHOULDER, Skeleton, WRIST, along,
 };
@@ -152,11 +152,18 @@ impl Figure {
     }
 }
 
-pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placing: &mut Placing) {
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
+pub fn place(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    spots: &mut impl StripSpots,
+    placing: &mut Placing,
+) {
     let [low, high] = spec.height_range();
-    let strip = 2.0 * spots.strip_half();
-    // Between the curb and the sidewalk camera's line, clear of both.
-    let far = (strip * (1.0 - WALK_SHARE) - WALKER_ROOM).max(CURB_ROOM);
+    // Between the curb and the sidewalk camera's line, clear of both, on a sidewalk
+    // `strip` metres wide.
+    let far = |strip: f64| (strip * (1.0 - WALK_SHARE) - WALKER_ROOM).max(CURB_ROOM);
     let mut misses = 0;
     for _ in 0..spec.count {
         if misses >= GIVE_UP {
@@ -178,7 +185,8 @@ pub fn place(spec: &ObjectSpec, rng: &mut Pcg64, spots: &mut GroundSpots, placin
         }
         let mut spot = way.map(|w| w.spot);
         if spot.is_none() && !crossing {
-            let from_curb = CURB_ROOM + rng.random::<f64>() * (far - CURB_ROOM);
+            let share = rng.random::<f64>();
+            let from_curb = |strip: f64| CURB_ROOM + share * (far(strip) - CURB_ROOM);
             spot = (0..ATTEMPTS).find_map(|_| spots.strip_at(rng, ROOM, from_curb, 1));
         }
         let Some(spot) = spot else {

@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, objects other than trees, cars,
-//! traffic lights, signs and models at the map's nodes).
+//! take yet (mirroring, moving traffic, orbit cameras, text and street names, people at
+//! zebras, models anywhere but at the map's nodes).
 
 use std::path::Path;
 
@@ -84,6 +84,8 @@ fn check_map_objects(spec: &Spec, findings: &mut Findings) {
             object.kind,
             EntryKind::Tree
                 | EntryKind::Car
+                | EntryKind::Person
+                | EntryKind::Bicycle
                 | EntryKind::TrafficLight
                 | EntryKind::Sign
                 | EntryKind::Mesh
@@ -91,13 +93,26 @@ fn check_map_objects(spec: &Spec, findings: &mut Findings) {
             findings.error(
                 &format!("objects[{i}].kind"),
                 format!(
-                    "objects on a map layout are trees (at the map's trees), cars, traffic \
-                     lights (at the map's signals), signs (at the map's signs) and models \
-                     (at the map's nodes `at` names): expected kind = \"tree\", \"car\", \
-                     \"traffic_light\", \"sign\" or \"mesh\", found \"{}\"",
+                    "objects on a map layout are trees (at the map's trees), cars, people, \
+                     bicycles, traffic lights (at the map's signals), signs (at the map's \
+                     signs) and models (at the map's nodes `at` names): expected kind = \
+                     \"tree\", \"car\", \"person\", \"bicycle\", \"traffic_light\", \
+                     \"sign\" or \"mesh\", found \"{}\"",
                     object.kind.name()
                 ),
             );
+        }
+        for (key, share) in [("crossing", object.crossing), ("waiting", object.waiting)] {
+            if share > 0.0 {
+                findings.error(
+                    &format!("objects[{i}].{key}"),
+                    format!(
+                        "people on a map layout stand and walk on its sidewalks; none cross \
+                         at or wait by its zebras yet: expected {key} = 0 with \
+                         `[layout.osm]`, found {share}"
+                    ),
+                );
+            }
         }
     }
 }

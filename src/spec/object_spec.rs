@@ -27,7 +27,8 @@ pub struct ObjectSpec {
     /// (signal poles at the street corners, each with two heads looking along the two
     /// roads, one lit red, amber or green; `count` counts poles) or `"bicycle"` (bicycles
     /// parked in the sidewalk strips and ridden in the driving lanes, each ridden one with
-    /// a rider of class `rider`; `count` counts bicycles).
+    /// a rider of class `rider`; `count` counts bicycles). A map layout (`[layout.osm]`)
+    /// takes trees, cars, people, bicycles, traffic lights, signs and meshes.
     pub kind: EntryKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
@@ -106,13 +107,13 @@ pub struct ObjectSpec {
     pub height: Option<[f64; 2]>,
     /// person: share of the people walking across the zebra crossings (in the road's
     /// inner 2.4 m either side of its centre line, clear of the line a roads camera drives
-    /// by default); the others are in the sidewalk strips.
+    /// by default); the others are in the sidewalk strips. 0 on a map layout.
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub crossing: f64,
     /// person: share of the people not crossing who stand at the curb at a zebra
     /// crossing's end, facing the road as if waiting to cross; the others stand or walk
-    /// along the sidewalk strips.
+    /// along the sidewalk strips. 0 on a map layout.
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub waiting: f64,
