@@ -3,6 +3,7 @@
 //!
 //! | kind | where |
 //! |---|---|
+//! | text | planes of words on the walls of the map's buildings that face a paved road (`map_walls`), as on a layout's walls (`wall_text`): the facade laid as the scene lays it, so painted text shows the wall's own pixels and plates keep clear of its windows |
 //! | tree | at the map's `natural=tree` nodes, in node order, then on the map's green ground where it plants none (`green_tree_sites`, about one per 12 m square, in a seeded order), up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
@@ -10,7 +11,7 @@
 //! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing ([`MapSpots`]); none on the zebras yet |
 //! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
 //!
-//! Text, street names and moving traffic are not on maps yet: the spec refuses them, and
+//! Street names, people at the zebras and moving traffic are not on maps yet: the spec refuses them, and
 //! [`insert_map`] returns [`ObjectsError::NotOnMap`]. Entry `i` draws from `rng::stream(seed, "objects",
 //! i)` as on a layout.
 
@@ -22,8 +23,8 @@ use super::ground_spots::{LAMP_CLEARANCE, Spot};
 use super::map_spots::MapSpots;
 use super::traffic_signs::{self, MappedSign};
 use super::{
-    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, person, sign_codes,
-    traffic_lights, tree, user_mesh,
+    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, map_walls, person,
+    sign_codes, traffic_lights, tree, user_mesh, wall_text,
 };
 use crate::model::geometry::polygon::{direction, distance, nearest};
 use crate::model::{FacadeSet, FeatureKind, Lamp, OsmMap, ParsedLayout, PavedSegment};
@@ -53,7 +54,8 @@ pub struct MapObjectsInput<'a> {
 }
 
 /// The kinds of entries a map places.
-const MAP_KINDS: [EntryKind; 7] = [
+const MAP_KINDS: [EntryKind; 8] = [
+    EntryKind::Text,
     EntryKind::Tree,
     EntryKind::Car,
     EntryKind::Person,
@@ -113,6 +115,8 @@ struct MapGround<'a> {
     signals: Vec<Vec<([f64; 2], [f64; 2])>>,
     signs: Vec<MappedSign>,
     spots: MapSpots<'a>,
+    /// The walls facing roads, found when a text entry first asks.
+    walls: Option<wall_text::Walls>,
 }
 
 impl<'a> MapGround<'a> {
@@ -124,6 +128,7 @@ impl<'a> MapGround<'a> {
             signals: signal_sites(input.map),
             signs: sign_sites(input.map),
             trees,
+            walls: None,
         }
     }
 
@@ -138,6 +143,15 @@ impl<'a> MapGround<'a> {
         let before = placing.out.objects.len();
         let spots = &mut self.spots;
         Ok(match spec.kind {
+            EntryKind::Text => {
+                let (map, facades) = (input.map, input.facades);
+                (self.walls)
+                    .get_or_insert_with(|| {
+                        wall_text::Walls::of(map_walls::map_facing_walls(map, facades, input.seed))
+                    })
+                    .place(spec, rng, placing)?;
+                (placing.out.objects.len() - before) as u32
+            }
             EntryKind::Car => car::place(spec, rng, spots, placing),
             EntryKind::Bicycle => bicycle::place(spec, rng, spots, placing),
             EntryKind::Person => {
@@ -383,6 +397,7 @@ fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::geometry::KERB_Y;
     use crate::model::geometry::polygon::left_normal;
     use crate::model::{MAP_CAMERA_LANE, ObjectKind, SceneObject, map_camera_lane};
     use crate::spec::SignKind;
@@ -625,6 +640,33 @@ mod tests {
     }
 
     #[test]
+    fn text_goes_on_the_walls_facing_the_streets() {
+        let specs = entries(
+            "[[objects]]\nkind = 'text'\nlabel = 'text'\ncount = 6\nletter_height = [0.4, 0.6]\n",
+        );
+        let a = place(&specs).expect("text places");
+        assert_eq!(a, place(&specs).expect("text places"), "deterministic");
+        assert_eq!(a.placed, vec![6]);
+        // All on the one wall facing a road: the building's north wall (z 19, x −120…−100,
+        // 12 m high), in front of it, between 2.5 m up and 1 m below the roof.
+        let band = [
+            KERB_Y + wall_text::MIN_HEIGHT - 1e-6,
+            KERB_Y + 12.0 - wall_text::TOP_CLEARANCE + 1e-6,
+        ];
+        for text in &a.objects {
+            assert_eq!(text.kind, ObjectKind::Text);
+            for m in &text.meshes {
+                for p in &m.positions {
+                    let [x, y, z] = p.map(f64::from);
+                    assert!((z - (19.0 - wall_text::WALL_OFFSET)).abs() < 1e-4, "{p:?}");
+                    assert!((-120.0..=-100.0).contains(&x), "{p:?}");
+                    assert!(y >= band[0] && y <= band[1], "{p:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn signal_poles_stand_behind_the_kerbs_looking_at_the_traffic() {
         let mut map = crate::test_support::street_map();
         let signal = |node, at| {
@@ -842,12 +884,10 @@ mod tests {
 
     #[test]
     fn kinds_not_placed_on_maps_are_refused() {
-        for kind in ["text", "street_name"] {
-            let specs = entries(&format!("[[objects]]\nkind = '{kind}'\nlabel = 'x'\n"));
-            assert!(matches!(
-                place(&specs),
-                Err(ObjectsError::NotOnMap { kind: k }) if k == kind
-            ));
-        }
+        let specs = entries("[[objects]]\nkind = 'street_name'\nlabel = 'x'\n");
+        assert!(matches!(
+            place(&specs),
+            Err(ObjectsError::NotOnMap { kind }) if kind == "street_name"
+        ));
     }
 }

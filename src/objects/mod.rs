@@ -34,6 +34,7 @@ mod footprint_grid;
 mod ground_spots;
 mod map_objects;
 mod map_spots;
+mod map_walls;
 mod number_plate;
 pub mod obj_lines;
 mod objects_error;

@@ -16,7 +16,7 @@ use super::plate_style::PlateStyle;
 use super::text_font::TextFont;
 use super::text_plate::TextPlate;
 use super::vehicle_parts::Frame;
-use super::wall_text::Wall;
+use super::wall_text::{Tiling, Wall};
 
 /// The plate's size, metres (EU: 520 × 110 mm).
 pub const SIZE: [f64; 2] = [0.52, 0.11];
@@ -148,6 +148,7 @@ pub fn face(frame: &Frame, u: f64, facing: f64, bottom: f64) -> (Wall, [f64; 4])
         repeat: w,
         height: h,
         windows: Vec::new(),
+        tiling: Tiling::Stretched,
     };
     (wall, [0.0, y0, w, y0 + h])
 }

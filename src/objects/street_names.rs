@@ -18,7 +18,7 @@ use super::ground_spots::{Footprint, GroundSpots};
 use super::plate_style::PlateStyle;
 use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
-use super::wall_text::{self, Placed, Wall};
+use super::wall_text::{self, Placed, Tiling, Wall};
 use super::{ObjectsError, Placing};
 use crate::model::Axis;
 use crate::model::geometry::{KERB_Y, MeshBuilder};
@@ -152,6 +152,7 @@ pub fn place(
                     repeat: w,
                     height: bottom + h - KERB_Y,
                     windows: Vec::new(),
+                    tiling: Tiling::Stretched,
                 };
                 let rect = [0.0, bottom, w, bottom + h];
                 let corners = wall_text::word_corners(&face, rect, plate, metres_per_px);

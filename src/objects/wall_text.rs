@@ -73,6 +73,44 @@ pub struct Wall {
     pub height: f64,
     /// The facade's window boxes on this wall, `[u0, y0, u1, y1]` in metres.
     pub windows: Vec<[f64; 4]>,
+    /// How its facade is laid on it.
+    pub tiling: Tiling,
+}
+
+/// How a facade is laid on a wall, `repeat` metres of wall to one facade width.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tiling {
+    /// A layout building's (`scene::buildings`): stretched over the wall's height, its
+    /// width repeating from the wall's left edge seen from the front.
+    Stretched,
+    /// A map building's (`scene::map_city`): at floor scale, the facade's ground floor
+    /// (`floor` metres of its `floors`) along the bottom and its upper floors repeating
+    /// above, its width repeating from the wall's left edge.
+    Floors { floor: f64, floors: u32 },
+}
+
+impl Wall {
+    /// The facade's texture coordinates `(u, v)` (v down from the facade's top) at `u`
+    /// metres right of the wall's left edge and height `y`.
+    pub fn texture_at(&self, u: f64, y: f64) -> [f64; 2] {
+        match self.tiling {
+            Tiling::Stretched => [
+                (u / self.repeat).rem_euclid(1.0),
+                1.0 - (y - KERB_Y) / self.height,
+            ],
+            Tiling::Floors { floor, floors } => {
+                let ground_v = 1.0 - 1.0 / f64::from(floors);
+                let upper = floor * f64::from(floors - 1);
+                let h = y - KERB_Y;
+                let v = if h < floor || upper <= 0.0 {
+                    1.0 - (h / floor).min(1.0) * (1.0 - ground_v)
+                } else {
+                    ground_v * (1.0 - ((h - floor) / upper).fract())
+                };
+                [(u / self.repeat).rem_euclid(1.0), v]
+            }
+        }
+    }
 }
 
 /// A plate placed on a wall, waiting for its place on an atlas page.
@@ -99,8 +137,13 @@ pub struct Walls {
 
 impl Walls {
     pub fn new(input: &ObjectsInput) -> Walls {
+        Walls::of(facing_walls(input))
+    }
+
+    /// These walls, with no plates on them yet (a map's: `map_walls`).
+    pub fn of(walls: Vec<Wall>) -> Walls {
         Walls {
-            walls: facing_walls(input),
+            walls,
             placed: BTreeMap::new(),
             images: BTreeMap::new(),
         }
@@ -282,14 +325,14 @@ fn wall_patch(image: &RgbImage, wall: &Wall, rect: [f64; 4], plate: &TextPlate) 
     let columns: Vec<Tap> = (0..plate.width)
         .map(|x| {
             let u = rect[0] + (f64::from(x) + 0.5) / pw * (rect[2] - rect[0]);
-            let tu = (u / wall.repeat).rem_euclid(1.0);
+            let [tu, _] = wall.texture_at(u, rect[1]);
             Tap::new(tu * iw - 0.5, image.width())
         })
         .collect();
     let rows: Vec<Tap> = (0..plate.height)
         .map(|y| {
             let height = rect[3] - (f64::from(y) + 0.5) / ph * (rect[3] - rect[1]);
-            let tv = 1.0 - (height - KERB_Y) / wall.height;
+            let [_, tv] = wall.texture_at(rect[0], height);
             Tap::new(tv * ih - 0.5, image.height())
         })
         .collect();
@@ -551,6 +594,7 @@ pub fn facing_walls(input: &ObjectsInput) -> Vec<Wall> {
                 repeat,
                 height,
                 windows,
+                tiling: Tiling::Stretched,
             });
         }
     }
@@ -575,6 +619,54 @@ fn window_rects(windows: &[[f32; 4]], length: f64, repeat: f64, height: f64) -> 
                     b,
                     KERB_Y + height * (1.0 - v0),
                 ]);
+            }
+        }
+    }
+    out
+}
+
+/// As [`window_rects`], on a wall `length` long and `height` high clad at floor scale
+/// ([`Tiling::Floors`]) with a facade `repeat` metres wide: each window of the ground
+/// floor once, each of the upper floors once per repeat of them up to `height`, each
+/// once per facade width from the wall's left edge.
+pub fn floor_window_rects(
+    windows: &[[f32; 4]],
+    [length, height, repeat]: [f64; 3],
+    floor: f64,
+    floors: u32,
+) -> Vec<[f64; 4]> {
+    let ground_v = 1.0 - 1.0 / f64::from(floors);
+    let upper = floor * f64::from(floors - 1);
+    // Per window, the heights above the kerb of its v span in each repeat of the floors:
+    // on the ground floor, then on each repeat of the upper floors below `height`.
+    let spans: Vec<Vec<[f64; 2]>> = (windows.iter())
+        .map(|w| {
+            let [v0, v1] = [w[1], w[3]].map(f64::from);
+            let mut spans = Vec::new();
+            if v1 > ground_v {
+                let h = |v: f64| (1.0 - v) / (1.0 - ground_v) * floor;
+                spans.push([h(v1), h(v0.max(ground_v))]);
+            }
+            let mut base = floor;
+            while v0 < ground_v && upper > 0.0 && base < height {
+                let h = |v: f64| base + (ground_v - v) / ground_v * upper;
+                spans.push([h(v1.min(ground_v)), h(v0)]);
+                base += upper;
+            }
+            spans
+        })
+        .collect();
+    let copies = (length / repeat).ceil().clamp(1.0, 1000.0) as u32;
+    let mut out = Vec::new();
+    for k in 0..copies {
+        let start = f64::from(k) * repeat;
+        for (w, spans) in windows.iter().zip(&spans) {
+            let [u0, u1] = [w[0], w[2]].map(f64::from);
+            let (a, b) = (start + u0 * repeat, (start + u1 * repeat).min(length));
+            for &[y0, y1] in spans {
+                if a < b && y0 < height {
+                    out.push([a, KERB_Y + y0, b, KERB_Y + y1.min(height)]);
+                }
             }
         }
     }

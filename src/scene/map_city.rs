@@ -14,7 +14,7 @@
 //! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`map_roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
-//! facade is seeded per building (`rng::stream(seed, "map-facade", i)`) and keeps its own
+//! facade is seeded per building ([`map_cladding`], which the wall text reads too) and keeps its own
 //! scale on every wall: one facade width along u per its width in metres, and one floor of
 //! the facade per floor of the building. The facade's ground floor runs along the bottom
 //! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
@@ -27,8 +27,6 @@
 //! skillion, round, mansard …) and hipped roofs on more than four corners are flat. Trees,
 //! signals, signs and benches are objects (`objects::insert_map`).
 
-use rand::RngExt;
-
 use super::map_roofs::Roof;
 use super::object;
 use super::surfaces::Surfaces;
@@ -37,14 +35,13 @@ use crate::model::geometry::polygon_set::difference;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
     Facade, FacadeSet, Lamp, MapBuilding, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject,
+    map_cladding,
 };
 
 /// How far the ground reaches beyond the box, metres.
 pub const GROUND_MARGIN: f64 = 200.0;
 /// Metres one repeat of a roof texture covers, and of the plain roof.
 const ROOF_TILE: f64 = 4.0;
-/// Floors a building without a mapped height gets, drawn uniformly.
-const SEEDED_FLOORS: std::ops::RangeInclusive<u32> = 3..=7;
 
 /// The map scene's input.
 pub struct MapSceneInput<'a> {
@@ -220,30 +217,18 @@ impl Cladding {
 /// Every building: walls with its facade, a flat roof or its `roof:shape`'s.
 fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
     let facades = &input.facades.facades;
-    let (choice, floors): (Vec<Option<usize>>, Vec<u32>) = (input.map.buildings.iter())
-        .enumerate()
-        .map(|(i, b)| {
-            let mut rng = crate::rng::stream(input.seed, "map-facade", i as u64);
-            let facade = (!facades.is_empty()).then(|| rng.random_range(0..facades.len()));
-            // A placed building keeps the facade it was sized for.
-            let sized = b.facade.map(|f| f as usize).filter(|&f| f < facades.len());
-            (sized.or(facade), rng.random_range(SEEDED_FLOORS))
-        })
-        .unzip();
+    let cladding = map_cladding(input.map, input.facades, input.seed);
+    let choice: Vec<Option<usize>> = cladding.iter().map(|c| c.facade).collect();
     let clad = Cladding::register(input.facades, &choice, book);
     input
         .map
         .buildings
         .iter()
-        .zip(choice.iter().zip(&floors))
+        .zip(&cladding)
         .enumerate()
-        .map(|(i, (b, (&f, &floors)))| {
-            let facade = f
-                .map(|f| &facades[f])
-                .filter(|f| f.height > 0.0 && f.width > 0.0 && f.floors > 0);
-            let floor = facade.map_or(3.0, |f| f.height / f64::from(f.floors));
-            let height = b.height.unwrap_or(f64::from(floors) * floor);
-            let (height, roof_shape) = shaped_roof(b, height);
+        .map(|(i, (b, c))| {
+            let (f, facade) = (c.facade, c.usable(input.facades));
+            let (height, roof_shape) = shaped_roof(b, c.height);
             let mut walls =
                 MeshBuilder::new(f.and_then(|f| clad.wall[f]).unwrap_or(clad.plain_wall));
             for ring in std::iter::once(&b.outer).chain(&b.holes) {

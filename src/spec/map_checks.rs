@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, text and street names, people at
-//! zebras, models anywhere but at the map's nodes).
+//! take yet (mirroring, moving traffic, orbit cameras, street names, people at zebras,
+//! models anywhere but at the map's nodes).
 
 use std::path::Path;
 
@@ -80,26 +80,13 @@ fn check_map_objects(spec: &Spec, findings: &mut Findings) {
                  nodes' tag, e.g. at = \"amenity=bench\"), found none",
             );
         }
-        if !matches!(
-            object.kind,
-            EntryKind::Tree
-                | EntryKind::Car
-                | EntryKind::Person
-                | EntryKind::Bicycle
-                | EntryKind::TrafficLight
-                | EntryKind::Sign
-                | EntryKind::Mesh
-        ) {
+        if matches!(object.kind, EntryKind::StreetName) {
             findings.error(
                 &format!("objects[{i}].kind"),
-                format!(
-                    "objects on a map layout are trees (at the map's trees), cars, people, \
-                     bicycles, traffic lights (at the map's signals), signs (at the map's \
-                     signs) and models (at the map's nodes `at` names): expected kind = \
-                     \"tree\", \"car\", \"person\", \"bicycle\", \"traffic_light\", \
-                     \"sign\" or \"mesh\", found \"{}\"",
-                    object.kind.name()
-                ),
+                "street-name signs stand at a layout's street corners; a map layout takes \
+                 text, trees, cars, people, bicycles, traffic lights (at the map's signals), \
+                 signs (at the map's signs) and models (at the map's nodes `at` names): \
+                 expected another kind, found \"street_name\"",
             );
         }
         for (key, share) in [("crossing", object.crossing), ("waiting", object.waiting)] {
