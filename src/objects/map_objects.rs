@@ -8,10 +8,10 @@
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`](crate::model::MAP_CAMERA_LANE) clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`](super::map_spots::JUNCTION_CLEARANCE) plus its half length from every other road's carriageway |
-//! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing ([`MapSpots`]); none on the zebras yet |
+//! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing; `crossing` on the zebras the markings draw, clear of the roads cameras' lane, `waiting` at their ends ([`MapSpots`]) |
 //! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
 //!
-//! Street names, people at the zebras and moving traffic are not on maps yet: the spec refuses them, and
+//! Street names and moving traffic are not on maps yet: the spec refuses them, and
 //! [`insert_map`] returns [`ObjectsError::NotOnMap`]. Entry `i` draws from `rng::stream(seed, "objects",
 //! i)` as on a layout.
 

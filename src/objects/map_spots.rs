@@ -8,19 +8,25 @@
 //! sidewalk meets a junction or a road ending on it), out of the buildings by the
 //! object's radius and inside the map's box. Its `travel` is the traffic's in the lane
 //! next to it: the way's on a one-way road, else the way with the sidewalk on its right.
-//! A map places no one on its zebras yet (the spec refuses `crossing` and `waiting` on
-//! a map), and its traffic does not move, so its walkers are not marked.
+//! People cross on the zebras the markings draw (`MapLines::zebras`) and wait at their
+//! ends, as on a layout's zebras, clear of the roads cameras' lane. A map's traffic does
+//! not move, so its walkers are not marked.
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
+use super::car::CAMERA_CLEARANCE;
 use super::footprint_grid::FootprintGrid;
 use super::ground_spots::{
     CrossingSpot, Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot, StripSpots,
 };
 use super::tree;
+use crate::model::geometry::map_lines::MapLines;
 use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
-use crate::model::{FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, PavedSegment, map_camera_lane};
+use crate::model::geometry::zebras::ZEBRA_DEPTH;
+use crate::model::{
+    Crossing, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, PavedSegment, map_camera_lane,
+};
 
 /// Metres a car keeps, beyond its half length, from every other road's carriageway: the
 /// mouth of a junction stays clear.
@@ -43,6 +49,63 @@ struct Sidewalk {
     width: f64,
 }
 
+/// A zebra the map's markings draw (`MapLines::zebras`), as a place for people.
+#[derive(Clone, Copy, Debug)]
+struct MapZebra {
+    road: usize,
+    /// Its middle on the centreline, and the unit direction of the road there.
+    centre: [f64; 2],
+    along: [f64; 2],
+    /// Carriageway width, and sidewalk widths left and right of `along`, metres.
+    width: f64,
+    sidewalks: [f64; 2],
+    /// Its range along the road, arc length in metres.
+    range: [f64; 2],
+    /// The roads cameras' lane, metres right of `along` (see `MapSpots::near_side`).
+    camera: f64,
+}
+
+impl MapZebra {
+    /// The point `along` metres along the road from its middle and `across` right of it.
+    fn at(&self, along: f64, across: f64) -> [f64; 2] {
+        let (t, n) = (self.along, [-self.along[1], self.along[0]]);
+        [
+            self.centre[0] + t[0] * along + n[0] * across,
+            self.centre[1] + t[1] * along + n[1] * across,
+        ]
+    }
+
+    /// The unit direction across the road towards its side `sign` (1: right of `along`).
+    fn across(&self, sign: f64) -> [f64; 2] {
+        [-self.along[1] * sign, self.along[0] * sign]
+    }
+
+    /// The spot of a person `along` the zebra from its middle, crossing from `way[0]` to
+    /// `way[1]` (metres right of the road), waiting or on its way.
+    fn spot(&self, along: f64, way: [f64; 2], waiting: bool) -> CrossingSpot {
+        CrossingSpot {
+            spot: Spot {
+                position: self.at(along, way[0]),
+                travel: self.across((way[1] - way[0]).signum()),
+                road: self.road as u32,
+            },
+            crossing: Crossing {
+                zebra: self.range,
+                waiting,
+            },
+            reach: (way[1] - way[0]).abs(),
+        }
+    }
+
+    /// Where along the zebra (from its middle) a person of `radius` crossing towards side
+    /// `sign` walks: in the half on its right (back along the road when it crosses to
+    /// the right), at `u` (0 to 1) of the room there. None when the half is too narrow.
+    fn keep_right(&self, sign: f64, radius: f64, u: f64) -> Option<f64> {
+        let room = ZEBRA_DEPTH / 2.0 - 2.0 * radius;
+        (room >= 0.0 && u.is_finite()).then(|| -sign * (radius + u * room))
+    }
+}
+
 /// The map's paved segments and sidewalks as places for vehicles, people and bicycles.
 pub struct MapSpots<'a> {
     map: &'a OsmMap,
@@ -63,6 +126,8 @@ pub struct MapSpots<'a> {
     sidewalks: Vec<Sidewalk>,
     /// Arc length at each sidewalk's end, sidewalks end to end.
     sidewalk_ends: Vec<f64>,
+    /// The zebras the markings draw.
+    zebras: Vec<MapZebra>,
 }
 
 impl<'a> MapSpots<'a> {
@@ -122,6 +187,7 @@ impl<'a> MapSpots<'a> {
             })
             .collect();
         MapSpots {
+            zebras: map_zebras(map),
             map,
             sidewalks,
             sidewalk_ends,
@@ -132,6 +198,46 @@ impl<'a> MapSpots<'a> {
             taken,
             rooms,
         }
+    }
+
+    /// Whether a person of `radius` at `p` stands on ground off the carriageways of every
+    /// road but `road`, out of the buildings by its radius and inside the box.
+    fn off_other_roads(&self, road: usize, p: [f64; 2], radius: f64) -> bool {
+        let [x0, z0, x1, z1] = self.map.extent;
+        let inside = p[0] - radius > x0 && p[0] + radius < x1;
+        inside
+            && p[1] - radius > z0
+            && p[1] + radius < z1
+            && !self.map.in_building(p)
+            && self.map.building_distance(p) >= radius
+            && (self.all.iter().filter(|o| o.road != road))
+                .all(|o| distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + radius)
+    }
+
+    /// Takes the way across zebra `z` at `along` from `across[0]` to `across[1]` (metres
+    /// right of its road) for a person of `radius`, when its far end is on a sidewalk wide
+    /// enough and nothing taken stands in the way; whether it did.
+    fn crossing_way(&mut self, z: &MapZebra, along: f64, across: [f64; 2], radius: f64) -> bool {
+        let sign = (across[1] - across[0]).signum();
+        let side = usize::from(sign > 0.0);
+        let from_curb = across[1].abs() - z.width / 2.0;
+        if z.sidewalks[side] < from_curb + radius
+            || !self.off_other_roads(z.road, z.at(along, across[1]), radius)
+        {
+            return false;
+        }
+        let steps = ((across[1] - across[0]).abs() / radius).ceil().max(1.0) as usize;
+        let way: Vec<Footprint> = (0..=steps)
+            .map(|k| {
+                let c = across[0] + (across[1] - across[0]) * k as f64 / steps as f64;
+                Footprint::Circle(z.at(along, c), radius)
+            })
+            .collect();
+        if way.iter().any(|f| self.taken.overlaps(f)) {
+            return false;
+        }
+        way.into_iter().for_each(|f| self.taken.push(f));
+        true
     }
 
     /// Takes `footprint` when it is clear of everything taken; whether it was.
@@ -300,18 +406,100 @@ impl StripSpots for MapSpots<'_> {
         })
     }
 
-    /// None: a map places no one on its zebras yet.
-    fn zebra(&mut self, _: &mut Pcg64, _: f64, _: f64, _: f64, _: u32) -> Option<CrossingSpot> {
-        None
+    /// A zebra the markings draw (uniform among them) and a place on it: in the half on
+    /// the person's right, at most `reach` either side of the centreline and `radius`
+    /// inside the kerbs, [`CAMERA_CLEARANCE`] plus `radius` clear of the roads cameras'
+    /// lane, crossing either way to `beyond` past the far kerb (on a sidewalk that
+    /// wide); the whole way there is taken.
+    fn zebra(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        reach: f64,
+        beyond: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot> {
+        if self.zebras.is_empty() {
+            return None;
+        }
+        (0..attempts).find_map(|_| {
+            let z = self.zebras[rng.random_range(0..self.zebras.len())];
+            let limit = reach.min(z.width / 2.0 - radius);
+            let across = (2.0 * rng.random::<f64>() - 1.0) * limit;
+            let sign = if rng.random::<bool>() { -1.0 } else { 1.0 };
+            let along = z.keep_right(sign, radius, rng.random())?;
+            let far = sign * (z.width / 2.0 + beyond);
+            let clear = limit >= 0.0 && (across - z.camera).abs() >= radius + CAMERA_CLEARANCE;
+            if !clear || !self.crossing_way(&z, along, [across, far], radius) {
+                return None;
+            }
+            Some(z.spot(along, [across, far], false))
+        })
     }
 
-    /// None: a map places no one at its zebras yet.
-    fn zebra_kerb(&mut self, _: &mut Pcg64, _: f64, _: f64, _: u32) -> Option<CrossingSpot> {
-        None
+    /// A zebra and a place on the sidewalk at one of its ends, `from_curb` from the kerb,
+    /// for a person waiting to cross (its `travel` across the road): in the half of the
+    /// zebra on its right as it crosses, its end on a sidewalk that wide and its way over
+    /// to the same distance past the far kerb taken.
+    fn zebra_kerb(
+        &mut self,
+        rng: &mut Pcg64,
+        radius: f64,
+        from_curb: f64,
+        attempts: u32,
+    ) -> Option<CrossingSpot> {
+        if self.zebras.is_empty() {
+            return None;
+        }
+        (0..attempts).find_map(|_| {
+            let z = self.zebras[rng.random_range(0..self.zebras.len())];
+            // It crosses towards the other side.
+            let sign = if rng.random::<bool>() { -1.0 } else { 1.0 };
+            let along = z.keep_right(sign, radius, rng.random())?;
+            let out = z.width / 2.0 + from_curb;
+            let (start, far) = (-sign * out, sign * out);
+            let own = usize::from(sign < 0.0);
+            if z.sidewalks[own] < from_curb + radius
+                || !self.off_other_roads(z.road, z.at(along, start), radius)
+                || !self.crossing_way(&z, along, [start, far], radius)
+            {
+                return None;
+            }
+            Some(z.spot(along, [start, far], true))
+        })
     }
 
     /// Nothing: a map's traffic does not move, so no one walks on.
     fn mark_walker(&mut self) {}
+}
+
+/// The zebras `scene::map_markings` draws (`MapLines::zebras`), as places for people.
+fn map_zebras(map: &OsmMap) -> Vec<MapZebra> {
+    let lines = MapLines::of(map);
+    (lines.zebras.iter())
+        .filter_map(|z| {
+            let line = lines.line(z.road)?;
+            let s = z.segment;
+            let (a, b) = (line.points()[s], line.points()[s + 1]);
+            let along = direction(a, b)?;
+            let t = z.at - line.at[s];
+            let fitted = line.map_road.fitted.get(s)?;
+            let width = fitted[0];
+            Some(MapZebra {
+                road: z.road,
+                centre: [a[0] + along[0] * t, a[1] + along[1] * t],
+                along,
+                width,
+                sidewalks: [fitted[1], fitted[2]],
+                range: [z.at - ZEBRA_DEPTH / 2.0, z.at + ZEBRA_DEPTH / 2.0],
+                camera: if line.map_road.oneway {
+                    map_camera_lane(width)
+                } else {
+                    MAP_CAMERA_LANE
+                },
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -434,6 +622,63 @@ mod tests {
             );
             assert!(distance(p, [-70.0, 7.5]) >= 1.5 - 1e-9, "{p:?}");
         }
+    }
+
+    #[test]
+    fn people_cross_on_the_zebras_clear_of_the_cameras_and_wait_at_their_ends() {
+        // A zebra across road 0 (two-way, 12 m, eastwards along z = 0 from x −150) at
+        // x −120: arc length 30 m.
+        let mut map = street_map();
+        map.features.push(crate::model::MapFeature {
+            node: 40,
+            kind: FeatureKind::Crossing,
+            at: [-120.0, 0.0],
+            tag: String::new(),
+        });
+        let mut ground = MapSpots::new(&map, &[], &[]);
+        let mut rng = crate::rng::stream(7, "test", 2);
+        let crossing: Vec<CrossingSpot> = (0..20)
+            .filter_map(|_| ground.zebra(&mut rng, 0.6, 2.4, 0.45, 40))
+            .collect();
+        assert!(crossing.len() >= 2, "{crossing:?}");
+        for (i, c) in crossing.iter().enumerate() {
+            let p = c.spot.position;
+            assert!((p[0] + 120.0).abs() <= ZEBRA_DEPTH / 2.0, "{c:?}");
+            // Within 2.4 m of the centre line, 1.6 m from the cameras' lane (z 1.5: right
+            // of the road's direction): on its north half.
+            assert!((-2.4 - 1e-9..=-0.1 + 1e-9).contains(&p[1]), "{c:?}");
+            let south = c.spot.travel[1] > 0.0;
+            assert!(c.spot.travel[0].abs() < 1e-12 && (c.spot.travel[1].abs() - 1.0).abs() < 1e-12);
+            // Walking south its right is west; walking north, east.
+            assert_eq!(p[0] < -120.0, south, "{c:?}");
+            assert_eq!(c.crossing.zebra, [28.5, 31.5]);
+            assert!(!c.crossing.waiting);
+            let far = if south { 6.45 } else { -6.45 };
+            assert!((c.reach - (far - p[1]).abs()).abs() < 1e-9, "{c:?}");
+            for d in &crossing[i + 1..] {
+                assert!(distance(p, d.spot.position) >= 1.2 - 1e-9, "{c:?} {d:?}");
+            }
+        }
+        // On ground of their own: the crossing people's ways fill both halves of the zebra.
+        let mut ground = MapSpots::new(&map, &[], &[]);
+        let waiting: Vec<CrossingSpot> = (0..20)
+            .filter_map(|_| ground.zebra_kerb(&mut rng, 0.6, 1.0, 40))
+            .collect();
+        assert!(!waiting.is_empty());
+        for w in &waiting {
+            let p = w.spot.position;
+            assert!((p[0] + 120.0).abs() <= ZEBRA_DEPTH / 2.0, "{w:?}");
+            // On the sidewalk 1 m from the kerb, facing the road.
+            assert!((p[1].abs() - 7.0).abs() < 1e-9, "{w:?}");
+            assert!(w.spot.travel[1] * p[1] < 0.0, "{w:?}");
+            assert!(w.crossing.waiting && (w.reach - 14.0).abs() < 1e-9, "{w:?}");
+        }
+        // Without a marked crossing, no zebra.
+        let mut rng = crate::rng::stream(7, "test", 3);
+        let plain = street_map();
+        let mut bare = MapSpots::new(&plain, &[], &[]);
+        assert!(bare.zebra(&mut rng, 0.6, 2.4, 0.45, 40).is_none());
+        assert!(bare.zebra_kerb(&mut rng, 0.6, 1.0, 40).is_none());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, street names, people at zebras,
-//! models anywhere but at the map's nodes).
+//! take yet (mirroring, moving traffic, orbit cameras, street names, models anywhere but
+//! at the map's nodes).
 
 use std::path::Path;
 
@@ -88,18 +88,6 @@ fn check_map_objects(spec: &Spec, findings: &mut Findings) {
                  signs (at the map's signs) and models (at the map's nodes `at` names): \
                  expected another kind, found \"street_name\"",
             );
-        }
-        for (key, share) in [("crossing", object.crossing), ("waiting", object.waiting)] {
-            if share > 0.0 {
-                findings.error(
-                    &format!("objects[{i}].{key}"),
-                    format!(
-                        "people on a map layout stand and walk on its sidewalks; none cross \
-                         at or wait by its zebras yet: expected {key} = 0 with \
-                         `[layout.osm]`, found {share}"
-                    ),
-                );
-            }
         }
     }
 }

@@ -107,13 +107,14 @@ pub struct ObjectSpec {
     pub height: Option<[f64; 2]>,
     /// person: share of the people walking across the zebra crossings (in the road's
     /// inner 2.4 m either side of its centre line, clear of the line a roads camera drives
-    /// by default); the others are in the sidewalk strips. 0 on a map layout.
+    /// by default; on a map, clear of its cameras' lane); the others are in the sidewalk
+    /// strips.
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub crossing: f64,
     /// person: share of the people not crossing who stand at the curb at a zebra
     /// crossing's end, facing the road as if waiting to cross; the others stand or walk
-    /// along the sidewalk strips. 0 on a map layout.
+    /// along the sidewalk strips.
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub waiting: f64,

@@ -18,6 +18,7 @@
 //! | [`polygon_set`]: a map's polygons cut by polygons (`i_overlay`) | osm, scene |
 
 mod facade_choice;
+pub mod map_lines;
 mod material_book;
 mod mesh_builder;
 pub mod polygon;

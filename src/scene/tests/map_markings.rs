@@ -2,9 +2,10 @@
 //! centreline through a bend and stop before a junction, zebras at marked crossings.
 
 use crate::model::geometry::MARKING_Y;
+use crate::model::geometry::map_lines::UNMARKED_CROSSING;
 use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
 use crate::model::{FeatureKind, MapFeature, ObjectKind, SceneObject};
-use crate::scene::map_markings::{UNMARKED_CROSSING, lane_lines, map_marking_objects};
+use crate::scene::map_markings::{lane_lines, map_marking_objects};
 use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP, STOP_LINE};
 use crate::test_support::street_map;
 
