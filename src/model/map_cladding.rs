@@ -26,14 +26,14 @@ pub struct MapCladding {
 }
 
 impl MapCladding {
-    /// Its facade when that can be laid at floor scale (see [`usable`]).
+    /// Its facade when that can be laid at floor scale: it has a size and floors.
     pub fn usable<'a>(&self, set: &'a FacadeSet) -> Option<&'a Facade> {
         self.facade.map(|f| &set.facades[f]).filter(|f| usable(f))
     }
 }
 
 /// Whether `facade` has a size and floors, so that it can be laid at its own scale.
-pub fn usable(facade: &Facade) -> bool {
+fn usable(facade: &Facade) -> bool {
     facade.height > 0.0 && facade.width > 0.0 && facade.floors > 0
 }
 
