@@ -10,10 +10,9 @@
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`](crate::model::MAP_CAMERA_LANE) clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`](super::map_spots::JUNCTION_CLEARANCE) plus its half length from every other road's carriageway |
 //! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing; `crossing` on the zebras the markings draw, clear of the roads cameras' lane, `waiting` at their ends ([`MapSpots`]) |
 //! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
+//! | street_name | a pole at the map's street corners (`map_corners`: where two paved roads with different `name`s meet, half the sidewalk from both kerbs), in a seeded order, its two plates naming the streets as the map does, each along its street |
 //!
-//! Street names and moving traffic are not on maps yet: the spec refuses them, and
-//! [`insert_map`] returns [`ObjectsError::NotOnMap`]. Entry `i` draws from `rng::stream(seed, "objects",
-//! i)` as on a layout.
+//! Entry `i` draws from `rng::stream(seed, "objects", i)` as on a layout.
 
 use std::collections::BTreeMap;
 
@@ -23,8 +22,8 @@ use super::ground_spots::{LAMP_CLEARANCE, Spot};
 use super::map_spots::MapSpots;
 use super::traffic_signs::{self, MappedSign};
 use super::{
-    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, map_walls, person,
-    sign_codes, traffic_lights, tree, user_mesh, wall_text,
+    Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, map_corners, map_walls,
+    person, sign_codes, street_names, traffic_lights, tree, user_mesh, wall_text,
 };
 use crate::model::geometry::polygon::{direction, distance, nearest};
 use crate::model::{FacadeSet, FeatureKind, Lamp, OsmMap, ParsedLayout, PavedSegment};
@@ -53,25 +52,8 @@ pub struct MapObjectsInput<'a> {
     pub seed: u64,
 }
 
-/// The kinds of entries a map places.
-const MAP_KINDS: [EntryKind; 8] = [
-    EntryKind::Text,
-    EntryKind::Tree,
-    EntryKind::Car,
-    EntryKind::Person,
-    EntryKind::Bicycle,
-    EntryKind::TrafficLight,
-    EntryKind::Sign,
-    EntryKind::Mesh,
-];
-
 /// Places every entry of `input.specs` on the map, in entry order. Pure and deterministic.
 pub fn insert_map(input: &MapObjectsInput) -> Result<Inserted, ObjectsError> {
-    if let Some(spec) = input.specs.iter().find(|s| !MAP_KINDS.contains(&s.kind)) {
-        return Err(ObjectsError::NotOnMap {
-            kind: spec.kind.name().to_owned(),
-        });
-    }
     let layout = ParsedLayout {
         width: 0,
         height: 0,
@@ -151,6 +133,11 @@ impl<'a> MapGround<'a> {
                     })
                     .place(spec, rng, placing)?;
                 (placing.out.objects.len() - before) as u32
+            }
+            EntryKind::StreetName => {
+                let mut corners = map_corners::map_corners(input.map, spec.case);
+                rand::seq::SliceRandom::shuffle(corners.as_mut_slice(), rng);
+                street_names::place_at(spec, rng, &corners, &mut |f| spots.claim(f), placing)
             }
             EntryKind::Car => car::place(spec, rng, spots, placing),
             EntryKind::Bicycle => bicycle::place(spec, rng, spots, placing),
@@ -667,6 +654,40 @@ mod tests {
     }
 
     #[test]
+    fn street_name_signs_stand_at_the_corners_naming_the_streets_as_the_map_does() {
+        // Road 1 leaves road 0 southwards at a node at x −50: a T with two corners.
+        let mut map = crate::test_support::street_map();
+        let road = &mut map.roads[0];
+        road.centreline = vec![[-150.0, 0.0], [-50.0, 0.0], [0.0, 0.0], [100.0, -100.0]];
+        road.fitted = vec![[12.0, 3.0, 3.0]; 3];
+        road.name = Some("Bulevardi".to_owned());
+        map.roads[1].name = Some("Fredrikinkatu".to_owned());
+        let specs = entries(
+            "[[objects]]\nkind = 'street_name'\nlabel = 'text'\ncount = 5\n\
+             letter_height = [0.16, 0.24]\n",
+        );
+        let a = place_on(&map, &specs).expect("street names place");
+        assert_eq!(
+            a,
+            place_on(&map, &specs).expect("they place"),
+            "deterministic"
+        );
+        assert_eq!(a.placed, vec![2], "two corners, one pole each");
+        let poles = a
+            .objects
+            .iter()
+            .filter(|o| o.kind == ObjectKind::StreetPole);
+        assert_eq!(poles.count(), 2);
+        let mut texts: Vec<&str> = (a.objects.iter().zip(&a.info))
+            .filter(|(o, _)| o.kind == ObjectKind::Text)
+            .filter_map(|(_, i)| i.text.as_deref())
+            .collect();
+        texts.sort();
+        // Two plates a pole, lettered on both faces.
+        assert_eq!(texts, [["Bulevardi"; 4], ["Fredrikinkatu"; 4]].concat());
+    }
+
+    #[test]
     fn signal_poles_stand_behind_the_kerbs_looking_at_the_traffic() {
         let mut map = crate::test_support::street_map();
         let signal = |node, at| {
@@ -880,14 +901,5 @@ mod tests {
         // A mesh entry without a model file read is an error, not a silent skip.
         let missing = place_on(&map, &specs);
         assert!(matches!(missing, Err(ObjectsError::MissingModel { .. })));
-    }
-
-    #[test]
-    fn kinds_not_placed_on_maps_are_refused() {
-        let specs = entries("[[objects]]\nkind = 'street_name'\nlabel = 'x'\n");
-        assert!(matches!(
-            place(&specs),
-            Err(ObjectsError::NotOnMap { kind }) if kind == "street_name"
-        ));
     }
 }

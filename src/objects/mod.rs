@@ -32,6 +32,7 @@ mod car;
 mod entry_groups;
 mod footprint_grid;
 mod ground_spots;
+mod map_corners;
 mod map_objects;
 mod map_spots;
 mod map_walls;

@@ -6,10 +6,6 @@ use thiserror::Error;
 /// An objects-stage error; every variant names the spec's `model` or `words_file` string.
 #[derive(Debug, Error)]
 pub enum ObjectsError {
-    #[error(
-        "{kind} objects are not placed on a map layout yet (only tree, car, traffic_light and sign are)"
-    )]
-    NotOnMap { kind: String },
     #[error("word file {file}: the build did not read it, or it holds no words")]
     MissingWords { file: String },
     #[error("model {model}: the build did not read its files")]

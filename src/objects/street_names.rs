@@ -20,7 +20,6 @@ use super::text_font::TextFont;
 use super::text_plate::{self, Background, TextPlate};
 use super::wall_text::{self, Placed, Tiling, Wall};
 use super::{ObjectsError, Placing};
-use crate::model::Axis;
 use crate::model::geometry::{KERB_Y, MeshBuilder};
 use crate::spec::{ObjectSpec, TextCase};
 
@@ -55,9 +54,16 @@ const COLOURS: [([u8; 3], [u8; 3]); 5] = [
 /// Paint of the pole (signal poles share it).
 pub(super) const POLE_GREY: [f32; 3] = [0.3, 0.31, 0.33];
 
-/// Places up to `spec.count` street-name signs; returns how many poles stand.
-// Long on purpose: one placement loop, whose random draws must stay in this order (each
-// changes every later object's); split, the order would be spread over functions.
+/// A street corner a sign may stand at: where, and the names and directions of the two
+/// streets that meet there (each plate runs along its street).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedCorner {
+    pub position: [f64; 2],
+    pub streets: [(String, [f64; 2]); 2],
+}
+
+/// Places up to `spec.count` street-name signs at a layout's corners; returns how many
+/// poles stand.
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
@@ -73,7 +79,36 @@ pub fn place(
         .iter()
         .map(|road| street_name(spec, &list, placing.input.seed, road.id))
         .collect();
-    let corners = spots.shuffled_corners(rng);
+    // The horizontal road's plate runs along x, the vertical one's along z.
+    let corners: Vec<NamedCorner> = (spots.shuffled_corners(rng).into_iter())
+        .map(|corner| NamedCorner {
+            position: corner.position,
+            streets: [
+                (names[corner.roads[0] as usize].clone(), [1.0, 0.0]),
+                (names[corner.roads[1] as usize].clone(), [0.0, 1.0]),
+            ],
+        })
+        .collect();
+    Ok(place_at(
+        spec,
+        rng,
+        &corners,
+        &mut |f| spots.claim(f),
+        placing,
+    ))
+}
+
+/// Places up to `spec.count` street-name signs at `corners`, in their order, a corner
+/// whose circle `claim` refuses skipped; returns how many poles stand.
+// Long on purpose: one placement loop, whose random draws must stay in this order (each
+// changes every later object's); split, the order would be spread over functions.
+pub fn place_at(
+    spec: &ObjectSpec,
+    rng: &mut Pcg64,
+    corners: &[NamedCorner],
+    claim: &mut dyn FnMut(Footprint) -> bool,
+    placing: &mut Placing,
+) -> u32 {
     let pole_material = placing.material("street_pole", || (POLE_GREY, None));
     let mut faces: Vec<Wall> = Vec::new();
     let mut placed: Vec<Placed> = Vec::new();
@@ -89,17 +124,13 @@ pub fn place(
         let upper_first: bool = rng.random();
         let letter = text_plate::letter_px(height);
         let metres_per_px = height / f64::from(letter);
-        // (text, axis of its street): the horizontal road's plate runs along x.
-        let plates: Vec<(TextPlate, &str, Axis)> = [
-            (&names[corner.roads[0] as usize], Axis::Horizontal),
-            (&names[corner.roads[1] as usize], Axis::Vertical),
-        ]
-        .into_iter()
-        .map(|(name, axis)| {
-            let plate = TextPlate::measure(name, letter, font, PlateStyle::Street);
-            (plate, name.as_str(), axis)
-        })
-        .collect();
+        // (plate, text, direction of its street).
+        let plates: Vec<(TextPlate, &str, [f64; 2])> = (corner.streets.iter())
+            .map(|(name, along)| {
+                let plate = TextPlate::measure(name, letter, font, PlateStyle::Street);
+                (plate, name.as_str(), *along)
+            })
+            .collect();
         let size = |p: &TextPlate| {
             [
                 f64::from(p.width) * metres_per_px,
@@ -110,7 +141,7 @@ pub fn place(
             .iter()
             .map(|(p, ..)| size(p)[0] / 2.0)
             .fold(0.0, f64::max);
-        if !spots.claim(Footprint::Circle(corner.position, reach + 0.1)) {
+        if !claim(Footprint::Circle(corner.position, reach + 0.1)) {
             continue;
         }
         poles += 1;
@@ -125,7 +156,7 @@ pub fn place(
         );
         let mut bottom = KERB_Y + POLE_HEIGHT;
         for (k, &p) in order.iter().enumerate() {
-            let (plate, text, axis) = &plates[p];
+            let (plate, text, along) = &plates[p];
             let [w, h] = size(plate);
             if k == 1 {
                 // The bracket between the plates.
@@ -133,11 +164,8 @@ pub fn place(
                 pole.oriented_box([x, bottom, z], [1.0, 0.0], half, PLATE_GAP);
                 bottom += PLATE_GAP;
             }
-            // The plate's own direction along its street, and its body.
-            let along = match axis {
-                Axis::Horizontal => [1.0, 0.0],
-                Axis::Vertical => [0.0, 1.0],
-            };
+            // The plate's body, along its street.
+            let along = *along;
             pole.oriented_box([x, bottom, z], along, [w / 2.0, BODY_HALF], h);
             for normal in [[-along[1], along[0]], [along[1], -along[0]]] {
                 let right = [normal[1], -normal[0]];
@@ -181,7 +209,7 @@ pub fn place(
     }
     let page_name = format!("{}_street_atlas", spec.label);
     wall_text::finish_plates(spec, &faces, placed, &page_name, placing);
-    Ok(poles)
+    poles
 }
 
 /// The name of road `road`: a word from `list` in the entry's case and a suffix, drawn from

@@ -1,7 +1,7 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, street names, models anywhere but
-//! at the map's nodes).
+//! take yet (mirroring, moving traffic, orbit cameras, models anywhere but at the map's
+//! nodes).
 
 use std::path::Path;
 
@@ -70,7 +70,7 @@ pub(crate) fn check_map(
     }
 }
 
-/// The map's objects: the kinds a map places, a model's `at`.
+/// The map's objects: a model's `at`.
 fn check_map_objects(spec: &Spec, findings: &mut Findings) {
     for (i, object) in spec.objects.iter().enumerate() {
         if object.kind == EntryKind::Mesh && object.at.is_none() {
@@ -78,15 +78,6 @@ fn check_map_objects(spec: &Spec, findings: &mut Findings) {
                 &format!("objects[{i}]"),
                 "a model on a map layout stands at the map's nodes: expected `at` (the \
                  nodes' tag, e.g. at = \"amenity=bench\"), found none",
-            );
-        }
-        if matches!(object.kind, EntryKind::StreetName) {
-            findings.error(
-                &format!("objects[{i}].kind"),
-                "street-name signs stand at a layout's street corners; a map layout takes \
-                 text, trees, cars, people, bicycles, traffic lights (at the map's signals), \
-                 signs (at the map's signs) and models (at the map's nodes `at` names): \
-                 expected another kind, found \"street_name\"",
             );
         }
     }

@@ -28,7 +28,7 @@ pub struct ObjectSpec {
     /// roads, one lit red, amber or green; `count` counts poles) or `"bicycle"` (bicycles
     /// parked in the sidewalk strips and ridden in the driving lanes, each ridden one with
     /// a rider of class `rider`; `count` counts bicycles). A map layout (`[layout.osm]`)
-    /// takes every kind but `street_name`.
+    /// takes every kind (`mesh` at the map's nodes, `street_name` with the map's names).
     pub kind: EntryKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
