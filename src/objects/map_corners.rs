@@ -6,7 +6,8 @@
 //! Roads meeting at an angle whose sine is under [`MIN_SINE`] (about 17°) make no corner,
 //! nor a side without a sidewalk [`MIN_SIDEWALK`] wide. A corner is kept when it stands
 //! [`POLE_ROOM`] off every carriageway, out of the buildings and [`POLE_ROOM`] from their
-//! walls, and inside the box.
+//! walls, and inside the box; its sign stands when its plates' circle keeps out of the
+//! buildings too (`map_objects`).
 
 use std::collections::BTreeMap;
 

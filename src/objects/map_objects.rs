@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 
 use rand::RngExt;
 
-use super::ground_spots::{LAMP_CLEARANCE, Spot};
+use super::ground_spots::{Footprint, LAMP_CLEARANCE, Spot};
 use super::map_spots::MapSpots;
 use super::traffic_signs::{self, MappedSign};
 use super::{
@@ -137,7 +137,15 @@ impl<'a> MapGround<'a> {
             EntryKind::StreetName => {
                 let mut corners = map_corners::map_corners(input.map, spec.case);
                 rand::seq::SliceRandom::shuffle(corners.as_mut_slice(), rng);
-                street_names::place_at(spec, rng, &corners, &mut |f| spots.claim(f), placing)
+                // The plates' circle keeps out of the buildings too: a map's walls stand
+                // at its sidewalks' backs, and a plate must not reach into one.
+                let claim = &mut |f: Footprint| {
+                    let Footprint::Circle(p, r) = f else {
+                        return false;
+                    };
+                    input.map.building_distance(p) >= r && spots.claim(f)
+                };
+                street_names::place_at(spec, rng, &corners, claim, placing)
             }
             EntryKind::Car => car::place(spec, rng, spots, placing),
             EntryKind::Bicycle => bicycle::place(spec, rng, spots, placing),
@@ -685,6 +693,11 @@ mod tests {
         texts.sort();
         // Two plates a pole, lettered on both faces.
         assert_eq!(texts, [["Bulevardi"; 4], ["Fredrikinkatu"; 4]].concat());
+        // A building 0.5 m east of the corner at (−45, 7.5): the pole would stand, but its
+        // plates (over a metre wide) would reach into it.
+        map.buildings[0].outer = vec![[-44.5, 7.0], [-40.0, 7.0], [-40.0, 12.0], [-44.5, 12.0]];
+        let a = place_on(&map, &specs).expect("street names place");
+        assert_eq!(a.placed, vec![1]);
     }
 
     #[test]
