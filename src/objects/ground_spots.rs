@@ -132,9 +132,9 @@ pub trait StripSpots: RoadSpots {
         attempts: u32,
     ) -> Option<Spot>;
 
-    /// A free spot on a zebra crossing for a person crossing it:
-    /// [`GroundSpots::zebra`]. None where the ground has no zebra a person is placed on
-    /// (a map's: the spec refuses `crossing` on a map).
+    /// A free spot on a zebra crossing for a person crossing it, its way over taken
+    /// ([`GroundSpots::zebra`]; a map's: `MapSpots::zebra`). None where there is no zebra,
+    /// or after `attempts`.
     fn zebra(
         &mut self,
         rng: &mut Pcg64,
@@ -144,9 +144,9 @@ pub trait StripSpots: RoadSpots {
         attempts: u32,
     ) -> Option<CrossingSpot>;
 
-    /// A free spot at a zebra's end for a person waiting to cross:
-    /// [`GroundSpots::zebra_kerb`]. None where there is none (a map's: the spec refuses
-    /// `waiting` on a map).
+    /// A free spot at a zebra's end for a person waiting to cross, its way over taken
+    /// ([`GroundSpots::zebra_kerb`]; a map's: `MapSpots::zebra_kerb`). None where there is
+    /// no zebra, or after `attempts`.
     fn zebra_kerb(
         &mut self,
         rng: &mut Pcg64,
