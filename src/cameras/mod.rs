@@ -12,7 +12,8 @@
 //! - [`object_views`] stands in free space around objects of chosen classes and aims at
 //!   them: candidates per frame, of which the build keeps the first whose object the
 //!   renderer shows;
-//! - [`orbit_path`] circles the city for overviews, looking at its centre.
+//! - [`orbit_path`] circles the city for overviews, looking at its centre ([`orbit_path_around`]
+//!   a map's box).
 //!
 //! The moving paths draw each frame's heading, pitch, roll and eye height from the
 //! camera's [`Aim`] ranges, from a stream per camera seed and frame, so one camera's poses
@@ -49,7 +50,7 @@ pub use map_walk::{
     CARRIAGEWAY_CLEARANCE, MIN_SIDEWALK, MIN_STRETCH, map_sidewalk_path, map_sidewalk_path_draws,
 };
 pub use object_path::{ATTEMPTS, CLEARANCE, ObjectTarget, ObjectView, ObjectsPath, object_views};
-pub use orbit_path::{orbit_length, orbit_path};
+pub use orbit_path::{orbit_length, orbit_length_around, orbit_path, orbit_path_around};
 pub use overview::{
     OVERVIEW_FAR, OVERVIEW_HEIGHT, OVERVIEW_ORBIT_POSES, OVERVIEW_SHADOW_MAP_SIDE, OVERVIEW_SIZE,
     OVERVIEW_SUPERSAMPLE, OVERVIEW_TAN_HALF_FOV, Overview, map_overview, overview,

@@ -21,16 +21,23 @@ pub fn orbit_path(
     frames: u32,
     height: f64,
 ) -> Vec<CameraPose> {
-    let m = metres_per_pixel;
-    if frames == 0 || !(m.is_finite() && m > 0.0) || !height.is_finite() {
-        return Vec::new();
+    match layout_area(layout, metres_per_pixel) {
+        Some(area) => orbit_path_around(area, frames, height),
+        None => Vec::new(),
     }
-    let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
+}
+
+/// The orbit of [`orbit_path`] around the box `[min_x, min_z, max_x, max_z]` (metres):
+/// a map's extent (`OsmMap::extent`), or a layout's `[0, 0, width, height]`. No poses
+/// when `frames` is 0, the box is empty or not finite, or `height` is not finite.
+pub fn orbit_path_around(area: [f64; 4], frames: u32, height: f64) -> Vec<CameraPose> {
+    let [x0, z0, x1, z1] = area;
+    let (w, h) = (x1 - x0, z1 - z0);
     let radius = (w * w + h * h).sqrt() / 2.0;
-    if !(radius > 0.0 && radius.is_finite()) {
+    if frames == 0 || !height.is_finite() || !(radius > 0.0 && radius.is_finite()) {
         return Vec::new();
     }
-    let centre = [w / 2.0, h / 2.0];
+    let centre = [(x0 + x1) / 2.0, (z0 + z1) / 2.0];
     (0..frames)
         .map(|i| {
             let [u, v] = square_point(f64::from(i) / f64::from(frames));
@@ -49,12 +56,25 @@ pub fn orbit_path(
 /// the frames are then that far apart on average (the orbit's steps vary, see
 /// [`orbit_path`]).
 pub fn orbit_length(layout: &ParsedLayout, metres_per_pixel: f64) -> f64 {
+    layout_area(layout, metres_per_pixel).map_or(0.0, orbit_length_around)
+}
+
+/// Length in metres of the circle [`orbit_path_around`] flies around `area`; 0 for a
+/// box that is not finite.
+pub fn orbit_length_around(area: [f64; 4]) -> f64 {
+    let (w, h) = (area[2] - area[0], area[3] - area[1]);
+    let length = std::f64::consts::PI * (w * w + h * h).sqrt();
+    if length.is_finite() { length } else { 0.0 }
+}
+
+/// A layout's box in metres, `[0, 0, width, height]`; None when `metres_per_pixel` is
+/// not a positive finite number.
+fn layout_area(layout: &ParsedLayout, metres_per_pixel: f64) -> Option<[f64; 4]> {
     let m = metres_per_pixel;
-    if !(m.is_finite() && m > 0.0) {
-        return 0.0;
-    }
-    let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
-    std::f64::consts::PI * (w * w + h * h).sqrt()
+    (m.is_finite() && m > 0.0).then(|| {
+        let (w, h) = (f64::from(layout.width) * m, f64::from(layout.height) * m);
+        [0.0, 0.0, w, h]
+    })
 }
 
 /// The point at fraction `t ∈ [0, 1)` of the way around the square `[-1, 1]²` (x east,
@@ -131,5 +151,27 @@ mod tests {
         assert!(orbit_path(&layout(0, 0), 1.0, 4, 5.0).is_empty());
         assert!(orbit_path(&layout(10, 10), f64::NAN, 4, 5.0).is_empty());
         assert!(orbit_path(&layout(10, 10), 1.0, 4, f64::NAN).is_empty());
+        assert!(orbit_path_around([0.0, 0.0, f64::INFINITY, 1.0], 4, 5.0).is_empty());
+        assert_eq!(orbit_length_around([0.0, 0.0, f64::NAN, 1.0]), 0.0);
+    }
+
+    #[test]
+    fn a_box_off_the_origin_is_circled_around_its_own_centre() {
+        // A map's box, centred on the origin: −150…150 m east, −200…200 m south.
+        let poses = orbit_path_around([-150.0, -200.0, 150.0, 200.0], 4, 30.0);
+        assert_eq!(poses[0].eye, [0.0, 30.0, -250.0]);
+        assert_eq!(poses[1].eye, [250.0, 30.0, 0.0]);
+        assert!(poses.iter().all(|p| p.target == [0.0, 0.0, 0.0]));
+        // The same orbit as a layout that size, moved by the box's corner.
+        let shifted: Vec<[f64; 3]> = orbit_path(&layout(300, 400), 1.0, 4, 30.0)
+            .iter()
+            .map(|p| [p.eye[0] - 150.0, p.eye[1], p.eye[2] - 200.0])
+            .collect();
+        let eyes: Vec<[f64; 3]> = poses.iter().map(|p| p.eye).collect();
+        assert_eq!(eyes, shifted);
+        assert_eq!(
+            orbit_length_around([-150.0, -200.0, 150.0, 200.0]),
+            500.0 * std::f64::consts::PI
+        );
     }
 }

@@ -157,6 +157,7 @@ impl<'a> MapGround<'a> {
                 let claim = &mut |f| spots.claim(f);
                 traffic_lights::place_mapped(spec, rng, &self.signals, claim, placing)
             }
+            EntryKind::Mesh if spec.at.is_none() => user_mesh::place(spec, rng, spots, placing)?,
             EntryKind::Mesh => {
                 let tag = spec.at.as_deref().unwrap_or_default();
                 let paved: Vec<PavedSegment> = input.map.paved_segments().collect();
@@ -914,5 +915,61 @@ mod tests {
         // A mesh entry without a model file read is an error, not a silent skip.
         let missing = place_on(&map, &specs);
         assert!(matches!(missing, Err(ObjectsError::MissingModel { .. })));
+    }
+
+    #[test]
+    fn models_without_at_are_seeded_mid_sidewalk_or_at_the_kerb_of_a_lane() {
+        let map = crate::test_support::street_map();
+        // A box 0.4 m square: its footprint's middle is where it stands, however turned.
+        let obj = "v -0.2 0 -0.2\nv 0.2 0 -0.2\nv 0.2 0.8 0.2\nv -0.2 0.8 0.2\n\
+                   f 1 2 3\nf 1 3 4\n";
+        let files = MeshFiles {
+            obj: obj.as_bytes().to_vec(),
+            mtl: None,
+            textures: BTreeMap::new(),
+        };
+        let meshes = BTreeMap::from([("box.obj".to_owned(), files)]);
+        let specs = entries(
+            "[[objects]]\nkind = 'mesh'\nlabel = 'box'\ncount = 12\nmodel = 'box.obj'\n\
+             [[objects]]\nkind = 'mesh'\nlabel = 'cone'\ncount = 6\nmodel = 'box.obj'\n\
+             on = 'lane'\n",
+        );
+        let place = || place_with(&map, &specs, &meshes).expect("models place");
+        let inserted = place();
+        assert_eq!(inserted, place());
+        assert_eq!(inserted.placed, vec![12, 6]);
+        let radius = 0.2 * std::f64::consts::SQRT_2;
+        for object in &inserted.objects {
+            let points = object.meshes.iter().flat_map(|m| &m.positions);
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for p in points {
+                for (k, v) in [p[0], p[2]].into_iter().enumerate() {
+                    lo[k] = lo[k].min(f64::from(v));
+                    hi[k] = hi[k].max(f64::from(v));
+                }
+            }
+            let at = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+            let (segment, _, d) = map.nearest_paved(at).expect("paved roads");
+            let want = if object.class == "box" {
+                // The middle of the sidewalk beside the nearest carriageway.
+                segment.width / 2.0 + segment.sidewalks[0] / 2.0
+            } else {
+                // The kerb side of the right-hand lane, `CURB_GAP` from the kerb.
+                segment.width / 2.0 - super::super::car::CURB_GAP - radius
+            };
+            assert!(
+                (d - want).abs() < 1e-3,
+                "{} at {at:?}: {d} from {segment:?}",
+                object.name
+            );
+            assert!(map.building_distance(at) >= radius, "{at:?}");
+        }
+        // On a lane, a model wider than the room at the kerb takes none.
+        let wide = entries(
+            "[[objects]]\nkind = 'mesh'\nlabel = 'cone'\ncount = 3\nmodel = 'box.obj'\n\
+             on = 'lane'\nscale = [20, 20]\n",
+        );
+        let none = place_with(&map, &wide, &meshes).expect("models place");
+        assert_eq!(none.placed, vec![0]);
     }
 }

@@ -433,7 +433,9 @@ fn place_entries<'a>(
                 ));
                 Ok(())
             }
-            EntryKind::Mesh => user_mesh::place(spec, &mut rng, &mut spots, &mut placing),
+            EntryKind::Mesh => {
+                user_mesh::place(spec, &mut rng, &mut spots, &mut placing).map(|_| ())
+            }
             EntryKind::Car => {
                 counted = Some(car::place(spec, &mut rng, &mut spots, &mut placing));
                 Ok(())

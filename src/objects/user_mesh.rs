@@ -1,5 +1,6 @@
 //! A user's OBJ (+ MTL + textures, as bytes) and a mesh spec → `<label>_NNNN` objects:
-//! the model scaled, turned about y and stood on a sidewalk strip or in a right-hand lane.
+//! the model scaled, turned about y and stood on a sidewalk strip or in a right-hand lane
+//! (a layout's or a map's, [`MeshSpots`]), or at a map's nodes ([`place_mapped`]).
 //!
 //! The model's origin (x, z) stands on the spot and its lowest point on the surface. Its
 //! front is its −z side: on a lane, rotation 0 heads it with the traffic. Faces are
@@ -11,7 +12,9 @@ use std::io::Cursor;
 use rand::RngExt;
 use rand_pcg::Pcg64;
 
-use super::ground_spots::{GroundSpots, Spot};
+use super::car::CURB_GAP;
+use super::ground_spots::{GroundSpots, RoadSlot, RoadSpots, Spot, StripSpots};
+use super::map_spots::MapSpots;
 use super::trig::{add, cos_sin_deg};
 use super::{ATTEMPTS, MeshFiles, ObjectsError, Placing};
 use crate::model::geometry::{KERB_Y, ROAD_Y, cross, dot, sub};
@@ -209,22 +212,71 @@ fn part(mesh: &tobj::Mesh, material: usize) -> Part {
     out
 }
 
-/// Places `spec.count` copies of the spec's model (fewer if they do not fit).
+/// Where a seeded model stands: a layout's ground ([`GroundSpots`]) or a map's
+/// (`map_spots::MapSpots`).
+pub trait MeshSpots {
+    /// A free spot for a model of `radius` metres in the middle of a sidewalk, its
+    /// `travel` the traffic's beside it; None after [`ATTEMPTS`].
+    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot>;
+    /// A free spot for a model of `radius` metres in a right-hand lane, its `travel` the
+    /// lane's; None after [`ATTEMPTS`].
+    fn lane(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot>;
+}
+
+impl MeshSpots for GroundSpots<'_> {
+    /// Mid-strip ([`GroundSpots::strip`]).
+    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
+        self.strip(rng, radius, ATTEMPTS)
+    }
+
+    /// The middle of a right-hand lane ([`GroundSpots::lane`]).
+    fn lane(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
+        GroundSpots::lane(self, rng, radius, ATTEMPTS)
+    }
+}
+
+impl MeshSpots for MapSpots<'_> {
+    /// Mid-sidewalk, as a map's people stand ([`StripSpots::strip_at`]).
+    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
+        self.strip_at(rng, radius, |width| width / 2.0, ATTEMPTS)
+    }
+
+    /// At the kerb side of the right-hand lane, [`CURB_GAP`] from the kerb, as a map's
+    /// parked cars: the middle of the lane is the roads cameras' (`OsmMap`'s
+    /// `CAMERA_LANE`), and a model there would fill their view. A carriageway too narrow
+    /// for that takes none.
+    fn lane(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
+        let slot = |width: f64| {
+            let offset = width / 2.0 - CURB_GAP - radius;
+            (offset > radius).then_some(RoadSlot {
+                half: [radius, radius],
+                offset,
+                crossing_clearance: 0.0,
+                gap: 0.0,
+            })
+        };
+        self.road(rng, ATTEMPTS, slot)
+    }
+}
+
+/// Places `spec.count` copies of the spec's model (fewer if they do not fit); returns how
+/// many.
 pub fn place(
     spec: &ObjectSpec,
     rng: &mut Pcg64,
-    spots: &mut GroundSpots,
+    spots: &mut impl MeshSpots,
     placing: &mut Placing,
-) -> Result<(), ObjectsError> {
+) -> Result<u32, ObjectsError> {
     let model = spec_model(spec, placing)?;
     let mut copies = Copies::new(spec, &model);
+    let mut placed = 0;
     for _ in 0..spec.count {
         let scale = uniform(rng, spec.scale);
         let turn = cos_sin_deg(uniform(rng, spec.rotation));
         let radius = model.radius * scale;
         let spot = match spec.on {
-            Ground::Sidewalk => spots.strip(rng, radius, ATTEMPTS),
-            Ground::Lane => spots.lane(rng, radius, ATTEMPTS),
+            Ground::Sidewalk => spots.sidewalk(rng, radius),
+            Ground::Lane => spots.lane(rng, radius),
         };
         let Some(spot) = spot else {
             continue;
@@ -236,8 +288,9 @@ pub fn place(
             Ground::Lane => (ROAD_Y, add((-spot.travel[1], -spot.travel[0]), turn)),
         };
         copies.push(placing, &spot, scale, turn, ground);
+        placed += 1;
     }
-    Ok(())
+    Ok(placed)
 }
 
 /// The model an entry names, loaded from the files the build read.

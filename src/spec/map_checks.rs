@@ -1,13 +1,12 @@
 //! Map checks: a spec whose layout is an OpenStreetMap extract (`[layout.osm]`) → the
 //! problems the schema cannot see: the file and the box, and what a map layout does not
-//! take yet (mirroring, moving traffic, orbit cameras, models anywhere but at the map's
-//! nodes).
+//! take yet (mirroring, moving traffic).
 
 use std::path::Path;
 
 use super::findings::Findings;
 use super::spec::Spec;
-use super::{CameraPath, EntryKind, SpecWorld, resolve};
+use super::{SpecWorld, resolve};
 
 /// Checks `spec`'s map layout, if it has one.
 pub(crate) fn check_map(
@@ -28,7 +27,6 @@ pub(crate) fn check_map(
         }
         return;
     };
-    check_map_objects(spec, findings);
     let file = resolve(spec_path, &osm.file);
     if let Err(problem) = world.file(&file) {
         findings.error(
@@ -54,31 +52,5 @@ pub(crate) fn check_map(
             "traffic does not move on a map layout yet: expected no `[traffic]` with \
              `[layout.osm]`",
         );
-    }
-    for (i, camera) in spec.cameras.iter().enumerate() {
-        if camera.path == CameraPath::Orbit {
-            findings.error(
-                &format!("cameras[{i}].path"),
-                format!(
-                    "cameras on a map layout drive its roads, walk its sidewalks or look at \
-                     its objects: expected path = \"roads\", \"sidewalks\" or \"objects\", \
-                     found \"{}\"",
-                    format!("{:?}", camera.path).to_lowercase()
-                ),
-            );
-        }
-    }
-}
-
-/// The map's objects: a model's `at`.
-fn check_map_objects(spec: &Spec, findings: &mut Findings) {
-    for (i, object) in spec.objects.iter().enumerate() {
-        if object.kind == EntryKind::Mesh && object.at.is_none() {
-            findings.error(
-                &format!("objects[{i}]"),
-                "a model on a map layout stands at the map's nodes: expected `at` (the \
-                 nodes' tag, e.g. at = \"amenity=bench\"), found none",
-            );
-        }
     }
 }

@@ -28,7 +28,8 @@ pub struct ObjectSpec {
     /// roads, one lit red, amber or green; `count` counts poles) or `"bicycle"` (bicycles
     /// parked in the sidewalk strips and ridden in the driving lanes, each ridden one with
     /// a rider of class `rider`; `count` counts bicycles). A map layout (`[layout.osm]`)
-    /// takes every kind (`mesh` at the map's nodes, `street_name` with the map's names).
+    /// takes every kind (`mesh` seeded or at the map's nodes, `street_name` with the map's
+    /// names).
     pub kind: EntryKind,
     /// Annotation category of these objects, e.g. `"text"`, `"traffic_sign"`, `"bench"`.
     /// Default: the kind's own (`text`, `traffic_sign`, `car`, `tree`, `person`,
@@ -81,8 +82,8 @@ pub struct ObjectSpec {
     /// map writes it (`"amenity=bench"`; also `"highway=bench"`, `"natural=tree"`): one at
     /// each such node off the carriageways and out of the buildings, in node order, up to
     /// `count`, its front (−z) towards the nearest paved road within 15 m (turned from
-    /// there by `rotation`; farther off, turned by `rotation` alone). A mesh entry on a map
-    /// needs it.
+    /// there by `rotation`; farther off, turned by `rotation` alone). Without it a map's
+    /// models are seeded on its sidewalks or lanes (`on`), as on a layout.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(length(min = 3))]
     pub at: Option<String>,

@@ -100,8 +100,11 @@ pub fn poses(input: &ViewsInput) -> Vec<CameraPose> {
             // A range of heights: the orbit flies at its middle.
             cameras::orbit_path(layout, mpp, frames, camera.height.at(0.5))
         }
-        // The spec refuses an orbit on a map.
-        (CameraPath::Orbit, Streets::Map(_)) => Vec::new(),
+        (CameraPath::Orbit, Streets::Map(map)) => {
+            let length = cameras::orbit_length_around(map.extent);
+            let frames = camera.frame_rule().frames(length);
+            cameras::orbit_path_around(map.extent, frames, camera.height.at(0.5))
+        }
     }
 }
 
