@@ -200,6 +200,7 @@ const TABLE: [Declaration; 12] = [
         versions: &[
             ("export::VERSION", export::VERSION),
             ("scene::VERSION", scene::VERSION),
+            ("scene::MAP_VERSION", scene::MAP_VERSION),
             ("objects::VERSION", objects::VERSION),
         ],
         // Layout only for a map layout, Parse, Lamps and Place only for a layout image.
@@ -397,6 +398,10 @@ pub struct PreviewInputs {}
 #[derive(Clone, Debug, Serialize)]
 pub struct ExportInputs {
     pub scene_version: u32,
+    /// `scene::MAP_VERSION` for a map layout; none for a layout image, whose key it
+    /// leaves as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub map_scene_version: Option<u32>,
     pub objects_version: u32,
     pub objects: Vec<ObjectSpec>,
     pub widths: Option<Vec<f64>>,
@@ -519,13 +524,11 @@ impl Inputs {
     pub fn of(spec: &Spec, layout: &LayoutSource) -> Inputs {
         let l = &spec.layout;
         // A map is in metres.
-        let mpp = if matches!(layout, LayoutSource::Osm { .. }) {
-            1.0
-        } else {
-            l.metres_per_pixel
-        };
+        let map = matches!(layout, LayoutSource::Osm { .. });
+        let mpp = if map { 1.0 } else { l.metres_per_pixel };
         let export = Arc::new(ExportInputs {
             scene_version: scene::VERSION,
+            map_scene_version: map.then_some(scene::MAP_VERSION),
             objects_version: objects::VERSION,
             objects: spec.objects.clone(),
             widths: spec.buildings.widths.clone(),
@@ -858,7 +861,14 @@ mod tests {
                 .versions
                 .iter()
                 // In a key only when the spec uses them (the test spec does not).
-                .filter(|(name, _)| !["facades::BUILTIN_VERSION", "lidar::VERSION"].contains(name))
+                .filter(|(name, _)| {
+                    ![
+                        "facades::BUILTIN_VERSION",
+                        "lidar::VERSION",
+                        "scene::MAP_VERSION",
+                    ]
+                    .contains(name)
+                })
                 .map(|(_, v)| *v)
                 .collect();
             let mut sorted = carried.clone();

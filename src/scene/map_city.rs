@@ -9,6 +9,7 @@
 //! | `square_0002` | block | a piece of the map's paved open ground (squares, pedestrian areas, car parks: `OsmMap::squares`) at kerb height | `paving` |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
+//! | `kerb_0003` | sidewalk | the kerb faces around carriageway polygon 3, from road height up to kerb height, facing the road (none on the box's edge) | `concrete` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
 //! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`map_roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
@@ -23,14 +24,14 @@
 //! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
 //! the map's list after its own, each clad in the facade it was sized for, as tall as it.
 //!
-//! Not here yet (issue 43): kerb faces; roof shapes other than `map_roofs`' (gambrel,
+//! Not here yet (issue 43): roof shapes other than `map_roofs`' (gambrel,
 //! skillion, round, mansard …) and hipped roofs on more than four corners are flat. Trees,
 //! signals, signs and benches are objects (`objects::insert_map`).
 
 use super::map_roofs::Roof;
 use super::object;
 use super::surfaces::Surfaces;
-use crate::model::geometry::polygon::left_normal;
+use crate::model::geometry::polygon::{distance, left_normal, signed_area};
 use crate::model::geometry::polygon_set::difference;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
@@ -87,6 +88,7 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
         ROAD_Y,
         4.0,
     ));
+    objects.extend(kerbs(map, surfaces.concrete));
     objects.extend(super::map_markings::map_marking_objects(
         map,
         surfaces.marking,
@@ -157,6 +159,50 @@ fn flat(
             let mut mesh = MeshBuilder::new(material);
             mesh.polygon(&p.outer, &p.holes, y, tile);
             object(kind, format!("{}_{i:04}", kind.name()), vec![mesh])
+        })
+        .collect()
+}
+
+/// Per carriageway polygon, `kerb_0003` (class sidewalk, as a layout's curb faces): along
+/// every edge of its rings (an island's too) but those on the box's edge, a vertical face
+/// from road height up to kerb height facing into the carriageway. Everything that meets
+/// a carriageway (sidewalks, blocks, green ground, squares) lies at kerb height, so the
+/// faces close the step that otherwise shows the ground through it.
+fn kerbs(map: &OsmMap, concrete: u32) -> Vec<SceneObject> {
+    let [x0, z0, x1, z1] = map.extent;
+    let edge = |a: f64, b: f64, side: f64| (a - side).abs() < 0.01 && (b - side).abs() < 0.01;
+    let on_box = |a: [f64; 2], b: [f64; 2]| {
+        edge(a[0], b[0], x0) || edge(a[0], b[0], x1) || edge(a[1], b[1], z0) || edge(a[1], b[1], z1)
+    };
+    (map.carriageway.iter().enumerate())
+        .map(|(i, p)| {
+            let mut mesh = MeshBuilder::new(concrete);
+            let rings = std::iter::once((&p.outer, true)).chain(p.holes.iter().map(|h| (h, false)));
+            for (ring, outer) in rings {
+                // A ring of positive area turns from +x towards +z: its left normal points
+                // out of it. Into the carriageway is into the outer ring, out of a hole.
+                let inward = (signed_area(ring) > 0.0) != outer;
+                let sign = if inward { 1.0 } else { -1.0 };
+                for (k, &a) in ring.iter().enumerate() {
+                    let b = ring[(k + 1) % ring.len()];
+                    let Some(n) = left_normal(a, b).filter(|_| !on_box(a, b)) else {
+                        continue;
+                    };
+                    let length = distance(a, b);
+                    // + 0.0: no negative zero in a normal.
+                    let normal = [sign * n[0] + 0.0, 0.0, sign * n[1] + 0.0];
+                    let v = (KERB_Y - ROAD_Y) / 2.0;
+                    mesh.wall(
+                        a,
+                        b,
+                        [ROAD_Y, KERB_Y],
+                        normal,
+                        [0.0, length / 2.0],
+                        [0.0, v],
+                    );
+                }
+            }
+            object(ObjectKind::Sidewalk, format!("kerb_{i:04}"), vec![mesh])
         })
         .collect()
 }

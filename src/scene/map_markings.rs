@@ -33,8 +33,13 @@
 //!   within [`SIGNAL_ZEBRA`] of it, and before the carriageway of a junction the node lies
 //!   in, whichever the traffic meets first. A line that would lie in a junction or off its
 //!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
+//! - **Give-way lines.** At each `highway=give_way` node the same way, a row of
+//!   triangles (the Vienna Convention's "shark teeth", as Finland and the UK paint them)
+//!   [`TOOTH_LENGTH`] long in place of the stop line: bases [`TOOTH_BASE`] wide on the
+//!   node's side, [`TOOTH_GAP`] apart and centred across the lanes, apexes pointing at the
+//!   coming traffic.
 //!
-//! Not drawn on maps yet: give-way lines, parking-lane edges, arrows.
+//! Not drawn on maps yet: parking-lane edges, arrows.
 
 use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, STOP_LINE, centred_dashes, centred_pieces};
 use super::object;
@@ -47,6 +52,13 @@ use crate::model::{FeatureKind, ObjectKind, OsmMap, SceneObject, map_lanes};
 /// How far before its node (or the zebra, or the junction, the traffic meets first) a
 /// stop line ends, metres.
 pub const STOP_GAP: f64 = 1.0;
+/// A give-way line's triangles: their length along the road, metres (the Vienna
+/// Convention's 0.5–0.7 m).
+pub const TOOTH_LENGTH: f64 = 0.6;
+/// A give-way triangle's base across the road, metres (0.4–0.6 m).
+pub const TOOTH_BASE: f64 = 0.5;
+/// The gap between two give-way triangles' bases, metres.
+pub const TOOTH_GAP: f64 = 0.25;
 /// Zebras this close to a signal along its road, metres, are the signal's: its stop lines
 /// stand before them.
 pub const SIGNAL_ZEBRA: f64 = 8.0;
@@ -81,7 +93,11 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
             for stop in stops.iter().filter(|l| l.road == line.road) {
                 let s = stop.segment;
                 let along = stop.along.map(|a| a - line.at[s]);
-                line.rect(&mut mesh, s, along, stop.across);
+                if stop.give_way {
+                    line.teeth(&mut mesh, s, along, stop.across, stop.sign);
+                } else {
+                    line.rect(&mut mesh, s, along, stop.across);
+                }
                 blocked.push([
                     stop.along[0] - LINE_CLEARANCE,
                     stop.along[1] + LINE_CLEARANCE,
@@ -135,6 +151,10 @@ struct StopLine {
     segment: usize,
     along: [f64; 2],
     across: [f64; 2],
+    /// 1: it stops the traffic running along the road; −1: against it.
+    sign: f64,
+    /// A give-way line (triangles), not a stop line (a bar).
+    give_way: bool,
 }
 
 impl Centreline<'_> {
@@ -187,6 +207,8 @@ impl Centreline<'_> {
             segment,
             along,
             across,
+            sign,
+            give_way: false,
         })
     }
 
@@ -201,21 +223,27 @@ impl Centreline<'_> {
         }
     }
 
-    /// A marking quad on segment `s`: `along` it (metres from its first point) and
-    /// `across` it (metres right of it).
-    fn rect(&self, mesh: &mut MeshBuilder, s: usize, along: [f64; 2], across: [f64; 2]) {
+    /// The marking point on segment `s` at `l` metres along it from its first point and
+    /// `c` metres right of it (x east, z south); None for a segment of no length.
+    fn on_segment(&self, s: usize) -> Option<impl Fn(f64, f64) -> [f64; 3]> {
         let (a, b) = (self.points()[s], self.points()[s + 1]);
-        let Some(t) = direction(a, b) else {
-            return;
-        };
-        // Right of a → b (x east, z south).
+        let t = direction(a, b)?;
+        // Right of a → b.
         let n = [-t[1], t[0]];
-        let at = |l: f64, c: f64| {
+        Some(move |l: f64, c: f64| {
             [
                 a[0] + t[0] * l + n[0] * c,
                 MARKING_Y,
                 a[1] + t[1] * l + n[1] * c,
             ]
+        })
+    }
+
+    /// A marking quad on segment `s`: `along` it (metres from its first point) and
+    /// `across` it (metres right of it).
+    fn rect(&self, mesh: &mut MeshBuilder, s: usize, along: [f64; 2], across: [f64; 2]) {
+        let Some(at) = self.on_segment(s) else {
+            return;
         };
         let corners = [
             at(along[0], across[0]),
@@ -227,10 +255,44 @@ impl Centreline<'_> {
         let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         mesh.quad(corners, UP, uvs);
     }
+
+    /// A give-way line's triangles over arc lengths `along` (from segment `s`'s start)
+    /// and `across` (metres right of the centreline), for traffic running `sign`: bases
+    /// on the side it drives to, apexes towards it.
+    fn teeth(
+        &self,
+        mesh: &mut MeshBuilder,
+        s: usize,
+        along: [f64; 2],
+        across: [f64; 2],
+        sign: f64,
+    ) {
+        let Some(at) = self.on_segment(s) else {
+            return;
+        };
+        let (base, apex) = if sign > 0.0 {
+            (along[1], along[0])
+        } else {
+            (along[0], along[1])
+        };
+        let width = across[1] - across[0];
+        let count = ((width + TOOTH_GAP) / (TOOTH_BASE + TOOTH_GAP)).floor();
+        let used = count * TOOTH_BASE + (count - 1.0) * TOOTH_GAP;
+        let mut c = across[0] + (width - used) / 2.0;
+        for _ in 0..count.max(0.0) as u32 {
+            let corners = [
+                at(base, c),
+                at(base, c + TOOTH_BASE),
+                at(apex, c + TOOTH_BASE / 2.0),
+            ];
+            mesh.triangle(corners, UP, [[0.0, 0.0], [1.0, 0.0], [0.5, 1.0]]);
+            c += TOOTH_BASE + TOOTH_GAP;
+        }
+    }
 }
 
-/// The stop lines of the map's signals and stop nodes on the paved roads `lines` (see the
-/// module's docs): per node, per road through it in road order, the traffic running along
+/// The stop and give-way lines of the map's signals, stop and give-way nodes on the
+/// paved roads `lines` (see the module's docs): per node, per road through it in road order, the traffic running along
 /// the road before the traffic running against it (a line that would lie off the road's
 /// paved run is the traffic leaving the node: none).
 fn stop_lines(
@@ -240,7 +302,7 @@ fn stop_lines(
     junctions: &[Junction],
 ) -> Vec<StopLine> {
     let stops = |f: &&crate::model::MapFeature| {
-        f.kind == FeatureKind::TrafficSignals || f.tag == "highway=stop"
+        f.kind == FeatureKind::TrafficSignals || f.tag == "highway=stop" || f.tag == GIVE_WAY
     };
     let mut out = Vec::new();
     // Every road through the node: ways are split at junctions, so traffic comes to a
@@ -270,16 +332,21 @@ fn stop_lines(
             for j in own.iter().filter(|j| (j.at - at).abs() <= j.reach) {
                 front = first(sign, front, j.at - sign * j.reach);
             }
+            let give_way = f.tag == GIVE_WAY;
+            let depth = if give_way { TOOTH_LENGTH } else { STOP_LINE };
             let near = front - sign * STOP_GAP;
-            let far = near - sign * STOP_LINE;
+            let far = near - sign * depth;
             let along = [near.min(far), near.max(far)];
             if let Some(stop) = line.stop_line(along, sign, &own) {
-                out.push(stop);
+                out.push(StopLine { give_way, ..stop });
             }
         }
     }
     out
 }
+
+/// The tag of a give-way node.
+const GIVE_WAY: &str = "highway=give_way";
 
 /// Of two arc lengths, the one traffic running `sign` (1: along the road, −1: against it)
 /// reaches first.

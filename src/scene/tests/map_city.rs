@@ -266,14 +266,16 @@ fn green_ground_and_squares_are_cut_out_of_their_paved_block() {
 fn the_street_surface_and_the_blocks_are_paved() {
     let scene = city();
     let kinds: Vec<ObjectKind> = scene.objects.iter().map(|o| o.kind).collect();
-    for kind in [
-        ObjectKind::Ground,
-        ObjectKind::Block,
-        ObjectKind::Sidewalk,
-        ObjectKind::Road,
-    ] {
+    for kind in [ObjectKind::Ground, ObjectKind::Block, ObjectKind::Road] {
         assert_eq!(kinds.iter().filter(|k| **k == kind).count(), 1, "{kind:?}");
     }
+    // The sidewalk and the carriageway's kerb.
+    let sidewalks = scene
+        .objects
+        .iter()
+        .filter(|o| o.kind == ObjectKind::Sidewalk);
+    let names: Vec<&str> = sidewalks.map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["sidewalk_0000", "kerb_0000"]);
     let road = scene
         .objects
         .iter()
@@ -348,4 +350,69 @@ fn roofs_follow_roof_shape_with_a_mapped_height_at_the_top() {
         .map(area_from_above)
         .sum();
     assert!((covered - 200.0).abs() < 1e-3, "{covered}");
+}
+
+#[test]
+fn kerb_faces_close_the_step_from_the_carriageway_up_to_kerb_height() {
+    use crate::model::geometry::ROAD_Y;
+    let faces = |map: &OsmMap| -> Vec<([f32; 3], [[f32; 3]; 3])> {
+        let scene = map_city(&MapSceneInput {
+            lamps: &[],
+            map,
+            facades: &facade_set(),
+            seed: 7,
+        });
+        let kerb = scene.objects.iter().find(|o| o.name == "kerb_0000");
+        let kerb = kerb.expect("a kerb per carriageway");
+        assert_eq!(kerb.kind, ObjectKind::Sidewalk);
+        (kerb.meshes.iter())
+            .flat_map(|m| {
+                m.indices.chunks_exact(3).map(|t| {
+                    let corners = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+                    (m.normals[t[0] as usize], corners)
+                })
+            })
+            .collect()
+    };
+    // The street's only edge off the box is its south kerb (z = -10, x -10 … 60), where
+    // the sidewalk meets it: two triangles facing north, into the street.
+    let street = faces(&map());
+    assert_eq!(street.len(), 2);
+    let mut covered = 0.0;
+    for (normal, corners) in &street {
+        assert_eq!(*normal, [0.0, 0.0, -1.0]);
+        for p in corners {
+            assert_eq!(p[2], -10.0);
+            assert!(p[1] == ROAD_Y as f32 || p[1] == KERB_Y as f32, "{p:?}");
+        }
+        let [a, b, c] = corners.map(|p| [f64::from(p[0]), f64::from(p[1])]);
+        covered += ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs() / 2.0;
+    }
+    assert!(
+        (covered - 70.0 * (KERB_Y - ROAD_Y)).abs() < 1e-4,
+        "{covered}"
+    );
+    // An island in the street (a hole, turning either way): its four sides face out of
+    // it, into the street around it, whichever way its ring turns.
+    for turn in [false, true] {
+        let mut map = map();
+        let mut island = vec![[10.0, -17.0], [20.0, -17.0], [20.0, -13.0], [10.0, -13.0]];
+        if turn {
+            island.reverse();
+        }
+        map.carriageway[0].holes.push(island);
+        let faces = faces(&map);
+        assert_eq!(faces.len(), 2 + 8);
+        for (normal, corners) in &faces[2..] {
+            let (x, z) = (corners[0][0], corners[0][2]);
+            let out = match normal {
+                [0.0, 0.0, -1.0] => z == -17.0,
+                [0.0, 0.0, 1.0] => z == -13.0,
+                [-1.0, 0.0, 0.0] => x == 10.0,
+                [1.0, 0.0, 0.0] => x == 20.0,
+                _ => false,
+            };
+            assert!(out, "{normal:?} at {corners:?}");
+        }
+    }
 }

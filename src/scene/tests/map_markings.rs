@@ -9,14 +9,35 @@ use crate::scene::map_markings::{lane_lines, map_marking_objects};
 use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP, STOP_LINE};
 use crate::test_support::street_map;
 
+/// The faces of a marking object, quads and triangles, their corners `[x, z]` in order.
+fn faces(object: &SceneObject) -> Vec<Vec<[f64; 2]>> {
+    let mesh = &object.meshes[0];
+    assert!(mesh.positions.iter().all(|p| p[1] == MARKING_Y as f32));
+    let corner = |i: u32| {
+        let p = mesh.positions[i as usize];
+        [f64::from(p[0]), f64::from(p[2])]
+    };
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < mesh.indices.len() {
+        // A quad is two triangles fanned from its first corner: 0 1 2, 0 2 3.
+        let base = mesh.indices[i];
+        let quad = mesh.indices.get(i + 3) == Some(&base);
+        let corners = if quad { 4 } else { 3 };
+        out.push((0..corners).map(|k| corner(base + k)).collect());
+        i += if quad { 6 } else { 3 };
+    }
+    assert_eq!(
+        out.iter().map(Vec::len).sum::<usize>(),
+        mesh.positions.len()
+    );
+    out
+}
+
 /// The quads of a marking object: four corners each, `[x, z]`.
 fn quads(object: &SceneObject) -> Vec<[[f64; 2]; 4]> {
-    let mesh = &object.meshes[0];
-    assert_eq!(mesh.positions.len() % 4, 0);
-    assert!(mesh.positions.iter().all(|p| p[1] == MARKING_Y as f32));
-    mesh.positions
-        .chunks(4)
-        .map(|q| std::array::from_fn(|i| [f64::from(q[i][0]), f64::from(q[i][2])]))
+    (faces(object).into_iter())
+        .filter_map(|f| <[[f64; 2]; 4]>::try_from(f).ok())
         .collect()
 }
 
@@ -245,7 +266,7 @@ fn signals_and_stop_nodes_get_stop_lines_before_them() {
         node(34, signal, [-22.0, 0.0], "highway=traffic_signals"),
         // In the junction with road 1 (4 m either side of it along road 0).
         node(35, signal, [-50.0, 0.0], "highway=traffic_signals"),
-        // Off every road; a give-way node (no stop line).
+        // Off every road; a give-way node (triangles, not a line).
         node(36, signal, [0.0, 40.0], "highway=traffic_signals"),
         node(
             37,
@@ -336,6 +357,76 @@ fn signals_and_stop_nodes_get_stop_lines_before_them() {
                     p[0] > x[0] - LINE_CLEARANCE + EPS && p[0] < x[1] + LINE_CLEARANCE - EPS;
                 assert!(!inside, "{q:?} by the stop line {x:?}");
             }
+        }
+    }
+}
+
+#[test]
+fn give_way_nodes_get_teeth_pointing_at_the_coming_traffic() {
+    use crate::scene::map_markings::{TOOTH_BASE, TOOTH_GAP, TOOTH_LENGTH};
+    let mut map = street_map();
+    // Road 0, two-way, 12 m wide, eastwards: teeth each way, a metre before the node.
+    let give_way = MapFeature {
+        node: 37,
+        kind: FeatureKind::TrafficSign,
+        at: [-135.0, 0.0],
+        tag: "highway=give_way".to_owned(),
+    };
+    map.features.push(give_way);
+    let objects = map_marking_objects(&map, 3);
+    let teeth: Vec<Vec<[f64; 2]>> = (faces(&objects[0]).into_iter())
+        .filter(|f| f.len() == 3)
+        .collect();
+    // Each half from 0.05 m (half a line) to 5.7 m (the kerb less its clearance) off the
+    // centreline: 5.65 m holds 7 teeth of 0.5 m, 0.25 m apart.
+    let (half, reach) = (LINE_WIDTH / 2.0, 6.0 - CURB_CLEARANCE);
+    let per_side = ((reach - half + TOOTH_GAP) / (TOOTH_BASE + TOOTH_GAP)).floor();
+    assert_eq!(per_side, 7.0);
+    assert_eq!(teeth.len(), 14);
+    for tooth in &teeth {
+        // Base two corners at one x, apex at the other (in either winding); z the across
+        // position.
+        let k = (0..3)
+            .find(|&k| (tooth[(k + 1) % 3][0] - tooth[(k + 2) % 3][0]).abs() < EPS)
+            .expect("a base across the road");
+        let [apex, b0, b1] = [tooth[k], tooth[(k + 1) % 3], tooth[(k + 2) % 3]];
+        assert!((b0[0] - b1[0]).abs() < EPS, "{tooth:?}");
+        assert!(
+            ((b1[1] - b0[1]).abs() - TOOTH_BASE).abs() < EPS,
+            "{tooth:?}"
+        );
+        assert!(
+            ((apex[0] - b0[0]).abs() - TOOTH_LENGTH).abs() < EPS,
+            "{tooth:?}"
+        );
+        assert!((apex[1] - (b0[1] + b1[1]) / 2.0).abs() < EPS, "{tooth:?}");
+        if apex[1] > 0.0 {
+            // Eastbound, on the south half: base a metre before the node, apex west, to
+            // the traffic coming from there.
+            assert!((b0[0] + 136.0).abs() < EPS && apex[0] < b0[0], "{tooth:?}");
+            assert!(b0[1].min(b1[1]) >= half - EPS && b0[1].max(b1[1]) <= reach + EPS);
+        } else {
+            assert!((b0[0] + 134.0).abs() < EPS && apex[0] > b0[0], "{tooth:?}");
+            assert!(b0[1].max(b1[1]) <= -half + EPS && b0[1].min(b1[1]) >= -reach - EPS);
+        }
+    }
+    // Centred across each half: the same room left at both ends.
+    let mut south: Vec<f64> = (teeth.iter())
+        .filter(|t| t.iter().all(|p| p[1] > 0.0))
+        .flat_map(|t| t.iter().map(|p| p[1]))
+        .collect();
+    south.sort_by(f64::total_cmp);
+    let (first, last) = (south[0], south[south.len() - 1]);
+    assert!(
+        ((first - half) - (reach - last)).abs() < EPS,
+        "{first} {last}"
+    );
+    // The dashes keep their clearance from the teeth (−136.6 … −133.4).
+    let clear = [-136.6 - LINE_CLEARANCE, -133.4 + LINE_CLEARANCE];
+    for q in quads(&objects[0]) {
+        for p in q {
+            let inside = p[0] > clear[0] + EPS && p[0] < clear[1] - EPS;
+            assert!(!inside, "{q:?} by the teeth");
         }
     }
 }
