@@ -343,7 +343,7 @@ fn osm(
     let paths: Vec<_> = map.roads.iter().filter(|r| !r.drivable).collect();
     let l = &map.left_out;
     cx.out.info(&format!(
-        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  street: carriageway {:.0} m², sidewalks {:.0} m², {} blocks ({:.0} m², {:.0} m² of it green, {:.0} m² squares); {} road segments narrowed between buildings, {} unpaved under them\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box, {} incomplete green areas or squares",
+        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  street: carriageway {:.0} m², sidewalks {:.0} m², {} blocks ({:.0} m², {:.0} m² of it green with {:.0} m² of paths across it, {:.0} m² squares); {} road segments narrowed between buildings, {} unpaved under them\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box, {} incomplete green areas or squares",
         file.display(),
         b.south, b.west, b.north, b.east, x1 - x0, z1 - z0,
         map.buildings.len(), with_height, area,
@@ -353,6 +353,7 @@ fn osm(
         count(&map, FeatureKind::TrafficSign), count(&map, FeatureKind::Crossing),
         surface(&map.carriageway), surface(&map.sidewalks), map.blocks.len(), surface(&map.blocks),
         map.green.iter().map(|g| g.shape.area).sum::<f64>() + 0.0,
+        map.paths.iter().map(|g| g.shape.area).sum::<f64>() + 0.0,
         map.squares.iter().map(|g| g.shape.area).sum::<f64>() + 0.0,
         l.segments_narrowed, l.segments_blocked,
         l.buildings_outside, l.buildings_open, l.buildings_incomplete, l.ways_missing_nodes, l.roads_outside,

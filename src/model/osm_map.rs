@@ -37,6 +37,11 @@ pub struct OsmMap {
     /// each block, in block order.
     #[serde(default)]
     pub green: Vec<MapArea>,
+    /// The paths across the green ground (footways, paths, cycleways, bridleways and
+    /// tracks on the ground, each stroked to its width), cut to the green and to each
+    /// block, in block order. They lie on the green: [`OsmMap::green`] holds them too.
+    #[serde(default)]
+    pub paths: Vec<MapArea>,
     /// The paved open ground the map has on the blocks (squares, pedestrian areas, car
     /// parks) less the green, cut to each block, in block order.
     #[serde(default)]

@@ -206,7 +206,8 @@ fn tree_sites(map: &OsmMap) -> Vec<([f64; 2], f64)> {
 /// entry's `count` thins them evenly): on each piece of green ground, one per
 /// [`GREEN_TREE_SPACING`] square of a grid in metres, at a point drawn in the middle
 /// third of the square (`rng::stream(seed, "map-green-trees", piece)`), kept when it lies
-/// on the piece [`GREEN_TREE_INSET`] inside its edges, [`GREEN_TREE_SPACING`] from every
+/// on the piece [`GREEN_TREE_INSET`] inside its edges, off the paths across it
+/// (`OsmMap::paths`) as far from theirs, [`GREEN_TREE_SPACING`] from every
 /// tree of `mapped`, clear of the lamps and out of the buildings; the crown has the room
 /// `tree_sites` gives.
 fn green_tree_sites(
@@ -223,6 +224,21 @@ fn green_tree_sites(
         let shape = &green.shape;
         let rings: Vec<&Vec<[f64; 2]>> =
             std::iter::once(&shape.outer).chain(&shape.holes).collect();
+        // The paths across it are holes in it too.
+        let paths: Vec<&crate::model::MapPolygon> = (map.paths.iter())
+            .filter(|p| p.block == green.block)
+            .map(|p| &p.shape)
+            .collect();
+        let rings: Vec<&Vec<[f64; 2]>> = (rings.into_iter())
+            .chain(
+                paths
+                    .iter()
+                    .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes)),
+            )
+            .collect();
+        let on_path = |p: [f64; 2]| {
+            (paths.iter()).any(|q| contains(&q.outer, p) && !q.holes.iter().any(|h| contains(h, p)))
+        };
         let edge = |p: [f64; 2]| {
             (rings.iter())
                 .map(|r| crate::model::geometry::polygon::ring_distance(r, p))
@@ -238,6 +254,7 @@ fn green_tree_sites(
                 ];
                 let on = contains(&shape.outer, p)
                     && !shape.holes.iter().any(|h| contains(h, p))
+                    && !on_path(p)
                     && edge(p) >= GREEN_TREE_INSET;
                 let clear = on
                     && mapped.iter().all(|(t, _)| distance(*t, p) >= s)
@@ -535,6 +552,32 @@ mod tests {
         assert!(inserted.placed[0] > 1, "{:?}", inserted.placed);
         // With no green ground, the map's one tree only.
         assert_eq!(place(&specs).expect("trees place").placed, vec![1]);
+        // A path 2 m wide across the green, west to east at z 29 … 31: no tree on it or
+        // nearer to it than the inset; the others stay where they were.
+        let path = vec![[-145.0, 29.0], [-60.0, 29.0], [-60.0, 31.0], [-145.0, 31.0]];
+        map.paths = vec![crate::model::MapArea {
+            block: 0,
+            shape: crate::model::MapPolygon {
+                outer: path,
+                holes: Vec::new(),
+                area: 170.0,
+            },
+        }];
+        let beside = green_tree_sites(&map, &lamps, &mapped, 5);
+        assert!(!beside.is_empty());
+        let near_path = |t: &&([f64; 2], f64)| {
+            (29.0 - GREEN_TREE_INSET..=31.0 + GREEN_TREE_INSET).contains(&t.0[1])
+        };
+        let kept: Vec<([f64; 2], f64)> = sites.iter().filter(|t| !near_path(t)).copied().collect();
+        let mut sorted = beside.clone();
+        sorted.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+        let mut kept_sorted = kept.clone();
+        kept_sorted.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+        assert_eq!(sorted, kept_sorted);
+        assert!(
+            kept.len() < sites.len(),
+            "trees stood there without the path"
+        );
     }
 
     #[test]

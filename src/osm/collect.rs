@@ -44,6 +44,9 @@ struct RoadTags {
     oneway: bool,
     roundabout: bool,
     surface: bool,
+    /// A footway, path or cycleway on the ground (`tags::ground_path`): drawn where it
+    /// crosses the green ground.
+    ground_path: bool,
     name: Option<String>,
 }
 
@@ -134,6 +137,7 @@ impl Sink for Collector {
                 id,
                 RoadTags {
                     surface: tags::drivable(class) && !below,
+                    ground_path: tags::ground_path(class, tags) && !below,
                     class: class.to_owned(),
                     width: tags::width(class, tags),
                     sidewalks: tags::sidewalks(class, tags),
@@ -193,7 +197,16 @@ impl Collector {
         let [carriageway, sidewalks, blocks] = super::surfaces::surfaces(&roads, extent);
         let [green, squares] = [Open::Green, Open::Square]
             .map(|open| self.open_areas(open, &projection, &mut left_out));
-        let [green, squares] = super::surfaces::open_ground(&green, &squares, &blocks);
+        let path_ways: std::collections::HashSet<i64> = (self.roads.iter())
+            .filter(|(_, t)| t.ground_path)
+            .map(|(id, _)| *id)
+            .collect();
+        let paths: Vec<&MapRoad> = roads
+            .iter()
+            .filter(|r| path_ways.contains(&r.way))
+            .collect();
+        let [green, squares, paths] =
+            super::surfaces::open_ground(&green, &squares, &paths, &blocks);
         let mut features: Vec<MapFeature> = self
             .features
             .iter()
@@ -220,6 +233,7 @@ impl Collector {
             sidewalks,
             blocks,
             green,
+            paths,
             squares,
             left_out,
         })

@@ -11,13 +11,15 @@
 //!
 //! The open ground is the union of the map's green areas (`tags::green`), and of its
 //! squares (`tags::square`) less the green, cut to each block: it never lies on the
-//! street, and each piece belongs to one block.
+//! street, and each piece belongs to one block. The paths across it are the map's
+//! footways, paths, cycleways, bridleways and tracks on the ground (`tags::ground_path`)
+//! stroked to their widths, where they cross the green.
 
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::float::overlay::FloatOverlay;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
-use i_overlay::mesh::float::style::{LineCap, StrokeStyle};
+use i_overlay::mesh::float::style::{LineCap, LineJoin, StrokeStyle};
 
 use crate::model::geometry::polygon::{bounds, left_normal};
 use crate::model::geometry::polygon_set::{Contours, intersection, polygons};
@@ -103,12 +105,14 @@ pub fn surfaces(roads: &[MapRoad], extent: [f64; 4]) -> [Vec<MapPolygon>; 3] {
 /// The open ground on `blocks`: the union of the `green` areas, and the union of the
 /// `squares` less the green (a lawn mapped on a square is grass), each cut to each
 /// block, in block order (each its outer ring then its holes); pieces under
-/// [`MIN_OPEN`] dropped.
+/// [`MIN_OPEN`] dropped. Third, the `paths` across the green: each path's centreline
+/// stroked to its width with round ends, their union cut to the green and to each block.
 pub fn open_ground(
     green: &[Contours],
     squares: &[Contours],
+    paths: &[&MapRoad],
     blocks: &[MapPolygon],
-) -> [Vec<MapArea>; 2] {
+) -> [Vec<MapArea>; 3] {
     // Non-zero fill: an area's hole cancels its own outer ring only, so a point is open
     // when any area holds it.
     let union = |areas: &[Contours]| -> Contours {
@@ -120,7 +124,24 @@ pub fn open_ground(
     let squares: Contours = FloatOverlay::with_subj_and_clip(&union(squares), &green)
         .overlay(OverlayRule::Difference, FillRule::NonZero)
         .concat();
-    [on_blocks(&green, blocks), on_blocks(&squares, blocks)]
+    let mut strokes: Contours = Vec::new();
+    for road in paths.iter().filter(|r| r.width > 0.0) {
+        let style = StrokeStyle::new(road.width)
+            .start_cap(LineCap::Round(ARC_STEP))
+            .end_cap(LineCap::Round(ARC_STEP))
+            .line_join(LineJoin::Round(ARC_STEP));
+        for shape in road.centreline.stroke(style, false) {
+            strokes.extend(shape);
+        }
+    }
+    let paths: Contours = FloatOverlay::with_subj_and_clip(&union(&[strokes]), &green)
+        .overlay(OverlayRule::Intersect, FillRule::NonZero)
+        .concat();
+    [
+        on_blocks(&green, blocks),
+        on_blocks(&squares, blocks),
+        on_blocks(&paths, blocks),
+    ]
 }
 
 /// The shapes of `union` (rings from an overlay, non-zero) cut to each block.

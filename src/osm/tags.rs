@@ -77,6 +77,19 @@ fn default_lanes(class: &str) -> f64 {
     }
 }
 
+/// Whether a way of highway `class` is a path drawn on the ground it crosses: a footway,
+/// path, cycleway, bridleway or track (not steps), not on a bridge (a tunnel or a way
+/// below ground the caller leaves out).
+pub fn ground_path(class: &str, tags: &[(&str, &str)]) -> bool {
+    matches!(
+        class,
+        "footway" | "path" | "cycleway" | "bridleway" | "track"
+    ) && get(tags, "bridge").is_none_or(|b| b == "no")
+        && get(tags, "layer")
+            .and_then(|l| l.trim().parse::<i32>().ok())
+            .is_none_or(|l| l == 0)
+}
+
 /// Width of a path that is not a road (footway, cycleway, steps, …), metres.
 const PATH_WIDTH: f64 = 2.0;
 

@@ -517,6 +517,54 @@ fn green_ground_is_the_union_of_the_green_areas_less_their_holes_on_the_blocks()
 }
 
 #[test]
+fn paths_across_the_green_are_their_strokes_cut_to_the_green() {
+    // A footway 2 m wide (the default) from west of the park to the pitch, along a
+    // parallel (a straight line east in metres); a footbridge and a tunnel beside it, and
+    // steps.
+    let ways = r#"  <node id="61" lat="60.00075" lon="25.0000"/>
+  <node id="62" lat="60.00075" lon="25.0016"/>
+  <node id="63" lat="60.00070" lon="25.0000"/>
+  <node id="64" lat="60.00070" lon="25.0016"/>
+  <node id="65" lat="60.00045" lon="25.0000"/>
+  <node id="66" lat="60.00045" lon="25.0016"/>
+  <way id="110"><nd ref="61"/><nd ref="62"/><tag k="highway" v="footway"/></way>
+  <way id="111"><nd ref="63"/><nd ref="64"/><tag k="highway" v="footway"/><tag k="bridge" v="yes"/></way>
+  <way id="112"><nd ref="65"/><nd ref="66"/><tag k="highway" v="path"/><tag k="tunnel" v="yes"/></way>
+  <way id="113"><nd ref="63"/><nd ref="66"/><tag k="highway" v="steps"/></way>
+"#;
+    let at = GREEN.find("  <relation").unwrap();
+    let text = format!("{}{ways}{}", &GREEN[..at], &GREEN[at..]);
+    let map = read(text.as_bytes(), None).unwrap();
+    let [dx, _] = map.metres_per_degree;
+    // The green along the footway: the park and the lawn, 25.0002° to 25.0012° east.
+    let expected = 2.0 * 0.0010 * dx;
+    let area: f64 = map.paths.iter().map(|p| p.shape.area).sum();
+    assert!((area - expected).abs() < 1e-3, "{area} {expected}");
+    assert_eq!(map.paths.len(), 1);
+    // On the green's block, and the green itself is as the map has it.
+    let (path, green) = (&map.paths[0], &map.green[0]);
+    assert_eq!(path.block, green.block);
+    let without = read(GREEN.as_bytes(), None).unwrap();
+    assert_eq!(map.green, without.green);
+    assert!(without.paths.is_empty());
+    // Every corner in the green or on its edge (within a millimetre).
+    use crate::model::geometry::polygon::{contains, ring_distance};
+    let ring = &green.shape.outer;
+    assert!((path.shape.outer.iter()).all(|&p| contains(ring, p) || ring_distance(ring, p) < 1e-3));
+}
+
+#[test]
+fn ground_paths_are_footways_paths_and_cycleways_off_bridges() {
+    assert!(tags::ground_path("footway", &[]));
+    assert!(tags::ground_path("cycleway", &[("layer", "0")]));
+    assert!(tags::ground_path("path", &[("bridge", "no")]));
+    assert!(!tags::ground_path("footway", &[("bridge", "yes")]));
+    assert!(!tags::ground_path("footway", &[("layer", "1")]));
+    assert!(!tags::ground_path("steps", &[]));
+    assert!(!tags::ground_path("residential", &[]));
+}
+
+#[test]
 fn green_tags_are_grass_parks_and_woods_and_squares_are_paved_open_ground() {
     let green = |tags: &[(&str, &str)]| tags::green(tags);
     assert!(green(&[("leisure", "park")]));

@@ -5,7 +5,8 @@
 //! |---|---|---|---|
 //! | `ground` | ground | one quad under the box, [`GROUND_MARGIN`] beyond it | `grass` |
 //! | `block_0007` | block; ground (terrain) without a building | block 7's polygon at kerb height, less the map's green ground and squares on it | `paving`; `grass` without a building (a park, a square or a yard) |
-//! | `green_0002` | ground (terrain) | a piece of the map's green ground (parks, gardens, grass, woods: `OsmMap::green`) at kerb height | `grass` |
+//! | `green_0002` | ground (terrain) | a piece of the map's green ground (parks, gardens, grass, woods: `OsmMap::green`) at kerb height, less the paths across it | `grass` |
+//! | `path_0002` | sidewalk | a piece of the paths across the green ground (`OsmMap::paths`) at kerb height | `paving` |
 //! | `square_0002` | block | a piece of the map's paved open ground (squares, pedestrian areas, car parks: `OsmMap::squares`) at kerb height | `paving` |
 //! | `sidewalk_0007` | sidewalk | a sidewalk polygon at kerb height | `concrete` |
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
@@ -109,7 +110,8 @@ pub fn map_city(input: &MapSceneInput) -> Scene {
 
 /// Every block at kerb height, less the map's open ground on it: paved where a building
 /// stands in the block, grass (terrain) where none does (a park, a square or a yard); then
-/// the green ground, grass, and the squares, paved.
+/// the green ground, grass, less the paths across it, the paths, paved, and the squares,
+/// paved.
 fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
     let mut objects: Vec<SceneObject> = map
         .blocks
@@ -133,8 +135,23 @@ fn blocks(map: &OsmMap, surfaces: &Surfaces) -> Vec<SceneObject> {
     objects.extend(map.green.iter().enumerate().map(|(i, g)| {
         let mut mesh = MeshBuilder::new(surfaces.grass);
         let tile = super::procedural::GRASS_TILE;
-        mesh.polygon(&g.shape.outer, &g.shape.holes, KERB_Y, tile);
+        let paths: Vec<&MapPolygon> = (map.paths.iter())
+            .filter(|p| p.block == g.block)
+            .map(|p| &p.shape)
+            .collect();
+        if paths.is_empty() {
+            mesh.polygon(&g.shape.outer, &g.shape.holes, KERB_Y, tile);
+        } else {
+            for part in difference(&g.shape, &paths) {
+                mesh.polygon(&part.outer, &part.holes, KERB_Y, tile);
+            }
+        }
         object(ObjectKind::Ground, format!("green_{i:04}"), vec![mesh])
+    }));
+    objects.extend(map.paths.iter().enumerate().map(|(i, p)| {
+        let mut mesh = MeshBuilder::new(surfaces.paving);
+        mesh.polygon(&p.shape.outer, &p.shape.holes, KERB_Y, 2.0);
+        object(ObjectKind::Sidewalk, format!("path_{i:04}"), vec![mesh])
     }));
     objects.extend(map.squares.iter().enumerate().map(|(i, g)| {
         let mut mesh = MeshBuilder::new(surfaces.paving);

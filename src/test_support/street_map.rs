@@ -110,6 +110,7 @@ pub fn street_map() -> OsmMap {
         sidewalks: Vec::new(),
         blocks: Vec::new(),
         green: Vec::new(),
+        paths: Vec::new(),
         squares: Vec::new(),
         left_out: LeftOut::default(),
     }

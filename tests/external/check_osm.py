@@ -19,7 +19,12 @@ its own haversine lengths.
   (parks, gardens, grass, woods: the tags of docs/osm.md) cut to the blocks, and its
   squares the union of the squares, pedestrian areas and car parks less the green, cut
   to the blocks: each within 2 % of the map's area, each piece inside the block it
-  names and none on the street.
+  names and none on the street;
+- (shapely) the map's paths across the green are the footways, paths, cycleways,
+  bridleways and tracks on the ground (no bridge, tunnel or layer but 0) osmium reads,
+  each buffered to half its width (`width`, else lanes × 3.25 m, else 2 m) with round
+  ends, their union cut to the green ground and the blocks: within 2 % of the map's area,
+  each piece on the green of its block.
 Prints the counts and the worst differences; exits 1 on the first failed check.
 """
 import json
@@ -82,6 +87,7 @@ class Reader(osmium.SimpleHandler):
         self.ways = {}  # id -> (class, length m, nodes inside, node count)
         self.green = []  # [(+1 outer | -1 inner, [(lat, lon)])] per green area
         self.squares = []  # the same per square
+        self.paths = []  # [(width m, [(lat, lon)])] per ground path
 
     def inside(self, loc):
         s, w, n, e = self.box
@@ -114,12 +120,54 @@ class Reader(osmium.SimpleHandler):
 
     def way(self, w):
         highway = w.tags.get("highway")
+        if highway in GROUND_PATHS and ground(w.tags) and w.tags.get("area") != "yes":
+            if all(n.location.valid() for n in w.nodes):
+                points = [(n.lat, n.lon) for n in w.nodes]
+                self.paths.append((width(w.tags), points))
         if highway not in DRIVABLE or w.tags.get("area") == "yes":
             return
         if not all(n.location.valid() for n in w.nodes):
             return
         inside = sum(self.inside(n.location) for n in w.nodes)
         self.ways[w.id] = (highway, osmium.geom.haversine_distance(w.nodes), inside, len(w.nodes))
+
+
+GROUND_PATHS = {"footway", "path", "cycleway", "bridleway", "track"}
+
+
+def ground(tags):
+    """docs/osm.md's paths on the ground: no bridge, tunnel, cover, indoor or layer but 0."""
+    def layer():
+        try:
+            return int(tags.get("layer", "0").strip())
+        except ValueError:
+            return 0
+    return (
+        tags.get("bridge", "no") == "no"
+        and tags.get("tunnel", "no") == "no"
+        and tags.get("covered", "no") == "no"
+        and tags.get("indoor", "no") == "no"
+        and tags.get("location") != "underground"
+        and layer() == 0
+    )
+
+
+def width(tags):
+    """A path's width: `width` in metres, else lanes × 3.25 m, else 2 m."""
+    def number(key):
+        value = tags.get(key, "").strip().replace(",", ".")
+        value = value[:-1].strip() if value.endswith("m") else value
+        try:
+            return float(value)
+        except ValueError:
+            return None
+    w = number("width")
+    if w is not None and w > 0:
+        return w
+    lanes = number("lanes")
+    if lanes is not None and lanes >= 1:
+        return lanes * 3.25
+    return 2.0
 
 
 def fail(message):
@@ -210,6 +258,39 @@ def check_green(m, reader):
     squares = shapely.difference(union(reader.squares), green)
     check_open("green", green, len(reader.green), m, m["green"])
     check_open("squares", squares, len(reader.squares), m, m["squares"])
+    check_paths(reader.paths, green, m, project)
+
+
+def check_paths(paths, green, m, project):
+    """The paths across the green: osmium's ground paths buffered, cut to green and blocks."""
+    strokes = shapely.union_all([
+        LineString(project(points)).buffer(w / 2, quad_segs=6, cap_style="round")
+        for w, points in paths
+        if len(points) >= 2
+    ])
+    blocks = polygons(m["blocks"])
+    theirs = shapely.intersection(
+        shapely.intersection(strokes, green), shapely.union_all(blocks)
+    ).area
+    pieces = [(g["block"], Polygon(g["shape"]["outer"], g["shape"]["holes"])) for g in m["paths"]]
+    ours = sum(p.area for _, p in pieces)
+    if theirs > 0 and abs(ours / theirs - 1) > 0.02 or (theirs == 0) != (ours == 0):
+        fail(f"paths: {ours:.1f} m² in the map, {theirs:.1f} m² of osmium's on the green")
+    greens = {}
+    for g in m["green"]:
+        shape = Polygon(g["shape"]["outer"], g["shape"]["holes"])
+        greens[g["block"]] = shapely.union_all([greens.get(g["block"], Polygon()), shape])
+    worst = max(
+        (shapely.difference(p, greens.get(n, Polygon())).area for n, p in pieces), default=0.0
+    )
+    if worst > 0.01:
+        fail(f"paths: a piece leaves the green of its block by {worst:.3f} m²")
+    print(
+        f"paths: {len(paths)} ground paths osmium reads, {theirs:.0f} m² of them on the "
+        f"green against the map's {ours:.0f} m² in {len(pieces)} pieces "
+        f"({100 * abs(ours / theirs - 1) if theirs else 0:.3f} %); each piece on its "
+        f"block's green (worst {worst:.4f} m²)"
+    )
 
 
 def check_open(name, theirs_union, count, m, mine):

@@ -80,6 +80,7 @@ fn map() -> OsmMap {
             4060.0,
         )],
         green: Vec::new(),
+        paths: Vec::new(),
         squares: Vec::new(),
         left_out: LeftOut::default(),
     }
@@ -91,6 +92,16 @@ fn city() -> Scene {
         map: &map(),
         facades: &facade_set(),
         seed: 7,
+    })
+}
+
+/// `map`'s city, without lamps.
+fn scene_of(map: &OsmMap) -> Scene {
+    map_city(&MapSceneInput {
+        lamps: &[],
+        map,
+        facades: &facade_set(),
+        seed: 5,
     })
 }
 
@@ -235,12 +246,7 @@ fn green_ground_and_squares_are_cut_out_of_their_paved_block() {
         block: 0,
         shape: plaza,
     }];
-    let scene = map_city(&MapSceneInput {
-        lamps: &[],
-        map: &map,
-        facades: &facade_set(),
-        seed: 5,
-    });
+    let scene = scene_of(&map);
     let named = |name: &str| scene.objects.iter().find(|o| o.name == name).unwrap();
     let (block, green) = (named("block_0000"), named("green_0000"));
     let square = named("square_0000");
@@ -260,6 +266,41 @@ fn green_ground_and_squares_are_cut_out_of_their_paved_block() {
     assert!(green.meshes.iter().all(|m| m.material == grass));
     assert!(block.meshes.iter().all(|m| m.material != grass));
     assert!(square.meshes.iter().all(|m| m.material != grass));
+}
+
+#[test]
+fn paths_across_the_green_are_paved_and_cut_out_of_the_grass() {
+    let mut map = map();
+    let lawn = MapPolygon {
+        outer: vec![[35.0, 25.0], [55.0, 25.0], [55.0, 45.0], [35.0, 45.0]],
+        holes: Vec::new(),
+        area: 400.0,
+    };
+    // A path 2 m wide across the lawn, west to east.
+    let path = MapPolygon {
+        outer: vec![[35.0, 34.0], [55.0, 34.0], [55.0, 36.0], [35.0, 36.0]],
+        holes: Vec::new(),
+        area: 40.0,
+    };
+    let on_block = |shape| crate::model::MapArea { block: 0, shape };
+    map.green = vec![on_block(lawn)];
+    map.paths = vec![on_block(path)];
+    let scene = scene_of(&map);
+    let named = |name: &str| scene.objects.iter().find(|o| o.name == name).unwrap();
+    let (green, path) = (named("green_0000"), named("path_0000"));
+    assert_eq!(
+        (green.kind, path.kind),
+        (ObjectKind::Ground, ObjectKind::Sidewalk)
+    );
+    let area = |o: &SceneObject| triangles(o).map(area_from_above).sum::<f64>();
+    assert!((area(green) - 360.0).abs() < 1e-3, "{}", area(green));
+    assert!((area(path) - 40.0).abs() < 1e-3, "{}", area(path));
+    // No grass under the path: every grass triangle's centre is off it.
+    for t in triangles(green) {
+        let z = (t[0][2] + t[1][2] + t[2][2]) / 3.0;
+        assert!(!(34.0..=36.0).contains(&z), "{t:?}");
+    }
+    assert!(triangles(path).all(|t| t.iter().all(|p| p[1] == KERB_Y as f32)));
 }
 
 #[test]
@@ -356,12 +397,7 @@ fn roofs_follow_roof_shape_with_a_mapped_height_at_the_top() {
 fn kerb_faces_close_the_step_from_the_carriageway_up_to_kerb_height() {
     use crate::model::geometry::ROAD_Y;
     let faces = |map: &OsmMap| -> Vec<([f32; 3], [[f32; 3]; 3])> {
-        let scene = map_city(&MapSceneInput {
-            lamps: &[],
-            map,
-            facades: &facade_set(),
-            seed: 7,
-        });
+        let scene = scene_of(map);
         let kerb = scene.objects.iter().find(|o| o.name == "kerb_0000");
         let kerb = kerb.expect("a kerb per carriageway");
         assert_eq!(kerb.kind, ObjectKind::Sidewalk);
