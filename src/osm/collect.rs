@@ -44,8 +44,8 @@ struct RoadTags {
     oneway: bool,
     roundabout: bool,
     surface: bool,
-    /// A footway, path or cycleway on the ground (`tags::ground_path`): drawn where it
-    /// crosses the green ground.
+    /// A footway, path, cycleway, bridleway or track on the ground (`tags::ground_path`):
+    /// drawn where it crosses the green ground.
     ground_path: bool,
     name: Option<String>,
 }

@@ -198,8 +198,8 @@ fn kerbs(map: &OsmMap, concrete: u32) -> Vec<SceneObject> {
             for (ring, outer) in rings {
                 // A ring of positive area turns from +x towards +z: its left normal points
                 // out of it. Into the carriageway is into the outer ring, out of a hole.
-                let inward = (signed_area(ring) > 0.0) != outer;
-                let sign = if inward { 1.0 } else { -1.0 };
+                let left_is_road = (signed_area(ring) > 0.0) != outer;
+                let sign = if left_is_road { 1.0 } else { -1.0 };
                 for (k, &a) in ring.iter().enumerate() {
                     let b = ring[(k + 1) % ring.len()];
                     let Some(n) = left_normal(a, b).filter(|_| !on_box(a, b)) else {

@@ -34,7 +34,7 @@
 //!   in, whichever the traffic meets first. A line that would lie in a junction or off its
 //!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
 //! - **Give-way lines.** At each `highway=give_way` node the same way, a row of
-//!   triangles (the Vienna Convention's "shark teeth", as Finland and the UK paint them)
+//!   triangles (the Vienna Convention's "shark teeth", as Finland paints them)
 //!   [`TOOTH_LENGTH`] long in place of the stop line: bases [`TOOTH_BASE`] wide on the
 //!   node's side, [`TOOTH_GAP`] apart and centred across the lanes, apexes pointing at the
 //!   coming traffic.
@@ -53,9 +53,9 @@ use crate::model::{FeatureKind, ObjectKind, OsmMap, SceneObject, map_lanes};
 /// stop line ends, metres.
 pub const STOP_GAP: f64 = 1.0;
 /// A give-way line's triangles: their length along the road, metres (the Vienna
-/// Convention's 0.5–0.7 m).
+/// Convention's 0.60–0.70 m, Annex 2 §33).
 pub const TOOTH_LENGTH: f64 = 0.6;
-/// A give-way triangle's base across the road, metres (0.4–0.6 m).
+/// A give-way triangle's base across the road, metres (0.40–0.60 m, the same).
 pub const TOOTH_BASE: f64 = 0.5;
 /// The gap between two give-way triangles' bases, metres.
 pub const TOOTH_GAP: f64 = 0.25;
