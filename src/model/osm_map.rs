@@ -165,6 +165,33 @@ impl OsmMap {
             .iter()
             .any(|b| contains(&b.outer, p) && !b.holes.iter().any(|h| contains(h, p)))
     }
+
+    /// Whether a disc of `radius` metres at `p` lies inside the box.
+    pub fn holds(&self, p: [f64; 2], radius: f64) -> bool {
+        let [x0, z0, x1, z1] = self.extent;
+        p[0] - radius > x0 && p[0] + radius < x1 && p[1] - radius > z0 && p[1] + radius < z1
+    }
+
+    /// Whether a disc of `radius` metres at `p` stands out of every building: its centre
+    /// in none, its edge short of every wall.
+    pub fn out_of_buildings(&self, p: [f64; 2], radius: f64) -> bool {
+        !self.in_building(p) && self.building_distance(p) >= radius
+    }
+
+    /// Whether a disc of `radius` metres at `p` stands out of every building and off the
+    /// carriageways of the `paved` segments, but those of road `own` when given.
+    pub fn clear_ground(
+        &self,
+        paved: &[PavedSegment],
+        own: Option<usize>,
+        p: [f64; 2],
+        radius: f64,
+    ) -> bool {
+        use super::geometry::polygon::{distance, nearest};
+        self.out_of_buildings(p, radius)
+            && (paved.iter().filter(|o| Some(o.road) != own))
+                .all(|o| distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + radius)
+    }
 }
 
 /// A box in degrees.

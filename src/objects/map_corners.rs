@@ -12,9 +12,9 @@
 use std::collections::BTreeMap;
 
 use super::street_names::NamedCorner;
-use crate::model::OsmMap;
 use crate::model::geometry::map_lines::MIN_SINE;
-use crate::model::geometry::polygon::{direction, distance, nearest};
+use crate::model::geometry::polygon::{direction, distance};
+use crate::model::{OsmMap, PavedSegment};
 use crate::spec::TextCase;
 
 /// How far a corner's pole keeps from a carriageway's edge and a building's wall, metres.
@@ -77,6 +77,10 @@ pub fn map_corners(map: &OsmMap, case: TextCase) -> Vec<NamedCorner> {
             _ => name,
         }
     };
+    // A pole stands off every carriageway and out of the buildings by `POLE_ROOM`, inside
+    // the box.
+    let paved: Vec<PavedSegment> = map.paved_segments().collect();
+    let clear = |p: [f64; 2]| map.holds(p, 0.0) && map.clear_ground(&paved, None, p, POLE_ROOM);
     let mut out = Vec::new();
     for (p, arms) in nodes.values() {
         for (i, a) in arms.iter().enumerate() {
@@ -85,7 +89,7 @@ pub fn map_corners(map: &OsmMap, case: TextCase) -> Vec<NamedCorner> {
                     continue;
                 }
                 for position in quadrants(*p, a, b) {
-                    if clear(map, position) {
+                    if clear(position) {
                         out.push(NamedCorner {
                             position,
                             streets: [(name(a.road), a.along), (name(b.road), b.along)],
@@ -130,19 +134,6 @@ fn quadrants(p: [f64; 2], a: &Arm, b: &Arm) -> Vec<[f64; 2]> {
         ]);
     }
     out
-}
-
-/// Whether a pole at `p` stands off every carriageway and out of the buildings by
-/// [`POLE_ROOM`], inside the box.
-fn clear(map: &OsmMap, p: [f64; 2]) -> bool {
-    let [x0, z0, x1, z1] = map.extent;
-    let inside = p[0] > x0 && p[0] < x1 && p[1] > z0 && p[1] < z1;
-    inside
-        && !map.in_building(p)
-        && map.building_distance(p) >= POLE_ROOM
-        && map
-            .paved_segments()
-            .all(|s| distance(p, nearest(s.a, s.b, p)) >= s.width / 2.0 + POLE_ROOM)
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@ use super::{
     Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, map_corners, map_walls,
     person, sign_codes, street_names, traffic_lights, tree, user_mesh, wall_text,
 };
-use crate::model::geometry::polygon::{direction, distance, nearest};
+use crate::model::geometry::polygon::{direction, distance};
 use crate::model::{FacadeSet, FeatureKind, Lamp, OsmMap, ParsedLayout, PavedSegment};
 use crate::spec::{EntryKind, ObjectSpec};
 
@@ -161,7 +161,7 @@ impl<'a> MapGround<'a> {
             EntryKind::Mesh => {
                 let tag = spec.at.as_deref().unwrap_or_default();
                 let paved: Vec<PavedSegment> = input.map.paved_segments().collect();
-                let clear = |p: [f64; 2], r: f64| clear_ground(input.map, &paved, None, p, r);
+                let clear = |p: [f64; 2], r: f64| input.map.clear_ground(&paved, None, p, r);
                 let sites = node_sites(input.map, tag);
                 user_mesh::place_mapped(
                     spec,
@@ -283,7 +283,7 @@ fn green_tree_sites(
 fn signal_sites(map: &OsmMap) -> Vec<Vec<([f64; 2], [f64; 2])>> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
-        clear_ground(map, &paved, Some(s.road), foot, traffic_lights::RADIUS)
+        map.clear_ground(&paved, Some(s.road), foot, traffic_lights::RADIUS)
     };
     map.features
         .iter()
@@ -327,23 +327,6 @@ fn node_sites(map: &OsmMap, tag: &str) -> Vec<([f64; 2], Option<[f64; 2]>)> {
         .collect()
 }
 
-/// Whether a footprint of radius `room` at `foot` keeps out of every building and off the
-/// carriageways of the `paved` segments, but those of road `own` when given.
-fn clear_ground(
-    map: &OsmMap,
-    paved: &[PavedSegment],
-    own: Option<usize>,
-    foot: [f64; 2],
-    room: f64,
-) -> bool {
-    !map.in_building(foot)
-        && map.building_distance(foot) >= room
-        && paved
-            .iter()
-            .filter(|o| Some(o.road) != own)
-            .all(|o| distance(foot, nearest(o.a, o.b, foot)) >= o.width / 2.0 + room)
-}
-
 /// How far from the nearest paved road's centreline a mapped sign may stand and still be
 /// that road's, metres: its carriageway's half, a sidewalk and a verge. Signs farther
 /// off stand on paths and squares, whose traffic the map does not pave.
@@ -360,13 +343,7 @@ const SIGN_REACH: f64 = 15.0;
 fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
-        clear_ground(
-            map,
-            &paved,
-            Some(s.road),
-            foot,
-            traffic_signs::MAPPED_RADIUS,
-        )
+        map.clear_ground(&paved, Some(s.road), foot, traffic_signs::MAPPED_RADIUS)
     };
     map.features
         .iter()
@@ -412,6 +389,7 @@ mod tests {
     use super::*;
     use crate::model::geometry::KERB_Y;
     use crate::model::geometry::polygon::left_normal;
+    use crate::model::geometry::polygon::nearest;
     use crate::model::{MAP_CAMERA_LANE, ObjectKind, SceneObject, map_camera_lane};
     use crate::spec::SignKind;
 

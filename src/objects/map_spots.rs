@@ -203,15 +203,7 @@ impl<'a> MapSpots<'a> {
     /// Whether a person of `radius` at `p` stands on ground off the carriageways of every
     /// road but `road`, out of the buildings by its radius and inside the box.
     fn off_other_roads(&self, road: usize, p: [f64; 2], radius: f64) -> bool {
-        let [x0, z0, x1, z1] = self.map.extent;
-        let inside = p[0] - radius > x0 && p[0] + radius < x1;
-        inside
-            && p[1] - radius > z0
-            && p[1] + radius < z1
-            && !self.map.in_building(p)
-            && self.map.building_distance(p) >= radius
-            && (self.all.iter().filter(|o| o.road != road))
-                .all(|o| distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + radius)
+        self.map.holds(p, radius) && self.map.clear_ground(&self.all, Some(road), p, radius)
     }
 
     /// Takes the way across zebra `z` at `along` from `across[0]` to `across[1]` (metres
@@ -382,17 +374,10 @@ impl StripSpots for MapSpots<'_> {
                 w.from[1] + dir[1] * t + dir[0] * out,
             ];
             let foot = Footprint::Circle(p, radius);
-            let [x0, z0, x1, z1] = self.map.extent;
-            let inside = p[0] - radius > x0
-                && p[0] + radius < x1
-                && p[1] - radius > z0
-                && p[1] + radius < z1;
-            if !inside
+            if !(self.map.holds(p, radius) && self.map.out_of_buildings(p, radius))
                 || self.taken.overlaps(&foot)
                 || (self.all.iter())
                     .any(|o| distance(p, nearest(o.a, o.b, p)) < o.width / 2.0 + from - 1e-9)
-                || self.map.in_building(p)
-                || self.map.building_distance(p) < radius
             {
                 return None;
             }

@@ -213,22 +213,15 @@ fn part(mesh: &tobj::Mesh, material: usize) -> Part {
 }
 
 /// Where a seeded model stands: a layout's ground ([`GroundSpots`]) or a map's
-/// (`map_spots::MapSpots`).
-pub trait MeshSpots {
-    /// A free spot for a model of `radius` metres in the middle of a sidewalk, its
-    /// `travel` the traffic's beside it; None after [`ATTEMPTS`].
-    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot>;
+/// (`map_spots::MapSpots`). On a sidewalk it stands mid-sidewalk ([`StripSpots::strip_at`]
+/// at half the width); in a lane where [`MeshSpots::lane`] says.
+pub trait MeshSpots: StripSpots {
     /// A free spot for a model of `radius` metres in a right-hand lane, its `travel` the
     /// lane's; None after [`ATTEMPTS`].
     fn lane(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot>;
 }
 
 impl MeshSpots for GroundSpots<'_> {
-    /// Mid-strip ([`GroundSpots::strip`]).
-    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
-        self.strip(rng, radius, ATTEMPTS)
-    }
-
     /// The middle of a right-hand lane ([`GroundSpots::lane`]).
     fn lane(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
         GroundSpots::lane(self, rng, radius, ATTEMPTS)
@@ -236,11 +229,6 @@ impl MeshSpots for GroundSpots<'_> {
 }
 
 impl MeshSpots for MapSpots<'_> {
-    /// Mid-sidewalk, as a map's people stand ([`StripSpots::strip_at`]).
-    fn sidewalk(&mut self, rng: &mut Pcg64, radius: f64) -> Option<Spot> {
-        self.strip_at(rng, radius, |width| width / 2.0, ATTEMPTS)
-    }
-
     /// At the kerb side of the right-hand lane, [`CURB_GAP`] from the kerb, as a map's
     /// parked cars: the middle of the lane is the roads cameras' (`OsmMap`'s
     /// `CAMERA_LANE`), and a model there would fill their view. A carriageway too narrow
@@ -275,7 +263,9 @@ pub fn place(
         let turn = cos_sin_deg(uniform(rng, spec.rotation));
         let radius = model.radius * scale;
         let spot = match spec.on {
-            Ground::Sidewalk => spots.sidewalk(rng, radius),
+            // A layout's strips are one width: half of it is `GroundSpots::strip`'s
+            // middle, exactly.
+            Ground::Sidewalk => spots.strip_at(rng, radius, |width| width / 2.0, ATTEMPTS),
             Ground::Lane => spots.lane(rng, radius),
         };
         let Some(spot) = spot else {
