@@ -5,14 +5,14 @@
 //! face no road). It faces a road when the line out of its middle along its outward
 //! normal reaches a paved carriageway within [`REACH`] before it enters any building (its
 //! own included: a wing in front). Its plates stand between [`MIN_HEIGHT`] above the
-//! kerb and [`TOP_CLEARANCE`] below the top of its walls: a building with a `roof:shape`
-//! and a mapped `height` (whose walls stop where its roof starts rising, at half its
-//! height or higher) keeps below half its height. The facade's windows on it are
-//! [`floor_window_rects`].
+//! kerb and [`TOP_CLEARANCE`] below the top of its walls: the eaves of the roof the
+//! scene builds on it ([`wall_height`]), so no plate reaches into a roof. The facade's
+//! windows on it are [`floor_window_rects`].
 
 use super::wall_text::{MIN_HEIGHT, TOP_CLEARANCE, Tiling, Wall, floor_window_rects};
 use crate::model::geometry::KERB_Y;
 use crate::model::geometry::polygon::{bounds, contains, distance, left_normal, nearest};
+use crate::model::geometry::roofs::wall_height;
 use crate::model::{FacadeSet, OsmMap, PavedSegment, map_cladding};
 
 /// The farthest a carriageway may lie in front of a wall that faces it, metres: a wide
@@ -31,8 +31,7 @@ pub fn map_facing_walls(map: &OsmMap, facades: &FacadeSet, seed: u64) -> Vec<Wal
     let boxes: Vec<[f64; 4]> = map.buildings.iter().map(|b| bounds(&b.outer)).collect();
     let mut walls = Vec::new();
     for (i, (b, c)) in map.buildings.iter().zip(&cladding).enumerate() {
-        let shaped = b.roof_shape.is_some() && b.holes.is_empty() && b.height_from == "height";
-        let top = if shaped { c.height / 2.0 } else { c.height };
+        let top = wall_height(b, c.height);
         let band = [KERB_Y + MIN_HEIGHT, KERB_Y + top - TOP_CLEARANCE];
         if band[1] <= band[0] {
             continue;
@@ -215,12 +214,24 @@ mod tests {
         // The kiosk's own north wall faces the road; the building behind it does not.
         assert!(walls.iter().all(|w| w.building == 1), "{walls:?}");
         assert_eq!(walls.len(), 1);
-        // A gabled roof with a mapped height: the text keeps below half of it.
+        // A gabled roof with a mapped height: the text keeps below its eaves. Over the
+        // 20 m deep footprint it rises 0.6 × 10 = 6 m, so the eaves are at 8 m.
         let mut map = street_map();
         map.buildings[0].height = Some(14.0);
         map.buildings[0].roof_shape = Some("gabled".to_owned());
         let walls = map_facing_walls(&map, &facades(), 5);
-        assert_eq!(walls[0].band[1], KERB_Y + 7.0 - TOP_CLEARANCE);
+        assert_eq!(walls[0].band[1], KERB_Y + 8.0 - TOP_CLEARANCE);
+        assert_eq!(walls[0].height, 8.0);
+        // A shape the scene lays flat: the walls, and the text, reach the top.
+        map.buildings[0].roof_shape = Some("gambrel".to_owned());
+        let walls = map_facing_walls(&map, &facades(), 5);
+        assert_eq!(walls[0].band[1], KERB_Y + 14.0 - TOP_CLEARANCE);
+        // A height from levels is the walls': the roof rises above them.
+        map.buildings[0].roof_shape = Some("gabled".to_owned());
+        map.buildings[0].height_from = "levels".to_owned();
+        let walls = map_facing_walls(&map, &facades(), 5);
+        assert_eq!(walls[0].band[1], KERB_Y + 14.0 - TOP_CLEARANCE);
+        map.buildings[0].height_from = "height".to_owned();
         // Too low for a plate: none.
         map.buildings[0].height = Some(4.0);
         assert!(map_facing_walls(&map, &facades(), 5).is_empty());

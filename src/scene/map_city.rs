@@ -13,7 +13,7 @@
 //! | `kerb_0003` | sidewalk | the kerb faces around carriageway polygon 3, from road height up to kerb height, facing the road (none on the box's edge) | `concrete` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
-//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`map_roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
+//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
 //! facade is seeded per building ([`map_cladding`], which the wall text reads too) and keeps its own
@@ -25,19 +25,18 @@
 //! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
 //! the map's list after its own, each clad in the facade it was sized for, as tall as it.
 //!
-//! Not here yet (issue 43): roof shapes other than `map_roofs`' (gambrel,
+//! Not here yet (issue 43): roof shapes other than `model::geometry::roofs`' (gambrel,
 //! skillion, round, mansard …) and hipped roofs on more than four corners are flat. Trees,
 //! signals, signs and benches are objects (`objects::insert_map`).
 
-use super::map_roofs::Roof;
 use super::object;
 use super::surfaces::Surfaces;
 use crate::model::geometry::polygon::{distance, left_normal, signed_area};
 use crate::model::geometry::polygon_set::difference;
+use crate::model::geometry::roofs::shaped_roof;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
-    Facade, FacadeSet, Lamp, MapBuilding, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject,
-    map_cladding,
+    Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject, map_cladding,
 };
 
 /// How far the ground reaches beyond the box, metres.
@@ -318,23 +317,6 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
             )
         })
         .collect()
-}
-
-/// The walls' height and the roof of building `b`, `height` tall, with its `roof:shape`
-/// where `map_roofs` builds it on its footprint: a mapped `height` is the roof's top, so
-/// the walls stop the roof's rise below it (at most half-way); else the roof rises above.
-fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
-    let roof = (b.roof_shape.as_deref())
-        .filter(|_| b.holes.is_empty())
-        .and_then(|shape| Roof::of(shape, &b.outer));
-    match roof {
-        Some(mut roof) if b.height_from == "height" => {
-            let eave = (height - roof.rise).max(height / 2.0);
-            roof.rise = height - eave;
-            (eave, Some(roof))
-        }
-        roof => (height, roof),
-    }
 }
 
 /// The wall along footprint edge `a → b` (facing left of it: outwards on an outer ring,

@@ -44,7 +44,6 @@ mod buildings;
 mod horizon;
 mod map_city;
 mod map_markings;
-mod map_roofs;
 mod markings;
 mod procedural;
 mod roads;

@@ -16,6 +16,7 @@
 //! | [`rounding`]: `floor`/`ceil`/`round` without a library call, bit-identical | render, facades, objects |
 //! | [`zebras`]: where each road's zebra crossings lie | scene, objects |
 //! | [`polygon_set`]: a map's polygons cut by polygons (`i_overlay`) | osm, scene |
+//! | [`roofs`]: a map building's `roof:shape` on its footprint, and its walls' height | scene, objects |
 
 mod facade_choice;
 pub mod map_lines;
@@ -24,6 +25,7 @@ mod mesh_builder;
 pub mod polygon;
 pub mod polygon_set;
 mod road_rect;
+pub mod roofs;
 pub mod rounding;
 mod street_profile;
 mod strip_width;

@@ -1,5 +1,6 @@
 //! A map building's footprint + `roof:shape` → its roof, where the shape is one built on
-//! that footprint; for any other shape or footprint the city lays a flat roof.
+//! that footprint; for any other shape or footprint the city lays a flat roof. The scene
+//! builds it; wall text keeps below its eaves ([`wall_height`]).
 //!
 //! | `roof:shape` | footprint | roof |
 //! |---|---|---|
@@ -20,6 +21,7 @@
 //! ridge where the side crosses it. Roof faces take the roof texture projected from above
 //! (uv = metres / the tile), each triangle flat-shaded, facing up and out.
 
+use crate::model::MapBuilding;
 use crate::model::geometry::MeshBuilder;
 use crate::model::geometry::polygon::{left_normal, longest_side, signed_area};
 use crate::model::geometry::trig::cos_sin_deg;
@@ -33,6 +35,29 @@ pub const MAX_RISE: f64 = 8.0;
 pub const MAX_DOME: f64 = 20.0;
 /// Rings of a dome between its foot and its top.
 const DOME_RINGS: u32 = 4;
+
+/// The walls' height and the roof of map building `b`, `height` tall (its cladding's), with its `roof:shape`
+/// where [`Roof::of`] builds it on its footprint: a mapped `height` is the roof's top, so
+/// the walls stop the roof's rise below it (at most half-way); else the roof rises above.
+pub fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
+    let roof = (b.roof_shape.as_deref())
+        .filter(|_| b.holes.is_empty())
+        .and_then(|shape| Roof::of(shape, &b.outer));
+    match roof {
+        Some(mut roof) if b.height_from == "height" => {
+            let eave = (height - roof.rise).max(height / 2.0);
+            roof.rise = height - eave;
+            (eave, Some(roof))
+        }
+        roof => (height, roof),
+    }
+}
+
+/// How high map building `b`'s walls stand, `height` tall: the eaves of the roof
+/// [`shaped_roof`] builds, else all of it (a flat roof, or a roof that rises above).
+pub fn wall_height(b: &MapBuilding, height: f64) -> f64 {
+    shaped_roof(b, height).0
+}
 
 /// A roof to build on a footprint.
 #[derive(Clone, Debug, PartialEq)]
