@@ -155,6 +155,11 @@ pub trait StripSpots: RoadSpots {
         attempts: u32,
     ) -> Option<CrossingSpot>;
 
+    /// A free spot on a path across a park for an object of `radius` metres, its centre
+    /// `radius` inside the path's edges and its `travel` along the path
+    /// (`MapSpots::park`). None where there is no such path, or after `attempts`.
+    fn park(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot>;
+
     /// Marks the footprint taken last as a person walking along a sidewalk, out of the
     /// way of the others' walks ([`GroundSpots::free_run`]).
     fn mark_walker(&mut self);
@@ -191,6 +196,11 @@ impl StripSpots for GroundSpots<'_> {
         attempts: u32,
     ) -> Option<CrossingSpot> {
         GroundSpots::zebra_kerb(self, rng, radius, from_curb, attempts)
+    }
+
+    /// A layout has no parks (its blocks are built on or paved), so no paths across them.
+    fn park(&mut self, _: &mut Pcg64, _: f64, _: u32) -> Option<Spot> {
+        None
     }
 
     fn mark_walker(&mut self) {

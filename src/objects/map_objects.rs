@@ -610,6 +610,37 @@ mod tests {
     }
 
     #[test]
+    fn a_parks_share_of_the_people_stand_and_walk_on_the_paths_across_the_parks() {
+        use crate::model::geometry::polygon::contains;
+        let mut map = crate::test_support::street_map();
+        map.paths = vec![crate::objects::map_spots::tests::l_path()];
+        let path = map.paths[0].shape.outer.clone();
+        // (Where each stands exactly, `map_spots`' test checks: here, the middle of its
+        // figure's box, which a stride or a bag moves a little.)
+        let on_path = |p: [f64; 2]| contains(&path, p);
+        let people = |parks: f64| {
+            let text = format!("[[objects]]\nkind = 'person'\ncount = 40\nparks = {parks}\n");
+            let inserted = place_on(&map, &entries(&text)).expect("people place");
+            assert_eq!(inserted.placed, vec![40]);
+            let p: Vec<[f64; 2]> = (inserted.objects.iter())
+                .filter(|o| o.kind == ObjectKind::Person)
+                .map(middle)
+                .collect();
+            p.iter().filter(|&&p| on_path(p)).count()
+        };
+        assert_eq!(people(1.0), 40, "all on the path");
+        assert_eq!(people(0.0), 0, "all on the sidewalks");
+        let half = people(0.5);
+        assert!((10..=30).contains(&half), "{half} of 40 on the path");
+        // Without paths, a parks share stands on the sidewalks.
+        let text = "[[objects]]\nkind = 'person'\ncount = 40\nparks = 1.0\n";
+        assert_eq!(
+            place(&entries(text)).expect("people place").placed,
+            vec![40]
+        );
+    }
+
+    #[test]
     fn people_and_parked_bicycles_stand_on_the_sidewalks_ridden_ones_in_the_lanes() {
         let specs = entries(
             "[[objects]]\nkind = 'person'\ncount = 60\n\

@@ -9,7 +9,8 @@
 //! object's radius and inside the map's box. Its `travel` is the traffic's in the lane
 //! next to it: the way's on a one-way road, else the way with the sidewalk on its right.
 //! People cross on the zebras the markings draw (`MapLines::zebras`) and wait at their
-//! ends, as on a layout's zebras, clear of the roads cameras' lane. A map's traffic does
+//! ends, as on a layout's zebras, clear of the roads cameras' lane, and stand or walk on
+//! the paths across its parks (`OsmMap::paths`, [`StripSpots::park`]). A map's traffic does
 //! not move, so its walkers are not marked.
 
 use rand::RngExt;
@@ -22,7 +23,9 @@ use super::ground_spots::{
 };
 use super::tree;
 use crate::model::geometry::map_lines::MapLines;
-use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
+use crate::model::geometry::polygon::{
+    direction, distance, left_normal, nearest, ring_distance, triangle_area, triangles,
+};
 use crate::model::geometry::zebras::ZEBRA_DEPTH;
 use crate::model::{
     Crossing, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, PavedSegment, map_camera_lane,
@@ -106,6 +109,9 @@ impl MapZebra {
     }
 }
 
+/// A triangle of a path across a park, and the path's index in `OsmMap::paths`.
+type ParkTriangle = ([[f64; 2]; 3], usize);
+
 /// The map's paved segments and sidewalks as places for vehicles, people and bicycles.
 pub struct MapSpots<'a> {
     map: &'a OsmMap,
@@ -128,6 +134,11 @@ pub struct MapSpots<'a> {
     sidewalk_ends: Vec<f64>,
     /// The zebras the markings draw.
     zebras: Vec<MapZebra>,
+    /// The paths across the parks (`OsmMap::paths`) cut into triangles, each with its
+    /// path's index.
+    park_triangles: Vec<ParkTriangle>,
+    /// Area at each triangle's end, triangles end to end, square metres.
+    park_ends: Vec<f64>,
 }
 
 impl<'a> MapSpots<'a> {
@@ -186,8 +197,11 @@ impl<'a> MapSpots<'a> {
                 Some(*at)
             })
             .collect();
+        let (park_triangles, park_ends) = park_triangles(map);
         MapSpots {
             zebras: map_zebras(map),
+            park_triangles,
+            park_ends,
             map,
             sidewalks,
             sidewalk_ends,
@@ -455,7 +469,72 @@ impl StripSpots for MapSpots<'_> {
     }
 
     /// Nothing: a map's traffic does not move, so no one walks on.
+    /// A path across a park drawn by area, and a point on it (uniform over its
+    /// triangles) whose centre lies `radius` inside the path's edges, out of the
+    /// buildings, inside the box and clear of what stands; its `travel` runs along the
+    /// path's nearest edge (a path is a stroke: its long edges run along it), its `road`
+    /// is the nearest carriageway's.
+    fn park(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
+        let total = *self.park_ends.last()?;
+        (0..attempts).find_map(|_| {
+            let at = rng.random::<f64>() * total;
+            let k = (self.park_ends.partition_point(|&e| e <= at)).min(self.park_ends.len() - 1);
+            let (mut u, mut v): (f64, f64) = (rng.random(), rng.random());
+            if u + v > 1.0 {
+                (u, v) = (1.0 - u, 1.0 - v);
+            }
+            let ([a, b, c], path) = self.park_triangles[k];
+            let p = [
+                a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]),
+                a[1] + u * (b[1] - a[1]) + v * (c[1] - a[1]),
+            ];
+            let shape = &self.map.paths[path].shape;
+            let rings = || std::iter::once(&shape.outer).chain(&shape.holes);
+            let foot = Footprint::Circle(p, radius);
+            if rings().any(|r| ring_distance(r, p) < radius)
+                || !(self.map.holds(p, radius) && self.map.out_of_buildings(p, radius))
+                || self.taken.overlaps(&foot)
+            {
+                return None;
+            }
+            let travel = rings()
+                .flat_map(|r| (0..r.len()).map(|e| (r[e], r[(e + 1) % r.len()])))
+                .filter_map(|(a, b)| Some((distance(p, nearest(a, b, p)), direction(a, b)?)))
+                .min_by(|x, y| x.0.total_cmp(&y.0))?
+                .1;
+            let road = (self.all.iter())
+                .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s.road))
+                .min_by(|x, y| x.0.total_cmp(&y.0))
+                .map_or(u32::MAX, |(_, r)| r as u32);
+            self.taken.push(foot);
+            Some(Spot {
+                position: p,
+                travel,
+                road,
+            })
+        })
+    }
+
     fn mark_walker(&mut self) {}
+}
+
+/// The paths across `map`'s parks cut into triangles, each with its path's index, and the
+/// area at each triangle's end, triangles end to end.
+fn park_triangles(map: &OsmMap) -> (Vec<ParkTriangle>, Vec<f64>) {
+    let cut: Vec<ParkTriangle> = (map.paths.iter().enumerate())
+        .flat_map(|(i, p)| {
+            let cut = triangles(&p.shape.outer, &p.shape.holes);
+            cut.into_iter().map(move |t| (t, i))
+        })
+        .collect();
+    let ends = cut
+        .iter()
+        .scan(0.0, |at, &(t, _)| {
+            *at += triangle_area(t);
+            Some(*at)
+        })
+        .collect();
+    (cut, ends)
 }
 
 /// The zebras `scene::map_markings` draws (`MapLines::zebras`), as places for people.
@@ -488,7 +567,7 @@ fn map_zebras(map: &OsmMap) -> Vec<MapZebra> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::test_support::street_map;
 
@@ -509,6 +588,69 @@ mod tests {
         (0..n)
             .filter_map(|_| ground.strip_at(&mut rng, radius, |_| from, 40))
             .collect()
+    }
+
+    /// An L-shaped path 2 m wide: west to east along z 29 … 31 from x −145 (through the
+    /// building at x −120 … −100), then north along x −62 … −60 up to z 60.
+    pub(crate) fn l_path() -> crate::model::MapArea {
+        let outer = vec![
+            [-145.0, 29.0],
+            [-60.0, 29.0],
+            [-60.0, 60.0],
+            [-62.0, 60.0],
+            [-62.0, 31.0],
+            [-145.0, 31.0],
+        ];
+        crate::model::MapArea {
+            block: 0,
+            shape: crate::model::MapPolygon {
+                outer,
+                holes: Vec::new(),
+                area: 85.0 * 2.0 + 29.0 * 2.0,
+            },
+        }
+    }
+
+    #[test]
+    fn park_spots_lie_on_the_paths_out_of_buildings_facing_along_them() {
+        let mut map = street_map();
+        let mut rng = crate::rng::stream(7, "test", 0);
+        assert!(
+            MapSpots::new(&map, &[], &[])
+                .park(&mut rng, 0.6, 40)
+                .is_none()
+        );
+        map.paths = vec![l_path()];
+        let mut ground = MapSpots::new(&map, &[], &[]);
+        let found: Vec<Spot> = (0..80)
+            .filter_map(|_| ground.park(&mut rng, 0.6, 40))
+            .collect();
+        // The 0.8 m wide middles of the arms hold about 70 such circles, randomly fewer.
+        assert!(found.len() >= 40, "{}", found.len());
+        let (mut west, mut north) = (0, 0);
+        for (i, s) in found.iter().enumerate() {
+            let p = s.position;
+            let edge = ring_distance(&map.paths[0].shape.outer, p);
+            assert!(crate::model::geometry::polygon::contains(
+                &map.paths[0].shape.outer,
+                p
+            ));
+            assert!(edge >= 0.6 - 1e-9, "{p:?} {edge} m inside the path");
+            assert!(map.out_of_buildings(p, 0.6), "{p:?}");
+            for t in &found[i + 1..] {
+                assert!(distance(p, t.position) >= 1.2 - 1e-9, "{p:?} {t:?}");
+            }
+            assert_eq!(s.road as usize, kerb_distance(&map, p).1.road, "{s:?}");
+            // Away from the corner, along the arm it stands on.
+            if p[0] < -64.0 {
+                assert_eq!(s.travel[1], 0.0, "{s:?}");
+                west += 1;
+            } else if p[1] > 33.0 {
+                assert_eq!(s.travel[0], 0.0, "{s:?}");
+                north += 1;
+            }
+        }
+        assert!(west > 10 && north > 10, "{west} west, {north} north");
     }
 
     #[test]

@@ -23,7 +23,9 @@
 //! crossings instead, on the zebra's paint, within [`ZEBRA_REACH`] of the road's centre
 //! line (lane cars wait behind the stop lines, clear of them). Its `waiting` share of the
 //! others stand at the zebras' ends, at the curb, facing the road as if about to cross (as
-//! many as the ends hold; the rest join the strips).
+//! many as the ends hold; the rest join the strips). On a map, its `parks` share of the
+//! rest stand or walk on the paths across the parks, [`ROOM`] inside their edges, walkers
+//! along the path (as many as the paths hold; the rest join the strips).
 //!
 //! For moving traffic each walking person gets a [`TrafficRole::Pedestrian`]: a person
 //! crossing (or waiting to) keeps to the half of its zebra on its right and takes its
@@ -184,6 +186,10 @@ pub fn place(
             waiting = way.is_some();
         }
         let mut spot = way.map(|w| w.spot);
+        // Only an entry with people in the parks draws whether each is one.
+        if spot.is_none() && !crossing && spec.parks > 0.0 && rng.random::<f64>() < spec.parks {
+            spot = (0..ATTEMPTS).find_map(|_| spots.park(rng, ROOM, 1));
+        }
         if spot.is_none() && !crossing {
             let share = rng.random::<f64>();
             let from_curb = |strip: f64| CURB_ROOM + share * (far(strip) - CURB_ROOM);

@@ -119,6 +119,13 @@ pub struct ObjectSpec {
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub waiting: f64,
+    /// person: share of the people neither crossing nor waiting who stand or walk on the
+    /// paths across a map's parks (its footways, paths and cycleways over green ground),
+    /// along the path; where there are none (a layout, or a map without them), they stand
+    /// in the sidewalk strips like the others.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub parks: f64,
     /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
     /// of the sidewalk strips.
     #[serde(default = "default_plazas")]
@@ -200,6 +207,7 @@ pub const KIND_KEYS: &[(&str, &[EntryKind])] = {
         ("height", &[Tree, Person, Bicycle]),
         ("crossing", &[Person]),
         ("waiting", &[Person]),
+        ("parks", &[Person]),
         ("plazas", &[Tree]),
     ]
 };

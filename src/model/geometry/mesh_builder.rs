@@ -80,14 +80,7 @@ impl MeshBuilder {
         if outer.len() < 3 {
             return;
         }
-        let mut points: Vec<[f64; 2]> = outer.to_vec();
-        let mut starts: Vec<u32> = Vec::with_capacity(holes.len());
-        for hole in holes.iter().filter(|h| h.len() >= 3) {
-            starts.push(points.len() as u32);
-            points.extend_from_slice(hole);
-        }
-        let mut triangles: Vec<u32> = Vec::new();
-        earcut::Earcut::new().earcut(points.iter().copied(), &starts, &mut triangles);
+        let (points, triangles) = super::polygon::triangulated(outer, holes);
         let base = self.mesh.positions.len() as u32;
         for &[x, z] in &points {
             self.mesh.positions.push(to_f32([x, y, z]));

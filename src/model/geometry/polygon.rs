@@ -1,5 +1,5 @@
 //! Polygons in the horizontal plane `[x, z]` (metres, x east, z south): shoelace areas,
-//! point in ring, the normal to the left of a direction.
+//! point in ring, the normal to the left of a direction, triangles.
 
 /// The shoelace area of a ring (first point not repeated): positive when it turns from +x
 /// towards +z.
@@ -98,9 +98,53 @@ pub fn bounds(ring: &[[f64; 2]]) -> [f64; 4] {
     })
 }
 
+/// The triangles of `outer` less `holes` (ear clipping, `earcut`), as points; none for a
+/// ring of fewer than three points or a polygon earcut cannot cut.
+pub fn triangles(outer: &[[f64; 2]], holes: &[Vec<[f64; 2]>]) -> Vec<[[f64; 2]; 3]> {
+    let (points, indices) = triangulated(outer, holes);
+    indices
+        .chunks_exact(3)
+        .map(|t| [0, 1, 2].map(|k| points[t[k] as usize]))
+        .collect()
+}
+
+/// `outer`'s points then each hole's (of three points or more), and the triangles of
+/// `outer` less `holes` as indices into them, three to a triangle (`earcut`); no
+/// triangles for a ring of fewer than three points or a polygon earcut cannot cut.
+pub fn triangulated(outer: &[[f64; 2]], holes: &[Vec<[f64; 2]>]) -> (Vec<[f64; 2]>, Vec<u32>) {
+    let mut points: Vec<[f64; 2]> = outer.to_vec();
+    let mut starts: Vec<u32> = Vec::with_capacity(holes.len());
+    for hole in holes.iter().filter(|h| h.len() >= 3) {
+        starts.push(points.len() as u32);
+        points.extend_from_slice(hole);
+    }
+    let mut indices: Vec<u32> = Vec::new();
+    if outer.len() >= 3 {
+        earcut::Earcut::new().earcut(points.iter().copied(), &starts, &mut indices);
+    }
+    (points, indices)
+}
+
+/// The area of triangle `[a, b, c]`, whichever way it turns.
+pub fn triangle_area([a, b, c]: [[f64; 2]; 3]) -> f64 {
+    ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs() / 2.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_square_with_a_hole_is_cut_into_triangles_covering_its_area() {
+        let square = [[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]];
+        let hole = vec![[1.0, 1.0], [1.0, 3.0], [3.0, 3.0], [3.0, 1.0]];
+        let cut = triangles(&square, &[hole]);
+        let area: f64 = cut.iter().map(|&t| triangle_area(t)).sum();
+        assert!((area - 12.0).abs() < 1e-9, "{area}");
+        // No triangle covers the hole's middle.
+        assert!(!cut.iter().any(|t| contains(t, [2.0, 2.0])));
+        assert!(triangles(&square[..2], &[]).is_empty());
+    }
 
     #[test]
     fn area_and_inside_of_a_square() {

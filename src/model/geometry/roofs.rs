@@ -23,7 +23,7 @@
 
 use crate::model::MapBuilding;
 use crate::model::geometry::MeshBuilder;
-use crate::model::geometry::polygon::{left_normal, longest_side, signed_area};
+use crate::model::geometry::polygon::{left_normal, longest_side, signed_area, triangles};
 use crate::model::geometry::trig::cos_sin_deg;
 use crate::model::geometry::{cross, dot, sub};
 
@@ -161,7 +161,7 @@ impl Roof {
                     y + self.rise * (1.0 - ((v - mid).abs() / half).min(1.0))
                 };
                 let lift = |p: [f64; 2]| at(p, height(p));
-                for [a, b, c] in earcut_triangles(o) {
+                for [a, b, c] in triangles(o, &[]) {
                     for piece in cut(&[a, b, c], d, mid) {
                         for k in 1..piece.len() - 1 {
                             slopes.add(lift(piece[0]), lift(piece[k]), lift(piece[k + 1]));
@@ -273,16 +273,6 @@ fn gable(outer: &[[f64; 2]]) -> Option<Roof> {
         outer: outer.to_vec(),
         rise: (PITCH * half).min(MAX_RISE),
     })
-}
-
-/// The triangles of a ring (`earcut`), as points.
-fn earcut_triangles(ring: &[[f64; 2]]) -> Vec<[[f64; 2]; 3]> {
-    let mut indices: Vec<u32> = Vec::new();
-    earcut::Earcut::new().earcut(ring.iter().copied(), &[], &mut indices);
-    indices
-        .chunks_exact(3)
-        .map(|t| [0, 1, 2].map(|k| ring[t[k] as usize]))
-        .collect()
 }
 
 /// A convex polygon or a segment (`points` in order) cut by the line `v = mid` (`v` the
