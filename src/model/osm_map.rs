@@ -268,6 +268,10 @@ pub struct MapBuilding {
     pub height_from: String,
     /// `roof:shape` where the map gives it.
     pub roof_shape: Option<String>,
+    /// `roof:height` in metres where the map gives it: how far the roof rises above the
+    /// walls.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roof_height: Option<f64>,
     /// Of a placed building sized by a facade (the paper's rule: one building size per
     /// facade), that facade's index; the city clads it with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]

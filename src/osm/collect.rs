@@ -20,6 +20,7 @@ struct BuildingTags {
     height: Option<f64>,
     height_from: &'static str,
     roof_shape: Option<String>,
+    roof_height: Option<f64>,
 }
 
 impl BuildingTags {
@@ -32,6 +33,7 @@ impl BuildingTags {
             height,
             height_from,
             roof_shape: tags::get(tags, "roof:shape").map(str::to_owned),
+            roof_height: tags::get(tags, "roof:height").and_then(tags::metres),
         })
     }
 }
@@ -495,6 +497,7 @@ fn building(
         height: tags.height,
         height_from: tags.height_from.to_owned(),
         roof_shape: tags.roof_shape.clone(),
+        roof_height: tags.roof_height,
         facade: None,
     }
 }

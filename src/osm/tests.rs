@@ -33,7 +33,7 @@ const TOWN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <node id="46" lat="60.0020" lon="25.0005"><tag k="natural" v="tree"/></node>
   <way id="100">
     <nd ref="1"/><nd ref="2"/><nd ref="3"/><nd ref="4"/><nd ref="1"/>
-    <tag k="building" v="apartments"/><tag k="height" v="18 m"/><tag k="roof:shape" v="gabled"/>
+    <tag k="building" v="apartments"/><tag k="height" v="18 m"/><tag k="roof:shape" v="gabled"/><tag k="roof:height" v="4,5"/>
   </way>
   <way id="101"><nd ref="11"/><nd ref="12"/><nd ref="13"/></way>
   <way id="102"><nd ref="13"/><nd ref="14"/><nd ref="11"/></way>
@@ -91,6 +91,7 @@ fn buildings_are_their_rings_with_courtyards_and_heights() {
         (Some(18.0), "height")
     );
     assert_eq!(way.roof_shape.as_deref(), Some("gabled"));
+    assert_eq!(way.roof_height, Some(4.5));
     assert_eq!(way.kind, "apartments");
     let rel = &map.buildings[1];
     assert_eq!(rel.holes.len(), 1);

@@ -128,6 +128,7 @@ fn fill_block(
                 height,
                 height_from: if height.is_some() { "facade" } else { "none" }.to_owned(),
                 roof_shape: None,
+                roof_height: None,
                 facade: sizes.facade_heights.map(|_| b.kind),
             }
         })

@@ -77,6 +77,7 @@ pub fn street_map() -> OsmMap {
             height: Some(12.0),
             height_from: "height".to_owned(),
             roof_shape: None,
+            roof_height: None,
             facade: None,
         }],
         roads: vec![

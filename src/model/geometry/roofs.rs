@@ -13,7 +13,8 @@
 //! its footprint's mean radius, at most [`MAX_DOME`]. Where the map gives the building's
 //! `height`, it is the roof's top (OSM's rule): the walls stop the rise below it (at most
 //! half the height). A height from `building:levels`, or a seeded one, is the walls': the
-//! roof rises above it.
+//! roof rises above it. The map's `roof:height` replaces the rise (under a mapped
+//! `height`, where it is lower: the walls stand the rest).
 //!
 //! A gabled roof is the footprint triangulated (`earcut`), each triangle cut by the ridge
 //! line, each piece lifted by the roof's height over its side (so every face is planar);
@@ -36,21 +37,34 @@ pub const MAX_DOME: f64 = 20.0;
 /// Rings of a dome between its foot and its top.
 const DOME_RINGS: u32 = 4;
 
-/// The walls' height and the roof of map building `b`, `height` tall (its cladding's), with its `roof:shape`
-/// where [`Roof::of`] builds it on its footprint: a mapped `height` is the roof's top, so
-/// the walls stop the roof's rise below it (at most half-way); else the roof rises above.
+/// The walls' height and the roof of map building `b`, `height` tall (its cladding's), with
+/// its `roof:shape` where [`Roof::of`] builds it on its footprint. The roof rises the map's
+/// `roof:height` where it gives one (less than a mapped `height`), else by the shape's rule.
+/// A mapped `height` is the roof's top, so the walls stop below it: `roof:height` below
+/// it, or the shape's rise, at most half-way. Any other height is the walls': the roof
+/// rises above it.
 pub fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
     let roof = (b.roof_shape.as_deref())
         .filter(|_| b.holes.is_empty())
         .and_then(|shape| Roof::of(shape, &b.outer));
-    match roof {
-        Some(mut roof) if b.height_from == "height" => {
-            let eave = (height - roof.rise).max(height / 2.0);
-            roof.rise = height - eave;
-            (eave, Some(roof))
-        }
-        roof => (height, roof),
+    let Some(mut roof) = roof else {
+        return (height, None);
+    };
+    let top = b.height_from == "height";
+    let mapped = b.roof_height.filter(|&h| !top || h < height);
+    if let Some(h) = mapped {
+        roof.rise = h;
     }
+    if !top {
+        return (height, Some(roof));
+    }
+    let eave = if mapped.is_some() {
+        height - roof.rise
+    } else {
+        (height - roof.rise).max(height / 2.0)
+    };
+    roof.rise = height - eave;
+    (eave, Some(roof))
 }
 
 /// How high map building `b`'s walls stand, `height` tall: the eaves of the roof
@@ -420,6 +434,39 @@ mod tests {
     ];
 
     /// The roof built on walls 10 m high: (roof mesh, walls mesh).
+    #[test]
+    fn a_mapped_roof_height_sets_the_rise_and_the_walls_stand_the_rest() {
+        // A 20 × 20 m footprint, 12 m to the top of its roof (`height`).
+        let mut b = crate::test_support::street_map().buildings.remove(0);
+        let walls = |b: &MapBuilding| {
+            let (eave, roof) = shaped_roof(b, 12.0);
+            (eave, roof.map(|r| r.rise))
+        };
+        assert_eq!(walls(&b), (12.0, None), "flat");
+        b.roof_height = Some(3.0);
+        assert_eq!(walls(&b), (12.0, None), "flat, whatever its roof:height");
+        b.roof_shape = Some("gabled".to_owned());
+        b.roof_height = None;
+        // The shape's rise, 0.6 × 10 m, stops at half the height.
+        assert_eq!(walls(&b), (6.0, Some(6.0)));
+        b.roof_height = Some(3.0);
+        assert_eq!(walls(&b), (9.0, Some(3.0)));
+        // A roof:height of the whole height or more leaves no walls: the shape's rule.
+        b.roof_height = Some(12.0);
+        assert_eq!(walls(&b), (6.0, Some(6.0)));
+        // A height from levels is the walls': the roof rises its roof:height above.
+        b.height_from = "levels".to_owned();
+        b.roof_height = Some(4.0);
+        assert_eq!(walls(&b), (12.0, Some(4.0)));
+        b.roof_height = None;
+        assert_eq!(walls(&b), (12.0, Some(6.0)));
+        // A dome rises its roof:height too.
+        b.height_from = "height".to_owned();
+        b.roof_shape = Some("dome".to_owned());
+        b.roof_height = Some(5.0);
+        assert_eq!(walls(&b), (7.0, Some(5.0)));
+    }
+
     fn built(shape: &str, outer: &[[f64; 2]]) -> (Roof, Mesh, Mesh) {
         let roof = Roof::of(shape, outer).expect("a roof of that shape");
         let (mut top, mut walls) = (MeshBuilder::new(0), MeshBuilder::new(1));

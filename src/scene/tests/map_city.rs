@@ -34,6 +34,7 @@ fn map() -> OsmMap {
         height,
         height_from: "height".to_owned(),
         roof_shape: None,
+        roof_height: None,
         facade: None,
     };
     OsmMap {
