@@ -160,6 +160,11 @@ pub trait StripSpots: RoadSpots {
     /// (`MapSpots::park`). None where there is no such path, or after `attempts`.
     fn park(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot>;
 
+    /// A free spot on a square or pedestrian area for an object of `radius` metres, its
+    /// centre `radius` inside the square's edges, its `travel` drawn (`MapSpots::square`).
+    /// None where there is no such square, or after `attempts`.
+    fn square(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot>;
+
     /// Marks the footprint taken last as a person walking along a sidewalk, out of the
     /// way of the others' walks ([`GroundSpots::free_run`]).
     fn mark_walker(&mut self);
@@ -200,6 +205,11 @@ impl StripSpots for GroundSpots<'_> {
 
     /// A layout has no parks (its blocks are built on or paved), so no paths across them.
     fn park(&mut self, _: &mut Pcg64, _: f64, _: u32) -> Option<Spot> {
+        None
+    }
+
+    /// A layout's open paving takes trees only (`tree::plaza_spot`), not people yet.
+    fn square(&mut self, _: &mut Pcg64, _: f64, _: u32) -> Option<Spot> {
         None
     }
 

@@ -610,7 +610,7 @@ mod tests {
     }
 
     #[test]
-    fn a_parks_share_of_the_people_stand_and_walk_on_the_paths_across_the_parks() {
+    fn parks_and_squares_shares_of_the_people_stand_and_walk_on_them() {
         use crate::model::geometry::polygon::contains;
         let mut map = crate::test_support::street_map();
         map.paths = vec![crate::objects::map_spots::tests::l_path()];
@@ -638,6 +638,19 @@ mod tests {
             place(&entries(text)).expect("people place").placed,
             vec![40]
         );
+        // A squares share of the rest stands on the squares.
+        map.squares = vec![crate::objects::map_spots::tests::square_with_a_basin()];
+        let square = map.squares[0].shape.outer.clone();
+        let text = "[[objects]]\nkind = 'person'\ncount = 40\nparks = 0.5\nsquares = 1.0\n";
+        let inserted = place_on(&map, &entries(text)).expect("people place");
+        let at: Vec<[f64; 2]> = (inserted.objects.iter())
+            .filter(|o| o.kind == ObjectKind::Person)
+            .map(middle)
+            .collect();
+        let parks = at.iter().filter(|&&p| on_path(p)).count();
+        let squares = at.iter().filter(|&&p| contains(&square, p)).count();
+        assert_eq!(parks + squares, 40);
+        assert!((10..=30).contains(&parks), "{parks} of 40 on the path");
     }
 
     #[test]

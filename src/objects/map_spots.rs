@@ -10,8 +10,9 @@
 //! next to it: the way's on a one-way road, else the way with the sidewalk on its right.
 //! People cross on the zebras the markings draw (`MapLines::zebras`) and wait at their
 //! ends, as on a layout's zebras, clear of the roads cameras' lane, and stand or walk on
-//! the paths across its parks (`OsmMap::paths`, [`StripSpots::park`]). A map's traffic does
-//! not move, so its walkers are not marked.
+//! the paths across its parks and on its squares (`OsmMap::paths`, `OsmMap::squares`:
+//! [`StripSpots::park`], [`StripSpots::square`]). A map's traffic does not move, so its
+//! walkers are not marked.
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
@@ -21,11 +22,11 @@ use super::footprint_grid::FootprintGrid;
 use super::ground_spots::{
     CrossingSpot, Footprint, GRID_CELL, LAMP_CLEARANCE, RoadSlot, RoadSpots, Spot, StripSpots,
 };
+use super::open_ground::OpenGround;
 use super::tree;
+use crate::model::geometry::cos_sin_deg;
 use crate::model::geometry::map_lines::MapLines;
-use crate::model::geometry::polygon::{
-    direction, distance, left_normal, nearest, ring_distance, triangle_area, triangles,
-};
+use crate::model::geometry::polygon::{direction, distance, left_normal, nearest, ring_distance};
 use crate::model::geometry::zebras::ZEBRA_DEPTH;
 use crate::model::{
     Crossing, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, PavedSegment, map_camera_lane,
@@ -109,9 +110,6 @@ impl MapZebra {
     }
 }
 
-/// A triangle of a path across a park, and the path's index in `OsmMap::paths`.
-type ParkTriangle = ([[f64; 2]; 3], usize);
-
 /// The map's paved segments and sidewalks as places for vehicles, people and bicycles.
 pub struct MapSpots<'a> {
     map: &'a OsmMap,
@@ -134,11 +132,10 @@ pub struct MapSpots<'a> {
     sidewalk_ends: Vec<f64>,
     /// The zebras the markings draw.
     zebras: Vec<MapZebra>,
-    /// The paths across the parks (`OsmMap::paths`) cut into triangles, each with its
-    /// path's index.
-    park_triangles: Vec<ParkTriangle>,
-    /// Area at each triangle's end, triangles end to end, square metres.
-    park_ends: Vec<f64>,
+    /// The paths across the parks (`OsmMap::paths`).
+    paths: OpenGround,
+    /// The squares (`OsmMap::squares`).
+    squares: OpenGround,
 }
 
 impl<'a> MapSpots<'a> {
@@ -197,11 +194,10 @@ impl<'a> MapSpots<'a> {
                 Some(*at)
             })
             .collect();
-        let (park_triangles, park_ends) = park_triangles(map);
         MapSpots {
             zebras: map_zebras(map),
-            park_triangles,
-            park_ends,
+            paths: OpenGround::of(&map.paths),
+            squares: OpenGround::of(&map.squares),
             map,
             sidewalks,
             sidewalk_ends,
@@ -253,6 +249,52 @@ impl<'a> MapSpots<'a> {
         }
         self.taken.push(footprint);
         true
+    }
+
+    /// A spot on the paths across the parks (`squares`: on the squares), drawn by area
+    /// ([`OpenGround`]), whose centre lies `radius` inside its area's edges, out of the
+    /// buildings, inside the box and clear of what stands; its `road` is the nearest
+    /// carriageway's. Its `travel` on a path runs along the path's nearest edge; on a
+    /// square it is drawn.
+    fn open(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32, squares: bool) -> Option<Spot> {
+        (0..attempts).find_map(|_| {
+            let ground = if squares { &self.squares } else { &self.paths };
+            let (p, i) = ground.draw(rng)?;
+            let areas = if squares {
+                &self.map.squares
+            } else {
+                &self.map.paths
+            };
+            let shape = &areas[i].shape;
+            let rings = || std::iter::once(&shape.outer).chain(&shape.holes);
+            let foot = Footprint::Circle(p, radius);
+            if rings().any(|r| ring_distance(r, p) < radius)
+                || !(self.map.holds(p, radius) && self.map.out_of_buildings(p, radius))
+                || self.taken.overlaps(&foot)
+            {
+                return None;
+            }
+            let travel = if squares {
+                let (c, s) = cos_sin_deg(rng.random::<f64>() * 360.0);
+                [c, s]
+            } else {
+                rings()
+                    .flat_map(|r| (0..r.len()).map(|e| (r[e], r[(e + 1) % r.len()])))
+                    .filter_map(|(a, b)| Some((distance(p, nearest(a, b, p)), direction(a, b)?)))
+                    .min_by(|x, y| x.0.total_cmp(&y.0))?
+                    .1
+            };
+            let road = (self.all.iter())
+                .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s.road))
+                .min_by(|x, y| x.0.total_cmp(&y.0))
+                .map_or(u32::MAX, |(_, r)| r as u32);
+            self.taken.push(foot);
+            Some(Spot {
+                position: p,
+                travel,
+                road,
+            })
+        })
     }
 
     /// How far right of segment `k`'s centreline a vehicle driving along it (`forward`:
@@ -468,73 +510,19 @@ impl StripSpots for MapSpots<'_> {
         })
     }
 
-    /// Nothing: a map's traffic does not move, so no one walks on.
-    /// A path across a park drawn by area, and a point on it (uniform over its
-    /// triangles) whose centre lies `radius` inside the path's edges, out of the
-    /// buildings, inside the box and clear of what stands; its `travel` runs along the
-    /// path's nearest edge (a path is a stroke: its long edges run along it), its `road`
-    /// is the nearest carriageway's.
+    /// A path across a park ([`MapSpots::open`]), the spot's `travel` along the path's
+    /// nearest edge (a path is a stroke: its long edges run along it).
     fn park(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
-        let total = *self.park_ends.last()?;
-        (0..attempts).find_map(|_| {
-            let at = rng.random::<f64>() * total;
-            let k = (self.park_ends.partition_point(|&e| e <= at)).min(self.park_ends.len() - 1);
-            let (mut u, mut v): (f64, f64) = (rng.random(), rng.random());
-            if u + v > 1.0 {
-                (u, v) = (1.0 - u, 1.0 - v);
-            }
-            let ([a, b, c], path) = self.park_triangles[k];
-            let p = [
-                a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]),
-                a[1] + u * (b[1] - a[1]) + v * (c[1] - a[1]),
-            ];
-            let shape = &self.map.paths[path].shape;
-            let rings = || std::iter::once(&shape.outer).chain(&shape.holes);
-            let foot = Footprint::Circle(p, radius);
-            if rings().any(|r| ring_distance(r, p) < radius)
-                || !(self.map.holds(p, radius) && self.map.out_of_buildings(p, radius))
-                || self.taken.overlaps(&foot)
-            {
-                return None;
-            }
-            let travel = rings()
-                .flat_map(|r| (0..r.len()).map(|e| (r[e], r[(e + 1) % r.len()])))
-                .filter_map(|(a, b)| Some((distance(p, nearest(a, b, p)), direction(a, b)?)))
-                .min_by(|x, y| x.0.total_cmp(&y.0))?
-                .1;
-            let road = (self.all.iter())
-                .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s.road))
-                .min_by(|x, y| x.0.total_cmp(&y.0))
-                .map_or(u32::MAX, |(_, r)| r as u32);
-            self.taken.push(foot);
-            Some(Spot {
-                position: p,
-                travel,
-                road,
-            })
-        })
+        self.open(rng, radius, attempts, false)
     }
 
-    fn mark_walker(&mut self) {}
-}
+    /// A square ([`MapSpots::open`]), the spot's `travel` any way.
+    fn square(&mut self, rng: &mut Pcg64, radius: f64, attempts: u32) -> Option<Spot> {
+        self.open(rng, radius, attempts, true)
+    }
 
-/// The paths across `map`'s parks cut into triangles, each with its path's index, and the
-/// area at each triangle's end, triangles end to end.
-fn park_triangles(map: &OsmMap) -> (Vec<ParkTriangle>, Vec<f64>) {
-    let cut: Vec<ParkTriangle> = (map.paths.iter().enumerate())
-        .flat_map(|(i, p)| {
-            let cut = triangles(&p.shape.outer, &p.shape.holes);
-            cut.into_iter().map(move |t| (t, i))
-        })
-        .collect();
-    let ends = cut
-        .iter()
-        .scan(0.0, |at, &(t, _)| {
-            *at += triangle_area(t);
-            Some(*at)
-        })
-        .collect();
-    (cut, ends)
+    /// Nothing: a map's traffic does not move, so no one walks on.
+    fn mark_walker(&mut self) {}
 }
 
 /// The zebras `scene::map_markings` draws (`MapLines::zebras`), as places for people.
@@ -651,6 +639,62 @@ pub(crate) mod tests {
             }
         }
         assert!(west > 10 && north > 10, "{west} west, {north} north");
+    }
+
+    /// A 30 × 20 m square south of the footway (x −95 … −65, z 45 … 65; west of
+    /// [`l_path`]) around a 10 × 10 m fountain basin (x −85 … −75, z 50 … 60).
+    pub(crate) fn square_with_a_basin() -> crate::model::MapArea {
+        crate::model::MapArea {
+            block: 0,
+            shape: crate::model::MapPolygon {
+                outer: vec![[-95.0, 45.0], [-65.0, 45.0], [-65.0, 65.0], [-95.0, 65.0]],
+                holes: vec![vec![
+                    [-85.0, 50.0],
+                    [-85.0, 60.0],
+                    [-75.0, 60.0],
+                    [-75.0, 50.0],
+                ]],
+                area: 600.0 - 100.0,
+            },
+        }
+    }
+
+    #[test]
+    fn square_spots_lie_on_the_square_off_its_holes_facing_any_way() {
+        use crate::model::geometry::polygon::contains;
+        let mut map = street_map();
+        let mut rng = crate::rng::stream(7, "test", 0);
+        assert!(
+            MapSpots::new(&map, &[], &[])
+                .square(&mut rng, 0.6, 40)
+                .is_none()
+        );
+        map.squares = vec![square_with_a_basin()];
+        // No paths: none on them.
+        let mut ground = MapSpots::new(&map, &[], &[]);
+        assert!(ground.park(&mut rng, 0.6, 40).is_none());
+        let found: Vec<Spot> = (0..100)
+            .filter_map(|_| ground.square(&mut rng, 0.6, 40))
+            .collect();
+        assert_eq!(found.len(), 100);
+        let shape = &map.squares[0].shape;
+        let mut quarters = [0; 4];
+        for (i, s) in found.iter().enumerate() {
+            let p = s.position;
+            assert!(
+                contains(&shape.outer, p) && !contains(&shape.holes[0], p),
+                "{p:?}"
+            );
+            assert!(ring_distance(&shape.outer, p) >= 0.6 - 1e-9, "{p:?}");
+            assert!(ring_distance(&shape.holes[0], p) >= 0.6 - 1e-9, "{p:?}");
+            for t in &found[i + 1..] {
+                assert!(distance(p, t.position) >= 1.2 - 1e-9, "{p:?} {t:?}");
+            }
+            assert!((s.travel[0] * s.travel[0] + s.travel[1] * s.travel[1] - 1.0).abs() < 1e-9);
+            let q = usize::from(s.travel[0] < 0.0) + 2 * usize::from(s.travel[1] < 0.0);
+            quarters[q] += 1;
+        }
+        assert!(quarters.iter().all(|&q| q >= 10), "facing {quarters:?}");
     }
 
     #[test]

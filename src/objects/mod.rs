@@ -39,6 +39,7 @@ mod map_walls;
 mod number_plate;
 pub mod obj_lines;
 mod objects_error;
+mod open_ground;
 mod person;
 mod person_pose;
 mod plate_light;

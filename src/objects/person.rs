@@ -25,7 +25,8 @@
 //! others stand at the zebras' ends, at the curb, facing the road as if about to cross (as
 //! many as the ends hold; the rest join the strips). On a map, its `parks` share of the
 //! rest stand or walk on the paths across the parks, [`ROOM`] inside their edges, walkers
-//! along the path (as many as the paths hold; the rest join the strips).
+//! along the path, and its `squares` share of the rest after them on the squares, facing
+//! any way (as many as the paths and squares hold; the rest join the strips).
 //!
 //! For moving traffic each walking person gets a [`TrafficRole::Pedestrian`]: a person
 //! crossing (or waiting to) keeps to the half of its zebra on its right and takes its
@@ -186,9 +187,13 @@ pub fn place(
             waiting = way.is_some();
         }
         let mut spot = way.map(|w| w.spot);
-        // Only an entry with people in the parks draws whether each is one.
+        // Only an entry with people in the parks (on the squares) draws whether each is
+        // one.
         if spot.is_none() && !crossing && spec.parks > 0.0 && rng.random::<f64>() < spec.parks {
             spot = (0..ATTEMPTS).find_map(|_| spots.park(rng, ROOM, 1));
+        }
+        if spot.is_none() && !crossing && spec.squares > 0.0 && rng.random::<f64>() < spec.squares {
+            spot = (0..ATTEMPTS).find_map(|_| spots.square(rng, ROOM, 1));
         }
         if spot.is_none() && !crossing {
             let share = rng.random::<f64>();

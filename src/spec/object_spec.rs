@@ -126,6 +126,13 @@ pub struct ObjectSpec {
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub parks: f64,
+    /// person: share of the people neither crossing, waiting nor in the parks who stand or
+    /// walk on a map's squares (its squares, pedestrian areas and surface car parks),
+    /// facing any way; where there are none (a layout, or a map without them), they
+    /// stand in the sidewalk strips like the others.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub squares: f64,
     /// tree: share of the trees planted on the blocks' open paving (plazas, yards) instead
     /// of the sidewalk strips.
     #[serde(default = "default_plazas")]
@@ -208,6 +215,7 @@ pub const KIND_KEYS: &[(&str, &[EntryKind])] = {
         ("crossing", &[Person]),
         ("waiting", &[Person]),
         ("parks", &[Person]),
+        ("squares", &[Person]),
         ("plazas", &[Tree]),
     ]
 };
