@@ -299,6 +299,11 @@ pub struct MapRoad {
     pub width_from: String,
     /// Sidewalk widths in metres on the left and the right of the way's direction (0: none).
     pub sidewalks: [f64; 2],
+    /// Whether cars may park at the left and the right kerb (of the way's direction), as
+    /// its `parking:lane:*` or `parking:*` tags say (`osm::tags::parking`); None where
+    /// the map is silent.
+    #[serde(default)]
+    pub parking: [Option<bool>; 2],
     /// `oneway=yes` (or a roundabout, or a motorway).
     pub oneway: bool,
     /// `junction=roundabout`.

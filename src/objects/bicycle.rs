@@ -172,6 +172,7 @@ pub fn place(
                     offset,
                     crossing_clearance: STOP_LINE_END,
                     gap: 1.5,
+                    parked: false,
                 })
             };
             let Some(spot) = spots.road(rng, ATTEMPTS, slot) else {

@@ -266,6 +266,7 @@ pub fn place(
                         offset,
                         crossing_clearance: 5.0,
                         gap: 0.4,
+                        parked: true,
                     })
                 } else {
                     let free: Vec<f64> = (0..profile.lanes)
@@ -281,6 +282,7 @@ pub fn place(
                         // Behind the stop line, as a car waits at a crossing.
                         crossing_clearance: STOP_LINE_END,
                         gap: 2.5,
+                        parked: false,
                     })
                 }
             };

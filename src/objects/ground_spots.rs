@@ -94,14 +94,17 @@ impl Footprint {
 }
 
 /// Where on a road a footprint goes: its half extents along and across the road and its
-/// distance right of the centre line (driving direction), in metres, and how far it keeps
-/// from every other road (a crossing) and, along the road, from other footprints.
+/// distance right of the centre line (driving direction), in metres, how far it keeps
+/// from every other road (a crossing) and, along the road, from other footprints, and
+/// whether it is a vehicle parked at the kerb (a map keeps those off the kerbs its
+/// parking tags forbid).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoadSlot {
     pub half: [f64; 2],
     pub offset: f64,
     pub crossing_clearance: f64,
     pub gap: f64,
+    pub parked: bool,
 }
 
 /// Where a vehicle may stand on a road: a layout's roads ([`GroundSpots`]) or a map's

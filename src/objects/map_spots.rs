@@ -365,6 +365,12 @@ impl RoadSpots for MapSpots<'_> {
             if r.offset - r.half[1] < self.near_side(k, forward) {
                 return None;
             }
+            // Parked at the kerb on the right of its way: the way's right going forward,
+            // its left going back. Not where the map forbids it.
+            let kerb = usize::from(forward);
+            if r.parked && self.map.roads[s.road].parking[kerb] == Some(false) {
+                return None;
+            }
             let (a, b) = if forward { (s.a, s.b) } else { (s.b, s.a) };
             let len = distance(a, b);
             let room = len - 2.0 * r.half[0];
@@ -695,6 +701,52 @@ pub(crate) mod tests {
             quarters[q] += 1;
         }
         assert!(quarters.iter().all(|&q| q >= 10), "facing {quarters:?}");
+    }
+
+    #[test]
+    fn parked_vehicles_keep_off_the_kerbs_the_map_forbids() {
+        // A car's footprint at the kerb of road 0 (12 m: its kerbs 6 m out) or road 1.
+        let slot = |parked: bool| {
+            move |width: f64| {
+                Some(RoadSlot {
+                    half: [2.2, 0.9],
+                    offset: width / 2.0 - 0.25 - 0.9,
+                    crossing_clearance: 5.0,
+                    gap: 0.4,
+                    parked,
+                })
+            }
+        };
+        // Which kerbs of road 0 (left, right of its way) the spots stand at.
+        let kerbs = |map: &OsmMap, parked: bool| {
+            let mut ground = MapSpots::new(map, &[], &[]);
+            let mut rng = crate::rng::stream(7, "test", 0);
+            let mut sides = [0, 0];
+            for spot in (0..60).filter_map(|_| ground.road(&mut rng, 40, slot(parked))) {
+                let (_, s) = kerb_distance(map, spot.position);
+                if s.road == 0 {
+                    let n = left_normal(s.a, s.b).expect("a segment");
+                    let d = spot.position;
+                    let left = (d[0] - s.a[0]) * n[0] + (d[1] - s.a[1]) * n[1] > 0.0;
+                    sides[usize::from(!left)] += 1;
+                }
+            }
+            sides
+        };
+        let mut map = street_map();
+        let both = kerbs(&map, true);
+        assert!(both[0] > 3 && both[1] > 3, "{both:?}");
+        map.roads[0].parking = [Some(false), Some(true)];
+        let right = kerbs(&map, true);
+        assert!(right[0] == 0 && right[1] > 3, "{right:?}");
+        map.roads[0].parking = [Some(true), Some(false)];
+        let left = kerbs(&map, true);
+        assert!(left[0] > 3 && left[1] == 0, "{left:?}");
+        // Only parked vehicles: a footprint in the lane may stand on either side.
+        map.roads[0].parking = [Some(false); 2];
+        assert_eq!(kerbs(&map, true), [0, 0]);
+        let unparked = kerbs(&map, false);
+        assert!(unparked[0] > 3 && unparked[1] > 3, "{unparked:?}");
     }
 
     #[test]

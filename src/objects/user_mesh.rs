@@ -241,6 +241,7 @@ impl MeshSpots for MapSpots<'_> {
                 offset,
                 crossing_clearance: 0.0,
                 gap: 0.0,
+                parked: false,
             })
         };
         self.road(rng, ATTEMPTS, slot)

@@ -161,6 +161,42 @@ pub fn sidewalks(class: &str, tags: &[(&str, &str)]) -> [f64; 2] {
     [left, right]
 }
 
+/// Whether cars may park at the left and the right kerb of a way (of its direction), or
+/// None where its tags are silent: `parking:lane:{both,left,right}` (`parallel`,
+/// `diagonal`, `perpendicular`, `marked`: yes; `no_parking`, `no_stopping`, `no`,
+/// `fire_lane`, `separate`: no) or the newer `parking:{both,left,right}` (`lane`,
+/// `street_side`, `on_kerb`, `half_on_kerb`, `shoulder`, `yes`: yes; `no`, `separate`:
+/// no), a side's own tag over `both`, the older scheme's over the newer's; a
+/// `no_parking`, `no_stopping` or `no_standing` under `parking:condition:{side|both}` or
+/// `parking:{side|both}:restriction` makes it no.
+pub fn parking(tags: &[(&str, &str)]) -> [Option<bool>; 2] {
+    let value = |v: &str| match v {
+        "parallel" | "diagonal" | "perpendicular" | "marked" | "yes" | "lane" | "street_side"
+        | "on_kerb" | "half_on_kerb" | "shoulder" => Some(true),
+        "no_parking" | "no_stopping" | "no" | "fire_lane" | "separate" => Some(false),
+        _ => None,
+    };
+    let banned = |v: &str| matches!(v, "no_parking" | "no_stopping" | "no_standing");
+    ["left", "right"].map(|side| {
+        let of = |scheme: &str| {
+            let own = get(tags, &format!("{scheme}:{side}")).and_then(value);
+            own.or_else(|| get(tags, &format!("{scheme}:both")).and_then(value))
+        };
+        let restricted = [
+            format!("parking:condition:{side}"),
+            "parking:condition:both".to_owned(),
+            format!("parking:{side}:restriction"),
+            "parking:both:restriction".to_owned(),
+        ]
+        .iter()
+        .any(|k| get(tags, k).is_some_and(banned));
+        if restricted {
+            return Some(false);
+        }
+        of("parking:lane").or_else(|| of("parking"))
+    })
+}
+
 /// A building's height and where it came from: `height`, else (`building:levels` +
 /// `roof:levels`) × the floor height.
 pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
@@ -259,6 +295,47 @@ pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parking_sides_from_either_scheme_a_side_over_both() {
+        assert_eq!(parking(&[("highway", "residential")]), [None, None]);
+        assert_eq!(
+            parking(&[("parking:lane:both", "parallel")]),
+            [Some(true), Some(true)]
+        );
+        assert_eq!(
+            parking(&[
+                ("parking:lane:both", "no_stopping"),
+                ("parking:lane:right", "diagonal")
+            ]),
+            [Some(false), Some(true)]
+        );
+        assert_eq!(
+            parking(&[("parking:left", "lane"), ("parking:right", "no")]),
+            [Some(true), Some(false)]
+        );
+        assert_eq!(
+            parking(&[("parking:both", "separate")]),
+            [Some(false), Some(false)]
+        );
+        // A lane where a condition or a restriction bans parking: none.
+        assert_eq!(
+            parking(&[
+                ("parking:lane:both", "parallel"),
+                ("parking:condition:right", "no_parking")
+            ]),
+            [Some(true), Some(false)]
+        );
+        assert_eq!(
+            parking(&[
+                ("parking:both", "lane"),
+                ("parking:both:restriction", "no_stopping")
+            ]),
+            [Some(false), Some(false)]
+        );
+        // A value it does not know says nothing.
+        assert_eq!(parking(&[("parking:lane:left", "unknown")]), [None, None]);
+    }
 
     #[test]
     fn lengths_read_as_osm_writes_them() {

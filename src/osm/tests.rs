@@ -42,7 +42,8 @@ const TOWN: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <way id="200">
     <nd ref="31"/><nd ref="32"/><nd ref="33"/>
     <tag k="highway" v="residential"/><tag k="lanes" v="2"/><tag k="name" v="Testikatu"/>
-    <tag k="sidewalk" v="right"/>
+    <tag k="sidewalk" v="right"/><tag k="parking:lane:right" v="parallel"/>
+    <tag k="parking:lane:left" v="no_stopping"/>
   </way>
   <way id="201"><nd ref="1"/><nd ref="4"/><tag k="highway" v="footway"/></way>
   <way id="202">
@@ -129,6 +130,12 @@ fn roads_are_cut_at_the_box_and_areas_are_not_roads() {
         (2.0 * LANE_WIDTH, "lanes")
     );
     assert_eq!(road.sidewalks, [0.0, SIDEWALK_WIDTH]);
+    assert_eq!(road.parking, [Some(false), Some(true)]);
+    assert_eq!(
+        map.roads[1].parking,
+        [None, None],
+        "the footway says nothing"
+    );
     // From the box's west edge (25.000°) to its east edge (25.002°) along 60.0001° N.
     let last = *road.centreline.last().unwrap();
     assert!(

@@ -33,6 +33,7 @@ pub fn street_map() -> OsmMap {
             width,
             width_from: "width".to_owned(),
             sidewalks: [side; 2],
+            parking: [None; 2],
             oneway,
             roundabout: false,
             surface,
