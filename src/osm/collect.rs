@@ -45,6 +45,9 @@ struct RoadTags {
     sidewalks: [f64; 2],
     parking: [Option<bool>; 2],
     oneway: bool,
+    /// `oneway=-1`: the traffic runs against the way's nodes, so the road's centreline is
+    /// theirs reversed (and its sides swapped).
+    reversed: bool,
     roundabout: bool,
     surface: bool,
     /// A footway, path, cycleway, bridleway or track on the ground (`tags::ground_path`):
@@ -126,9 +129,25 @@ impl Sink for Collector {
         let area = tags::get(tags, "area") == Some("yes");
         if let Some(class) = tags::get(tags, "highway").filter(|c| !tags::not_a_way(c) && !area) {
             let roundabout = tags::get(tags, "junction") == Some("roundabout");
-            let oneway = matches!(tags::get(tags, "oneway"), Some("yes" | "1" | "-1"))
+            let reversed = tags::get(tags, "oneway") == Some("-1");
+            let oneway = matches!(tags::get(tags, "oneway"), Some("yes" | "1"))
+                || reversed
                 || roundabout
                 || class == "motorway";
+            // Left and right of the traffic's direction.
+            let sides = |[left, right]: [f64; 2]| {
+                if reversed {
+                    [right, left]
+                } else {
+                    [left, right]
+                }
+            };
+            let [parking_left, parking_right] = tags::parking(tags);
+            let parking = if reversed {
+                [parking_right, parking_left]
+            } else {
+                [parking_left, parking_right]
+            };
             let below = tags::get(tags, "tunnel").is_some_and(|t| t != "no")
                 || tags::get(tags, "covered").is_some_and(|c| c != "no")
                 || tags::get(tags, "indoor").is_some_and(|i| i != "no")
@@ -143,9 +162,10 @@ impl Sink for Collector {
                     ground_path: tags::ground_path(class, tags) && !below,
                     class: class.to_owned(),
                     width: tags::width(class, tags),
-                    sidewalks: tags::sidewalks(class, tags),
-                    parking: tags::parking(tags),
+                    sidewalks: sides(tags::sidewalks(class, tags)),
+                    parking,
                     oneway,
+                    reversed,
                     roundabout,
                     name: tags::get(tags, "name").map(str::to_owned),
                 },
@@ -428,6 +448,9 @@ impl Collector {
             line.dedup();
             if line.len() < 2 {
                 continue;
+            }
+            if tags.reversed {
+                line.reverse();
             }
             let pieces = clip(&line, extent);
             if pieces.is_empty() {

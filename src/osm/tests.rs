@@ -562,6 +562,35 @@ fn paths_across_the_green_are_their_strokes_cut_to_the_green() {
 }
 
 #[test]
+fn a_way_one_way_against_its_nodes_runs_the_traffic_s_way() {
+    let xml = r#"<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <bounds minlat="60.0000000" minlon="25.0000000" maxlat="60.0010000" maxlon="25.0020000"/>
+  <node id="1" lat="60.0005" lon="25.0002"/>
+  <node id="2" lat="60.0005" lon="25.0010"/>
+  <way id="300"><nd ref="1"/><nd ref="2"/>
+    <tag k="highway" v="residential"/><tag k="oneway" v="-1"/><tag k="sidewalk" v="left"/>
+    <tag k="parking:lane:right" v="parallel"/>
+  </way>
+</osm>"#;
+    let map = read(xml.as_bytes(), None).unwrap();
+    let road = &map.roads[0];
+    assert!(road.oneway);
+    // The traffic runs west: the centreline from node 2 to node 1.
+    let [a, b] = [road.centreline[0], road.centreline[1]];
+    assert!(a[0] > b[0], "{:?}", road.centreline);
+    // The way's left sidewalk is on the traffic's right, its right kerb's parking on
+    // the traffic's left.
+    assert_eq!(road.sidewalks, [0.0, SIDEWALK_WIDTH]);
+    assert_eq!(road.parking, [Some(true), None]);
+    let forward = read(xml.replace("\"-1\"", "\"yes\"").as_bytes(), None).unwrap();
+    let road = &forward.roads[0];
+    assert!(road.centreline[0][0] < road.centreline[1][0]);
+    assert_eq!(road.sidewalks, [SIDEWALK_WIDTH, 0.0]);
+    assert_eq!(road.parking, [None, Some(true)]);
+}
+
+#[test]
 fn ground_paths_are_footways_paths_and_cycleways_off_bridges() {
     assert!(tags::ground_path("footway", &[]));
     assert!(tags::ground_path("cycleway", &[("layer", "0")]));
