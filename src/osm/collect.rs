@@ -114,7 +114,7 @@ impl Sink for Collector {
 
     fn node(&mut self, id: i64, lat: i32, lon: i32, tags: &[(&str, &str)]) {
         self.nodes.insert(id, [lat, lon]);
-        if let Some((kind, tag)) = tags::feature(tags) {
+        for (kind, tag) in tags::features(tags) {
             self.features.push((id, kind, tag));
         }
     }

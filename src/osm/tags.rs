@@ -252,11 +252,20 @@ pub fn square(tags: &[(&str, &str)]) -> bool {
             && get(tags, "parking").is_none_or(|p| p == "surface"))
 }
 
-pub fn feature(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
+/// The furniture a node's tags make, each with the tag that says what it is: its
+/// `traffic_sign=*`, then what its `highway`, `natural` or `amenity` tag makes it
+/// (`furniture`). A node may be both: a sign on a lamp post, a stop sign
+/// (`highway=stop`, whose stop line the markings draw) with its code.
+pub fn features(tags: &[(&str, &str)]) -> Vec<(FeatureKind, String)> {
+    let sign = get(tags, "traffic_sign")
+        .map(|sign| (FeatureKind::TrafficSign, format!("traffic_sign={sign}")));
+    sign.into_iter().chain(furniture(tags)).collect()
+}
+
+/// What a node's `highway`, `natural` or `amenity` tag makes it, with the tag that says
+/// so; None for anything else.
+fn furniture(tags: &[(&str, &str)]) -> Option<(FeatureKind, String)> {
     let tagged = |k: &str, v: &str| format!("{k}={v}");
-    if let Some(sign) = get(tags, "traffic_sign") {
-        return Some((FeatureKind::TrafficSign, tagged("traffic_sign", sign)));
-    }
     match (
         get(tags, "highway"),
         get(tags, "natural"),
@@ -411,46 +420,61 @@ mod tests {
     #[test]
     fn nodes_become_the_furniture_their_tags_name() {
         assert_eq!(
-            feature(&[("highway", "traffic_signals")]).unwrap().0,
+            furniture(&[("highway", "traffic_signals")]).unwrap().0,
             FeatureKind::TrafficSignals
         );
         assert_eq!(
-            feature(&[("highway", "street_lamp")]).unwrap().0,
+            furniture(&[("highway", "street_lamp")]).unwrap().0,
             FeatureKind::StreetLamp
         );
         assert_eq!(
-            feature(&[("natural", "tree")]).unwrap().0,
+            furniture(&[("natural", "tree")]).unwrap().0,
             FeatureKind::Tree
         );
         assert_eq!(
-            feature(&[("amenity", "bench")]).unwrap().0,
+            furniture(&[("amenity", "bench")]).unwrap().0,
             FeatureKind::Bench
         );
         assert_eq!(
-            feature(&[("highway", "give_way"), ("traffic_sign", "DE:205")]),
-            Some((FeatureKind::TrafficSign, "traffic_sign=DE:205".to_owned()))
+            features(&[("highway", "give_way"), ("traffic_sign", "DE:205")]),
+            vec![
+                (FeatureKind::TrafficSign, "traffic_sign=DE:205".to_owned()),
+                (FeatureKind::TrafficSign, "highway=give_way".to_owned())
+            ]
+        );
+        // A sign on a lamp post: both.
+        assert_eq!(
+            features(&[("traffic_sign", "FI:361"), ("highway", "street_lamp")]),
+            vec![
+                (FeatureKind::TrafficSign, "traffic_sign=FI:361".to_owned()),
+                (FeatureKind::StreetLamp, "highway=street_lamp".to_owned())
+            ]
         );
         assert_eq!(
-            feature(&[("highway", "crossing"), ("crossing", "traffic_signals")]),
+            features(&[("traffic_sign", "FI:361")]),
+            vec![(FeatureKind::TrafficSign, "traffic_sign=FI:361".to_owned())]
+        );
+        assert_eq!(
+            furniture(&[("highway", "crossing"), ("crossing", "traffic_signals")]),
             Some((FeatureKind::Crossing, "highway=crossing".to_owned()))
         );
         assert_eq!(
-            feature(&[("crossing", "unmarked"), ("highway", "crossing")]),
+            furniture(&[("crossing", "unmarked"), ("highway", "crossing")]),
             Some((FeatureKind::Crossing, "crossing=unmarked".to_owned()))
         );
         assert_eq!(
-            feature(&[("highway", "crossing"), ("crossing:markings", "no")]),
+            furniture(&[("highway", "crossing"), ("crossing:markings", "no")]),
             Some((FeatureKind::Crossing, "crossing:markings=no".to_owned()))
         );
         assert_eq!(
-            feature(&[("highway", "traffic_signals"), ("direction", "backward")]),
+            furniture(&[("highway", "traffic_signals"), ("direction", "backward")]),
             Some((
                 FeatureKind::TrafficSignals,
                 "traffic_signals:direction=backward".to_owned()
             ))
         );
         assert_eq!(
-            feature(&[
+            furniture(&[
                 ("traffic_signals:direction", "forward"),
                 ("highway", "traffic_signals")
             ]),
@@ -460,15 +484,15 @@ mod tests {
             ))
         );
         assert_eq!(
-            feature(&[("highway", "traffic_signals"), ("direction", "90")])
+            furniture(&[("highway", "traffic_signals"), ("direction", "90")])
                 .unwrap()
                 .1,
             "highway=traffic_signals"
         );
         assert_eq!(
-            feature(&[("highway", "stop")]),
+            furniture(&[("highway", "stop")]),
             Some((FeatureKind::TrafficSign, "highway=stop".to_owned()))
         );
-        assert_eq!(feature(&[("amenity", "post_box")]), None);
+        assert_eq!(features(&[("amenity", "post_box")]), Vec::new());
     }
 }
