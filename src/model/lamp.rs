@@ -2,6 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
+/// A street lamp's pole radius, metres: the scene builds it (`scene::street_lamps`), a
+/// map's signs that hang on it keep their plates outside it (`objects`).
+pub const LAMP_POLE_RADIUS: f64 = 0.08;
+
 /// A lamp site in layout pixels (continuous coordinates).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Lamp {

@@ -41,7 +41,7 @@ pub use facade_set::{Facade, FacadeSet, Roof};
 pub use generated_layout::GeneratedLayout;
 pub use instance_ids::{pack_ids, unpack_ids};
 pub use instances::{Instance, Instances};
-pub use lamp::Lamp;
+pub use lamp::{LAMP_POLE_RADIUS, Lamp};
 pub use map_cladding::{MapCladding, map_cladding};
 pub use movement::{Movement, Recolour};
 pub use object_kind::ObjectKind;

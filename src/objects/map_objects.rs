@@ -6,7 +6,7 @@
 //! | text | planes of words on the walls of the map's buildings that face a paved road (`map_walls`), as on a layout's walls (`wall_text`): the facade laid as the scene lays it, so painted text shows the wall's own pixels and plates keep clear of its windows |
 //! | tree | at the map's `natural=tree` nodes, in node order, then on the map's green ground where it plants none (`green_tree_sites`, about one per 12 m square, in a seeded order), up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
-//! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`); a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
+//! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`), or on the pole of the lamp its node also is; a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`](crate::model::MAP_CAMERA_LANE) clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`](super::map_spots::JUNCTION_CLEARANCE) plus its half length from every other road's carriageway; a parked one not at a kerb the map's parking tags forbid (`MapRoad::parking`) |
 //! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing; `crossing` on the zebras the markings draw, clear of the roads cameras' lane, `waiting` at their ends ([`MapSpots`]) |
 //! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
@@ -26,7 +26,9 @@ use super::{
     person, sign_codes, street_names, traffic_lights, tree, user_mesh, wall_text,
 };
 use crate::model::geometry::polygon::{direction, distance};
-use crate::model::{FacadeSet, FeatureKind, Lamp, OsmMap, ParsedLayout, PavedSegment};
+use crate::model::{
+    FacadeSet, FeatureKind, LAMP_POLE_RADIUS, Lamp, OsmMap, ParsedLayout, PavedSegment,
+};
 use crate::spec::{EntryKind, ObjectSpec};
 
 /// How far behind the kerb a mapped signal's pole stands, metres.
@@ -108,7 +110,7 @@ impl<'a> MapGround<'a> {
         MapGround {
             spots: MapSpots::new(input.map, input.lamps, &trees),
             signals: signal_sites(input.map),
-            signs: sign_sites(input.map),
+            signs: sign_sites(input.map, input.lamps),
             trees,
             walls: None,
         }
@@ -339,12 +341,18 @@ const SIGN_REACH: f64 = 15.0;
 /// traffic on its side: on a one-way road the road's, on a two-way road the traffic
 /// driving on the right. A node on the carriageway (a node of the way) stands behind the
 /// right kerb of the way's direction. Posts in or at a building or on another road's
-/// carriageway are left out.
-fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
+/// carriageway are left out. A sign whose node is a lamp's too (a sign on a lamp post)
+/// hangs on that lamp's pole, facing the traffic on the lamp's side, its plate just
+/// outside the pole.
+fn sign_sites(map: &OsmMap, lamps: &[Lamp]) -> Vec<MappedSign> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
         map.clear_ground(&paved, Some(s.road), foot, traffic_signs::MAPPED_RADIUS)
     };
+    let lamp_nodes: std::collections::BTreeSet<i64> = (map.features.iter())
+        .filter(|f| f.kind == FeatureKind::StreetLamp)
+        .map(|f| f.node)
+        .collect();
     map.features
         .iter()
         .filter(|f| f.kind == FeatureKind::TrafficSign)
@@ -353,6 +361,20 @@ fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
             let (s, q, d) = map.nearest_paved(f.at)?;
             let t = direction(s.a, s.b).filter(|_| d <= SIGN_REACH)?;
             let right = [-t[1], t[0]];
+            // The lamp `lamps::map_lamps` stood for the node: at it, or moved out to its
+            // kerb, so no farther from it than that kerb.
+            let reach = s.width / 2.0 + POLE_BEHIND_KERB + 0.01;
+            let lamp = (lamp_nodes.contains(&f.node))
+                .then(|| {
+                    (lamps.iter())
+                        .map(|l| (distance(l.position, f.at), l))
+                        .filter(|(d, _)| *d <= reach)
+                        .min_by(|a, b| a.0.total_cmp(&b.0))
+                })
+                .flatten();
+            if let Some((_, l)) = lamp {
+                return Some(on_lamp(map, kind, speed, l, (s, q, t)));
+            }
             let kerb = s.width / 2.0 + POLE_BEHIND_KERB;
             let on_right = d <= s.width / 2.0
                 || (f.at[0] - q[0]) * right[0] + (f.at[1] - q[1]) * right[1] >= 0.0;
@@ -379,9 +401,46 @@ fn sign_sites(map: &OsmMap) -> Vec<MappedSign> {
                     travel,
                     road: s.road as u32,
                 },
+                on_lamp: false,
             })
         })
         .collect()
+}
+
+/// A sign of `kind` hung on lamp `l`'s pole beside paved segment `s` (`q` the nearest
+/// point of its centreline to the node, `t` its direction): facing the traffic on the
+/// lamp's side (a one-way road's own), its plate [`LAMP_POLE_RADIUS`] plus the plate's
+/// gap out from the pole's axis.
+fn on_lamp(
+    map: &OsmMap,
+    kind: crate::spec::SignKind,
+    speed: u32,
+    l: &Lamp,
+    (s, q, t): (PavedSegment, [f64; 2], [f64; 2]),
+) -> MappedSign {
+    let right = [-t[1], t[0]];
+    let on_right = (l.position[0] - q[0]) * right[0] + (l.position[1] - q[1]) * right[1] >= 0.0;
+    let travel = if on_right || map.roads[s.road].oneway {
+        t
+    } else {
+        [-t[0], -t[1]]
+    };
+    // The plate faces against the traffic; `push_sign` sets it `FACE_OFFSET` out from
+    // the spot, so the spot lies that much short of the lamp pole's face.
+    let out = LAMP_POLE_RADIUS - traffic_signs::POLE_HALF;
+    MappedSign {
+        kind,
+        speed,
+        spot: Spot {
+            position: [
+                l.position[0] - travel[0] * out,
+                l.position[1] - travel[1] * out,
+            ],
+            travel,
+            road: s.road as u32,
+        },
+        on_lamp: true,
+    }
 }
 
 #[cfg(test)]
@@ -891,10 +950,12 @@ mod tests {
             sign(44, [-30.0, 8.0], "traffic_sign=GB:601.1"),
             sign(45, [0.0, 30.0], "traffic_sign=DE:206"),
             sign(46, [-20.0, 8.5], "traffic_sign=DE:206"),
+            // On the lamp post of node 2, which stands 0.5 m behind road 0's right kerb.
+            sign(2, [-20.0, 0.0], "traffic_sign=DE:206"),
         ]);
         let specs = entries("[[objects]]\nkind = 'sign'\ncount = 10\n");
         let inserted = place_on(&map, &specs).expect("signs place");
-        assert_eq!(inserted.placed, vec![4]);
+        assert_eq!(inserted.placed, vec![5]);
         assert_eq!(inserted, place_on(&map, &specs).expect("signs place"));
         // (kind, foot, facing) per sign, in node order.
         let expected = [
@@ -903,8 +964,20 @@ mod tests {
             (SignKind::SpeedLimit, [-45.5, 60.0], [0.0, -1.0]),
             (SignKind::Yield, [-70.0, 6.5], [-1.0, 0.0]),
         ];
-        let faces: Vec<(&usize, &traffic_signs::SignFace)> = inserted.sign_faces.iter().collect();
-        assert_eq!(faces.len(), expected.len());
+        let mut faces: Vec<(&usize, &traffic_signs::SignFace)> =
+            inserted.sign_faces.iter().collect();
+        assert_eq!(faces.len(), expected.len() + 1);
+        // The one on the lamp post: a plate on the lamp's pole (no pole of its own), facing
+        // the eastbound traffic, its face just outside the pole.
+        let (&index, face) = faces.pop().expect("the lamp's sign");
+        assert_eq!(inserted.objects[index].kind, ObjectKind::Sign);
+        assert_ne!(inserted.objects[index - 1].kind, ObjectKind::SignPole);
+        assert_eq!((face.kind, face.normal), (SignKind::Stop, [-1.0, 0.0, 0.0]));
+        let centre = [-20.0 - (LAMP_POLE_RADIUS + 0.015), 6.5];
+        assert!(
+            distance([face.centre[0], face.centre[2]], centre) < 1e-9,
+            "{face:?}"
+        );
         for ((&index, face), (kind, foot, facing)) in faces.into_iter().zip(expected) {
             assert_eq!(inserted.objects[index].kind, ObjectKind::Sign);
             assert_eq!(inserted.objects[index - 1].kind, ObjectKind::SignPole);
@@ -924,7 +997,7 @@ mod tests {
         assert!(speed, "the limit's number comes from the tag");
         // `signs` picks the types, `count` caps them.
         let stops = entries("[[objects]]\nkind = 'sign'\nsigns = ['stop']\n");
-        assert_eq!(place_on(&map, &stops).expect("signs place").placed, vec![1]);
+        assert_eq!(place_on(&map, &stops).expect("signs place").placed, vec![2]);
         let two = entries("[[objects]]\nkind = 'sign'\ncount = 2\n");
         assert_eq!(place_on(&map, &two).expect("signs place").placed, vec![2]);
     }

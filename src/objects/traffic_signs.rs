@@ -61,7 +61,7 @@ pub fn place(
         let Some((kind, spot)) = found else {
             continue;
         };
-        push_sign(placing, spec, kind, speed, spot);
+        push_sign(placing, spec, (kind, speed, spot), true);
         placed += 1;
     }
     placed
@@ -74,6 +74,9 @@ pub struct MappedSign {
     pub kind: SignKind,
     pub speed: u32,
     pub spot: Spot,
+    /// Hung on a street lamp's pole (the map's node is both): no pole of its own, and the
+    /// lamp holds the ground.
+    pub on_lamp: bool,
 }
 
 /// The ground a mapped sign holds, radius in metres: half its plate. Mapped posts stand
@@ -97,10 +100,15 @@ pub fn place_mapped(
             continue;
         }
         let ground = super::ground_spots::Footprint::Circle(sign.spot.position, MAPPED_RADIUS);
-        if !claim(ground) {
+        if !sign.on_lamp && !claim(ground) {
             continue;
         }
-        push_sign(placing, spec, sign.kind, sign.speed, sign.spot);
+        push_sign(
+            placing,
+            spec,
+            (sign.kind, sign.speed, sign.spot),
+            !sign.on_lamp,
+        );
         placed += 1;
     }
     placed
@@ -211,7 +219,15 @@ fn mouth_spots<const N: usize>(
 
 /// Pushes a sign of `kind` standing at `spot` (pole, then plate), its face looking at the
 /// traffic coming towards it, and records its face.
-fn push_sign(placing: &mut Placing, spec: &ObjectSpec, kind: SignKind, speed: u32, spot: Spot) {
+/// Pushes a sign of `kind` (showing `speed` where it is a limit) standing at `spot`: its
+/// plate, and its pole where it has one of its own (`own_pole`; else it hangs on a
+/// lamp's).
+fn push_sign(
+    placing: &mut Placing,
+    spec: &ObjectSpec,
+    (kind, speed, spot): (SignKind, u32, Spot),
+    own_pole: bool,
+) {
     // The face looks against the traffic: at the drivers coming towards it.
     let facing = [-spot.travel[0], -spot.travel[1]];
     let face_name = match kind {
@@ -224,9 +240,16 @@ fn push_sign(placing: &mut Placing, spec: &ObjectSpec, kind: SignKind, speed: u3
     });
     let pole = placing.material("sign_pole", || (POLE_GREY, None));
     let back = placing.material("sign_back", || (BACK_GREY, None));
-    let [pole, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
-    let name = placing.name("sign_pole");
-    placing.push_plain(crate::model::ObjectKind::SignPole, name, "pole", vec![pole]);
+    let [pole_mesh, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+    if own_pole {
+        let name = placing.name("sign_pole");
+        placing.push_plain(
+            crate::model::ObjectKind::SignPole,
+            name,
+            "pole",
+            vec![pole_mesh],
+        );
+    }
     let name = placing.name("sign");
     placing.push_plain(
         crate::model::ObjectKind::Sign,

@@ -18,7 +18,7 @@ use crate::model::{Lamp, SceneObject};
 /// metres. Lamps stand mid-strip, 4 m from the road with the default 8 m strip: the arm
 /// carries the head out over the road's edge, where a street lamp lights the road.
 pub const POLE_HEIGHT: f64 = 6.0;
-pub const POLE_RADIUS: f64 = 0.08;
+pub const POLE_RADIUS: f64 = crate::model::LAMP_POLE_RADIUS;
 pub const ARM_LENGTH: f64 = 4.5;
 const ARM_THICKNESS: f64 = 0.08;
 /// How far the arm's top sits below the pole's cap.
