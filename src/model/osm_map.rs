@@ -129,6 +129,15 @@ impl OsmMap {
             })
     }
 
+    /// The paved segment whose carriageway's edge lies nearest to `p`, and that distance
+    /// (negative inside the carriageway); the first such in map order on a tie.
+    pub fn nearest_kerb(&self, p: [f64; 2]) -> Option<(f64, PavedSegment)> {
+        use super::geometry::polygon::{distance, nearest};
+        self.paved_segments()
+            .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
     /// The distance from `p` to the nearest building wall (infinite without buildings).
     pub fn building_distance(&self, p: [f64; 2]) -> f64 {
         self.buildings

@@ -284,10 +284,7 @@ impl<'a> MapSpots<'a> {
                     .min_by(|x, y| x.0.total_cmp(&y.0))?
                     .1
             };
-            let road = (self.all.iter())
-                .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s.road))
-                .min_by(|x, y| x.0.total_cmp(&y.0))
-                .map_or(u32::MAX, |(_, r)| r as u32);
+            let road = (self.map.nearest_kerb(p)).map_or(u32::MAX, |(_, s)| s.road as u32);
             self.taken.push(foot);
             Some(Spot {
                 position: p,
@@ -568,10 +565,7 @@ pub(crate) mod tests {
     /// The distance from `p` to the nearest carriageway's edge (negative inside one) and
     /// that segment.
     fn kerb_distance(map: &OsmMap, p: [f64; 2]) -> (f64, PavedSegment) {
-        map.paved_segments()
-            .map(|s| (distance(p, nearest(s.a, s.b, p)) - s.width / 2.0, s))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .expect("a paved segment")
+        map.nearest_kerb(p).expect("a paved segment")
     }
 
     /// `n` spots `from` metres from the kerb (at most `most` of the sidewalk's width) for

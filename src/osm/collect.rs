@@ -134,20 +134,7 @@ impl Sink for Collector {
                 || reversed
                 || roundabout
                 || class == "motorway";
-            // Left and right of the traffic's direction.
-            let sides = |[left, right]: [f64; 2]| {
-                if reversed {
-                    [right, left]
-                } else {
-                    [left, right]
-                }
-            };
-            let [parking_left, parking_right] = tags::parking(tags);
-            let parking = if reversed {
-                [parking_right, parking_left]
-            } else {
-                [parking_left, parking_right]
-            };
+
             let below = tags::get(tags, "tunnel").is_some_and(|t| t != "no")
                 || tags::get(tags, "covered").is_some_and(|c| c != "no")
                 || tags::get(tags, "indoor").is_some_and(|i| i != "no")
@@ -162,8 +149,8 @@ impl Sink for Collector {
                     ground_path: tags::ground_path(class, tags) && !below,
                     class: class.to_owned(),
                     width: tags::width(class, tags),
-                    sidewalks: sides(tags::sidewalks(class, tags)),
-                    parking,
+                    sidewalks: traffic_sides(tags::sidewalks(class, tags), reversed),
+                    parking: traffic_sides(tags::parking(tags), reversed),
                     oneway,
                     reversed,
                     roundabout,
@@ -480,6 +467,16 @@ impl Collector {
         }
         out.sort_by_key(|r| (r.way, r.piece));
         out
+    }
+}
+
+/// A way's `[left, right]` of its nodes' direction as the traffic's: swapped on a way
+/// whose traffic runs against its nodes (`reversed`).
+fn traffic_sides<T>([left, right]: [T; 2], reversed: bool) -> [T; 2] {
+    if reversed {
+        [right, left]
+    } else {
+        [left, right]
     }
 }
 
