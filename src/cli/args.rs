@@ -149,15 +149,15 @@ pub enum Command {
     #[command(subcommand)]
     Cache(CacheCommand),
     /// Read an OpenStreetMap extract into the map a city is built from: building footprints
-    /// (with courtyards) and heights, road centrelines with their widths and sidewalks,
-    /// and the map's traffic signals, lamps, trees, benches, signs and crossings, in
-    /// metres around the box's centre. Prints what it read; writes it as JSON and as a
-    /// picture when asked.
+    /// (with courtyards and parts) and heights, road centrelines with their widths and
+    /// sidewalks, and the map's traffic signals, lamps, trees, benches, signs and
+    /// crossings, in metres around the box's centre. Prints what it read; writes it as
+    /// JSON and as a picture when asked.
     ///
     /// Buildings with a node outside the box are left out; roads are cut at its edges. The
-    /// rules (which tags, which defaults, the projection) are in docs/osm.md. Building a
-    /// city from the map is not there yet: the city's geometry takes axis-aligned
-    /// layouts only.
+    /// rules (which tags, which defaults, the projection) are in docs/osm.md. To build a
+    /// city with frames and labels from a map, name it in a spec's `[layout.osm]` (see
+    /// specs/osm.toml) and run `cityspec build`.
     #[command(
         after_help = "Examples:\n  cityspec osm assets/osm/helsinki.osm.pbf --picture map.png --overview city.png\n  cityspec osm city.osm --bbox 60.165,24.936,60.172,24.950 --json map.json"
     )]

@@ -336,6 +336,11 @@ fn osm(
     // + 0.0: an empty sum is -0.0.
     let area: f64 = map.buildings.iter().map(|b| b.area).sum::<f64>() + 0.0;
     let with_height = map.buildings.iter().filter(|b| b.height.is_some()).count();
+    let with_parts: Vec<_> = map
+        .buildings
+        .iter()
+        .filter(|b| !b.parts.is_empty())
+        .collect();
     let drivable: Vec<_> = map.roads.iter().filter(|r| r.drivable).collect();
     let km = |roads: &[&crate::model::MapRoad]| {
         roads.iter().map(|r| r.length).sum::<f64>() / 1000.0 + 0.0
@@ -343,10 +348,10 @@ fn osm(
     let paths: Vec<_> = map.roads.iter().filter(|r| !r.drivable).collect();
     let l = &map.left_out;
     cx.out.info(&format!(
-        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  street: carriageway {:.0} m², sidewalks {:.0} m², {} blocks ({:.0} m², {:.0} m² of it green with {:.0} m² of paths across it, {:.0} m² squares); {} road segments narrowed between buildings, {} unpaved under them\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box, {} incomplete green areas or squares",
+        "{}: box {:.6},{:.6},{:.6},{:.6} ({:.0} × {:.0} m)\n  {} buildings ({} with a height from the map, {} with {} parts), {:.0} m² of footprint\n  {} road pieces ({:.2} km), {} paths ({:.2} km)\n  {} traffic signals, {} street lamps, {} trees, {} benches, {} traffic signs, {} crossings\n  street: carriageway {:.0} m², sidewalks {:.0} m², {} blocks ({:.0} m², {:.0} m² of it green with {:.0} m² of paths across it, {:.0} m² squares); {} road segments narrowed between buildings, {} unpaved under them\n  left out: {} buildings crossing the box, {} unclosed, {} incomplete multipolygons, {} ways missing nodes, {} roads outside the box, {} incomplete green areas or squares, {} parts in no building",
         file.display(),
         b.south, b.west, b.north, b.east, x1 - x0, z1 - z0,
-        map.buildings.len(), with_height, area,
+        map.buildings.len(), with_height, with_parts.len(), with_parts.iter().map(|b| b.parts.len()).sum::<usize>(), area,
         drivable.len(), km(&drivable), paths.len(), km(&paths),
         count(&map, FeatureKind::TrafficSignals), count(&map, FeatureKind::StreetLamp),
         count(&map, FeatureKind::Tree), count(&map, FeatureKind::Bench),
@@ -357,7 +362,7 @@ fn osm(
         map.squares.iter().map(|g| g.shape.area).sum::<f64>() + 0.0,
         l.segments_narrowed, l.segments_blocked,
         l.buildings_outside, l.buildings_open, l.buildings_incomplete, l.ways_missing_nodes, l.roads_outside,
-        l.areas_incomplete,
+        l.areas_incomplete, l.parts_alone,
     ));
     for (what, path) in [
         ("map", outputs.json.as_deref()),

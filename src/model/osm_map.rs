@@ -281,6 +281,16 @@ pub struct MapBuilding {
     /// walls.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roof_height: Option<f64>,
+    /// How high above the ground its walls start, where the map says (`min_height`, else
+    /// `building:min_level` × the floor height): a building or part over a passage, a
+    /// canopy, a dome on a tower. `height` still counts from the ground.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_height: Option<f64>,
+    /// Its parts (`building:part=*` areas whose inside point lies in its footprint, in
+    /// element order; Simple 3D Buildings): each its own volume, as tall as it says,
+    /// else as the building (`model::geometry::massing`). Parts have no parts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parts: Vec<MapBuilding>,
     /// Of a placed building sized by a facade (the paper's rule: one building size per
     /// facade), that facade's index; the city clads it with it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -410,4 +420,8 @@ pub struct LeftOut {
     /// into rings.
     #[serde(default)]
     pub areas_incomplete: u32,
+    /// `building:part=*` areas inside the box that stand in no building's footprint
+    /// (Simple 3D Buildings draws a part only with its building).
+    #[serde(default)]
+    pub parts_alone: u32,
 }

@@ -5,14 +5,16 @@
 //! face no road). It faces a road when the line out of its middle along its outward
 //! normal reaches a paved carriageway within [`REACH`] before it enters any building (its
 //! own included: a wing in front). Its plates stand between [`MIN_HEIGHT`] above the
-//! kerb and [`TOP_CLEARANCE`] below the top of its walls: the eaves of the roof the
-//! scene builds on it ([`wall_height`]), so no plate reaches into a roof. The facade's
-//! windows on it are [`floor_window_rects`].
+//! kerb and [`TOP_CLEARANCE`] below the top of its walls: the lowest eaves of the volumes
+//! the scene builds that stand on the ground along it ([`ground_eave`]: the building's
+//! roof, or a lower part of it), so no plate reaches into a roof or hangs in the air. A
+//! building lifted off the ground there (`min_height`) takes none. The facade's windows
+//! on it are [`floor_window_rects`].
 
 use super::wall_text::{MIN_HEIGHT, TOP_CLEARANCE, Tiling, Wall, floor_window_rects};
 use crate::model::geometry::KERB_Y;
+use crate::model::geometry::massing::{ground_eave, volumes};
 use crate::model::geometry::polygon::{bounds, contains, distance, left_normal, nearest};
-use crate::model::geometry::roofs::wall_height;
 use crate::model::{FacadeSet, OsmMap, PavedSegment, map_cladding};
 
 /// The farthest a carriageway may lie in front of a wall that faces it, metres: a wide
@@ -31,11 +33,7 @@ pub fn map_facing_walls(map: &OsmMap, facades: &FacadeSet, seed: u64) -> Vec<Wal
     let boxes: Vec<[f64; 4]> = map.buildings.iter().map(|b| bounds(&b.outer)).collect();
     let mut walls = Vec::new();
     for (i, (b, c)) in map.buildings.iter().zip(&cladding).enumerate() {
-        let top = wall_height(b, c.height);
-        let band = [KERB_Y + MIN_HEIGHT, KERB_Y + top - TOP_CLEARANCE];
-        if band[1] <= band[0] {
-            continue;
-        }
+        let volumes = volumes(b, c.height);
         let facade = c.usable(facades);
         let ring = &b.outer;
         for e in 0..ring.len() {
@@ -44,6 +42,11 @@ pub fn map_facing_walls(map: &OsmMap, facades: &FacadeSet, seed: u64) -> Vec<Wal
             let Some(normal) = left_normal(a, z).filter(|_| length >= MIN_WALL) else {
                 continue;
             };
+            let top = ground_eave(&volumes, a, z, [-normal[0], -normal[1]]);
+            let band = [KERB_Y + MIN_HEIGHT, KERB_Y + top - TOP_CLEARANCE];
+            if band[1] <= band[0] {
+                continue;
+            }
             let middle = [(a[0] + z[0]) / 2.0, (a[1] + z[1]) / 2.0];
             if !faces_road(map, &paved, &boxes, middle, normal) {
                 continue;
@@ -234,6 +237,34 @@ mod tests {
         map.buildings[0].height_from = "height".to_owned();
         // Too low for a plate: none.
         map.buildings[0].height = Some(4.0);
+        assert!(map_facing_walls(&map, &facades(), 5).is_empty());
+    }
+
+    #[test]
+    fn text_keeps_below_the_lowest_part_along_the_wall_and_off_a_lifted_one() {
+        let mut map = street_map();
+        map.buildings[0].height = Some(14.0);
+        // A 6 m wing on the ground at the west end of the street front.
+        let mut wing = map.buildings[0].clone();
+        wing.outer = vec![
+            [-120.0, 19.0],
+            [-120.0, 29.0],
+            [-110.0, 29.0],
+            [-110.0, 19.0],
+        ];
+        wing.outer.reverse();
+        wing.height = Some(6.0);
+        map.buildings[0].parts.push(wing);
+        let walls = map_facing_walls(&map, &facades(), 5);
+        assert_eq!(walls.len(), 1);
+        assert_eq!(walls[0].band[1], KERB_Y + 6.0 - TOP_CLEARANCE);
+        assert_eq!(walls[0].height, 6.0);
+        // The wing lifted 3 m: the rest of the building stands under it, 14 m tall.
+        map.buildings[0].parts[0].min_height = Some(3.0);
+        let walls = map_facing_walls(&map, &facades(), 5);
+        assert_eq!(walls[0].band[1], KERB_Y + 14.0 - TOP_CLEARANCE);
+        // The whole building lifted 3 m: nothing of its street front is on the ground.
+        map.buildings[0].min_height = Some(3.0);
         assert!(map_facing_walls(&map, &facades(), 5).is_empty());
     }
 }

@@ -9,24 +9,30 @@ use super::elements::Sink;
 use super::projection::Projection;
 use super::rings::join;
 use super::tags;
-use crate::model::geometry::polygon::{contains, signed_area};
+use crate::model::geometry::polygon::{contains, signed_area, triangle_area, triangles};
 use crate::model::{
     FeatureKind, GeoBox, LeftOut, MapBuilding, MapFeature, MapRoad, OsmElement, OsmMap,
 };
 
-/// A building's tags, as read.
+/// A building's or building part's tags, as read.
 struct BuildingTags {
     kind: String,
     height: Option<f64>,
     height_from: &'static str,
     roof_shape: Option<String>,
     roof_height: Option<f64>,
+    min_height: Option<f64>,
+    /// Tagged `building:part=*` (not `no`): a part of the building it stands in, whatever
+    /// its `building` tag says.
+    part: bool,
 }
 
 impl BuildingTags {
-    /// The building a way or relation's tags make it, if any.
+    /// The building or building part a way or relation's tags make it, if any.
     fn of(tags: &[(&str, &str)]) -> Option<BuildingTags> {
-        let kind = tags::get(tags, "building").filter(|b| *b != "no")?;
+        let yes = |key| tags::get(tags, key).filter(|b| *b != "no");
+        let part = yes("building:part");
+        let kind = yes("building").or(part)?;
         let (height, height_from) = tags::height(tags);
         Some(BuildingTags {
             kind: kind.to_owned(),
@@ -34,6 +40,8 @@ impl BuildingTags {
             height_from,
             roof_shape: tags::get(tags, "roof:shape").map(str::to_owned),
             roof_height: tags::get(tags, "roof:height").and_then(tags::metres),
+            min_height: tags::min_height(tags),
+            part: part.is_some(),
         })
     }
 }
@@ -78,6 +86,9 @@ pub struct Collector {
     buildings: Vec<(i64, BuildingTags)>,
     roads: Vec<(i64, RoadTags)>,
     relations: Vec<BuildingRelation>,
+    /// Ways and multipolygons tagged `building:part=*`.
+    parts: Vec<(i64, BuildingTags)>,
+    part_relations: Vec<BuildingRelation>,
     /// Closed ways that are open ground, by id: green (`tags::green`) or a square
     /// (`tags::square`).
     open_ways: Vec<(i64, Open)>,
@@ -122,7 +133,10 @@ impl Sink for Collector {
     fn way(&mut self, id: i64, refs: &[i64], tags: &[(&str, &str)]) {
         self.way_nodes.insert(id, refs.to_vec());
         if let Some(building) = BuildingTags::of(tags) {
-            self.buildings.push((id, building));
+            match building.part {
+                true => self.parts.push((id, building)),
+                false => self.buildings.push((id, building)),
+            }
         } else if let Some(open) = Open::of(tags) {
             self.open_ways.push((id, open));
         }
@@ -170,7 +184,10 @@ impl Sink for Collector {
                 .collect()
         };
         if let Some(building) = BuildingTags::of(tags) {
-            self.relations.push((id, members(), building));
+            match building.part {
+                true => self.part_relations.push((id, members(), building)),
+                false => self.relations.push((id, members(), building)),
+            }
         } else if let Some(open) = Open::of(tags) {
             self.open_relations.push((id, members(), open));
         }
@@ -200,9 +217,16 @@ impl Collector {
         let [x1, z0] = projection.project(bounds.north, bounds.east);
         let extent = [x0, z0, x1, z1];
         let mut left_out = LeftOut::default();
-        let mut buildings = self.way_buildings(&bounds, &projection, &mut left_out);
-        buildings.extend(self.relation_buildings(&bounds, &projection, &mut left_out));
-        buildings.sort_by_key(|b| (b.element, b.part));
+        let areas = |ways, relations, left_out: &mut LeftOut| {
+            let mut out = self.way_buildings(ways, &bounds, &projection, left_out);
+            out.extend(self.relation_buildings(relations, &bounds, &projection, left_out));
+            out.sort_by_key(|b: &MapBuilding| (b.element, b.part));
+            out
+        };
+        let mut buildings = areas(&self.buildings, &self.relations, &mut left_out);
+        // A part outside the box belongs to a building outside it: not counted.
+        let parts = areas(&self.parts, &self.part_relations, &mut LeftOut::default());
+        left_out.parts_alone = give_parts(&mut buildings, parts);
         let mut roads = self.roads(extent, &projection, &mut left_out);
         super::fit::fit(&mut roads, &buildings, extent, &mut left_out);
         let [carriageway, sidewalks, blocks] = super::surfaces::surfaces(&roads, extent);
@@ -277,12 +301,13 @@ impl Collector {
 
     fn way_buildings(
         &self,
+        ways: &[(i64, BuildingTags)],
         bounds: &GeoBox,
         projection: &Projection,
         left_out: &mut LeftOut,
     ) -> Vec<MapBuilding> {
         let mut out = Vec::new();
-        for (id, tags) in &self.buildings {
+        for (id, tags) in ways {
             let refs = &self.way_nodes[id];
             if refs.len() < 4 || refs.first() != refs.last() {
                 left_out.buildings_open += 1;
@@ -306,12 +331,13 @@ impl Collector {
 
     fn relation_buildings(
         &self,
+        relations: &[BuildingRelation],
         bounds: &GeoBox,
         projection: &Projection,
         left_out: &mut LeftOut,
     ) -> Vec<MapBuilding> {
         let mut out = Vec::new();
-        for (id, members, tags) in &self.relations {
+        for (id, members, tags) in relations {
             let Some(rings) = self.relation_rings(members) else {
                 left_out.buildings_incomplete += 1;
                 continue;
@@ -521,8 +547,32 @@ fn building(
         height_from: tags.height_from.to_owned(),
         roof_shape: tags.roof_shape.clone(),
         roof_height: tags.roof_height,
+        min_height: tags.min_height,
+        parts: Vec::new(),
         facade: None,
     }
+}
+
+/// Gives each part to the first building (in element order) whose footprint holds a point
+/// inside the part (the middle of its largest triangle); returns how many parts stand in
+/// no building.
+fn give_parts(buildings: &mut [MapBuilding], parts: Vec<MapBuilding>) -> u32 {
+    let mut alone = 0;
+    for part in parts {
+        let inside = triangles(&part.outer, &part.holes)
+            .into_iter()
+            .max_by(|a, b| triangle_area(*a).total_cmp(&triangle_area(*b)))
+            .map(|[a, b, c]| [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0]);
+        let owner = inside.and_then(|p| {
+            (buildings.iter_mut())
+                .find(|b| contains(&b.outer, p) && !b.holes.iter().any(|h| contains(h, p)))
+        });
+        match owner {
+            Some(b) => b.parts.push(part),
+            None => alone += 1,
+        }
+    }
+    alone
 }
 
 /// `(lat, lon)` in degrees of a node's 10⁻⁷ degrees.

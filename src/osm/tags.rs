@@ -203,18 +203,30 @@ pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
     if let Some(h) = get(tags, "height").and_then(metres) {
         return (Some(h), "height");
     }
-    let levels = |key| {
-        get(tags, key)
-            .and_then(|l| l.trim().parse::<f64>().ok())
-            .filter(|l| l.is_finite() && *l >= 0.0)
-    };
-    match levels("building:levels") {
+    match levels(tags, "building:levels") {
         Some(l) if l > 0.0 => {
-            let roof = levels("roof:levels").unwrap_or(0.0);
+            let roof = levels(tags, "roof:levels").unwrap_or(0.0);
             (Some((l + roof) * FLOOR_HEIGHT), "levels")
         }
         _ => (None, "none"),
     }
+}
+
+/// How high above the ground a building's or part's walls start: `min_height`, else
+/// `building:min_level` × the floor height; `None` on the ground.
+pub fn min_height(tags: &[(&str, &str)]) -> Option<f64> {
+    let h = match get(tags, "min_height").and_then(metres) {
+        Some(h) => h,
+        None => levels(tags, "building:min_level")? * FLOOR_HEIGHT,
+    };
+    (h > 0.0).then_some(h)
+}
+
+/// A count of levels under `key`: a finite number, not negative.
+fn levels(tags: &[(&str, &str)], key: &str) -> Option<f64> {
+    get(tags, key)
+        .and_then(|l| l.trim().parse::<f64>().ok())
+        .filter(|l| l.is_finite() && *l >= 0.0)
 }
 
 /// Whether a closed way's or a multipolygon's tags make it green ground: grass, a park, a
@@ -415,6 +427,19 @@ mod tests {
         );
         assert_eq!(height(&[("building:levels", "0")]), (None, "none"));
         assert_eq!(height(&[("building", "yes")]), (None, "none"));
+    }
+
+    #[test]
+    fn min_height_comes_from_min_height_then_min_levels() {
+        assert_eq!(
+            min_height(&[("min_height", "18"), ("building:min_level", "2")]),
+            Some(18.0)
+        );
+        assert_eq!(min_height(&[("building:min_level", "2.5")]), Some(7.5));
+        // On the ground: nothing to lift.
+        assert_eq!(min_height(&[("building:min_level", "0")]), None);
+        assert_eq!(min_height(&[("min_height", "x")]), None);
+        assert_eq!(min_height(&[("height", "12")]), None);
     }
 
     #[test]

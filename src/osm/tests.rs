@@ -625,3 +625,79 @@ fn green_tags_are_grass_parks_and_woods_and_squares_are_paved_open_ground() {
         ("parking", "underground")
     ]));
 }
+
+/// A building (way 10, 4 levels) with three parts: a tower on the ground that is also
+/// tagged `building=church` (way 11), a storey lifted over a passage (way 12), and a part
+/// in no building (way 13); and a canopy lifted on its own (way 14).
+const PARTS: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <bounds minlat="60.0000000" minlon="25.0000000" maxlat="60.0010000" maxlon="25.0020000"/>
+  <node id="1" lat="60.0002" lon="25.0002"/>
+  <node id="2" lat="60.0002" lon="25.0008"/>
+  <node id="3" lat="60.0006" lon="25.0008"/>
+  <node id="4" lat="60.0006" lon="25.0002"/>
+  <node id="5" lat="60.0002" lon="25.0004"/>
+  <node id="6" lat="60.0004" lon="25.0004"/>
+  <node id="7" lat="60.0004" lon="25.0002"/>
+  <node id="8" lat="60.0006" lon="25.0004"/>
+  <node id="21" lat="60.0008" lon="25.0012"/>
+  <node id="22" lat="60.0008" lon="25.0014"/>
+  <node id="23" lat="60.0009" lon="25.0014"/>
+  <node id="31" lat="60.0001" lon="25.0012"/>
+  <node id="32" lat="60.0001" lon="25.0016"/>
+  <node id="33" lat="60.0003" lon="25.0016"/>
+  <node id="34" lat="60.0003" lon="25.0012"/>
+  <way id="10">
+    <nd ref="1"/><nd ref="2"/><nd ref="3"/><nd ref="4"/><nd ref="1"/>
+    <tag k="building" v="yes"/><tag k="building:levels" v="4"/>
+  </way>
+  <way id="11">
+    <nd ref="1"/><nd ref="5"/><nd ref="6"/><nd ref="7"/><nd ref="1"/>
+    <tag k="building" v="church"/><tag k="building:part" v="yes"/><tag k="height" v="30"/>
+    <tag k="roof:shape" v="dome"/>
+  </way>
+  <way id="12">
+    <nd ref="7"/><nd ref="6"/><nd ref="8"/><nd ref="4"/><nd ref="7"/>
+    <tag k="building:part" v="yes"/><tag k="building:levels" v="6"/>
+    <tag k="building:min_level" v="2"/>
+  </way>
+  <way id="13">
+    <nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="21"/><tag k="building:part" v="yes"/>
+  </way>
+  <way id="14">
+    <nd ref="31"/><nd ref="32"/><nd ref="33"/><nd ref="34"/><nd ref="31"/>
+    <tag k="building" v="roof"/><tag k="height" v="4"/><tag k="min_height" v="2.5"/>
+  </way>
+</osm>
+"#;
+
+#[test]
+fn building_parts_go_to_the_building_they_stand_in() {
+    let map = read(PARTS.as_bytes(), None).unwrap();
+    let keys: Vec<_> = map.buildings.iter().map(|b| b.element).collect();
+    // Way 11 is a part, though it is tagged `building` too.
+    assert_eq!(keys, [OsmElement::Way(10), OsmElement::Way(14)]);
+    let b = &map.buildings[0];
+    assert_eq!((b.height, b.min_height), (Some(12.0), None));
+    let parts: Vec<_> = b.parts.iter().map(|p| p.element).collect();
+    assert_eq!(parts, [OsmElement::Way(11), OsmElement::Way(12)]);
+    let [tower, storey] = [&b.parts[0], &b.parts[1]];
+    assert_eq!(tower.kind, "church");
+    assert_eq!(
+        (tower.height, tower.height_from.as_str(), tower.min_height),
+        (Some(30.0), "height", None)
+    );
+    assert_eq!(tower.roof_shape.as_deref(), Some("dome"));
+    assert_eq!(
+        (storey.height, storey.min_height),
+        (Some(6.0 * FLOOR_HEIGHT), Some(2.0 * FLOOR_HEIGHT))
+    );
+    assert!(tower.parts.is_empty() && storey.parts.is_empty());
+    // A sixth of the building's footprint each.
+    assert!((tower.area - b.area / 6.0).abs() < 1e-6 * b.area);
+    assert!((storey.area - b.area / 6.0).abs() < 1e-6 * b.area);
+    assert_eq!(map.left_out.parts_alone, 1, "way 13 stands in no building");
+    let canopy = &map.buildings[1];
+    assert_eq!((canopy.height, canopy.min_height), (Some(4.0), Some(2.5)));
+    assert!(canopy.parts.is_empty());
+}

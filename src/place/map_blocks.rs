@@ -129,6 +129,8 @@ fn fill_block(
                 height_from: if height.is_some() { "facade" } else { "none" }.to_owned(),
                 roof_shape: None,
                 roof_height: None,
+                min_height: None,
+                parts: Vec::new(),
                 facade: sizes.facade_heights.map(|_| b.kind),
             }
         })

@@ -13,14 +13,15 @@
 //! | `kerb_0003` | sidewalk | the kerb faces around carriageway polygon 3, from road height up to kerb height, facing the road (none on the box's edge) | `concrete` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
-//! | `building_0042` | building | a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
+//! | `building_0042` | building | per volume (`model::geometry::massing`: the building, or its parts and the rest of its footprint, each from its `min_height`): a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
 //! facade is seeded per building ([`map_cladding`], which the wall text reads too) and keeps its own
 //! scale on every wall: one facade width along u per its width in metres, and one floor of
 //! the facade per floor of the building. The facade's ground floor runs along the bottom
 //! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
-//! line (so windows are never stretched).
+//! line (so windows are never stretched). A volume lifted off the ground carries on the
+//! floors below it: the pattern counts from the ground.
 //!
 //! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
 //! the map's list after its own, each clad in the facade it was sized for, as tall as it.
@@ -31,9 +32,9 @@
 
 use super::object;
 use super::surfaces::Surfaces;
+use crate::model::geometry::massing::volumes;
 use crate::model::geometry::polygon::{distance, left_normal, signed_area};
 use crate::model::geometry::polygon_set::difference;
-use crate::model::geometry::roofs::shaped_roof;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
     Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject, map_cladding,
@@ -290,25 +291,22 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
         .enumerate()
         .map(|(i, (b, c))| {
             let (f, facade) = (c.facade, c.usable(input.facades));
-            let (height, roof_shape) = shaped_roof(b, c.height);
             let mut walls =
                 MeshBuilder::new(f.and_then(|f| clad.wall[f]).unwrap_or(clad.plain_wall));
-            for ring in std::iter::once(&b.outer).chain(&b.holes) {
-                for e in 0..ring.len() {
-                    wall(
-                        &mut walls,
-                        ring[e],
-                        ring[(e + 1) % ring.len()],
-                        height,
-                        facade,
-                    );
-                }
-            }
             let roof = f.and_then(|f| clad.roof.get(facades[f].roof as usize).copied().flatten());
             let mut top = MeshBuilder::new(roof.unwrap_or(clad.plain_roof));
-            match roof_shape {
-                Some(shape) => shape.build(KERB_Y, height, ROOF_TILE, &mut top, &mut walls),
-                None => top.polygon(&b.outer, &b.holes, KERB_Y + height, ROOF_TILE),
+            for v in volumes(b, c.height) {
+                for ring in std::iter::once(&v.outer).chain(&v.holes) {
+                    for e in 0..ring.len() {
+                        let (a, z) = (ring[e], ring[(e + 1) % ring.len()]);
+                        wall(&mut walls, a, z, [v.base, v.eave], facade);
+                    }
+                }
+                let (y, eave) = (KERB_Y + v.base, v.eave - v.base);
+                match &v.roof {
+                    Some(shape) => shape.build(y, eave, ROOF_TILE, &mut top, &mut walls),
+                    None => top.polygon(&v.outer, &v.holes, KERB_Y + v.eave, ROOF_TILE),
+                }
             }
             object(
                 ObjectKind::Building,
@@ -320,47 +318,40 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
 }
 
 /// The wall along footprint edge `a → b` (facing left of it: outwards on an outer ring,
-/// into the courtyard on a hole), `height` tall on the kerb, clad in `facade` at its own
-/// scale (see the module's note), or plain.
-fn wall(mesh: &mut MeshBuilder, a: [f64; 2], b: [f64; 2], height: f64, facade: Option<&Facade>) {
-    let Some(n) = left_normal(a, b).filter(|_| height > 0.0) else {
+/// into the courtyard on a hole), from `y0` to `y1` above the kerb, clad in `facade` at
+/// its own scale (see the module's note: the facade's floors counted from the ground, so a
+/// volume on an upper floor carries on the floors below it), or plain.
+fn wall(mesh: &mut MeshBuilder, a: [f64; 2], b: [f64; 2], [y0, y1]: [f64; 2], f: Option<&Facade>) {
+    let Some(n) = left_normal(a, b).filter(|_| y1 > y0) else {
         return;
     };
     let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
     let len = (dx * dx + dz * dz).sqrt();
     // + 0.0: no negative zero in a normal.
     let normal = [n[0] + 0.0, 0.0, n[1] + 0.0];
-    let Some(f) = facade else {
-        mesh.wall(
-            a,
-            b,
-            [KERB_Y, KERB_Y + height],
-            normal,
-            [0.0, len / 3.0],
-            [0.0, 1.0],
-        );
+    let Some(f) = f else {
+        let y = [KERB_Y + y0, KERB_Y + y1];
+        mesh.wall(a, b, y, normal, [0.0, len / 3.0], [0.0, 1.0]);
         return;
     };
     let u = [0.0, len / f.width];
     let floor = f.height / f64::from(f.floors);
     // v runs 0 at the facade's top to 1 at its ground line; its ground floor is the last
-    // 1 / floors of v, the floors above it the rest.
+    // 1 / floors of v, the floors above it the rest: pieces of (bottom, top, v at the
+    // bottom, v at the top), each cut to y0…y1.
     let ground_v = 1.0 - 1.0 / f64::from(f.floors);
-    let ground = floor.min(height);
-    mesh.wall(
-        a,
-        b,
-        [KERB_Y, KERB_Y + ground],
-        normal,
-        u,
-        [1.0 - ground / floor * (1.0 - ground_v), 1.0],
-    );
     let upper = f.height - floor;
-    let mut y = ground;
-    while y < height && upper > 0.0 {
-        let top = (y + upper).min(height);
-        let cut = (y + upper - top) / upper * ground_v;
-        mesh.wall(a, b, [KERB_Y + y, KERB_Y + top], normal, u, [cut, ground_v]);
-        y = top;
+    let mut piece = (0.0, floor, 1.0, ground_v);
+    while piece.0 < y1 {
+        let (s, e, vs, ve) = piece;
+        let (lo, hi) = (s.max(y0), e.min(y1));
+        if hi > lo {
+            let v = |y: f64| vs + (ve - vs) * (y - s) / (e - s);
+            mesh.wall(a, b, [KERB_Y + lo, KERB_Y + hi], normal, u, [v(hi), v(lo)]);
+        }
+        if upper <= 0.0 {
+            break;
+        }
+        piece = (e, e + upper, ground_v, 0.0);
     }
 }

@@ -79,6 +79,8 @@ pub fn street_map() -> OsmMap {
             height_from: "height".to_owned(),
             roof_shape: None,
             roof_height: None,
+            min_height: None,
+            parts: Vec::new(),
             facade: None,
         }],
         roads: vec![

@@ -8,6 +8,10 @@ its own haversine lengths.
   building=*, not building=no) whose nodes all lie in the map's box is in the map, and the
   map holds no other; each one's footprint area (outer rings less holes, on a sphere of
   radius 6,371,008.8 m, equirectangular at the building's own latitude) within 2 %;
+  an area tagged building:part=* is a part, not a building, whatever its building tag;
+- every building part osmium assembles inside the box is one of the map's buildings'
+  parts (its area within 2 %, at least half of it inside that building's footprint), or
+  counted among the parts in no building (as many as osmium's parts the map lacks);
 - every drivable highway way wholly inside the box is in the map uncut, its centreline
   length within 2 % of osmium's haversine length; a way the box cuts is in the map with
   pieces no longer than the whole way (2 % slack); every mapped road's class and way are
@@ -82,6 +86,8 @@ class Reader(osmium.SimpleHandler):
         super().__init__()
         self.box = box
         self.buildings = {}  # ("way"|"relation", id) -> area
+        self.parts = {}  # ("way"|"relation", id) -> area
+        self.part_shapes = {}  # ("way"|"relation", id) -> [(+1 | -1, [(lat, lon)])]
         self.shapes = {}  # ("way"|"relation", id) -> [(+1 outer | -1 inner, [(lat, lon)])]
         self.outside = 0
         self.ways = {}  # id -> (class, length m, nodes inside, node count)
@@ -95,7 +101,8 @@ class Reader(osmium.SimpleHandler):
 
     def area(self, a):
         building = a.tags.get("building")
-        if building is None or building == "no":
+        part = a.tags.get("building:part") not in (None, "no")
+        if (building is None or building == "no") and not part:
             kind = self.green if green(a.tags) else self.squares if square(a.tags) else None
             if kind is not None:
                 kind.append([
@@ -111,7 +118,13 @@ class Reader(osmium.SimpleHandler):
             for inner in a.inner_rings(outer):
                 rings.append((-1, [n.location for n in inner]))
         if not all(self.inside(l) for _, ring in rings for l in ring):
-            self.outside += 1
+            self.outside += int(not part)
+            return
+        if part:
+            self.parts[key] = sum(
+                sign * ring_area([(l.lat, l.lon) for l in ring[:-1]]) for sign, ring in rings
+            )
+            self.part_shapes[key] = [(sign, [(l.lat, l.lon) for l in ring]) for sign, ring in rings]
             return
         self.buildings[key] = sum(
             sign * ring_area([(l.lat, l.lon) for l in ring[:-1]]) for sign, ring in rings
@@ -202,6 +215,48 @@ def main(extract, map_path):
         f"({reader.outside} cross the box); footprint areas agree within {100 * worst_rel:.3f} % "
         f"(worst {worst[0]} {worst[1]}); {sum(theirs.values()):.0f} m² against the map's "
         f"{sum(ours.values()):.0f} m²"
+    )
+    check_parts(m, reader)
+
+
+def check_parts(m, reader):
+    """Every part osmium assembles is a part of the map building it mostly lies in."""
+    def shape(rings):
+        outer = [Polygon([(lon, lat) for lat, lon in r]).buffer(0) for s, r in rings if s > 0]
+        inner = [Polygon([(lon, lat) for lat, lon in r]).buffer(0) for s, r in rings if s < 0]
+        whole = shapely.union_all(outer)
+        return shapely.difference(whole, shapely.union_all(inner)) if inner else whole
+
+    ours = {}
+    for building in m["buildings"]:
+        owner = next(iter(building["element"].items()))
+        for p in building.get("parts", []):
+            key = next(iter(p["element"].items()))
+            if key in ours:
+                fail(f"part {key} is in the map twice")
+            ours[key] = (owner, p["area"])
+    theirs = reader.parts
+    extra = sorted(set(ours) - set(theirs))
+    if extra:
+        fail(f"{len(extra)} parts in the map are not osmium's: {extra[:10]}")
+    alone = len(set(theirs) - set(ours))
+    if alone != m["left_out"]["parts_alone"]:
+        fail(f"{alone} of osmium's parts are in no map building; the map counts {m['left_out']['parts_alone']}")
+    worst_rel, worst_in = 0.0, 1.0
+    for key, (owner, area) in ours.items():
+        rel = abs(area / theirs[key] - 1)
+        if rel > 0.02:
+            fail(f"part {key}: area {area:.1f} m², osmium {theirs[key]:.1f} m²")
+        worst_rel = max(worst_rel, rel)
+        part = shape(reader.part_shapes[key])
+        inside = shapely.intersection(part, shape(reader.shapes[owner])).area / part.area
+        if inside < 0.5:
+            fail(f"part {key}: {100 * inside:.0f} % of it in building {owner}")
+        worst_in = min(worst_in, inside)
+    print(
+        f"parts: {len(theirs)} inside the box, {len(ours)} in {len({o for o, _ in ours.values()})} "
+        f"buildings, {alone} in none (as the map counts); areas within {100 * worst_rel:.3f} %, "
+        f"each at least {100 * worst_in:.1f} % inside its building"
     )
 
     pieces = {}

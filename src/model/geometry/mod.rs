@@ -17,9 +17,11 @@
 //! | [`zebras`]: where each road's zebra crossings lie | scene, objects |
 //! | [`polygon_set`]: a map's polygons cut by polygons (`i_overlay`) | osm, scene |
 //! | [`roofs`]: a map building's `roof:shape` on its footprint, and its walls' height | scene, objects |
+//! | [`massing`]: a map building's volumes (its parts, `min_height`) and the eaves along a wall | scene, objects |
 
 mod facade_choice;
 pub mod map_lines;
+pub mod massing;
 mod material_book;
 mod mesh_builder;
 pub mod polygon;

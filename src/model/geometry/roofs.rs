@@ -1,6 +1,7 @@
 //! A map building's footprint + `roof:shape` → its roof, where the shape is one built on
 //! that footprint; for any other shape or footprint the city lays a flat roof. The scene
-//! builds it; wall text keeps below its eaves ([`wall_height`]).
+//! builds it (on each volume `massing` cuts a building into); wall text keeps below its
+//! eaves.
 //!
 //! | `roof:shape` | footprint | roof |
 //! |---|---|---|
@@ -44,14 +45,44 @@ const DOME_RINGS: u32 = 4;
 /// it, or the shape's rise, at most half-way. Any other height is the walls': the roof
 /// rises above it.
 pub fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
-    let roof = (b.roof_shape.as_deref())
-        .filter(|_| b.holes.is_empty())
-        .and_then(|shape| Roof::of(shape, &b.outer));
+    shaped(&Mass::of(b), height)
+}
+
+/// What a roof is built from: a footprint and its roof tags.
+#[derive(Clone, Copy)]
+pub struct Mass<'a> {
+    pub outer: &'a [[f64; 2]],
+    pub holes: &'a [Vec<[f64; 2]>],
+    pub roof_shape: Option<&'a str>,
+    pub roof_height: Option<f64>,
+    /// Its height is the map's `height`: the roof's top, not the walls'.
+    pub top: bool,
+}
+
+impl<'a> Mass<'a> {
+    /// Map building `b`'s footprint and roof tags.
+    pub fn of(b: &'a MapBuilding) -> Mass<'a> {
+        Mass {
+            outer: &b.outer,
+            holes: &b.holes,
+            roof_shape: b.roof_shape.as_deref(),
+            roof_height: b.roof_height,
+            top: b.height_from == "height",
+        }
+    }
+}
+
+/// [`shaped_roof`] of a mass `height` tall from its foot: the walls' height above the
+/// foot, and the roof.
+pub fn shaped(m: &Mass, height: f64) -> (f64, Option<Roof>) {
+    let roof = (m.roof_shape)
+        .filter(|_| m.holes.is_empty())
+        .and_then(|shape| Roof::of(shape, m.outer));
     let Some(mut roof) = roof else {
         return (height, None);
     };
-    let top = b.height_from == "height";
-    let mapped = b.roof_height.filter(|&h| !top || h < height);
+    let top = m.top;
+    let mapped = m.roof_height.filter(|&h| !top || h < height);
     if let Some(h) = mapped {
         roof.rise = h;
     }
@@ -65,12 +96,6 @@ pub fn shaped_roof(b: &MapBuilding, height: f64) -> (f64, Option<Roof>) {
     };
     roof.rise = height - eave;
     (eave, Some(roof))
-}
-
-/// How high map building `b`'s walls stand, `height` tall: the eaves of the roof
-/// [`shaped_roof`] builds, else all of it (a flat roof, or a roof that rises above).
-pub fn wall_height(b: &MapBuilding, height: f64) -> f64 {
-    shaped_roof(b, height).0
 }
 
 /// A roof to build on a footprint.

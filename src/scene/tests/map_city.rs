@@ -35,6 +35,8 @@ fn map() -> OsmMap {
         height_from: "height".to_owned(),
         roof_shape: None,
         roof_height: None,
+        min_height: None,
+        parts: Vec::new(),
         facade: None,
     };
     OsmMap {
@@ -452,4 +454,70 @@ fn kerb_faces_close_the_step_from_the_carriageway_up_to_kerb_height() {
             assert!(out, "{normal:?} at {corners:?}");
         }
     }
+}
+
+#[test]
+fn a_part_lifted_off_the_ground_carries_on_the_facade_from_the_floors_below() {
+    // The square building gets a part over its west half from 7.5 m up to 21 m.
+    let mut map = map();
+    let mut part = map.buildings[1].clone();
+    part.element = OsmElement::Way(3);
+    part.outer = vec![[40.0, 0.0], [46.0, 0.0], [46.0, 12.0], [40.0, 12.0]];
+    part.area = 72.0;
+    (part.height, part.height_from) = (Some(21.0), "levels".to_owned());
+    part.min_height = Some(7.5);
+    map.buildings[1].parts.push(part);
+    let scene = scene_of(&map);
+    let object = (scene.objects.iter())
+        .find(|o| o.name == "building_0001")
+        .unwrap();
+    let [walls, roof] = [&object.meshes[0], &object.meshes[1]];
+    // The building's whole footprint stands under the part (nothing of it is on the
+    // ground), and both have a flat roof: 144 + 72 m² from above.
+    let roof_area: f64 = (roof.indices.chunks_exact(3))
+        .map(|t| area_from_above([0, 1, 2].map(|k| roof.positions[t[k] as usize])))
+        .sum();
+    assert!((roof_area - 216.0).abs() < 1e-3, "{roof_area}");
+    let material = &scene.materials[walls.material as usize];
+    let facade = (facade_set().facades.into_iter())
+        .find(|f| material.name == format!("facade_{}", f.name))
+        .unwrap();
+    // The facade's v at `y` metres above the kerb, counted from the ground: its ground
+    // floor (3 m), then its upper floors repeated.
+    let floors = f64::from(facade.floors);
+    let (ground_v, upper) = (1.0 - 1.0 / floors, facade.height - 3.0);
+    let v_at = |y: f64, top: bool| {
+        if y <= 3.0 {
+            return 1.0 - y / 3.0 * (1.0 - ground_v);
+        }
+        let into = (y - 3.0) % upper;
+        // The top of a repeat is v 0, not the next repeat's ground_v.
+        let into = if top && into < 1e-9 { upper } else { into };
+        ground_v * (1.0 - into / upper)
+    };
+    let mut lifted = 0;
+    for quad in walls.indices.chunks_exact(6) {
+        let corners: Vec<usize> = quad.iter().map(|&i| i as usize).collect();
+        let (p, uv) = (&walls.positions, &walls.uvs);
+        let ys: Vec<f64> = corners
+            .iter()
+            .map(|&c| f64::from(p[c][1]) - KERB_Y)
+            .collect();
+        let (lo, hi) = (
+            ys.iter().copied().fold(f64::MAX, f64::min),
+            ys.iter().copied().fold(f64::MIN, f64::max),
+        );
+        lifted += usize::from((lo - 7.5).abs() < 1e-4);
+        for (k, &c) in corners.iter().enumerate() {
+            let want = v_at(ys[k], (ys[k] - hi).abs() < 1e-6 && ys[k] > lo);
+            assert!(
+                (f64::from(uv[c][1]) - want).abs() < 1e-4,
+                "v {} at {} m, not {want}",
+                uv[c][1],
+                ys[k]
+            );
+        }
+    }
+    // The part's four walls start at 7.5 m.
+    assert_eq!(lifted, 4);
 }
