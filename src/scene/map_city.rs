@@ -26,8 +26,8 @@
 //! The buildings the place stage put on blocks without any (`fill_empty_blocks`) come in
 //! the map's list after its own, each clad in the facade it was sized for, as tall as it.
 //!
-//! Not here yet (issue 43): roof shapes other than `model::geometry::roofs`' (gambrel,
-//! skillion, round, mansard …) and hipped roofs on more than four corners are flat. Trees,
+//! Not here yet (issue 43): roof shapes other than `model::geometry::roofs`' (skillion,
+//! mansard, half-hipped …) and hipped roofs on more than four corners are flat. Trees,
 //! signals, signs and benches are objects (`objects::insert_map`).
 
 use super::object;

@@ -6,6 +6,8 @@
 //! | `roof:shape` | footprint | roof |
 //! |---|---|---|
 //! | `gabled` | any, without a courtyard | a ridge along the longest side's direction, over the middle of the footprint's depth across it; the slopes fall to the two farthest lines (the eaves), and every wall rises to the roof above it (the gables) |
+//! | `gambrel` | the same | the gabled roof's frame, each side in two slopes: steep from the eave to a quarter of the width in, rising three quarters of the rise there, then shallow to the ridge |
+//! | `round` | the same | a half circle across the width (a barrel vault), in eight flat strips along the longest side; it rises half the width, at most [`MAX_DOME`] |
 //! | `hipped` | four corners, convex, without a courtyard | a ridge at mid-depth along the longer pair of opposite sides, shortened by the half-depth at each end: four slopes (a pyramid when nothing is left of the ridge) |
 //! | `pyramidal` | convex, no courtyard | every side slopes up to a point over the footprint's centroid |
 //! | `dome`, `onion` | the same | the footprint drawn in towards its centroid and up in four rings, as a quarter circle: a flat-shaded dome |
@@ -17,10 +19,11 @@
 //! roof rises above it. The map's `roof:height` replaces the rise (under a mapped
 //! `height`, where it is lower: the walls stand the rest).
 //!
-//! A gabled roof is the footprint triangulated (`earcut`), each triangle cut by the ridge
-//! line, each piece lifted by the roof's height over its side (so every face is planar);
-//! its gables are each footprint side's wall from the eaves up to the roof, cut at the
-//! ridge where the side crosses it. Roof faces take the roof texture projected from above
+//! A gabled, gambrel or round roof is the footprint triangulated (`earcut`), each
+//! triangle cut by the lines its slopes break along (the ridge; a gambrel's knees; a round
+//! roof's strips), each piece lifted by the roof's height over its side (so every face is
+//! planar); its gables are each footprint side's wall from the eaves up to the roof, cut
+//! at those lines where the side crosses them. Roof faces take the roof texture projected from above
 //! (uv = metres / the tile), each triangle flat-shaded, facing up and out.
 
 use crate::model::MapBuilding;
@@ -37,6 +40,8 @@ pub const MAX_RISE: f64 = 8.0;
 pub const MAX_DOME: f64 = 20.0;
 /// Rings of a dome between its foot and its top.
 const DOME_RINGS: u32 = 4;
+/// Flat strips across a `round` roof's half circle.
+const ROUND_STEPS: u32 = 8;
 
 /// The walls' height and the roof of map building `b`, `height` tall (its cladding's), with
 /// its `roof:shape` where [`Roof::of`] builds it on its footprint. The roof rises the map's
@@ -111,9 +116,16 @@ pub struct Roof {
 
 #[derive(Clone, Debug, PartialEq)]
 enum Shape {
-    /// A ridge along unit `d` over the line `v = mid` (`v` the distance to the left of
-    /// `d`), the eaves `half` away on either side.
-    Gable { d: [f64; 2], mid: f64, half: f64 },
+    /// Slopes along unit `d` over the lines `v = mid ± half` (`v` the distance to the left
+    /// of `d`: the eaves) and between them, their cross-section `profile`: `(s, h)`
+    /// points, `s` from −1 (one eave) to 1 (the other) by `(v − mid) / half`, `h` the
+    /// share of the rise there, linear between them.
+    Gable {
+        d: [f64; 2],
+        mid: f64,
+        half: f64,
+        profile: Vec<[f64; 2]>,
+    },
     /// Ridge from over the middle of side 1 to over the middle of side 3 (sides 0 and 2
     /// are the long ones); `hip` metres cut from each end.
     Hip { hip: f64 },
@@ -130,8 +142,8 @@ impl Roof {
         if outer.len() < 3 || signed_area(outer) <= 0.0 {
             return None;
         }
-        if shape == "gabled" {
-            return gable(outer);
+        if let Some(profile) = profile(shape) {
+            return gable(outer, profile, shape == "round");
         }
         if !convex(outer) {
             return None;
@@ -193,36 +205,45 @@ impl Roof {
         let y = base + eave;
         let mut slopes = Slopes { mesh: roof, tile };
         let (o, top) = (&self.outer, y + self.rise);
-        match self.shape {
-            Shape::Gable { d, mid, half } => {
+        match &self.shape {
+            Shape::Gable {
+                d,
+                mid,
+                half,
+                profile,
+            } => {
+                let (d, mid, half) = (*d, *mid, *half);
                 let height = |p: [f64; 2]| {
-                    let v = p[1] * d[0] - p[0] * d[1];
-                    y + self.rise * (1.0 - ((v - mid).abs() / half).min(1.0))
+                    let s = ((p[1] * d[0] - p[0] * d[1] - mid) / half).clamp(-1.0, 1.0);
+                    y + self.rise * share(profile, s)
                 };
                 let lift = |p: [f64; 2]| at(p, height(p));
+                // The profile's inner points are the lines the slopes break along.
+                let lines: Vec<f64> = (profile[1..profile.len() - 1].iter())
+                    .map(|&[s, _]| mid + s * half)
+                    .collect();
                 for [a, b, c] in triangles(o, &[]) {
-                    for piece in cut(&[a, b, c], d, mid) {
+                    for piece in cut_all(vec![vec![a, b, c]], d, &lines) {
                         for k in 1..piece.len() - 1 {
                             slopes.add(lift(piece[0]), lift(piece[k]), lift(piece[k + 1]));
                         }
                     }
                 }
                 for i in 0..o.len() {
-                    let mut pieces = cut(&[o[i], o[(i + 1) % o.len()]], d, mid);
-                    // A side on the ridge line is on both sides of it: one wall.
-                    pieces.dedup();
-                    for piece in pieces {
+                    let side = vec![o[i], o[(i + 1) % o.len()]];
+                    for piece in cut_all(vec![side], d, &lines) {
                         gable_wall(walls, piece[0], piece[1], y, &height);
                     }
                 }
             }
-            Shape::Hip { hip } => self.hipped(y, hip, &mut slopes),
+            Shape::Hip { hip } => self.hipped(y, *hip, &mut slopes),
             Shape::Pyramid { apex } => {
+                let apex = *apex;
                 for i in 0..o.len() {
                     slopes.add(at(o[i], y), at(o[(i + 1) % o.len()], y), at(apex, top));
                 }
             }
-            Shape::Dome { centre } => self.dome(y, centre, &mut slopes),
+            Shape::Dome { centre } => self.dome(y, *centre, &mut slopes),
         }
     }
 
@@ -295,22 +316,82 @@ fn at(p: [f64; 2], h: f64) -> [f64; 3] {
     [p[0], h, p[1]]
 }
 
-/// A gabled roof on `outer`: its frame along the longest side.
-fn gable(outer: &[[f64; 2]]) -> Option<Roof> {
+/// The cross-section of a roof along its longest side, by `roof:shape` (see
+/// `Shape::Gable`), or `None` for a shape of another kind.
+fn profile(shape: &str) -> Option<Vec<[f64; 2]>> {
+    Some(match shape {
+        "gabled" => vec![[-1.0, 0.0], [0.0, 1.0], [1.0, 0.0]],
+        // Steep below, shallow above: the lower slopes rise three quarters of the way
+        // over the outer quarter of the width.
+        "gambrel" => vec![
+            [-1.0, 0.0],
+            [-0.5, 0.75],
+            [0.0, 1.0],
+            [0.5, 0.75],
+            [1.0, 0.0],
+        ],
+        // A half circle (the rise scales it): ROUND_STEPS flat strips.
+        "round" => (0..=ROUND_STEPS)
+            .map(|k| {
+                let (cos, sin) = cos_sin_deg(180.0 * f64::from(k) / f64::from(ROUND_STEPS));
+                // + 0.0: the top's s is 0, not -0.
+                [-cos + 0.0, sin]
+            })
+            .collect(),
+        _ => return None,
+    })
+}
+
+/// A roof of cross-section `profile` on `outer`, along its longest side: it rises
+/// [`PITCH`] per metre of its half-width (at most [`MAX_RISE`]), or, `round`, its
+/// half-width (at most [`MAX_DOME`]).
+fn gable(outer: &[[f64; 2]], profile: Vec<[f64; 2]>, round: bool) -> Option<Roof> {
     let d = longest_side(outer)?;
     let across = outer.iter().map(|p| p[1] * d[0] - p[0] * d[1]);
     let (lo, hi) = across.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
     });
     let half = (hi - lo) / 2.0;
+    let rise = if round {
+        half.min(MAX_DOME)
+    } else {
+        (PITCH * half).min(MAX_RISE)
+    };
     (half > 0.0).then(|| Roof {
         shape: Shape::Gable {
             d,
             mid: (lo + hi) / 2.0,
             half,
+            profile,
         },
         outer: outer.to_vec(),
-        rise: (PITCH * half).min(MAX_RISE),
+        rise,
+    })
+}
+
+/// The share of the rise `profile` gives at `s` (in −1…1), linear between its points.
+fn share(profile: &[[f64; 2]], s: f64) -> f64 {
+    for w in profile.windows(2) {
+        let ([s0, h0], [s1, h1]) = (w[0], w[1]);
+        if s <= s1 {
+            return h0 + (h1 - h0) * (s - s0) / (s1 - s0);
+        }
+    }
+    profile.last().map_or(0.0, |p| p[1])
+}
+
+/// `pieces` (convex polygons or segments) cut by each line `v = line` in turn (see
+/// [`cut`]); a segment on a line is one piece, not two.
+fn cut_all(pieces: Vec<Vec<[f64; 2]>>, d: [f64; 2], lines: &[f64]) -> Vec<Vec<[f64; 2]>> {
+    lines.iter().fold(pieces, |pieces, &line| {
+        pieces
+            .iter()
+            .flat_map(|p| {
+                let mut cut = cut(p, d, line);
+                cut.dedup();
+                cut
+            })
+            .collect()
     })
 }
 
@@ -616,6 +697,56 @@ mod tests {
     }
 
     #[test]
+    fn round_and_gambrel_roofs_follow_their_cross_section_with_gables_to_match() {
+        // 20 m along x, 10 m across z, round (0, 0).
+        let outer = rectangle([0.0, 0.0], (20.0, 10.0), 0.0);
+        let gables = |walls: &Mesh| -> f64 {
+            (triangles(walls).iter())
+                .map(|&[a, b, c]| {
+                    let m = cross(sub(b, a), sub(c, a));
+                    dot(m, m).sqrt() / 2.0
+                })
+                .sum()
+        };
+        // A half circle of radius 5 over the eaves at 10 m: every corner of the roof on
+        // it; the gables the half circle's eight strips, twice.
+        let (roof, top, walls) = built("round", &outer);
+        assert_eq!(roof.rise, 5.0);
+        covers(&outer, &roof, &top);
+        for p in &top.positions {
+            let (y, z) = (f64::from(p[1]) - 10.0, f64::from(p[2]));
+            assert!((y * y + z * z - 25.0).abs() < 1e-3, "{p:?} off the circle");
+        }
+        let strips = 8.0 * 0.5 * 25.0 * cos_sin_deg(180.0 / 8.0).1;
+        assert!(
+            (gables(&walls) - 2.0 * strips).abs() < 1e-3,
+            "{}",
+            gables(&walls)
+        );
+        // A gambrel: 3 m high, its knees 2.5 m in from the eaves at three quarters of that.
+        let (roof, top, walls) = built("gambrel", &outer);
+        assert_eq!(roof.rise, PITCH * 5.0);
+        covers(&outer, &roof, &top);
+        let knee = 10.0 + 0.75 * roof.rise;
+        for p in &top.positions {
+            let (y, z) = (f64::from(p[1]), f64::from(p[2]).abs());
+            let want = match z {
+                z if (z - 5.0).abs() < 1e-4 => 10.0,
+                z if (z - 2.5).abs() < 1e-4 => knee,
+                z if z < 1e-4 => 10.0 + roof.rise,
+                _ => panic!("a corner off the profile's lines at z {z}"),
+            };
+            assert!((y - want).abs() < 1e-4, "{p:?}: {want}");
+        }
+        let end = 2.5 * (0.75 / 2.0 + 1.75 / 2.0) * roof.rise * 2.0;
+        assert!(
+            (gables(&walls) - 2.0 * end).abs() < 1e-3,
+            "{}",
+            gables(&walls)
+        );
+    }
+
+    #[test]
     fn a_hipped_roof_shortens_the_ridge_by_the_half_depth_and_has_no_gables() {
         let outer = rectangle([0.0, 0.0], (20.0, 10.0), -15.0);
         let (roof, top, walls) = built("hipped", &outer);
@@ -662,7 +793,7 @@ mod tests {
         assert_eq!(Roof::of("pyramidal", &l_shape), None);
         assert_eq!(Roof::of("hipped", &pentagon), None);
         assert_eq!(
-            Roof::of("gambrel", &rectangle([0.0, 0.0], (8.0, 6.0), 0.0)),
+            Roof::of("mansard", &rectangle([0.0, 0.0], (8.0, 6.0), 0.0)),
             None
         );
         assert_eq!(Roof::of("gabled", &clockwise), None);
