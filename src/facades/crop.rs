@@ -88,6 +88,7 @@ pub fn crop_facade(
         height: building_height,
         width: cw / ch * building_height,
         molding: molding_colour,
+        colour: mean_colour(&cropped),
         roof: nearest_roof(molding_colour, roofs),
         windows: windows.iter().map(|r| crop_uv(r, top, cw, ch)).collect(),
         texture: Texture::from_rgb(format!("facade_{}", safe_name(&file.name)), cropped),

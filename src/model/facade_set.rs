@@ -24,6 +24,10 @@ pub struct Facade {
     pub width: f64,
     /// Mean colour of the first molding (or of the facade's top when it has none), sRGB.
     pub molding: [u8; 3],
+    /// Mean colour of the cropped facade, sRGB: what a map's `building:colour` is matched
+    /// by (`model::map_cladding`).
+    #[serde(default)]
+    pub colour: [u8; 3],
     /// Index into [`FacadeSet::roofs`] of the roof whose colour best matches `molding`.
     pub roof: u32,
     /// Window boxes in texture coordinates `[u0, v0, u1, v1]` (v down from the top edge),

@@ -281,6 +281,18 @@ pub struct MapBuilding {
     /// walls.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roof_height: Option<f64>,
+    /// `building:colour` where the map gives one (sRGB): the city clads the building in the
+    /// facade nearest it in colour.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour: Option<[u8; 3]>,
+    /// `roof:colour` where the map gives one (sRGB): the city roofs it with the roof
+    /// nearest it in colour.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roof_colour: Option<[u8; 3]>,
+    /// `roof:orientation=across`: a ridged roof's ridge runs across the longest side, not
+    /// along it.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub roof_across: bool,
     /// How high above the ground its walls start, where the map says (`min_height`, else
     /// `building:min_level` × the floor height): a building or part over a passage, a
     /// canopy, a dome on a tower. `height` still counts from the ground.

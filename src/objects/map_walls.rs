@@ -143,6 +143,7 @@ mod tests {
                 height: 12.0,
                 width: 10.0,
                 molding: [0, 0, 0],
+                colour: [128, 128, 128],
                 roof: 0,
                 windows: vec![[0.1, 0.8, 0.3, 0.95], [0.6, 0.1, 0.8, 0.2]],
                 texture: Texture::from_rgb("t", RgbImage::new(4, 4)),

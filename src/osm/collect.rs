@@ -21,6 +21,9 @@ struct BuildingTags {
     height_from: &'static str,
     roof_shape: Option<String>,
     roof_height: Option<f64>,
+    roof_across: bool,
+    colour: Option<[u8; 3]>,
+    roof_colour: Option<[u8; 3]>,
     min_height: Option<f64>,
     /// Tagged `building:part=*` (not `no`): a part of the building it stands in, whatever
     /// its `building` tag says.
@@ -40,6 +43,9 @@ impl BuildingTags {
             height_from,
             roof_shape: tags::get(tags, "roof:shape").map(str::to_owned),
             roof_height: tags::get(tags, "roof:height").and_then(tags::metres),
+            roof_across: tags::get(tags, "roof:orientation") == Some("across"),
+            colour: tags::get(tags, "building:colour").and_then(tags::colour),
+            roof_colour: tags::get(tags, "roof:colour").and_then(tags::colour),
             min_height: tags::min_height(tags),
             part: part.is_some(),
         })
@@ -547,6 +553,9 @@ fn building(
         height_from: tags.height_from.to_owned(),
         roof_shape: tags.roof_shape.clone(),
         roof_height: tags.roof_height,
+        roof_across: tags.roof_across,
+        colour: tags.colour,
+        roof_colour: tags.roof_colour,
         min_height: tags.min_height,
         parts: Vec::new(),
         facade: None,

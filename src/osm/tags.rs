@@ -222,6 +222,45 @@ pub fn min_height(tags: &[(&str, &str)]) -> Option<f64> {
     (h > 0.0).then_some(h)
 }
 
+/// An OSM colour value (`building:colour`, `roof:colour`): `#rrggbb`, `#rgb`, or one of
+/// the CSS colour names mappers use most (the HTML 4 sixteen, and brown, beige, grey,
+/// orange, pink, tan, cyan, magenta), any case; else `None`.
+pub fn colour(value: &str) -> Option<[u8; 3]> {
+    let v = value.trim().to_ascii_lowercase();
+    if let Some(hex) = v.strip_prefix('#') {
+        let digit = |i: usize, n: usize| u8::from_str_radix(hex.get(i..i + n)?, 16).ok();
+        return match hex.len() {
+            6 => Some([digit(0, 2)?, digit(2, 2)?, digit(4, 2)?]),
+            3 => Some([digit(0, 1)? * 17, digit(1, 1)? * 17, digit(2, 1)? * 17]),
+            _ => None,
+        };
+    }
+    Some(match v.as_str() {
+        "white" => [255, 255, 255],
+        "silver" => [192, 192, 192],
+        "gray" | "grey" => [128, 128, 128],
+        "black" => [0, 0, 0],
+        "red" => [255, 0, 0],
+        "maroon" => [128, 0, 0],
+        "yellow" => [255, 255, 0],
+        "olive" => [128, 128, 0],
+        "lime" => [0, 255, 0],
+        "green" => [0, 128, 0],
+        "aqua" | "cyan" => [0, 255, 255],
+        "teal" => [0, 128, 128],
+        "blue" => [0, 0, 255],
+        "navy" => [0, 0, 128],
+        "fuchsia" | "magenta" => [255, 0, 255],
+        "purple" => [128, 0, 128],
+        "brown" => [165, 42, 42],
+        "beige" => [245, 245, 220],
+        "orange" => [255, 165, 0],
+        "pink" => [255, 192, 203],
+        "tan" => [210, 180, 140],
+        _ => return None,
+    })
+}
+
 /// A count of levels under `key`: a finite number, not negative.
 fn levels(tags: &[(&str, &str)], key: &str) -> Option<f64> {
     get(tags, key)
@@ -427,6 +466,18 @@ mod tests {
         );
         assert_eq!(height(&[("building:levels", "0")]), (None, "none"));
         assert_eq!(height(&[("building", "yes")]), (None, "none"));
+    }
+
+    #[test]
+    fn colours_are_hex_or_css_names() {
+        assert_eq!(colour("#cd7f32"), Some([205, 127, 50]));
+        assert_eq!(colour(" #99FFFF"), Some([153, 255, 255]));
+        assert_eq!(colour("#fa0"), Some([255, 170, 0]));
+        assert_eq!(colour("Brown"), Some([165, 42, 42]));
+        assert_eq!(colour("grey"), colour("gray"));
+        assert_eq!(colour("#12345"), None);
+        assert_eq!(colour("#gg0000"), None);
+        assert_eq!(colour("sandstone"), None);
     }
 
     #[test]

@@ -654,7 +654,7 @@ const PARTS: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <way id="11">
     <nd ref="1"/><nd ref="5"/><nd ref="6"/><nd ref="7"/><nd ref="1"/>
     <tag k="building" v="church"/><tag k="building:part" v="yes"/><tag k="height" v="30"/>
-    <tag k="roof:shape" v="dome"/>
+    <tag k="roof:shape" v="dome"/><tag k="roof:orientation" v="across"/>
   </way>
   <way id="12">
     <nd ref="7"/><nd ref="6"/><nd ref="8"/><nd ref="4"/><nd ref="7"/>
@@ -688,6 +688,7 @@ fn building_parts_go_to_the_building_they_stand_in() {
         (Some(30.0), "height", None)
     );
     assert_eq!(tower.roof_shape.as_deref(), Some("dome"));
+    assert!(tower.roof_across && !storey.roof_across);
     assert_eq!(
         (storey.height, storey.min_height),
         (Some(6.0 * FLOOR_HEIGHT), Some(2.0 * FLOOR_HEIGHT))

@@ -37,7 +37,8 @@ use crate::model::geometry::polygon::{distance, left_normal, signed_area};
 use crate::model::geometry::polygon_set::difference;
 use crate::model::geometry::{KERB_Y, MaterialBook, MeshBuilder, ROAD_Y};
 use crate::model::{
-    Facade, FacadeSet, Lamp, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject, map_cladding,
+    Facade, FacadeSet, Lamp, MapCladding, MapPolygon, ObjectKind, OsmMap, Scene, SceneObject,
+    map_cladding,
 };
 
 /// How far the ground reaches beyond the box, metres.
@@ -234,16 +235,16 @@ struct Cladding {
 }
 
 impl Cladding {
-    /// Registers, in facade order then roof order, the materials `facades` (one per
-    /// building, `None`: plain) use.
+    /// Registers, in building order, the facades' then the roofs' materials `cladding`
+    /// (one per building) uses.
     fn register(
         set: &crate::model::FacadeSet,
-        facades: &[Option<usize>],
+        cladding: &[MapCladding],
         book: &mut MaterialBook,
     ) -> Cladding {
         let none = [0.0; 3];
         let mut wall = vec![None; set.facades.len()];
-        for f in facades.iter().flatten() {
+        for f in cladding.iter().filter_map(|c| c.facade.as_ref()) {
             let facade = &set.facades[*f];
             wall[*f].get_or_insert_with(|| {
                 book.add(
@@ -255,8 +256,7 @@ impl Cladding {
             });
         }
         let mut roof = vec![None; set.roofs.len()];
-        for f in facades.iter().flatten() {
-            let index = set.facades[*f].roof as usize;
+        for index in cladding.iter().filter_map(|c| c.roof) {
             if let Some(r) = set.roofs.get(index) {
                 roof[index].get_or_insert_with(|| {
                     book.add(
@@ -279,10 +279,8 @@ impl Cladding {
 
 /// Every building: walls with its facade, a flat roof or its `roof:shape`'s.
 fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject> {
-    let facades = &input.facades.facades;
     let cladding = map_cladding(input.map, input.facades, input.seed);
-    let choice: Vec<Option<usize>> = cladding.iter().map(|c| c.facade).collect();
-    let clad = Cladding::register(input.facades, &choice, book);
+    let clad = Cladding::register(input.facades, &cladding, book);
     input
         .map
         .buildings
@@ -293,7 +291,7 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
             let (f, facade) = (c.facade, c.usable(input.facades));
             let mut walls =
                 MeshBuilder::new(f.and_then(|f| clad.wall[f]).unwrap_or(clad.plain_wall));
-            let roof = f.and_then(|f| clad.roof.get(facades[f].roof as usize).copied().flatten());
+            let roof = c.roof.and_then(|r| clad.roof.get(r).copied().flatten());
             let mut top = MeshBuilder::new(roof.unwrap_or(clad.plain_roof));
             for v in volumes(b, c.height) {
                 for ring in std::iter::once(&v.outer).chain(&v.holes) {

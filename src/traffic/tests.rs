@@ -21,6 +21,7 @@ fn city() -> (ParsedLayout, Vec<SceneObject>, Vec<Option<TrafficRole>>) {
             height: 12.0,
             width: 12.0,
             molding: [0, 0, 0],
+            colour: [128, 128, 128],
             roof: 0,
             windows: Vec::new(),
             texture: texture.clone(),

@@ -153,6 +153,7 @@ mod tests {
             height: 12.0,
             width,
             molding: [0; 3],
+            colour: [128, 128, 128],
             roof: 0,
             windows: Vec::new(),
             texture: Texture::from_rgb(name, image::RgbImage::new(1, 1)),

@@ -5,7 +5,7 @@
 //!
 //! | `roof:shape` | footprint | roof |
 //! |---|---|---|
-//! | `gabled` | any, without a courtyard | a ridge along the longest side's direction, over the middle of the footprint's depth across it; the slopes fall to the two farthest lines (the eaves), and every wall rises to the roof above it (the gables) |
+//! | `gabled` | any, without a courtyard | a ridge along the longest side's direction (across it with `roof:orientation=across`), over the middle of the footprint's depth across it; the slopes fall to the two farthest lines (the eaves), and every wall rises to the roof above it (the gables) |
 //! | `gambrel` | the same | the gabled roof's frame, each side in two slopes: steep from the eave to a quarter of the width in, rising three quarters of the rise there, then shallow to the ridge |
 //! | `round` | the same | a half circle across the width (a barrel vault), in eight flat strips along the longest side; it rises half the width, at most [`MAX_DOME`] |
 //! | `hipped` | four corners, convex, without a courtyard | a ridge at mid-depth along the longer pair of opposite sides, shortened by the half-depth at each end: four slopes (a pyramid when nothing is left of the ridge) |
@@ -60,6 +60,8 @@ pub struct Mass<'a> {
     pub holes: &'a [Vec<[f64; 2]>],
     pub roof_shape: Option<&'a str>,
     pub roof_height: Option<f64>,
+    /// `roof:orientation=across`.
+    pub across: bool,
     /// Its height is the map's `height`: the roof's top, not the walls'.
     pub top: bool,
 }
@@ -72,6 +74,7 @@ impl<'a> Mass<'a> {
             holes: &b.holes,
             roof_shape: b.roof_shape.as_deref(),
             roof_height: b.roof_height,
+            across: b.roof_across,
             top: b.height_from == "height",
         }
     }
@@ -82,7 +85,7 @@ impl<'a> Mass<'a> {
 pub fn shaped(m: &Mass, height: f64) -> (f64, Option<Roof>) {
     let roof = (m.roof_shape)
         .filter(|_| m.holes.is_empty())
-        .and_then(|shape| Roof::of(shape, m.outer));
+        .and_then(|shape| Roof::oriented(shape, m.outer, m.across));
     let Some(mut roof) = roof else {
         return (height, None);
     };
@@ -139,11 +142,17 @@ impl Roof {
     /// The roof `shape` (a `roof:shape` value) makes on footprint `outer` (without
     /// courtyards), or `None`: a flat roof.
     pub fn of(shape: &str, outer: &[[f64; 2]]) -> Option<Roof> {
+        Roof::oriented(shape, outer, false)
+    }
+
+    /// [`Roof::of`], a ridged roof's ridge across the longest side when `across`
+    /// (`roof:orientation=across`).
+    pub fn oriented(shape: &str, outer: &[[f64; 2]], across: bool) -> Option<Roof> {
         if outer.len() < 3 || signed_area(outer) <= 0.0 {
             return None;
         }
         if let Some(profile) = profile(shape) {
-            return gable(outer, profile, shape == "round");
+            return gable(outer, profile, shape == "round", across);
         }
         if !convex(outer) {
             return None;
@@ -342,11 +351,13 @@ fn profile(shape: &str) -> Option<Vec<[f64; 2]>> {
     })
 }
 
-/// A roof of cross-section `profile` on `outer`, along its longest side: it rises
-/// [`PITCH`] per metre of its half-width (at most [`MAX_RISE`]), or, `round`, its
-/// half-width (at most [`MAX_DOME`]).
-fn gable(outer: &[[f64; 2]], profile: Vec<[f64; 2]>, round: bool) -> Option<Roof> {
+/// A roof of cross-section `profile` on `outer`, along its longest side (`across`: at
+/// right angles to it): it rises [`PITCH`] per metre of its half-width (at most
+/// [`MAX_RISE`]), or, `round`, its half-width (at most [`MAX_DOME`]).
+fn gable(outer: &[[f64; 2]], profile: Vec<[f64; 2]>, round: bool, across: bool) -> Option<Roof> {
     let d = longest_side(outer)?;
+    // + 0.0: no negative zero in the direction.
+    let d = if across { [-d[1] + 0.0, d[0]] } else { d };
     let across = outer.iter().map(|p| p[1] * d[0] - p[0] * d[1]);
     let (lo, hi) = across.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
@@ -694,6 +705,29 @@ mod tests {
         faces.sort();
         faces.dedup();
         assert_eq!(faces.len(), all, "a gable wall twice");
+    }
+
+    #[test]
+    fn roof_orientation_across_turns_the_ridge_across_the_long_sides() {
+        let outer = rectangle([5.0, 7.0], (20.0, 10.0), 30.0);
+        let roof = Roof::oriented("gabled", &outer, true).unwrap();
+        // The half-width is now half the long side: 10 m, rising 6 m.
+        assert!((roof.rise - PITCH * 10.0).abs() < 1e-9, "{}", roof.rise);
+        let (mut top, mut walls) = (MeshBuilder::new(0), MeshBuilder::new(1));
+        roof.build(0.0, 10.0, 4.0, &mut top, &mut walls);
+        let top = top.finish();
+        covers(&outer, &roof, &top);
+        // The ridge: 10 m, along the short sides' direction (120°), over the middle.
+        let line = ridge(&top, roof.rise);
+        assert!(
+            (distance(line[0], line[line.len() - 1]) - 10.0).abs() < 1e-3,
+            "{line:?}"
+        );
+        let short = cos_sin_deg(120.0);
+        for p in &line {
+            let off = (p[1] - 7.0) * short.0 - (p[0] - 5.0) * short.1;
+            assert!(off.abs() < 1e-4, "{p:?} off the middle");
+        }
     }
 
     #[test]

@@ -51,6 +51,7 @@ fn facade_set() -> FacadeSet {
         height: f64::from(floors) * 3.0,
         width,
         molding: [0, 0, 0],
+        colour: [128, 128, 128],
         roof: 0,
         windows: Vec::new(),
         texture: texture.clone(),

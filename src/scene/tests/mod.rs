@@ -32,6 +32,7 @@ fn facade_set() -> FacadeSet {
         height: f64::from(floors) * 3.0,
         width,
         molding: tint,
+        colour: tint,
         roof,
         windows: Vec::new(),
         texture: Texture::from_rgb(format!("facade_{name}"), image(24, 32, tint)),
