@@ -42,7 +42,7 @@ impl BuildingTags {
             height,
             height_from,
             roof_shape: tags::get(tags, "roof:shape").map(str::to_owned),
-            roof_height: tags::get(tags, "roof:height").and_then(tags::metres),
+            roof_height: tags::get(tags, "roof:height").and_then(tags::height_metres),
             roof_across: tags::get(tags, "roof:orientation") == Some("across"),
             colour: tags::get(tags, "building:colour").and_then(tags::colour),
             roof_colour: tags::get(tags, "roof:colour").and_then(tags::colour),

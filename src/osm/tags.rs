@@ -15,6 +15,21 @@ pub fn get<'a>(tags: &[(&str, &'a str)], key: &str) -> Option<&'a str> {
     tags.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
 }
 
+/// The tallest height, lift or roof rise the reader takes, metres (the tallest building
+/// stands 828 m): a taller value is a mapping error, read as not given.
+pub const MAX_HEIGHT: f64 = 1000.0;
+
+/// The widest carriageway the reader takes from `width` or `lanes`, metres: a wider value
+/// is a mapping error, read as not given.
+pub const MAX_ROAD_WIDTH: f64 = 100.0;
+/// The widest sidewalk the reader takes from `sidewalk:width`, metres (the same rule).
+pub const MAX_SIDEWALK_WIDTH: f64 = 20.0;
+
+/// A height in metres from an OSM value ([`metres`]) up to [`MAX_HEIGHT`].
+pub fn height_metres(value: &str) -> Option<f64> {
+    metres(value).filter(|h| *h <= MAX_HEIGHT)
+}
+
 /// A length in metres from an OSM value: `12`, `12.5 m`, `12m`, `40'`, `40 ft`, `40'6"`.
 /// `None` for anything else, or a length that is not positive.
 pub fn metres(value: &str) -> Option<f64> {
@@ -96,11 +111,13 @@ const PATH_WIDTH: f64 = 2.0;
 /// A way's carriageway width and where it came from: `width`, else `lanes` × the lane
 /// width, else the class's default lanes (a path's default width for non-roads).
 pub fn width(class: &str, tags: &[(&str, &str)]) -> (f64, &'static str) {
-    if let Some(w) = get(tags, "width").and_then(metres) {
+    let mapped = get(tags, "width").and_then(metres);
+    if let Some(w) = mapped.filter(|w| *w <= MAX_ROAD_WIDTH) {
         return (w, "width");
     }
     let lanes = get(tags, "lanes").and_then(|l| l.trim().parse::<f64>().ok());
-    if let Some(l) = lanes.filter(|l| l.is_finite() && *l >= 1.0) {
+    let fits = |l: &f64| l.is_finite() && *l >= 1.0 && l * LANE_WIDTH <= MAX_ROAD_WIDTH;
+    if let Some(l) = lanes.filter(fits) {
         return (l * LANE_WIDTH, "lanes");
     }
     let lanes = default_lanes(class);
@@ -118,6 +135,7 @@ pub fn width(class: &str, tags: &[(&str, &str)]) -> (f64, &'static str) {
 pub fn sidewalks(class: &str, tags: &[(&str, &str)]) -> [f64; 2] {
     let width = get(tags, "sidewalk:width")
         .and_then(metres)
+        .filter(|w| *w <= MAX_SIDEWALK_WIDTH)
         .unwrap_or(SIDEWALK_WIDTH);
     let yes = |v: &str| matches!(v, "yes" | "both");
     let side = |key: &str| {
@@ -200,13 +218,17 @@ pub fn parking(tags: &[(&str, &str)]) -> [Option<bool>; 2] {
 /// A building's height and where it came from: `height`, else (`building:levels` +
 /// `roof:levels`) × the floor height.
 pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
-    if let Some(h) = get(tags, "height").and_then(metres) {
+    if let Some(h) = get(tags, "height").and_then(height_metres) {
         return (Some(h), "height");
     }
     match levels(tags, "building:levels") {
         Some(l) if l > 0.0 => {
             let roof = levels(tags, "roof:levels").unwrap_or(0.0);
-            (Some((l + roof) * FLOOR_HEIGHT), "levels")
+            let h = (l + roof) * FLOOR_HEIGHT;
+            match h <= MAX_HEIGHT {
+                true => (Some(h), "levels"),
+                false => (None, "none"),
+            }
         }
         _ => (None, "none"),
     }
@@ -215,11 +237,11 @@ pub fn height(tags: &[(&str, &str)]) -> (Option<f64>, &'static str) {
 /// How high above the ground a building's or part's walls start: `min_height`, else
 /// `building:min_level` × the floor height; `None` on the ground.
 pub fn min_height(tags: &[(&str, &str)]) -> Option<f64> {
-    let h = match get(tags, "min_height").and_then(metres) {
+    let h = match get(tags, "min_height").and_then(height_metres) {
         Some(h) => h,
         None => levels(tags, "building:min_level")? * FLOOR_HEIGHT,
     };
-    (h > 0.0).then_some(h)
+    (h > 0.0 && h <= MAX_HEIGHT).then_some(h)
 }
 
 /// An OSM colour value (`building:colour`, `roof:colour`): `#rrggbb`, `#rgb`, or one of
@@ -426,6 +448,20 @@ mod tests {
             width("service", &[("lanes", "many")]),
             (LANE_WIDTH, "default")
         );
+        // Past MAX_ROAD_WIDTH: mapping errors, not widths (an extract saying so hung the
+        // street surface).
+        assert_eq!(
+            width("residential", &[("width", "1e30"), ("lanes", "3")]),
+            (3.0 * LANE_WIDTH, "lanes")
+        );
+        assert_eq!(
+            width("service", &[("lanes", "1e9")]),
+            (LANE_WIDTH, "default")
+        );
+        assert_eq!(
+            sidewalks("residential", &[("sidewalk:width", "1e20")]),
+            [SIDEWALK_WIDTH; 2]
+        );
     }
 
     #[test]
@@ -466,6 +502,11 @@ mod tests {
         );
         assert_eq!(height(&[("building:levels", "0")]), (None, "none"));
         assert_eq!(height(&[("building", "yes")]), (None, "none"));
+        // Past MAX_HEIGHT: a mapping error, not a height.
+        assert_eq!(height(&[("height", "1e30")]), (None, "none"));
+        assert_eq!(height(&[("building:levels", "1e6")]), (None, "none"));
+        assert_eq!(min_height(&[("min_height", "1e9")]), None);
+        assert_eq!(min_height(&[("building:min_level", "400")]), None);
     }
 
     #[test]

@@ -16,7 +16,9 @@
 //! | `building_0042` | building | per volume (`model::geometry::massing`: the building, or its parts and the rest of its footprint, each from its `min_height`): a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
-//! facade is seeded per building ([`map_cladding`], which the wall text reads too) and keeps its own
+//! facade is seeded per building, or the one nearest its mapped `building:colour`, and its
+//! roof the facade's or the one nearest its `roof:colour` ([`map_cladding`], which the wall
+//! text reads too). The facade keeps its own
 //! scale on every wall: one facade width along u per its width in metres, and one floor of
 //! the facade per floor of the building. The facade's ground floor runs along the bottom
 //! of every wall, its upper floors repeat above it, and the top repeat is cut at the roof
