@@ -13,7 +13,7 @@
 //! | `kerb_0003` | sidewalk | the kerb faces around carriageway polygon 3, from road height up to kerb height, facing the road (none on the box's edge) | `concrete` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
 //! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
-//! | `building_0042` | building | per volume (`model::geometry::massing`: the building, or its parts and the rest of its footprint, each from its `min_height`): a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
+//! | `building_0042` | building | per volume (`model::geometry::massing`: the building, or its parts and the rest of its footprint, each from its `min_height`): a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, gambrel, round, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its
 //! facade is seeded per building, or the one nearest its mapped `building:colour`, and its
@@ -318,7 +318,7 @@ fn buildings(input: &MapSceneInput, book: &mut MaterialBook) -> Vec<SceneObject>
 }
 
 /// The wall along footprint edge `a → b` (facing left of it: outwards on an outer ring,
-/// into the courtyard on a hole), from `y0` to `y1` above the kerb, clad in `facade` at
+/// into the courtyard on a hole), from `y0` to `y1` above the kerb, clad in facade `f` at
 /// its own scale (see the module's note: the facade's floors counted from the ground, so a
 /// volume on an upper floor carries on the floors below it), or plain.
 fn wall(mesh: &mut MeshBuilder, a: [f64; 2], b: [f64; 2], [y0, y1]: [f64; 2], f: Option<&Facade>) {
