@@ -309,6 +309,39 @@ pub struct MapBuilding {
     pub facade: Option<u32>,
 }
 
+impl MapBuilding {
+    /// A `building=yes` on footprint `outer` with `holes` (ring `part` of `element`), its
+    /// area theirs, without a height, roof, colour, lift or parts: the fields a caller
+    /// does not set.
+    pub fn new(
+        element: OsmElement,
+        part: u32,
+        outer: Vec<[f64; 2]>,
+        holes: Vec<Vec<[f64; 2]>>,
+    ) -> MapBuilding {
+        use super::geometry::polygon::signed_area;
+        let area = signed_area(&outer) + holes.iter().map(|h| signed_area(h)).sum::<f64>();
+        MapBuilding {
+            element,
+            part,
+            kind: "yes".to_owned(),
+            outer,
+            holes,
+            area,
+            height: None,
+            height_from: "none".to_owned(),
+            roof_shape: None,
+            roof_height: None,
+            roof_across: false,
+            colour: None,
+            roof_colour: None,
+            min_height: None,
+            parts: Vec::new(),
+            facade: None,
+        }
+    }
+}
+
 /// A road or path centreline with its cross-section.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MapRoad {

@@ -541,14 +541,8 @@ fn building(
     outer: Vec<[f64; 2]>,
     holes: Vec<Vec<[f64; 2]>>,
 ) -> MapBuilding {
-    let area = signed_area(&outer) + holes.iter().map(|h| signed_area(h)).sum::<f64>();
     MapBuilding {
-        element,
-        part,
         kind: tags.kind.clone(),
-        outer,
-        holes,
-        area,
         height: tags.height,
         height_from: tags.height_from.to_owned(),
         roof_shape: tags.roof_shape.clone(),
@@ -557,8 +551,7 @@ fn building(
         colour: tags.colour,
         roof_colour: tags.roof_colour,
         min_height: tags.min_height,
-        parts: Vec::new(),
-        facade: None,
+        ..MapBuilding::new(element, part, outer, holes)
     }
 }
 

@@ -25,7 +25,7 @@
 use rayon::prelude::*;
 
 use super::{place_in_block, widths_px};
-use crate::model::geometry::polygon::{longest_side, signed_area};
+use crate::model::geometry::polygon::longest_side;
 use crate::model::{Band, Block, MapBuilding, MapPolygon, OsmElement, OsmMap, PxRect};
 
 /// Side of a cell, metres.
@@ -119,22 +119,10 @@ fn fill_block(
             ];
             let height = sizes.facade_heights.map(|h| h[b.kind as usize]);
             MapBuilding {
-                element: OsmElement::Placed(n),
-                part: part as u32,
-                kind: "yes".to_owned(),
-                area: signed_area(&outer),
-                outer,
-                holes: Vec::new(),
                 height,
                 height_from: if height.is_some() { "facade" } else { "none" }.to_owned(),
-                roof_shape: None,
-                roof_height: None,
-                roof_across: false,
-                colour: None,
-                roof_colour: None,
-                min_height: None,
-                parts: Vec::new(),
                 facade: sizes.facade_heights.map(|_| b.kind),
+                ..MapBuilding::new(OsmElement::Placed(n), part as u32, outer, Vec::new())
             }
         })
         .collect()
@@ -286,7 +274,7 @@ impl Grid {
 mod tests {
     use super::*;
     use crate::model::MapArea;
-    use crate::model::geometry::polygon::contains;
+    use crate::model::geometry::polygon::{contains, signed_area};
     use crate::test_support::street_map;
 
     /// A rectangle `w × h` centred on `c`, turned by `deg`, counter-clockwise in `[x, z]`.

@@ -69,22 +69,10 @@ pub fn street_map() -> OsmMap {
         metres_per_degree: [55_800.0, 111_412.0],
         extent: [-150.0, -100.0, 150.0, 100.0],
         buildings: vec![MapBuilding {
-            element: OsmElement::Way(1),
-            part: 0,
-            kind: "yes".to_owned(),
-            outer: b,
-            holes: Vec::new(),
             area: 400.0,
             height: Some(12.0),
             height_from: "height".to_owned(),
-            roof_shape: None,
-            roof_height: None,
-            roof_across: false,
-            colour: None,
-            roof_colour: None,
-            min_height: None,
-            parts: Vec::new(),
-            facade: None,
+            ..MapBuilding::new(OsmElement::Way(1), 0, b, Vec::new())
         }],
         roads: vec![
             road(

@@ -104,10 +104,10 @@ fn volume(m: Mass, min: Option<f64>, top: f64) -> Volume {
 /// footprint edge, `inward` the unit normal into the building), followed every
 /// half a metre; 0 where a stretch of it has none (the building is lifted there).
 pub fn ground_eave(volumes: &[Volume], a: [f64; 2], b: [f64; 2], inward: [f64; 2]) -> f64 {
-    let ground: Vec<&Volume> = volumes.iter().filter(|v| v.base <= 0.0).collect();
     if let [only] = volumes {
         return if only.base <= 0.0 { only.eave } else { 0.0 };
     }
+    let ground: Vec<&Volume> = volumes.iter().filter(|v| v.base <= 0.0).collect();
     let length = super::polygon::distance(a, b);
     let steps = ((length / STEP).ceil() as usize).max(1);
     let mut lowest = f64::INFINITY;
@@ -142,22 +142,9 @@ mod tests {
 
     fn building(id: i64, outer: Vec<[f64; 2]>, height: Option<f64>) -> MapBuilding {
         MapBuilding {
-            element: OsmElement::Way(id),
-            part: 0,
-            kind: "yes".to_owned(),
-            area: super::super::polygon::signed_area(&outer),
-            outer,
-            holes: Vec::new(),
             height,
             height_from: if height.is_some() { "levels" } else { "none" }.to_owned(),
-            roof_shape: None,
-            roof_height: None,
-            roof_across: false,
-            colour: None,
-            roof_colour: None,
-            min_height: None,
-            parts: Vec::new(),
-            facade: None,
+            ..MapBuilding::new(OsmElement::Way(id), 0, outer, Vec::new())
         }
     }
 

@@ -25,22 +25,10 @@ fn map() -> OsmMap {
     ];
     let courtyard: Vec<[f64; 2]> = square(14.0, 3.0, 4.0).into_iter().rev().collect();
     let building = |element, outer, holes: Vec<Vec<[f64; 2]>>, area, height| MapBuilding {
-        element,
-        part: 0,
-        kind: "yes".to_owned(),
-        outer,
-        holes,
         area,
         height,
         height_from: "height".to_owned(),
-        roof_shape: None,
-        roof_height: None,
-        roof_across: false,
-        colour: None,
-        roof_colour: None,
-        min_height: None,
-        parts: Vec::new(),
-        facade: None,
+        ..MapBuilding::new(element, 0, outer, holes)
     };
     OsmMap {
         bounds: crate::model::GeoBox {
