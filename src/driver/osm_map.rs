@@ -68,7 +68,8 @@ fn overview(file: &Path, map: &OsmMap) -> Result<image::RgbImage, BuildError> {
             spec: file.to_owned(),
             source,
         })?;
-    let lamps = crate::lamps::map_lamps(map);
+    // Lamps as a build with the default `[lamps]` has them.
+    let lamps = crate::lamps::map_lamps(map, Some(&crate::spec::LampsSpec::default()));
     let scene = crate::scene::map_city(&crate::scene::MapSceneInput {
         map,
         lamps: &lamps,

@@ -42,9 +42,9 @@ pub enum Stage {
     Layout,
     Mirror,
     Parse,
-    Lamps,
     Facades,
     Place,
+    Lamps,
     Plan,
     Preview,
     Export,
@@ -132,17 +132,6 @@ const TABLE: [Declaration; 12] = [
         artifact: false,
     },
     Declaration {
-        stage: Lamps,
-        name: "lamps",
-        entry: "`lamps::site_lamps`",
-        versions: &[("lamps::VERSION", lamps::VERSION)],
-        reads: &[Mirror, Parse],
-        files: "",
-        produces: Produces::Fixed(&["lamps.json"]),
-        load: Load::Bytes,
-        artifact: false,
-    },
-    Declaration {
         stage: Facades,
         name: "facades",
         entry: "`facades::process` / `facades::process_builtin`",
@@ -167,6 +156,20 @@ const TABLE: [Declaration; 12] = [
         reads: &[Layout, Parse, Facades],
         files: "",
         produces: Produces::Fixed(&["buildings.json"]),
+        load: Load::Bytes,
+        artifact: false,
+    },
+    Declaration {
+        stage: Lamps,
+        name: "lamps",
+        entry: "`lamps::site_lamps` / `lamps::map_lamps`",
+        versions: &[("lamps::VERSION", lamps::VERSION)],
+        // Layout and Place only for a map layout (`lamps::map_lamps` on its roads, out of
+        // the buildings the place stage put on its blocks), Mirror and Parse only for a
+        // layout image.
+        reads: &[Layout, Mirror, Parse, Place],
+        files: "",
+        produces: Produces::Fixed(&["lamps.json"]),
         load: Load::Bytes,
         artifact: false,
     },
@@ -265,7 +268,7 @@ impl std::fmt::Display for Stage {
 impl Stage {
     /// Every stage, in evaluation order.
     pub const ALL: [Stage; 12] = [
-        Layout, Mirror, Parse, Lamps, Facades, Place, Plan, Preview, Export, Overview, Frames,
+        Layout, Mirror, Parse, Facades, Place, Lamps, Plan, Preview, Export, Overview, Frames,
         Dataset,
     ];
 
@@ -356,10 +359,16 @@ pub struct ParseInputs {
 }
 
 #[derive(Clone, Debug, Serialize)]
-pub struct LampsInputs {
-    pub lamps: LampsSpec,
-    pub palette: Palette,
-    pub metres_per_pixel: f64,
+#[serde(untagged)]
+pub enum LampsInputs {
+    /// A layout image's lamps: the paper's rule on its strips.
+    Layout {
+        lamps: LampsSpec,
+        palette: Palette,
+        metres_per_pixel: f64,
+    },
+    /// A map's: where it has them, and seeded as `lamps` says (None: `seed_lamps` off).
+    Map { lamps: Option<LampsSpec> },
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -551,10 +560,15 @@ impl Inputs {
             parse: ParseInputs {
                 palette: l.palette.clone(),
             },
-            lamps: LampsInputs {
-                lamps: spec.lamps.clone(),
-                palette: l.palette.clone(),
-                metres_per_pixel: mpp,
+            lamps: match &l.osm {
+                Some(osm) => LampsInputs::Map {
+                    lamps: osm.seed_lamps.then(|| spec.lamps.clone()),
+                },
+                None => LampsInputs::Layout {
+                    lamps: spec.lamps.clone(),
+                    palette: l.palette.clone(),
+                    metres_per_pixel: mpp,
+                },
             },
             facades: FacadesInputs {
                 floor_height: spec.facades.floor_height,
@@ -618,20 +632,20 @@ impl Inputs {
         let map = self.layout.is_map();
         match (stage, read) {
             (Place, Facades) => self.place.reads_facades(),
-            (Export | Preview | Place, Layout) => map,
+            (Export | Preview | Place | Lamps, Layout) | (Lamps, Place) => map,
             _ => true,
         }
     }
 
-    /// Whether the spec has `stage`: a map layout has no mirror, parse, lamps or plan
-    /// stage (its streets, buildings and lamps come from the map), and a place stage only
-    /// to fill its blocks without buildings.
+    /// Whether the spec has `stage`: a map layout has no mirror, parse or plan stage (its
+    /// streets and buildings come from the map), and a place stage only to fill its blocks
+    /// without buildings.
     pub fn runs(&self, stage: Stage) -> bool {
         if !self.layout.is_map() {
             return true;
         }
         match stage {
-            Mirror | Parse | Lamps | Plan => false,
+            Mirror | Parse | Plan => false,
             Place => self.place.fill_empty_blocks,
             _ => true,
         }

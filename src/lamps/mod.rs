@@ -1,4 +1,5 @@
-//! Lamps stage: layout image + roads + palette → [`Lamp`] sites on the strips beside roads.
+//! Lamps stage: layout image + roads + palette → [`Lamp`] sites on the strips beside roads;
+//! on a map, [`map_lamps`]: its own lamps, and the same rule along its streets' polylines.
 //!
 //! The paper's rule ("every 100 px along each road on the green strips of both sides, none
 //! inside a crossing, of two too close one removed"), made exact:

@@ -13,8 +13,8 @@
 //! `docs/osm.md`.
 //!
 //! In a build, this is the layout stage of a spec with `[layout.osm]`: its map
-//! (`map.json`) replaces the mirror, parse, lamps, place and plan stages, and the city is
-//! built from it by `scene::map_city`, `lamps::map_lamps`, `objects::insert_map` and
+//! (`map.json`) replaces the mirror, parse and plan stages, and the city is built from it
+//! by `lamps::map_lamps` (the lamps stage), `scene::map_city`, `objects::insert_map` and
 //! `cameras::map_road_path`.
 
 /// Bump when the map read from an extract changes: it is part of the layout stage's key for

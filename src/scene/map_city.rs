@@ -12,7 +12,7 @@
 //! | `road_0003` | road | a carriageway polygon (junctions included) at road height | `asphalt` |
 //! | `kerb_0003` | sidewalk | the kerb faces around carriageway polygon 3, from road height up to kerb height, facing the road (none on the box's edge) | `concrete` |
 //! | `marking_0003` | marking | road 3's centre and lane lines and zebra crossings, following its centreline, clear of junctions (`map_markings`) | `marking` |
-//! | `lamp_0003` | lamp | a street lamp where the map has one (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
+//! | `lamp_0003` | lamp | a street lamp where the map has one, or seeded where it has none (`lamps::map_lamps`) | `lamp_metal`, `lamp_head` |
 //! | `building_0042` | building | per volume (`model::geometry::massing`: the building, or its parts and the rest of its footprint, each from its `min_height`): a wall per footprint edge (courtyards' too), a flat roof with the courtyards cut out, or the roof its `roof:shape` makes (`model::geometry::roofs`: gabled, gambrel, round, hipped, pyramidal, dome) with its gables in the walls | `facade_*`, `roof_*` |
 //!
 //! A building is as tall as the map says, else a seeded 3 to 7 floors of its facade. Its

@@ -98,11 +98,11 @@ pub struct LayoutSpec {
     pub image: Option<String>,
     /// An OpenStreetMap extract to build a real place from (issue 43): its buildings on
     /// their footprints at their heights, its roads at any angle. Give one of `generate`,
-    /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror`, `palette` and
-    /// `[lamps]` do not apply, nor `[buildings]` unless `fill_empty_blocks` is on (the map
-    /// is in metres, lamps stand where it has them), cameras take the `roads`, `sidewalks`
-    /// and `objects` paths, and objects are `tree`, `car`, `traffic_light`, `sign` and
-    /// `mesh` entries (see docs/osm.md).
+    /// `image` and `osm`. With a map, `metres_per_pixel`, `mirror` and `palette` do not
+    /// apply (the map is in metres), nor `[buildings]` unless `fill_empty_blocks` is on;
+    /// lamps stand where the map has them and `[lamps]` seeds the stretches it has none on
+    /// (unless `seed_lamps` is off); cameras take the `roads`, `sidewalks` and `objects`
+    /// paths, and `[traffic]` does not apply (see docs/osm.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub osm: Option<OsmLayoutSpec>,
     /// Mirror operations applied in order, each appending a flipped copy:
@@ -142,6 +142,20 @@ pub struct OsmLayoutSpec {
     /// mapped.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub fill_empty_blocks: bool,
+    /// Seeds street lamps along the stretches of paved road the map has no lamp on, as
+    /// `[lamps]` says (every `spacing` metres on both sides, behind the kerb). On by
+    /// default, as few cities map their lamps; off, lamps stand only where the map has
+    /// them.
+    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    pub seed_lamps: bool,
+}
+
+fn default_true() -> bool {
+    true
+}
+
+fn is_true(value: &bool) -> bool {
+    *value
 }
 
 impl OsmLayoutSpec {

@@ -285,3 +285,54 @@ fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from
         );
     }
 }
+
+#[test]
+fn lamps_are_seeded_where_the_map_has_none_and_only_the_lamps_stage_reruns() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
+    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    let plain = map_spec("kamppi.osm.pbf", 1);
+    let mapped_only = plain.replace(
+        "file = 'kamppi.osm.pbf'\n",
+        "file = 'kamppi.osm.pbf'\nseed_lamps = false\n",
+    );
+    let denser = format!("{plain}[lamps]\nspacing = 30\nmin_distance = 10\n");
+    for (name, text) in [
+        ("plain", &plain),
+        ("mapped", &mapped_only),
+        ("dense", &denser),
+    ] {
+        fs::write(dir.path().join(format!("{name}.toml")), text).unwrap();
+    }
+    let lamps = |out: &str| {
+        let obj = fs::read_to_string(dir.path().join(out).join("kamppi/city.obj")).unwrap();
+        obj.lines().filter(|l| l.starts_with("o lamp_")).count()
+    };
+    let out = build(dir.path(), "mapped.toml", "a");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let out = build(dir.path(), "plain.toml", "b");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    // A denser `[lamps]` reads the map from the cache and reruns the lamps and after.
+    let out = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(dir.path())
+        .args([
+            "build",
+            "-v",
+            "dense.toml",
+            "--out",
+            "c",
+            "--cache",
+            "cache",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    let said = format!("{}{}", text(&out), String::from_utf8_lossy(&out.stdout));
+    assert!(said.contains("cached layout"), "{said}");
+    assert!(said.contains("ran    lamps"), "{said}");
+    let (mapped, seeded, dense) = (lamps("a"), lamps("b"), lamps("c"));
+    assert!(
+        mapped < seeded && seeded < dense,
+        "{mapped} mapped, {seeded} with the default spacing, {dense} every 30 m"
+    );
+}

@@ -8,7 +8,7 @@ use image::RgbImage;
 use super::super::BuildError;
 use super::super::codec;
 use super::super::inputs::FacadeInput;
-use super::super::stages::{LayoutInputs, OverviewInputs, Stage};
+use super::super::stages::{LampsInputs, LayoutInputs, OverviewInputs, Stage};
 use super::Pipeline;
 use super::evaluate::{one, value};
 use super::frames_stage::lighting;
@@ -163,38 +163,53 @@ impl Pipeline<'_> {
     }
 
     pub(super) fn need_lamps(&mut self) -> Result<(), BuildError> {
+        let LampsInputs::Layout {
+            lamps,
+            palette,
+            metres_per_pixel: mpp,
+        } = &self.inputs.lamps
+        else {
+            return self.need_map_lamps();
+        };
+        let (spacing, min_distance) = (lamps.spacing / mpp, lamps.min_distance / mpp);
+        let palette = palette.clone();
         let gather = |p: &mut Self| Ok((p.mirrored_image()?, p.parsed()?));
         self.stage(
             Stage::Lamps,
             None,
             |p| &mut p.lamps,
             gather,
-            |p, (image, parsed)| {
-                let inputs = &p.inputs.lamps;
-                let (mpp, lamps) = (inputs.metres_per_pixel, &inputs.lamps);
-                let sites = lamps::site_lamps(
-                    &image,
-                    &parsed,
-                    &inputs.palette,
-                    lamps.spacing / mpp,
-                    lamps.min_distance / mpp,
-                );
+            move |_, (image, parsed)| {
+                let sites = lamps::site_lamps(&image, &parsed, &palette, spacing, min_distance);
                 let json = codec::to_json(&sites);
                 Ok((sites, one("lamps.json", json)))
             },
         )
     }
 
-    /// The lamps: the lamps stage's, or, on a map, where the map has them.
+    /// A map layout's lamps stage: where the map has lamps, and seeded along the rest of
+    /// its roads, out of its buildings and the ones placed on its blocks.
+    fn need_map_lamps(&mut self) -> Result<(), BuildError> {
+        let gather = |p: &mut Self| p.city_map();
+        self.stage(
+            Stage::Lamps,
+            None,
+            |p| &mut p.lamps,
+            gather,
+            |p, map| {
+                let seeded = match &p.inputs.lamps {
+                    LampsInputs::Map { lamps } => lamps.as_ref(),
+                    LampsInputs::Layout { .. } => None,
+                };
+                let sites = lamps::map_lamps(&map, seeded);
+                let json = codec::to_json(&sites);
+                Ok((sites, one("lamps.json", json)))
+            },
+        )
+    }
+
+    /// The lamps stage's lamps.
     pub(super) fn lamp_sites(&mut self) -> Result<Arc<Vec<Lamp>>, BuildError> {
-        if self.inputs.layout.is_map() {
-            if let Some(lamps) = &self.map_lamps {
-                return Ok(Arc::clone(lamps));
-            }
-            let lamps = Arc::new(lamps::map_lamps(&*self.city_map()?));
-            self.map_lamps = Some(Arc::clone(&lamps));
-            return Ok(lamps);
-        }
         self.need_lamps()?;
         value(&mut self.lamps, Stage::Lamps, |o| {
             codec::from_json(codec::output(o, "lamps.json")?)

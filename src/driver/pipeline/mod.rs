@@ -117,8 +117,6 @@ pub struct Pipeline<'a> {
     layout: Option<Slot<RgbImage>>,
     /// A map layout's layout stage (`map.json`).
     map: Option<Slot<OsmMap>>,
-    /// A map layout's lamps, made from the map when first asked for.
-    map_lamps: Option<Arc<Vec<Lamp>>>,
     mirror: Option<Slot<RgbImage>>,
     parse: Option<Slot<ParsedLayout>>,
     lamps: Option<Slot<Vec<Lamp>>>,
@@ -174,7 +172,6 @@ impl<'a> Pipeline<'a> {
             progress,
             layout: None,
             map: None,
-            map_lamps: None,
             mirror: None,
             parse: None,
             lamps: None,
