@@ -293,6 +293,10 @@ pub struct MapBuilding {
     /// along it.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub roof_across: bool,
+    /// `roof:direction` where the map gives it: the compass bearing, degrees clockwise from
+    /// north, a skillion roof slopes down towards.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roof_direction: Option<f64>,
     /// How high above the ground its walls start, where the map says (`min_height`, else
     /// `building:min_level` × the floor height): a building or part over a passage, a
     /// canopy, a dome on a tower. `height` still counts from the ground.
@@ -333,6 +337,7 @@ impl MapBuilding {
             roof_shape: None,
             roof_height: None,
             roof_across: false,
+            roof_direction: None,
             colour: None,
             roof_colour: None,
             min_height: None,

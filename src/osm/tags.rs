@@ -244,6 +244,22 @@ pub fn min_height(tags: &[(&str, &str)]) -> Option<f64> {
     (h > 0.0 && h <= MAX_HEIGHT).then_some(h)
 }
 
+/// A compass bearing in degrees clockwise from north, in `[0, 360)`, from an OSM value
+/// (`roof:direction`): degrees (`135`, `-45`, `22.5`), or one of the sixteen points of the
+/// compass (`N`, `NNE`, `NE`, … `NNW`, any case); else `None`.
+pub fn bearing(value: &str) -> Option<f64> {
+    const POINTS: [&str; 16] = [
+        "N", "NNE", "NE", "ENE", "E", "ESE", "SE", "SSE", "S", "SSW", "SW", "WSW", "W", "WNW",
+        "NW", "NNW",
+    ];
+    let value = value.trim();
+    if let Some(k) = POINTS.iter().position(|p| p.eq_ignore_ascii_case(value)) {
+        return Some(22.5 * k as f64);
+    }
+    let degrees: f64 = value.parse().ok().filter(|d: &f64| d.is_finite())?;
+    Some(degrees.rem_euclid(360.0))
+}
+
 /// An OSM colour value (`building:colour`, `roof:colour`): `#rrggbb`, `#rgb`, or one of
 /// the CSS colour names mappers use most (the HTML 4 sixteen, and brown, beige, grey,
 /// orange, pink, tan, cyan, magenta), any case; else `None`.
@@ -611,5 +627,19 @@ mod tests {
             Some((FeatureKind::TrafficSign, "highway=stop".to_owned()))
         );
         assert_eq!(features(&[("amenity", "post_box")]), Vec::new());
+    }
+
+    #[test]
+    fn bearings_read_degrees_and_compass_points() {
+        assert_eq!(bearing("135"), Some(135.0));
+        assert_eq!(bearing(" 22.5 "), Some(22.5));
+        assert_eq!(bearing("-90"), Some(270.0));
+        assert_eq!(bearing("720"), Some(0.0));
+        assert_eq!(bearing("NNE"), Some(22.5));
+        assert_eq!(bearing("sw"), Some(225.0));
+        assert_eq!(bearing("W"), Some(270.0));
+        for bad in ["", "north", "NaN", "inf", "1e999", "N E"] {
+            assert_eq!(bearing(bad), None, "{bad}");
+        }
     }
 }

@@ -659,7 +659,8 @@ const PARTS: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
   <way id="12">
     <nd ref="7"/><nd ref="6"/><nd ref="8"/><nd ref="4"/><nd ref="7"/>
     <tag k="building:part" v="yes"/><tag k="building:levels" v="6"/>
-    <tag k="building:min_level" v="2"/>
+    <tag k="building:min_level" v="2"/><tag k="roof:shape" v="skillion"/>
+    <tag k="roof:direction" v="SE"/>
   </way>
   <way id="13">
     <nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="21"/><tag k="building:part" v="yes"/>
@@ -689,6 +690,10 @@ fn building_parts_go_to_the_building_they_stand_in() {
     );
     assert_eq!(tower.roof_shape.as_deref(), Some("dome"));
     assert!(tower.roof_across && !storey.roof_across);
+    assert_eq!(
+        (tower.roof_direction, storey.roof_direction),
+        (None, Some(135.0))
+    );
     assert_eq!(
         (storey.height, storey.min_height),
         (Some(6.0 * FLOOR_HEIGHT), Some(2.0 * FLOOR_HEIGHT))

@@ -7,6 +7,7 @@
 //! |---|---|---|
 //! | `gabled` | any, without a courtyard | a ridge along the longest side's direction (across it with `roof:orientation=across`), over the middle of the footprint's depth across it; the slopes fall to the two farthest lines (the eaves), and every wall rises to the roof above it (the gables) |
 //! | `gambrel` | the same | the gabled roof's frame, each side in two slopes: steep from the eave to a quarter of the width in, rising three quarters of the rise there, then shallow to the ridge |
+//! | `skillion` | the same | one slope across the width (a gabled roof's frame), down towards `roof:direction` where the map gives it (a compass bearing or point), else across the longest side; it rises as a gabled roof of that width would |
 //! | `round` | the same | a half circle across the width (a barrel vault), in eight flat strips along the longest side; it rises half the width, at most [`MAX_DOME`] |
 //! | `hipped` | four corners, convex, without a courtyard | a ridge at mid-depth along the longer pair of opposite sides, shortened by the half-depth at each end: four slopes (a pyramid when nothing is left of the ridge) |
 //! | `pyramidal` | convex, no courtyard | every side slopes up to a point over the footprint's centroid |
@@ -62,6 +63,8 @@ pub struct Mass<'a> {
     pub roof_height: Option<f64>,
     /// `roof:orientation=across`.
     pub across: bool,
+    /// `roof:direction`, degrees clockwise from north.
+    pub direction: Option<f64>,
     /// Its height is the map's `height`: the roof's top, not the walls'.
     pub top: bool,
 }
@@ -75,6 +78,7 @@ impl<'a> Mass<'a> {
             roof_shape: b.roof_shape.as_deref(),
             roof_height: b.roof_height,
             across: b.roof_across,
+            direction: b.roof_direction,
             top: b.height_from == "height",
         }
     }
@@ -85,7 +89,7 @@ impl<'a> Mass<'a> {
 pub fn shaped(m: &Mass, height: f64) -> (f64, Option<Roof>) {
     let roof = (m.roof_shape)
         .filter(|_| m.holes.is_empty())
-        .and_then(|shape| Roof::oriented(shape, m.outer, m.across));
+        .and_then(|shape| Roof::oriented(shape, m.outer, m.across, m.direction));
     let Some(mut roof) = roof else {
         return (height, None);
     };
@@ -142,17 +146,29 @@ impl Roof {
     /// The roof `shape` (a `roof:shape` value) makes on footprint `outer` (without
     /// courtyards), or `None`: a flat roof.
     pub fn of(shape: &str, outer: &[[f64; 2]]) -> Option<Roof> {
-        Roof::oriented(shape, outer, false)
+        Roof::oriented(shape, outer, false, None)
     }
 
     /// [`Roof::of`], a ridged roof's ridge across the longest side when `across`
-    /// (`roof:orientation=across`).
-    pub fn oriented(shape: &str, outer: &[[f64; 2]], across: bool) -> Option<Roof> {
+    /// (`roof:orientation=across`), a skillion sloping down towards the compass bearing
+    /// `direction` (degrees clockwise from north) where it is given.
+    pub fn oriented(
+        shape: &str,
+        outer: &[[f64; 2]],
+        across: bool,
+        direction: Option<f64>,
+    ) -> Option<Roof> {
         if outer.len() < 3 || signed_area(outer) <= 0.0 {
             return None;
         }
         if let Some(profile) = profile(shape) {
-            return gable(outer, profile, shape == "round", across);
+            // x east, z south: a bearing's direction is (sin, −cos); the frame's `v`
+            // grows towards (−d_z, d_x), so that is downhill for d = (−cos, −sin).
+            let downhill = direction.filter(|_| shape == "skillion").map(|b| {
+                let (cos, sin) = cos_sin_deg(b);
+                [-cos + 0.0, -sin + 0.0]
+            });
+            return gable(outer, profile, shape == "round", across, downhill);
         }
         if !convex(outer) {
             return None;
@@ -330,6 +346,8 @@ fn at(p: [f64; 2], h: f64) -> [f64; 3] {
 fn profile(shape: &str) -> Option<Vec<[f64; 2]>> {
     Some(match shape {
         "gabled" => vec![[-1.0, 0.0], [0.0, 1.0], [1.0, 0.0]],
+        // One slope from the high eave down to the low one.
+        "skillion" => vec![[-1.0, 1.0], [1.0, 0.0]],
         // Steep below, shallow above: the lower slopes rise three quarters of the way
         // over the outer quarter of the width.
         "gambrel" => vec![
@@ -352,12 +370,20 @@ fn profile(shape: &str) -> Option<Vec<[f64; 2]>> {
 }
 
 /// A roof of cross-section `profile` on `outer`, along its longest side (`across`: at
-/// right angles to it): it rises [`PITCH`] per metre of its half-width (at most
-/// [`MAX_RISE`]), or, `round`, its half-width (at most [`MAX_DOME`]).
-fn gable(outer: &[[f64; 2]], profile: Vec<[f64; 2]>, round: bool, across: bool) -> Option<Roof> {
+/// right angles to it), or along unit `frame` where given: it rises [`PITCH`] per metre
+/// of its half-width (at most [`MAX_RISE`]), or, `round`, its half-width (at most
+/// [`MAX_DOME`]).
+fn gable(
+    outer: &[[f64; 2]],
+    profile: Vec<[f64; 2]>,
+    round: bool,
+    across: bool,
+    frame: Option<[f64; 2]>,
+) -> Option<Roof> {
     let d = longest_side(outer)?;
     // + 0.0: no negative zero in the direction.
     let d = if across { [-d[1] + 0.0, d[0]] } else { d };
+    let d = frame.unwrap_or(d);
     let across = outer.iter().map(|p| p[1] * d[0] - p[0] * d[1]);
     let (lo, hi) = across.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
@@ -708,9 +734,61 @@ mod tests {
     }
 
     #[test]
+    fn a_skillion_slopes_down_across_the_long_sides_or_towards_its_direction() {
+        // 20 m east–west, 10 m north–south.
+        let outer = rectangle([0.0, 0.0], (20.0, 10.0), 0.0);
+        let heights = |roof: &Roof| {
+            let (mut top, mut walls) = (MeshBuilder::new(0), MeshBuilder::new(1));
+            roof.build(0.0, 10.0, 4.0, &mut top, &mut walls);
+            let top = top.finish();
+            covers(&outer, roof, &top);
+            let walls = walls.finish();
+            assert!(!walls.indices.is_empty(), "no walls up to the roof");
+            (top.positions.iter())
+                .map(|p| [f64::from(p[0]), f64::from(p[1]) - 10.0, f64::from(p[2])])
+                .collect::<Vec<_>>()
+        };
+        // No direction: one slope across the long sides, a gabled roof's rise.
+        let roof = Roof::of("skillion", &outer).unwrap();
+        assert!((roof.rise - PITCH * 5.0).abs() < 1e-9);
+        let all = heights(&roof);
+        let high_north = all.iter().any(|p| p[2] < -4.9 && p[1] > roof.rise - 1e-4);
+        for [_, y, z] in all {
+            let share = if high_north {
+                (5.0 - z) / 10.0
+            } else {
+                (z + 5.0) / 10.0
+            };
+            assert!((y - roof.rise * share).abs() < 1e-4, "{y} at z {z}");
+        }
+        // Down towards the north (0°): the south eave high.
+        let roof = Roof::oriented("skillion", &outer, false, Some(0.0)).unwrap();
+        for [_, y, z] in heights(&roof) {
+            assert!(
+                (y - roof.rise * (z + 5.0) / 10.0).abs() < 1e-4,
+                "{y} at z {z}"
+            );
+        }
+        // Down towards the east (90°): across the short sides, high in the west.
+        let roof = Roof::oriented("skillion", &outer, false, Some(90.0)).unwrap();
+        assert!((roof.rise - PITCH * 10.0).abs() < 1e-9);
+        for [x, y, _] in heights(&roof) {
+            assert!(
+                (y - roof.rise * (10.0 - x) / 20.0).abs() < 1e-4,
+                "{y} at x {x}"
+            );
+        }
+        // The direction turns a skillion only.
+        assert_eq!(
+            Roof::oriented("gabled", &outer, false, Some(90.0)),
+            Roof::of("gabled", &outer)
+        );
+    }
+
+    #[test]
     fn roof_orientation_across_turns_the_ridge_across_the_long_sides() {
         let outer = rectangle([5.0, 7.0], (20.0, 10.0), 30.0);
-        let roof = Roof::oriented("gabled", &outer, true).unwrap();
+        let roof = Roof::oriented("gabled", &outer, true, None).unwrap();
         // The half-width is now half the long side: 10 m, rising 6 m.
         assert!((roof.rise - PITCH * 10.0).abs() < 1e-9, "{}", roof.rise);
         let (mut top, mut walls) = (MeshBuilder::new(0), MeshBuilder::new(1));
