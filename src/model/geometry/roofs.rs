@@ -9,7 +9,8 @@
 //! | `gambrel` | the same | the gabled roof's frame, each side in two slopes: steep from the eave to a quarter of the width in, rising three quarters of the rise there, then shallow to the ridge |
 //! | `skillion` | the same | one slope across the width (a gabled roof's frame), down towards `roof:direction` where the map gives it (a compass bearing or point), else across the longest side; it rises as a gabled roof of that width would |
 //! | `round` | the same | a half circle across the width (a barrel vault), in eight flat strips along the longest side; it rises half the width, at most [`MAX_DOME`] |
-//! | `hipped` | four corners, convex, without a courtyard | a ridge at mid-depth along the longer pair of opposite sides, shortened by the half-depth at each end: four slopes (a pyramid when nothing is left of the ridge) |
+//! | `hipped` | convex, without a courtyard | every side slopes up at one pitch until the slopes meet (the footprint's straight skeleton: on a rectangle a ridge at mid-depth shortened by the half-depth at each end, on a square a pyramid); it rises [`PITCH`] times the run to the deepest point |
+//! | `mansard` | the same | the hipped frame, each slope in two: steep over the outer half of the run to three quarters of the rise, then shallow |
 //! | `pyramidal` | convex, no courtyard | every side slopes up to a point over the footprint's centroid |
 //! | `dome`, `onion` | the same | the footprint drawn in towards its centroid and up in four rings, as a quarter circle: a flat-shaded dome |
 //!
@@ -133,9 +134,11 @@ enum Shape {
         half: f64,
         profile: Vec<[f64; 2]>,
     },
-    /// Ridge from over the middle of side 1 to over the middle of side 3 (sides 0 and 2
-    /// are the long ones); `hip` metres cut from each end.
-    Hip { hip: f64 },
+    /// Every side sloping up at one pitch until the slopes meet: over a convex footprint
+    /// the lower envelope of the sides' planes (its straight skeleton). The height over a
+    /// point `run · s` metres in from its nearest side is `profile`'s share at `s`
+    /// (`(s, h)` points from the eaves, 0, to the deepest point, 1).
+    Envelope { profile: Vec<[f64; 2]>, run: f64 },
     /// A point over `apex`.
     Pyramid { apex: [f64; 2] },
     /// Rings drawn in towards `centre`.
@@ -174,22 +177,23 @@ impl Roof {
             return None;
         }
         match shape {
-            "hipped" if outer.len() == 4 => {
-                let side = |i: usize| distance(outer[i], outer[(i + 1) % 4]);
-                // Sides 0 and 2 the long ones.
-                let turn = usize::from(side(1) + side(3) > side(0) + side(2));
-                let outer: Vec<[f64; 2]> = (0..4).map(|i| outer[(i + turn) % 4]).collect();
-                let half_depth =
-                    (distance(outer[1], outer[2]) + distance(outer[3], outer[0])) / 4.0;
-                let rise = (PITCH * half_depth).min(MAX_RISE);
-                let ridge = distance(mid(outer[1], outer[2]), mid(outer[3], outer[0]));
-                if ridge <= 2.0 * half_depth {
-                    return Roof::of("pyramidal", &outer);
-                }
-                Some(Roof {
-                    shape: Shape::Hip { hip: half_depth },
+            "hipped" | "mansard" => {
+                let outer = without_straight_corners(outer);
+                let run = envelope_faces(&outer)
+                    .iter()
+                    .flat_map(|(side, face)| face.iter().map(|&p| side.depth(p)))
+                    .fold(0.0, f64::max);
+                let profile = if shape == "hipped" {
+                    vec![[0.0, 0.0], [1.0, 1.0]]
+                } else {
+                    // Steep over the outer half of the run to three quarters of the rise,
+                    // then shallow.
+                    vec![[0.0, 0.0], [0.5, 0.75], [1.0, 1.0]]
+                };
+                (run > 0.0).then(|| Roof {
+                    shape: Shape::Envelope { profile, run },
                     outer,
-                    rise,
+                    rise: (PITCH * run).min(MAX_RISE),
                 })
             }
             "pyramidal" => {
@@ -261,7 +265,22 @@ impl Roof {
                     }
                 }
             }
-            Shape::Hip { hip } => self.hipped(y, *hip, &mut slopes),
+            Shape::Envelope { profile, run } => {
+                for (side, face) in envelope_faces(o) {
+                    let lift =
+                        |p: [f64; 2]| at(p, y + self.rise * share(profile, side.depth(p) / run));
+                    // The bands between the profile's breaks, each planar.
+                    for w in profile.windows(2) {
+                        let (from, to) = (w[0][0] * run, w[1][0] * run);
+                        let band = clip(&clip(&face, |p| from - side.depth(p)), |p| {
+                            side.depth(p) - to
+                        });
+                        for k in 1..band.len().saturating_sub(1) {
+                            slopes.add(lift(band[0]), lift(band[k]), lift(band[k + 1]));
+                        }
+                    }
+                }
+            }
             Shape::Pyramid { apex } => {
                 let apex = *apex;
                 for i in 0..o.len() {
@@ -270,27 +289,6 @@ impl Roof {
             }
             Shape::Dome { centre } => self.dome(y, *centre, &mut slopes),
         }
-    }
-
-    /// A hipped roof's four slopes, eaves at `y`, `hip` cut from each end of the ridge.
-    fn hipped(&self, y: f64, hip: f64, slopes: &mut Slopes) {
-        let (o, top) = (&self.outer, y + self.rise);
-        let (m1, m3) = (mid(o[1], o[2]), mid(o[3], o[0]));
-        let t = hip / distance(m1, m3);
-        let toward = |from: [f64; 2], to: [f64; 2]| {
-            [
-                from[0] + (to[0] - from[0]) * t,
-                from[1] + (to[1] - from[1]) * t,
-            ]
-        };
-        let (r1, r3) = (at(toward(m1, m3), top), at(toward(m3, m1), top));
-        let p = o.iter().map(|&p| at(p, y)).collect::<Vec<_>>();
-        for (a, b, c, d) in [(p[0], p[1], r1, r3), (p[2], p[3], r3, r1)] {
-            slopes.add(a, b, c);
-            slopes.add(a, c, d);
-        }
-        slopes.add(p[1], p[2], r1);
-        slopes.add(p[3], p[0], r3);
     }
 
     /// A dome's rings, its foot at `y`, drawn in towards `centre`.
@@ -334,6 +332,84 @@ impl Slopes<'_> {
         let uvs = [a, b, c].map(|p| [p[0] / tile, p[2] / tile]);
         self.mesh.triangle([a, b, c], normal, uvs);
     }
+}
+
+/// A side of a convex footprint as a roof slope rises from it.
+#[derive(Clone, Copy)]
+struct Side {
+    a: [f64; 2],
+    /// Unit normal into the footprint.
+    inward: [f64; 2],
+}
+
+impl Side {
+    /// How far `p` lies inside the side's line, metres.
+    fn depth(&self, p: [f64; 2]) -> f64 {
+        (p[0] - self.a[0]) * self.inward[0] + (p[1] - self.a[1]) * self.inward[1]
+    }
+}
+
+/// The convex ring `ring` without the corners where it goes straight on.
+fn without_straight_corners(ring: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let n = ring.len();
+    (0..n)
+        .filter(|&i| {
+            let (a, p, b) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+            let turn = (p[0] - a[0]) * (b[1] - p[1]) - (p[1] - a[1]) * (b[0] - p[0]);
+            turn.abs() > 1e-9 * distance(a, p) * distance(p, b)
+        })
+        .map(|i| ring[i])
+        .collect()
+}
+
+/// Each side of convex ring `ring` with the part of the footprint nearer to it than to
+/// every other side (where its slope is the roof: the straight skeleton's face).
+fn envelope_faces(ring: &[[f64; 2]]) -> Vec<(Side, Vec<[f64; 2]>)> {
+    let Some(c) = centroid(ring) else {
+        return Vec::new();
+    };
+    let n = ring.len();
+    let sides: Vec<Side> = (0..n)
+        .filter_map(|i| {
+            let (a, b) = (ring[i], ring[(i + 1) % n]);
+            let l = left_normal(a, b)?;
+            let inward = if (c[0] - a[0]) * l[0] + (c[1] - a[1]) * l[1] >= 0.0 {
+                l
+            } else {
+                [-l[0], -l[1]]
+            };
+            Some(Side { a, inward })
+        })
+        .collect();
+    sides
+        .iter()
+        .enumerate()
+        .map(|(i, side)| {
+            let face = (sides.iter().enumerate().filter(|(j, _)| *j != i))
+                .fold(ring.to_vec(), |face, (_, other)| {
+                    clip(&face, |p| side.depth(p) - other.depth(p))
+                });
+            (*side, face)
+        })
+        .collect()
+}
+
+/// Convex polygon `poly` where `f` (linear) is at most 0 (Sutherland–Hodgman).
+fn clip(poly: &[[f64; 2]], f: impl Fn([f64; 2]) -> f64) -> Vec<[f64; 2]> {
+    const ON: f64 = 1e-9;
+    let mut out = Vec::new();
+    for i in 0..poly.len() {
+        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+        let (fp, fq) = (f(p), f(q));
+        if fp <= ON {
+            out.push(p);
+        }
+        if (fp < -ON && fq > ON) || (fp > ON && fq < -ON) {
+            let t = fp / (fp - fq);
+            out.push([p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t]);
+        }
+    }
+    out
 }
 
 /// `p` at height `h`.
@@ -524,10 +600,6 @@ fn centroid(ring: &[[f64; 2]]) -> Option<[f64; 2]> {
         cz += w * (o[1] + p[1] + q[1]) / 3.0;
     }
     (a > 0.0).then(|| [cx / a, cz / a])
-}
-
-fn mid(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
 }
 
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -873,6 +945,55 @@ mod tests {
         assert_eq!(ridge(&top, roof.rise).len(), 1);
     }
 
+    /// The least depth of `p` inside convex `ring`'s sides.
+    fn least_depth(ring: &[[f64; 2]], p: [f64; 2]) -> f64 {
+        (0..ring.len())
+            .map(|i| line_distance(p, ring[i], ring[(i + 1) % ring.len()]))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn hipped_and_mansard_roofs_slope_up_from_every_side_of_a_convex_footprint() {
+        // A pentagon with a corner cut off a rectangle, and one straight corner.
+        let house = [
+            [0.0, 0.0],
+            [16.0, 0.0],
+            [16.0, 7.0],
+            [12.0, 10.0],
+            [6.0, 10.0],
+            [0.0, 10.0],
+        ];
+        for shape in ["hipped", "mansard"] {
+            let (roof, top, walls) = built(shape, &house);
+            covers(&house, &roof, &top);
+            assert!(walls.indices.is_empty(), "{shape}: no gables");
+            // The deepest point is 5 m in (half the depth): the run.
+            assert!(
+                (roof.rise - PITCH * 5.0).abs() < 1e-9,
+                "{shape} {}",
+                roof.rise
+            );
+            let share = |s: f64| match shape {
+                "hipped" => s,
+                _ if s <= 0.5 => 1.5 * s,
+                _ => 0.75 + 0.5 * (s - 0.5),
+            };
+            for p in &top.positions {
+                let [x, y, z] = p.map(f64::from);
+                let expected = 10.0 + roof.rise * share(least_depth(&house, [x, z]) / 5.0);
+                assert!((y - expected).abs() < 1e-4, "{shape}: {p:?} not {expected}");
+            }
+        }
+        // A regular hexagon: a pyramid over its centre, rising its inradius' worth.
+        let hexagon = regular([3.0, -4.0], 6.0, 6);
+        let (roof, top, _) = built("hipped", &hexagon);
+        covers(&hexagon, &roof, &top);
+        let apex = ridge(&top, roof.rise);
+        assert_eq!(apex.len(), 1);
+        assert!(distance(apex[0], [3.0, -4.0]) < 1e-4);
+        assert!((roof.rise - PITCH * 6.0 * cos_sin_deg(30.0).0).abs() < 1e-9);
+    }
+
     #[test]
     fn pyramids_and_domes_rise_over_the_centroid() {
         let hexagon = regular([3.0, -4.0], 6.0, 6);
@@ -903,11 +1024,9 @@ mod tests {
             .rev()
             .collect();
         assert_eq!(Roof::of("pyramidal", &l_shape), None);
-        assert_eq!(Roof::of("hipped", &pentagon), None);
-        assert_eq!(
-            Roof::of("mansard", &rectangle([0.0, 0.0], (8.0, 6.0), 0.0)),
-            None
-        );
+        assert_eq!(Roof::of("hipped", &l_shape), None);
+        assert_eq!(Roof::of("mansard", &l_shape), None);
+        assert_eq!(Roof::of("half-hipped", &pentagon), None);
         assert_eq!(Roof::of("gabled", &clockwise), None);
         assert!(Roof::of("pyramidal", &pentagon).is_some());
     }
