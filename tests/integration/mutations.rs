@@ -1,6 +1,7 @@
 //! Issue 8: mutated inputs (byte flips, line deletions and swaps, value swaps of the
-//! example specs; damaged layout PNGs and OBJ files) never panic, finish in bounded time,
-//! and end in a clean error or Ok, in process and through `cityspec validate` (exit 0 or 2).
+//! example specs; damaged layout PNGs, OBJ files and OpenStreetMap extracts) never panic,
+//! finish in bounded time, and end in a clean error or Ok, in process and through
+//! `cityspec validate` (exit 0 or 2).
 //!
 //! Cases come from `cityspec::test_seed` (a fixed seed by default;
 //! `CITYSPEC_PROPTEST_CASES=N CITYSPEC_PROPTEST_SEED=random` for a longer random run).
@@ -101,6 +102,20 @@ fn mutate(bytes: &[u8], draw: &mut Draw) -> Vec<u8> {
     out
 }
 
+/// A binary file's mutation: one to three bytes flipped or cuts short.
+fn flip_or_cut(bytes: &[u8], draw: &mut Draw) -> Vec<u8> {
+    let mut bytes = bytes.to_vec();
+    for _ in 0..1 + draw.below(3) {
+        if draw.below(4) == 0 {
+            bytes.truncate(draw.below(bytes.len() + 1));
+        } else if !bytes.is_empty() {
+            let i = draw.below(bytes.len());
+            bytes[i] ^= 1 << draw.below(8);
+        }
+    }
+    bytes
+}
+
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -179,16 +194,8 @@ fn mutated_layout_pngs_decode_or_fail_cleanly() {
         .unwrap();
     let (mut ok, mut refused) = (0, 0);
     for case in 0..cases {
-        let mut bytes = small.clone();
         // Byte flips and truncations only: PNGs are binary, line edits mean little.
-        for _ in 0..1 + draw.below(3) {
-            if draw.below(4) == 0 {
-                bytes.truncate(draw.below(bytes.len() + 1));
-            } else if !bytes.is_empty() {
-                let i = draw.below(bytes.len());
-                bytes[i] ^= 1 << draw.below(8);
-            }
-        }
+        let bytes = flip_or_cut(&small, &mut draw);
         let what = format!("PNG case {case} (seed {seed})");
         let result = bounded(&what, Duration::from_secs(2), || {
             cityspec::model::image_file::check_complete(&bytes)
@@ -279,4 +286,208 @@ fn mutated_specs_through_validate_exit_0_or_2() {
         fs::write(&target, bytes).unwrap();
         fs::write(ws.path().join("assets/models/bench.obj"), &obj).unwrap();
     }
+}
+
+/// Values a mutated OpenStreetMap tag or coordinate takes: numbers past every range,
+/// non-numbers, and the words the reader looks for.
+const OSM_VALUES: &[&str] = &[
+    "0",
+    "-1",
+    "-0",
+    "1e30",
+    "1e308",
+    "-1e308",
+    "nan",
+    "inf",
+    "-inf",
+    "",
+    "yes",
+    "no",
+    "-1;2",
+    "999999999",
+    "4294967296",
+    "N",
+    "#fff",
+    "1,5",
+    "91",
+    "-181",
+    "3 m",
+    "12'",
+    "gabled",
+    "hipped",
+    "skillion",
+    "round",
+    "dome",
+    "both",
+    "separate",
+    "roundabout",
+];
+
+/// Keys the map reader reads off buildings, parts and roads.
+const OSM_KEYS: &[&str] = &[
+    "building",
+    "building:part",
+    "height",
+    "min_height",
+    "building:levels",
+    "building:min_level",
+    "roof:shape",
+    "roof:height",
+    "roof:levels",
+    "roof:direction",
+    "roof:orientation",
+    "building:colour",
+    "roof:colour",
+    "highway",
+    "width",
+    "lanes",
+    "oneway",
+    "junction",
+    "sidewalk",
+    "sidewalk:width",
+    "layer",
+    "tunnel",
+    "covered",
+    "parking:lane:both",
+    "area",
+    "natural",
+    "crossing",
+    "traffic_sign",
+    "name",
+];
+
+/// One mutation of an OSM XML extract: a tag the reader reads set to an edge value on a
+/// way or node, a value or coordinate replaced, a line deleted, doubled or swapped, a
+/// byte flipped, or the file cut short.
+fn mutate_osm(text: &str, draw: &mut Draw) -> Vec<u8> {
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    for _ in 0..1 + draw.below(4) {
+        let n = lines.len();
+        match draw.below(7) {
+            0 | 1 => {
+                let element: Vec<usize> = (0..n)
+                    .filter(|&i| lines[i].contains("<way ") || lines[i].contains("<relation "))
+                    .filter(|&i| !lines[i].ends_with("/>"))
+                    .collect();
+                if let Some(&i) = element.get(draw.below(element.len())) {
+                    let key = OSM_KEYS[draw.below(OSM_KEYS.len())];
+                    let value = OSM_VALUES[draw.below(OSM_VALUES.len())];
+                    lines.insert(i + 1, format!("    <tag k=\"{key}\" v=\"{value}\"/>"));
+                }
+            }
+            2 => {
+                let with: Vec<usize> = (0..n)
+                    .filter(|&i| lines[i].contains(" v=\"") || lines[i].contains(" lat=\""))
+                    .collect();
+                if let Some(&i) = with.get(draw.below(with.len())) {
+                    let attribute = [" v=\"", " lat=\"", " lon=\""][draw.below(3)];
+                    if let Some(start) = lines[i].find(attribute) {
+                        let from = start + attribute.len();
+                        let end = lines[i][from..]
+                            .find('"')
+                            .map_or(lines[i].len(), |e| from + e);
+                        let value = OSM_VALUES[draw.below(OSM_VALUES.len())];
+                        lines[i].replace_range(from..end, value);
+                    }
+                }
+            }
+            3 if n > 0 => {
+                lines.remove(draw.below(n));
+            }
+            4 if n > 1 => {
+                let i = draw.below(n);
+                lines.insert(draw.below(n), lines[i].clone());
+            }
+            5 if n > 1 => {
+                let (a, b) = (draw.below(n), draw.below(n));
+                lines.swap(a, b);
+            }
+            _ => {
+                let mut bytes = lines.join("\n").into_bytes();
+                if draw.below(2) == 0 {
+                    bytes.truncate(draw.below(bytes.len() + 1));
+                } else if !bytes.is_empty() {
+                    let i = draw.below(bytes.len());
+                    bytes[i] ^= 1 << draw.below(8);
+                }
+                lines = String::from_utf8_lossy(&bytes)
+                    .lines()
+                    .map(str::to_owned)
+                    .collect();
+            }
+        }
+    }
+    lines.join("\n").into_bytes()
+}
+
+/// Mutated OpenStreetMap extracts (the Kamppi XML with tags set to edge values,
+/// coordinates replaced, lines moved; the PBF with bytes flipped and cut) read into a map
+/// or fail with a message, in bounded time; a map that reads builds its lamps, its 3D
+/// city and the Helsinki spec's objects without a panic, in bounded time too.
+#[test]
+fn mutated_osm_extracts_read_and_build_or_fail_cleanly() {
+    let (cases, seed) = cityspec::test_seed::cases_and_seed(40);
+    let mut draw = Draw(seed ^ 0x05a1);
+    let fixtures = repo().join("tests/fixtures/osm");
+    let xml = fs::read_to_string(fixtures.join("kamppi.osm")).unwrap();
+    let pbf = fs::read(fixtures.join("kamppi.osm.pbf")).unwrap();
+    let (facades, _) =
+        cityspec::facades::process_builtin(3.0, cityspec::spec::OnError::Error).unwrap();
+    let lamps = cityspec::spec::LampsSpec::default();
+    // The Helsinki spec's objects (but its bench model), a tenth as many of each.
+    let source = SpecSource {
+        path: repo().join("specs/osm.toml"),
+        text: fs::read_to_string(repo().join("specs/osm.toml")).unwrap(),
+    };
+    let objects: Vec<_> = (spec::load(&source, &FsWorld).unwrap().objects.into_iter())
+        .filter(|o| o.kind != cityspec::spec::EntryKind::Mesh)
+        .map(|mut o| {
+            o.count = (o.count / 10).max(1);
+            o
+        })
+        .collect();
+    assert!(objects.len() >= 8, "{objects:?}");
+    let (mut built, mut refused) = (0, 0);
+    for case in 0..2 * cases {
+        let bytes = if case % 2 == 0 {
+            mutate_osm(&xml, &mut draw)
+        } else {
+            flip_or_cut(&pbf, &mut draw)
+        };
+        let what = format!("OSM case {case} (seed {seed})");
+        let read = bounded(&what, Duration::from_secs(20), || {
+            cityspec::osm::read(&bytes, None)
+        });
+        match read {
+            Ok(map) => {
+                bounded(&what, Duration::from_secs(20), || {
+                    let lamps = cityspec::lamps::map_lamps(&map, Some(&lamps));
+                    cityspec::scene::map_city(&cityspec::scene::MapSceneInput {
+                        map: &map,
+                        lamps: &lamps,
+                        facades: &facades,
+                        seed,
+                    });
+                    cityspec::objects::insert_map(&cityspec::objects::MapObjectsInput {
+                        specs: &objects,
+                        map: &map,
+                        lamps: &lamps,
+                        facades: &facades,
+                        meshes: &Default::default(),
+                        seed,
+                    })
+                    .map_err(|e| e.to_string())
+                })
+                .unwrap_or_else(|e| panic!("{what}: objects refused a map that read: {e}"));
+                built += 1;
+            }
+            Err(error) => {
+                assert!(!error.to_string().trim().is_empty(), "{what}");
+                refused += 1;
+            }
+        }
+    }
+    eprintln!("{built} built, {refused} refused");
+    // The mutations must reach both outcomes, or they test nothing.
+    assert!(built > 0 && refused > 0, "{built} built, {refused} refused");
 }
