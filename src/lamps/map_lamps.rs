@@ -21,7 +21,7 @@
 //! in road order, run, side and distance along.
 
 use crate::model::geometry::map_lines::MIN_SINE;
-use crate::model::geometry::polygon::{direction, distance, left_normal};
+use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
 use crate::model::{FeatureKind, Lamp, OsmMap, PavedSegment};
 use crate::spec::LampsSpec;
 
@@ -50,10 +50,7 @@ pub fn map_lamps(map: &OsmMap, seeded: Option<&LampsSpec>) -> Vec<Lamp> {
     let keep_off_mapped = (spec.spacing / 2.0).max(spec.min_distance);
     for candidate in candidates(&paved, spec.spacing) {
         let p = candidate.position;
-        let clear = map.holds(p, CLEARANCE)
-            && map.clear_ground(&paved, None, p, KERB_SETBACK - 1e-6)
-            && map.out_of_buildings(p, CLEARANCE)
-            && map.features.iter().all(|f| distance(f.at, p) >= CLEARANCE);
+        // The cheap tests first: most candidates fall to the spacing.
         let spaced = lamps.iter().enumerate().all(|(i, l)| {
             let least = if i < mapped_count {
                 keep_off_mapped
@@ -62,7 +59,15 @@ pub fn map_lamps(map: &OsmMap, seeded: Option<&LampsSpec>) -> Vec<Lamp> {
             };
             distance(l.position, p) >= least
         });
-        if clear && spaced {
+        let clear = || {
+            map.holds(p, CLEARANCE)
+                && map.features.iter().all(|f| distance(f.at, p) >= CLEARANCE)
+                && (paved.iter()).all(|o| {
+                    distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + KERB_SETBACK - 1e-6
+                })
+                && map.out_of_buildings(p, CLEARANCE)
+        };
+        if spaced && clear() {
             lamps.push(Lamp {
                 id: lamps.len() as u32,
                 ..candidate
