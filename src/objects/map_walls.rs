@@ -227,7 +227,7 @@ mod tests {
         assert_eq!(walls[0].band[1], KERB_Y + 8.0 - TOP_CLEARANCE);
         assert_eq!(walls[0].height, 8.0);
         // A shape the scene lays flat: the walls, and the text, reach the top.
-        map.buildings[0].roof_shape = Some("half-hipped".to_owned());
+        map.buildings[0].roof_shape = Some("saltbox".to_owned());
         let walls = map_facing_walls(&map, &facades(), 5);
         assert_eq!(walls[0].band[1], KERB_Y + 14.0 - TOP_CLEARANCE);
         // A height from levels is the walls': the roof rises above them.

@@ -37,7 +37,7 @@
 pub const VERSION: u32 = 13;
 /// Bump when a map's city ([`map_city`], its markings and roofs) changes for the same
 /// map: it is in the stage's key for a map layout only, so a layout's key stays as it was.
-pub const MAP_VERSION: u32 = 4;
+pub const MAP_VERSION: u32 = 5;
 
 mod blocks;
 mod buildings;

@@ -11,6 +11,7 @@
 //! | `round` | the same | a half circle across the width (a barrel vault), in eight flat strips along the longest side; it rises half the width, at most [`MAX_DOME`] |
 //! | `hipped` | convex, without a courtyard | every side slopes up at one pitch until the slopes meet (the footprint's straight skeleton: on a rectangle a ridge at mid-depth shortened by the half-depth at each end, on a square a pyramid); it rises [`PITCH`] times the run to the deepest point |
 //! | `mansard` | the same | the hipped frame, each slope in two: steep over the outer half of the run to three quarters of the rise, then shallow |
+//! | `half-hipped` | four corners, convex, without a courtyard | the gabled roof along the long sides, its gables' top half hipped back: the short sides' planes start half the rise up, over gable walls |
 //! | `pyramidal` | convex, no courtyard | every side slopes up to a point over the footprint's centroid |
 //! | `dome`, `onion` | the same | the footprint drawn in towards its centroid and up in four rings, as a quarter circle: a flat-shaded dome |
 //!
@@ -42,6 +43,9 @@ pub const MAX_RISE: f64 = 8.0;
 pub const MAX_DOME: f64 = 20.0;
 /// Rings of a dome between its foot and its top.
 const DOME_RINGS: u32 = 4;
+/// How far up its rise a half-hipped roof's ends start to hip back (their gable walls
+/// below).
+const HALF_HIP: f64 = 0.5;
 /// Flat strips across a `round` roof's half circle.
 const ROUND_STEPS: u32 = 8;
 
@@ -135,10 +139,16 @@ enum Shape {
         profile: Vec<[f64; 2]>,
     },
     /// Every side sloping up at one pitch until the slopes meet: over a convex footprint
-    /// the lower envelope of the sides' planes (its straight skeleton). The height over a
-    /// point `run · s` metres in from its nearest side is `profile`'s share at `s`
-    /// (`(s, h)` points from the eaves, 0, to the deepest point, 1).
-    Envelope { profile: Vec<[f64; 2]>, run: f64 },
+    /// the lower envelope of the sides' planes (its straight skeleton). Side `i`'s plane
+    /// stands `lifts[i]` of the rise above its eave (0: it rises from the eave; a
+    /// half-hipped roof's ends start higher, over gable walls); over a point `run · s`
+    /// metres in from it, it rises `profile`'s share at `s` more (`(s, h)` points from
+    /// the eaves, 0, to the deepest point, 1; only a roof without lifts breaks it).
+    Envelope {
+        profile: Vec<[f64; 2]>,
+        run: f64,
+        lifts: Vec<f64>,
+    },
     /// A point over `apex`.
     Pyramid { apex: [f64; 2] },
     /// Rings drawn in towards `centre`.
@@ -177,21 +187,37 @@ impl Roof {
             return None;
         }
         match shape {
-            "hipped" | "mansard" => {
-                let outer = without_straight_corners(outer);
-                let run = envelope_faces(&outer)
+            "hipped" | "mansard" | "half-hipped" => {
+                let mut outer = without_straight_corners(outer);
+                let run = envelope_faces(&outer, &[])
                     .iter()
                     .flat_map(|(side, face)| face.iter().map(|&p| side.depth(p)))
                     .fold(0.0, f64::max);
-                let profile = if shape == "hipped" {
-                    vec![[0.0, 0.0], [1.0, 1.0]]
-                } else {
+                let (profile, lifts) = match shape {
+                    "hipped" => (vec![[0.0, 0.0], [1.0, 1.0]], Vec::new()),
                     // Steep over the outer half of the run to three quarters of the rise,
                     // then shallow.
-                    vec![[0.0, 0.0], [0.5, 0.75], [1.0, 1.0]]
+                    "mansard" => (vec![[0.0, 0.0], [0.5, 0.75], [1.0, 1.0]], Vec::new()),
+                    // The short sides of four: gables up to half the rise, hipped above.
+                    _ if outer.len() == 4 => {
+                        let side = |i: usize| distance(outer[i], outer[(i + 1) % 4]);
+                        // Sides 0 and 2 the long ones.
+                        if side(1) + side(3) > side(0) + side(2) {
+                            outer.rotate_left(1);
+                        }
+                        (
+                            vec![[0.0, 0.0], [1.0, 1.0]],
+                            vec![0.0, HALF_HIP, 0.0, HALF_HIP],
+                        )
+                    }
+                    _ => return None,
                 };
                 (run > 0.0).then(|| Roof {
-                    shape: Shape::Envelope { profile, run },
+                    shape: Shape::Envelope {
+                        profile,
+                        run,
+                        lifts,
+                    },
                     outer,
                     rise: (PITCH * run).min(MAX_RISE),
                 })
@@ -265,18 +291,39 @@ impl Roof {
                     }
                 }
             }
-            Shape::Envelope { profile, run } => {
-                for (side, face) in envelope_faces(o) {
-                    let lift =
-                        |p: [f64; 2]| at(p, y + self.rise * share(profile, side.depth(p) / run));
+            Shape::Envelope {
+                profile,
+                run,
+                lifts,
+            } => {
+                let in_metres: Vec<f64> = lifts.iter().map(|l| l * run).collect();
+                let faces = envelope_faces(o, &in_metres);
+                let lift = |i: usize| lifts.get(i).copied().unwrap_or(0.0);
+                let plane = |i: usize, side: &Side, p: [f64; 2]| {
+                    y + self.rise * (lift(i) + share(profile, side.depth(p) / run))
+                };
+                for (i, (side, face)) in faces.iter().enumerate() {
                     // The bands between the profile's breaks, each planar.
                     for w in profile.windows(2) {
                         let (from, to) = (w[0][0] * run, w[1][0] * run);
-                        let band = clip(&clip(&face, |p| from - side.depth(p)), |p| {
+                        let band = clip(&clip(face, |p| from - side.depth(p)), |p| {
                             side.depth(p) - to
                         });
+                        let lifted = |p| at(p, plane(i, side, p));
                         for k in 1..band.len().saturating_sub(1) {
-                            slopes.add(lift(band[0]), lift(band[k]), lift(band[k + 1]));
+                            slopes.add(lifted(band[0]), lifted(band[k]), lifted(band[k + 1]));
+                        }
+                    }
+                }
+                if lifts.iter().any(|&l| l > 0.0) {
+                    let height = |p: [f64; 2]| {
+                        (faces.iter().enumerate())
+                            .map(|(i, (side, _))| plane(i, side, p))
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    for i in 0..o.len() {
+                        for w in side_pieces(o[i], o[(i + 1) % o.len()], &faces).windows(2) {
+                            gable_wall(walls, w[0], w[1], y, &height);
                         }
                     }
                 }
@@ -362,9 +409,10 @@ fn without_straight_corners(ring: &[[f64; 2]]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Each side of convex ring `ring` with the part of the footprint nearer to it than to
-/// every other side (where its slope is the roof: the straight skeleton's face).
-fn envelope_faces(ring: &[[f64; 2]]) -> Vec<(Side, Vec<[f64; 2]>)> {
+/// Each side of convex ring `ring` with the part of the footprint where its plane is the
+/// lowest (the straight skeleton's face when no side is lifted): side `i`'s plane stands
+/// `lifts[i]` metres of run (0 where missing) above its eave and rises one per metre in.
+fn envelope_faces(ring: &[[f64; 2]], lifts: &[f64]) -> Vec<(Side, Vec<[f64; 2]>)> {
     let Some(c) = centroid(ring) else {
         return Vec::new();
     };
@@ -381,16 +429,36 @@ fn envelope_faces(ring: &[[f64; 2]]) -> Vec<(Side, Vec<[f64; 2]>)> {
             Some(Side { a, inward })
         })
         .collect();
-    sides
-        .iter()
-        .enumerate()
-        .map(|(i, side)| {
-            let face = (sides.iter().enumerate().filter(|(j, _)| *j != i))
-                .fold(ring.to_vec(), |face, (_, other)| {
-                    clip(&face, |p| side.depth(p) - other.depth(p))
-                });
-            (*side, face)
+    let level = |i: usize, p: [f64; 2]| lifts.get(i).copied().unwrap_or(0.0) + sides[i].depth(p);
+    (0..sides.len())
+        .map(|i| {
+            let face = ((0..sides.len()).filter(|&j| j != i)).fold(ring.to_vec(), |face, j| {
+                clip(&face, |p| level(i, p) - level(j, p))
+            });
+            (sides[i], face)
         })
+        .collect()
+}
+
+/// Side `a`–`b` cut where the faces' corners lie on it, in order from `a`.
+fn side_pieces(a: [f64; 2], b: [f64; 2], faces: &[(Side, Vec<[f64; 2]>)]) -> Vec<[f64; 2]> {
+    let len = distance(a, b);
+    let mut along: Vec<f64> = (faces.iter().flat_map(|(_, f)| f.iter()))
+        .filter(|&&p| line_distance(p, a, b) < 1e-6)
+        .map(|&p| ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / len)
+        .filter(|&t| t > 1e-6 && t < len - 1e-6)
+        .collect();
+    along.sort_by(f64::total_cmp);
+    along.dedup_by(|x, y| (*x - *y).abs() < 1e-6);
+    let point = |t: f64| {
+        [
+            a[0] + (b[0] - a[0]) * t / len,
+            a[1] + (b[1] - a[1]) * t / len,
+        ]
+    };
+    std::iter::once(a)
+        .chain(along.into_iter().map(point))
+        .chain(std::iter::once(b))
         .collect()
 }
 
@@ -995,6 +1063,48 @@ mod tests {
     }
 
     #[test]
+    fn a_half_hipped_roof_hips_the_top_half_of_its_gables() {
+        // 20 m along the 30° direction, 10 m deep, given from a short side.
+        let mut outer = rectangle([5.0, 7.0], (20.0, 10.0), 30.0);
+        outer.rotate_left(1);
+        let (roof, top, walls) = built("half-hipped", &outer);
+        covers(&outer, &roof, &top);
+        // The gabled roof's rise over the half-depth; the ends hip back from half of it.
+        assert!((roof.rise - PITCH * 5.0).abs() < 1e-9);
+        let (long, short) = (cos_sin_deg(30.0), cos_sin_deg(120.0));
+        for p in &top.positions {
+            let [x, y, z] = p.map(f64::from);
+            let (u, v) = (
+                (x - 5.0) * long.0 + (z - 7.0) * long.1,
+                (x - 5.0) * short.0 + (z - 7.0) * short.1,
+            );
+            let eaves = (5.0 - v.abs()) / 5.0;
+            let ends = 0.5 + (10.0 - u.abs()) / 5.0;
+            let expected = 10.0 + roof.rise * eaves.min(ends);
+            assert!((y - expected).abs() < 1e-4, "{p:?} not {expected}");
+        }
+        // The ridge: 20 m less the two hips' 2.5 m run.
+        let line = ridge(&top, roof.rise);
+        assert!(
+            (distance(line[0], line[line.len() - 1]) - 15.0).abs() < 1e-3,
+            "{line:?}"
+        );
+        // Each gable wall: the gabled triangle (10 m × the rise) less its hipped top half
+        // (5 m × half the rise), up to half the rise; none along the eaves.
+        let area: f64 = (triangles(&walls).iter())
+            .map(|&[a, b, c]| {
+                let m = cross(sub(b, a), sub(c, a));
+                dot(m, m).sqrt() / 2.0
+            })
+            .sum();
+        let end = 10.0 * roof.rise / 2.0 - 5.0 * (roof.rise / 2.0) / 2.0;
+        assert!((area - 2.0 * end).abs() < 1e-3, "{area} not {}", 2.0 * end);
+        for p in &walls.positions {
+            assert!(f64::from(p[1]) <= 10.0 + roof.rise / 2.0 + 1e-4, "{p:?}");
+        }
+    }
+
+    #[test]
     fn pyramids_and_domes_rise_over_the_centroid() {
         let hexagon = regular([3.0, -4.0], 6.0, 6);
         let (roof, top, _) = built("pyramidal", &hexagon);
@@ -1027,6 +1137,8 @@ mod tests {
         assert_eq!(Roof::of("hipped", &l_shape), None);
         assert_eq!(Roof::of("mansard", &l_shape), None);
         assert_eq!(Roof::of("half-hipped", &pentagon), None);
+        assert_eq!(Roof::of("half-hipped", &l_shape), None);
+        assert_eq!(Roof::of("saltbox", &pentagon), None);
         assert_eq!(Roof::of("gabled", &clockwise), None);
         assert!(Roof::of("pyramidal", &pentagon).is_some());
     }
