@@ -189,6 +189,9 @@ impl Roof {
         match shape {
             "hipped" | "mansard" | "half-hipped" => {
                 let mut outer = without_straight_corners(outer);
+                if outer.len() < 3 {
+                    return None;
+                }
                 let run = envelope_faces(&outer, &[])
                     .iter()
                     .flat_map(|(side, face)| face.iter().map(|&p| side.depth(p)))
@@ -396,8 +399,14 @@ impl Side {
     }
 }
 
-/// The convex ring `ring` without the corners where it goes straight on.
+/// The convex ring `ring` without repeated points and the corners where it goes straight
+/// on.
 fn without_straight_corners(ring: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut ring = ring.to_vec();
+    ring.dedup();
+    if ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    }
     let n = ring.len();
     (0..n)
         .filter(|&i| {
@@ -1031,6 +1040,10 @@ mod tests {
             [6.0, 10.0],
             [0.0, 10.0],
         ];
+        // The same with a corner given twice: the same roof.
+        let mut twice = house.to_vec();
+        twice.insert(3, house[3]);
+        assert_eq!(Roof::of("hipped", &twice), Roof::of("hipped", &house));
         for shape in ["hipped", "mansard"] {
             let (roof, top, walls) = built(shape, &house);
             covers(&house, &roof, &top);
