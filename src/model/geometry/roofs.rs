@@ -43,8 +43,8 @@ pub const MAX_RISE: f64 = 8.0;
 pub const MAX_DOME: f64 = 20.0;
 /// Rings of a dome between its foot and its top.
 const DOME_RINGS: u32 = 4;
-/// How far up its rise a half-hipped roof's ends start to hip back (their gable walls
-/// below).
+/// How far up a half-hipped roof's ends start to hip back (their gable walls below), as
+/// a share of the hipped roof's run.
 const HALF_HIP: f64 = 0.5;
 /// Flat strips across a `round` roof's half circle.
 const ROUND_STEPS: u32 = 8;
@@ -140,10 +140,11 @@ enum Shape {
     },
     /// Every side sloping up at one pitch until the slopes meet: over a convex footprint
     /// the lower envelope of the sides' planes (its straight skeleton). Side `i`'s plane
-    /// stands `lifts[i]` of the rise above its eave (0: it rises from the eave; a
-    /// half-hipped roof's ends start higher, over gable walls); over a point `run · s`
-    /// metres in from it, it rises `profile`'s share at `s` more (`(s, h)` points from
-    /// the eaves, 0, to the deepest point, 1; only a roof without lifts breaks it).
+    /// starts `lifts[i]` metres of run up (0 where missing: at its eave; a half-hipped
+    /// roof's ends start higher, over gable walls), so over a point `d` metres in from
+    /// the side it stands at level `lifts[i] + d`; the roof is at `profile`'s share of
+    /// the rise at `level / run`, `run` the envelope's highest level (`(s, h)` points from
+    /// the eaves, 0, to the top, 1; only a roof without lifts breaks it).
     Envelope {
         profile: Vec<[f64; 2]>,
         run: f64,
@@ -192,29 +193,25 @@ impl Roof {
                 if outer.len() < 3 {
                     return None;
                 }
-                let run = envelope_faces(&outer, &[])
-                    .iter()
-                    .flat_map(|(side, face)| face.iter().map(|&p| side.depth(p)))
-                    .fold(0.0, f64::max);
                 let (profile, lifts) = match shape {
                     "hipped" => (vec![[0.0, 0.0], [1.0, 1.0]], Vec::new()),
                     // Steep over the outer half of the run to three quarters of the rise,
                     // then shallow.
                     "mansard" => (vec![[0.0, 0.0], [0.5, 0.75], [1.0, 1.0]], Vec::new()),
-                    // The short sides of four: gables up to half the rise, hipped above.
+                    // The short sides of four: gables up to half the hipped run, hipped
+                    // above.
                     _ if outer.len() == 4 => {
                         let side = |i: usize| distance(outer[i], outer[(i + 1) % 4]);
                         // Sides 0 and 2 the long ones.
                         if side(1) + side(3) > side(0) + side(2) {
                             outer.rotate_left(1);
                         }
-                        (
-                            vec![[0.0, 0.0], [1.0, 1.0]],
-                            vec![0.0, HALF_HIP, 0.0, HALF_HIP],
-                        )
+                        let lift = HALF_HIP * envelope_top(&outer, &[]);
+                        (vec![[0.0, 0.0], [1.0, 1.0]], vec![0.0, lift, 0.0, lift])
                     }
                     _ => return None,
                 };
+                let run = envelope_top(&outer, &lifts);
                 (run > 0.0).then(|| Roof {
                     shape: Shape::Envelope {
                         profile,
@@ -299,18 +296,19 @@ impl Roof {
                 run,
                 lifts,
             } => {
-                let in_metres: Vec<f64> = lifts.iter().map(|l| l * run).collect();
-                let faces = envelope_faces(o, &in_metres);
-                let lift = |i: usize| lifts.get(i).copied().unwrap_or(0.0);
+                let faces = envelope_faces(o, lifts);
+                let level = |i: usize, side: &Side, p: [f64; 2]| {
+                    lifts.get(i).copied().unwrap_or(0.0) + side.depth(p)
+                };
                 let plane = |i: usize, side: &Side, p: [f64; 2]| {
-                    y + self.rise * (lift(i) + share(profile, side.depth(p) / run))
+                    y + self.rise * share(profile, level(i, side, p) / run)
                 };
                 for (i, (side, face)) in faces.iter().enumerate() {
                     // The bands between the profile's breaks, each planar.
                     for w in profile.windows(2) {
                         let (from, to) = (w[0][0] * run, w[1][0] * run);
-                        let band = clip(&clip(face, |p| from - side.depth(p)), |p| {
-                            side.depth(p) - to
+                        let band = clip(&clip(face, |p| from - level(i, side, p)), |p| {
+                            level(i, side, p) - to
                         });
                         let lifted = |p| at(p, plane(i, side, p));
                         for k in 1..band.len().saturating_sub(1) {
@@ -447,6 +445,17 @@ fn envelope_faces(ring: &[[f64; 2]], lifts: &[f64]) -> Vec<(Side, Vec<[f64; 2]>)
             (sides[i], face)
         })
         .collect()
+}
+
+/// The highest level of the envelope of convex `ring`'s sides' planes, lifted as
+/// [`envelope_faces`] lifts them: at a corner of a face.
+fn envelope_top(ring: &[[f64; 2]], lifts: &[f64]) -> f64 {
+    (envelope_faces(ring, lifts).iter().enumerate())
+        .flat_map(|(i, (side, face))| {
+            let lift = lifts.get(i).copied().unwrap_or(0.0);
+            face.iter().map(move |&p| lift + side.depth(p))
+        })
+        .fold(0.0, f64::max)
 }
 
 /// Side `a`–`b` cut where the faces' corners lie on it, in order from `a`.
@@ -1154,5 +1163,49 @@ mod tests {
         assert_eq!(Roof::of("saltbox", &pentagon), None);
         assert_eq!(Roof::of("gabled", &clockwise), None);
         assert!(Roof::of("pyramidal", &pentagon).is_some());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(crate::test_seed::proptest_config(64))]
+
+        /// Hipped and mansard roofs on any convex footprint (points of an ellipse), and
+        /// half-hipped ones on any four of them, cover it once, face up and stay between
+        /// the eaves and the rise; only the half-hipped has walls, below half its rise.
+        #[test]
+        fn envelope_roofs_cover_any_convex_footprint_once(
+            angles in proptest::collection::vec(0.0f64..360.0, 3..12),
+            axes in (3.0f64..30.0, 3.0f64..30.0),
+            turn in 0.0f64..180.0,
+            centre in (-20.0f64..20.0, -20.0f64..20.0),
+        ) {
+            let mut angles = angles;
+            angles.sort_by(f64::total_cmp);
+            angles.dedup_by(|a, b| (*a - *b).abs() < 2.0);
+            if angles.len() > 1 && angles[0] + 360.0 - angles[angles.len() - 1] < 2.0 {
+                angles.pop();
+            }
+            proptest::prop_assume!(angles.len() >= 3);
+            let (k, s) = cos_sin_deg(turn);
+            let ring: Vec<[f64; 2]> = (angles.iter())
+                .map(|&a| {
+                    let (x, z) = cos_sin_deg(a);
+                    let (x, z) = (axes.0 * x, axes.1 * z);
+                    [centre.0 + x * k - z * s, centre.1 + x * s + z * k]
+                })
+                .collect();
+            proptest::prop_assume!(signed_area(&ring) > 1.0);
+            for shape in ["hipped", "mansard"] {
+                let (roof, top, walls) = built(shape, &ring);
+                covers(&ring, &roof, &top);
+                proptest::prop_assert!(walls.indices.is_empty(), "{shape}");
+            }
+            if ring.len() == 4 {
+                let (roof, top, walls) = built("half-hipped", &ring);
+                covers(&ring, &roof, &top);
+                for p in &walls.positions {
+                    proptest::prop_assert!(f64::from(p[1]) <= 10.0 + roof.rise / 2.0 + 1e-3);
+                }
+            }
+        }
     }
 }
