@@ -295,40 +295,7 @@ impl Roof {
                 profile,
                 run,
                 lifts,
-            } => {
-                let faces = envelope_faces(o, lifts);
-                let level = |i: usize, side: &Side, p: [f64; 2]| {
-                    lifts.get(i).copied().unwrap_or(0.0) + side.depth(p)
-                };
-                let plane = |i: usize, side: &Side, p: [f64; 2]| {
-                    y + self.rise * share(profile, level(i, side, p) / run)
-                };
-                for (i, (side, face)) in faces.iter().enumerate() {
-                    // The bands between the profile's breaks, each planar.
-                    for w in profile.windows(2) {
-                        let (from, to) = (w[0][0] * run, w[1][0] * run);
-                        let band = clip(&clip(face, |p| from - level(i, side, p)), |p| {
-                            level(i, side, p) - to
-                        });
-                        let lifted = |p| at(p, plane(i, side, p));
-                        for k in 1..band.len().saturating_sub(1) {
-                            slopes.add(lifted(band[0]), lifted(band[k]), lifted(band[k + 1]));
-                        }
-                    }
-                }
-                if lifts.iter().any(|&l| l > 0.0) {
-                    let height = |p: [f64; 2]| {
-                        (faces.iter().enumerate())
-                            .map(|(i, (side, _))| plane(i, side, p))
-                            .fold(f64::INFINITY, f64::min)
-                    };
-                    for i in 0..o.len() {
-                        for w in side_pieces(o[i], o[(i + 1) % o.len()], &faces).windows(2) {
-                            gable_wall(walls, w[0], w[1], y, &height);
-                        }
-                    }
-                }
-            }
+            } => self.envelope(y, (profile, *run, lifts), &mut slopes, walls),
             Shape::Pyramid { apex } => {
                 let apex = *apex;
                 for i in 0..o.len() {
@@ -336,6 +303,50 @@ impl Roof {
                 }
             }
             Shape::Dome { centre } => self.dome(y, *centre, &mut slopes),
+        }
+    }
+
+    /// A hipped, mansard or half-hipped roof (see `Shape::Envelope`): its faces into
+    /// `slopes`, eaves at `y`; the gable walls of lifted sides into `walls`.
+    fn envelope(
+        &self,
+        y: f64,
+        (profile, run, lifts): (&[[f64; 2]], f64, &[f64]),
+        slopes: &mut Slopes,
+        walls: &mut MeshBuilder,
+    ) {
+        let o = &self.outer;
+        let faces = envelope_faces(o, lifts);
+        let level = |i: usize, side: &Side, p: [f64; 2]| {
+            lifts.get(i).copied().unwrap_or(0.0) + side.depth(p)
+        };
+        let plane = |i: usize, side: &Side, p: [f64; 2]| {
+            y + self.rise * share(profile, level(i, side, p) / run)
+        };
+        for (i, (side, face)) in faces.iter().enumerate() {
+            // The bands between the profile's breaks, each planar.
+            for w in profile.windows(2) {
+                let (from, to) = (w[0][0] * run, w[1][0] * run);
+                let band = clip(&clip(face, |p| from - level(i, side, p)), |p| {
+                    level(i, side, p) - to
+                });
+                let lifted = |p| at(p, plane(i, side, p));
+                for k in 1..band.len().saturating_sub(1) {
+                    slopes.add(lifted(band[0]), lifted(band[k]), lifted(band[k + 1]));
+                }
+            }
+        }
+        if lifts.iter().any(|&l| l > 0.0) {
+            let height = |p: [f64; 2]| {
+                (faces.iter().enumerate())
+                    .map(|(i, (side, _))| plane(i, side, p))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            for i in 0..o.len() {
+                for w in side_pieces(o[i], o[(i + 1) % o.len()], &faces).windows(2) {
+                    gable_wall(walls, w[0], w[1], y, &height);
+                }
+            }
         }
     }
 
