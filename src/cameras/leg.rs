@@ -68,18 +68,7 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
 /// when it ends on the box's edge; a run no longer than that is left out. When that
 /// leaves no leg, every run is driven whole.
 pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<Leg> {
-    let mut runs: Vec<Vec<PavedSegment>> = Vec::new();
-    let mut last: Option<PavedSegment> = None;
-    for s in map.paved_segments() {
-        let joined = last.is_some_and(|l| l.road == s.road && l.b == s.a);
-        if !joined {
-            runs.push(Vec::new());
-        }
-        if let Some(run) = runs.last_mut() {
-            run.push(s);
-        }
-        last = Some(s);
-    }
+    let runs = map.paved_runs();
     let lane = |s: &PavedSegment, length: f64| {
         let n = left_normal(s.a, s.b)?;
         let across = if map.roads[s.road].oneway {

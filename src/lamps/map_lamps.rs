@@ -24,7 +24,7 @@
 
 use crate::model::geometry::map_lines::MIN_SINE;
 use crate::model::geometry::polygon::{direction, distance, left_normal, nearest};
-use crate::model::{FeatureKind, Lamp, OsmMap, PavedSegment};
+use crate::model::{FeatureKind, Lamp, OsmMap, PavedSegment, paved_runs};
 use crate::spec::LampsSpec;
 
 /// The farthest a mapped lamp stands from the road it lights, metres: lamps farther out
@@ -165,16 +165,7 @@ fn candidates(paved: &[PavedSegment], spacing: f64) -> Vec<Lamp> {
 /// it). A run joins the straightest of those, the first in map order on a tie; each run
 /// is in one street.
 fn streets(paved: &[PavedSegment]) -> Vec<Vec<PavedSegment>> {
-    let mut runs: Vec<&[PavedSegment]> = Vec::new();
-    let mut start = 0;
-    for i in 1..=paved.len() {
-        let joined =
-            i < paved.len() && paved[i].road == paved[i - 1].road && paved[i].a == paved[i - 1].b;
-        if !joined {
-            runs.push(&paved[start..i]);
-            start = i;
-        }
-    }
+    let runs = paved_runs(paved.iter().copied());
     let turned = |s: &PavedSegment| PavedSegment {
         a: s.b,
         b: s.a,
@@ -210,7 +201,7 @@ fn streets(paved: &[PavedSegment]) -> Vec<Vec<PavedSegment>> {
     let mut used = vec![false; runs.len()];
     let mut streets = Vec::new();
     for i in 0..runs.len() {
-        if used[i] || runs[i].is_empty() {
+        if used[i] {
             continue;
         }
         used[i] = true;
@@ -231,11 +222,11 @@ fn streets(paved: &[PavedSegment]) -> Vec<Vec<PavedSegment>> {
                 };
                 used[j] = true;
                 if back {
-                    let mut before = oriented(runs[j], !reversed);
+                    let mut before = oriented(&runs[j], !reversed);
                     before.extend(street);
                     street = before;
                 } else {
-                    street.extend(oriented(runs[j], reversed));
+                    street.extend(oriented(&runs[j], reversed));
                 }
             }
         }

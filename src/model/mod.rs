@@ -48,7 +48,7 @@ pub use object_kind::ObjectKind;
 pub use osm_map::CAMERA_LANE as MAP_CAMERA_LANE;
 pub use osm_map::{
     FeatureKind, GeoBox, LeftOut, MapArea, MapBuilding, MapFeature, MapPolygon, MapRoad,
-    OsmElement, OsmMap, PavedSegment, SIGNAL_DIRECTION,
+    OsmElement, OsmMap, PavedSegment, SIGNAL_DIRECTION, paved_runs,
 };
 pub use osm_map::{LANE as MAP_LANE, camera_lane as map_camera_lane, lanes as map_lanes};
 pub use parsed_layout::ParsedLayout;

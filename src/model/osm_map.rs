@@ -92,6 +92,20 @@ pub struct PavedSegment {
     pub sidewalks: [f64; 2],
 }
 
+/// `segments` in runs, as [`OsmMap::paved_runs`] groups a map's.
+pub fn paved_runs(segments: impl IntoIterator<Item = PavedSegment>) -> Vec<Vec<PavedSegment>> {
+    let mut runs: Vec<Vec<PavedSegment>> = Vec::new();
+    for s in segments {
+        match runs.last_mut() {
+            Some(run) if run.last().is_some_and(|l| l.road == s.road && l.b == s.a) => {
+                run.push(s);
+            }
+            _ => runs.push(vec![s]),
+        }
+    }
+    runs
+}
+
 impl OsmMap {
     /// Every paved segment, road by road in map order, along each road's centreline.
     pub fn paved_segments(&self) -> impl Iterator<Item = PavedSegment> + '_ {
@@ -112,6 +126,12 @@ impl OsmMap {
                         sidewalks: [f[1], f[2]],
                     })
             })
+    }
+
+    /// The paved segments in runs: consecutive segments of one road, each beginning where
+    /// the one before ends (an unpaved segment ends a run), in map order.
+    pub fn paved_runs(&self) -> Vec<Vec<PavedSegment>> {
+        paved_runs(self.paved_segments())
     }
 
     /// The paved segment nearest to `p`, the point of its centreline nearest to `p` and

@@ -155,6 +155,33 @@ fn map_spec(extract: &str, frames: u32) -> String {
     )
 }
 
+/// A temporary folder holding the Kamppi extract as `kamppi.osm.pbf`.
+fn with_kamppi() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
+    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    dir
+}
+
+/// [`build`] with `-v`, which must succeed: what it said of each stage.
+fn build_saying(dir: &Path, spec: &str, out: &str) -> String {
+    let done = Command::new(env!("CARGO_BIN_EXE_cityspec"))
+        .current_dir(dir)
+        .args(["build", "-v", spec, "--out", out, "--cache", "cache"])
+        .output()
+        .unwrap();
+    assert_eq!(done.status.code(), Some(0), "{}", text(&done));
+    format!("{}{}", text(&done), String::from_utf8_lossy(&done.stdout))
+}
+
+/// How many objects named `prefix…` the city built into `out` has.
+fn objects_named(dir: &Path, out: &str, prefix: &str) -> usize {
+    let obj = fs::read_to_string(dir.join(out).join("kamppi/city.obj")).unwrap();
+    obj.lines()
+        .filter(|l| l.strip_prefix("o ").is_some_and(|n| n.starts_with(prefix)))
+        .count()
+}
+
 fn build(dir: &Path, spec: &str, out: &str) -> Output {
     Command::new(env!("CARGO_BIN_EXE_cityspec"))
         .current_dir(dir)
@@ -165,9 +192,7 @@ fn build(dir: &Path, spec: &str, out: &str) -> Output {
 
 #[test]
 fn a_spec_builds_a_city_with_labelled_frames_from_a_map() {
-    let dir = tempfile::tempdir().unwrap();
-    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
-    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    let dir = with_kamppi();
     fs::write(dir.path().join("map.toml"), map_spec("kamppi.osm.pbf", 6)).unwrap();
     let out = build(dir.path(), "map.toml", "a");
     assert_eq!(out.status.code(), Some(0), "{}", text(&out));
@@ -238,9 +263,7 @@ fn a_map_spec_whose_extract_is_broken_is_exit_code_2_and_writes_nothing() {
 
 #[test]
 fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from_the_cache() {
-    let dir = tempfile::tempdir().unwrap();
-    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
-    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    let dir = with_kamppi();
     let plain = map_spec("kamppi.osm.pbf", 1);
     let filled = plain.replace(
         "file = 'kamppi.osm.pbf'\n",
@@ -251,23 +274,11 @@ fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from
     fs::write(dir.path().join("filled.toml"), filled).unwrap();
     let out = build(dir.path(), "plain.toml", "a");
     assert_eq!(out.status.code(), Some(0), "{}", text(&out));
-    let verbose = |spec: &str, out: &str| {
-        Command::new(env!("CARGO_BIN_EXE_cityspec"))
-            .current_dir(dir.path())
-            .args(["build", "-v", spec, "--out", out, "--cache", "cache"])
-            .output()
-            .unwrap()
-    };
-    let out = verbose("filled.toml", "b");
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
-    let said = format!("{}{}", text(&out), String::from_utf8_lossy(&out.stdout));
+    let said = build_saying(dir.path(), "filled.toml", "b");
     // The map is the plain build's; only placing and what follows it run.
     assert!(said.contains("cached layout"), "{said}");
     assert!(said.contains("ran    place"), "{said}");
-    let buildings = |out: &str| {
-        let obj = fs::read_to_string(dir.path().join(out).join("kamppi/city.obj")).unwrap();
-        obj.lines().filter(|l| l.starts_with("o building_")).count()
-    };
+    let buildings = |out: &str| objects_named(dir.path(), out, "building_");
     let (mapped, all) = (buildings("a"), buildings("b"));
     assert!(
         all > mapped,
@@ -288,9 +299,7 @@ fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from
 
 #[test]
 fn lamps_are_seeded_where_the_map_has_none_and_only_the_lamps_stage_reruns() {
-    let dir = tempfile::tempdir().unwrap();
-    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/osm/kamppi.osm.pbf");
-    fs::copy(&fixture, dir.path().join("kamppi.osm.pbf")).unwrap();
+    let dir = with_kamppi();
     let plain = map_spec("kamppi.osm.pbf", 1);
     let mapped_only = plain.replace(
         "file = 'kamppi.osm.pbf'\n",
@@ -304,30 +313,13 @@ fn lamps_are_seeded_where_the_map_has_none_and_only_the_lamps_stage_reruns() {
     ] {
         fs::write(dir.path().join(format!("{name}.toml")), text).unwrap();
     }
-    let lamps = |out: &str| {
-        let obj = fs::read_to_string(dir.path().join(out).join("kamppi/city.obj")).unwrap();
-        obj.lines().filter(|l| l.starts_with("o lamp_")).count()
-    };
+    let lamps = |out: &str| objects_named(dir.path(), out, "lamp_");
     let out = build(dir.path(), "mapped.toml", "a");
     assert_eq!(out.status.code(), Some(0), "{}", text(&out));
     let out = build(dir.path(), "plain.toml", "b");
     assert_eq!(out.status.code(), Some(0), "{}", text(&out));
     // A denser `[lamps]` reads the map from the cache and reruns the lamps and after.
-    let out = Command::new(env!("CARGO_BIN_EXE_cityspec"))
-        .current_dir(dir.path())
-        .args([
-            "build",
-            "-v",
-            "dense.toml",
-            "--out",
-            "c",
-            "--cache",
-            "cache",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
-    let said = format!("{}{}", text(&out), String::from_utf8_lossy(&out.stdout));
+    let said = build_saying(dir.path(), "dense.toml", "c");
     assert!(said.contains("cached layout"), "{said}");
     assert!(said.contains("ran    lamps"), "{said}");
     let (mapped, seeded, dense) = (lamps("a"), lamps("b"), lamps("c"));

@@ -981,14 +981,6 @@ mod tests {
     fn round_and_gambrel_roofs_follow_their_cross_section_with_gables_to_match() {
         // 20 m along x, 10 m across z, round (0, 0).
         let outer = rectangle([0.0, 0.0], (20.0, 10.0), 0.0);
-        let gables = |walls: &Mesh| -> f64 {
-            (triangles(walls).iter())
-                .map(|&[a, b, c]| {
-                    let m = cross(sub(b, a), sub(c, a));
-                    dot(m, m).sqrt() / 2.0
-                })
-                .sum()
-        };
         // A half circle of radius 5 over the eaves at 10 m: every corner of the roof on
         // it; the gables the half circle's eight strips, twice.
         let (roof, top, walls) = built("round", &outer);
@@ -1000,9 +992,9 @@ mod tests {
         }
         let strips = 8.0 * 0.5 * 25.0 * cos_sin_deg(180.0 / 8.0).1;
         assert!(
-            (gables(&walls) - 2.0 * strips).abs() < 1e-3,
+            (wall_area(&walls) - 2.0 * strips).abs() < 1e-3,
             "{}",
-            gables(&walls)
+            wall_area(&walls)
         );
         // A gambrel: 3 m high, its knees 2.5 m in from the eaves at three quarters of that.
         let (roof, top, walls) = built("gambrel", &outer);
@@ -1021,9 +1013,9 @@ mod tests {
         }
         let end = 2.5 * (0.75 / 2.0 + 1.75 / 2.0) * roof.rise * 2.0;
         assert!(
-            (gables(&walls) - 2.0 * end).abs() < 1e-3,
+            (wall_area(&walls) - 2.0 * end).abs() < 1e-3,
             "{}",
-            gables(&walls)
+            wall_area(&walls)
         );
     }
 
@@ -1040,6 +1032,31 @@ mod tests {
         let (roof, top, _) = built("hipped", &square);
         covers(&square, &roof, &top);
         assert_eq!(ridge(&top, roof.rise).len(), 1);
+    }
+
+    /// The area of `walls`' triangles.
+    fn wall_area(walls: &Mesh) -> f64 {
+        (triangles(walls).iter())
+            .map(|&[a, b, c]| {
+                let m = cross(sub(b, a), sub(c, a));
+                dot(m, m).sqrt() / 2.0
+            })
+            .sum()
+    }
+
+    /// `shape` on a regular hexagon of radius 6 round (3, −4): one apex over the centre,
+    /// rising the hexagon's inradius' worth.
+    fn a_pyramid_over_the_hexagon(shape: &str) {
+        let hexagon = regular([3.0, -4.0], 6.0, 6);
+        let (roof, top, _) = built(shape, &hexagon);
+        covers(&hexagon, &roof, &top);
+        let apex = ridge(&top, roof.rise);
+        assert_eq!(apex.len(), 1, "{shape}");
+        assert!(distance(apex[0], [3.0, -4.0]) < 1e-4, "{shape}");
+        assert!(
+            (roof.rise - PITCH * 6.0 * cos_sin_deg(30.0).0).abs() < 1e-9,
+            "{shape}"
+        );
     }
 
     /// The least depth of `p` inside convex `ring`'s sides.
@@ -1085,14 +1102,8 @@ mod tests {
                 assert!((y - expected).abs() < 1e-4, "{shape}: {p:?} not {expected}");
             }
         }
-        // A regular hexagon: a pyramid over its centre, rising its inradius' worth.
-        let hexagon = regular([3.0, -4.0], 6.0, 6);
-        let (roof, top, _) = built("hipped", &hexagon);
-        covers(&hexagon, &roof, &top);
-        let apex = ridge(&top, roof.rise);
-        assert_eq!(apex.len(), 1);
-        assert!(distance(apex[0], [3.0, -4.0]) < 1e-4);
-        assert!((roof.rise - PITCH * 6.0 * cos_sin_deg(30.0).0).abs() < 1e-9);
+        // A regular hexagon: a pyramid over its centre.
+        a_pyramid_over_the_hexagon("hipped");
     }
 
     #[test]
@@ -1124,12 +1135,7 @@ mod tests {
         );
         // Each gable wall: the gabled triangle (10 m × the rise) less its hipped top half
         // (5 m × half the rise), up to half the rise; none along the eaves.
-        let area: f64 = (triangles(&walls).iter())
-            .map(|&[a, b, c]| {
-                let m = cross(sub(b, a), sub(c, a));
-                dot(m, m).sqrt() / 2.0
-            })
-            .sum();
+        let area = wall_area(&walls);
         let end = 10.0 * roof.rise / 2.0 - 5.0 * (roof.rise / 2.0) / 2.0;
         assert!((area - 2.0 * end).abs() < 1e-3, "{area} not {}", 2.0 * end);
         for p in &walls.positions {
@@ -1139,14 +1145,7 @@ mod tests {
 
     #[test]
     fn pyramids_and_domes_rise_over_the_centroid() {
-        let hexagon = regular([3.0, -4.0], 6.0, 6);
-        let (roof, top, _) = built("pyramidal", &hexagon);
-        covers(&hexagon, &roof, &top);
-        let apex = ridge(&top, roof.rise);
-        assert_eq!(apex.len(), 1);
-        assert!(distance(apex[0], [3.0, -4.0]) < 1e-4);
-        // Run: the hexagon's inradius.
-        assert!((roof.rise - PITCH * 6.0 * cos_sin_deg(30.0).0).abs() < 1e-9);
+        a_pyramid_over_the_hexagon("pyramidal");
         let octagon = regular([0.0, 0.0], 9.0, 8);
         let (roof, top, _) = built("dome", &octagon);
         assert!((roof.rise - 9.0).abs() < 1e-9);
