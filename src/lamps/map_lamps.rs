@@ -27,6 +27,8 @@ use crate::model::geometry::polygon::{direction, distance, left_normal, nearest}
 use crate::model::{FeatureKind, Lamp, OsmMap, PavedSegment, paved_runs};
 use crate::spec::LampsSpec;
 
+use super::seed::{self, Street};
+
 /// The farthest a mapped lamp stands from the road it lights, metres: lamps farther out
 /// light paths and parks, not a street, and are left out.
 pub const REACH: f64 = 25.0;
@@ -43,40 +45,25 @@ pub const CLEARANCE: f64 = 1.0;
 /// roads (see the module's rules), positions in metres (a metre per "pixel"). A
 /// `spacing` that is not a positive finite number seeds none. Pure and deterministic.
 pub fn map_lamps(map: &OsmMap, seeded: Option<&LampsSpec>) -> Vec<Lamp> {
-    let mut lamps = mapped(map);
+    let lamps = mapped(map);
     let Some(spec) = seeded.filter(|s| s.spacing.is_finite() && s.spacing > 0.0) else {
         return lamps;
     };
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
-    let mapped_count = lamps.len();
-    let keep_off_mapped = (spec.spacing / 2.0).max(spec.min_distance);
-    for candidate in candidates(&paved, spec.spacing) {
-        let p = candidate.position;
-        // The cheap tests first: most candidates fall to the spacing.
-        let spaced = lamps.iter().enumerate().all(|(i, l)| {
-            let least = if i < mapped_count {
-                keep_off_mapped
-            } else {
-                spec.min_distance
-            };
-            distance(l.position, p) >= least
-        });
-        let clear = || {
-            map.holds(p, CLEARANCE)
-                && map.features.iter().all(|f| distance(f.at, p) >= CLEARANCE)
-                && (paved.iter()).all(|o| {
-                    distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + KERB_SETBACK - 1e-6
-                })
-                && map.out_of_buildings(p, CLEARANCE)
-        };
-        if spaced && clear() {
-            lamps.push(Lamp {
-                id: lamps.len() as u32,
-                ..candidate
-            });
-        }
-    }
-    lamps
+    let clear = |p: [f64; 2]| {
+        map.holds(p, CLEARANCE)
+            && map.features.iter().all(|f| distance(f.at, p) >= CLEARANCE)
+            && (paved.iter())
+                .all(|o| distance(p, nearest(o.a, o.b, p)) >= o.width / 2.0 + KERB_SETBACK - 1e-6)
+            && map.out_of_buildings(p, CLEARANCE)
+    };
+    seed::keep(
+        lamps,
+        candidates(&paved, spec.spacing),
+        (spec.spacing / 2.0).max(spec.min_distance),
+        spec.min_distance,
+        clear,
+    )
 }
 
 /// The lamps at the map's `street_lamp` nodes, in node order.
@@ -119,43 +106,19 @@ fn mapped(map: &OsmMap) -> Vec<Lamp> {
     lamps
 }
 
-/// The seeded candidates (id 0) along every street: per street the left side, then the
-/// right, each in order along it. Streets are in the order of their first run.
+/// The seeded candidates (id 0) along every street ([`seed::candidates`]): per street the
+/// left side, then the right, [`KERB_SETBACK`] behind the kerb where that side has
+/// [`MIN_SIDEWALK`]. Streets are in the order of their first run.
 fn candidates(paved: &[PavedSegment], spacing: f64) -> Vec<Lamp> {
-    let mut lamps = Vec::new();
-    for street in streets(paved) {
-        for side in [0, 1] {
-            let mut along = spacing / 2.0;
-            let mut passed = 0.0;
-            for s in &street {
-                let length = distance(s.a, s.b);
-                let Some(n) = left_normal(s.a, s.b) else {
-                    continue;
-                };
-                while along < passed + length {
-                    let t = (along - passed) / length;
-                    along += spacing;
-                    if s.sidewalks[side] < MIN_SIDEWALK {
-                        continue;
-                    }
-                    let q = [
-                        s.a[0] + t * (s.b[0] - s.a[0]),
-                        s.a[1] + t * (s.b[1] - s.a[1]),
-                    ];
-                    let out = if side == 0 { n } else { [-n[0], -n[1]] };
-                    let kerb = s.width / 2.0 + KERB_SETBACK;
-                    lamps.push(Lamp {
-                        id: 0,
-                        position: [q[0] + out[0] * kerb, q[1] + out[1] * kerb],
-                        road: s.road as u32,
-                        facing: [-out[0], -out[1]],
-                    });
-                }
-                passed += length;
-            }
-        }
-    }
-    lamps
+    let streets: Vec<Street> = (streets(paved).into_iter())
+        .map(|segments| Street {
+            segments,
+            sides: [0, 1],
+        })
+        .collect();
+    seed::candidates(&streets, spacing, |s, side, _| {
+        (s.sidewalks[side] >= MIN_SIDEWALK).then_some(s.width / 2.0 + KERB_SETBACK)
+    })
 }
 
 /// The paved segments as streets: runs of consecutive paved segments of one road, joined

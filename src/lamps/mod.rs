@@ -2,10 +2,13 @@
 //! on a map, [`map_lamps`]: its own lamps, and the same rule along its streets' polylines.
 //!
 //! The paper's rule ("every 100 px along each road on the green strips of both sides, none
-//! inside a crossing, of two too close one removed"), made exact:
+//! inside a crossing, of two too close one removed") is one code for both inputs
+//! (`seed.rs`): streets as [`PavedSegment`] polylines, candidates along them, pruning. A
+//! layout's part, made exact:
 //!
-//! 1. Candidates at along-positions `start + spacing/2 + k·spacing` while `< end`, on the low
-//!    side (above / left) and the high side (below / right) of every road.
+//! 1. Each road is a street of one segment ([`Road::paved`]), its low side (above / left)
+//!    seeded first; candidates at along-positions `start + spacing/2 + k·spacing` while
+//!    `< end`.
 //! 2. At a candidate, the *run* is the number of strip-coloured pixels (nearest palette
 //!    colour within tolerance) counted outward from the road edge, in the candidate's
 //!    along-pixel column. A candidate with run 0 is dropped: it is not on a strip, and
@@ -15,25 +18,26 @@
 //! 4. Over all roads in (road id, side, along) order, a lamp closer than `min_distance` to
 //!    one already kept is removed. Ids are consecutive in that order.
 //!
-//! `facing` is the unit vector from the lamp to the road's centre line. Roads are probed in
-//! parallel; results are collected in road order, so any thread count gives the same list.
+//! `facing` is the unit vector from the lamp to the road's centre line. The strips' typical
+//! depths are read in parallel; results are collected in road order, so any thread count
+//! gives the same list.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 1;
 
 mod map_lamps;
 mod road_side;
+mod seed;
 
 pub use map_lamps::map_lamps;
-
-use std::collections::HashMap;
 
 use image::RgbImage;
 use rayon::prelude::*;
 
-use crate::model::{Axis, Lamp, ParsedLayout, Road};
+use crate::model::{Axis, Lamp, ParsedLayout, PavedSegment, Road};
 use crate::spec::Palette;
 use road_side::{RoadSide, Side};
+use seed::{SideIndex, Street};
 
 /// Lamp sites along every road of `layout`, on the strip-coloured pixels of both sides.
 ///
@@ -49,92 +53,51 @@ pub fn site_lamps(
     if !(spacing_px.is_finite() && spacing_px > 0.0) {
         return Vec::new();
     }
-    let mut roads: Vec<&Road> = layout.roads.iter().collect();
-    roads.sort_by_key(|r| r.id);
-    let candidates: Vec<Vec<Lamp>> = roads
-        .par_iter()
-        .map(|road| road_candidates(image, palette, road, spacing_px))
+    let mut roads: Vec<&Road> = (layout.roads.iter())
+        .filter(|r| {
+            let finite = [r.start, r.end, r.line, r.edges[0], r.edges[1]];
+            finite.iter().all(|v| v.is_finite()) && r.start < r.end
+        })
         .collect();
-    let mut lamps = prune(candidates.into_iter().flatten(), min_distance_px);
-    for (id, lamp) in lamps.iter_mut().enumerate() {
-        lamp.id = id as u32;
-    }
-    lamps
-}
-
-/// Step 1–3 for one road: its candidates on both sides, low side first, in along order.
-fn road_candidates(image: &RgbImage, palette: &Palette, road: &Road, spacing: f64) -> Vec<Lamp> {
-    let finite = [
-        road.start,
-        road.end,
-        road.line,
-        road.edges[0],
-        road.edges[1],
-    ];
-    if !finite.iter().all(|v| v.is_finite()) {
-        return Vec::new();
-    }
-    let mut lamps = Vec::new();
-    for side in [Side::Low, Side::High] {
-        let probe = RoadSide::new(image, palette, road, side);
-        let Some(typical) = probe.typical_depth() else {
-            continue;
+    roads.sort_by_key(|r| r.id);
+    // Each side's typical strip depth reads every pixel column of the road: in parallel,
+    // collected in road order.
+    let typical: Vec<[Option<u32>; 2]> = roads
+        .par_iter()
+        .map(|road| [Side::Low, Side::High].map(|side| RoadSide::new(image, palette, road, side).typical_depth()))
+        .collect();
+    // Step 1: each road is a street of one segment, its low side (above, left) seeded first.
+    let streets: Vec<Street> = (roads.iter().zip(&typical))
+        .map(|(road, depth)| Street {
+            segments: vec![road.paved(depth.map(|d| d.map_or(0.0, f64::from)))],
+            sides: match road.axis {
+                Axis::Horizontal => [0, 1],
+                Axis::Vertical => [1, 0],
+            },
+        })
+        .collect();
+    // Steps 2 and 3: where the strip is, mid-strip.
+    let offset = |segment: &PavedSegment, side: SideIndex, q: [f64; 2]| {
+        let i = roads.binary_search_by_key(&(segment.road as u32), |r| r.id).ok()?;
+        let road = roads[i];
+        let side = match (road.axis, side) {
+            (Axis::Horizontal, 0) | (Axis::Vertical, 1) => Side::Low,
+            _ => Side::High,
         };
-        for k in 0u64.. {
-            let along = road.start + spacing * (k as f64 + 0.5);
-            if along >= road.end {
-                break;
-            }
-            let run = probe.run(along.floor() as i64);
-            if run == 0 {
-                continue;
-            }
-            let depth = f64::from(run.min(typical));
-            let across = probe.boundary() + probe.outward() * depth / 2.0;
-            let towards = -probe.outward();
-            let (position, facing) = match road.axis {
-                Axis::Horizontal => ([along, across], [0.0, towards]),
-                Axis::Vertical => ([across, along], [towards, 0.0]),
-            };
-            lamps.push(Lamp {
-                id: 0,
-                position,
-                road: road.id,
-                facing,
-            });
+        let typical = typical[i][side as usize]?;
+        let along = match road.axis {
+            Axis::Horizontal => q[0],
+            Axis::Vertical => q[1],
+        };
+        if along >= road.end {
+            return None;
         }
-    }
-    lamps
-}
-
-/// Step 4: keep a lamp only if no lamp kept before it is closer than `min_distance`.
-fn prune(candidates: impl Iterator<Item = Lamp>, min_distance: f64) -> Vec<Lamp> {
-    if min_distance.is_nan() || min_distance <= 0.0 {
-        return candidates.collect();
-    }
-    // Buckets of side `min_distance`: a lamp closer than that lies in one of the 3×3 cells
-    // around. The map is only looked up, never iterated, so its order cannot leak out.
-    let cell = |v: f64| (v / min_distance).floor() as i64;
-    let mut grid: HashMap<(i64, i64), Vec<[f64; 2]>> = HashMap::new();
-    let mut kept = Vec::new();
-    for lamp in candidates {
-        let [x, y] = lamp.position;
-        let (cx, cy) = (cell(x), cell(y));
-        let too_close = (cx.saturating_sub(1)..=cx.saturating_add(1)).any(|i| {
-            (cy.saturating_sub(1)..=cy.saturating_add(1)).any(|j| {
-                grid.get(&(i, j)).is_some_and(|ps| {
-                    ps.iter().any(|p| {
-                        (p[0] - x).powi(2) + (p[1] - y).powi(2) < min_distance * min_distance
-                    })
-                })
-            })
-        });
-        if !too_close {
-            grid.entry((cx, cy)).or_default().push(lamp.position);
-            kept.push(lamp);
-        }
-    }
-    kept
+        let run = RoadSide::new(image, palette, road, side).run(along.floor() as i64);
+        (run > 0).then(|| segment.width / 2.0 + f64::from(run.min(typical)) / 2.0)
+    };
+    let candidates = seed::candidates(&streets, spacing_px, offset);
+    // Step 4.
+    seed::keep(Vec::new(), candidates, 0.0, min_distance_px, |_| true)
 }
 
 #[cfg(test)]

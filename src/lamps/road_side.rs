@@ -44,14 +44,6 @@ impl<'a> RoadSide<'a> {
         }
     }
 
-    /// +1 or −1: the across direction pointing away from the road.
-    pub(crate) fn outward(&self) -> f64 {
-        match self.side {
-            Side::Low => -1.0,
-            Side::High => 1.0,
-        }
-    }
-
     /// The run of strip pixels at along-pixel `along`, counted outward from the road edge
     /// (0 if the first pixel past the edge is not strip, or lies off the image).
     pub(crate) fn run(&self, along: i64) -> u32 {

@@ -79,16 +79,17 @@ pub fn camera_lane(width: f64) -> f64 {
 }
 
 /// One paved segment of a road: a piece of its centreline, `a → b` in the way's
-/// direction, with the cross-section it was fitted to ([`MapRoad::fitted`]).
+/// direction, with the cross-section it was fitted to ([`MapRoad::fitted`]). A layout's
+/// roads are paved segments too ([`crate::model::Road::paved`]), in pixels.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PavedSegment {
-    /// Index of the road in [`OsmMap::roads`].
+    /// Index of the road in [`OsmMap::roads`] (a layout's: its id).
     pub road: usize,
     pub a: [f64; 2],
     pub b: [f64; 2],
-    /// Carriageway width, metres.
+    /// Carriageway width, metres (a layout's: pixels).
     pub width: f64,
-    /// Sidewalk widths left and right of `a → b`, metres.
+    /// Sidewalk widths left and right of `a → b`, metres (a layout's: pixels).
     pub sidewalks: [f64; 2],
 }
 

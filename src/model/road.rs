@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::PavedSegment;
+
 /// Which way a road runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -41,6 +43,27 @@ impl Road {
         self.edges[1] - self.edges[0]
     }
 
+    /// The road as a [`PavedSegment`] in layout pixels, as a map's roads are in metres:
+    /// from `start` to `end` (so a horizontal road's left is above it, a vertical one's
+    /// right of it), midway between its kerbs (the pixel edges of its surface; the painted
+    /// line may sit half a pixel off), as wide as they are apart, with `sidewalks` left and
+    /// right. Its `road` is the road's id.
+    pub fn paved(&self, sidewalks: [f64; 2]) -> PavedSegment {
+        let kerbs = [self.edges[0].ceil(), self.edges[1].floor()];
+        let middle = (kerbs[0] + kerbs[1]) / 2.0;
+        let (a, b) = match self.axis {
+            Axis::Horizontal => ([self.start, middle], [self.end, middle]),
+            Axis::Vertical => ([middle, self.start], [middle, self.end]),
+        };
+        PavedSegment {
+            road: self.id as usize,
+            a,
+            b,
+            width: kerbs[1] - kerbs[0],
+            sidewalks,
+        }
+    }
+
     /// Centre of the centre line, as image `(x, y)`.
     pub fn centre(&self) -> [f64; 2] {
         let along = (self.start + self.end) / 2.0;
@@ -48,5 +71,38 @@ impl Road {
             Axis::Horizontal => [along, self.line],
             Axis::Vertical => [self.line, along],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A horizontal road runs east between its kerbs, left above; a vertical one south,
+    /// left to the east: the same sides a map's segment has heading that way.
+    #[test]
+    fn a_road_is_a_paved_segment_between_its_kerbs() {
+        let road = Road {
+            id: 7,
+            axis: Axis::Horizontal,
+            start: 10.0,
+            end: 90.0,
+            line: 100.5,
+            edges: [84.2, 116.0],
+        };
+        let s = road.paved([8.0, 6.0]);
+        assert_eq!((s.road, s.a, s.b), (7, [10.0, 100.5], [90.0, 100.5]));
+        assert_eq!((s.width, s.sidewalks), (31.0, [8.0, 6.0]));
+        let left = crate::model::geometry::polygon::left_normal(s.a, s.b);
+        assert_eq!(left, Some([0.0, -1.0]));
+        let s = Road {
+            axis: Axis::Vertical,
+            edges: [84.0, 116.0],
+            ..road
+        }
+        .paved([0.0, 0.0]);
+        assert_eq!((s.a, s.b, s.width), ([100.0, 10.0], [100.0, 90.0], 32.0));
+        let left = crate::model::geometry::polygon::left_normal(s.a, s.b).unwrap();
+        assert_eq!(left[0], 1.0);
     }
 }
