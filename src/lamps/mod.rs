@@ -64,7 +64,10 @@ pub fn site_lamps(
     // collected in road order.
     let typical: Vec<[Option<u32>; 2]> = roads
         .par_iter()
-        .map(|road| [Side::Low, Side::High].map(|side| RoadSide::new(image, palette, road, side).typical_depth()))
+        .map(|road| {
+            [Side::Low, Side::High]
+                .map(|side| RoadSide::new(image, palette, road, side).typical_depth())
+        })
         .collect();
     // Step 1: each road is a street of one segment, its low side (above, left) seeded first.
     let streets: Vec<Street> = (roads.iter().zip(&typical))
@@ -78,7 +81,9 @@ pub fn site_lamps(
         .collect();
     // Steps 2 and 3: where the strip is, mid-strip.
     let offset = |segment: &PavedSegment, side: SideIndex, q: [f64; 2]| {
-        let i = roads.binary_search_by_key(&(segment.road as u32), |r| r.id).ok()?;
+        let i = roads
+            .binary_search_by_key(&(segment.road as u32), |r| r.id)
+            .ok()?;
         let road = roads[i];
         let side = match (road.axis, side) {
             (Axis::Horizontal, 0) | (Axis::Vertical, 1) => Side::Low,

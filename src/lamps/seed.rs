@@ -165,9 +165,7 @@ mod tests {
         );
         assert!(lamps.iter().all(|l| l.id == 0));
         // No `-0.0` in a facing.
-        assert!(
-            (lamps.iter().flat_map(|l| l.facing)).all(|v| v != 0.0 || v.is_sign_positive())
-        );
+        assert!((lamps.iter().flat_map(|l| l.facing)).all(|v| v != 0.0 || v.is_sign_positive()));
     }
 
     #[test]
@@ -199,7 +197,10 @@ mod tests {
         assert_eq!(xs, vec![(0, 0.0), (1, 15.0), (2, 28.0), (3, 40.0)]);
         // Without a positive distance every candidate stays.
         for none in [0.0, -1.0, f64::NAN] {
-            assert_eq!(keep(vec![], candidates.clone(), 0.0, none, |_| true).len(), 6);
+            assert_eq!(
+                keep(vec![], candidates.clone(), 0.0, none, |_| true).len(),
+                6
+            );
         }
     }
 }

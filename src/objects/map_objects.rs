@@ -6,7 +6,7 @@
 //! | text | planes of words on the walls of the map's buildings that face a paved road (`map_walls`), as on a layout's walls (`wall_text`): the facade laid as the scene lays it, so painted text shows the wall's own pixels and plates keep clear of its windows |
 //! | tree | at the map's `natural=tree` nodes, in node order, then on the map's green ground where it plants none (`green_tree_sites`, about one per 12 m square, in a seeded order), up to `count`: a node on a carriageway or in a building gets none; the crown keeps [`tree::BUILDING_CLEARANCE`] from every wall |
 //! | traffic_light | a signal pole at the map's `highway=traffic_signals` nodes on a carriageway, in node order, up to `count` poles: [`POLE_BEHIND_KERB`] behind the right kerb, its head looking back at the traffic coming along the road, and a second one behind the left kerb of a two-way road (one only where `traffic_signals:direction` names a direction); a pole in or within its radius of a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
-//! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count`, of the types `signs` lists: beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`), or on the pole of the lamp its node also is; a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
+//! | sign | at the map's `traffic_sign=*` (and `highway=stop` / `give_way`) nodes whose code we have a design for (`sign_codes`), in node order, up to `count` plates, of the types `signs` lists, a plate a code one above the other (a repeated code back to back): beside the nearest paved road where the map has the post, facing the traffic on its side (`sign_sites`), or on the pole of the lamp its node also is; a post in a building, on another road, or on ground a lamp, tree or earlier entry holds is left out |
 //! | car | parked at a kerb or standing in a lane of a paved segment (drawn by length), as on a layout's roads, [`MAP_CAMERA_LANE`](crate::model::MAP_CAMERA_LANE) clear of the cameras' lane (`MapSpots::near_side`), clear of lamps, mapped trees, crossings and signals, and [`JUNCTION_CLEARANCE`](super::map_spots::JUNCTION_CLEARANCE) plus its half length from every other road's carriageway; a parked one not at a kerb the map's parking tags forbid (`MapRoad::parking`) |
 //! | person | standing or walking on a sidewalk (drawn by length) as in a layout's strips, between the kerb and the sidewalks camera's line, clear of the carriageways, the buildings and everything standing; `crossing` on the zebras the markings draw, clear of the roads cameras' lane, `waiting` at their ends ([`MapSpots`]) |
 //! | bicycle | parked on a sidewalk as a person stands, or ridden in a lane as a car stands |
@@ -20,7 +20,7 @@ use rand::RngExt;
 
 use super::ground_spots::{Footprint, LAMP_CLEARANCE, Spot};
 use super::map_spots::MapSpots;
-use super::traffic_signs::{self, MappedSign};
+use super::traffic_signs::{self, MappedSign, Post};
 use super::{
     Inserted, MeshFiles, ObjectsError, ObjectsInput, Placing, bicycle, car, map_corners, map_walls,
     person, sign_codes, street_names, traffic_lights, tree, user_mesh, wall_text,
@@ -29,7 +29,7 @@ use crate::model::geometry::polygon::{direction, distance};
 use crate::model::{
     FacadeSet, FeatureKind, LAMP_POLE_RADIUS, Lamp, OsmMap, ParsedLayout, PavedSegment,
 };
-use crate::spec::{EntryKind, ObjectSpec};
+use crate::spec::{EntryKind, ObjectSpec, SignKind};
 
 /// How far behind the kerb a mapped signal's pole stands, metres.
 pub const POLE_BEHIND_KERB: f64 = 0.5;
@@ -334,8 +334,8 @@ fn node_sites(map: &OsmMap, tag: &str) -> Vec<([f64; 2], Option<[f64; 2]>)> {
 /// off stand on paths and squares, whose traffic the map does not pave.
 const SIGN_REACH: f64 = 15.0;
 
-/// The map's signs that can stand, in node order: each `traffic_sign` (and
-/// `highway=stop` / `give_way`) node with a design ([`sign_codes::design`]) within
+/// The map's plates that can stand, in node order: each `traffic_sign` (and
+/// `highway=stop` / `give_way`) node with a design ([`sign_codes::designs`]) within
 /// [`SIGN_REACH`] of a paved road. A post beside the road stands where the map has it
 /// (pushed out to [`POLE_BEHIND_KERB`] behind the kerb when it is nearer), facing the
 /// traffic on its side: on a one-way road the road's, on a two-way road the traffic
@@ -344,6 +344,11 @@ const SIGN_REACH: f64 = 15.0;
 /// carriageway are left out. A sign whose node is a lamp's too (a sign on a lamp post)
 /// hangs on that lamp's pole, facing the traffic on the lamp's side, its plate just
 /// outside the pole.
+///
+/// A post carries a plate for each code with a design, one above the other in the tag's
+/// order (up to [`traffic_signs::MAX_LEVELS`]); a code the tag repeats is the first's
+/// twin, back to back with it at its level, facing the other way (`FI:511;FI:511`: a
+/// crossing signed for both directions).
 fn sign_sites(map: &OsmMap, lamps: &[Lamp]) -> Vec<MappedSign> {
     let paved: Vec<PavedSegment> = map.paved_segments().collect();
     let clear = |s: &PavedSegment, foot: [f64; 2]| {
@@ -353,56 +358,131 @@ fn sign_sites(map: &OsmMap, lamps: &[Lamp]) -> Vec<MappedSign> {
         .filter(|f| f.kind == FeatureKind::StreetLamp)
         .map(|f| f.node)
         .collect();
-    map.features
-        .iter()
-        .filter(|f| f.kind == FeatureKind::TrafficSign)
-        .filter_map(|f| {
-            let (kind, speed) = sign_codes::design(&f.tag)?;
-            let (s, q, d) = map.nearest_paved(f.at)?;
-            let t = direction(s.a, s.b).filter(|_| d <= SIGN_REACH)?;
-            let right = [-t[1], t[0]];
-            // The lamp `lamps::map_lamps` stood for the node: at it, or moved out to its
-            // kerb, so no farther from it than that kerb.
-            let reach = s.width / 2.0 + POLE_BEHIND_KERB + 0.01;
-            let lamp = (lamp_nodes.contains(&f.node))
-                .then(|| {
-                    (lamps.iter())
-                        .map(|l| (distance(l.position, f.at), l))
-                        .filter(|(d, _)| *d <= reach)
-                        .min_by(|a, b| a.0.total_cmp(&b.0))
-                })
-                .flatten();
-            if let Some((_, l)) = lamp {
-                return Some(on_lamp(map, kind, speed, l, (s, q, t)));
+    let mut signs = Vec::new();
+    for f in (map.features.iter()).filter(|f| f.kind == FeatureKind::TrafficSign) {
+        let designs = sign_codes::designs(&f.tag);
+        let Some(&(kind, speed)) = designs.first() else {
+            continue;
+        };
+        let Some((s, q, d)) = map.nearest_paved(f.at) else {
+            continue;
+        };
+        let Some(t) = direction(s.a, s.b).filter(|_| d <= SIGN_REACH) else {
+            continue;
+        };
+        // The lamp `lamps::map_lamps` stood for the node: at it, or moved out to its
+        // kerb, so no farther from it than that kerb.
+        let reach = s.width / 2.0 + POLE_BEHIND_KERB + 0.01;
+        let lamp = (lamp_nodes.contains(&f.node))
+            .then(|| {
+                (lamps.iter())
+                    .map(|l| (distance(l.position, f.at), l))
+                    .filter(|(d, _)| *d <= reach)
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+            })
+            .flatten();
+        let first = match lamp {
+            Some((_, l)) => on_lamp(map, kind, speed, l, (s, q, t)),
+            None => {
+                let spot = beside_road(map, f.at, (s, q, d, t));
+                if !clear(&s, spot.position) {
+                    continue;
+                }
+                MappedSign {
+                    kind,
+                    speed,
+                    spot,
+                    on_lamp: false,
+                    post: Post::SINGLE,
+                    stacked: false,
+                }
             }
-            let kerb = s.width / 2.0 + POLE_BEHIND_KERB;
-            let on_right = d <= s.width / 2.0
-                || (f.at[0] - q[0]) * right[0] + (f.at[1] - q[1]) * right[1] >= 0.0;
-            let out = if on_right {
-                right
-            } else {
-                [-right[0], -right[1]]
-            };
-            let foot = if d < kerb {
-                [q[0] + out[0] * kerb, q[1] + out[1] * kerb]
-            } else {
-                f.at
-            };
-            let travel = if on_right || map.roads[s.road].oneway {
-                t
-            } else {
-                [-t[0], -t[1]]
-            };
-            clear(&s, foot).then_some(MappedSign {
+        };
+        signs.extend(stack(first, &designs, lamp.map(|(_, l)| l.position)));
+    }
+    signs
+}
+
+/// Where a post the map has at `at` stands beside paved segment `s` (`q` the nearest
+/// point of its centreline, `d` the distance to it, `t` its direction), and the traffic
+/// it faces (see [`sign_sites`]).
+fn beside_road(
+    map: &OsmMap,
+    at: [f64; 2],
+    (s, q, d, t): (PavedSegment, [f64; 2], f64, [f64; 2]),
+) -> Spot {
+    let right = [-t[1], t[0]];
+    let kerb = s.width / 2.0 + POLE_BEHIND_KERB;
+    let on_right =
+        d <= s.width / 2.0 || (at[0] - q[0]) * right[0] + (at[1] - q[1]) * right[1] >= 0.0;
+    let out = if on_right {
+        right
+    } else {
+        [-right[0], -right[1]]
+    };
+    let foot = if d < kerb {
+        [q[0] + out[0] * kerb, q[1] + out[1] * kerb]
+    } else {
+        at
+    };
+    let travel = if on_right || map.roads[s.road].oneway {
+        t
+    } else {
+        [-t[0], -t[1]]
+    };
+    Spot {
+        position: foot,
+        travel,
+        road: s.road as u32,
+    }
+}
+
+/// The plates of a post whose first plate is `first`: one a design, levels in order,
+/// repeats back to back with their first (see [`sign_sites`]).
+fn stack(
+    first: MappedSign,
+    designs: &[(SignKind, u32)],
+    lamp: Option<[f64; 2]>,
+) -> Vec<MappedSign> {
+    // Each level's design, and whether it has its twin yet.
+    let mut levels: Vec<((SignKind, u32), bool)> = Vec::new();
+    let mut plates = Vec::new();
+    for &design in designs {
+        match levels.iter().position(|(d, _)| *d == design) {
+            Some(level) if !levels[level].1 => {
+                levels[level].1 = true;
+                plates.push((design, level, true));
+            }
+            Some(_) => {}
+            None if levels.len() < traffic_signs::MAX_LEVELS as usize => {
+                plates.push((design, levels.len(), false));
+                levels.push((design, false));
+            }
+            None => {}
+        }
+    }
+    let levels = levels.len() as u32;
+    (plates.into_iter().enumerate())
+        .map(|(i, ((kind, speed), level, twin))| {
+            let mut spot = first.spot;
+            if twin {
+                spot.travel = [-spot.travel[0], -spot.travel[1]];
+                if let Some(l) = lamp {
+                    // Mirrored about the lamp's pole: outside it on the other side.
+                    spot.position = [2.0 * l[0] - spot.position[0], 2.0 * l[1] - spot.position[1]];
+                }
+            }
+            MappedSign {
                 kind,
                 speed,
-                spot: Spot {
-                    position: foot,
-                    travel,
-                    road: s.road as u32,
+                spot,
+                on_lamp: first.on_lamp,
+                post: Post {
+                    level: level as u32,
+                    levels,
                 },
-                on_lamp: false,
-            })
+                stacked: i > 0,
+            }
         })
         .collect()
 }
@@ -440,6 +520,8 @@ fn on_lamp(
             road: s.road as u32,
         },
         on_lamp: true,
+        post: Post::SINGLE,
+        stacked: false,
     }
 }
 
@@ -1000,6 +1082,75 @@ mod tests {
         assert_eq!(place_on(&map, &stops).expect("signs place").placed, vec![2]);
         let two = entries("[[objects]]\nkind = 'sign'\ncount = 2\n");
         assert_eq!(place_on(&map, &two).expect("signs place").placed, vec![2]);
+    }
+
+    /// A post with six codes: stop, a limit and a crossing one above the other, the
+    /// crossing's repeat back to back with it, the last two past the three levels left
+    /// out. A lamp post signed twice: the twin on the far side of the lamp's pole.
+    #[test]
+    fn a_post_carries_a_plate_a_code_one_above_the_other_repeats_back_to_back() {
+        let mut map = crate::test_support::street_map();
+        let sign = |node, at, tag| feature(node, FeatureKind::TrafficSign, at, tag);
+        map.features.extend([
+            sign(
+                60,
+                [-120.0, 8.0],
+                "traffic_sign=DE:206;DE:274[50];FI:511;FI:511;DE:286;DE:283",
+            ),
+            sign(2, [-20.0, 0.0], "traffic_sign=DE:206;DE:206"),
+        ]);
+        let specs = entries("[[objects]]\nkind = 'sign'\ncount = 10\n");
+        let inserted = place_on(&map, &specs).expect("signs place");
+        assert_eq!(inserted.placed, vec![6]);
+        let kinds: Vec<ObjectKind> = inserted.objects.iter().map(|o| o.kind).collect();
+        use ObjectKind::{Sign, SignPole};
+        assert_eq!(kinds, [SignPole, Sign, Sign, Sign, Sign, Sign, Sign]);
+        // The post stands taller by two plates and gaps, its lowest plate where a single
+        // plate is.
+        let step = traffic_signs::PLATE + traffic_signs::PLATE_GAP;
+        let top = inserted.objects[0].meshes[0]
+            .positions
+            .iter()
+            .map(|p| f64::from(p[1]))
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!((top - (KERB_Y + traffic_signs::POLE_HEIGHT + 2.0 * step)).abs() < 1e-5);
+        let single = KERB_Y + traffic_signs::POLE_HEIGHT - traffic_signs::PLATE / 2.0;
+        let out = traffic_signs::FACE_OFFSET;
+        let on_lamp = LAMP_POLE_RADIUS + 0.015;
+        // (kind, face centre x, z, y, normal x) in order.
+        let expected = [
+            (SignKind::Stop, -120.0 - out, 8.0, single + 2.0 * step, -1.0),
+            (SignKind::SpeedLimit, -120.0 - out, 8.0, single + step, -1.0),
+            (
+                SignKind::PedestrianCrossing,
+                -120.0 - out,
+                8.0,
+                single,
+                -1.0,
+            ),
+            (SignKind::PedestrianCrossing, -120.0 + out, 8.0, single, 1.0),
+            (SignKind::Stop, -20.0 - on_lamp, 6.5, single, -1.0),
+            (SignKind::Stop, -20.0 + on_lamp, 6.5, single, 1.0),
+        ];
+        let faces: Vec<&traffic_signs::SignFace> = inserted.sign_faces.values().collect();
+        assert_eq!(faces.len(), expected.len());
+        for (face, (kind, x, z, y, nx)) in faces.into_iter().zip(expected) {
+            assert_eq!((face.kind, face.normal), (kind, [nx, 0.0, 0.0]), "{face:?}");
+            let want = [x, y, z];
+            assert!(
+                (0..3).all(|k| (face.centre[k] - want[k]).abs() < 1e-9),
+                "{face:?} {want:?}"
+            );
+        }
+        // A post whose first plate's type the entry leaves out stands at its first plate
+        // of a listed type, on a pole of its own, at that plate's level.
+        let limits = entries("[[objects]]\nkind = 'sign'\nsigns = ['speed_limit']\n");
+        let inserted = place_on(&map, &limits).expect("signs place");
+        assert_eq!(inserted.placed, vec![1]);
+        let kinds: Vec<ObjectKind> = inserted.objects.iter().map(|o| o.kind).collect();
+        assert_eq!(kinds, [SignPole, Sign]);
+        let face = inserted.sign_faces.values().next().expect("the limit");
+        assert!((face.centre[1] - (single + step)).abs() < 1e-9, "{face:?}");
     }
 
     #[test]

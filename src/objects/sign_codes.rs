@@ -1,9 +1,9 @@
-//! An OpenStreetMap sign tag → the design cityspec draws for it ([`design`]).
+//! An OpenStreetMap sign tag → the designs cityspec draws for it ([`designs`]): one plate a code.
 //!
 //! `traffic_sign=*` holds a country's codes (`DE:206`, `FI:231`), several on one post
 //! separated by `;` or `,`, a value in brackets (`DE:274[50]`), or a readable name
-//! (`stop`). A sign is drawn by the first of its codes that names one of our designs
-//! (the German StVO's, [`SignKind`]) with the same meaning: Germany's codes (the designs'
+//! (`stop`). Each code that names one of our designs (the German StVO's, [`SignKind`])
+//! with the same meaning is a plate on the post ([`designs`], in the tag's order): Germany's codes (the designs'
 //! own), the Finnish ones of the extract in `assets/osm` (the numbering before 2020, which
 //! the extract uses, and the 2020 letters for stop and give way), `stop` and `give_way`.
 //! `highway=stop` and `highway=give_way` nodes draw a stop and a give-way sign.
@@ -89,20 +89,24 @@ const FI: Codes = &[
 /// Readable values, any country.
 const NAMES: Codes = &[("stop", SignKind::Stop), ("give_way", SignKind::Yield)];
 
-/// The design and the number on it (a speed limit's; 0 on other signs) that a node's sign
-/// tag (`key=value`, as [`crate::model::MapFeature::tag`] holds it) is drawn with; None
-/// when none of its codes has one.
-pub fn design(tag: &str) -> Option<(SignKind, u32)> {
-    let (key, value) = tag.split_once('=')?;
+/// The designs and the numbers on them (a speed limit's; 0 on other signs) that a node's
+/// sign tag (`key=value`, as [`crate::model::MapFeature::tag`] holds it) is drawn with:
+/// one for each of its codes that has one, in the tag's order (a repeated code too);
+/// empty when none has.
+pub fn designs(tag: &str) -> Vec<(SignKind, u32)> {
+    let Some((key, value)) = tag.split_once('=') else {
+        return Vec::new();
+    };
     match (key, value) {
-        ("highway", "stop") => return Some((SignKind::Stop, 0)),
-        ("highway", "give_way") => return Some((SignKind::Yield, 0)),
+        ("highway", "stop") => return vec![(SignKind::Stop, 0)],
+        ("highway", "give_way") => return vec![(SignKind::Yield, 0)],
         ("traffic_sign", _) => {}
-        _ => return None,
+        _ => return Vec::new(),
     }
     value
         .split([';', ','])
-        .find_map(|code| code_design(code.trim()))
+        .filter_map(|code| code_design(code.trim()))
+        .collect()
 }
 
 /// One code's design: `CC:code[value]` or a readable name.
@@ -129,6 +133,23 @@ fn code_design(code: &str) -> Option<(SignKind, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn design(tag: &str) -> Option<(SignKind, u32)> {
+        designs(tag).first().copied()
+    }
+
+    #[test]
+    fn every_code_with_a_design_is_a_plate_in_the_tags_order() {
+        assert_eq!(
+            designs("traffic_sign=FI:372;FI:8xx;DE:274[50],FI:372"),
+            vec![
+                (SignKind::NoStopping, 0),
+                (SignKind::SpeedLimit, 50),
+                (SignKind::NoStopping, 0)
+            ]
+        );
+        assert_eq!(designs("highway=stop"), vec![(SignKind::Stop, 0)]);
+    }
 
     #[test]
     fn the_first_code_with_a_design_draws_the_sign() {

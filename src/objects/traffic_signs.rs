@@ -20,6 +20,10 @@ pub const POLE_HEIGHT: f64 = 2.6;
 pub const POLE_HALF: f64 = 0.04;
 /// Side of the plate's square (the sign's width and height), in metres.
 pub const PLATE: f64 = 0.75;
+/// The gap between two plates one above the other on a post, metres.
+pub const PLATE_GAP: f64 = 0.1;
+/// The most plates one above the other on a map's post: more codes are left out.
+pub const MAX_LEVELS: u32 = 3;
 /// Distance of the face in front of the pole's axis; the back sits 5 mm behind the face.
 pub const FACE_OFFSET: f64 = POLE_HALF + 0.015;
 /// Room a sign keeps around itself, in metres (from lamps, on top of their clearance).
@@ -61,13 +65,40 @@ pub fn place(
         let Some((kind, spot)) = found else {
             continue;
         };
-        push_sign(placing, spec, (kind, speed, spot), true);
+        push_sign(placing, spec, (kind, speed, spot), Post::SINGLE, true);
         placed += 1;
     }
     placed
 }
 
-/// A sign the map has: its design, the number on it (a speed limit's) and where it
+/// Where a plate sits on its post: at `level` (0 the top) of `levels` one above the
+/// other. A post of several stands taller by their plates and gaps, so its lowest plate
+/// is as high as a single plate on its post.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Post {
+    pub level: u32,
+    pub levels: u32,
+}
+
+impl Post {
+    /// A post with one plate.
+    pub const SINGLE: Post = Post {
+        level: 0,
+        levels: 1,
+    };
+
+    /// The post's height above the sidewalk, metres.
+    pub fn height(self) -> f64 {
+        POLE_HEIGHT + f64::from(self.levels.saturating_sub(1)) * (PLATE + PLATE_GAP)
+    }
+
+    /// The height of the plate's centre, metres (`y` up).
+    pub fn plate_centre_y(self) -> f64 {
+        KERB_Y + self.height() - PLATE / 2.0 - f64::from(self.level) * (PLATE + PLATE_GAP)
+    }
+}
+
+/// A plate the map has: its design, the number on it (a speed limit's) and where it
 /// stands, facing the traffic of [`Spot::travel`] (`map_objects::sign_sites`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MappedSign {
@@ -77,14 +108,20 @@ pub struct MappedSign {
     /// Hung on a street lamp's pole (the map's node is both): no pole of its own, and the
     /// lamp holds the ground.
     pub on_lamp: bool,
+    /// Its place on the post.
+    pub post: Post,
+    /// On the post of the plate before it in the list (the same node's next code).
+    pub stacked: bool,
 }
 
 /// The ground a mapped sign holds, radius in metres: half its plate. Mapped posts stand
 /// where the map has them, closer together than [`RADIUS`] keeps a layout's.
 pub const MAPPED_RADIUS: f64 = PLATE / 2.0;
 
-/// Places the map's signs, in node order, up to the entry's `count`: each of a type the
-/// entry's `signs` lists (any when empty) whose ground `claim` grants. Returns how many.
+/// Places the map's plates, in node order, up to the entry's `count`: each of a type the
+/// entry's `signs` lists (any when empty) on a post whose ground `claim` grants (asked
+/// once a post, at its first plate of such a type; a post on a lamp claims none).
+/// Returns how many plates.
 pub fn place_mapped(
     spec: &ObjectSpec,
     signs: &[MappedSign],
@@ -92,22 +129,38 @@ pub fn place_mapped(
     placing: &mut Placing,
 ) -> u32 {
     let mut placed = 0;
+    // Whether the current post stands: None before its first plate of a listed type.
+    let mut stands: Option<bool> = None;
     for sign in signs {
         if placed >= spec.count {
             break;
         }
+        if !sign.stacked {
+            stands = None;
+        }
         if !(spec.signs.is_empty() || spec.signs.contains(&sign.kind)) {
             continue;
         }
-        let ground = super::ground_spots::Footprint::Circle(sign.spot.position, MAPPED_RADIUS);
-        if !sign.on_lamp && !claim(ground) {
-            continue;
-        }
+        let own_pole = match stands {
+            Some(false) => continue,
+            Some(true) => false,
+            None => {
+                let ground =
+                    super::ground_spots::Footprint::Circle(sign.spot.position, MAPPED_RADIUS);
+                let granted = sign.on_lamp || claim(ground);
+                stands = Some(granted);
+                if !granted {
+                    continue;
+                }
+                !sign.on_lamp
+            }
+        };
         push_sign(
             placing,
             spec,
             (sign.kind, sign.speed, sign.spot),
-            !sign.on_lamp,
+            sign.post,
+            own_pole,
         );
         placed += 1;
     }
@@ -217,15 +270,15 @@ fn mouth_spots<const N: usize>(
         })
 }
 
-/// Pushes a sign of `kind` standing at `spot` (pole, then plate), its face looking at the
-/// traffic coming towards it, and records its face.
-/// Pushes a sign of `kind` (showing `speed` where it is a limit) standing at `spot`: its
-/// plate, and its pole where it has one of its own (`own_pole`; else it hangs on a
-/// lamp's).
+/// Pushes a sign of `kind` (showing `speed` where it is a limit) standing at `spot`, at
+/// its place on the `post`: its pole where it brings one (`own_pole`; else it hangs on a
+/// lamp's or its post's), then its plate, its face looking at the traffic coming
+/// towards it; and records its face.
 fn push_sign(
     placing: &mut Placing,
     spec: &ObjectSpec,
     (kind, speed, spot): (SignKind, u32, Spot),
+    post: Post,
     own_pole: bool,
 ) {
     // The face looks against the traffic: at the drivers coming towards it.
@@ -240,7 +293,8 @@ fn push_sign(
     });
     let pole = placing.material("sign_pole", || (POLE_GREY, None));
     let back = placing.material("sign_back", || (BACK_GREY, None));
-    let [pole_mesh, face, back] = sign_meshes(kind, spot.position, facing, [pole, face, back]);
+    let [pole_mesh, face, back] =
+        sign_meshes(kind, (spot.position, post), facing, [pole, face, back]);
     if own_pole {
         let name = placing.name("sign_pole");
         placing.push_plain(
@@ -260,7 +314,7 @@ fn push_sign(
     let index = placing.out.objects.len() - 1;
     let centre = [
         spot.position[0] + facing[0] * FACE_OFFSET,
-        KERB_Y + POLE_HEIGHT - PLATE / 2.0,
+        post.plate_centre_y(),
         spot.position[1] + facing[1] * FACE_OFFSET,
     ];
     let normal = [facing[0], 0.0, facing[1]];
@@ -288,10 +342,11 @@ pub struct SignFace {
     pub road: u32,
 }
 
-/// Pole, face and back of a sign standing at `foot` (x, z), its face towards `facing`.
+/// Pole, face and back of a sign standing at `foot` (x, z), its plate at its place on
+/// `post`, its face towards `facing`.
 pub fn sign_meshes(
     kind: SignKind,
-    foot: [f64; 2],
+    (foot, post): ([f64; 2], Post),
     facing: [f64; 2],
     materials: [u32; 3],
 ) -> [Mesh; 3] {
@@ -301,10 +356,10 @@ pub fn sign_meshes(
         [foot[0], KERB_Y, foot[1]],
         facing,
         [POLE_HALF, POLE_HALF],
-        POLE_HEIGHT,
+        post.height(),
     );
     let ring = sign_face::outline(kind);
-    let centre_y = KERB_Y + POLE_HEIGHT - PLATE / 2.0;
+    let centre_y = post.plate_centre_y();
     // Seen from the front, "right" is (-facing) × up.
     let right = [facing[1], -facing[0]];
     let at = |uv: [f64; 2], out: f64| {
@@ -384,7 +439,7 @@ mod tests {
         let inv = std::f64::consts::FRAC_1_SQRT_2;
         for kind in SignKind::ALL {
             for facing in [[0.0, 1.0], [-1.0, 0.0], [inv, -inv]] {
-                let meshes = sign_meshes(kind, [92.0, 114.7], facing, [0, 1, 2]);
+                let meshes = sign_meshes(kind, ([92.0, 114.7], Post::SINGLE), facing, [0, 1, 2]);
                 for mesh in &meshes[1..] {
                     for t in mesh.indices.chunks_exact(3) {
                         let p = |i: u32| mesh.positions[i as usize].map(f64::from);
