@@ -15,7 +15,7 @@
 
 use crate::model::geometry::polygon::{distance, left_normal};
 use crate::model::{
-    Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road, map_camera_lane,
+    Axis, MAP_CAMERA_LANE, OsmMap, ParsedLayout, PavedSegment, Road, driven_back, map_camera_lane,
 };
 
 /// How much farther from its end a map's road run is driven when the box cut its road
@@ -62,11 +62,15 @@ pub(super) fn legs(layout: &ParsedLayout, m: f64, lane_offset: f64, look_ahead: 
 /// The roads of `map` with a surface, in map order, as legs: each paved segment in the
 /// way's direction, on the right-hand lane: `lane_offset` right of the centreline, at most
 /// [`MAP_CAMERA_LANE`] and [`KERB_CLEARANCE`] inside the kerb; on a one-way road in the
-/// lane [`map_camera_lane`] gives (left of the centreline when the lanes are even). Each run of consecutive paved segments of a road
-/// (a junction continues the run; an unpaved segment ends it) is driven to `look_ahead`
-/// metres before its end, so the look-at point stays on the road, and [`EDGE_TRIM`] more
-/// when it ends on the box's edge; a run no longer than that is left out. When that
-/// leaves no leg, every run is driven whole.
+/// lane [`map_camera_lane`] gives (left of the centreline when the lanes are even). Each
+/// run of consecutive paved segments of a road (a junction continues the run; an unpaved
+/// segment ends it) is driven to `look_ahead` metres before its end, so the look-at point
+/// stays on the road, and [`EDGE_TRIM`] more when it ends on the box's edge; a run no
+/// longer than that is left out. Then the run is driven back the same way, from its end
+/// to `look_ahead` (and the trim) before its start, on the segments that are
+/// [`driven_back`] (two-way and wide enough that the vehicles standing at the far kerb
+/// keep clear of that lane), skipping the others. When that leaves no leg, every run is
+/// driven whole.
 pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<Leg> {
     let runs = map.paved_runs();
     let lane = |s: &PavedSegment, length: f64| {
@@ -89,27 +93,41 @@ pub(super) fn map_legs(map: &OsmMap, lane_offset: f64, look_ahead: f64) -> Vec<L
     // A run that ends where the box cuts its road stops short of the cut as well, so the
     // camera does not look out of the city into the empty ground beyond the box.
     let at_edge = |p: [f64; 2]| on_box_edge(map, p);
-    let drive = |trim: f64| -> Vec<Leg> {
+    // The legs of `run` driven to `trim` (and the edge's) before its end, of the segments
+    // `drive` takes.
+    let legs_of = |run: &[PavedSegment], trim: f64, drive: &dyn Fn(&PavedSegment) -> bool| {
+        let total: f64 = run.iter().map(|s| distance(s.a, s.b)).sum();
+        let end = run.last().is_some_and(|s| at_edge(s.b));
+        let edge = if end && trim > 0.0 { EDGE_TRIM } else { 0.0 };
+        let mut left = total - trim - edge;
         let mut legs = Vec::new();
-        for run in &runs {
-            let total: f64 = run.iter().map(|s| distance(s.a, s.b)).sum();
-            let end = run.last().is_some_and(|s| at_edge(s.b));
-            let edge = if end && trim > 0.0 { EDGE_TRIM } else { 0.0 };
-            let mut left = total - trim - edge;
-            for s in run {
-                if left <= 0.0 {
-                    break;
-                }
-                let length = distance(s.a, s.b).min(left);
-                left -= length;
+        for s in run {
+            if left <= 0.0 {
+                break;
+            }
+            let length = distance(s.a, s.b).min(left);
+            left -= length;
+            if drive(s) {
                 legs.extend(lane(s, length));
             }
         }
         legs
     };
-    let trimmed = drive(look_ahead);
+    let back = |s: &PavedSegment| driven_back(s.width, map.roads[s.road].oneway);
+    let tour = |trim: f64| -> Vec<Leg> {
+        let mut legs = Vec::new();
+        for run in &runs {
+            legs.extend(legs_of(run, trim, &|_| true));
+            if run.iter().any(back) {
+                let turned: Vec<PavedSegment> = run.iter().rev().map(|s| s.turned()).collect();
+                legs.extend(legs_of(&turned, trim, &back));
+            }
+        }
+        legs
+    };
+    let trimmed = tour(look_ahead);
     if trimmed.is_empty() {
-        drive(0.0)
+        tour(0.0)
     } else {
         trimmed
     }
@@ -338,6 +356,15 @@ mod tests {
                 [h, -h],
                 100.0 * 2f64.sqrt() - 20.0 - EDGE_TRIM,
             ),
+            // Then back (it is 12 m wide: its far half keeps the standing vehicles clear
+            // of that lane), from its end on the box's edge to as far before its start,
+            // 1.5 m right of the way back.
+            (
+                [100.0 - 1.5 * h, -100.0 - 1.5 * h],
+                [-h, h],
+                100.0 * 2f64.sqrt(),
+            ),
+            ([0.0, -1.5], [-1.0, 0.0], 150.0 - 20.0 - EDGE_TRIM),
             // The one-way road (south, 8 m: two lanes of 4 m) in the middle of its left
             // lane, 2 m east of its centreline. The footway has no surface.
             ([-48.0, 0.0], [0.0, 1.0], 100.0 - 20.0 - EDGE_TRIM),
@@ -357,16 +384,24 @@ mod tests {
         // Three lanes (9 m): the middle one, on the centreline.
         let mut three = map.clone();
         three.roads[1].fitted[0][0] = 9.0;
-        assert_eq!(map_legs(&three, 3.0, 20.0)[2].origin, [-50.0, 0.0]);
+        assert_eq!(map_legs(&three, 3.0, 20.0)[4].origin, [-50.0, 0.0]);
         // A run ending inside the box stops the look-ahead short of its end only.
         let mut inside = map.clone();
         inside.roads[1].centreline[1] = [-50.0, 90.0];
-        assert!(close(map_legs(&inside, 3.0, 20.0)[2].length, 70.0));
+        assert!(close(map_legs(&inside, 3.0, 20.0)[4].length, 70.0));
+        // Narrowed to 9 m, the two-way road is driven east only.
+        let mut narrow = map.clone();
+        for f in &mut narrow.roads[0].fitted {
+            f[0] = 9.0;
+        }
+        let legs = map_legs(&narrow, 3.0, 20.0);
+        assert_eq!(legs.len(), 3);
+        assert!(legs.iter().all(|l| l.dir[0] >= 0.0), "{legs:?}");
         // A narrow lane offset is kept; a look-ahead longer than every run drives all whole.
         let whole = map_legs(&map, 0.5, 500.0);
         assert_eq!(whole[0].origin, [-150.0, 0.5]);
         let total: f64 = whole.iter().map(|l| l.length).sum();
-        assert!(close(total, 150.0 + 100.0 * 2f64.sqrt() + 100.0));
+        assert!(close(total, 2.0 * (150.0 + 100.0 * 2f64.sqrt()) + 100.0));
     }
 
     #[test]

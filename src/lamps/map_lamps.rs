@@ -129,15 +129,9 @@ fn candidates(paved: &[PavedSegment], spacing: f64) -> Vec<Lamp> {
 /// is in one street.
 fn streets(paved: &[PavedSegment]) -> Vec<Vec<PavedSegment>> {
     let runs = paved_runs(paved.iter().copied());
-    let turned = |s: &PavedSegment| PavedSegment {
-        a: s.b,
-        b: s.a,
-        sidewalks: [s.sidewalks[1], s.sidewalks[0]],
-        ..*s
-    };
     let oriented = |run: &[PavedSegment], reversed: bool| -> Vec<PavedSegment> {
         if reversed {
-            run.iter().rev().map(turned).collect()
+            run.iter().rev().map(PavedSegment::turned).collect()
         } else {
             run.to_vec()
         }
@@ -173,7 +167,7 @@ fn streets(paved: &[PavedSegment]) -> Vec<Vec<PavedSegment>> {
         for back in [false, true] {
             loop {
                 let tail = if back {
-                    turned(&street[0])
+                    street[0].turned()
                 } else {
                     street[street.len() - 1]
                 };

@@ -51,6 +51,7 @@ pub use osm_map::{
     OsmElement, OsmMap, PavedSegment, SIGNAL_DIRECTION, paved_runs,
 };
 pub use osm_map::{LANE as MAP_LANE, camera_lane as map_camera_lane, lanes as map_lanes};
+pub use osm_map::{NARROWEST_VEHICLE, driven_back};
 pub use parsed_layout::ParsedLayout;
 pub use pixel_box::PixelBox;
 pub use pixel_class::PixelClass;

@@ -55,6 +55,18 @@ pub struct OsmMap {
 /// side this much farther out, so the camera's lane stays clear.
 pub const CAMERA_LANE: f64 = 1.5;
 
+/// The narrowest vehicle standing on a map's roads, metres (a small car's width).
+pub const NARROWEST_VEHICLE: f64 = 1.6;
+
+/// Whether the road cameras drive a paved segment `width` metres wide back as well,
+/// against its way, [`CAMERA_LANE`] left of its centreline: a two-way road whose halves
+/// each hold that lane, [`CAMERA_LANE`] of clearance and the narrowest vehicle at the
+/// kerb (9.2 m or wider). On a narrower two-way road the cameras drive the way's direction
+/// only, and vehicles stand anywhere in its other half.
+pub fn driven_back(width: f64, oneway: bool) -> bool {
+    !oneway && width / 2.0 >= 2.0 * CAMERA_LANE + NARROWEST_VEHICLE
+}
+
 /// The narrowest lane a map's carriageway is divided into, metres: a carriageway `w`
 /// metres wide holds `⌊w / LANE⌋` lanes (at least one). Its markings split it so, and the
 /// cameras drive in its lanes.
@@ -91,6 +103,18 @@ pub struct PavedSegment {
     pub width: f64,
     /// Sidewalk widths left and right of `a → b`, metres (a layout's: pixels).
     pub sidewalks: [f64; 2],
+}
+
+impl PavedSegment {
+    /// The segment the other way round: `b → a`, its sidewalks swapped.
+    pub fn turned(&self) -> PavedSegment {
+        PavedSegment {
+            a: self.b,
+            b: self.a,
+            sidewalks: [self.sidewalks[1], self.sidewalks[0]],
+            ..*self
+        }
+    }
 }
 
 /// `segments` in runs, as [`OsmMap::paved_runs`] groups a map's.

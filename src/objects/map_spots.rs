@@ -29,7 +29,8 @@ use crate::model::geometry::map_lines::MapLines;
 use crate::model::geometry::polygon::{direction, distance, left_normal, nearest, ring_distance};
 use crate::model::geometry::zebras::ZEBRA_DEPTH;
 use crate::model::{
-    Crossing, FeatureKind, Lamp, MAP_CAMERA_LANE, OsmMap, PavedSegment, map_camera_lane,
+    Crossing, FeatureKind, Lamp, MAP_CAMERA_LANE, NARROWEST_VEHICLE, OsmMap, PavedSegment,
+    driven_back, map_camera_lane,
 };
 
 /// Metres a car keeps, beyond its half length, from every other road's carriageway: the
@@ -38,7 +39,7 @@ pub const JUNCTION_CLEARANCE: f64 = 3.0;
 /// Ground a mapped crossing or signal keeps free of cars, radius in metres.
 const CROSSING_ROOM: f64 = 4.0;
 /// The narrowest vehicle's width, metres (a small car's).
-const NARROWEST: f64 = 1.6;
+const NARROWEST: f64 = NARROWEST_VEHICLE;
 /// The narrowest sidewalk anyone stands on, metres (as the sidewalks camera's).
 const MIN_SIDEWALK: f64 = 1.5;
 
@@ -67,6 +68,8 @@ struct MapZebra {
     range: [f64; 2],
     /// The roads cameras' lane, metres right of `along` (see `MapSpots::near_side`).
     camera: f64,
+    /// Whether the cameras drive the road back as well, `camera` left of `along`.
+    driven_back: bool,
 }
 
 impl MapZebra {
@@ -296,16 +299,19 @@ impl<'a> MapSpots<'a> {
 
     /// How far right of segment `k`'s centreline a vehicle driving along it (`forward`:
     /// from `a` to `b`) keeps its near side, so that it stays [`MAP_CAMERA_LANE`] clear
-    /// of the cameras' lane: cameras drive `a → b` only, on a one-way road in the lane
-    /// [`map_camera_lane`] gives, and [`MAP_CAMERA_LANE`] right of a two-way road's (so on its far side, a vehicle
-    /// driving the other way needs only to keep to its own half).
+    /// of the cameras' lanes: cameras drive `a → b` on a one-way road in the lane
+    /// [`map_camera_lane`] gives, and [`MAP_CAMERA_LANE`] right of a two-way road's; they
+    /// drive back [`MAP_CAMERA_LANE`] left of it where the road is [`driven_back`] (else
+    /// on its far side a vehicle driving the other way needs only to keep to its own
+    /// half).
     fn near_side(&self, k: usize, forward: bool) -> f64 {
+        let s = &self.segments[k];
         let camera = if self.oneway[k] {
-            map_camera_lane(self.segments[k].width)
+            map_camera_lane(s.width)
         } else {
             MAP_CAMERA_LANE
         };
-        if forward {
+        if forward || driven_back(s.width, self.oneway[k]) {
             camera + MAP_CAMERA_LANE
         } else {
             MAP_CAMERA_LANE - camera
@@ -451,10 +457,10 @@ impl StripSpots for MapSpots<'_> {
     }
 
     /// A zebra the markings draw (uniform among them) and a place on it: in the half on
-    /// the person's right, at most `reach` either side of the centreline and `radius`
-    /// inside the kerbs, [`CAMERA_CLEARANCE`] plus `radius` clear of the roads cameras'
-    /// lane, crossing either way to `beyond` past the far kerb (on a sidewalk that
-    /// wide); the whole way there is taken.
+    /// the person's right, at most `reach` either side of the centreline (on a road the
+    /// cameras drive both ways, anywhere) and `radius` inside the kerbs, [`CAMERA_CLEARANCE`]
+    /// plus `radius` clear of the roads cameras' lanes, crossing either way to `beyond`
+    /// past the far kerb (on a sidewalk that wide); the whole way there is taken.
     fn zebra(
         &mut self,
         rng: &mut Pcg64,
@@ -468,12 +474,17 @@ impl StripSpots for MapSpots<'_> {
         }
         (0..attempts).find_map(|_| {
             let z = self.zebras[rng.random_range(0..self.zebras.len())];
+            // `reach` keeps the way's lane clear; on a road driven both ways the lanes
+            // are tested below, and a person crosses anywhere outside them.
+            let reach = if z.driven_back { f64::INFINITY } else { reach };
             let limit = reach.min(z.width / 2.0 - radius);
             let across = (2.0 * rng.random::<f64>() - 1.0) * limit;
             let sign = if rng.random::<bool>() { -1.0 } else { 1.0 };
             let along = z.keep_right(sign, radius, rng.random())?;
             let far = sign * (z.width / 2.0 + beyond);
-            let clear = limit >= 0.0 && (across - z.camera).abs() >= radius + CAMERA_CLEARANCE;
+            let off_lane = |lane: f64| (across - lane).abs() >= radius + CAMERA_CLEARANCE;
+            let clear =
+                limit >= 0.0 && off_lane(z.camera) && (!z.driven_back || off_lane(-z.camera));
             if !clear || !self.crossing_way(&z, along, [across, far], radius) {
                 return None;
             }
@@ -552,6 +563,7 @@ fn map_zebras(map: &OsmMap) -> Vec<MapZebra> {
                 } else {
                     MAP_CAMERA_LANE
                 },
+                driven_back: driven_back(width, line.map_road.oneway),
             })
         })
         .collect()
@@ -852,32 +864,46 @@ pub(crate) mod tests {
             at: [-120.0, 0.0],
             tag: String::new(),
         });
-        let mut ground = MapSpots::new(&map, &[], &[]);
-        let mut rng = crate::rng::stream(7, "test", 2);
-        let crossing: Vec<CrossingSpot> = (0..20)
-            .filter_map(|_| ground.zebra(&mut rng, 0.6, 2.4, 0.45, 40))
-            .collect();
-        assert!(crossing.len() >= 2, "{crossing:?}");
-        for (i, c) in crossing.iter().enumerate() {
-            let p = c.spot.position;
-            assert!((p[0] + 120.0).abs() <= ZEBRA_DEPTH / 2.0, "{c:?}");
-            // Within 2.4 m of the centre line, 1.6 m from the cameras' lane (z 1.5: right
-            // of the road's direction): on its north half.
-            assert!((-2.4 - 1e-9..=-0.1 + 1e-9).contains(&p[1]), "{c:?}");
-            let south = c.spot.travel[1] > 0.0;
-            assert!(c.spot.travel[0].abs() < 1e-12 && (c.spot.travel[1].abs() - 1.0).abs() < 1e-12);
-            // Walking south its right is west; walking north, east.
-            assert_eq!(p[0] < -120.0, south, "{c:?}");
-            assert_eq!(c.crossing.zebra, [28.5, 31.5]);
-            assert!(!c.crossing.waiting);
-            let far = if south { 6.45 } else { -6.45 };
-            assert!((c.reach - (far - p[1]).abs()).abs() < 1e-9, "{c:?}");
-            for d in &crossing[i + 1..] {
-                assert!(distance(p, d.spot.position) >= 1.2 - 1e-9, "{c:?} {d:?}");
+        // 12 m wide, the cameras drive it both ways, 1.5 m right and left of its
+        // centreline: people cross 1.6 m clear of both lanes, to 0.6 m inside the kerbs.
+        // Narrowed to 9 m, it is driven east only: within 2.4 m of the centreline, 1.6 m
+        // from the lane (z 1.5: right of the road's direction), on its north half.
+        let mut narrow = map.clone();
+        for f in &mut narrow.roads[0].fitted {
+            f[0] = 9.0;
+        }
+        for (map, width, [lo, hi]) in [(&map, 12.0, [3.1, 5.4]), (&narrow, 9.0, [0.1, 2.4])] {
+            let mut ground = MapSpots::new(map, &[], &[]);
+            let mut rng = crate::rng::stream(7, "test", 2);
+            let crossing: Vec<CrossingSpot> = (0..20)
+                .filter_map(|_| ground.zebra(&mut rng, 0.6, 2.4, 0.45, 40))
+                .collect();
+            assert!(crossing.len() >= 2, "{crossing:?}");
+            let both_ways = crossing.iter().any(|c| c.spot.position[1] > 0.0);
+            assert_eq!(both_ways, width > 9.0, "{crossing:?}");
+            for (i, c) in crossing.iter().enumerate() {
+                let p = c.spot.position;
+                assert!((p[0] + 120.0).abs() <= ZEBRA_DEPTH / 2.0, "{c:?}");
+                let z = if width > 9.0 { p[1].abs() } else { -p[1] };
+                assert!((lo - 1e-9..=hi + 1e-9).contains(&z), "{c:?}");
+                let south = c.spot.travel[1] > 0.0;
+                assert!(
+                    c.spot.travel[0].abs() < 1e-12 && (c.spot.travel[1].abs() - 1.0).abs() < 1e-12
+                );
+                // Walking south its right is west; walking north, east.
+                assert_eq!(p[0] < -120.0, south, "{c:?}");
+                assert_eq!(c.crossing.zebra, [28.5, 31.5]);
+                assert!(!c.crossing.waiting);
+                let far = (width / 2.0 + 0.45) * if south { 1.0 } else { -1.0 };
+                assert!((c.reach - (far - p[1]).abs()).abs() < 1e-9, "{c:?}");
+                for d in &crossing[i + 1..] {
+                    assert!(distance(p, d.spot.position) >= 1.2 - 1e-9, "{c:?} {d:?}");
+                }
             }
         }
         // On ground of their own: the crossing people's ways fill both halves of the zebra.
         let mut ground = MapSpots::new(&map, &[], &[]);
+        let mut rng = crate::rng::stream(7, "test", 2);
         let waiting: Vec<CrossingSpot> = (0..20)
             .filter_map(|_| ground.zebra_kerb(&mut rng, 0.6, 1.0, 40))
             .collect();
