@@ -7,7 +7,7 @@
 //!   centreline. One inside a building is left out.
 //! - **Seeded** (with `[lamps]`, unless the spec turns it off): the layouts' rule, "every
 //!   `spacing` along each road on both sides, none inside a crossing, of two too close one
-//!   removed", on the map's polylines. The runs of consecutive paved segments are joined
+//!   removed", on the map's polylines, by the layouts' code (`seed.rs`). The runs of consecutive paved segments are joined
 //!   into streets where one goes straight on from another (OSM splits a street's way at
 //!   many nodes); each street takes candidates at `spacing/2 + k·spacing` metres along
 //!   its centreline, on its left and then its right, [`KERB_SETBACK`] behind the kerb of
