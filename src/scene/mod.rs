@@ -35,9 +35,10 @@
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
 pub const VERSION: u32 = 13;
-/// Bump when a map's city ([`map_city`], its markings and roofs) changes for the same
-/// map: it is in the stage's key for a map layout only, so a layout's key stays as it was.
-pub const MAP_VERSION: u32 = 5;
+/// Bump when a map's city ([`map_city`], its markings and roofs, and the objects and
+/// camera paths placed on a map) changes for the same map: it is in the export's key for
+/// a map layout only (and so in its frames'), so a layout's key stays as it was.
+pub const MAP_VERSION: u32 = 6;
 
 mod blocks;
 mod buildings;
