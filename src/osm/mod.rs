@@ -19,7 +19,7 @@
 
 /// Bump when the map read from an extract changes: it is part of the layout stage's key for
 /// a map layout.
-pub const VERSION: u32 = 15;
+pub const VERSION: u32 = 16;
 
 mod clip;
 mod collect;

@@ -341,13 +341,31 @@ pub fn square(tags: &[(&str, &str)]) -> bool {
             && get(tags, "parking").is_none_or(|p| p == "surface"))
 }
 
-/// The furniture a node's tags make, each with the tag that says what it is: its
-/// `traffic_sign=*`, then what its `highway`, `natural` or `amenity` tag makes it
-/// (`furniture`). A node may be both: a sign on a lamp post, a stop sign
-/// (`highway=stop`, whose stop line the markings draw) with its code.
+/// The furniture a node's tags make, each with the tag that says what it is: its signs,
+/// then what its `highway`, `natural` or `amenity` tag makes it (`furniture`). A node may
+/// be both: a sign on a lamp post, a stop sign (`highway=stop`, whose stop line the
+/// markings draw) with its code.
+///
+/// A post's signs are `traffic_sign=*` and, for the plates below it, `traffic_sign:2`,
+/// `traffic_sign:3`, … (as the Finnish and other mappers tag them): one
+/// `traffic_sign=…` tag with their values joined by `;`, top to bottom.
 pub fn features(tags: &[(&str, &str)]) -> Vec<(FeatureKind, String)> {
-    let sign = get(tags, "traffic_sign")
-        .map(|sign| (FeatureKind::TrafficSign, format!("traffic_sign={sign}")));
+    let mut below: Vec<(u32, &str)> = (tags.iter())
+        .filter_map(|(k, v)| {
+            let n: u32 = k.strip_prefix("traffic_sign:")?.parse().ok()?;
+            (n >= 2).then_some((n, *v))
+        })
+        .collect();
+    below.sort_unstable();
+    let codes: Vec<&str> = (get(tags, "traffic_sign").into_iter())
+        .chain(below.iter().map(|(_, v)| *v))
+        .collect();
+    let sign = (!codes.is_empty()).then(|| {
+        (
+            FeatureKind::TrafficSign,
+            format!("traffic_sign={}", codes.join(";")),
+        )
+    });
     sign.into_iter().chain(furniture(tags)).collect()
 }
 
@@ -586,6 +604,27 @@ mod tests {
         assert_eq!(
             features(&[("traffic_sign", "FI:361")]),
             vec![(FeatureKind::TrafficSign, "traffic_sign=FI:361".to_owned())]
+        );
+        // The plates below: `traffic_sign:2`, `:3`, … in their order, whatever the tags'.
+        let post = [
+            ("traffic_sign:10", "FI:372"),
+            ("traffic_sign:3", "FI:855a"),
+            ("traffic_sign", "FI:371"),
+            ("traffic_sign:2", "FI:231;FI:373"),
+            ("traffic_sign:1", "FI:511"),
+            ("traffic_sign:direction", "forward"),
+            ("traffic_sign:x", "FI:332"),
+        ];
+        assert_eq!(
+            features(&post),
+            vec![(
+                FeatureKind::TrafficSign,
+                "traffic_sign=FI:371;FI:231;FI:373;FI:855a;FI:372".to_owned()
+            )]
+        );
+        assert_eq!(
+            features(&[("traffic_sign:2", "FI:372")]),
+            vec![(FeatureKind::TrafficSign, "traffic_sign=FI:372".to_owned())]
         );
         assert_eq!(
             furniture(&[("highway", "crossing"), ("crossing", "traffic_signals")]),
