@@ -155,6 +155,13 @@ fn map_spec(extract: &str, frames: u32) -> String {
     )
 }
 
+/// `spec` (a [`map_spec`] of `kamppi.osm.pbf`) with `line` added to its `[layout.osm]`.
+fn with_osm_option(spec: &str, line: &str) -> String {
+    let file = "file = 'kamppi.osm.pbf'\n";
+    assert!(spec.contains(file), "{spec}");
+    spec.replace(file, &format!("{file}{line}\n"))
+}
+
 /// A temporary folder holding the Kamppi extract as `kamppi.osm.pbf`.
 fn with_kamppi() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
@@ -265,10 +272,7 @@ fn a_map_spec_whose_extract_is_broken_is_exit_code_2_and_writes_nothing() {
 fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from_the_cache() {
     let dir = with_kamppi();
     let plain = map_spec("kamppi.osm.pbf", 1);
-    let filled = plain.replace(
-        "file = 'kamppi.osm.pbf'\n",
-        "file = 'kamppi.osm.pbf'\nfill_empty_blocks = true\n",
-    );
+    let filled = with_osm_option(&plain, "fill_empty_blocks = true");
     assert_ne!(plain, filled);
     fs::write(dir.path().join("plain.toml"), plain).unwrap();
     fs::write(dir.path().join("filled.toml"), filled).unwrap();
@@ -301,10 +305,7 @@ fn filling_empty_blocks_adds_buildings_after_the_maps_own_and_reads_the_map_from
 fn lamps_are_seeded_where_the_map_has_none_and_only_the_lamps_stage_reruns() {
     let dir = with_kamppi();
     let plain = map_spec("kamppi.osm.pbf", 1);
-    let mapped_only = plain.replace(
-        "file = 'kamppi.osm.pbf'\n",
-        "file = 'kamppi.osm.pbf'\nseed_lamps = false\n",
-    );
+    let mapped_only = with_osm_option(&plain, "seed_lamps = false");
     let denser = format!("{plain}[lamps]\nspacing = 30\nmin_distance = 10\n");
     for (name, text) in [
         ("plain", &plain),
