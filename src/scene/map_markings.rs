@@ -1,5 +1,6 @@
 //! A map's paved roads → `marking_NNNN` objects (NNNN: the road's index in the map):
-//! white dashes along each road's centreline and between its lanes, and a zebra crossing
+//! where each road's marks go, painted by the one painter layouts use too
+//! ([`paint`](super::paint)). White dashes along each road's centreline and between its lanes, and a zebra crossing
 //! where the map has a marked crossing on the road. Markings follow the centreline through
 //! its bends, and stay out of junctions.
 //!
@@ -8,7 +9,7 @@
 //!   dashed lines between their own lanes; a one-way road of `n` lanes gets `n − 1` dashed
 //!   lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
 //! - **Dashes.** [`DASH`](crate::model::geometry::zebras::DASH) long and
-//!   [`GAP`](super::markings::GAP) apart, counted along the road's centreline (so
+//!   [`GAP`](super::paint::GAP) apart, counted along the road's centreline (so
 //!   they run on through a bend) and centred in each stretch the road leaves them:
 //!   a run of paved segments less its junctions and zebras.
 //! - **Junctions.** Where three or more arms of paved roads meet (a road ending on
@@ -20,8 +21,8 @@
 //!   sets no clearance.
 //! - **Zebras.** A `highway=crossing` node within [`ON_ROAD`] of a paved road's
 //!   centreline, unless the map says it has no markings (`crossing=unmarked`,
-//!   `crossing:markings=no`), gets bars [`BAR`] wide and
-//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`] apart and centred from kerb
+//!   `crossing:markings=no`), gets bars [`BAR`](super::paint::BAR) wide and
+//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`](super::paint::BAR_GAP) apart and centred from kerb
 //!   to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra that would reach into a
 //!   junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
 //!
@@ -35,30 +36,24 @@
 //!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
 //! - **Give-way lines.** At each `highway=give_way` node the same way, a row of
 //!   triangles (the Vienna Convention's "shark teeth", as Finland paints them)
-//!   [`TOOTH_LENGTH`] long in place of the stop line: bases [`TOOTH_BASE`] wide on the
-//!   node's side, [`TOOTH_GAP`] apart and centred across the lanes, apexes pointing at the
+//!   [`TOOTH_LENGTH`] long in place of the stop line: bases [`TOOTH_BASE`](super::paint::TOOTH_BASE) wide on the
+//!   node's side, [`TOOTH_GAP`](super::paint::TOOTH_GAP) apart and centred across the lanes, apexes pointing at the
 //!   coming traffic.
 //!
 //! Not drawn on maps yet: parking-lane edges, arrows.
 
-use super::markings::{BAR, BAR_GAP, CURB_CLEARANCE, STOP_LINE, centred_dashes, centred_pieces};
 use super::object;
+use super::paint::{
+    CURB_CLEARANCE, Line, Path, RoadMarks, STOP_LINE, StopMark, TOOTH_LENGTH, ZebraMark, paint,
+};
+use crate::model::geometry::MeshBuilder;
 use crate::model::geometry::map_lines::{Centreline, Junction, MapLines, ON_ROAD, Zebra};
-use crate::model::geometry::polygon::direction;
-use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
-use crate::model::geometry::{MARKING_Y, MeshBuilder, UP};
+use crate::model::geometry::zebras::{LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH, free_stretches};
 use crate::model::{FeatureKind, ObjectKind, OsmMap, SceneObject, map_lanes};
 
 /// How far before its node (or the zebra, or the junction, the traffic meets first) a
 /// stop line ends, metres.
 pub const STOP_GAP: f64 = 1.0;
-/// A give-way line's triangles: their length along the road, metres (the Vienna
-/// Convention's 0.60–0.70 m, Annex 2 §33).
-pub const TOOTH_LENGTH: f64 = 0.6;
-/// A give-way triangle's base across the road, metres (0.40–0.60 m, the same).
-pub const TOOTH_BASE: f64 = 0.5;
-/// The gap between two give-way triangles' bases, metres.
-pub const TOOTH_GAP: f64 = 0.25;
 /// Zebras this close to a signal along its road, metres, are the signal's: its stop lines
 /// stand before them.
 pub const SIGNAL_ZEBRA: f64 = 8.0;
@@ -75,41 +70,8 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
         .iter()
         .filter_map(|line| {
             let mut mesh = MeshBuilder::new(material);
-            let mut blocked: Vec<[f64; 2]> = junctions
-                .iter()
-                .filter(|j| j.road == line.road)
-                .map(|j| {
-                    [
-                        j.at - j.reach - LINE_CLEARANCE,
-                        j.at + j.reach + LINE_CLEARANCE,
-                    ]
-                })
-                .collect();
-            for z in zebras.iter().filter(|z| z.road == line.road) {
-                line.zebra(&mut mesh, z);
-                let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
-                blocked.push([z.at - half, z.at + half]);
-            }
-            for stop in stops.iter().filter(|l| l.road == line.road) {
-                let s = stop.segment;
-                let along = stop.along.map(|a| a - line.at[s]);
-                if stop.give_way {
-                    line.teeth(&mut mesh, s, along, stop.across, stop.sign);
-                } else {
-                    line.rect(&mut mesh, s, along, stop.across);
-                }
-                blocked.push([
-                    stop.along[0] - LINE_CLEARANCE,
-                    stop.along[1] + LINE_CLEARANCE,
-                ]);
-            }
-            for run in line.runs() {
-                for stretch in free(run, &blocked) {
-                    for dash in centred_dashes(stretch) {
-                        line.dash(&mut mesh, dash);
-                    }
-                }
-            }
+            let marks = road_marks(line, &junctions, &zebras, &stops);
+            paint(&mut mesh, &Path::new(line.points().to_vec()), &marks);
             (!mesh.is_empty()).then(|| {
                 object(
                     ObjectKind::Marking,
@@ -119,6 +81,66 @@ pub fn map_marking_objects(map: &OsmMap, material: u32) -> Vec<SceneObject> {
             })
         })
         .collect()
+}
+
+/// What is painted on the road of `line`: its lane lines on each paved segment, over its
+/// paved runs less the `junctions`, `zebras` and `stops` on it (and [`LINE_CLEARANCE`]
+/// either side); its zebras kerb to kerb; its stop and give-way lines.
+fn road_marks(
+    line: &Centreline,
+    junctions: &[Junction],
+    zebras: &[Zebra],
+    stops: &[StopLine],
+) -> RoadMarks {
+    let mut blocked: Vec<[f64; 2]> = junctions
+        .iter()
+        .filter(|j| j.road == line.road)
+        .map(|j| {
+            [
+                j.at - j.reach - LINE_CLEARANCE,
+                j.at + j.reach + LINE_CLEARANCE,
+            ]
+        })
+        .collect();
+    let mut marks = RoadMarks::default();
+    for z in zebras.iter().filter(|z| z.road == line.road) {
+        let half = line.width(z.segment) / 2.0 - CURB_CLEARANCE;
+        marks.zebras.push(ZebraMark {
+            segment: z.segment,
+            along: [z.at - ZEBRA_DEPTH / 2.0, z.at + ZEBRA_DEPTH / 2.0],
+            across: [-half, half],
+        });
+        let half = ZEBRA_DEPTH / 2.0 + LINE_CLEARANCE;
+        blocked.push([z.at - half, z.at + half]);
+    }
+    for stop in stops.iter().filter(|l| l.road == line.road) {
+        marks.stops.push(stop.mark);
+        blocked.push([
+            stop.mark.along[0] - LINE_CLEARANCE,
+            stop.mark.along[1] + LINE_CLEARANCE,
+        ]);
+    }
+    marks.lines = (0..line.at.len() - 1)
+        .map(|s| {
+            let width = line.width(s);
+            if width <= 0.0 {
+                return Vec::new();
+            }
+            lane_lines(width, line.map_road.oneway)
+                .into_iter()
+                .map(|offset| Line {
+                    offset,
+                    solid: false,
+                })
+                .collect()
+        })
+        .collect();
+    marks.stretches = line
+        .runs()
+        .into_iter()
+        .flat_map(|run| free_stretches(run, blocked.clone()))
+        .collect();
+    marks
 }
 
 /// The offsets (metres right of the centreline) of the dashed lines of a carriageway
@@ -144,45 +166,23 @@ pub fn lane_lines(width: f64, oneway: bool) -> Vec<f64> {
     lines
 }
 
-/// A stop line on a road: on which segment, over which arc lengths, and across which
-/// offsets (metres right of the centreline).
+/// A stop or give-way line on a road.
 struct StopLine {
     road: usize,
-    segment: usize,
-    along: [f64; 2],
-    across: [f64; 2],
-    /// 1: it stops the traffic running along the road; −1: against it.
-    sign: f64,
-    /// A give-way line (triangles), not a stop line (a bar).
-    give_way: bool,
+    mark: StopMark,
 }
 
 impl Centreline<'_> {
-    /// One dash over arc lengths `along` on every lane line of each segment it crosses.
-    fn dash(&self, mesh: &mut MeshBuilder, along: [f64; 2]) {
-        let points = self.points();
-        for s in 0..points.len() - 1 {
-            let (a, b) = (self.at[s].max(along[0]), self.at[s + 1].min(along[1]));
-            let width = self.width(s);
-            if a >= b || width <= 0.0 {
-                continue;
-            }
-            for offset in lane_lines(width, self.map_road.oneway) {
-                let half = LINE_WIDTH / 2.0;
-                self.rect(
-                    mesh,
-                    s,
-                    [a - self.at[s], b - self.at[s]],
-                    [offset - half, offset + half],
-                );
-            }
-        }
-    }
-
     /// The stop line over arc lengths `along` for the traffic running `sign` (1: along
-    /// the road), across its lanes; None when it would leave its paved run or touch one of
-    /// the road's `junctions`.
-    fn stop_line(&self, along: [f64; 2], sign: f64, junctions: &[&Junction]) -> Option<StopLine> {
+    /// the road), across its lanes (`give_way`: triangles pointing at that traffic); None
+    /// when it would leave its paved run or touch one of the road's `junctions`.
+    fn stop_line(
+        &self,
+        along: [f64; 2],
+        sign: f64,
+        give_way: bool,
+        junctions: &[&Junction],
+    ) -> Option<StopLine> {
         self.runs()
             .iter()
             .find(|r| r[0] <= along[0] && along[1] <= r[1])?;
@@ -204,90 +204,13 @@ impl Centreline<'_> {
         };
         Some(StopLine {
             road: self.road,
-            segment,
-            along,
-            across,
-            sign,
-            give_way: false,
+            mark: StopMark {
+                segment,
+                along,
+                across,
+                give_way: give_way.then_some(sign),
+            },
         })
-    }
-
-    /// The bars of `zebra`, along its segment, kerb to kerb.
-    fn zebra(&self, mesh: &mut MeshBuilder, zebra: &Zebra) {
-        let s = zebra.segment;
-        let half = self.width(s) / 2.0 - CURB_CLEARANCE;
-        let centre = zebra.at - self.at[s];
-        let along = [centre - ZEBRA_DEPTH / 2.0, centre + ZEBRA_DEPTH / 2.0];
-        for bar in centred_pieces([-half, half], BAR, BAR_GAP) {
-            self.rect(mesh, s, along, bar);
-        }
-    }
-
-    /// The marking point on segment `s` at `l` metres along it from its first point and
-    /// `c` metres right of it (x east, z south); None for a segment of no length.
-    fn on_segment(&self, s: usize) -> Option<impl Fn(f64, f64) -> [f64; 3]> {
-        let (a, b) = (self.points()[s], self.points()[s + 1]);
-        let t = direction(a, b)?;
-        // Right of a → b.
-        let n = [-t[1], t[0]];
-        Some(move |l: f64, c: f64| {
-            [
-                a[0] + t[0] * l + n[0] * c,
-                MARKING_Y,
-                a[1] + t[1] * l + n[1] * c,
-            ]
-        })
-    }
-
-    /// A marking quad on segment `s`: `along` it (metres from its first point) and
-    /// `across` it (metres right of it).
-    fn rect(&self, mesh: &mut MeshBuilder, s: usize, along: [f64; 2], across: [f64; 2]) {
-        let Some(at) = self.on_segment(s) else {
-            return;
-        };
-        let corners = [
-            at(along[0], across[0]),
-            at(along[1], across[0]),
-            at(along[1], across[1]),
-            at(along[0], across[1]),
-        ];
-        // The whole mark is one white quad; uv 0..1 over it.
-        let uvs = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        mesh.quad(corners, UP, uvs);
-    }
-
-    /// A give-way line's triangles over arc lengths `along` (from segment `s`'s start)
-    /// and `across` (metres right of the centreline), for traffic running `sign`: bases
-    /// on the side it drives to, apexes towards it.
-    fn teeth(
-        &self,
-        mesh: &mut MeshBuilder,
-        s: usize,
-        along: [f64; 2],
-        across: [f64; 2],
-        sign: f64,
-    ) {
-        let Some(at) = self.on_segment(s) else {
-            return;
-        };
-        let (base, apex) = if sign > 0.0 {
-            (along[1], along[0])
-        } else {
-            (along[0], along[1])
-        };
-        let width = across[1] - across[0];
-        let count = ((width + TOOTH_GAP) / (TOOTH_BASE + TOOTH_GAP)).floor();
-        let used = count * TOOTH_BASE + (count - 1.0) * TOOTH_GAP;
-        let mut c = across[0] + (width - used) / 2.0;
-        for _ in 0..count.max(0.0) as u32 {
-            let corners = [
-                at(base, c),
-                at(base, c + TOOTH_BASE),
-                at(apex, c + TOOTH_BASE / 2.0),
-            ];
-            mesh.triangle(corners, UP, [[0.0, 0.0], [1.0, 0.0], [0.5, 1.0]]);
-            c += TOOTH_BASE + TOOTH_GAP;
-        }
     }
 }
 
@@ -337,9 +260,7 @@ fn stop_lines(
             let near = front - sign * STOP_GAP;
             let far = near - sign * depth;
             let along = [near.min(far), near.max(far)];
-            if let Some(stop) = line.stop_line(along, sign, &own) {
-                out.push(StopLine { give_way, ..stop });
-            }
+            out.extend(line.stop_line(along, sign, give_way, &own));
         }
     }
     out
@@ -352,26 +273,4 @@ const GIVE_WAY: &str = "highway=give_way";
 /// reaches first.
 fn first(sign: f64, a: f64, b: f64) -> f64 {
     if sign > 0.0 { a.min(b) } else { a.max(b) }
-}
-
-/// What is left of `run` (arc lengths) outside the `blocked` ranges, in order.
-fn free(run: [f64; 2], blocked: &[[f64; 2]]) -> Vec<[f64; 2]> {
-    let mut cuts: Vec<[f64; 2]> = blocked
-        .iter()
-        .filter(|b| b[1] > run[0] && b[0] < run[1])
-        .copied()
-        .collect();
-    cuts.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    let mut out = Vec::new();
-    let mut from = run[0];
-    for cut in cuts {
-        if cut[0] > from {
-            out.push([from, cut[0].min(run[1])]);
-        }
-        from = from.max(cut[1]);
-    }
-    if from < run[1] {
-        out.push([from, run[1]]);
-    }
-    out
 }

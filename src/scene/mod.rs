@@ -34,7 +34,7 @@
 //! bit for bit on every platform.
 
 /// Bump when this stage's output bytes change: it is part of the stage's cache key.
-pub const VERSION: u32 = 13;
+pub const VERSION: u32 = 14;
 /// Bump when a map's city ([`map_city`], its markings and roofs, and the objects and
 /// camera paths placed on a map) changes for the same map: it is in the export's key for
 /// a map layout only (and so in its frames'), so a layout's key stays as it was.
@@ -46,6 +46,7 @@ mod horizon;
 mod map_city;
 mod map_markings;
 mod markings;
+mod paint;
 mod procedural;
 mod roads;
 mod row_region;

@@ -123,7 +123,7 @@ fn free_along(road: &Road, own: [f64; 2], i: usize, rects: &[RoadRect], mpp: f64
 }
 
 /// `range` minus the union of `blocked`, in order.
-fn free_stretches(range: [f64; 2], mut blocked: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+pub fn free_stretches(range: [f64; 2], mut blocked: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     blocked.sort_by(|a, b| a[0].total_cmp(&b[0]));
     let mut free = Vec::new();
     let mut from = range[0];

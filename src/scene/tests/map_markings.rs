@@ -6,7 +6,7 @@ use crate::model::geometry::map_lines::UNMARKED_CROSSING;
 use crate::model::geometry::zebras::{DASH, LINE_CLEARANCE, LINE_WIDTH, ZEBRA_DEPTH};
 use crate::model::{FeatureKind, MapFeature, ObjectKind, SceneObject};
 use crate::scene::map_markings::{lane_lines, map_marking_objects};
-use crate::scene::markings::{BAR, BAR_GAP, CURB_CLEARANCE, GAP, STOP_LINE};
+use crate::scene::paint::{BAR, BAR_GAP, CURB_CLEARANCE, GAP, STOP_LINE};
 use crate::test_support::street_map;
 
 /// The faces of a marking object, quads and triangles, their corners `[x, z]` in order.
@@ -363,7 +363,7 @@ fn signals_and_stop_nodes_get_stop_lines_before_them() {
 
 #[test]
 fn give_way_nodes_get_teeth_pointing_at_the_coming_traffic() {
-    use crate::scene::map_markings::{TOOTH_BASE, TOOTH_GAP, TOOTH_LENGTH};
+    use crate::scene::paint::{TOOTH_BASE, TOOTH_GAP, TOOTH_LENGTH};
     let mut map = street_map();
     // Road 0, two-way, 12 m wide, eastwards: teeth each way, a metre before the node.
     let give_way = MapFeature {
