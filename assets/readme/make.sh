@@ -10,6 +10,8 @@
 #   closeups.jpg        day and night street frames 75, 32 / 75, 50 in a 2 × 2 grid
 #   sign-faces.jpg      the sign-face contact sheet of `cargo test --lib contact_sheet`
 #   text-street.jpg                                                    specs/text.toml (words camera)
+#   osm-overview.jpg, osm-street.jpg   specs/osm.toml: its overview, and the first rows of its
+#       street (top) and walk (bottom) camera previews
 #   street-{noon,overcast,fog,rain,dusk,night}.png                     frame $FRAME of
 #       specs/fog.toml's street path with only `[weather] kind` and `[lighting] time`
 #       changed, so all six show one viewpoint.
@@ -37,6 +39,10 @@ rgb() { echo "$work/out/$1/frames/street/rgb/$2.png"; }
 convert \( "$(rgb day 000075)" "$(rgb day 000032)" +append \) \
     \( "$(rgb night 000075)" "$(rgb night 000050)" +append \) -append \
     -resize 800x -strip -quality 85 "$here/closeups.jpg"
+build "$repo/specs/osm.toml"
+convert "$work/out/osm/overview.png" -resize 640x -strip -quality 85 "$here/osm-overview.jpg"
+first_row() { convert "$work/out/osm/frames/$1/preview.png" -crop 100%x25%+0+0 +repage png:-; }
+convert <(first_row street) <(first_row walk) -append -strip -quality 85 "$here/osm-street.jpg"
 (cd "$repo" && CITYSPEC_SIGN_SHEET="$work/sign-faces.png" cargo test -q --lib contact_sheet >/dev/null)
 convert "$work/sign-faces.png" -resize 800x -strip -quality 85 "$here/sign-faces.jpg"
 
