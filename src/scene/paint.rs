@@ -65,7 +65,7 @@ impl Path {
     /// The world point of segment `s` at `l` metres along it from its first point and `c`
     /// metres right of it; None for a segment of no length.
     fn on_segment(&self, s: usize) -> Option<impl Fn(f64, f64) -> [f64; 3]> {
-        let (a, b) = (self.points[s], self.points[s + 1]);
+        let (a, b) = (*self.points.get(s)?, *self.points.get(s + 1)?);
         let t = direction(a, b)?;
         // Right of a → b (x east, z south).
         let n = [-t[1], t[0]];
@@ -121,14 +121,20 @@ pub struct RoadMarks {
 /// Paints `marks` along `path` into `mesh`: the zebras, the stop lines, then per stretch
 /// its dashes and its solid lines.
 pub fn paint(mesh: &mut MeshBuilder, path: &Path, marks: &RoadMarks) {
+    // A mark on a segment the path does not have is left out.
+    let from_start = |s: usize, along: [f64; 2]| path.at.get(s).map(|&at| along.map(|a| a - at));
     for zebra in &marks.zebras {
-        let along = zebra.along.map(|a| a - path.at[zebra.segment]);
+        let Some(along) = from_start(zebra.segment, zebra.along) else {
+            continue;
+        };
         for bar in centred_pieces(zebra.across, BAR, BAR_GAP) {
             rect(mesh, path, zebra.segment, along, bar);
         }
     }
     for stop in &marks.stops {
-        let along = stop.along.map(|a| a - path.at[stop.segment]);
+        let Some(along) = from_start(stop.segment, stop.along) else {
+            continue;
+        };
         match stop.give_way {
             Some(sign) => teeth(mesh, path, stop.segment, along, stop.across, sign),
             None => rect(mesh, path, stop.segment, along, stop.across),
@@ -289,6 +295,37 @@ mod tests {
         // Past the bend the dash runs south, 2 m past the corner; right of it is west.
         assert!(has(&quads[2], [10.0 + h, 0.0]) && has(&quads[2], [10.0 - h, 2.0]));
         assert!(has(&quads[3], [0.0, 2.0 - h]) && has(&quads[3], [10.0, 2.0 + h]));
+    }
+
+    #[test]
+    fn marks_off_the_path_are_left_out() {
+        let marks = RoadMarks {
+            lines: vec![vec![Line {
+                offset: 0.0,
+                solid: true,
+            }]],
+            stretches: vec![[0.0, 5.0]],
+            zebras: vec![ZebraMark {
+                segment: 3,
+                along: [1.0, 4.0],
+                across: [-2.0, 2.0],
+            }],
+            stops: vec![StopMark {
+                segment: 1,
+                along: [1.0, 1.4],
+                across: [0.0, 2.0],
+                give_way: Some(1.0),
+            }],
+        };
+        for points in [vec![], vec![[0.0, 0.0]], vec![[0.0, 0.0], [0.0, 0.0]]] {
+            let mut mesh = MeshBuilder::new(0);
+            paint(&mut mesh, &Path::new(points), &marks);
+            assert!(mesh.is_empty());
+        }
+        // On a real segment the line is painted, the marks off it are not.
+        let mut mesh = MeshBuilder::new(0);
+        paint(&mut mesh, &Path::new(vec![[0.0, 0.0], [5.0, 0.0]]), &marks);
+        assert_eq!(mesh.finish().positions.len(), 4);
     }
 
     #[test]
