@@ -1,13 +1,13 @@
 //! A map's paved roads → `marking_NNNN` objects (NNNN: the road's index in the map):
 //! where each road's marks go, painted by the one painter layouts use too
-//! ([`paint`](super::paint)). White dashes along each road's centreline and between its lanes, and a zebra crossing
-//! where the map has a marked crossing on the road. Markings follow the centreline through
-//! its bends, and stay out of junctions.
+//! ([`paint`](super::paint)). White dashes along each road's centreline and between its
+//! lanes, and a zebra crossing where the map has a marked crossing on the road. Markings
+//! follow the centreline through its bends, and stay out of junctions.
 //!
 //! - **Lanes.** A segment of carriageway `w` metres wide holds `⌊w / LANE⌋` lanes (at least
-//!   one, [`MAP_LANE`](crate::model::MAP_LANE)). A two-way road of two lanes or more gets a dashed centre line, and its halves
-//!   dashed lines between their own lanes; a one-way road of `n` lanes gets `n − 1` dashed
-//!   lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
+//!   one, [`MAP_LANE`](crate::model::MAP_LANE)). A two-way road of two lanes or more gets
+//!   a dashed centre line, and its halves dashed lines between their own lanes; a one-way
+//!   road of `n` lanes gets `n − 1` dashed lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
 //! - **Dashes.** [`DASH`](crate::model::geometry::zebras::DASH) long and
 //!   [`GAP`](super::paint::GAP) apart, counted along the road's centreline (so
 //!   they run on through a bend) and centred in each stretch the road leaves them:
@@ -17,14 +17,14 @@
 //!   is not a junction), each road's lines stop [`LINE_CLEARANCE`] before the other
 //!   roads' carriageways: `h' / sin θ + h / tan θ` along the road from the junction, `h`
 //!   and `h'` the half-widths and θ the angle between the roads. An arm whose sine is
-//!   under [`MIN_SINE`](crate::model::geometry::map_lines::MIN_SINE) (about 17°) carries the road on (ways are split at junctions) and
-//!   sets no clearance.
+//!   under [`MIN_SINE`](crate::model::geometry::map_lines::MIN_SINE) (about 17°) carries
+//!   the road on (ways are split at junctions) and sets no clearance.
 //! - **Zebras.** A `highway=crossing` node within [`ON_ROAD`] of a paved road's
 //!   centreline, unless the map says it has no markings (`crossing=unmarked`,
 //!   `crossing:markings=no`), gets bars [`BAR`](super::paint::BAR) wide and
-//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`](super::paint::BAR_GAP) apart and centred from kerb
-//!   to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra that would reach into a
-//!   junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
+//!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`](super::paint::BAR_GAP) apart
+//!   and centred from kerb to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra
+//!   that would reach into a junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
 //!
 //! - **Stop lines.** At each `highway=traffic_signals` or `highway=stop` node, on each
 //!   paved road within [`ON_ROAD`] of it, a line [`STOP_LINE`] wide crosses the lanes of
@@ -36,9 +36,10 @@
 //!   paved run is left out. The dashes keep [`LINE_CLEARANCE`] from it.
 //! - **Give-way lines.** At each `highway=give_way` node the same way, a row of
 //!   triangles (the Vienna Convention's "shark teeth", as Finland paints them)
-//!   [`TOOTH_LENGTH`] long in place of the stop line: bases [`TOOTH_BASE`](super::paint::TOOTH_BASE) wide on the
-//!   node's side, [`TOOTH_GAP`](super::paint::TOOTH_GAP) apart and centred across the lanes, apexes pointing at the
-//!   coming traffic.
+//!   [`TOOTH_LENGTH`] long in place of the stop line: bases
+//!   [`TOOTH_BASE`](super::paint::TOOTH_BASE) wide on the node's side,
+//!   [`TOOTH_GAP`](super::paint::TOOTH_GAP) apart and centred across the lanes, apexes
+//!   pointing at the coming traffic.
 //!
 //! Not drawn on maps yet: parking-lane edges, arrows.
 
@@ -215,9 +216,9 @@ impl Centreline<'_> {
 }
 
 /// The stop and give-way lines of the map's signals, stop and give-way nodes on the
-/// paved roads `lines` (see the module's docs): per node, per road through it in road order, the traffic running along
-/// the road before the traffic running against it (a line that would lie off the road's
-/// paved run is the traffic leaving the node: none).
+/// paved roads `lines` (see the module's docs): per node, per road through it in road
+/// order, the traffic running along the road before the traffic running against it (a
+/// line that would lie off the road's paved run is the traffic leaving the node: none).
 fn stop_lines(
     map: &OsmMap,
     lines: &[Centreline],

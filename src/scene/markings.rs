@@ -18,7 +18,6 @@
 //!   keeps right: along a horizontal road it runs east on the south side, along a vertical
 //!   one north on the east side.
 //! - The lines stop [`LINE_CLEARANCE`] before a zebra.
-//!
 
 use super::object;
 use super::paint::{CURB_CLEARANCE, Line, Path, RoadMarks, STOP_LINE, StopMark, ZebraMark, paint};
@@ -30,6 +29,8 @@ use crate::model::{Axis, ObjectKind, ParsedLayout, Road, SceneObject};
 const _: () = assert!(STOP_LINE_END - STOP_LINE > ZEBRA_END);
 const _: () = assert!(STOP_LINE_END < ZEBRA_END + LINE_CLEARANCE);
 
+/// The markings of every road of `layout` (`mpp` metres per pixel), in road order; roads
+/// without any are left out. Pure and deterministic.
 pub fn marking_objects(layout: &ParsedLayout, mpp: f64, material: u32) -> Vec<SceneObject> {
     layout
         .roads

@@ -26,7 +26,8 @@ use crate::model::geometry::{MARKING_Y, MeshBuilder, UP};
 /// [`LINE_WIDTH`]).
 pub const GAP: f64 = 6.0;
 /// A zebra crossing's bars' width and the gap between them, and the road kept clear at
-/// each kerb, in metres (its length: [`ZEBRA_DEPTH`](crate::model::geometry::zebras::ZEBRA_DEPTH)).
+/// each kerb, in metres (its length:
+/// [`ZEBRA_DEPTH`](crate::model::geometry::zebras::ZEBRA_DEPTH)).
 pub const BAR: f64 = 0.5;
 pub const BAR_GAP: f64 = 0.6;
 pub const CURB_CLEARANCE: f64 = 0.3;
