@@ -7,12 +7,11 @@
 //!   centreline. One inside a building is left out.
 //! - **Seeded** (with `[lamps]`, unless the spec turns it off): the layouts' rule, "every
 //!   `spacing` along each road on both sides, none inside a crossing, of two too close one
-//!   removed", on the map's polylines, by the layouts' code (`seed.rs`). The runs of consecutive paved segments are joined
-//!   into streets where one goes straight on from another (OSM splits a street's way at
-//!   many nodes); each street takes candidates at `spacing/2 + k·spacing` metres along
-//!   its centreline, on its left and then its right, [`KERB_SETBACK`] behind the kerb of
-//!   the segment there. A candidate
-//!   is left out where that side has less than [`MIN_SIDEWALK`] of sidewalk, where it
+//!   removed", on the map's polylines, by the layouts' code (`seed.rs`). The runs of
+//!   consecutive paved segments are joined into streets where one goes straight on from
+//!   another (OSM splits a street's way at many nodes); each street takes candidates at
+//!   `spacing/2 + k·spacing` metres along its centreline, on its left and then its right,
+//!   [`KERB_SETBACK`] behind the kerb of the segment there. A candidate is left out where that side has less than [`MIN_SIDEWALK`] of sidewalk, where it
 //!   stands on any carriageway (a junction, the inside of a bend) or within
 //!   [`CLEARANCE`] of a building, a node the map puts something at, or the box's edge;
 //!   within `spacing / 2` of a mapped lamp (the map lights that stretch itself); or

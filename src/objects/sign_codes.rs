@@ -1,11 +1,13 @@
-//! An OpenStreetMap sign tag → the designs cityspec draws for it ([`designs`]): one plate a code.
+//! An OpenStreetMap sign tag → the designs cityspec draws for it ([`designs`]): one
+//! plate a code.
 //!
 //! `traffic_sign=*` holds a country's codes (`DE:206`, `FI:231`), several on one post
 //! separated by `;` or `,`, a value in brackets (`DE:274[50]`), or a readable name
 //! (`stop`). Each code that names one of our designs (the German StVO's, [`SignKind`])
-//! with the same meaning is a plate on the post ([`designs`], in the tag's order): Germany's codes (the designs'
-//! own), the Finnish ones of the extract in `assets/osm` (the numbering before 2020, which
-//! the extract uses, and the 2020 letters for stop and give way), `stop` and `give_way`.
+//! with the same meaning is a plate on the post ([`designs`], in the tag's order):
+//! Germany's codes (the designs' own), the Finnish ones of the extract in `assets/osm`
+//! (the numbering before 2020, which the extract uses, and the 2020 letters for stop and
+//! give way), `stop` and `give_way`.
 //! `highway=stop` and `highway=give_way` nodes draw a stop and a give-way sign.
 //!
 //! Codes without a design of the same meaning are not drawn: a Finnish speed-limit zone

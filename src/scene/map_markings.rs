@@ -7,7 +7,8 @@
 //! - **Lanes.** A segment of carriageway `w` metres wide holds `⌊w / LANE⌋` lanes (at least
 //!   one, [`MAP_LANE`](crate::model::MAP_LANE)). A two-way road of two lanes or more gets
 //!   a dashed centre line, and its halves dashed lines between their own lanes; a one-way
-//!   road of `n` lanes gets `n − 1` dashed lines splitting it evenly. Lines are [`LINE_WIDTH`] wide.
+//!   road of `n` lanes gets `n − 1` dashed lines splitting it evenly. Lines are
+//!   [`LINE_WIDTH`] wide.
 //! - **Dashes.** [`DASH`](crate::model::geometry::zebras::DASH) long and
 //!   [`GAP`](super::paint::GAP) apart, counted along the road's centreline (so
 //!   they run on through a bend) and centred in each stretch the road leaves them:
@@ -24,7 +25,8 @@
 //!   `crossing:markings=no`), gets bars [`BAR`](super::paint::BAR) wide and
 //!   [`ZEBRA_DEPTH`] long, parallel to the road, [`BAR_GAP`](super::paint::BAR_GAP) apart
 //!   and centred from kerb to kerb (less [`CURB_CLEARANCE`]), centred on the node. A zebra
-//!   that would reach into a junction's carriageway is left out. Lines stop [`LINE_CLEARANCE`] before a zebra.
+//!   that would reach into a junction's carriageway is left out. Lines stop
+//!   [`LINE_CLEARANCE`] before a zebra.
 //!
 //! - **Stop lines.** At each `highway=traffic_signals` or `highway=stop` node, on each
 //!   paved road within [`ON_ROAD`] of it, a line [`STOP_LINE`] wide crosses the lanes of
